@@ -1,0 +1,82 @@
+// vesselid: identify vessel motion models from recorded trajectories.
+//
+//   vesselid simulate <config.yaml> --out <dir>                 synthetic experiments
+//   vesselid run      <config.yaml> [--data <dir>] --out <dir>  staged identification
+#include <cstdio>
+#include <iostream>
+
+#include "CLI/CLI.hpp"
+#include "engine/config.h"
+#include "engine/pipeline.h"
+#include "engine/results_writer.h"
+#include "problems/registry.h"
+
+namespace {
+
+int Fail(const std::string& message) {
+  std::fprintf(stderr, "vesselid: error: %s\n", message.c_str());
+  return 1;
+}
+
+int Simulate(const std::string& config_path, const std::string& out_dir) {
+  const vesselid::ModelRegistry registry = vesselid::DefaultRegistry();
+  vesselid::RunConfig config;
+  std::string error;
+  if (!vesselid::LoadRunConfig(config_path, out_dir, registry, &config, &error)) return Fail(error);
+  vesselid::YamlReader reader(config_path);
+  try {
+    if (!config.model_family->simulate(reader, config.simulation, *config.model, out_dir, &error)) {
+      return Fail(error);
+    }
+  } catch (const vesselid::ConfigError& e) {
+    return Fail(e.what());
+  }
+  std::printf("simulated experiments of %s into %s\n", config_path.c_str(), out_dir.c_str());
+  return 0;
+}
+
+int Run(const std::string& config_path, const std::string& data_dir, const std::string& out_dir,
+        bool quiet) {
+  const vesselid::ModelRegistry registry = vesselid::DefaultRegistry();
+  vesselid::RunConfig config;
+  std::string error;
+  if (!vesselid::LoadRunConfig(config_path, data_dir, registry, &config, &error)) return Fail(error);
+  auto observer = [quiet](const vesselid::StageResult* finished, const std::string& next) {
+    if (quiet) return;
+    if (finished == nullptr) {
+      std::fprintf(stderr, "stage %s: running\n", next.c_str());
+    } else {
+      std::fprintf(stderr, "%s\n", finished->summary.BriefReport().c_str());
+    }
+  };
+  vesselid::RunResult result;
+  if (!vesselid::RunIdentification(config, &result, &error, observer)) return Fail(error);
+  if (!vesselid::WriteRunResults(config, result, out_dir, &error)) return Fail(error);
+  if (!quiet) std::cout << vesselid::RunResultToText(config, result);
+  std::printf("\nresults written to %s/results.json\n", out_dir.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"vesselid: output-error identification of vessel motion models"};
+  app.require_subcommand(1);
+  std::string config_path, out_dir, data_dir;
+  bool quiet = false;
+
+  CLI::App* simulate = app.add_subcommand("simulate", "write a config's synthetic experiments");
+  simulate->add_option("config", config_path, "run configuration (YAML)")->required();
+  simulate->add_option("--out", out_dir, "folder for the CSV files")->required();
+
+  CLI::App* run = app.add_subcommand("run", "staged identification");
+  run->add_option("config", config_path, "run configuration (YAML)")->required();
+  run->add_option("--data", data_dir, "folder the experiment files are relative to "
+                                      "(default: the config's folder)");
+  run->add_option("--out", out_dir, "folder for results.json, report.txt, traces/")->required();
+  run->add_flag("--quiet", quiet, "print only the results path");
+
+  CLI11_PARSE(app, argc, argv);
+  if (simulate->parsed()) return Simulate(config_path, out_dir);
+  return Run(config_path, data_dir, out_dir, quiet);
+}

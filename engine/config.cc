@@ -1,0 +1,306 @@
+#include "engine/config.h"
+
+#include <filesystem>
+
+#include "ceres/types.h"
+
+namespace vesselid {
+namespace {
+
+namespace fs = std::filesystem;
+
+void CheckNames(const YamlReader& reader, const YAML::Node& node, const std::string& key,
+                const std::vector<std::string>& names, const std::vector<std::string>& known,
+                const std::string& kind, const ModelInfo& info) {
+  for (const std::string& name : names) {
+    bool found = false;
+    for (const std::string& k : known) found = found || k == name;
+    if (!found) {
+      reader.Fail(node, key, "unknown " + kind + " '" + name + "' (model " + info.name +
+                                 " has " + JoinNames(known) + ")");
+    }
+  }
+}
+
+template <class V>
+std::vector<std::string> Keys(const std::map<std::string, V>& map) {
+  std::vector<std::string> keys;
+  for (const auto& item : map) keys.push_back(item.first);
+  return keys;
+}
+
+Interpolation ReadInterpolation(const YamlReader& reader, const YAML::Node& node,
+                                const std::string& key) {
+  Interpolation interpolation;
+  if (!StringToInterpolation(reader.String(node, key), &interpolation)) {
+    reader.Fail(node, key, "unknown interpolation '" + node.Scalar() +
+                               "' (zero_order_hold, linear, cubic)");
+  }
+  return interpolation;
+}
+
+ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
+                              const std::string& path, const fs::path& base,
+                              const ModelInfo& info) {
+  reader.CheckMap(node, path,
+                  {"name", "file", "inputs", "outputs", "interpolation", "weights",
+                   "initial_state", "degrees", "window"});
+  ExperimentSpec spec;
+  if (!node["name"]) reader.Fail(node, path, "missing key 'name'");
+  if (!node["file"]) reader.Fail(node, path, "missing key 'file'");
+  spec.name = reader.String(node["name"], Child(path, "name"));
+  const std::string file = reader.String(node["file"], Child(path, "file"));
+  spec.file = fs::path(file).is_absolute() ? file : (base / file).lexically_normal().string();
+  if (!node["inputs"] && !info.inputs.empty()) reader.Fail(node, path, "missing key 'inputs'");
+  if (node["inputs"]) {
+    spec.inputs = reader.StringMap(node["inputs"], Child(path, "inputs"));
+    CheckNames(reader, node["inputs"], Child(path, "inputs"), Keys(spec.inputs), info.inputs,
+               "input", info);
+  }
+  if (!node["outputs"]) reader.Fail(node, path, "missing key 'outputs'");
+  spec.outputs = reader.StringMap(node["outputs"], Child(path, "outputs"));
+  CheckNames(reader, node["outputs"], Child(path, "outputs"), Keys(spec.outputs), info.outputs,
+             "output", info);
+  if (const YAML::Node n = node["interpolation"]) {
+    const std::string key = Child(path, "interpolation");
+    if (n.IsScalar()) {
+      spec.default_interpolation = ReadInterpolation(reader, n, key);
+    } else {
+      reader.CheckMap(n, key, info.inputs);
+      for (const auto& item : n) {
+        const std::string input = item.first.as<std::string>();
+        spec.interpolation[input] = ReadInterpolation(reader, item.second, Child(key, input));
+      }
+    }
+  }
+  if (const YAML::Node n = node["weights"]) {
+    spec.output_weights = reader.DoubleMap(n, Child(path, "weights"));
+    CheckNames(reader, n, Child(path, "weights"), Keys(spec.output_weights), info.outputs,
+               "output", info);
+    for (const auto& [output, weight] : spec.output_weights) {
+      if (!(weight >= 0.0)) reader.Fail(n[output], Child(Child(path, "weights"), output), "weight must be >= 0");
+    }
+  }
+  if (const YAML::Node n = node["initial_state"]) {
+    spec.initial_state = reader.DoubleMap(n, Child(path, "initial_state"));
+    CheckNames(reader, n, Child(path, "initial_state"), Keys(spec.initial_state), info.states,
+               "state", info);
+  }
+  if (const YAML::Node n = node["degrees"]) spec.degree_columns = reader.Strings(n, Child(path, "degrees"));
+  if (const YAML::Node n = node["window"]) {
+    std::vector<double> window = reader.Doubles(n, Child(path, "window"));
+    if (window.size() != 2 || !(window[0] < window[1])) {
+      reader.Fail(n, Child(path, "window"), "expected [t_begin, t_end] with t_begin < t_end");
+    }
+    spec.t_begin = window[0];
+    spec.t_end = window[1];
+  }
+  return spec;
+}
+
+ParameterSpec ReadParameter(const YamlReader& reader, const YAML::Node& node,
+                            const std::string& path, const std::string& name) {
+  ParameterSpec spec;
+  spec.name = name;
+  if (node.IsScalar()) {
+    spec.start = reader.Double(node, path);
+  } else {
+    reader.CheckMap(node, path, {"start", "lower", "upper", "scale", "role"});
+    if (!node["start"]) reader.Fail(node, path, "missing key 'start'");
+    spec.start = reader.Double(node["start"], Child(path, "start"));
+    reader.Read(node, path, "lower", &spec.lower);
+    reader.Read(node, path, "upper", &spec.upper);
+    reader.Read(node, path, "scale", &spec.scale);
+    if (node["role"]) {
+      const std::string role = reader.String(node["role"], Child(path, "role"));
+      if (!StringToParameterRole(role, &spec.role)) {
+        reader.Fail(node["role"], Child(path, "role"),
+                    "unknown role '" + role + "' (free, fixed, per_experiment)");
+      }
+    }
+  }
+  std::string error;
+  if (!spec.IsValid(reader.file(), &error)) {
+    reader.Fail(node, path, error.substr(reader.file().size() + 2));
+  }
+  return spec;
+}
+
+void ReadLocal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+               LocalSolveOptions* local) {
+  reader.CheckMap(node, path,
+                  {"trust_region", "linear_solver", "max_iterations", "function_tolerance",
+                   "gradient_tolerance", "parameter_tolerance", "max_time", "num_threads"});
+  if (node["trust_region"]) {
+    std::string text = reader.String(node["trust_region"], Child(path, "trust_region"));
+    if (!ceres::StringToTrustRegionStrategyType(text, &local->trust_region)) {
+      reader.Fail(node["trust_region"], Child(path, "trust_region"),
+                  "unknown trust region '" + text + "' (levenberg_marquardt, dogleg)");
+    }
+  }
+  if (node["linear_solver"]) {
+    std::string text = reader.String(node["linear_solver"], Child(path, "linear_solver"));
+    if (!ceres::StringToLinearSolverType(text, &local->linear_solver)) {
+      reader.Fail(node["linear_solver"], Child(path, "linear_solver"),
+                  "unknown linear solver '" + text +
+                      "' (dense_qr, dense_normal_cholesky, sparse_normal_cholesky, dense_schur, "
+                      "sparse_schur, iterative_schur, cgnr)");
+    }
+  }
+  reader.Read(node, path, "max_iterations", &local->max_iterations);
+  reader.Read(node, path, "function_tolerance", &local->function_tolerance);
+  reader.Read(node, path, "gradient_tolerance", &local->gradient_tolerance);
+  reader.Read(node, path, "parameter_tolerance", &local->parameter_tolerance);
+  reader.Read(node, path, "max_time", &local->max_time_seconds);
+  reader.Read(node, path, "num_threads", &local->num_threads);
+  std::string error;
+  if (!local->IsValid(&error)) reader.Fail(node, path, error);
+}
+
+void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                GlobalStartOptions* global) {
+  reader.CheckMap(node, path,
+                  {"algorithm", "max_evaluations", "max_time", "seed", "population",
+                   "candidates", "min_separation"});
+  reader.Read(node, path, "algorithm", &global->algorithm);
+  reader.Read(node, path, "max_evaluations", &global->max_evaluations);
+  reader.Read(node, path, "max_time", &global->max_time_seconds);
+  int seed = static_cast<int>(global->seed);
+  reader.Read(node, path, "seed", &seed);
+  global->seed = static_cast<unsigned>(seed);
+  reader.Read(node, path, "population", &global->population);
+  reader.Read(node, path, "candidates", &global->candidates);
+  reader.Read(node, path, "min_separation", &global->min_separation);
+  std::string error;
+  if (!global->IsValid(&error)) reader.Fail(node, path, error);
+}
+
+StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                      const RunConfig& config, const ModelInfo& info, size_t index) {
+  reader.CheckMap(node, path,
+                  {"name", "experiments", "outputs", "parameters", "free_initial_states", "loss",
+                   "integration", "normalize_by_length", "global", "local", "uncertainty"});
+  StageConfig stage;
+  stage.options.name = "stage" + std::to_string(index + 1);
+  reader.Read(node, path, "name", &stage.options.name);
+  if (node["experiments"]) {
+    stage.experiments = reader.Strings(node["experiments"], Child(path, "experiments"));
+    for (size_t i = 0; i < stage.experiments.size(); ++i) {
+      if (config.FindExperiment(stage.experiments[i]) == nullptr) {
+        reader.Fail(node["experiments"][i], Child(Child(path, "experiments"), i),
+                    "no experiment named '" + stage.experiments[i] + "'");
+      }
+    }
+  } else {
+    for (const ExperimentSpec& e : config.experiments) stage.experiments.push_back(e.name);
+  }
+  if (stage.experiments.empty()) reader.Fail(node, path, "stage has no experiments");
+  if (node["outputs"]) {
+    stage.experiment.outputs = reader.Strings(node["outputs"], Child(path, "outputs"));
+    CheckNames(reader, node["outputs"], Child(path, "outputs"), stage.experiment.outputs,
+               info.outputs, "output", info);
+  }
+  if (!node["parameters"]) reader.Fail(node, path, "missing key 'parameters'");
+  const YAML::Node parameters = node["parameters"];
+  reader.CheckMap(parameters, Child(path, "parameters"), info.parameters);
+  for (const auto& item : parameters) {
+    const std::string name = item.first.as<std::string>();
+    stage.parameters.push_back(
+        ReadParameter(reader, item.second, Child(Child(path, "parameters"), name), name));
+  }
+  if (node["free_initial_states"]) {
+    const std::string key = Child(path, "free_initial_states");
+    stage.problem.free_initial_states = reader.Strings(node["free_initial_states"], key);
+    CheckNames(reader, node["free_initial_states"], key, stage.problem.free_initial_states,
+               info.states, "state", info);
+  }
+  if (const YAML::Node loss = node["loss"]) {
+    reader.CheckMap(loss, Child(path, "loss"), {"type", "scale"});
+    reader.Read(loss, Child(path, "loss"), "type", &stage.problem.loss);
+    reader.Read(loss, Child(path, "loss"), "scale", &stage.problem.loss_scale);
+    const std::string& t = stage.problem.loss;
+    if (t != "none" && t != "huber" && t != "cauchy" && t != "soft_l1" && t != "arctan") {
+      reader.Fail(loss["type"], Child(path, "loss.type"),
+                  "unknown loss '" + t + "' (none, huber, cauchy, soft_l1, arctan)");
+    }
+    if (!(stage.problem.loss_scale > 0)) reader.Fail(loss, Child(path, "loss.scale"), "must be > 0");
+  }
+  if (const YAML::Node integration = node["integration"]) {
+    reader.CheckMap(integration, Child(path, "integration"), {"max_step"});
+    reader.Read(integration, Child(path, "integration"), "max_step", &stage.experiment.max_step);
+    if (!(stage.experiment.max_step >= 0)) {
+      reader.Fail(integration, Child(path, "integration.max_step"), "must be >= 0");
+    }
+  }
+  reader.Read(node, path, "normalize_by_length", &stage.experiment.normalize_by_length);
+  if (node["global"]) {
+    stage.options.use_global_start = true;
+    ReadGlobal(reader, node["global"], Child(path, "global"), &stage.options.global);
+  }
+  if (node["local"]) ReadLocal(reader, node["local"], Child(path, "local"), &stage.options.local);
+  reader.Read(node, path, "uncertainty", &stage.options.compute_uncertainty);
+  return stage;
+}
+
+}  // namespace
+
+const ExperimentSpec* RunConfig::FindExperiment(const std::string& name) const {
+  for (const ExperimentSpec& e : experiments) {
+    if (e.name == name) return &e;
+  }
+  return nullptr;
+}
+
+bool LoadRunConfig(const std::string& path, const std::string& data_dir,
+                   const ModelRegistry& registry, RunConfig* config, std::string* error) {
+  YamlReader reader(path);
+  try {
+    const YAML::Node root = reader.Load();
+    reader.CheckMap(root, "", {"description", "model", "simulation", "experiments", "stages"});
+    RunConfig result;
+    result.path = path;
+    reader.Read(root, "", "description", &result.description);
+    const YAML::Node model = root["model"];
+    if (!model) reader.Fail(root, "model", "missing key");
+    if (!model.IsMap() || !model["family"]) reader.Fail(model, "model", "expected a map with 'family'");
+    result.family = reader.String(model["family"], "model.family");
+    result.model_family = registry.Find(result.family);
+    if (result.model_family == nullptr) {
+      reader.Fail(model["family"], "model.family",
+                  "unknown model family '" + result.family + "' (" + JoinNames(registry.Names()) + ")");
+    }
+    result.model = result.model_family->make_model(reader, model, "model");
+    const ModelInfo& info = result.model->info();
+    result.simulation = root["simulation"];
+
+    const fs::path base = data_dir.empty() ? fs::path(path).parent_path() : fs::path(data_dir);
+    const YAML::Node experiments = root["experiments"];
+    if (!experiments) reader.Fail(root, "experiments", "missing key");
+    reader.CheckSequence(experiments, "experiments");
+    for (size_t i = 0; i < experiments.size(); ++i) {
+      ExperimentSpec spec = ReadExperiment(reader, experiments[i], Child("experiments", i), base, info);
+      if (result.FindExperiment(spec.name) != nullptr) {
+        reader.Fail(experiments[i]["name"], Child(Child("experiments", i), "name"),
+                    "duplicate experiment name '" + spec.name + "'");
+      }
+      result.experiments.push_back(std::move(spec));
+    }
+    const YAML::Node stages = root["stages"];
+    if (!stages) reader.Fail(root, "stages", "missing key");
+    reader.CheckSequence(stages, "stages");
+    if (stages.size() == 0) reader.Fail(stages, "stages", "at least one stage is needed");
+    for (size_t i = 0; i < stages.size(); ++i) {
+      result.stages.push_back(ReadStage(reader, stages[i], Child("stages", i), result, info, i));
+    }
+    *config = std::move(result);
+    return true;
+  } catch (const ConfigError& e) {
+    *error = e.what();
+    return false;
+  } catch (const YAML::Exception& e) {
+    *error = path + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg;
+    return false;
+  }
+}
+
+}  // namespace vesselid

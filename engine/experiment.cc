@@ -1,0 +1,170 @@
+#include "engine/experiment.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vesselid {
+namespace {
+
+constexpr double kTimeTolerance = 1e-9;
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+}  // namespace
+
+bool LoadExperimentData(const ExperimentSpec& spec, Trajectory* trajectory, std::string* error) {
+  if (!ReadTrajectoryCsv(spec.file, trajectory, error)) return false;
+  for (const std::string& column : spec.degree_columns) {
+    int c = trajectory->Find(column);
+    if (c < 0) {
+      *error = spec.file + ": no column '" + column + "' (listed in experiment '" + spec.name +
+               "' degrees)";
+      return false;
+    }
+    for (double& v : trajectory->columns[c]) v *= M_PI / 180.0;
+  }
+  return true;
+}
+
+bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
+                     const ModelInfo& info, const ExperimentOptions& options,
+                     Experiment* experiment, std::string* error) {
+  auto fail = [&](const std::string& what) {
+    *error = "experiment '" + spec.name + "' (" + trajectory.source + "): " + what;
+    return false;
+  };
+  Experiment e;
+  e.name = spec.name;
+  e.num_inputs = static_cast<int>(info.inputs.size());
+  const double t0 = std::max(spec.t_begin, trajectory.t.front());
+  const double t_end = std::min(spec.t_end, trajectory.t.back());
+  if (!(t_end > t0)) return fail("empty time window");
+
+  // Selected outputs and their channels.
+  std::vector<std::string> selected = options.outputs;
+  if (selected.empty()) {
+    for (const auto& [output, column] : spec.outputs) selected.push_back(output);
+  }
+  if (selected.empty()) return fail("no outputs mapped to columns");
+  struct OutputChannel {
+    int output;
+    double weight;
+    Channel channel;
+  };
+  std::vector<OutputChannel> channels;
+  for (const std::string& output : selected) {
+    int index = info.OutputIndex(output);
+    if (index < 0) {
+      return fail("unknown output '" + output + "' (model " + info.name + " has " +
+                  JoinNames(info.outputs) + ")");
+    }
+    auto mapped = spec.outputs.find(output);
+    if (mapped == spec.outputs.end()) return fail("output '" + output + "' is not mapped to a column");
+    int column = trajectory.Find(mapped->second);
+    if (column < 0) return fail("no column '" + mapped->second + "' for output '" + output + "'");
+    auto weight = spec.output_weights.find(output);
+    OutputChannel oc{index, weight == spec.output_weights.end() ? 1.0 : weight->second,
+                     ExtractChannel(trajectory, column)};
+    if (oc.channel.t.empty()) return fail("column '" + mapped->second + "' has no samples");
+    channels.push_back(std::move(oc));
+  }
+
+  // Nodes: t0 and every output sample time inside the window.
+  std::vector<double> times{t0};
+  for (const OutputChannel& oc : channels) {
+    for (double t : oc.channel.t) {
+      if (t >= t0 - kTimeTolerance && t <= t_end + kTimeTolerance) times.push_back(t);
+    }
+  }
+  std::sort(times.begin(), times.end());
+  for (double t : times) {
+    if (e.node_time.empty() || t - e.node_time.back() > kTimeTolerance) e.node_time.push_back(t);
+  }
+  const int nodes = e.num_nodes();
+  if (nodes < 2) return fail("fewer than two sample times in the window");
+
+  // Samples grouped by node.
+  std::vector<std::vector<ExperimentSample>> by_node(nodes);
+  e.output_sample_count.assign(info.outputs.size(), 0);
+  for (const OutputChannel& oc : channels) {
+    size_t k = 0;
+    for (size_t i = 0; i < oc.channel.t.size(); ++i) {
+      const double t = oc.channel.t[i];
+      if (t < t0 - kTimeTolerance || t > t_end + kTimeTolerance) continue;
+      while (e.node_time[k] < t - kTimeTolerance) ++k;
+      by_node[k].push_back({oc.output, oc.channel.value[i], oc.weight});
+      ++e.output_sample_count[oc.output];
+    }
+  }
+  for (int k = 0; k < nodes; ++k) {
+    e.node_first_sample.push_back(e.num_samples());
+    e.samples.insert(e.samples.end(), by_node[k].begin(), by_node[k].end());
+  }
+  e.node_first_sample.push_back(e.num_samples());
+  if (options.normalize_by_length) {
+    const double scale = 1.0 / std::sqrt(static_cast<double>(e.num_samples()));
+    for (ExperimentSample& s : e.samples) s.weight *= scale;
+  }
+
+  // Step sizes.
+  std::vector<double> intervals;
+  for (int k = 0; k + 1 < nodes; ++k) intervals.push_back(e.node_time[k + 1] - e.node_time[k]);
+  const double max_step = options.max_step > 0 ? options.max_step : Median(intervals);
+  std::vector<double> step_times;
+  for (int k = 0; k + 1 < nodes; ++k) {
+    int m = std::max(1, static_cast<int>(std::ceil(intervals[k] / max_step - 1e-6)));
+    double h = intervals[k] / m;
+    e.node_substeps.push_back(m);
+    e.node_step.push_back(h);
+    for (int s = 0; s < m; ++s) {
+      step_times.push_back(e.node_time[k] + s * h);
+      step_times.push_back(e.node_time[k] + (s + 0.5) * h);
+    }
+  }
+  step_times.push_back(e.node_time.back());
+
+  // Input cache.
+  const int nu = e.num_inputs;
+  e.input_cache.assign(step_times.size() * nu, 0.0);
+  for (int i = 0; i < nu; ++i) {
+    const std::string& input = info.inputs[i];
+    auto mapped = spec.inputs.find(input);
+    if (mapped == spec.inputs.end()) return fail("input '" + input + "' is not mapped to a column");
+    int column = trajectory.Find(mapped->second);
+    if (column < 0) return fail("no column '" + mapped->second + "' for input '" + input + "'");
+    Channel channel = ExtractChannel(trajectory, column);
+    if (channel.t.empty()) return fail("input column '" + mapped->second + "' has no samples");
+    auto method = spec.interpolation.find(input);
+    Interpolation interpolation =
+        method == spec.interpolation.end() ? spec.default_interpolation : method->second;
+    std::vector<double> values = InterpolateAt(channel, interpolation, step_times);
+    for (size_t j = 0; j < values.size(); ++j) e.input_cache[j * nu + i] = values[j];
+  }
+
+  // Initial state.
+  e.initial_state.assign(info.states.size(), 0.0);
+  for (size_t s = 0; s < info.states.size(); ++s) {
+    const std::string& state = info.states[s];
+    auto given = spec.initial_state.find(state);
+    if (given != spec.initial_state.end()) {
+      e.initial_state[s] = given->second;
+      continue;
+    }
+    auto mapped = spec.outputs.find(state);
+    if (info.OutputIndex(state) < 0 || mapped == spec.outputs.end()) continue;
+    int column = trajectory.Find(mapped->second);
+    if (column < 0) continue;
+    Channel channel = ExtractChannel(trajectory, column);
+    if (!channel.t.empty()) {
+      e.initial_state[s] = InterpolateAt(channel, Interpolation::kLinear, {t0})[0];
+    }
+  }
+  *experiment = std::move(e);
+  return true;
+}
+
+}  // namespace vesselid

@@ -1,0 +1,74 @@
+// One recorded experiment prepared for output-error simulation.
+//
+// The integration grid has a node at the start time t0 and at every time where a selected
+// output is sampled; between nodes k and k+1 it takes node_substeps[k] equal RK4 steps of
+// length node_step[k] <= max_step. Inputs are interpolated once, at every step point and
+// step midpoint, so the simulation loop only reads an array.
+#pragma once
+
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "engine/interpolation.h"
+#include "engine/model.h"
+#include "engine/trajectory.h"
+
+namespace vesselid {
+
+// What a config says about one experiment.
+struct ExperimentSpec {
+  std::string name;
+  std::string file;                                  // CSV path as resolved by the config
+  std::map<std::string, std::string> inputs;         // model input -> column
+  std::map<std::string, std::string> outputs;        // model output -> column
+  std::map<std::string, Interpolation> interpolation;  // per model input (default below)
+  Interpolation default_interpolation = Interpolation::kLinear;
+  std::map<std::string, double> output_weights;      // per model output, default 1
+  std::map<std::string, double> initial_state;       // per state; absent: see BuildExperiment
+  std::vector<std::string> degree_columns;           // columns recorded in degrees
+  double t_begin = -std::numeric_limits<double>::infinity();
+  double t_end = std::numeric_limits<double>::infinity();
+};
+
+struct ExperimentSample {
+  int output;     // model output index
+  double value;   // measurement
+  double weight;  // residual = weight * (simulated - value)
+};
+
+struct Experiment {
+  std::string name;
+  int num_inputs = 0;
+  std::vector<double> node_time;
+  std::vector<int> node_substeps;  // steps from node k to k+1 (size nodes - 1)
+  std::vector<double> node_step;   // their length
+  std::vector<int> node_first_sample;  // samples of node k: [first[k], first[k+1])
+  std::vector<ExperimentSample> samples;
+  // Inputs at step points (even rows) and midpoints (odd rows): (2 * steps + 1) x num_inputs.
+  std::vector<double> input_cache;
+  std::vector<double> initial_state;  // start values of the initial state
+  std::vector<int> output_sample_count;  // per model output
+
+  int num_nodes() const { return static_cast<int>(node_time.size()); }
+  int num_samples() const { return static_cast<int>(samples.size()); }
+};
+
+struct ExperimentOptions {
+  std::vector<std::string> outputs;  // model outputs compared (empty: every mapped output)
+  double max_step = 0.0;             // RK4 step bound; 0: median sample interval
+  bool normalize_by_length = true;   // weights * 1/sqrt(samples): experiments weigh alike
+};
+
+// Builds the simulation grid, input cache and samples. Initial-state values come from
+// spec.initial_state, else from the output of the same name measured at t0, else 0.
+// Errors name the experiment and the missing column or key.
+bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
+                     const ModelInfo& info, const ExperimentOptions& options,
+                     Experiment* experiment, std::string* error);
+
+// Reads the CSV named by spec.file and converts degree columns to radians.
+bool LoadExperimentData(const ExperimentSpec& spec, Trajectory* trajectory, std::string* error);
+
+}  // namespace vesselid

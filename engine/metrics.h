@@ -1,0 +1,34 @@
+// Fit of simulated to measured outputs, per experiment and channel (e = y_sim - y_meas,
+// angle channels wrapped):
+//   RMSE = sqrt(mean e^2), MAE = mean |e|, R^2 = 1 - SSE/SST,
+//   fit % (NRMSE) = 100 (1 - ||e|| / ||y - mean y||),
+//   rms_cost (seed 002) = sqrt(mean e^2) over all compared samples of the experiment.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/output_error_problem.h"
+#include "engine/trajectory.h"
+
+namespace vesselid {
+
+struct ChannelMetrics {
+  std::string experiment;
+  std::string output;
+  int samples = 0;
+  double rmse = 0.0, mae = 0.0, r2 = 0.0, fit_percent = 0.0;
+};
+
+struct ExperimentFit {
+  std::string experiment;
+  double rms_cost = 0.0;
+  std::vector<ChannelMetrics> channels;
+  Trajectory trace;  // t, <output>_measured, <output>_simulated per compared output
+};
+
+// Simulates every experiment at the problem's current values. False if one diverges.
+bool EvaluateFit(const OutputErrorProblem& problem, std::vector<ExperimentFit>* fits,
+                 std::string* error);
+
+}  // namespace vesselid

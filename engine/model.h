@@ -1,0 +1,47 @@
+// The model concept. A model is an immutable plain struct:
+//
+//   struct MyModel {
+//     static constexpr int kNumStates, kNumInputs, kNumOutputs;
+//     ModelInfo Info() const;                        // names, in the order of the arrays below
+//     template <class T>                              // T = double or ceres::Jet
+//     bool operator()(const T* x, const double* u, const T* p, T* xdot) const;
+//     template <class T>
+//     void Output(const T* x, const double* u, const T* p, T* y) const;
+//   };
+//
+// xdot = f(x, u, p) is the right-hand side; it returns false for an inadmissible or
+// non-finite state so that a diverging simulation fails the evaluation instead of
+// poisoning the solver. Known constants are double members, cast with T(...).
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace vesselid {
+
+struct ModelInfo {
+  std::string name;
+  std::vector<std::string> states;
+  std::vector<std::string> inputs;
+  std::vector<std::string> outputs;
+  std::vector<std::string> parameters;
+  std::vector<double> parameter_defaults;  // typical values, one per parameter
+  std::vector<bool> angle_outputs;         // residuals wrapped to (-pi, pi]
+  // Parameter pairs the model is symmetric in (e.g. Nomoto T1, T2); reported first >= second.
+  std::vector<std::pair<int, int>> exchangeable;
+
+  int ParameterIndex(const std::string& name) const;
+  int StateIndex(const std::string& name) const;
+  int InputIndex(const std::string& name) const;
+  int OutputIndex(const std::string& name) const;
+};
+
+// An angle difference wrapped to (-pi, pi].
+inline double WrapAngle(double a) { return a - 2.0 * M_PI * std::round(a / (2.0 * M_PI)); }
+
+// Joins names as "a, b, c" for messages.
+std::string JoinNames(const std::vector<std::string>& names);
+
+}  // namespace vesselid

@@ -1,0 +1,84 @@
+// A model behind one small interface, so that the engine can hold any model chosen at run
+// time. The virtual calls happen once per experiment evaluation, never per integration step:
+// ModelAdapter<Model> instantiates the templated simulation for the concrete model.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "ceres/ceres.h"
+#include "engine/experiment.h"
+#include "engine/experiment_cost.h"
+#include "engine/model.h"
+
+namespace vesselid {
+
+class ModelHandle {
+ public:
+  virtual ~ModelHandle() = default;
+  virtual const ModelInfo& info() const = 0;
+
+  // Output-error cost of one experiment (see experiment_cost.h for the block layout).
+  virtual ceres::CostFunction* NewExperimentCost(const Experiment* experiment,
+                                                 std::vector<double> parameter_scales,
+                                                 const ceres::LossFunction* loss) const = 0;
+
+  // Simulates in double from x0 with parameters p; `outputs` gets every model output at every
+  // node (row-major, nodes x outputs). False if the simulation diverges.
+  virtual bool SimulateOutputs(const Experiment& experiment, const double* p, const double* x0,
+                               std::vector<double>* outputs) const = 0;
+
+  // The right-hand side and output map in double, for simulators and tools (not the hot path).
+  virtual bool Derivative(const double* x, const double* u, const double* p,
+                          double* xdot) const = 0;
+  virtual void Output(const double* x, const double* u, const double* p, double* y) const = 0;
+};
+
+template <class Model>
+class ModelAdapter final : public ModelHandle {
+ public:
+  explicit ModelAdapter(Model model) : model_(std::move(model)), info_(model_.Info()) {}
+
+  const ModelInfo& info() const override { return info_; }
+
+  ceres::CostFunction* NewExperimentCost(const Experiment* experiment,
+                                         std::vector<double> parameter_scales,
+                                         const ceres::LossFunction* loss) const override {
+    return new ExperimentCost<Model>(model_, experiment, std::move(parameter_scales),
+                                     info_.angle_outputs, loss);
+  }
+
+  bool SimulateOutputs(const Experiment& e, const double* p, const double* x0,
+                       std::vector<double>* outputs) const override {
+    constexpr int ny = Model::kNumOutputs;
+    outputs->assign(static_cast<size_t>(e.num_nodes()) * ny, 0.0);
+    std::array<double, Model::kNumStates> x;
+    std::copy(x0, x0 + Model::kNumStates, x.begin());
+    double* out = outputs->data();
+    return SimulateExperiment(model_, e, p, x.data(), [&](int k, const double* state,
+                                                           const double* u) {
+      model_.Output(state, u, p, out + static_cast<size_t>(k) * ny);
+    });
+  }
+
+  bool Derivative(const double* x, const double* u, const double* p,
+                  double* xdot) const override {
+    return model_(x, u, p, xdot);
+  }
+  void Output(const double* x, const double* u, const double* p, double* y) const override {
+    model_.Output(x, u, p, y);
+  }
+
+  const Model& model() const { return model_; }
+
+ private:
+  const Model model_;
+  const ModelInfo info_;
+};
+
+template <class Model>
+std::unique_ptr<ModelHandle> MakeModelHandle(Model model) {
+  return std::make_unique<ModelAdapter<Model>>(std::move(model));
+}
+
+}  // namespace vesselid

@@ -1,0 +1,35 @@
+// Named model parameters as a run declares them: start value, bounds, scale and role.
+#pragma once
+
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace vesselid {
+
+enum class ParameterRole {
+  kFree,           // one value estimated from every experiment of the stage
+  kFixed,          // held at its start value
+  kPerExperiment,  // estimated, one value per experiment (e.g. a rudder bias per run)
+};
+
+const char* ParameterRoleToString(ParameterRole role);
+bool StringToParameterRole(const std::string& text, ParameterRole* role);
+
+struct ParameterSpec {
+  std::string name;
+  double start = 0.0;
+  double lower = -std::numeric_limits<double>::infinity();
+  double upper = std::numeric_limits<double>::infinity();
+  // The solver works on theta = value / scale. 0 means |start|, or 1 if start is 0.
+  double scale = 0.0;
+  ParameterRole role = ParameterRole::kFree;
+
+  double EffectiveScale() const;
+  bool HasFiniteBounds() const;
+  // Bounds ordered, start finite and inside them, scale positive. `where` prefixes messages.
+  bool IsValid(const std::string& where, std::string* error) const;
+};
+
+}  // namespace vesselid

@@ -1,0 +1,216 @@
+#include "engine/results_writer.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace vesselid {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+json Number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json StageToJson(const StageResult& stage) {
+  const StageSummary& s = stage.summary;
+  json j;
+  j["name"] = stage.name;
+  j["time_seconds"] = s.time_seconds;
+  if (s.global.run) {
+    j["global_start"] = {{"variables", s.global.variables},
+                         {"evaluations", s.global.evaluations},
+                         {"diverged_evaluations", s.global.failed_evaluations},
+                         {"best_cost", s.global.best_cost},
+                         {"candidate_costs", s.global.candidate_costs},
+                         {"time_seconds", s.global.time_seconds},
+                         {"result", s.global.result}};
+  }
+  json refinements = json::array();
+  for (const LocalSolveSummary& l : s.refinements) {
+    refinements.push_back({{"initial_cost", Number(l.initial_cost)},
+                           {"final_cost", Number(l.final_cost)},
+                           {"iterations", l.iterations},
+                           {"time_seconds", l.time_seconds},
+                           {"termination", l.termination},
+                           {"usable", l.usable}});
+  }
+  j["refinements"] = refinements;
+  j["chosen_refinement"] = s.chosen;
+  j["cost"] = s.local().final_cost;
+  j["iterations"] = s.local().iterations;
+  j["notes"] = s.notes;
+  json estimates = json::array();
+  for (const Estimate& e : stage.estimates) {
+    json item = {{"name", e.name},         {"kind", e.kind},   {"role", e.role},
+                 {"value", e.value},       {"start", e.start}, {"std_error", Number(e.std_error)},
+                 {"lower", Number(e.lower)}, {"upper", Number(e.upper)}};
+    if (!e.experiment.empty()) item["experiment"] = e.experiment;
+    estimates.push_back(item);
+  }
+  j["estimates"] = estimates;
+  const Uncertainty& u = s.uncertainty;
+  j["uncertainty"] = {{"available", u.available},
+                      {"message", u.message},
+                      {"residual_variance", u.residual_variance},
+                      {"undetermined", u.undetermined}};
+  if (u.available) {
+    json matrix = json::array();
+    for (int r = 0; r < stage.correlation.rows(); ++r) {
+      json row = json::array();
+      for (int c = 0; c < stage.correlation.cols(); ++c) row.push_back(Number(stage.correlation(r, c)));
+      matrix.push_back(row);
+    }
+    j["correlation"] = {{"names", stage.correlation_names}, {"matrix", matrix}};
+  }
+  json metrics = json::array();
+  for (const ExperimentFit& fit : s.fits) {
+    for (const ChannelMetrics& m : fit.channels) {
+      metrics.push_back({{"experiment", m.experiment},
+                         {"output", m.output},
+                         {"samples", m.samples},
+                         {"rmse", Number(m.rmse)},
+                         {"mae", Number(m.mae)},
+                         {"r2", Number(m.r2)},
+                         {"fit_percent", Number(m.fit_percent)}});
+    }
+  }
+  j["metrics"] = metrics;
+  json rms = json::object();
+  for (const ExperimentFit& fit : s.fits) rms[fit.experiment] = fit.rms_cost;
+  j["rms_cost"] = rms;
+  return j;
+}
+
+std::string TraceFileName(const std::string& stage, const std::string& experiment) {
+  std::string name = stage + "." + experiment + ".csv";
+  for (char& c : name) {
+    if (c == '/' || c == ' ') c = '_';
+  }
+  return name;
+}
+
+}  // namespace
+
+json RunResultToJson(const RunConfig& config, const RunResult& result) {
+  json j;
+  j["vesselid_version"] = "0.1.0";
+  j["config"] = config.path;
+  j["model"] = {{"family", config.family}, {"name", config.model->info().name}};
+  j["time_seconds"] = result.time_seconds;
+  json stages = json::array();
+  for (const StageResult& stage : result.stages) stages.push_back(StageToJson(stage));
+  j["stages"] = stages;
+  // The final parameter table: each parameter as the last stage that handled it left it.
+  json parameters = json::object();
+  for (const StageResult& stage : result.stages) {
+    for (const Estimate& e : stage.estimates) {
+      if (e.kind != "parameter") continue;
+      parameters[e.name] = {{"value", e.value}, {"std_error", Number(e.std_error)},
+                            {"role", e.role},   {"stage", stage.name}};
+    }
+  }
+  j["parameters"] = parameters;
+  return j;
+}
+
+std::string RunResultToText(const RunConfig& config, const RunResult& result) {
+  std::ostringstream out;
+  char line[512];
+  out << "vesselid run of " << config.path << " (model " << config.model->info().name << ")\n";
+  for (const StageResult& stage : result.stages) {
+    const StageSummary& s = stage.summary;
+    out << "\n" << s.BriefReport() << "\n";
+    if (s.global.run) out << "  " << s.global.BriefReport() << "\n";
+    std::snprintf(line, sizeof(line), "  %-24s %-15s %16s %12s %10s\n", "name", "role", "value",
+                  "std error", "rel. %");
+    out << line;
+    for (const Estimate& e : stage.estimates) {
+      if (e.role == "fixed" && e.kind == "initial_state") continue;
+      const double rel = 100.0 * e.std_error / std::abs(e.value);
+      std::snprintf(line, sizeof(line), "  %-24s %-15s %16.8g %12.4g %10.4g\n", e.name.c_str(),
+                    e.role.c_str(), e.value, e.std_error, rel);
+      out << line;
+    }
+    for (const std::string& note : s.notes) out << "  note: " << note << "\n";
+    for (const std::string& d : s.uncertainty.undetermined) out << "  undetermined: " << d << "\n";
+    if (stage.correlation.rows() > 1) {
+      out << "  strongest correlations:";
+      int shown = 0;
+      for (int r = 0; r < stage.correlation.rows() && shown < 6; ++r) {
+        for (int c = r + 1; c < stage.correlation.cols() && shown < 6; ++c) {
+          if (std::abs(stage.correlation(r, c)) < 0.9) continue;
+          std::snprintf(line, sizeof(line), " %s/%s %.4f;", stage.correlation_names[r].c_str(),
+                        stage.correlation_names[c].c_str(), stage.correlation(r, c));
+          out << line;
+          ++shown;
+        }
+      }
+      out << (shown == 0 ? " none above 0.9\n" : "\n");
+    }
+    std::snprintf(line, sizeof(line), "  %-20s %-8s %8s %12s %12s %10s %8s\n", "experiment",
+                  "output", "samples", "RMSE", "MAE", "R2", "fit %");
+    out << line;
+    for (const ExperimentFit& fit : s.fits) {
+      for (const ChannelMetrics& m : fit.channels) {
+        std::snprintf(line, sizeof(line), "  %-20s %-8s %8d %12.4e %12.4e %10.6f %8.3f\n",
+                      m.experiment.c_str(), m.output.c_str(), m.samples, m.rmse, m.mae, m.r2,
+                      m.fit_percent);
+        out << line;
+      }
+    }
+  }
+  return out.str();
+}
+
+bool WriteFileAtomically(const std::string& path, const std::string& content, std::string* error) {
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    out << content;
+    out.flush();
+    if (!out) {
+      *error = temporary + ": write failed";
+      return false;
+    }
+  }
+  std::error_code ec;
+  fs::rename(temporary, path, ec);
+  if (ec) {
+    *error = path + ": " + ec.message();
+    return false;
+  }
+  return true;
+}
+
+bool WriteRunResults(const RunConfig& config, const RunResult& result, const std::string& out_dir,
+                     std::string* error) {
+  std::error_code ec;
+  fs::create_directories(fs::path(out_dir) / "traces", ec);
+  if (ec) {
+    *error = out_dir + ": cannot create folder: " + ec.message();
+    return false;
+  }
+  for (const StageResult& stage : result.stages) {
+    for (const ExperimentFit& fit : stage.summary.fits) {
+      const std::string path =
+          (fs::path(out_dir) / "traces" / TraceFileName(stage.name, fit.experiment)).string();
+      if (!WriteTrajectoryCsv(path + ".tmp", fit.trace, error)) return false;
+      fs::rename(path + ".tmp", path, ec);
+      if (ec) {
+        *error = path + ": " + ec.message();
+        return false;
+      }
+    }
+  }
+  if (!WriteFileAtomically((fs::path(out_dir) / "report.txt").string(),
+                           RunResultToText(config, result), error)) {
+    return false;
+  }
+  return WriteFileAtomically((fs::path(out_dir) / "results.json").string(),
+                             RunResultToJson(config, result).dump(2) + "\n", error);
+}
+
+}  // namespace vesselid

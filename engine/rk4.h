@@ -1,0 +1,33 @@
+// Classical fixed-step Runge-Kutta (RK4), templated on the scalar so that one code path
+// integrates doubles and ceres::Jets:
+//   k1 = f(x, u(t)),          k2 = f(x + h/2 k1, u(t + h/2)),
+//   k3 = f(x + h/2 k2, u(t + h/2)),  k4 = f(x + h k3, u(t + h)),
+//   x(t + h) = x + h/6 (k1 + 2 k2 + 2 k3 + k4).
+// Inputs at t, t + h/2, t + h are passed in (precomputed), so a step does no lookup and no
+// allocation.
+#pragma once
+
+#include <array>
+
+namespace vesselid {
+
+template <class Model, class T>
+bool Rk4Step(const Model& model, const double* u0, const double* u_mid, const double* u1,
+             const T* p, double h, T* x) {
+  constexpr int n = Model::kNumStates;
+  std::array<T, n> k1, k2, k3, k4, xs;
+  if (!model(x, u0, p, k1.data())) return false;
+  const T half_h(0.5 * h);
+  for (int i = 0; i < n; ++i) xs[i] = x[i] + half_h * k1[i];
+  if (!model(xs.data(), u_mid, p, k2.data())) return false;
+  for (int i = 0; i < n; ++i) xs[i] = x[i] + half_h * k2[i];
+  if (!model(xs.data(), u_mid, p, k3.data())) return false;
+  const T full_h(h);
+  for (int i = 0; i < n; ++i) xs[i] = x[i] + full_h * k3[i];
+  if (!model(xs.data(), u1, p, k4.data())) return false;
+  const T sixth_h(h / 6.0);
+  for (int i = 0; i < n; ++i) x[i] += sixth_h * (k1[i] + T(2.0) * (k2[i] + k3[i]) + k4[i]);
+  return true;
+}
+
+}  // namespace vesselid

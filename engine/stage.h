@@ -1,0 +1,45 @@
+// One identification stage: optional NLopt global start, Ceres refinement of the start point
+// and of every global candidate (the lowest final cost wins), ordering of exchangeable
+// parameters, uncertainty and fit metrics at the optimum.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/covariance.h"
+#include "engine/global_start.h"
+#include "engine/local_solve.h"
+#include "engine/metrics.h"
+#include "engine/output_error_problem.h"
+
+namespace vesselid {
+
+struct StageOptions {
+  std::string name;
+  bool use_global_start = false;
+  GlobalStartOptions global;
+  LocalSolveOptions local;
+  bool compute_uncertainty = true;
+
+  bool IsValid(std::string* error) const;
+};
+
+struct StageSummary {
+  std::string name;
+  bool usable = false;
+  std::string message;
+  GlobalStartSummary global;
+  std::vector<LocalSolveSummary> refinements;  // [0]: from the start point; then candidates
+  int chosen = -1;                             // index into refinements
+  Uncertainty uncertainty;
+  std::vector<ExperimentFit> fits;
+  std::vector<std::string> notes;
+  double time_seconds = 0.0;
+
+  const LocalSolveSummary& local() const { return refinements[chosen]; }
+  std::string BriefReport() const;
+};
+
+bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSummary* summary);
+
+}  // namespace vesselid

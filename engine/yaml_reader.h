@@ -1,0 +1,71 @@
+// Reading YAML configs with messages that name the file, line and key path. Every map is
+// checked against the keys it may hold, so a misspelt key is an error, not a silent default.
+// Errors are thrown as ConfigError inside the config layer only; its public entry points
+// return them as messages.
+#pragma once
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "yaml-cpp/yaml.h"
+
+namespace vesselid {
+
+class ConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class YamlReader {
+ public:
+  explicit YamlReader(std::string file) : file_(std::move(file)) {}
+
+  // Loads the file; throws ConfigError on a missing file or a syntax error.
+  YAML::Node Load() const;
+
+  const std::string& file() const { return file_; }
+
+  // "file:line: key: what"
+  [[noreturn]] void Fail(const YAML::Node& node, const std::string& key,
+                         const std::string& what) const;
+
+  // Requires a map whose keys are all in `allowed`.
+  void CheckMap(const YAML::Node& node, const std::string& key,
+                const std::vector<std::string>& allowed) const;
+  void CheckSequence(const YAML::Node& node, const std::string& key) const;
+
+  double Double(const YAML::Node& node, const std::string& key) const;
+  int Int(const YAML::Node& node, const std::string& key) const;
+  bool Bool(const YAML::Node& node, const std::string& key) const;
+  std::string String(const YAML::Node& node, const std::string& key) const;
+  std::vector<std::string> Strings(const YAML::Node& node, const std::string& key) const;
+  std::vector<double> Doubles(const YAML::Node& node, const std::string& key) const;
+  std::map<std::string, std::string> StringMap(const YAML::Node& node,
+                                               const std::string& key) const;
+  std::map<std::string, double> DoubleMap(const YAML::Node& node, const std::string& key) const;
+
+  // Optional members: `out` keeps its value when the key is absent.
+  void Read(const YAML::Node& map, const std::string& path, const std::string& name,
+            double* out) const;
+  void Read(const YAML::Node& map, const std::string& path, const std::string& name,
+            int* out) const;
+  void Read(const YAML::Node& map, const std::string& path, const std::string& name,
+            bool* out) const;
+  void Read(const YAML::Node& map, const std::string& path, const std::string& name,
+            std::string* out) const;
+
+ private:
+  std::string file_;
+};
+
+// "a.b" or "a[2]" paths for messages.
+inline std::string Child(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+inline std::string Child(const std::string& path, size_t index) {
+  return path + "[" + std::to_string(index) + "]";
+}
+
+}  // namespace vesselid

@@ -1,0 +1,127 @@
+#include "problems/nomoto/closed_loop_simulator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace vesselid::nomoto {
+
+bool ClosedLoopOptions::IsValid(std::string* error) const {
+  const Excitation& e = excitation;
+  if (!(steering_time_constant > 0)) *error = "steering gear Tm must be > 0";
+  else if (!(controller_gain > 0)) *error = "controller gain kp must be > 0";
+  else if (!(rudder_limit > 0)) *error = "rudder limit must be > 0";
+  else if (!(sample_time > 0)) *error = "sample_time must be > 0";
+  else if (substeps < 1) *error = "substeps must be >= 1";
+  else if (!(duration > sample_time)) *error = "duration must exceed sample_time";
+  else if (!(rudder_noise >= 0) || !(heading_noise >= 0)) *error = "noise levels must be >= 0";
+  else if (e.type != Excitation::Type::kZigzag && e.periods.empty()) *error = "excitation needs a period";
+  else if (e.type == Excitation::Type::kSine && e.periods.size() != 1) *error = "a sine has one period";
+  else if (std::any_of(e.periods.begin(), e.periods.end(), [](double p) { return !(p > 0); }))
+    *error = "excitation periods must be > 0";
+  else if (e.type == Excitation::Type::kZigzag && (!(e.zigzag_rudder > 0) || !(e.zigzag_heading > 0)))
+    *error = "zigzag needs rudder and heading angles > 0";
+  else return true;
+  return false;
+}
+
+namespace {
+
+double HeadingSetpoint(const Excitation& e, double t) {
+  if (e.type == Excitation::Type::kSine) return e.amplitude * std::sin(2 * M_PI * t / e.periods[0]);
+  // Schroeder phases keep the multi-sine's crest factor low.
+  const size_t n = e.periods.size();
+  double sum = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const double phase = -M_PI * static_cast<double>(i * (i + 1)) / static_cast<double>(n);
+    sum += std::sin(2 * M_PI * t / e.periods[i] + phase);
+  }
+  return e.amplitude * std::sqrt(2.0 / static_cast<double>(n)) * sum;
+}
+
+}  // namespace
+
+bool SimulateClosedLoop(const ModelHandle& model, const std::vector<double>& parameters,
+                        const ClosedLoopOptions& options, Trajectory* trajectory,
+                        std::string* error) {
+  if (!options.IsValid(error)) return false;
+  const ModelInfo& info = model.info();
+  const int n = static_cast<int>(info.states.size());
+  const int psi_out = info.OutputIndex("psi"), r_out = info.OutputIndex("r");
+  if (info.inputs.size() != 1 || psi_out < 0 || r_out < 0) {
+    *error = "model " + info.name + " is not a steering model (input delta, outputs psi, r)";
+    return false;
+  }
+  const double sign_k = parameters[info.ParameterIndex("K")] < 0 ? -1.0 : 1.0;
+  const Excitation& e = options.excitation;
+  const bool zigzag = e.type == Excitation::Type::kZigzag;
+  double zigzag_command = sign_k * e.zigzag_rudder;
+
+  // Closed-loop state z = [model states, delta].
+  std::vector<double> y(info.outputs.size());
+  auto heading = [&](const std::vector<double>& z) {
+    double u = z[n];
+    model.Output(z.data(), &u, parameters.data(), y.data());
+    return y[psi_out];
+  };
+  auto delta_set = [&](const std::vector<double>& z, double t) {
+    double set = zigzag ? zigzag_command
+                        : sign_k * options.controller_gain * (HeadingSetpoint(e, t) - heading(z));
+    return std::clamp(set, -options.rudder_limit, options.rudder_limit);
+  };
+  auto rhs = [&](const std::vector<double>& z, double t, std::vector<double>* zdot) {
+    double u = z[n];
+    if (!model.Derivative(z.data(), &u, parameters.data(), zdot->data())) return false;
+    (*zdot)[n] = (delta_set(z, t) - z[n]) / options.steering_time_constant;
+    return true;
+  };
+
+  const long samples = static_cast<long>(std::floor(options.duration / options.sample_time + 1e-9)) + 1;
+  Trajectory out;
+  out.names = {"psi_set", "delta_set", "delta", "psi", "r", "delta_true", "psi_true"};
+  out.columns.assign(out.names.size(), {});
+  for (auto& column : out.columns) column.reserve(samples);
+  out.t.reserve(samples);
+  std::mt19937_64 random(options.seed);
+  std::normal_distribution<double> rudder_noise(0.0, options.rudder_noise);
+  std::normal_distribution<double> heading_noise(0.0, options.heading_noise);
+
+  std::vector<double> z(n + 1, 0.0), k1(n + 1), k2(n + 1), k3(n + 1), k4(n + 1), zs(n + 1);
+  const double h = options.sample_time / options.substeps;
+  for (long k = 0; k < samples; ++k) {
+    const double t = k * options.sample_time;
+    const double psi = heading(z);
+    if (zigzag) {
+      if (sign_k * psi >= e.zigzag_heading && sign_k * zigzag_command > 0) zigzag_command = -zigzag_command;
+      if (sign_k * psi <= -e.zigzag_heading && sign_k * zigzag_command < 0) zigzag_command = -zigzag_command;
+    }
+    out.t.push_back(t);
+    out.columns[0].push_back(zigzag ? std::nan("") : HeadingSetpoint(e, t));
+    out.columns[1].push_back(delta_set(z, t));
+    out.columns[2].push_back(z[n] + (options.rudder_noise > 0 ? rudder_noise(random) : 0.0));
+    out.columns[3].push_back(psi + (options.heading_noise > 0 ? heading_noise(random) : 0.0));
+    out.columns[4].push_back(y[r_out]);
+    out.columns[5].push_back(z[n]);
+    out.columns[6].push_back(psi);
+    if (k + 1 == samples) break;
+    for (int s = 0; s < options.substeps; ++s) {
+      const double ts = t + s * h;
+      bool ok = rhs(z, ts, &k1);
+      for (int i = 0; i <= n; ++i) zs[i] = z[i] + 0.5 * h * k1[i];
+      ok = ok && rhs(zs, ts + 0.5 * h, &k2);
+      for (int i = 0; i <= n; ++i) zs[i] = z[i] + 0.5 * h * k2[i];
+      ok = ok && rhs(zs, ts + 0.5 * h, &k3);
+      for (int i = 0; i <= n; ++i) zs[i] = z[i] + h * k3[i];
+      ok = ok && rhs(zs, ts + h, &k4);
+      if (!ok) {
+        *error = "closed-loop simulation diverged at t = " + std::to_string(ts);
+        return false;
+      }
+      for (int i = 0; i <= n; ++i) z[i] += h / 6.0 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+    }
+  }
+  *trajectory = std::move(out);
+  return true;
+}
+
+}  // namespace vesselid::nomoto

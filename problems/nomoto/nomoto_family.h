@@ -1,0 +1,11 @@
+// The Nomoto steering family for the model registry: model types first_order, second_order,
+// norrbin, and the seed 003 closed-loop experiment simulator.
+#pragma once
+
+#include "engine/model_registry.h"
+
+namespace vesselid::nomoto {
+
+ModelFamily NomotoFamily();
+
+}  // namespace vesselid::nomoto

@@ -1,0 +1,104 @@
+// Nomoto steering models (MODELS.md §2, seed 003). Input: rudder angle delta [rad].
+// Outputs: heading psi [rad] and yaw rate r [rad/s]. delta_0 is a rudder bias.
+//
+// First order:  T r' + r = K (delta + delta_0)
+// Norrbin:      T r' + r + alpha r^3 = K (delta + delta_0)
+// Second order: T1 T2 psi''' + (T1 + T2) psi'' + psi' = K (delta + T3 delta'), realised
+//               without delta' as
+//                 xi1' = xi2,  xi2' = (delta + delta_0 - xi1 - (T1 + T2) xi2) / (T1 T2),
+//                 r = K (xi1 + T3 xi2),  psi' = r.
+//               T1 and T2 are exchangeable; the engine reports T1 >= T2.
+#pragma once
+
+#include "engine/model.h"
+
+namespace vesselid::nomoto {
+
+struct FirstOrder {
+  static constexpr int kNumStates = 2;  // psi, r
+  static constexpr int kNumInputs = 1;  // delta
+  static constexpr int kNumOutputs = 2;  // psi, r
+
+  ModelInfo Info() const {
+    return {"nomoto_first_order", {"psi", "r"}, {"delta"}, {"psi", "r"},
+            {"T", "K", "delta_0"},  {10.0, 0.1, 0.0}, {true, false}, {}};
+  }
+
+  template <class T>
+  bool operator()(const T* x, const double* u, const T* p, T* xdot) const {
+    const T& time_constant = p[0];
+    if (!(time_constant > 0.0)) return false;
+    xdot[0] = x[1];
+    xdot[1] = (p[1] * (u[0] + p[2]) - x[1]) / time_constant;
+    return true;
+  }
+
+  template <class T>
+  void Output(const T* x, const double* u, const T* p, T* y) const {
+    y[0] = x[0];
+    y[1] = x[1];
+  }
+};
+
+struct Norrbin {
+  static constexpr int kNumStates = 2;
+  static constexpr int kNumInputs = 1;
+  static constexpr int kNumOutputs = 2;
+
+  ModelInfo Info() const {
+    return {"nomoto_norrbin",         {"psi", "r"},     {"delta"},
+            {"psi", "r"},             {"T", "K", "alpha", "delta_0"},
+            {10.0, 0.1, 0.0, 0.0},    {true, false},    {}};
+  }
+
+  template <class T>
+  bool operator()(const T* x, const double* u, const T* p, T* xdot) const {
+    const T& time_constant = p[0];
+    if (!(time_constant > 0.0)) return false;
+    const T& r = x[1];
+    xdot[0] = r;
+    xdot[1] = (p[1] * (u[0] + p[3]) - r - p[2] * r * r * r) / time_constant;
+    return true;
+  }
+
+  template <class T>
+  void Output(const T* x, const double* u, const T* p, T* y) const {
+    y[0] = x[0];
+    y[1] = x[1];
+  }
+};
+
+struct SecondOrder {
+  static constexpr int kNumStates = 3;  // psi, xi1, xi2
+  static constexpr int kNumInputs = 1;
+  static constexpr int kNumOutputs = 2;
+
+  ModelInfo Info() const {
+    return {"nomoto_second_order",
+            {"psi", "xi1", "xi2"},
+            {"delta"},
+            {"psi", "r"},
+            {"T1", "T2", "T3", "K", "delta_0"},
+            {20.0, 5.0, 5.0, 0.1, 0.0},
+            {true, false},
+            {{0, 1}}};
+  }
+
+  template <class T>
+  bool operator()(const T* x, const double* u, const T* p, T* xdot) const {
+    const T product = p[0] * p[1];
+    if (!(product > 0.0)) return false;
+    xdot[0] = p[3] * (x[1] + p[2] * x[2]);
+    xdot[1] = x[2];
+    xdot[2] = (u[0] + p[4] - x[1] - (p[0] + p[1]) * x[2]) / product;
+    return true;
+  }
+
+  template <class T>
+  void Output(const T* x, const double* u, const T* p, T* y) const {
+    y[0] = x[0];
+    y[1] = p[3] * (x[1] + p[2] * x[2]);
+  }
+};
+
+}  // namespace vesselid::nomoto

@@ -1,0 +1,10 @@
+// Every model family the vesselid binary knows, in one registry.
+#pragma once
+
+#include "engine/model_registry.h"
+
+namespace vesselid {
+
+ModelRegistry DefaultRegistry();
+
+}  // namespace vesselid
