@@ -1,0 +1,66 @@
+// Synthetic Nomoto experiments for tests and benchmarks, made in memory with the seed 003
+// closed-loop simulator.
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "engine/experiment.h"
+#include "engine/model_handle.h"
+#include "problems/nomoto/closed_loop_simulator.h"
+#include "problems/nomoto/nomoto_models.h"
+
+namespace vesselid::testing {
+
+struct SeedVessel {
+  std::vector<double> truth;  // T1 T2 T3 K delta_0
+  nomoto::ClosedLoopOptions loop;
+};
+
+// Seed 003 Table 3 set-ups with the sine excitation of configs/nomoto_*.yaml.
+inline SeedVessel CargoVessel() {
+  SeedVessel v{{45.0, 6.0, 10.0, 0.09, 0.0}, {}};
+  v.loop.steering_time_constant = 5.0;
+  v.loop.controller_gain = 0.12;
+  v.loop.duration = 6000.0;
+  v.loop.excitation.amplitude = 20.0 * M_PI / 180.0;
+  v.loop.excitation.periods = {300.0};
+  return v;
+}
+
+inline SeedVessel PatrolVessel() {
+  SeedVessel v{{2.0875, 0.3179, 0.1830, -0.1724, 0.0}, {}};
+  v.loop.steering_time_constant = 1.0;
+  v.loop.controller_gain = 0.7;
+  v.loop.duration = 900.0;
+  v.loop.excitation.amplitude = 20.0 * M_PI / 180.0;
+  v.loop.excitation.periods = {30.0};
+  return v;
+}
+
+// Simulates `loop` with `model` and prepares the experiment comparing psi (delta as input).
+inline Experiment MakeExperiment(const ModelHandle& model, const std::vector<double>& truth,
+                                 const nomoto::ClosedLoopOptions& loop,
+                                 Interpolation interpolation = Interpolation::kCubic,
+                                 const std::string& name = "run") {
+  Trajectory trajectory;
+  std::string error;
+  if (!nomoto::SimulateClosedLoop(model, truth, loop, &trajectory, &error)) {
+    throw std::runtime_error(error);
+  }
+  trajectory.source = name;
+  ExperimentSpec spec;
+  spec.name = name;
+  spec.inputs = {{"delta", "delta"}};
+  spec.outputs = {{"psi", "psi"}};
+  spec.default_interpolation = interpolation;
+  Experiment experiment;
+  if (!BuildExperiment(spec, trajectory, model.info(), ExperimentOptions(), &experiment, &error)) {
+    throw std::runtime_error(error);
+  }
+  return experiment;
+}
+
+}  // namespace vesselid::testing
