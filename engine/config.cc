@@ -271,7 +271,7 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
     }
     result.model = result.model_family->make_model(reader, model, "model");
     const ModelInfo& info = result.model->info();
-    result.simulation = root["simulation"];
+    if (root["simulation"]) result.simulation = root["simulation"];
 
     const fs::path base = data_dir.empty() ? fs::path(path).parent_path() : fs::path(data_dir);
     const YAML::Node experiments = root["experiments"];
@@ -298,7 +298,7 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
     *error = e.what();
     return false;
   } catch (const YAML::Exception& e) {
-    *error = path + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg;
+    *error = path + (e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1)) + ": " + e.msg;
     return false;
   }
 }

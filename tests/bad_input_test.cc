@@ -1,0 +1,199 @@
+// Bad input through the command line: each case gets a message naming the file, line and
+// key, a non-zero exit status, and no results file.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+
+#include "engine/trajectory.h"
+#include "gtest/gtest.h"
+#include "problems/nomoto/closed_loop_simulator.h"
+#include "problems/nomoto/nomoto_models.h"
+
+namespace vesselid {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kGoodConfig = R"(model: {family: nomoto, type: first_order}
+experiments:
+  - name: run
+    file: data.csv
+    inputs: {delta: delta}
+    outputs: {psi: psi}
+stages:
+  - name: fit
+    parameters:
+      T: {start: 3.0, lower: 0.1, upper: 50.0}
+      K: {start: -0.1, lower: -1.0, upper: -0.001}
+    free_initial_states: [psi]
+)";
+
+struct Outcome {
+  int status;
+  std::string output;
+};
+
+class BadInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("vesselid_bad_input_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    auto model = MakeModelHandle(nomoto::FirstOrder());
+    nomoto::ClosedLoopOptions loop;
+    loop.duration = 60.0;
+    loop.sample_time = 0.1;
+    loop.controller_gain = 0.7;
+    loop.excitation.amplitude = 0.3;
+    loop.excitation.periods = {20.0};
+    Trajectory data;
+    std::string error;
+    ASSERT_TRUE(nomoto::SimulateClosedLoop(*model, {2.0, -0.17, 0.0}, loop, &data, &error));
+    ASSERT_TRUE(WriteTrajectoryCsv((dir_ / "data.csv").string(), data, &error));
+    WriteConfig(kGoodConfig);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  void WriteConfig(const std::string& text) { std::ofstream(dir_ / "config.yaml") << text; }
+
+  // Replaces the first occurrence of `from` in the good config.
+  void EditConfig(const std::string& from, const std::string& to) {
+    std::string text = kGoodConfig;
+    size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    WriteConfig(text.replace(at, from.size(), to));
+  }
+
+  // Rewrites data line `line` (1-based, header is 1) with `text`.
+  void EditDataLine(int line, const std::string& text) {
+    std::ifstream in(dir_ / "data.csv");
+    std::string all, row;
+    for (int n = 1; std::getline(in, row); ++n) all += (n == line ? text : row) + "\n";
+    std::ofstream(dir_ / "data.csv") << all;
+  }
+
+  Outcome Run() {
+    const std::string command = std::string(VESSELID_BINARY) + " run " +
+                                (dir_ / "config.yaml").string() + " --out " +
+                                (dir_ / "out").string() + " 2>&1";
+    Outcome outcome{0, ""};
+    FILE* pipe = popen(command.c_str(), "r");
+    char buffer[512];
+    while (fgets(buffer, sizeof(buffer), pipe) != nullptr) outcome.output += buffer;
+    outcome.status = pclose(pipe);
+    return outcome;
+  }
+
+  // Runs and checks: failure, the message matches `pattern`, no results written.
+  void ExpectRejected(const std::string& pattern) {
+    Outcome outcome = Run();
+    EXPECT_NE(outcome.status, 0) << outcome.output;
+    EXPECT_TRUE(std::regex_search(outcome.output, std::regex(pattern)))
+        << "message: " << outcome.output << "expected pattern: " << pattern;
+    EXPECT_FALSE(fs::exists(dir_ / "out" / "results.json"));
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(BadInput, GoodConfigRuns) {
+  Outcome outcome = Run();
+  EXPECT_EQ(outcome.status, 0) << outcome.output;
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "results.json"));
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "traces" / "fit.run.csv"));
+}
+
+TEST_F(BadInput, MissingDataFile) {
+  EditConfig("file: data.csv", "file: nowhere.csv");
+  ExpectRejected("nowhere\\.csv: cannot open file");
+}
+
+TEST_F(BadInput, MissingColumn) {
+  EditConfig("outputs: {psi: psi}", "outputs: {psi: heading}");
+  ExpectRejected("experiment 'run'.*no column 'heading' for output 'psi'");
+}
+
+TEST_F(BadInput, UnknownParameter) {
+  EditConfig("      K: {", "      K9: {");
+  ExpectRejected("config\\.yaml:11: stages\\[0\\]\\.parameters\\.K9: unknown key \\(allowed: T, K, delta_0\\)");
+}
+
+TEST_F(BadInput, UnknownModelType) {
+  EditConfig("type: first_order", "type: third_order");
+  ExpectRejected("config\\.yaml:1: model\\.type: unknown Nomoto model 'third_order'");
+}
+
+TEST_F(BadInput, UnknownModelFamily) {
+  EditConfig("family: nomoto", "family: submarine");
+  ExpectRejected("config\\.yaml:1: model\\.family: unknown model family 'submarine'");
+}
+
+TEST_F(BadInput, InvertedBounds) {
+  EditConfig("lower: 0.1, upper: 50.0", "lower: 50.0, upper: 0.1");
+  ExpectRejected("config\\.yaml:10: stages\\[0\\]\\.parameters\\.T: .*bounds inverted");
+}
+
+TEST_F(BadInput, StartOutsideBounds) {
+  EditConfig("start: 3.0", "start: 80.0");
+  ExpectRejected("config\\.yaml:10: stages\\[0\\]\\.parameters\\.T: .*start 80 outside bounds");
+}
+
+TEST_F(BadInput, NonIncreasingTime) {
+  EditDataLine(5, "0.1,0,0,0,0,0,0,0");
+  ExpectRejected("data\\.csv:5: time 0\\.1 is not after the previous time");
+}
+
+TEST_F(BadInput, NanInData) {
+  EditDataLine(7, "0.5,0,0,0,nan,0,0,0");
+  ExpectRejected("data\\.csv:7: column 'psi': 'nan' is not a finite number");
+}
+
+TEST_F(BadInput, TextInData) {
+  EditDataLine(7, "0.5,0,0,0,abc,0,0,0");
+  ExpectRejected("data\\.csv:7: column 'psi': 'abc' is not a finite number");
+}
+
+TEST_F(BadInput, WrongFieldCount) {
+  EditDataLine(3, "0.2,0,0");
+  ExpectRejected("data\\.csv:3: expected 8 fields, found 3");
+}
+
+TEST_F(BadInput, UnknownYamlKey) {
+  EditConfig("    free_initial_states", "    free_initial_state");
+  ExpectRejected("config\\.yaml:12: stages\\[0\\]\\.free_initial_state: unknown key");
+}
+
+TEST_F(BadInput, UnknownTopLevelKey) {
+  WriteConfig(std::string(kGoodConfig) + "stagez: []\n");
+  ExpectRejected("config\\.yaml:13: stagez: unknown key");
+}
+
+TEST_F(BadInput, YamlSyntaxError) {
+  WriteConfig(std::string(kGoodConfig) + "  - name: [unclosed\n");
+  ExpectRejected("config\\.yaml:1[34]: YAML syntax error");
+}
+
+TEST_F(BadInput, NotANumber) {
+  EditConfig("start: 3.0", "start: three");
+  ExpectRejected("config\\.yaml:10: stages\\[0\\]\\.parameters\\.T\\.start: 'three' is not a finite number");
+}
+
+TEST_F(BadInput, UnknownInterpolation) {
+  EditConfig("inputs: {delta: delta}", "inputs: {delta: delta}\n    interpolation: quintic");
+  ExpectRejected("config\\.yaml:6: experiments\\[0\\]\\.interpolation: unknown interpolation 'quintic'");
+}
+
+TEST_F(BadInput, DivergentSimulationFailsCleanly) {
+  // Norrbin with a negative cubic term grows without bound from this start.
+  std::string text = kGoodConfig;
+  text.replace(text.find("first_order"), 11, "norrbin");
+  text.replace(text.find("    free_initial_states"), 0, "      alpha: {start: -1.0e6, lower: -1.0e7, upper: 0.0}\n");
+  WriteConfig(text);
+  ExpectRejected("stage 'fit': .*diverges");
+}
+
+}  // namespace
+}  // namespace vesselid
