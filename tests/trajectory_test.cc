@@ -1,0 +1,102 @@
+// CSV reading and input interpolation.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "engine/interpolation.h"
+#include "engine/trajectory.h"
+#include "gtest/gtest.h"
+
+namespace vesselid {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string WriteTemp(const std::string& name, const std::string& text) {
+  const fs::path path = fs::temp_directory_path() / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+TEST(Trajectory, ReadsMultiRateChannelsWithMissingSamples) {
+  const std::string path = WriteTemp("vesselid_multirate.csv",
+                                     "t, gnss_n ,heading\n0,1.0,0.1\n0.1,,0.2\n0.2,3.0,\n0.3,,0.4\n");
+  Trajectory t;
+  std::string error;
+  ASSERT_TRUE(ReadTrajectoryCsv(path, &t, &error)) << error;
+  ASSERT_EQ(t.names, (std::vector<std::string>{"gnss_n", "heading"}));
+  Channel gnss = ExtractChannel(t, t.Find("gnss_n"));
+  EXPECT_EQ(gnss.t, (std::vector<double>{0.0, 0.2}));
+  EXPECT_EQ(gnss.value, (std::vector<double>{1.0, 3.0}));
+  Channel heading = ExtractChannel(t, t.Find("heading"));
+  EXPECT_EQ(heading.t.size(), 3u);
+  EXPECT_EQ(t.Find("missing"), -1);
+}
+
+TEST(Trajectory, RejectsMissingTimeColumnAndDuplicates) {
+  Trajectory t;
+  std::string error;
+  EXPECT_FALSE(ReadTrajectoryCsv(WriteTemp("vesselid_not.csv", "time,a\n0,1\n1,2\n"), &t, &error));
+  EXPECT_NE(error.find(":1: header has no time column 't'"), std::string::npos) << error;
+  EXPECT_FALSE(ReadTrajectoryCsv(WriteTemp("vesselid_dup.csv", "t,a,a\n0,1,1\n1,2,2\n"), &t, &error));
+  EXPECT_NE(error.find("duplicate column 'a'"), std::string::npos) << error;
+  EXPECT_FALSE(ReadTrajectoryCsv(WriteTemp("vesselid_inf.csv", "t,a\n0,1\n1,inf\n"), &t, &error));
+  EXPECT_NE(error.find(":3: column 'a': 'inf' is not a finite number"), std::string::npos) << error;
+  EXPECT_FALSE(ReadTrajectoryCsv(WriteTemp("vesselid_empty.csv", ""), &t, &error));
+  EXPECT_NE(error.find("empty file"), std::string::npos) << error;
+}
+
+Channel Sampled(double (*f)(double), double dt, int n) {
+  Channel c;
+  for (int k = 0; k < n; ++k) {
+    c.t.push_back(k * dt);
+    c.value.push_back(f(k * dt));
+  }
+  return c;
+}
+
+TEST(Interpolation, ZeroOrderHoldLinearAndEnds) {
+  Channel c{{0.0, 1.0, 2.0}, {0.0, 10.0, 20.0}};
+  std::vector<double> t = {-1.0, 0.5, 1.0, 1.75, 3.0};
+  EXPECT_EQ(InterpolateAt(c, Interpolation::kZeroOrderHold, t),
+            (std::vector<double>{0.0, 0.0, 10.0, 10.0, 20.0}));
+  EXPECT_EQ(InterpolateAt(c, Interpolation::kLinear, t),
+            (std::vector<double>{0.0, 5.0, 10.0, 17.5, 20.0}));
+}
+
+TEST(Interpolation, CubicIsExactForQuadraticsAndThirdOrderForSmoothSignals) {
+  Channel quadratic = Sampled([](double t) { return 1.0 + 2.0 * t - 0.5 * t * t; }, 0.1, 50);
+  std::vector<double> t;
+  for (int k = 1; k < 480; ++k) t.push_back(0.1 + k * 0.0079);  // interior points
+  std::vector<double> values = InterpolateAt(quadratic, Interpolation::kCubic, t);
+  for (size_t i = 0; i < t.size(); ++i) {
+    EXPECT_NEAR(values[i], 1.0 + 2.0 * t[i] - 0.5 * t[i] * t[i], 1e-12);
+  }
+  // Midpoint error of sin: O(h^3) for cubic Catmull-Rom, O(h^2) for linear.
+  auto midpoint_error = [](Interpolation method, double dt) {
+    Channel c = Sampled([](double t) { return std::sin(t); }, dt, static_cast<int>(4.0 / dt) + 1);
+    std::vector<double> mid;
+    for (size_t k = 1; k + 2 < c.t.size(); ++k) mid.push_back(c.t[k] + dt / 2);
+    std::vector<double> v = InterpolateAt(c, method, mid);
+    double e = 0.0;
+    for (size_t i = 0; i < mid.size(); ++i) e = std::max(e, std::abs(v[i] - std::sin(mid[i])));
+    return e;
+  };
+  EXPECT_NEAR(std::log2(midpoint_error(Interpolation::kLinear, 0.1) /
+                        midpoint_error(Interpolation::kLinear, 0.05)), 2.0, 0.2);
+  EXPECT_GT(std::log2(midpoint_error(Interpolation::kCubic, 0.1) /
+                      midpoint_error(Interpolation::kCubic, 0.05)), 2.8);
+}
+
+TEST(Interpolation, NamesRoundTrip) {
+  for (Interpolation i : {Interpolation::kZeroOrderHold, Interpolation::kLinear, Interpolation::kCubic}) {
+    Interpolation back;
+    ASSERT_TRUE(StringToInterpolation(InterpolationToString(i), &back));
+    EXPECT_EQ(back, i);
+  }
+  Interpolation unused;
+  EXPECT_FALSE(StringToInterpolation("spline", &unused));
+}
+
+}  // namespace
+}  // namespace vesselid
