@@ -3,7 +3,7 @@
 #include <filesystem>
 
 #include "problems/nomoto/closed_loop_simulator.h"
-#include "problems/nomoto/nomoto_models.h"
+#include "problems/nomoto/nomoto_handles.h"
 
 namespace vesselid::nomoto {
 namespace {
@@ -16,9 +16,9 @@ std::unique_ptr<ModelHandle> MakeModel(const YamlReader& reader, const YAML::Nod
   reader.CheckMap(model, path, {"family", "type"});
   if (!model["type"]) reader.Fail(model, Child(path, "type"), "missing (first_order, second_order, norrbin)");
   const std::string type = reader.String(model["type"], Child(path, "type"));
-  if (type == "first_order") return MakeModelHandle(FirstOrder());
-  if (type == "second_order") return MakeModelHandle(SecondOrder());
-  if (type == "norrbin") return MakeModelHandle(Norrbin());
+  if (type == "first_order") return MakeFirstOrderHandle();
+  if (type == "second_order") return MakeSecondOrderHandle();
+  if (type == "norrbin") return MakeNorrbinHandle();
   reader.Fail(model["type"], Child(path, "type"),
               "unknown Nomoto model '" + type + "' (first_order, second_order, norrbin)");
 }

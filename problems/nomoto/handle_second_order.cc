@@ -1,0 +1,8 @@
+#include "problems/nomoto/nomoto_handles.h"
+#include "problems/nomoto/nomoto_models.h"
+
+namespace vesselid::nomoto {
+
+std::unique_ptr<ModelHandle> MakeSecondOrderHandle() { return MakeModelHandle(SecondOrder()); }
+
+}  // namespace vesselid::nomoto
