@@ -15,7 +15,7 @@
 namespace vesselid {
 
 struct StageOptions {
-  std::string name;
+  std::string name = "stage";
   bool use_global_start = false;
   GlobalStartOptions global;
   LocalSolveOptions local;
