@@ -129,9 +129,13 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
     out << line;
     for (const Estimate& e : stage.estimates) {
       if (e.role == "fixed" && e.kind == "initial_state") continue;
-      const double rel = 100.0 * e.std_error / std::abs(e.value);
-      std::snprintf(line, sizeof(line), "  %-24s %-15s %16.8g %12.4g %10.4g\n", e.name.c_str(),
-                    e.role.c_str(), e.value, e.std_error, rel);
+      if (std::isnan(e.std_error)) {
+        std::snprintf(line, sizeof(line), "  %-24s %-15s %16.8g %12s %10s\n", e.name.c_str(),
+                      e.role.c_str(), e.value, "-", "-");
+      } else {
+        std::snprintf(line, sizeof(line), "  %-24s %-15s %16.8g %12.4g %10.4g\n", e.name.c_str(),
+                      e.role.c_str(), e.value, e.std_error, 100.0 * e.std_error / std::abs(e.value));
+      }
       out << line;
     }
     for (const std::string& note : s.notes) out << "  note: " << note << "\n";

@@ -1,6 +1,8 @@
 #include "engine/stage.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 namespace vesselid {
@@ -29,6 +31,50 @@ void OrderExchangeable(OutputErrorProblem* problem, std::vector<std::string>* no
     b->set_value(va);
     notes->push_back("swapped " + a->name + " and " + b->name + " so that " + a->name +
                      " >= " + b->name);
+  }
+}
+
+// Shared free variables of each exchangeable pair.
+std::vector<std::pair<const Variable*, const Variable*>> ExchangeablePairs(
+    const OutputErrorProblem& problem) {
+  std::vector<std::pair<const Variable*, const Variable*>> pairs;
+  for (const auto& [first, second] : problem.model().info().exchangeable) {
+    const Variable* a = nullptr;
+    const Variable* b = nullptr;
+    for (const Variable& v : problem.variables()) {
+      if (v.kind != Variable::Kind::kParameter || v.experiment >= 0 || !v.free) continue;
+      if (v.index == first) a = &v;
+      if (v.index == second) b = &v;
+    }
+    if (a != nullptr && b != nullptr) pairs.emplace_back(a, b);
+  }
+  return pairs;
+}
+
+// A model symmetric in (a, b) has zero gradient across a = b, so a local solve that reaches
+// the ridge stays there. If it ended on it, restart with the pair split by a factor of 1.5
+// either way of its geometric mean and keep what is better.
+void EscapeExchangeRidge(const LocalSolveOptions& options, OutputErrorProblem* problem,
+                         LocalSolveSummary* local, std::vector<std::string>* notes) {
+  for (const auto& [a, b] : ExchangeablePairs(*problem)) {
+    const double va = a->value(), vb = b->value();
+    if (std::abs(va - vb) > 1e-3 * std::max(std::abs(va), std::abs(vb))) continue;
+    const std::vector<double> ridge = problem->Values();
+    const double mean = std::copysign(std::sqrt(std::abs(va * vb)), va);
+    a->set_value(std::clamp(mean * 1.5, a->lower, a->upper));
+    b->set_value(std::clamp(mean / 1.5, b->lower, b->upper));
+    LocalSolveSummary split;
+    if (RunLocalSolve(options, problem, &split) && split.final_cost < local->final_cost) {
+      notes->push_back("left the " + a->name + " = " + b->name + " ridge (cost " +
+                       std::to_string(local->final_cost) + " -> " +
+                       std::to_string(split.final_cost) + ")");
+      split.initial_cost = local->initial_cost;
+      split.iterations += local->iterations;
+      split.time_seconds += local->time_seconds;
+      *local = split;
+    } else {
+      problem->SetValues(ridge);
+    }
   }
 }
 
@@ -74,7 +120,9 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
   for (size_t i = 0; i < starts.size(); ++i) {
     problem->SetValues(starts[i]);
     LocalSolveSummary local;
-    RunLocalSolve(options.local, problem, &local);
+    if (RunLocalSolve(options.local, problem, &local)) {
+      EscapeExchangeRidge(options.local, problem, &local, &summary->notes);
+    }
     summary->refinements.push_back(local);
     if (!local.usable) {
       last_failure = local.message;

@@ -33,12 +33,12 @@ struct SeedResult {
 };
 
 SeedResult Identify(const testing::SeedVessel& vessel, Interpolation interpolation,
-                    bool global_start) {
+                    bool global_start, std::vector<ParameterSpec> specs = {}) {
   auto model = MakeModelHandle(nomoto::SecondOrder());
   Experiment e = testing::MakeExperiment(*model, vessel.truth, vessel.loop, interpolation);
   std::string error;
-  auto problem = OutputErrorProblem::Create(model.get(), {e}, FiftyPercentOff(vessel.truth), {},
-                                            &error);
+  if (specs.empty()) specs = FiftyPercentOff(vessel.truth);
+  auto problem = OutputErrorProblem::Create(model.get(), {e}, specs, {}, &error);
   EXPECT_NE(problem, nullptr) << error;
   StageOptions options;
   options.use_global_start = global_start;
@@ -73,6 +73,25 @@ TEST(NomotoSeed, PatrolLinearInterpolationLeavesVisibleBias) {
   const double worst = std::max(std::abs(r.relative_error[1]), std::abs(r.relative_error[2]));
   EXPECT_GT(worst, 0.02);
   EXPECT_LT(worst, 1.0);
+}
+
+// Started exactly on the T1 = T2 ridge, where the gradient across it vanishes, the global
+// start still leads to the truth.
+TEST(NomotoSeed, PatrolStartedOnTheRidgeLeavesIt) {
+  std::vector<ParameterSpec> specs = FiftyPercentOff(testing::PatrolVessel().truth);
+  specs[0].start = specs[1].start = 1.2;
+  SeedResult r = Identify(testing::PatrolVessel(), Interpolation::kCubic, true, specs);
+  for (int i = 0; i < 4; ++i) EXPECT_LT(std::abs(r.relative_error[i]), 0.01) << "parameter " << i;
+}
+
+// Started with the time constants exchanged, the run reports T1 >= T2 and says it swapped.
+TEST(NomotoSeed, ExchangedTimeConstantsAreReportedOrdered) {
+  std::vector<ParameterSpec> specs = FiftyPercentOff(testing::PatrolVessel().truth);
+  std::swap(specs[0].start, specs[1].start);
+  SeedResult r = Identify(testing::PatrolVessel(), Interpolation::kCubic, false, specs);
+  for (int i = 0; i < 4; ++i) EXPECT_LT(std::abs(r.relative_error[i]), 0.01) << "parameter " << i;
+  ASSERT_EQ(r.summary.notes.size(), 1u);
+  EXPECT_NE(r.summary.notes[0].find("swapped T1 and T2"), std::string::npos);
 }
 
 }  // namespace
