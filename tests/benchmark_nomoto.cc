@@ -33,17 +33,7 @@ double MeanTime(F&& f) {
 void Report(const char* name, const testing::SeedVessel& vessel, bool global_start) {
   auto model = MakeModelHandle(nomoto::SecondOrder());
   Experiment e = testing::MakeExperiment(*model, vessel.truth, vessel.loop);
-  const double factor[] = {1.5, 1.0 / 1.5, 1.5, 1.0 / 1.5};
-  const char* names[] = {"T1", "T2", "T3", "K"};
-  std::vector<ParameterSpec> specs;
-  for (int i = 0; i < 4; ++i) {
-    ParameterSpec s;
-    s.name = names[i];
-    s.start = vessel.truth[i] * factor[i];
-    s.lower = i == 3 ? (vessel.truth[3] > 0 ? 0.001 : -2.0) : (i == 2 ? 0.0 : 0.01);
-    s.upper = i == 3 ? (vessel.truth[3] > 0 ? 1.0 : -0.001) : 10 * vessel.truth[0];
-    specs.push_back(s);
-  }
+  std::vector<ParameterSpec> specs = testing::FiftyPercentOff(vessel.truth);
   std::string error;
   auto problem = OutputErrorProblem::Create(model.get(), {e}, specs, {}, &error);
 

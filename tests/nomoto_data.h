@@ -9,6 +9,7 @@
 
 #include "engine/experiment.h"
 #include "engine/model_handle.h"
+#include "engine/parameter.h"
 #include "problems/nomoto/closed_loop_simulator.h"
 #include "problems/nomoto/nomoto_models.h"
 
@@ -38,6 +39,23 @@ inline SeedVessel PatrolVessel() {
   v.loop.excitation.amplitude = 20.0 * M_PI / 180.0;
   v.loop.excitation.periods = {30.0};
   return v;
+}
+
+// The start, 50 % off every parameter (T1 x1.5, T2 / 1.5, T3 x1.5, K / 1.5), with the
+// bounds of configs/nomoto_*.yaml: wide, sign of K known.
+inline std::vector<ParameterSpec> FiftyPercentOff(const std::vector<double>& truth) {
+  const double factor[] = {1.5, 1.0 / 1.5, 1.5, 1.0 / 1.5};
+  const char* names[] = {"T1", "T2", "T3", "K"};
+  std::vector<ParameterSpec> specs;
+  for (int i = 0; i < 4; ++i) {
+    ParameterSpec s;
+    s.name = names[i];
+    s.start = truth[i] * factor[i];
+    s.lower = i == 3 ? (truth[3] > 0 ? 0.001 : -2.0) : (i == 2 ? 0.0 : 0.01);
+    s.upper = i == 3 ? (truth[3] > 0 ? 1.0 : -0.001) : 10 * truth[0];
+    specs.push_back(s);
+  }
+  return specs;
 }
 
 // Simulates `loop` with `model` and prepares the experiment comparing psi (delta as input).

@@ -11,22 +11,6 @@
 namespace vesselid {
 namespace {
 
-std::vector<ParameterSpec> FiftyPercentOff(const std::vector<double>& truth) {
-  const double factor[] = {1.5, 1.0 / 1.5, 1.5, 1.0 / 1.5};
-  const char* names[] = {"T1", "T2", "T3", "K"};
-  std::vector<ParameterSpec> specs;
-  for (int i = 0; i < 4; ++i) {
-    ParameterSpec s;
-    s.name = names[i];
-    s.start = truth[i] * factor[i];
-    // Bounds as in configs/nomoto_*.yaml: wide, sign of K known.
-    s.lower = i == 3 ? (truth[3] > 0 ? 0.001 : -2.0) : (i == 2 ? 0.0 : 0.01);
-    s.upper = i == 3 ? (truth[3] > 0 ? 1.0 : -0.001) : 10 * truth[0];
-    specs.push_back(s);
-  }
-  return specs;
-}
-
 struct SeedResult {
   std::vector<double> relative_error;  // percent, T1 T2 T3 K
   StageSummary summary;
@@ -37,7 +21,7 @@ SeedResult Identify(const testing::SeedVessel& vessel, Interpolation interpolati
   auto model = MakeModelHandle(nomoto::SecondOrder());
   Experiment e = testing::MakeExperiment(*model, vessel.truth, vessel.loop, interpolation);
   std::string error;
-  if (specs.empty()) specs = FiftyPercentOff(vessel.truth);
+  if (specs.empty()) specs = testing::FiftyPercentOff(vessel.truth);
   auto problem = OutputErrorProblem::Create(model.get(), {e}, specs, {}, &error);
   EXPECT_NE(problem, nullptr) << error;
   StageOptions options;
@@ -78,7 +62,7 @@ TEST(NomotoSeed, PatrolLinearInterpolationLeavesVisibleBias) {
 // Started exactly on the T1 = T2 ridge, where the gradient across it vanishes, the global
 // start still leads to the truth.
 TEST(NomotoSeed, PatrolStartedOnTheRidgeLeavesIt) {
-  std::vector<ParameterSpec> specs = FiftyPercentOff(testing::PatrolVessel().truth);
+  std::vector<ParameterSpec> specs = testing::FiftyPercentOff(testing::PatrolVessel().truth);
   specs[0].start = specs[1].start = 1.2;
   SeedResult r = Identify(testing::PatrolVessel(), Interpolation::kCubic, true, specs);
   for (int i = 0; i < 4; ++i) EXPECT_LT(std::abs(r.relative_error[i]), 0.01) << "parameter " << i;
@@ -86,7 +70,7 @@ TEST(NomotoSeed, PatrolStartedOnTheRidgeLeavesIt) {
 
 // Started with the time constants exchanged, the run reports T1 >= T2 and says it swapped.
 TEST(NomotoSeed, ExchangedTimeConstantsAreReportedOrdered) {
-  std::vector<ParameterSpec> specs = FiftyPercentOff(testing::PatrolVessel().truth);
+  std::vector<ParameterSpec> specs = testing::FiftyPercentOff(testing::PatrolVessel().truth);
   std::swap(specs[0].start, specs[1].start);
   SeedResult r = Identify(testing::PatrolVessel(), Interpolation::kCubic, false, specs);
   for (int i = 0; i < 4; ++i) EXPECT_LT(std::abs(r.relative_error[i]), 0.01) << "parameter " << i;
