@@ -7,13 +7,21 @@
 namespace vesselid {
 
 bool PrepareStageExperiments(const RunConfig& config, const StageConfig& stage,
-                             std::vector<Experiment>* experiments, std::string* error) {
+                             TrajectoryCache* cache, std::vector<Experiment>* experiments,
+                             std::string* error) {
   experiments->clear();
   const ModelInfo& info = config.model->info();
   for (const std::string& name : stage.experiments) {
     const ExperimentSpec* spec = config.FindExperiment(name);
-    Trajectory trajectory;
-    if (!LoadExperimentData(*spec, &trajectory, error)) return false;
+    // Cached per experiment: degree conversion depends on the experiment's own spec.
+    const std::string key = spec->name + "\n" + spec->file;
+    auto cached = cache->find(key);
+    if (cached == cache->end()) {
+      Trajectory trajectory;
+      if (!LoadExperimentData(*spec, &trajectory, error)) return false;
+      cached = cache->emplace(key, std::move(trajectory)).first;
+    }
+    const Trajectory& trajectory = cached->second;
     Experiment experiment;
     if (!BuildExperiment(*spec, trajectory, info, stage.experiment, &experiment, error)) return false;
     experiments->push_back(std::move(experiment));
@@ -56,11 +64,12 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
                        const StageObserver& observer) {
   const auto start_time = std::chrono::steady_clock::now();
   RunResult run;
+  TrajectoryCache cache;
   for (const StageConfig& stage : config.stages) {
     const std::string where = "stage '" + stage.options.name + "': ";
     if (observer) observer(nullptr, stage.options.name);
     std::vector<Experiment> experiments;
-    if (!PrepareStageExperiments(config, stage, &experiments, error)) {
+    if (!PrepareStageExperiments(config, stage, &cache, &experiments, error)) {
       *error = where + *error;
       return false;
     }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,8 +46,12 @@ using StageObserver = std::function<void(const StageResult* finished, const std:
 bool RunIdentification(const RunConfig& config, RunResult* result, std::string* error,
                        const StageObserver& observer = nullptr);
 
+// Recorded data by file, so that stages sharing an experiment read it once.
+using TrajectoryCache = std::map<std::string, Trajectory>;
+
 // Reads and prepares one stage's experiments (used by RunIdentification and by tools).
 bool PrepareStageExperiments(const RunConfig& config, const StageConfig& stage,
-                             std::vector<Experiment>* experiments, std::string* error);
+                             TrajectoryCache* cache, std::vector<Experiment>* experiments,
+                             std::string* error);
 
 }  // namespace vesselid

@@ -8,32 +8,6 @@
 namespace vesselid {
 namespace {
 
-// Reports the members of each exchangeable pair in decreasing order (the model is symmetric
-// in them, so the swap leaves every simulation unchanged).
-void OrderExchangeable(OutputErrorProblem* problem, std::vector<std::string>* notes) {
-  const ModelInfo& info = problem->model().info();
-  const std::vector<Variable>& variables = problem->variables();
-  for (const auto& [first, second] : info.exchangeable) {
-    const Variable* a = nullptr;
-    const Variable* b = nullptr;
-    for (const Variable& v : variables) {
-      if (v.kind != Variable::Kind::kParameter || v.experiment >= 0) continue;
-      if (v.index == first) a = &v;
-      if (v.index == second) b = &v;
-    }
-    if (a == nullptr || b == nullptr || a->value() >= b->value()) continue;
-    const double va = a->value(), vb = b->value();
-    if (vb > a->upper || vb < a->lower || va > b->upper || va < b->lower) {
-      notes->push_back(a->name + " < " + b->name + " and their bounds forbid the swap");
-      continue;
-    }
-    a->set_value(vb);
-    b->set_value(va);
-    notes->push_back("swapped " + a->name + " and " + b->name + " so that " + a->name +
-                     " >= " + b->name);
-  }
-}
-
 // Shared free variables of each exchangeable pair.
 std::vector<std::pair<const Variable*, const Variable*>> ExchangeablePairs(
     const OutputErrorProblem& problem) {
@@ -49,6 +23,23 @@ std::vector<std::pair<const Variable*, const Variable*>> ExchangeablePairs(
     if (a != nullptr && b != nullptr) pairs.emplace_back(a, b);
   }
   return pairs;
+}
+
+// Reports the members of each exchangeable pair in decreasing order (the model is symmetric
+// in them, so the swap leaves every simulation unchanged).
+void OrderExchangeable(OutputErrorProblem* problem, std::vector<std::string>* notes) {
+  for (const auto& [a, b] : ExchangeablePairs(*problem)) {
+    const double va = a->value(), vb = b->value();
+    if (va >= vb) continue;
+    if (vb > a->upper || vb < a->lower || va > b->upper || va < b->lower) {
+      notes->push_back(a->name + " < " + b->name + " and their bounds forbid the swap");
+      continue;
+    }
+    a->set_value(vb);
+    b->set_value(va);
+    notes->push_back("swapped " + a->name + " and " + b->name + " so that " + a->name +
+                     " >= " + b->name);
+  }
 }
 
 // A model symmetric in (a, b) has zero gradient across a = b, so a local solve that reaches
