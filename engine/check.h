@@ -4,11 +4,11 @@
 #include <cstdio>
 #include <cstdlib>
 
-#define VESSELID_CHECK(condition)                                                      \
-  do {                                                                                 \
-    if (!(condition)) {                                                                \
+#define VESSELID_CHECK(condition)                                                        \
+  do {                                                                                   \
+    if (!(condition)) {                                                                  \
       std::fprintf(stderr, "%s:%d: internal invariant failed: %s\n", __FILE__, __LINE__, \
-                   #condition);                                                        \
-      std::abort();                                                                    \
-    }                                                                                  \
+                   #condition);                                                          \
+      std::abort();                                                                      \
+    }                                                                                    \
   } while (0)

@@ -16,8 +16,9 @@ void CheckNames(const YamlReader& reader, const YAML::Node& node, const std::str
     bool found = false;
     for (const std::string& k : known) found = found || k == name;
     if (!found) {
-      reader.Fail(node, key, "unknown " + kind + " '" + name + "' (model " + info.name +
-                                 " has " + JoinNames(known) + ")");
+      reader.Fail(node, key,
+                  "unknown " + kind + " '" + name + "' (model " + info.name + " has " +
+                      JoinNames(known) + ")");
     }
   }
 }
@@ -33,8 +34,8 @@ Interpolation ReadInterpolation(const YamlReader& reader, const YAML::Node& node
                                 const std::string& key) {
   Interpolation interpolation;
   if (!StringToInterpolation(reader.String(node, key), &interpolation)) {
-    reader.Fail(node, key, "unknown interpolation '" + node.Scalar() +
-                               "' (zero_order_hold, linear, cubic)");
+    reader.Fail(node, key,
+                "unknown interpolation '" + node.Scalar() + "' (zero_order_hold, linear, cubic)");
   }
   return interpolation;
 }
@@ -43,8 +44,8 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
                               const std::string& path, const fs::path& base,
                               const ModelInfo& info) {
   reader.CheckMap(node, path,
-                  {"name", "file", "inputs", "outputs", "interpolation", "weights",
-                   "initial_state", "degrees", "window"});
+                  {"name", "file", "inputs", "outputs", "interpolation", "weights", "initial_state",
+                   "degrees", "window"});
   ExperimentSpec spec;
   if (!node["name"]) reader.Fail(node, path, "missing key 'name'");
   if (!node["file"]) reader.Fail(node, path, "missing key 'file'");
@@ -75,10 +76,11 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
   }
   if (const YAML::Node n = node["weights"]) {
     spec.output_weights = reader.DoubleMap(n, Child(path, "weights"));
-    CheckNames(reader, n, Child(path, "weights"), Keys(spec.output_weights), info.outputs,
-               "output", info);
+    CheckNames(reader, n, Child(path, "weights"), Keys(spec.output_weights), info.outputs, "output",
+               info);
     for (const auto& [output, weight] : spec.output_weights) {
-      if (!(weight >= 0.0)) reader.Fail(n[output], Child(Child(path, "weights"), output), "weight must be >= 0");
+      if (!(weight >= 0.0))
+        reader.Fail(n[output], Child(Child(path, "weights"), output), "weight must be >= 0");
     }
   }
   if (const YAML::Node n = node["initial_state"]) {
@@ -86,7 +88,8 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
     CheckNames(reader, n, Child(path, "initial_state"), Keys(spec.initial_state), info.states,
                "state", info);
   }
-  if (const YAML::Node n = node["degrees"]) spec.degree_columns = reader.Strings(n, Child(path, "degrees"));
+  if (const YAML::Node n = node["degrees"])
+    spec.degree_columns = reader.Strings(n, Child(path, "degrees"));
   if (const YAML::Node n = node["window"]) {
     std::vector<double> window = reader.Doubles(n, Child(path, "window"));
     if (window.size() != 2 || !(window[0] < window[1])) {
@@ -160,8 +163,8 @@ void ReadLocal(const YamlReader& reader, const YAML::Node& node, const std::stri
 void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                 GlobalStartOptions* global) {
   reader.CheckMap(node, path,
-                  {"algorithm", "max_evaluations", "max_time", "seed", "population",
-                   "candidates", "min_separation"});
+                  {"algorithm", "max_evaluations", "max_time", "seed", "population", "candidates",
+                   "min_separation"});
   reader.Read(node, path, "algorithm", &global->algorithm);
   reader.Read(node, path, "max_evaluations", &global->max_evaluations);
   reader.Read(node, path, "max_time", &global->max_time_seconds);
@@ -223,7 +226,8 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
       reader.Fail(loss["type"], Child(path, "loss.type"),
                   "unknown loss '" + t + "' (none, huber, cauchy, soft_l1, arctan)");
     }
-    if (!(stage.problem.loss_scale > 0)) reader.Fail(loss, Child(path, "loss.scale"), "must be > 0");
+    if (!(stage.problem.loss_scale > 0))
+      reader.Fail(loss, Child(path, "loss.scale"), "must be > 0");
   }
   if (const YAML::Node integration = node["integration"]) {
     reader.CheckMap(integration, Child(path, "integration"), {"max_step"});
@@ -262,12 +266,14 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
     reader.Read(root, "", "description", &result.description);
     const YAML::Node model = root["model"];
     if (!model) reader.Fail(root, "model", "missing key");
-    if (!model.IsMap() || !model["family"]) reader.Fail(model, "model", "expected a map with 'family'");
+    if (!model.IsMap() || !model["family"])
+      reader.Fail(model, "model", "expected a map with 'family'");
     result.family = reader.String(model["family"], "model.family");
     result.model_family = registry.Find(result.family);
     if (result.model_family == nullptr) {
-      reader.Fail(model["family"], "model.family",
-                  "unknown model family '" + result.family + "' (" + JoinNames(registry.Names()) + ")");
+      reader.Fail(
+          model["family"], "model.family",
+          "unknown model family '" + result.family + "' (" + JoinNames(registry.Names()) + ")");
     }
     result.model = result.model_family->make_model(reader, model, "model");
     const ModelInfo& info = result.model->info();
@@ -278,7 +284,8 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
     if (!experiments) reader.Fail(root, "experiments", "missing key");
     reader.CheckSequence(experiments, "experiments");
     for (size_t i = 0; i < experiments.size(); ++i) {
-      ExperimentSpec spec = ReadExperiment(reader, experiments[i], Child("experiments", i), base, info);
+      ExperimentSpec spec =
+          ReadExperiment(reader, experiments[i], Child("experiments", i), base, info);
       if (result.FindExperiment(spec.name) != nullptr) {
         reader.Fail(experiments[i]["name"], Child(Child("experiments", i), "name"),
                     "duplicate experiment name '" + spec.name + "'");

@@ -14,9 +14,9 @@ namespace vesselid {
 
 struct Uncertainty {
   bool available = false;
-  std::string message;             // why not available, or a rank-deficiency note
-  std::vector<int> variables;      // free variable indices, in matrix order
-  Eigen::MatrixXd covariance;      // physical units
+  std::string message;         // why not available, or a rank-deficiency note
+  std::vector<int> variables;  // free variable indices, in matrix order
+  Eigen::MatrixXd covariance;  // physical units
   Eigen::MatrixXd correlation;
   std::vector<double> std_errors;  // sqrt of the diagonal
   double residual_variance = 0.0;  // s^2

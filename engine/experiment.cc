@@ -63,7 +63,8 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
                   JoinNames(info.outputs) + ")");
     }
     auto mapped = spec.outputs.find(output);
-    if (mapped == spec.outputs.end()) return fail("output '" + output + "' is not mapped to a column");
+    if (mapped == spec.outputs.end())
+      return fail("output '" + output + "' is not mapped to a column");
     int column = trajectory.Find(mapped->second);
     if (column < 0) return fail("no column '" + mapped->second + "' for output '" + output + "'");
     auto weight = spec.output_weights.find(output);

@@ -20,14 +20,14 @@ namespace vesselid {
 // What a config says about one experiment.
 struct ExperimentSpec {
   std::string name;
-  std::string file;                                  // CSV path as resolved by the config
-  std::map<std::string, std::string> inputs;         // model input -> column
-  std::map<std::string, std::string> outputs;        // model output -> column
+  std::string file;                                    // CSV path as resolved by the config
+  std::map<std::string, std::string> inputs;           // model input -> column
+  std::map<std::string, std::string> outputs;          // model output -> column
   std::map<std::string, Interpolation> interpolation;  // per model input (default below)
   Interpolation default_interpolation = Interpolation::kLinear;
-  std::map<std::string, double> output_weights;      // per model output, default 1
-  std::map<std::string, double> initial_state;       // per state; absent: see BuildExperiment
-  std::vector<std::string> degree_columns;           // columns recorded in degrees
+  std::map<std::string, double> output_weights;  // per model output, default 1
+  std::map<std::string, double> initial_state;   // per state; absent: see BuildExperiment
+  std::vector<std::string> degree_columns;       // columns recorded in degrees
   double t_begin = -std::numeric_limits<double>::infinity();
   double t_end = std::numeric_limits<double>::infinity();
 };
@@ -42,13 +42,13 @@ struct Experiment {
   std::string name;
   int num_inputs = 0;
   std::vector<double> node_time;
-  std::vector<int> node_substeps;  // steps from node k to k+1 (size nodes - 1)
-  std::vector<double> node_step;   // their length
+  std::vector<int> node_substeps;      // steps from node k to k+1 (size nodes - 1)
+  std::vector<double> node_step;       // their length
   std::vector<int> node_first_sample;  // samples of node k: [first[k], first[k+1])
   std::vector<ExperimentSample> samples;
   // Inputs at step points (even rows) and midpoints (odd rows): (2 * steps + 1) x num_inputs.
   std::vector<double> input_cache;
-  std::vector<double> initial_state;  // start values of the initial state
+  std::vector<double> initial_state;     // start values of the initial state
   std::vector<int> output_sample_count;  // per model output
 
   int num_nodes() const { return static_cast<int>(node_time.size()); }

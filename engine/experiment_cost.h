@@ -25,8 +25,7 @@
 namespace vesselid {
 
 // Jet sizes compiled for each model; a problem with more free directions is refused.
-using JetSizes = std::integer_sequence<int, 1, 2, 3, 4, 5, 6, 7, 8, 10, 12, 16, 20, 24, 32, 48,
-                                       64>;
+using JetSizes = std::integer_sequence<int, 1, 2, 3, 4, 5, 6, 7, 8, 10, 12, 16, 20, 24, 32, 48, 64>;
 inline constexpr int kMaxJetSize = 64;
 
 template <class Model>
@@ -65,10 +64,9 @@ class ExperimentCost final : public ceres::CostFunction {
   bool Dispatch(std::integer_sequence<int, Sizes...>, int directions,
                 double const* const* parameters, double* residuals, double** jacobians) const {
     bool ok = false, done = false;
-    ((!done && Sizes >= directions
-          ? (done = true, ok = EvaluateScalar<ceres::Jet<double, Sizes>>(parameters, residuals,
-                                                                         jacobians))
-          : false),
+    ((!done && Sizes >= directions ? (done = true, ok = EvaluateScalar<ceres::Jet<double, Sizes>>(
+                                                       parameters, residuals, jacobians))
+                                   : false),
      ...);
     VESSELID_CHECK(done);  // the problem builder refuses more than kMaxJetSize directions
     return ok;

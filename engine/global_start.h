@@ -17,8 +17,8 @@ struct GlobalStartOptions {
   int max_evaluations = 1000;
   double max_time_seconds = 600.0;
   unsigned seed = 1;
-  int population = 0;  // 0: NLopt's default
-  int candidates = 3;  // best distinct points handed to local refinement
+  int population = 0;            // 0: NLopt's default
+  int candidates = 3;            // best distinct points handed to local refinement
   double min_separation = 0.05;  // between candidates, in normalised coordinates (max-norm)
 
   bool IsValid(std::string* error) const;

@@ -5,22 +5,28 @@
 namespace vesselid {
 
 bool LocalSolveOptions::IsValid(std::string* error) const {
-  if (max_iterations < 0) *error = "max_iterations must be >= 0";
-  else if (!(function_tolerance >= 0.0)) *error = "function_tolerance must be >= 0";
-  else if (!(gradient_tolerance >= 0.0)) *error = "gradient_tolerance must be >= 0";
-  else if (!(parameter_tolerance >= 0.0)) *error = "parameter_tolerance must be >= 0";
-  else if (!(max_time_seconds > 0.0)) *error = "max_time_seconds must be > 0";
-  else if (num_threads < 1) *error = "num_threads must be >= 1";
-  else return true;
+  if (max_iterations < 0)
+    *error = "max_iterations must be >= 0";
+  else if (!(function_tolerance >= 0.0))
+    *error = "function_tolerance must be >= 0";
+  else if (!(gradient_tolerance >= 0.0))
+    *error = "gradient_tolerance must be >= 0";
+  else if (!(parameter_tolerance >= 0.0))
+    *error = "parameter_tolerance must be >= 0";
+  else if (!(max_time_seconds > 0.0))
+    *error = "max_time_seconds must be > 0";
+  else if (num_threads < 1)
+    *error = "num_threads must be >= 1";
+  else
+    return true;
   return false;
 }
 
 std::string LocalSolveSummary::BriefReport() const {
   if (!run) return "local solve: not run";
   char text[256];
-  std::snprintf(text, sizeof(text),
-                "local solve: cost %.6e -> %.6e, %d iterations, %.3f s, %s", initial_cost,
-                final_cost, iterations, time_seconds, termination.c_str());
+  std::snprintf(text, sizeof(text), "local solve: cost %.6e -> %.6e, %d iterations, %.3f s, %s",
+                initial_cost, final_cost, iterations, time_seconds, termination.c_str());
   return text;
 }
 

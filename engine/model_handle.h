@@ -55,14 +55,13 @@ class ModelAdapter final : public ModelHandle {
     std::array<double, Model::kNumStates> x;
     std::copy(x0, x0 + Model::kNumStates, x.begin());
     double* out = outputs->data();
-    return SimulateExperiment(model_, e, p, x.data(), [&](int k, const double* state,
-                                                           const double* u) {
-      model_.Output(state, u, p, out + static_cast<size_t>(k) * ny);
-    });
+    return SimulateExperiment(model_, e, p, x.data(),
+                              [&](int k, const double* state, const double* u) {
+                                model_.Output(state, u, p, out + static_cast<size_t>(k) * ny);
+                              });
   }
 
-  bool Derivative(const double* x, const double* u, const double* p,
-                  double* xdot) const override {
+  bool Derivative(const double* x, const double* u, const double* p, double* xdot) const override {
     return model_(x, u, p, xdot);
   }
   void Output(const double* x, const double* u, const double* p, double* y) const override {

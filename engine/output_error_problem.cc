@@ -173,7 +173,8 @@ std::vector<double> OutputErrorProblem::ParametersOf(int e) const {
 std::vector<double> OutputErrorProblem::InitialStateOf(int e) const {
   std::vector<double> values;
   const size_t n = model_->info().parameters.size();
-  for (size_t j = n; j < block_of_[e].size(); ++j) values.push_back(variables_[block_of_[e][j]].value());
+  for (size_t j = n; j < block_of_[e].size(); ++j)
+    values.push_back(variables_[block_of_[e][j]].value());
   return values;
 }
 

@@ -22,7 +22,7 @@ namespace vesselid {
 // One scalar unknown of the problem.
 struct Variable {
   enum class Kind { kParameter, kInitialState };
-  std::string name;     // "T1", "delta_0[run2]", "x0.psi[run2]"
+  std::string name;  // "T1", "delta_0[run2]", "x0.psi[run2]"
   Kind kind = Kind::kParameter;
   int index = 0;        // parameter or state index in the model
   int experiment = -1;  // -1: shared by all experiments

@@ -23,7 +23,8 @@ bool PrepareStageExperiments(const RunConfig& config, const StageConfig& stage,
     }
     const Trajectory& trajectory = cached->second;
     Experiment experiment;
-    if (!BuildExperiment(*spec, trajectory, info, stage.experiment, &experiment, error)) return false;
+    if (!BuildExperiment(*spec, trajectory, info, stage.experiment, &experiment, error))
+      return false;
     experiments->push_back(std::move(experiment));
   }
   return true;
@@ -31,7 +32,8 @@ bool PrepareStageExperiments(const RunConfig& config, const StageConfig& stage,
 
 namespace {
 
-StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>& starts, StageSummary summary) {
+StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>& starts,
+                    StageSummary summary) {
   StageResult result;
   result.name = summary.name;
   const std::vector<Variable>& variables = problem.variables();
@@ -51,7 +53,8 @@ StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>
     result.estimates.push_back(e);
   }
   if (summary.uncertainty.available) {
-    for (int index : summary.uncertainty.variables) result.correlation_names.push_back(variables[index].name);
+    for (int index : summary.uncertainty.variables)
+      result.correlation_names.push_back(variables[index].name);
     result.correlation = summary.uncertainty.correlation;
   }
   result.summary = std::move(summary);

@@ -44,8 +44,9 @@ json StageToJson(const StageResult& stage) {
   j["notes"] = s.notes;
   json estimates = json::array();
   for (const Estimate& e : stage.estimates) {
-    json item = {{"name", e.name},         {"kind", e.kind},   {"role", e.role},
-                 {"value", e.value},       {"start", e.start}, {"std_error", Number(e.std_error)},
+    json item = {{"name", e.name},           {"kind", e.kind},
+                 {"role", e.role},           {"value", e.value},
+                 {"start", e.start},         {"std_error", Number(e.std_error)},
                  {"lower", Number(e.lower)}, {"upper", Number(e.upper)}};
     if (!e.experiment.empty()) item["experiment"] = e.experiment;
     estimates.push_back(item);
@@ -60,7 +61,8 @@ json StageToJson(const StageResult& stage) {
     json matrix = json::array();
     for (int r = 0; r < stage.correlation.rows(); ++r) {
       json row = json::array();
-      for (int c = 0; c < stage.correlation.cols(); ++c) row.push_back(Number(stage.correlation(r, c)));
+      for (int c = 0; c < stage.correlation.cols(); ++c)
+        row.push_back(Number(stage.correlation(r, c)));
       matrix.push_back(row);
     }
     j["correlation"] = {{"names", stage.correlation_names}, {"matrix", matrix}};
@@ -108,8 +110,10 @@ json RunResultToJson(const RunConfig& config, const RunResult& result) {
   for (const StageResult& stage : result.stages) {
     for (const Estimate& e : stage.estimates) {
       if (e.kind != "parameter") continue;
-      parameters[e.name] = {{"value", e.value}, {"std_error", Number(e.std_error)},
-                            {"role", e.role},   {"stage", stage.name}};
+      parameters[e.name] = {{"value", e.value},
+                            {"std_error", Number(e.std_error)},
+                            {"role", e.role},
+                            {"stage", stage.name}};
     }
   }
   j["parameters"] = parameters;
@@ -134,7 +138,8 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
                       e.role.c_str(), e.value, "-", "-");
       } else {
         std::snprintf(line, sizeof(line), "  %-24s %-15s %16.8g %12.4g %10.4g\n", e.name.c_str(),
-                      e.role.c_str(), e.value, e.std_error, 100.0 * e.std_error / std::abs(e.value));
+                      e.role.c_str(), e.value, e.std_error,
+                      100.0 * e.std_error / std::abs(e.value));
       }
       out << line;
     }

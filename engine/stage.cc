@@ -85,8 +85,8 @@ std::string StageSummary::BriefReport() const {
   const LocalSolveSummary& l = local();
   std::snprintf(text, sizeof(text),
                 "stage %s: cost %.6e after %d iterations (%s), %zu refinement(s), %.3f s",
-                name.c_str(), l.final_cost, l.iterations, l.termination.c_str(),
-                refinements.size(), time_seconds);
+                name.c_str(), l.final_cost, l.iterations, l.termination.c_str(), refinements.size(),
+                time_seconds);
   return text;
 }
 

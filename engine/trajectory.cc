@@ -82,8 +82,8 @@ bool ReadTrajectoryCsv(const std::string& path, Trajectory* trajectory, std::str
   }
   if (header.empty()) return fail("empty file, expected a header row");
   for (size_t i = 0; i < header.size(); ++i) {
-    if (header[i].empty()) return fail("empty column name in header (column " +
-                                       std::to_string(i + 1) + ")");
+    if (header[i].empty())
+      return fail("empty column name in header (column " + std::to_string(i + 1) + ")");
     for (size_t j = 0; j < i; ++j) {
       if (header[j] == header[i]) return fail("duplicate column '" + header[i] + "'");
     }

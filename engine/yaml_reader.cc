@@ -10,15 +10,16 @@ YAML::Node YamlReader::Load() const {
   } catch (const YAML::BadFile&) {
     throw ConfigError(file_ + ": cannot open file");
   } catch (const YAML::Exception& e) {
-    throw ConfigError(file_ + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax error: " +
-                      e.msg);
+    throw ConfigError(file_ + ":" + std::to_string(e.mark.line + 1) +
+                      ": YAML syntax error: " + e.msg);
   }
 }
 
 void YamlReader::Fail(const YAML::Node& node, const std::string& key,
                       const std::string& what) const {
   std::string where = file_;
-  if (node.IsDefined() && node.Mark().line >= 0) where += ":" + std::to_string(node.Mark().line + 1);
+  if (node.IsDefined() && node.Mark().line >= 0)
+    where += ":" + std::to_string(node.Mark().line + 1);
   throw ConfigError(where + ": " + key + ": " + what);
 }
 

@@ -39,7 +39,8 @@ class BadInput : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("vesselid_bad_input_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("vesselid_bad_input_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     auto model = MakeModelHandle(nomoto::FirstOrder());
@@ -118,7 +119,9 @@ TEST_F(BadInput, MissingColumn) {
 
 TEST_F(BadInput, UnknownParameter) {
   EditConfig("      K: {", "      K9: {");
-  ExpectRejected("config\\.yaml:11: stages\\[0\\]\\.parameters\\.K9: unknown key \\(allowed: T, K, delta_0\\)");
+  ExpectRejected(
+      "config\\.yaml:11: stages\\[0\\]\\.parameters\\.K9: unknown key \\(allowed: T, K, "
+      "delta_0\\)");
 }
 
 TEST_F(BadInput, UnknownModelType) {
@@ -178,19 +181,22 @@ TEST_F(BadInput, YamlSyntaxError) {
 
 TEST_F(BadInput, NotANumber) {
   EditConfig("start: 3.0", "start: three");
-  ExpectRejected("config\\.yaml:10: stages\\[0\\]\\.parameters\\.T\\.start: 'three' is not a finite number");
+  ExpectRejected(
+      "config\\.yaml:10: stages\\[0\\]\\.parameters\\.T\\.start: 'three' is not a finite number");
 }
 
 TEST_F(BadInput, UnknownInterpolation) {
   EditConfig("inputs: {delta: delta}", "inputs: {delta: delta}\n    interpolation: quintic");
-  ExpectRejected("config\\.yaml:6: experiments\\[0\\]\\.interpolation: unknown interpolation 'quintic'");
+  ExpectRejected(
+      "config\\.yaml:6: experiments\\[0\\]\\.interpolation: unknown interpolation 'quintic'");
 }
 
 TEST_F(BadInput, DivergentSimulationFailsCleanly) {
   // Norrbin with a negative cubic term grows without bound from this start.
   std::string text = kGoodConfig;
   text.replace(text.find("first_order"), 11, "norrbin");
-  text.replace(text.find("    free_initial_states"), 0, "      alpha: {start: -1.0e6, lower: -1.0e7, upper: 0.0}\n");
+  text.replace(text.find("    free_initial_states"), 0,
+               "      alpha: {start: -1.0e6, lower: -1.0e7, upper: 0.0}\n");
   WriteConfig(text);
   ExpectRejected("stage 'fit': .*diverges");
 }

@@ -51,8 +51,10 @@ void Report(const char* name, const testing::SeedVessel& vessel, bool global_sta
   for (int i = 0; i < 4; ++i) jacobian_blocks[i] = jacobian[i].data();
   std::unique_ptr<ceres::CostFunction> cost(model->NewExperimentCost(&e, scales, nullptr));
   std::vector<double> p = problem->ParametersOf(0), outputs;
-  const double simulate = MeanTime([&] { model->SimulateOutputs(e, p.data(), x0.data(), &outputs); });
-  const double residual = MeanTime([&] { cost->Evaluate(blocks.data(), residuals.data(), nullptr); });
+  const double simulate =
+      MeanTime([&] { model->SimulateOutputs(e, p.data(), x0.data(), &outputs); });
+  const double residual =
+      MeanTime([&] { cost->Evaluate(blocks.data(), residuals.data(), nullptr); });
   const double jacobian_time =
       MeanTime([&] { cost->Evaluate(blocks.data(), residuals.data(), jacobian_blocks.data()); });
 
@@ -67,10 +69,9 @@ void Report(const char* name, const testing::SeedVessel& vessel, bool global_sta
   for (int i = 0; i < 4; ++i) {
     worst = std::max(worst, std::abs(problem->variables()[i].value() / vessel.truth[i] - 1.0));
   }
-  std::printf("%-7s %8d %9.3f %9.3f %6d %10.2f %10.2f %10.2f %7.2f %10.2e\n", name,
-              e.num_samples(), total, summary.local().time_seconds, summary.local().iterations,
-              1e3 * simulate, 1e3 * residual, 1e3 * jacobian_time, jacobian_time / simulate,
-              100 * worst);
+  std::printf("%-7s %8d %9.3f %9.3f %6d %10.2f %10.2f %10.2f %7.2f %10.2e\n", name, e.num_samples(),
+              total, summary.local().time_seconds, summary.local().iterations, 1e3 * simulate,
+              1e3 * residual, 1e3 * jacobian_time, jacobian_time / simulate, 100 * worst);
 }
 
 }  // namespace

@@ -128,7 +128,8 @@ TYPED_TEST(ModelBattery, Rk4ConvergesWithFourthOrder) {
   auto max_error = [&](double step) {
     std::vector<double> psi = heading(step);
     double error = 0.0;
-    for (size_t k = 0; k < psi.size(); ++k) error = std::max(error, std::abs(psi[k] - reference[k]));
+    for (size_t k = 0; k < psi.size(); ++k)
+      error = std::max(error, std::abs(psi[k] - reference[k]));
     return error;
   };
   const double e1 = max_error(0.1), e2 = max_error(0.05), e3 = max_error(0.025);
@@ -153,7 +154,8 @@ TYPED_TEST(ModelBattery, RecoversTruthWithinReportedUncertainty) {
   // The first heading sample is noisy: the initial heading is estimated with the rest.
   OutputErrorOptions problem_options;
   problem_options.free_initial_states = {"psi"};
-  auto problem = OutputErrorProblem::Create(this->model_.get(), {e}, specs, problem_options, &error);
+  auto problem =
+      OutputErrorProblem::Create(this->model_.get(), {e}, specs, problem_options, &error);
   ASSERT_NE(problem, nullptr) << error;
   StageOptions options;
   StageSummary summary;

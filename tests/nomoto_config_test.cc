@@ -22,7 +22,8 @@ json RunConfig(const std::string& name) {
   const fs::path out = fs::temp_directory_path() / ("vesselid_config_test_" + name);
   fs::remove_all(out);
   const std::string binary = VESSELID_BINARY;
-  const std::string simulate = binary + " simulate " + config + " --out " + out.string() + " > /dev/null";
+  const std::string simulate =
+      binary + " simulate " + config + " --out " + out.string() + " > /dev/null";
   const std::string run = binary + " run " + config + " --data " + out.string() + " --out " +
                           out.string() + " --quiet > /dev/null";
   EXPECT_EQ(std::system(simulate.c_str()), 0) << simulate;
@@ -50,8 +51,10 @@ const std::map<std::string, double> kPatrol = {
 TEST(NomotoConfigs, CargoNoiseFree) {
   json results = RunConfig("nomoto_cargo");
   auto estimates = Estimates(results["stages"][0]);
-  const std::map<std::string, double> truth = {{"T1", 45.0}, {"T2", 6.0}, {"T3", 10.0}, {"K", 0.09}};
-  for (const auto& [name, value] : truth) EXPECT_LT(RelativeError(estimates[name], value), 1e-4) << name;
+  const std::map<std::string, double> truth = {
+      {"T1", 45.0}, {"T2", 6.0}, {"T3", 10.0}, {"K", 0.09}};
+  for (const auto& [name, value] : truth)
+    EXPECT_LT(RelativeError(estimates[name], value), 1e-4) << name;
   EXPECT_GT(results["stages"][0]["metrics"][0]["r2"].get<double>(), 0.999999);
 }
 
@@ -59,7 +62,8 @@ TEST(NomotoConfigs, PatrolNoiseFreeWithGlobalStart) {
   json results = RunConfig("nomoto_patrol");
   const json& stage = results["stages"][0];
   auto estimates = Estimates(stage);
-  for (const auto& [name, value] : kPatrol) EXPECT_LT(RelativeError(estimates[name], value), 1e-4) << name;
+  for (const auto& [name, value] : kPatrol)
+    EXPECT_LT(RelativeError(estimates[name], value), 1e-4) << name;
   EXPECT_GT(stage["global_start"]["evaluations"].get<int>(), 0);
   EXPECT_GE(stage["refinements"].size(), 2u);
 }

@@ -1,8 +1,9 @@
 // Structure of output-error problems: several experiments sharing parameters, parameters
 // declared per experiment, multi-rate outputs, robust losses and the NLopt global start.
+#include "engine/output_error_problem.h"
+
 #include <cmath>
 
-#include "engine/output_error_problem.h"
 #include "engine/stage.h"
 #include "gtest/gtest.h"
 #include "tests/nomoto_data.h"
@@ -43,14 +44,16 @@ double ValueOf(const OutputErrorProblem& p, const std::string& name) {
 TEST(OutputErrorProblem, PerExperimentBiasWithSharedDynamics) {
   auto model = MakeModelHandle(nomoto::FirstOrder());
   std::vector<Experiment> runs = {
-      testing::MakeExperiment(*model, {2.0, -0.17, 0.02}, ShortLoop(20, 1), Interpolation::kCubic, "a"),
-      testing::MakeExperiment(*model, {2.0, -0.17, -0.01}, ShortLoop(13, 2), Interpolation::kCubic, "b")};
+      testing::MakeExperiment(*model, {2.0, -0.17, 0.02}, ShortLoop(20, 1), Interpolation::kCubic,
+                              "a"),
+      testing::MakeExperiment(*model, {2.0, -0.17, -0.01}, ShortLoop(13, 2), Interpolation::kCubic,
+                              "b")};
   std::string error;
-  auto problem = OutputErrorProblem::Create(
-      model.get(), runs,
-      {Spec("T", 3.0, 0.1, 20), Spec("K", -0.1, -1, -0.001),
-       Spec("delta_0", 0.0, -0.1, 0.1, ParameterRole::kPerExperiment)},
-      {}, &error);
+  auto problem =
+      OutputErrorProblem::Create(model.get(), runs,
+                                 {Spec("T", 3.0, 0.1, 20), Spec("K", -0.1, -1, -0.001),
+                                  Spec("delta_0", 0.0, -0.1, 0.1, ParameterRole::kPerExperiment)},
+                                 {}, &error);
   ASSERT_NE(problem, nullptr) << error;
   EXPECT_EQ(problem->num_free(), 4);  // T, K, delta_0[a], delta_0[b]
   StageSummary summary;
@@ -66,7 +69,8 @@ TEST(OutputErrorProblem, MultiRateOutputsComparedOnlyWhereSampled) {
   auto model = MakeModelHandle(nomoto::FirstOrder());
   Trajectory data;
   std::string error;
-  ASSERT_TRUE(nomoto::SimulateClosedLoop(*model, {2.0, -0.17, 0.0}, ShortLoop(20, 1), &data, &error));
+  ASSERT_TRUE(
+      nomoto::SimulateClosedLoop(*model, {2.0, -0.17, 0.0}, ShortLoop(20, 1), &data, &error));
   // Heading at 4 Hz, yaw rate at 20 Hz with a gap.
   const int psi = data.Find("psi"), r = data.Find("r");
   for (size_t k = 0; k < data.t.size(); ++k) {
@@ -80,7 +84,7 @@ TEST(OutputErrorProblem, MultiRateOutputsComparedOnlyWhereSampled) {
   spec.default_interpolation = Interpolation::kCubic;
   Experiment e;
   ASSERT_TRUE(BuildExperiment(spec, data, model->info(), ExperimentOptions(), &e, &error)) << error;
-  EXPECT_EQ(e.output_sample_count[0], 481);        // psi: every 0.25 s over 120 s
+  EXPECT_EQ(e.output_sample_count[0], 481);         // psi: every 0.25 s over 120 s
   EXPECT_EQ(e.output_sample_count[1], 2401 - 199);  // r: 50..60 s missing
   auto problem = OutputErrorProblem::Create(
       model.get(), {e}, {Spec("T", 3.0, 0.1, 20), Spec("K", -0.1, -1, -0.001)}, {}, &error);
@@ -144,7 +148,8 @@ TEST(OutputErrorProblem, RejectsUnknownNamesAndTooManyDirections) {
   auto model = MakeModelHandle(nomoto::FirstOrder());
   Experiment e = testing::MakeExperiment(*model, {2.0, -0.17, 0.0}, ShortLoop(20, 1));
   std::string error;
-  EXPECT_EQ(OutputErrorProblem::Create(model.get(), {e}, {Spec("Q", 1, 0, 2)}, {}, &error), nullptr);
+  EXPECT_EQ(OutputErrorProblem::Create(model.get(), {e}, {Spec("Q", 1, 0, 2)}, {}, &error),
+            nullptr);
   EXPECT_NE(error.find("unknown parameter 'Q'"), std::string::npos) << error;
   OutputErrorOptions options;
   options.free_initial_states = {"yaw"};

@@ -1,10 +1,11 @@
 // CSV reading and input interpolation.
+#include "engine/trajectory.h"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include "engine/interpolation.h"
-#include "engine/trajectory.h"
 #include "gtest/gtest.h"
 
 namespace vesselid {
@@ -19,8 +20,8 @@ std::string WriteTemp(const std::string& name, const std::string& text) {
 }
 
 TEST(Trajectory, ReadsMultiRateChannelsWithMissingSamples) {
-  const std::string path = WriteTemp("vesselid_multirate.csv",
-                                     "t, gnss_n ,heading\n0,1.0,0.1\n0.1,,0.2\n0.2,3.0,\n0.3,,0.4\n");
+  const std::string path = WriteTemp(
+      "vesselid_multirate.csv", "t, gnss_n ,heading\n0,1.0,0.1\n0.1,,0.2\n0.2,3.0,\n0.3,,0.4\n");
   Trajectory t;
   std::string error;
   ASSERT_TRUE(ReadTrajectoryCsv(path, &t, &error)) << error;
@@ -38,7 +39,8 @@ TEST(Trajectory, RejectsMissingTimeColumnAndDuplicates) {
   std::string error;
   EXPECT_FALSE(ReadTrajectoryCsv(WriteTemp("vesselid_not.csv", "time,a\n0,1\n1,2\n"), &t, &error));
   EXPECT_NE(error.find(":1: header has no time column 't'"), std::string::npos) << error;
-  EXPECT_FALSE(ReadTrajectoryCsv(WriteTemp("vesselid_dup.csv", "t,a,a\n0,1,1\n1,2,2\n"), &t, &error));
+  EXPECT_FALSE(
+      ReadTrajectoryCsv(WriteTemp("vesselid_dup.csv", "t,a,a\n0,1,1\n1,2,2\n"), &t, &error));
   EXPECT_NE(error.find("duplicate column 'a'"), std::string::npos) << error;
   EXPECT_FALSE(ReadTrajectoryCsv(WriteTemp("vesselid_inf.csv", "t,a\n0,1\n1,inf\n"), &t, &error));
   EXPECT_NE(error.find(":3: column 'a': 'inf' is not a finite number"), std::string::npos) << error;
@@ -83,13 +85,16 @@ TEST(Interpolation, CubicIsExactForQuadraticsAndThirdOrderForSmoothSignals) {
     return e;
   };
   EXPECT_NEAR(std::log2(midpoint_error(Interpolation::kLinear, 0.1) /
-                        midpoint_error(Interpolation::kLinear, 0.05)), 2.0, 0.2);
+                        midpoint_error(Interpolation::kLinear, 0.05)),
+              2.0, 0.2);
   EXPECT_GT(std::log2(midpoint_error(Interpolation::kCubic, 0.1) /
-                      midpoint_error(Interpolation::kCubic, 0.05)), 2.8);
+                      midpoint_error(Interpolation::kCubic, 0.05)),
+            2.8);
 }
 
 TEST(Interpolation, NamesRoundTrip) {
-  for (Interpolation i : {Interpolation::kZeroOrderHold, Interpolation::kLinear, Interpolation::kCubic}) {
+  for (Interpolation i :
+       {Interpolation::kZeroOrderHold, Interpolation::kLinear, Interpolation::kCubic}) {
     Interpolation back;
     ASSERT_TRUE(StringToInterpolation(InterpolationToString(i), &back));
     EXPECT_EQ(back, i);

@@ -40,7 +40,8 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
   const vesselid::ModelRegistry registry = vesselid::DefaultRegistry();
   vesselid::RunConfig config;
   std::string error;
-  if (!vesselid::LoadRunConfig(config_path, data_dir, registry, &config, &error)) return Fail(error);
+  if (!vesselid::LoadRunConfig(config_path, data_dir, registry, &config, &error))
+    return Fail(error);
   auto observer = [quiet](const vesselid::StageResult* finished, const std::string& next) {
     if (quiet) return;
     if (finished == nullptr) {
@@ -71,8 +72,9 @@ int main(int argc, char** argv) {
 
   CLI::App* run = app.add_subcommand("run", "staged identification");
   run->add_option("config", config_path, "run configuration (YAML)")->required();
-  run->add_option("--data", data_dir, "folder the experiment files are relative to "
-                                      "(default: the config's folder)");
+  run->add_option("--data", data_dir,
+                  "folder the experiment files are relative to "
+                  "(default: the config's folder)");
   run->add_option("--out", out_dir, "folder for results.json, report.txt, traces/")->required();
   run->add_flag("--quiet", quiet, "print only the results path");
 

@@ -8,20 +8,31 @@ namespace vesselid::nomoto {
 
 bool ClosedLoopOptions::IsValid(std::string* error) const {
   const Excitation& e = excitation;
-  if (!(steering_time_constant > 0)) *error = "steering gear Tm must be > 0";
-  else if (!(controller_gain > 0)) *error = "controller gain kp must be > 0";
-  else if (!(rudder_limit > 0)) *error = "rudder limit must be > 0";
-  else if (!(sample_time > 0)) *error = "sample_time must be > 0";
-  else if (substeps < 1) *error = "substeps must be >= 1";
-  else if (!(duration > sample_time)) *error = "duration must exceed sample_time";
-  else if (!(rudder_noise >= 0) || !(heading_noise >= 0)) *error = "noise levels must be >= 0";
-  else if (e.type != Excitation::Type::kZigzag && e.periods.empty()) *error = "excitation needs a period";
-  else if (e.type == Excitation::Type::kSine && e.periods.size() != 1) *error = "a sine has one period";
+  if (!(steering_time_constant > 0))
+    *error = "steering gear Tm must be > 0";
+  else if (!(controller_gain > 0))
+    *error = "controller gain kp must be > 0";
+  else if (!(rudder_limit > 0))
+    *error = "rudder limit must be > 0";
+  else if (!(sample_time > 0))
+    *error = "sample_time must be > 0";
+  else if (substeps < 1)
+    *error = "substeps must be >= 1";
+  else if (!(duration > sample_time))
+    *error = "duration must exceed sample_time";
+  else if (!(rudder_noise >= 0) || !(heading_noise >= 0))
+    *error = "noise levels must be >= 0";
+  else if (e.type != Excitation::Type::kZigzag && e.periods.empty())
+    *error = "excitation needs a period";
+  else if (e.type == Excitation::Type::kSine && e.periods.size() != 1)
+    *error = "a sine has one period";
   else if (std::any_of(e.periods.begin(), e.periods.end(), [](double p) { return !(p > 0); }))
     *error = "excitation periods must be > 0";
-  else if (e.type == Excitation::Type::kZigzag && (!(e.zigzag_rudder > 0) || !(e.zigzag_heading > 0)))
+  else if (e.type == Excitation::Type::kZigzag &&
+           (!(e.zigzag_rudder > 0) || !(e.zigzag_heading > 0)))
     *error = "zigzag needs rudder and heading angles > 0";
-  else return true;
+  else
+    return true;
   return false;
 }
 
@@ -76,7 +87,8 @@ bool SimulateClosedLoop(const ModelHandle& model, const std::vector<double>& par
     return true;
   };
 
-  const long samples = static_cast<long>(std::floor(options.duration / options.sample_time + 1e-9)) + 1;
+  const long samples =
+      static_cast<long>(std::floor(options.duration / options.sample_time + 1e-9)) + 1;
   Trajectory out;
   out.names = {"psi_set", "delta_set", "delta", "psi", "r", "delta_true", "psi_true"};
   out.columns.assign(out.names.size(), {});
@@ -92,8 +104,10 @@ bool SimulateClosedLoop(const ModelHandle& model, const std::vector<double>& par
     const double t = k * options.sample_time;
     const double psi = heading(z);
     if (zigzag) {
-      if (sign_k * psi >= e.zigzag_heading && sign_k * zigzag_command > 0) zigzag_command = -zigzag_command;
-      if (sign_k * psi <= -e.zigzag_heading && sign_k * zigzag_command < 0) zigzag_command = -zigzag_command;
+      if (sign_k * psi >= e.zigzag_heading && sign_k * zigzag_command > 0)
+        zigzag_command = -zigzag_command;
+      if (sign_k * psi <= -e.zigzag_heading && sign_k * zigzag_command < 0)
+        zigzag_command = -zigzag_command;
     }
     out.t.push_back(t);
     out.columns[0].push_back(zigzag ? std::nan("") : HeadingSetpoint(e, t));

@@ -18,10 +18,10 @@ namespace vesselid::nomoto {
 struct Excitation {
   enum class Type { kSine, kMultisine, kZigzag };
   Type type = Type::kSine;
-  double amplitude = 0.0;        // psi_set amplitude [rad] (multi-sine: peak of the sum's rms x sqrt2)
-  std::vector<double> periods;   // one period for sine, several for multi-sine [s]
-  double zigzag_rudder = 0.0;    // [rad]
-  double zigzag_heading = 0.0;   // [rad]
+  double amplitude = 0.0;  // psi_set amplitude [rad] (multi-sine: peak of the sum's rms x sqrt2)
+  std::vector<double> periods;  // one period for sine, several for multi-sine [s]
+  double zigzag_rudder = 0.0;   // [rad]
+  double zigzag_heading = 0.0;  // [rad]
 };
 
 struct ClosedLoopOptions {
@@ -29,7 +29,7 @@ struct ClosedLoopOptions {
   double controller_gain = 1.0;         // kp
   double rudder_limit = 35.0 * M_PI / 180.0;
   double sample_time = 0.02;
-  int substeps = 4;                     // RK4 steps per sample
+  int substeps = 4;  // RK4 steps per sample
   double duration = 100.0;
   Excitation excitation;
   double rudder_noise = 0.0;   // std [rad]

@@ -14,7 +14,8 @@ constexpr double kDegree = M_PI / 180.0;
 std::unique_ptr<ModelHandle> MakeModel(const YamlReader& reader, const YAML::Node& model,
                                        const std::string& path) {
   reader.CheckMap(model, path, {"family", "type"});
-  if (!model["type"]) reader.Fail(model, Child(path, "type"), "missing (first_order, second_order, norrbin)");
+  if (!model["type"])
+    reader.Fail(model, Child(path, "type"), "missing (first_order, second_order, norrbin)");
   const std::string type = reader.String(model["type"], Child(path, "type"));
   if (type == "first_order") return MakeFirstOrderHandle();
   if (type == "second_order") return MakeSecondOrderHandle();
@@ -23,8 +24,10 @@ std::unique_ptr<ModelHandle> MakeModel(const YamlReader& reader, const YAML::Nod
               "unknown Nomoto model '" + type + "' (first_order, second_order, norrbin)");
 }
 
-Excitation ReadExcitation(const YamlReader& reader, const YAML::Node& node, const std::string& path) {
-  reader.CheckMap(node, path, {"type", "amplitude_deg", "period", "periods", "rudder_deg", "heading_deg"});
+Excitation ReadExcitation(const YamlReader& reader, const YAML::Node& node,
+                          const std::string& path) {
+  reader.CheckMap(node, path,
+                  {"type", "amplitude_deg", "period", "periods", "rudder_deg", "heading_deg"});
   Excitation e;
   const std::string type = node["type"] ? reader.String(node["type"], Child(path, "type")) : "sine";
   if (type == "sine") {
@@ -34,7 +37,8 @@ Excitation ReadExcitation(const YamlReader& reader, const YAML::Node& node, cons
   } else if (type == "zigzag") {
     e.type = Excitation::Type::kZigzag;
   } else {
-    reader.Fail(node["type"], Child(path, "type"), "unknown excitation '" + type + "' (sine, multisine, zigzag)");
+    reader.Fail(node["type"], Child(path, "type"),
+                "unknown excitation '" + type + "' (sine, multisine, zigzag)");
   }
   double amplitude = 0.0, rudder = 0.0, heading = 0.0;
   reader.Read(node, path, "amplitude_deg", &amplitude);
@@ -52,14 +56,16 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
               const std::string& out_dir, std::string* error) {
   const std::string path = "simulation";
   if (!simulation) reader.Fail(simulation, path, "missing: the config has no simulation section");
-  reader.CheckMap(simulation, path, {"truth", "steering_gear", "sample_time", "substeps", "experiments"});
+  reader.CheckMap(simulation, path,
+                  {"truth", "steering_gear", "sample_time", "substeps", "experiments"});
   const ModelInfo& info = model.info();
   std::vector<double> truth = info.parameter_defaults;
   if (!simulation["truth"]) reader.Fail(simulation, Child(path, "truth"), "missing");
   reader.CheckMap(simulation["truth"], Child(path, "truth"), info.parameters);
   for (const auto& item : simulation["truth"]) {
     const std::string name = item.first.as<std::string>();
-    truth[info.ParameterIndex(name)] = reader.Double(item.second, Child(Child(path, "truth"), name));
+    truth[info.ParameterIndex(name)] =
+        reader.Double(item.second, Child(Child(path, "truth"), name));
   }
   ClosedLoopOptions base;
   if (const YAML::Node gear = simulation["steering_gear"]) {

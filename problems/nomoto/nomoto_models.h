@@ -15,13 +15,13 @@
 namespace vesselid::nomoto {
 
 struct FirstOrder {
-  static constexpr int kNumStates = 2;  // psi, r
-  static constexpr int kNumInputs = 1;  // delta
+  static constexpr int kNumStates = 2;   // psi, r
+  static constexpr int kNumInputs = 1;   // delta
   static constexpr int kNumOutputs = 2;  // psi, r
 
   ModelInfo Info() const {
-    return {"nomoto_first_order", {"psi", "r"}, {"delta"}, {"psi", "r"},
-            {"T", "K", "delta_0"},  {10.0, 0.1, 0.0}, {true, false}, {}};
+    return {"nomoto_first_order",  {"psi", "r"},     {"delta"},     {"psi", "r"},
+            {"T", "K", "delta_0"}, {10.0, 0.1, 0.0}, {true, false}, {}};
   }
 
   template <class T>
@@ -46,9 +46,14 @@ struct Norrbin {
   static constexpr int kNumOutputs = 2;
 
   ModelInfo Info() const {
-    return {"nomoto_norrbin",         {"psi", "r"},     {"delta"},
-            {"psi", "r"},             {"T", "K", "alpha", "delta_0"},
-            {10.0, 0.1, 0.0, 0.0},    {true, false},    {}};
+    return {"nomoto_norrbin",
+            {"psi", "r"},
+            {"delta"},
+            {"psi", "r"},
+            {"T", "K", "alpha", "delta_0"},
+            {10.0, 0.1, 0.0, 0.0},
+            {true, false},
+            {}};
   }
 
   template <class T>
