@@ -52,7 +52,9 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
   spec.name = reader.String(node["name"], Child(path, "name"));
   const std::string file = reader.String(node["file"], Child(path, "file"));
   spec.file = fs::path(file).is_absolute() ? file : (base / file).lexically_normal().string();
-  if (!node["inputs"] && !info.inputs.empty()) reader.Fail(node, path, "missing key 'inputs'");
+  bool inputs_required = false;
+  for (size_t i = 0; i < info.inputs.size(); ++i) inputs_required |= !info.InputOptional(static_cast<int>(i));
+  if (!node["inputs"] && inputs_required) reader.Fail(node, path, "missing key 'inputs'");
   if (node["inputs"]) {
     spec.inputs = reader.StringMap(node["inputs"], Child(path, "inputs"));
     CheckNames(reader, node["inputs"], Child(path, "inputs"), Keys(spec.inputs), info.inputs,

@@ -134,6 +134,12 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
   for (int i = 0; i < nu; ++i) {
     const std::string& input = info.inputs[i];
     auto mapped = spec.inputs.find(input);
+    if (mapped == spec.inputs.end() && info.InputOptional(i)) {
+      for (size_t j = 0; j < step_times.size(); ++j) {
+        e.input_cache[j * nu + i] = std::numeric_limits<double>::quiet_NaN();
+      }
+      continue;
+    }
     if (mapped == spec.inputs.end()) return fail("input '" + input + "' is not mapped to a column");
     int column = trajectory.Find(mapped->second);
     if (column < 0) return fail("no column '" + mapped->second + "' for input '" + input + "'");

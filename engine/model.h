@@ -31,7 +31,13 @@ struct ModelInfo {
   std::vector<bool> angle_outputs;         // residuals wrapped to (-pi, pi]
   // Parameter pairs the model is symmetric in (e.g. Nomoto T1, T2); reported first >= second.
   std::vector<std::pair<int, int>> exchangeable;
+  // Inputs an experiment may leave unmapped; the model then sees NaN and decides what that
+  // means (e.g. motors off, still air). Empty: every input is required.
+  std::vector<bool> optional_inputs;
 
+  bool InputOptional(int index) const {
+    return index < static_cast<int>(optional_inputs.size()) && optional_inputs[index];
+  }
   int ParameterIndex(const std::string& name) const;
   int StateIndex(const std::string& name) const;
   int InputIndex(const std::string& name) const;

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <memory>
+#include <string>
+#include <type_traits>
 #include <vector>
 
 #include "ceres/ceres.h"
@@ -32,7 +34,19 @@ class ModelHandle {
   virtual bool Derivative(const double* x, const double* u, const double* p,
                           double* xdot) const = 0;
   virtual void Output(const double* x, const double* u, const double* p, double* y) const = 0;
+
+  // Physical admissibility of parameter values (empty when admissible, or when the model
+  // states no conditions).
+  virtual std::vector<std::string> Admissibility(const double* p) const = 0;
 };
+
+// Detects a model's optional `std::vector<std::string> Admissibility(const double*) const`.
+template <class Model, class = void>
+struct HasAdmissibility : std::false_type {};
+template <class Model>
+struct HasAdmissibility<
+    Model, std::void_t<decltype(std::declval<const Model&>().Admissibility(nullptr))>>
+    : std::true_type {};
 
 template <class Model>
 class ModelAdapter final : public ModelHandle {
@@ -66,6 +80,14 @@ class ModelAdapter final : public ModelHandle {
   }
   void Output(const double* x, const double* u, const double* p, double* y) const override {
     model_.Output(x, u, p, y);
+  }
+
+  std::vector<std::string> Admissibility(const double* p) const override {
+    if constexpr (HasAdmissibility<Model>::value) {
+      return model_.Admissibility(p);
+    } else {
+      return {};
+    }
   }
 
   const Model& model() const { return model_; }

@@ -21,7 +21,7 @@ struct FirstOrder {
 
   ModelInfo Info() const {
     return {"nomoto_first_order",  {"psi", "r"},     {"delta"},     {"psi", "r"},
-            {"T", "K", "delta_0"}, {10.0, 0.1, 0.0}, {true, false}, {}};
+            {"T", "K", "delta_0"}, {10.0, 0.1, 0.0}, {true, false}, {}, {}};
   }
 
   template <class T>
@@ -53,7 +53,7 @@ struct Norrbin {
             {"T", "K", "alpha", "delta_0"},
             {10.0, 0.1, 0.0, 0.0},
             {true, false},
-            {}};
+            {},                       {}};
   }
 
   template <class T>
@@ -86,7 +86,8 @@ struct SecondOrder {
             {"T1", "T2", "T3", "K", "delta_0"},
             {20.0, 5.0, 5.0, 0.1, 0.0},
             {true, false},
-            {{0, 1}}};
+            {{0, 1}},
+            {}};
   }
 
   template <class T>

@@ -1,0 +1,211 @@
+// Erunsal 6-DOF vessel (seed 002) in Fossen form, as restated in MODELS.md §1:
+//
+//   eta' = J(eta) nu,   M nu' + C(nu) nu + D(nu) nu + g(eta) = tau_thr + tau_air
+//
+// eta = [x y z phi theta psi] (NED), nu = [u v w p q r] (body), origin at the CG.
+//   M      = M_RB + M_A: diag(m - Xudot, m - Yvdot, m - Zwdot, Ix - Kpdot, Iy - Mqdot, Iz - Nrdot)
+//            with M(roll, yaw) = -Ixz and M(sway, yaw) = -Yrdot (symmetric)
+//   C nu   = [w x h1; w x h2 + v1 x h1],  [h1; h2] = M nu  (Kirchhoff form)
+//   D nu   = -[Xu u + Xuu|u|u; Yv v + Yr r + Yvv|v|v; Zw w + Zww|w|w;
+//              Kp p + Kpp|p|p; Mq q + Mqq|q|q; Nv v + Nr r + Nrr|r|r]
+//   g      = [0, 0, k_z z, k_phi sin phi, k_theta sin theta, 0]
+//   tau_air = -1/2 rho_air C_DA [A_x |u_rw| u_rw, A_y |v_rw| v_rw, 0, 0, 0, 0]
+//   tau_thr = [F_L + F_R, 0, 0, 0, 0, l_y (F_L - F_R)],  F_L = L_TS c_L + L_TO, F_R = R_TS c_R + R_TO
+//
+// DOF restriction: with active set A, inactive velocities and positions are held at zero and
+// M[A,A] nu'[A] = (tau - C nu - D nu - g)[A]. Inputs: thruster commands c_L, c_R (absent:
+// motors off, tau_thr = 0) and wind speed and the direction it blows towards (absent: still
+// air). Outputs: the 12 states and the thrusts F_L, F_R.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "engine/model.h"
+
+namespace vesselid::erunsal6dof {
+
+enum Dof { kSurge, kSway, kHeave, kRoll, kPitch, kYaw };
+const char* DofToString(int dof);
+bool StringToDof(const std::string& text, int* dof);
+
+// Parameter order of the model (MODELS.md's list).
+enum Parameter {
+  kIx, kIy, kIz, kIxz,
+  kXudot, kYvdot, kYrdot, kNrdot, kZwdot, kKpdot, kMqdot,
+  kXu, kYv, kZw, kKp, kMq, kNr, kYr, kNv,
+  kXuu, kYvv, kZww, kKpp, kMqq, kNrr,
+  kCDA,
+  kLTS, kLTO, kRTS, kRTO,
+  kNumParameters
+};
+
+// Known constants; defaults are the reference tugboat of MODELS.md.
+struct Constants {
+  double m = 11.0;
+  double l_y = 0.06;
+  double A_x = 0.05;
+  double A_y = 0.18;
+  double k_z = 1837.0;
+  double k_phi = 4.32;
+  double k_theta = 97.1;
+  double rho_air = 1.225;
+};
+
+// Reference-vessel parameter values (MODELS.md table), in Parameter order.
+std::vector<double> ReferenceParameters();
+std::vector<std::string> ParameterNames();
+
+struct Model {
+  static constexpr int kNumStates = 12;
+  static constexpr int kNumInputs = 4;   // c_L, c_R, wind_speed, wind_direction
+  static constexpr int kNumOutputs = 14;  // 12 states, F_L, F_R
+
+  Constants constants;
+  std::array<bool, 6> active = {true, true, true, true, true, true};
+
+  ModelInfo Info() const;
+
+  // Physical admissibility of a parameter vector: M symmetric positive definite, symmetric
+  // part of the linear damping positive semi-definite. Empty when admissible.
+  std::vector<std::string> Admissibility(const double* p) const;
+
+  template <class T>
+  bool operator()(const T* x, const double* u, const T* p, T* xdot) const;
+
+  template <class T>
+  void Output(const T* x, const double* u, const T* p, T* y) const {
+    for (int i = 0; i < kNumStates; ++i) y[i] = x[i];
+    Thrust(u, p, &y[12], &y[13]);
+  }
+
+ private:
+  template <class T>
+  static void Thrust(const double* u, const T* p, T* left, T* right) {
+    *left = std::isnan(u[0]) ? T(0.0) : p[kLTS] * u[0] + p[kLTO];
+    *right = std::isnan(u[1]) ? T(0.0) : p[kRTS] * u[1] + p[kRTO];
+  }
+};
+
+template <class T>
+bool Model::operator()(const T* x, const double* u, const T* p, T* xdot) const {
+  using std::abs;
+  using std::cos;
+  using std::sin;
+  using std::sqrt;
+  const Constants& c = constants;
+  // Restricted state: inactive positions and velocities are zero.
+  std::array<T, 6> eta, nu;
+  for (int i = 0; i < 6; ++i) {
+    eta[i] = active[i] ? x[i] : T(0.0);
+    nu[i] = active[i] ? x[6 + i] : T(0.0);
+  }
+  const T &uu = nu[0], &v = nu[1], &w = nu[2], &pr = nu[3], &q = nu[4], &r = nu[5];
+  const T &phi = eta[3], &theta = eta[4], &psi = eta[5];
+
+  // Mass matrix (symmetric; stored dense).
+  T M[6][6];
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 6; ++j) M[i][j] = T(0.0);
+  }
+  M[0][0] = c.m - p[kXudot];
+  M[1][1] = c.m - p[kYvdot];
+  M[2][2] = c.m - p[kZwdot];
+  M[3][3] = p[kIx] - p[kKpdot];
+  M[4][4] = p[kIy] - p[kMqdot];
+  M[5][5] = p[kIz] - p[kNrdot];
+  M[3][5] = M[5][3] = -p[kIxz];
+  M[1][5] = M[5][1] = -p[kYrdot];
+
+  // Kirchhoff Coriolis: h = M nu, C nu = [w x h1; w x h2 + v1 x h1].
+  T h[6];
+  for (int i = 0; i < 6; ++i) {
+    h[i] = T(0.0);
+    for (int j = 0; j < 6; ++j) h[i] += M[i][j] * nu[j];
+  }
+  T rhs[6];
+  rhs[0] = -(q * h[2] - r * h[1]);
+  rhs[1] = -(r * h[0] - pr * h[2]);
+  rhs[2] = -(pr * h[1] - q * h[0]);
+  rhs[3] = -(q * h[5] - r * h[4] + v * h[2] - w * h[1]);
+  rhs[4] = -(r * h[3] - pr * h[5] + w * h[0] - uu * h[2]);
+  rhs[5] = -(pr * h[4] - q * h[3] + uu * h[1] - v * h[0]);
+
+  // Damping (D nu enters with a minus sign: -D nu = +[Xu u + ...]).
+  rhs[0] += p[kXu] * uu + p[kXuu] * abs(uu) * uu;
+  rhs[1] += p[kYv] * v + p[kYr] * r + p[kYvv] * abs(v) * v;
+  rhs[2] += p[kZw] * w + p[kZww] * abs(w) * w;
+  rhs[3] += p[kKp] * pr + p[kKpp] * abs(pr) * pr;
+  rhs[4] += p[kMq] * q + p[kMqq] * abs(q) * q;
+  rhs[5] += p[kNv] * v + p[kNr] * r + p[kNrr] * abs(r) * r;
+
+  // Restoring.
+  rhs[2] -= c.k_z * eta[2];
+  rhs[3] -= c.k_phi * sin(phi);
+  rhs[4] -= c.k_theta * sin(theta);
+
+  // Air drag on the velocity relative to the wind (still air when no wind input).
+  T u_rw = uu, v_rw = v;
+  if (!std::isnan(u[2]) && !std::isnan(u[3]) && u[2] != 0.0) {
+    u_rw -= u[2] * cos(u[3] - psi);
+    v_rw -= u[2] * sin(u[3] - psi);
+  }
+  const double half_rho = 0.5 * c.rho_air;
+  rhs[0] -= half_rho * c.A_x * p[kCDA] * abs(u_rw) * u_rw;
+  rhs[1] -= half_rho * c.A_y * p[kCDA] * abs(v_rw) * v_rw;
+
+  // Thrusters.
+  T left, right;
+  Thrust(u, p, &left, &right);
+  rhs[0] += left + right;
+  rhs[5] += c.l_y * (left - right);
+
+  // Active accelerations: Cholesky solve of M[A,A] a = rhs[A].
+  int index[6], k = 0;
+  for (int i = 0; i < 6; ++i) {
+    if (active[i]) index[k++] = i;
+  }
+  T L[6][6], a[6];
+  for (int i = 0; i < k; ++i) {
+    for (int j = 0; j <= i; ++j) {
+      T sum = M[index[i]][index[j]];
+      for (int l = 0; l < j; ++l) sum -= L[i][l] * L[j][l];
+      if (i == j) {
+        if (!(sum > 0.0)) return false;  // M[A,A] not positive definite
+        L[i][i] = sqrt(sum);
+      } else {
+        L[i][j] = sum / L[j][j];
+      }
+    }
+  }
+  for (int i = 0; i < k; ++i) {  // forward: L y = b
+    T sum = rhs[index[i]];
+    for (int l = 0; l < i; ++l) sum -= L[i][l] * a[l];
+    a[i] = sum / L[i][i];
+  }
+  for (int i = k - 1; i >= 0; --i) {  // backward: L^T a = y
+    T sum = a[i];
+    for (int l = i + 1; l < k; ++l) sum -= L[l][i] * a[l];
+    a[i] = sum / L[i][i];
+  }
+  for (int i = 0; i < 6; ++i) xdot[6 + i] = T(0.0);
+  for (int i = 0; i < k; ++i) xdot[6 + index[i]] = a[i];
+
+  // Kinematics eta' = J(eta) nu (zyx Euler angles), inactive DOFs held.
+  const T cphi = cos(phi), sphi = sin(phi), cth = cos(theta), sth = sin(theta);
+  const T cpsi = cos(psi), spsi = sin(psi);
+  if (!(abs(cth) > 1e-6)) return false;  // Euler singularity
+  const T eta_dot[6] = {
+      cpsi * cth * uu + (cpsi * sth * sphi - spsi * cphi) * v + (spsi * sphi + cpsi * cphi * sth) * w,
+      spsi * cth * uu + (cpsi * cphi + sphi * sth * spsi) * v + (spsi * sth * cphi - cpsi * sphi) * w,
+      -sth * uu + cth * sphi * v + cth * cphi * w,
+      pr + sphi * sth / cth * q + cphi * sth / cth * r,
+      cphi * q - sphi * r,
+      sphi / cth * q + cphi / cth * r};
+  for (int i = 0; i < 6; ++i) xdot[i] = active[i] ? eta_dot[i] : T(0.0);
+  return true;
+}
+
+}  // namespace vesselid::erunsal6dof
