@@ -115,27 +115,30 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
   std::vector<double> intervals;
   for (int k = 0; k + 1 < nodes; ++k) intervals.push_back(e.node_time[k + 1] - e.node_time[k]);
   const double max_step = options.max_step > 0 ? options.max_step : Median(intervals);
-  std::vector<double> step_times;
+  // Per step: start and midpoint (right limits), end (left limit); then the last node.
+  std::vector<double> right_times, end_times;
   for (int k = 0; k + 1 < nodes; ++k) {
     int m = std::max(1, static_cast<int>(std::ceil(intervals[k] / max_step - 1e-6)));
     double h = intervals[k] / m;
     e.node_substeps.push_back(m);
     e.node_step.push_back(h);
     for (int s = 0; s < m; ++s) {
-      step_times.push_back(e.node_time[k] + s * h);
-      step_times.push_back(e.node_time[k] + (s + 0.5) * h);
+      right_times.push_back(e.node_time[k] + s * h);
+      right_times.push_back(e.node_time[k] + (s + 0.5) * h);
+      end_times.push_back(s + 1 == m ? e.node_time[k + 1] : e.node_time[k] + (s + 1) * h);
     }
   }
-  step_times.push_back(e.node_time.back());
+  right_times.push_back(e.node_time.back());
+  const size_t steps = end_times.size();
 
   // Input cache.
   const int nu = e.num_inputs;
-  e.input_cache.assign(step_times.size() * nu, 0.0);
+  e.input_cache.assign((3 * steps + 1) * nu, 0.0);
   for (int i = 0; i < nu; ++i) {
     const std::string& input = info.inputs[i];
     auto mapped = spec.inputs.find(input);
     if (mapped == spec.inputs.end() && info.InputOptional(i)) {
-      for (size_t j = 0; j < step_times.size(); ++j) {
+      for (size_t j = 0; j < 3 * steps + 1; ++j) {
         e.input_cache[j * nu + i] = std::numeric_limits<double>::quiet_NaN();
       }
       continue;
@@ -148,8 +151,14 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
     auto method = spec.interpolation.find(input);
     Interpolation interpolation =
         method == spec.interpolation.end() ? spec.default_interpolation : method->second;
-    std::vector<double> values = InterpolateAt(channel, interpolation, step_times);
-    for (size_t j = 0; j < values.size(); ++j) e.input_cache[j * nu + i] = values[j];
+    const std::vector<double> right = InterpolateAt(channel, interpolation, right_times);
+    const std::vector<double> end = InterpolateAt(channel, interpolation, end_times, true);
+    for (size_t j = 0; j < steps; ++j) {
+      e.input_cache[(3 * j) * nu + i] = right[2 * j];
+      e.input_cache[(3 * j + 1) * nu + i] = right[2 * j + 1];
+      e.input_cache[(3 * j + 2) * nu + i] = end[j];
+    }
+    e.input_cache[(3 * steps) * nu + i] = right.back();
   }
 
   // Initial state.

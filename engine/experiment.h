@@ -2,8 +2,8 @@
 //
 // The integration grid has a node at the start time t0 and at every time where a selected
 // output is sampled; between nodes k and k+1 it takes node_substeps[k] equal RK4 steps of
-// length node_step[k] <= max_step. Inputs are interpolated once, at every step point and
-// step midpoint, so the simulation loop only reads an array.
+// length node_step[k] <= max_step. Inputs are interpolated once, at every step's start,
+// midpoint and end, so the simulation loop only reads an array.
 #pragma once
 
 #include <limits>
@@ -46,7 +46,9 @@ struct Experiment {
   std::vector<double> node_step;       // their length
   std::vector<int> node_first_sample;  // samples of node k: [first[k], first[k+1])
   std::vector<ExperimentSample> samples;
-  // Inputs at step points (even rows) and midpoints (odd rows): (2 * steps + 1) x num_inputs.
+  // Inputs per RK4 step at its start, midpoint and end (the end as a left limit, so a
+  // zero-order-hold switch at a sample time acts from the next step on), then one row at the
+  // last node: (3 * steps + 1) x num_inputs.
   std::vector<double> input_cache;
   std::vector<double> initial_state;     // start values of the initial state
   std::vector<int> output_sample_count;  // per model output

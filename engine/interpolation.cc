@@ -40,14 +40,14 @@ double Slope(const Channel& c, size_t k) {
 }  // namespace
 
 std::vector<double> InterpolateAt(const Channel& c, Interpolation interpolation,
-                                  const std::vector<double>& times) {
+                                  const std::vector<double>& times, bool left_limit) {
   VESSELID_CHECK(!c.t.empty());
   std::vector<double> out(times.size());
   const size_t n = c.t.size();
   size_t k = 0;  // c.t[k] <= t < c.t[k+1]
   for (size_t i = 0; i < times.size(); ++i) {
     const double t = times[i];
-    while (k + 1 < n && c.t[k + 1] <= t) ++k;
+    while (k + 1 < n && (left_limit ? c.t[k + 1] < t : c.t[k + 1] <= t)) ++k;
     if (t <= c.t[0]) {
       out[i] = c.value[0];
       continue;

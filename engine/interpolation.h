@@ -18,7 +18,9 @@ const char* InterpolationToString(Interpolation interpolation);
 bool StringToInterpolation(const std::string& text, Interpolation* interpolation);
 
 // Values of `channel` at the increasing times `times` (one forward sweep, O(n + m)).
+// With `left_limit`, a zero-order hold takes the value before a switch at exactly a sample
+// time (the end of an integration step that ends on a switch must not see the new value).
 std::vector<double> InterpolateAt(const Channel& channel, Interpolation interpolation,
-                                  const std::vector<double>& times);
+                                  const std::vector<double>& times, bool left_limit = false);
 
 }  // namespace vesselid

@@ -34,7 +34,7 @@ bool SimulateExperiment(const Model& model, const Experiment& e, const T* p, T* 
     if (k + 1 == nodes) break;
     const int steps = e.node_substeps[k];
     const double h = e.node_step[k];
-    for (int s = 0; s < steps; ++s, u += 2 * nu) {
+    for (int s = 0; s < steps; ++s, u += 3 * nu) {
       if (!Rk4Step(model, u, u + nu, u + 2 * nu, p, h, x)) return false;
     }
   }

@@ -64,6 +64,9 @@ TEST(Interpolation, ZeroOrderHoldLinearAndEnds) {
             (std::vector<double>{0.0, 0.0, 10.0, 10.0, 20.0}));
   EXPECT_EQ(InterpolateAt(c, Interpolation::kLinear, t),
             (std::vector<double>{0.0, 5.0, 10.0, 17.5, 20.0}));
+  // Left limits: a step that ends at a switch still sees the held value.
+  EXPECT_EQ(InterpolateAt(c, Interpolation::kZeroOrderHold, {0.0, 1.0, 2.0}, true),
+            (std::vector<double>{0.0, 0.0, 10.0}));
 }
 
 TEST(Interpolation, CubicIsExactForQuadraticsAndThirdOrderForSmoothSignals) {

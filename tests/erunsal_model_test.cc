@@ -1,0 +1,233 @@
+// The 6-DOF model: Jet Jacobian against finite differences under several DOF restrictions,
+// RK4 order, the restricted roll equation, admissibility, and the reference vessel's
+// behaviour quoted in MODELS.md.
+#include <cmath>
+
+#include "engine/open_loop_simulation.h"
+#include "gtest/gtest.h"
+#include "problems/erunsal6dof/erunsal_model.h"
+#include "problems/erunsal6dof/handle.h"
+
+namespace vesselid::erunsal6dof {
+namespace {
+
+Model Restricted(std::initializer_list<int> dofs) {
+  Model model;
+  model.active.fill(false);
+  for (int d : dofs) model.active[d] = true;
+  return model;
+}
+
+// Commands sweeping both thrusters; wind optional.
+Trajectory Commands(double duration, double dt, bool wind) {
+  Trajectory t;
+  t.names = {"c_L", "c_R"};
+  if (wind) t.names.insert(t.names.end(), {"wind_speed", "wind_direction"});
+  t.columns.resize(t.names.size());
+  for (int k = 0; k * dt <= duration + 1e-9; ++k) {
+    const double s = k * dt;
+    t.t.push_back(s);
+    t.columns[0].push_back(0.5 + 0.4 * std::sin(0.7 * s));
+    t.columns[1].push_back(0.5 + 0.4 * std::sin(0.45 * s + 1.0));
+    if (wind) {
+      t.columns[2].push_back(3.0);
+      t.columns[3].push_back(0.8);
+    }
+  }
+  return t;
+}
+
+std::vector<double> InitialState() {
+  return {0.0, 0.0, 0.01, 0.15, 0.05, 0.2, 0.3, 0.05, 0.0, 0.1, 0.0, 0.05};
+}
+
+class RestrictionTest : public ::testing::TestWithParam<std::vector<int>> {};
+
+TEST_P(RestrictionTest, JetJacobianMatchesFiniteDifferences) {
+  Model model;
+  model.active.fill(false);
+  for (int d : GetParam()) model.active[d] = true;
+  auto handle = MakeHandle(model);
+  const ModelInfo& info = handle->info();
+  Trajectory data;
+  std::string error;
+  const std::vector<double> p = ReferenceParameters();
+  std::vector<double> x0 = InitialState();
+  for (int d = 0; d < 6; ++d) {
+    if (!model.active[d]) x0[d] = x0[6 + d] = 0.0;
+  }
+  ASSERT_TRUE(SimulateOpenLoop(*handle, p, x0, Commands(6.0, 0.05, true), {}, &data, &error)) << error;
+  ExperimentSpec spec;
+  spec.name = "sweep";
+  spec.inputs = {{"c_L", "c_L"}, {"c_R", "c_R"}, {"wind_speed", "wind_speed"},
+                 {"wind_direction", "wind_direction"}};
+  for (int d = 0; d < 6; ++d) {
+    if (model.active[d]) spec.outputs[info.states[d]] = info.states[d];
+  }
+  spec.outputs["F_L"] = "F_L";
+  spec.initial_state = {};
+  for (int i = 0; i < 12; ++i) spec.initial_state[info.states[i]] = x0[i];
+  Experiment e;
+  ASSERT_TRUE(BuildExperiment(spec, data, info, {}, &e, &error)) << error;
+
+  std::vector<double> scales(p.size(), 1.0);
+  std::unique_ptr<ceres::CostFunction> cost(handle->NewExperimentCost(&e, scales, nullptr));
+  std::vector<double> theta = p;
+  for (double& t : theta) t *= 1.05;  // away from the data's parameters
+  theta.insert(theta.end(), x0.begin(), x0.end());
+  const int n = static_cast<int>(theta.size()), m = e.num_samples();
+  std::vector<const double*> blocks;
+  for (double& t : theta) blocks.push_back(&t);
+  std::vector<std::vector<double>> jacobian(n, std::vector<double>(m));
+  std::vector<double*> jacobian_blocks;
+  for (auto& column : jacobian) jacobian_blocks.push_back(column.data());
+  std::vector<double> residuals(m), plus(m), minus(m);
+  ASSERT_TRUE(cost->Evaluate(blocks.data(), residuals.data(), jacobian_blocks.data()));
+  int checked = 0;
+  for (int j = 0; j < n; ++j) {
+    const double saved = theta[j];
+    const double h = 1e-6 * std::max(1.0, std::abs(saved));
+    theta[j] = saved + h;
+    ASSERT_TRUE(cost->Evaluate(blocks.data(), plus.data(), nullptr));
+    theta[j] = saved - h;
+    ASSERT_TRUE(cost->Evaluate(blocks.data(), minus.data(), nullptr));
+    theta[j] = saved;
+    double column = 0.0, difference = 0.0;
+    for (int i = 0; i < m; ++i) {
+      const double fd = (plus[i] - minus[i]) / (2 * h);
+      column = std::max(column, std::abs(fd));
+      difference = std::max(difference, std::abs(fd - jacobian[j][i]));
+    }
+    if (column == 0.0) {
+      EXPECT_EQ(difference, 0.0) << "block " << j;  // a parameter this restriction ignores
+      continue;
+    }
+    ++checked;
+    EXPECT_LT(difference, 1e-6 * column) << "block " << j;
+  }
+  EXPECT_GT(checked, 4);
+}
+
+INSTANTIATE_TEST_SUITE_P(ActiveSets, RestrictionTest,
+                         ::testing::Values(std::vector<int>{kRoll},
+                                           std::vector<int>{kSway, kRoll, kYaw},
+                                           std::vector<int>{kSurge, kSway, kYaw},
+                                           std::vector<int>{kSurge, kSway, kHeave, kRoll, kPitch,
+                                                            kYaw}));
+
+TEST(ErunsalModel, Rk4ConvergesWithFourthOrder) {
+  auto handle = MakeHandle(Model());
+  const std::vector<double> p = ReferenceParameters();
+  auto final_state = [&](int substeps) {
+    Trajectory data;
+    std::string error;
+    OpenLoopOptions options;
+    options.substeps = substeps;
+    EXPECT_TRUE(SimulateOpenLoop(*handle, p, InitialState(), Commands(4.0, 0.1, false), options,
+                                 &data, &error));
+    std::vector<double> x;
+    for (int i = 0; i < 12; ++i) x.push_back(data.columns[2 + i].back());
+    return x;
+  };
+  const std::vector<double> reference = final_state(256);
+  auto error = [&](int substeps) {
+    std::vector<double> x = final_state(substeps);
+    double e = 0.0;
+    for (int i = 0; i < 12; ++i) e = std::max(e, std::abs(x[i] - reference[i]));
+    return e;
+  };
+  // Heave and pitch periods are ~0.6 s: steps of 0.05, 0.025 and 0.0125 s.
+  const double e1 = error(2), e2 = error(4), e3 = error(8);
+  EXPECT_NEAR(std::log2(e1 / e2), 4.0, 0.35);
+  EXPECT_NEAR(std::log2(e2 / e3), 4.0, 0.35);
+}
+
+TEST(ErunsalModel, RollRestrictionIsTheDecoupledRollEquation) {
+  const Model model = Restricted({kRoll});
+  const std::vector<double> p = ReferenceParameters();
+  std::vector<double> x(12, 0.0), xdot(12);
+  x[kRoll] = 0.2;
+  x[6 + kRoll] = -0.3;
+  x[6 + kSurge] = 1.0;  // inactive: ignored
+  const double u[4] = {NAN, NAN, NAN, NAN};
+  ASSERT_TRUE(model(x.data(), u, p.data(), xdot.data()));
+  const double pr = -0.3;
+  const double expected = (p[kKp] * pr + p[kKpp] * std::abs(pr) * pr - 4.32 * std::sin(0.2)) /
+                          (p[kIx] - p[kKpdot]);
+  EXPECT_NEAR(xdot[6 + kRoll], expected, 1e-12);
+  EXPECT_NEAR(xdot[kRoll], pr, 1e-12);
+  for (int i = 0; i < 12; ++i) {
+    if (i != kRoll && i != 6 + kRoll) {
+      EXPECT_EQ(xdot[i], 0.0) << i;
+    }
+  }
+}
+
+TEST(ErunsalModel, AbsentCommandsMeanMotorsOff) {
+  const Model model = Restricted({kSurge});
+  const std::vector<double> p = ReferenceParameters();
+  std::vector<double> x(12, 0.0), off(12), zero(12);
+  const double absent[4] = {NAN, NAN, NAN, NAN};
+  const double zero_command[4] = {0.0, 0.0, NAN, NAN};
+  ASSERT_TRUE(model(x.data(), absent, p.data(), off.data()));
+  ASSERT_TRUE(model(x.data(), zero_command, p.data(), zero.data()));
+  EXPECT_EQ(off[6], 0.0);
+  // c = 0 still applies the offsets L_TO + R_TO = 0 here, but their yaw moment is not zero.
+  const Model surge_yaw = Restricted({kSurge, kYaw});
+  ASSERT_TRUE(surge_yaw(x.data(), zero_command, p.data(), zero.data()));
+  EXPECT_NEAR(zero[6 + kYaw] * (p[kIz] - p[kNrdot]), 0.06 * (p[kLTO] - p[kRTO]), 1e-12);
+}
+
+TEST(ErunsalModel, Admissibility) {
+  const Model model;
+  std::vector<double> p = ReferenceParameters();
+  EXPECT_TRUE(model.Admissibility(p.data()).empty());
+  p[kIx] = -2.5;  // seed 002 Table 1's inertia
+  ASSERT_EQ(model.Admissibility(p.data()).size(), 1u);
+  EXPECT_NE(model.Admissibility(p.data())[0].find("M is not positive definite"), std::string::npos);
+  p = ReferenceParameters();
+  p[kXu] = 1.0;  // negative damping
+  ASSERT_EQ(model.Admissibility(p.data()).size(), 1u);
+  EXPECT_NE(model.Admissibility(p.data())[0].find("damping"), std::string::npos);
+}
+
+TEST(ErunsalModel, ReferenceVesselBehaviour) {
+  // Full thrust ahead in surge: top speed about 1.9 m/s.
+  auto surge = MakeHandle(Restricted({kSurge}));
+  Trajectory commands;
+  commands.names = {"c_L", "c_R"};
+  commands.columns.resize(2);
+  for (int k = 0; k <= 600; ++k) {
+    commands.t.push_back(0.1 * k);
+    commands.columns[0].push_back(1.0);
+    commands.columns[1].push_back(1.0);
+  }
+  Trajectory run;
+  std::string error;
+  ASSERT_TRUE(SimulateOpenLoop(*surge, ReferenceParameters(), std::vector<double>(12, 0.0),
+                               commands, {}, &run, &error));
+  // Steady state: 20 N = -Xu u - (Xuu - rho/2 C_DA A_x) u^2 (MODELS.md quotes about 1.9 m/s).
+  const std::vector<double> p = ReferenceParameters();
+  const double a = -p[kXuu] + 0.5 * 1.225 * p[kCDA] * 0.05, b = -p[kXu];
+  const double top = (-b + std::sqrt(b * b + 4 * a * 20.0)) / (2 * a);
+  EXPECT_NEAR(top, 1.9, 0.1);
+  EXPECT_NEAR(run.columns[run.Find("u")].back(), top, 1e-3);
+  // Roll free decay: period about 1.21 s (zero crossings of phi).
+  auto roll = MakeHandle(Model());
+  Trajectory silence;
+  silence.names = {};
+  for (int k = 0; k <= 1000; ++k) silence.t.push_back(0.005 * k);
+  std::vector<double> x0(12, 0.0);
+  x0[kRoll] = 0.2;
+  ASSERT_TRUE(SimulateOpenLoop(*roll, ReferenceParameters(), x0, silence, {}, &run, &error));
+  const std::vector<double>& phi = run.columns[run.Find("phi")];
+  std::vector<double> crossings;
+  for (size_t k = 1; k < phi.size(); ++k) {
+    if (phi[k - 1] > 0 && phi[k] <= 0) crossings.push_back(run.t[k]);
+  }
+  ASSERT_GE(crossings.size(), 3u);
+  EXPECT_NEAR((crossings.back() - crossings.front()) / (crossings.size() - 1), 1.21, 0.03);
+}
+
+}  // namespace
+}  // namespace vesselid::erunsal6dof
