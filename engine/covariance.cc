@@ -9,38 +9,62 @@
 namespace vesselid {
 namespace {
 
-// Null-space directions of J (scaled by column norms) from a dense SVD, named.
-std::vector<std::string> UndeterminedDirections(OutputErrorProblem* problem,
-                                                const std::vector<int>& variables) {
+// Singular values below this fraction of the largest are treated as zero.
+constexpr double kRankTolerance = 1e-8;
+
+
+// Dense Jacobian of the free variables, columns normalised; `norms` gets the column norms.
+bool NormalisedJacobian(OutputErrorProblem* problem, const std::vector<int>& variables,
+                        Eigen::MatrixXd* jacobian, Eigen::VectorXd* norms) {
   ceres::Problem::EvaluateOptions options;
   for (int index : variables) options.parameter_blocks.push_back(problem->variables()[index].block);
   ceres::CRSMatrix crs;
-  std::vector<std::string> names;
-  if (!problem->problem()->Evaluate(options, nullptr, nullptr, nullptr, &crs)) return names;
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  if (!problem->problem()->Evaluate(options, nullptr, nullptr, nullptr, &crs)) return false;
+  *jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
   for (int r = 0; r < crs.num_rows; ++r) {
-    for (int k = crs.rows[r]; k < crs.rows[r + 1]; ++k) jacobian(r, crs.cols[k]) = crs.values[k];
+    for (int k = crs.rows[r]; k < crs.rows[r + 1]; ++k) (*jacobian)(r, crs.cols[k]) = crs.values[k];
   }
-  Eigen::VectorXd norms = jacobian.colwise().norm();
-  for (int c = 0; c < norms.size(); ++c) {
-    if (norms[c] > 0) jacobian.col(c) /= norms[c];
+  *norms = jacobian->colwise().norm();
+  for (int c = 0; c < norms->size(); ++c) {
+    if ((*norms)[c] > 0) jacobian->col(c) /= (*norms)[c];
   }
+  return true;
+}
+
+// Rank-deficient case: names the null-space directions of the normalised Jacobian and forms
+// the covariance from the pseudo-inverse over the determined subspace (in theta units).
+bool RankDeficientCovariance(OutputErrorProblem* problem, Uncertainty* u, Eigen::MatrixXd* c) {
+  Eigen::MatrixXd jacobian;
+  Eigen::VectorXd norms;
+  if (!NormalisedJacobian(problem, u->variables, &jacobian, &norms)) return false;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(jacobian, Eigen::ComputeThinV);
   const Eigen::VectorXd& sigma = svd.singularValues();
-  for (int k = 0; k < sigma.size(); ++k) {
-    if (sigma[k] > 1e-7 * sigma[0]) continue;
+  const Eigen::MatrixXd& v = svd.matrixV();
+  const int n = static_cast<int>(sigma.size());
+  std::vector<bool> involved(n, false);
+  Eigen::MatrixXd pseudo = Eigen::MatrixXd::Zero(n, n);
+  for (int k = 0; k < n; ++k) {
+    if (sigma[k] > kRankTolerance * sigma[0]) {
+      pseudo += v.col(k) * v.col(k).transpose() / (sigma[k] * sigma[k]);
+      continue;
+    }
     std::string text;
-    for (int c = 0; c < sigma.size(); ++c) {
-      double weight = svd.matrixV()(c, k);
-      if (std::abs(weight) < 0.05) continue;
-      char term[128];
-      std::snprintf(term, sizeof(term), "%s%.2f %s", text.empty() ? "" : " + ", weight,
-                    problem->variables()[variables[c]].name.c_str());
+    for (int i = 0; i < n; ++i) {
+      if (std::abs(v(i, k)) < 0.05) continue;
+      involved[i] = true;
+      char term[160];
+      std::snprintf(term, sizeof(term), "%s%+.2f %s", text.empty() ? "" : " ", v(i, k),
+                    problem->variables()[u->variables[i]].name.c_str());
       text += term;
     }
-    names.push_back(text);
+    u->undetermined.push_back(text);
   }
-  return names;
+  for (int i = 0; i < n; ++i) {
+    if (involved[i]) u->undetermined_variables.push_back(u->variables[i]);
+  }
+  const Eigen::VectorXd inverse_norms = norms.cwiseInverse();
+  *c = inverse_norms.asDiagonal() * pseudo * inverse_norms.asDiagonal();
+  return true;
 }
 
 }  // namespace
@@ -74,19 +98,27 @@ bool ComputeUncertainty(OutputErrorProblem* problem, double final_cost, Uncertai
   ceres::Covariance::Options options;
   options.algorithm_type = ceres::SPARSE_QR;
   ceres::Covariance covariance(options);
-  if (!covariance.Compute(blocks, problem->problem())) {
-    u->undetermined = UndeterminedDirections(problem, u->variables);
-    u->message = "the Jacobian is rank deficient: the data do not determine every free variable";
+  Eigen::MatrixXd c(n, n);
+  if (covariance.Compute(blocks, problem->problem())) {
+    covariance.GetCovarianceMatrix(blocks, c.data());
+  } else if (RankDeficientCovariance(problem, u, &c)) {
+    u->message = "the Jacobian is rank deficient: the data do not determine " +
+                 std::to_string(u->undetermined.size()) + " combination(s) of the free variables";
+  } else {
+    u->message = "the Jacobian could not be evaluated at the solution";
     return false;
   }
-  Eigen::MatrixXd c(n, n);
-  covariance.GetCovarianceMatrix(blocks, c.data());
   u->residual_variance = 2.0 * final_cost / (m - n);
   Eigen::VectorXd scales(n);
   for (int i = 0; i < n; ++i) scales[i] = variables[u->variables[i]].scale;
   u->covariance = u->residual_variance * scales.asDiagonal() * c * scales.asDiagonal();
   u->std_errors.resize(n);
   for (int i = 0; i < n; ++i) u->std_errors[i] = std::sqrt(std::max(0.0, u->covariance(i, i)));
+  for (int index : u->undetermined_variables) {
+    for (int i = 0; i < n; ++i) {
+      if (u->variables[i] == index) u->std_errors[i] = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
   u->correlation = Eigen::MatrixXd::Identity(n, n);
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {

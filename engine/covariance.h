@@ -21,8 +21,11 @@ struct Uncertainty {
   std::vector<double> std_errors;  // sqrt of the diagonal
   double residual_variance = 0.0;  // s^2
   // Directions in normalised parameter space the data do not determine (rank deficiency),
-  // each as "0.71 T1 - 0.71 T2".
+  // each as "0.71 T1 - 0.71 T2", and the variables taking part in any of them. Their
+  // standard errors are NaN; the others come from the pseudo-inverse, which is exact for
+  // the determined subspace.
   std::vector<std::string> undetermined;
+  std::vector<int> undetermined_variables;
 
   // Standard error of variable `index`, or NaN if unknown.
   double StdError(int index) const;

@@ -91,7 +91,7 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
     v.scale = specs[i].EffectiveScale();
     v.lower = specs[i].lower;
     v.upper = specs[i].upper;
-    v.free = specs[i].role == ParameterRole::kFree;
+    v.free = IsEstimatedOnce(specs[i].role);
     shared[i] = add_variable(v, specs[i].start);
   }
   for (int e = 0; e < num_experiments; ++e) {

@@ -13,13 +13,18 @@ const char* ParameterRoleToString(ParameterRole role) {
       return "fixed";
     case ParameterRole::kPerExperiment:
       return "per_experiment";
+    case ParameterRole::kIsolated:
+      return "isolated";
+    case ParameterRole::kShared:
+      return "shared";
   }
   return "unknown";
 }
 
 bool StringToParameterRole(const std::string& text, ParameterRole* role) {
   for (ParameterRole candidate :
-       {ParameterRole::kFree, ParameterRole::kFixed, ParameterRole::kPerExperiment}) {
+       {ParameterRole::kFree, ParameterRole::kFixed, ParameterRole::kPerExperiment,
+        ParameterRole::kIsolated, ParameterRole::kShared}) {
     if (text == ParameterRoleToString(candidate)) {
       *role = candidate;
       return true;
@@ -38,11 +43,11 @@ bool ParameterSpec::HasFiniteBounds() const { return std::isfinite(lower) && std
 bool ParameterSpec::IsValid(const std::string& where, std::string* error) const {
   std::ostringstream message;
   message << where << ": parameter '" << name << "': ";
-  if (!std::isfinite(start)) {
+  if (!start_from_previous && !std::isfinite(start)) {
     message << "start is not finite";
   } else if (std::isnan(lower) || std::isnan(upper) || !(lower < upper)) {
     message << "bounds inverted or empty (lower " << lower << " >= upper " << upper << ")";
-  } else if (start < lower || start > upper) {
+  } else if (!start_from_previous && (start < lower || start > upper)) {
     message << "start " << start << " outside bounds [" << lower << ", " << upper << "]";
   } else if (scale < 0.0 || !std::isfinite(scale)) {
     message << "scale must be positive";

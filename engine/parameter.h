@@ -12,7 +12,17 @@ enum class ParameterRole {
   kFree,           // one value estimated from every experiment of the stage
   kFixed,          // held at its start value
   kPerExperiment,  // estimated, one value per experiment (e.g. a rudder bias per run)
+  // In a staged run (seed 002): estimated like kFree; an isolated parameter is final after
+  // its stage, a shared one starts the next stage and is fused over all its stages at the end.
+  kIsolated,
+  kShared,
 };
+
+// True for the roles the solver estimates as one shared block.
+inline bool IsEstimatedOnce(ParameterRole role) {
+  return role == ParameterRole::kFree || role == ParameterRole::kIsolated ||
+         role == ParameterRole::kShared;
+}
 
 const char* ParameterRoleToString(ParameterRole role);
 bool StringToParameterRole(const std::string& text, ParameterRole* role);
@@ -25,6 +35,9 @@ struct ParameterSpec {
   // The solver works on theta = value / scale. 0 means |start|, or 1 if start is 0.
   double scale = 0.0;
   ParameterRole role = ParameterRole::kFree;
+  // The start is the latest estimate of an earlier stage (or the model default) rather than
+  // `start`; resolved by the pipeline before the problem is built.
+  bool start_from_previous = false;
 
   double EffectiveScale() const;
   bool HasFiniteBounds() const;
