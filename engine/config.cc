@@ -111,8 +111,11 @@ ParameterSpec ReadParameter(const YamlReader& reader, const YAML::Node& node,
     spec.start = reader.Double(node, path);
   } else {
     reader.CheckMap(node, path, {"start", "lower", "upper", "scale", "role"});
-    if (!node["start"]) reader.Fail(node, path, "missing key 'start'");
-    spec.start = reader.Double(node["start"], Child(path, "start"));
+    if (node["start"]) {
+      spec.start = reader.Double(node["start"], Child(path, "start"));
+    } else {
+      spec.start_from_previous = true;
+    }
     reader.Read(node, path, "lower", &spec.lower);
     reader.Read(node, path, "upper", &spec.upper);
     reader.Read(node, path, "scale", &spec.scale);
@@ -120,7 +123,7 @@ ParameterSpec ReadParameter(const YamlReader& reader, const YAML::Node& node,
       const std::string role = reader.String(node["role"], Child(path, "role"));
       if (!StringToParameterRole(role, &spec.role)) {
         reader.Fail(node["role"], Child(path, "role"),
-                    "unknown role '" + role + "' (free, fixed, per_experiment)");
+                    "unknown role '" + role + "' (free, fixed, per_experiment, isolated, shared)");
       }
     }
   }
@@ -180,12 +183,32 @@ void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::str
   if (!global->IsValid(&error)) reader.Fail(node, path, error);
 }
 
+// The run's model map with the keys of `override` replaced, built by the family.
+std::shared_ptr<const ModelHandle> OverrideModel(const YamlReader& reader, const RunConfig& config,
+                                                 const YAML::Node& base,
+                                                 const YAML::Node& override,
+                                                 const std::string& path) {
+  if (!override.IsMap()) reader.Fail(override, path, "expected a map of model keys");
+  YAML::Node merged = YAML::Clone(base);
+  for (const auto& item : override) {
+    const std::string key = item.first.as<std::string>();
+    if (key == "family") reader.Fail(item.first, Child(path, key), "a stage cannot change the family");
+    merged[key] = item.second;
+  }
+  return config.model_family->make_model(reader, merged, path);
+}
+
 StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const std::string& path,
-                      const RunConfig& config, const ModelInfo& info, size_t index) {
+                      const RunConfig& config, const YAML::Node& model_node, size_t index) {
   reader.CheckMap(node, path,
-                  {"name", "experiments", "outputs", "parameters", "free_initial_states", "loss",
-                   "integration", "normalize_by_length", "global", "local", "uncertainty"});
+                  {"name", "model", "experiments", "validation", "outputs", "parameters",
+                   "free_initial_states", "loss", "integration", "normalize_by_length", "global",
+                   "local", "uncertainty"});
   StageConfig stage;
+  if (node["model"]) {
+    stage.model = OverrideModel(reader, config, model_node, node["model"], Child(path, "model"));
+  }
+  const ModelInfo& info = stage.model ? stage.model->info() : config.model->info();
   stage.options.name = "stage" + std::to_string(index + 1);
   reader.Read(node, path, "name", &stage.options.name);
   if (node["experiments"]) {
@@ -200,6 +223,15 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
     for (const ExperimentSpec& e : config.experiments) stage.experiments.push_back(e.name);
   }
   if (stage.experiments.empty()) reader.Fail(node, path, "stage has no experiments");
+  if (node["validation"]) {
+    stage.validation = reader.Strings(node["validation"], Child(path, "validation"));
+    for (size_t i = 0; i < stage.validation.size(); ++i) {
+      if (config.FindExperiment(stage.validation[i]) == nullptr) {
+        reader.Fail(node["validation"][i], Child(Child(path, "validation"), i),
+                    "no experiment named '" + stage.validation[i] + "'");
+      }
+    }
+  }
   if (node["outputs"]) {
     stage.experiment.outputs = reader.Strings(node["outputs"], Child(path, "outputs"));
     CheckNames(reader, node["outputs"], Child(path, "outputs"), stage.experiment.outputs,
@@ -250,6 +282,10 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
 
 }  // namespace
 
+const char* FusionRuleToString(FusionRule rule) {
+  return rule == FusionRule::kMean ? "mean" : "inverse_variance";
+}
+
 const ExperimentSpec* RunConfig::FindExperiment(const std::string& name) const {
   for (const ExperimentSpec& e : experiments) {
     if (e.name == name) return &e;
@@ -262,7 +298,8 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
   YamlReader reader(path);
   try {
     const YAML::Node root = reader.Load();
-    reader.CheckMap(root, "", {"description", "model", "simulation", "experiments", "stages"});
+    reader.CheckMap(root, "", {"description", "model", "simulation", "experiments", "stages",
+                               "fusion", "final_validation"});
     RunConfig result;
     result.path = path;
     reader.Read(root, "", "description", &result.description);
@@ -299,7 +336,39 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
     reader.CheckSequence(stages, "stages");
     if (stages.size() == 0) reader.Fail(stages, "stages", "at least one stage is needed");
     for (size_t i = 0; i < stages.size(); ++i) {
-      result.stages.push_back(ReadStage(reader, stages[i], Child("stages", i), result, info, i));
+      result.stages.push_back(ReadStage(reader, stages[i], Child("stages", i), result, model, i));
+    }
+    if (const YAML::Node fusion = root["fusion"]) {
+      const std::string rule = reader.String(fusion, "fusion");
+      if (rule == "inverse_variance") {
+        result.fusion = FusionRule::kInverseVariance;
+      } else if (rule == "mean") {
+        result.fusion = FusionRule::kMean;
+      } else {
+        reader.Fail(fusion, "fusion", "unknown rule '" + rule + "' (inverse_variance, mean)");
+      }
+    }
+    if (const YAML::Node final = root["final_validation"]) {
+      reader.CheckMap(final, "final_validation", {"experiments", "outputs", "model"});
+      FinalValidationConfig& v = result.final_validation;
+      result.has_final_validation = true;
+      if (final["model"]) {
+        v.model = OverrideModel(reader, result, model, final["model"], "final_validation.model");
+      }
+      const ModelInfo& final_info = v.model ? v.model->info() : info;
+      if (!final["experiments"]) reader.Fail(final, "final_validation", "missing key 'experiments'");
+      v.experiments = reader.Strings(final["experiments"], "final_validation.experiments");
+      for (size_t i = 0; i < v.experiments.size(); ++i) {
+        if (result.FindExperiment(v.experiments[i]) == nullptr) {
+          reader.Fail(final["experiments"][i], Child("final_validation.experiments", i),
+                      "no experiment named '" + v.experiments[i] + "'");
+        }
+      }
+      if (final["outputs"]) {
+        v.experiment.outputs = reader.Strings(final["outputs"], "final_validation.outputs");
+        CheckNames(reader, final["outputs"], "final_validation.outputs", v.experiment.outputs,
+                   final_info.outputs, "output", final_info);
+      }
     }
     *config = std::move(result);
     return true;

@@ -4,8 +4,15 @@
 //   simulation:  family-specific description of synthetic experiments (`vesselid simulate`)
 //   experiments: [{name, file, inputs, outputs, interpolation, weights, initial_state,
 //                  degrees, window}]
-//   stages:      [{name, experiments, outputs, parameters, free_initial_states, loss,
-//                  integration, normalize_by_length, global, local, uncertainty}]
+//   stages:      [{name, model, experiments, validation, outputs, parameters,
+//                  free_initial_states, loss, integration, normalize_by_length, global, local,
+//                  uncertainty}]
+//   fusion:      inverse_variance | mean
+//   final_validation: {experiments, outputs, model}
+//
+// A stage's `model` map overrides keys of the run's `model` map (e.g. active DOFs). A
+// parameter without `start` starts from its latest estimate in an earlier stage (else the
+// model default); parameters a stage does not list are held at that value.
 //
 // Every key is checked; an unknown key, a name the model does not have, inverted bounds or a
 // start outside them is an error naming file, line and key.
@@ -25,10 +32,27 @@ namespace vesselid {
 
 struct StageConfig {
   StageOptions options;
+  // The stage's own restriction of the model (e.g. active DOFs); null: the run's model.
+  std::shared_ptr<const ModelHandle> model;
   std::vector<std::string> experiments;  // names from RunConfig::experiments
+  std::vector<std::string> validation;   // held-out experiments simulated after the stage
   std::vector<ParameterSpec> parameters;
   OutputErrorOptions problem;
   ExperimentOptions experiment;  // compared outputs, step bound, length normalisation
+};
+
+// How a shared parameter's stage estimates become its final value.
+enum class FusionRule {
+  kInverseVariance,  // sum(v_i / s_i^2) / sum(1 / s_i^2), standard error 1 / sqrt(sum 1/s_i^2)
+  kMean,             // seed 002: plain average, standard error sqrt(sum s_i^2) / n
+};
+const char* FusionRuleToString(FusionRule rule);
+
+// Held-out runs simulated with the final parameters after the last stage.
+struct FinalValidationConfig {
+  std::vector<std::string> experiments;
+  std::shared_ptr<const ModelHandle> model;  // null: the run's model
+  ExperimentOptions experiment;
 };
 
 struct RunConfig {
@@ -40,6 +64,9 @@ struct RunConfig {
   YAML::Node simulation;  // handed to the family's simulator, parsed there
   std::vector<ExperimentSpec> experiments;
   std::vector<StageConfig> stages;
+  FusionRule fusion = FusionRule::kInverseVariance;
+  bool has_final_validation = false;
+  FinalValidationConfig final_validation;
 
   const ExperimentSpec* FindExperiment(const std::string& name) const;
 };

@@ -5,39 +5,85 @@
 #include <limits>
 
 namespace vesselid {
+namespace {
 
-bool PrepareStageExperiments(const RunConfig& config, const StageConfig& stage,
-                             TrajectoryCache* cache, std::vector<Experiment>* experiments,
-                             std::string* error) {
-  experiments->clear();
-  const ModelInfo& info = config.model->info();
-  for (const std::string& name : stage.experiments) {
-    const ExperimentSpec* spec = config.FindExperiment(name);
-    // Cached per experiment: degree conversion depends on the experiment's own spec.
-    const std::string key = spec->name + "\n" + spec->file;
-    auto cached = cache->find(key);
-    if (cached == cache->end()) {
-      Trajectory trajectory;
-      if (!LoadExperimentData(*spec, &trajectory, error)) return false;
-      cached = cache->emplace(key, std::move(trajectory)).first;
+constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+
+// What the run knows of each parameter so far.
+struct Ledger {
+  struct Entry {
+    std::string stage;
+    double value;
+    double std_error;
+    ParameterRole role;
+  };
+  std::map<std::string, double> latest;
+  std::map<std::string, std::vector<Entry>> estimates;
+};
+
+// Full parameter list of a stage: starts resolved from the ledger, unlisted ones fixed there.
+bool ResolveParameters(const StageConfig& stage, const ModelInfo& info, const Ledger& ledger,
+                       std::vector<ParameterSpec>* specs, std::string* error) {
+  specs->clear();
+  for (size_t i = 0; i < info.parameters.size(); ++i) {
+    const std::string& name = info.parameters[i];
+    auto latest = ledger.latest.find(name);
+    const double carried = latest != ledger.latest.end() ? latest->second : info.parameter_defaults[i];
+    ParameterSpec spec;
+    bool listed = false;
+    for (const ParameterSpec& s : stage.parameters) {
+      if (s.name == name) {
+        spec = s;
+        listed = true;
+      }
     }
-    const Trajectory& trajectory = cached->second;
-    Experiment experiment;
-    if (!BuildExperiment(*spec, trajectory, info, stage.experiment, &experiment, error))
-      return false;
-    experiments->push_back(std::move(experiment));
+    if (!listed) {
+      spec.name = name;
+      spec.role = ParameterRole::kFixed;
+      spec.start = carried;
+    } else if (spec.start_from_previous) {
+      spec.start = carried;
+      spec.start_from_previous = false;
+      if (spec.role != ParameterRole::kFixed && (carried < spec.lower || carried > spec.upper)) {
+        *error = "parameter '" + name + "': carried start " + std::to_string(carried) +
+                 " is outside the stage's bounds [" + std::to_string(spec.lower) + ", " +
+                 std::to_string(spec.upper) + "]";
+        return false;
+      }
+    }
+    specs->push_back(spec);
   }
   return true;
 }
 
-namespace {
+// Simulates `names` with every parameter fixed at `values`; initial states from the data.
+bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
+                     const std::vector<std::string>& names, const ExperimentOptions& options,
+                     const std::vector<double>& values, TrajectoryCache* cache,
+                     std::vector<ExperimentFit>* fits, std::string* error) {
+  std::vector<Experiment> experiments;
+  if (!PrepareExperiments(config, names, model.info(), options, cache, &experiments, error)) {
+    return false;
+  }
+  std::vector<ParameterSpec> fixed;
+  for (size_t i = 0; i < values.size(); ++i) {
+    ParameterSpec spec;
+    spec.name = model.info().parameters[i];
+    spec.start = values[i];
+    spec.role = ParameterRole::kFixed;
+    fixed.push_back(spec);
+  }
+  auto problem = OutputErrorProblem::Create(&model, std::move(experiments), fixed, {}, error);
+  return problem != nullptr && EvaluateFit(*problem, fits, error);
+}
 
 StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>& starts,
                     StageSummary summary) {
   StageResult result;
   result.name = summary.name;
+  result.model = problem.model().info().name;
   const std::vector<Variable>& variables = problem.variables();
-  const double kUnknown = std::numeric_limits<double>::quiet_NaN();
+  const Uncertainty& u = summary.uncertainty;
   for (size_t i = 0; i < variables.size(); ++i) {
     const Variable& v = variables[i];
     Estimate e;
@@ -47,49 +93,179 @@ StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>
     e.experiment = v.experiment >= 0 ? problem.experiments()[v.experiment].name : "";
     e.value = v.value();
     e.start = starts[i];
-    e.std_error = v.free ? summary.uncertainty.StdError(static_cast<int>(i)) : kUnknown;
+    e.std_error = v.free ? u.StdError(static_cast<int>(i)) : kUnknown;
     e.lower = v.lower;
     e.upper = v.upper;
+    for (int index : u.undetermined_variables) e.undetermined |= index == static_cast<int>(i);
     result.estimates.push_back(e);
   }
-  if (summary.uncertainty.available) {
-    for (int index : summary.uncertainty.variables)
-      result.correlation_names.push_back(variables[index].name);
-    result.correlation = summary.uncertainty.correlation;
+  if (u.available) {
+    for (int index : u.variables) result.correlation_names.push_back(variables[index].name);
+    result.correlation = u.correlation;
   }
   result.summary = std::move(summary);
   return result;
 }
 
+void Record(const StageResult& stage, Ledger* ledger) {
+  for (const Estimate& e : stage.estimates) {
+    if (e.kind != "parameter" || !e.experiment.empty()) continue;
+    ParameterRole role;
+    StringToParameterRole(e.role, &role);
+    if (!IsEstimatedOnce(role)) continue;
+    ledger->latest[e.name] = e.value;
+    ledger->estimates[e.name].push_back(
+        {stage.name, e.value, e.undetermined ? kUnknown : e.std_error, role});
+  }
+}
+
+std::vector<FinalParameter> Finalise(const ModelInfo& info, const Ledger& ledger,
+                                     const std::vector<StageResult>& stages, FusionRule rule) {
+  std::vector<FinalParameter> parameters;
+  for (size_t i = 0; i < info.parameters.size(); ++i) {
+    FinalParameter f;
+    f.name = info.parameters[i];
+    auto found = ledger.estimates.find(f.name);
+    if (found == ledger.estimates.end()) {
+      auto latest = ledger.latest.find(f.name);
+      f.value = latest != ledger.latest.end() ? latest->second : info.parameter_defaults[i];
+      // The value a fixed parameter was held at in the last stage.
+      for (const StageResult& s : stages) {
+        for (const Estimate& e : s.estimates) {
+          if (e.name == f.name) f.value = e.value;
+        }
+      }
+      f.std_error = kUnknown;
+      f.role = "fixed";
+      f.rule = "fixed";
+      parameters.push_back(f);
+      continue;
+    }
+    const std::vector<Ledger::Entry>& entries = found->second;
+    const Ledger::Entry& last = entries.back();
+    f.role = ParameterRoleToString(last.role);
+    if (last.role == ParameterRole::kShared) {
+      std::vector<double> values, errors;
+      for (const Ledger::Entry& e : entries) {
+        if (e.role != ParameterRole::kShared) continue;
+        values.push_back(e.value);
+        errors.push_back(e.std_error);
+        f.stages.push_back(e.stage);
+      }
+      FuseEstimates(values, errors, rule, &f.value, &f.std_error, &f.rule);
+    } else {
+      f.value = last.value;
+      f.std_error = last.std_error;
+      f.stages = {last.stage};
+      f.rule = "stage";
+    }
+    f.undetermined = std::isnan(f.std_error);
+    parameters.push_back(f);
+  }
+  return parameters;
+}
+
 }  // namespace
+
+void FuseEstimates(const std::vector<double>& values, const std::vector<double>& std_errors,
+                   FusionRule rule, double* value, double* std_error, std::string* rule_used) {
+  const size_t n = values.size();
+  bool all_known = true;
+  for (double s : std_errors) all_known = all_known && std::isfinite(s) && s > 0;
+  if (rule == FusionRule::kInverseVariance && all_known) {
+    double weights = 0.0, sum = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+      const double w = 1.0 / (std_errors[i] * std_errors[i]);
+      weights += w;
+      sum += w * values[i];
+    }
+    *value = sum / weights;
+    *std_error = 1.0 / std::sqrt(weights);
+    *rule_used = "inverse_variance";
+    return;
+  }
+  double sum = 0.0, variance = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    sum += values[i];
+    variance += std_errors[i] * std_errors[i];
+  }
+  *value = sum / n;
+  *std_error = std::sqrt(variance) / n;  // NaN if any stage left it undetermined
+  *rule_used = rule == FusionRule::kMean ? "mean" : "mean (a stage has no standard error)";
+}
+
+bool PrepareExperiments(const RunConfig& config, const std::vector<std::string>& names,
+                        const ModelInfo& info, const ExperimentOptions& options,
+                        TrajectoryCache* cache, std::vector<Experiment>* experiments,
+                        std::string* error) {
+  experiments->clear();
+  for (const std::string& name : names) {
+    const ExperimentSpec* spec = config.FindExperiment(name);
+    auto cached = cache->find(name);
+    if (cached == cache->end()) {
+      Trajectory trajectory;
+      if (!LoadExperimentData(*spec, &trajectory, error)) return false;
+      cached = cache->emplace(name, std::move(trajectory)).first;
+    }
+    Experiment experiment;
+    if (!BuildExperiment(*spec, cached->second, info, options, &experiment, error)) return false;
+    experiments->push_back(std::move(experiment));
+  }
+  return true;
+}
 
 bool RunIdentification(const RunConfig& config, RunResult* result, std::string* error,
                        const StageObserver& observer) {
   const auto start_time = std::chrono::steady_clock::now();
   RunResult run;
   TrajectoryCache cache;
+  Ledger ledger;
   for (const StageConfig& stage : config.stages) {
     const std::string where = "stage '" + stage.options.name + "': ";
-    if (observer) observer(nullptr, stage.options.name);
-    std::vector<Experiment> experiments;
-    if (!PrepareStageExperiments(config, stage, &cache, &experiments, error)) {
-      *error = where + *error;
+    auto fail = [&](const std::string& what) {
+      *error = where + what;
       return false;
+    };
+    if (observer) observer(nullptr, stage.options.name);
+    const ModelHandle& model = stage.model ? *stage.model : *config.model;
+    std::vector<ParameterSpec> specs;
+    if (!ResolveParameters(stage, model.info(), ledger, &specs, error)) return fail(*error);
+    std::vector<Experiment> experiments;
+    if (!PrepareExperiments(config, stage.experiments, model.info(), stage.experiment, &cache,
+                            &experiments, error)) {
+      return fail(*error);
     }
     std::unique_ptr<OutputErrorProblem> problem = OutputErrorProblem::Create(
-        config.model.get(), std::move(experiments), stage.parameters, stage.problem, error);
-    if (problem == nullptr) {
-      *error = where + *error;
-      return false;
-    }
+        &model, std::move(experiments), specs, stage.problem, error);
+    if (problem == nullptr) return fail(*error);
     const std::vector<double> starts = problem->Values();
     StageSummary summary;
-    if (!RunStage(stage.options, problem.get(), &summary)) {
-      *error = where + summary.message;
+    if (!RunStage(stage.options, problem.get(), &summary)) return fail(summary.message);
+    StageResult stage_result = Collect(*problem, starts, std::move(summary));
+    const std::vector<double> values = problem->ParametersOf(0);
+    stage_result.admissibility = model.Admissibility(values.data());
+    if (!stage.validation.empty() &&
+        !SimulateHeldOut(config, model, stage.validation, stage.experiment, values, &cache,
+                         &stage_result.validation, error)) {
+      return fail("validation: " + *error);
+    }
+    Record(stage_result, &ledger);
+    run.stages.push_back(std::move(stage_result));
+    if (observer) observer(&run.stages.back(), "");
+  }
+  const ModelInfo& info = config.model->info();
+  run.parameters = Finalise(info, ledger, run.stages, config.fusion);
+  std::vector<double> final_values;
+  for (const FinalParameter& f : run.parameters) final_values.push_back(f.value);
+  run.admissibility = config.model->Admissibility(final_values.data());
+  if (config.has_final_validation) {
+    const FinalValidationConfig& v = config.final_validation;
+    const ModelHandle& model = v.model ? *v.model : *config.model;
+    if (!SimulateHeldOut(config, model, v.experiments, v.experiment, final_values, &cache,
+                         &run.final_validation, error)) {
+      *error = "final validation: " + *error;
       return false;
     }
-    run.stages.push_back(Collect(*problem, starts, std::move(summary)));
-    if (observer) observer(&run.stages.back(), "");
   }
   run.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();

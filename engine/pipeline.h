@@ -1,5 +1,10 @@
-// A staged identification run: the stages of a config executed in order, each building its
-// output-error problem from its experiments and parameter declarations.
+// A staged identification run (seed 002's hierarchy, generalised): stages run in order, each
+// building its output-error problem from its experiments, its model restriction and its
+// parameter roles. A parameter's start is its latest estimate unless the stage gives one;
+// unlisted parameters are held there. After the last stage every parameter gets its final
+// value: isolated and free ones from the last stage that estimated them, shared ones fused
+// over all their stage estimates. Held-out experiments are simulated after each stage
+// (local validation) and with the final values (final validation).
 #pragma once
 
 #include <functional>
@@ -14,28 +19,46 @@
 
 namespace vesselid {
 
-// One estimated or fixed quantity as reported.
+// One estimated or fixed quantity of a stage as reported.
 struct Estimate {
   std::string name;
   std::string kind;        // parameter or initial_state
-  std::string role;        // free, fixed, per_experiment
+  std::string role;        // free, fixed, per_experiment, isolated, shared
   std::string experiment;  // empty when shared
   double value = 0.0;
   double start = 0.0;
-  double std_error = 0.0;  // NaN when unknown or fixed
+  double std_error = 0.0;  // NaN when fixed or undetermined
   double lower = 0.0, upper = 0.0;
+  bool undetermined = false;  // part of a combination the stage's data do not determine
 };
 
 struct StageResult {
   std::string name;
+  std::string model;  // the stage's model (restriction) name
   StageSummary summary;
   std::vector<Estimate> estimates;
   std::vector<std::string> correlation_names;  // free variables, matrix order
   Eigen::MatrixXd correlation;
+  std::vector<std::string> admissibility;    // empty: M SPD, damping PSD (as the model checks)
+  std::vector<ExperimentFit> validation;     // held-out experiments of the stage
+};
+
+// A parameter's value after the whole run.
+struct FinalParameter {
+  std::string name;
+  double value = 0.0;
+  double std_error = 0.0;  // NaN when fixed or undetermined
+  std::string role;        // role in the stages that estimated it; "fixed" if none did
+  std::vector<std::string> stages;  // stages whose estimates make the value
+  std::string rule;        // how: "stage", "inverse_variance", "mean" or "fixed"
+  bool undetermined = false;
 };
 
 struct RunResult {
   std::vector<StageResult> stages;
+  std::vector<FinalParameter> parameters;  // model parameter order
+  std::vector<std::string> admissibility;  // of the final values
+  std::vector<ExperimentFit> final_validation;
   double time_seconds = 0.0;
 };
 
@@ -46,12 +69,19 @@ using StageObserver = std::function<void(const StageResult* finished, const std:
 bool RunIdentification(const RunConfig& config, RunResult* result, std::string* error,
                        const StageObserver& observer = nullptr);
 
-// Recorded data by file, so that stages sharing an experiment read it once.
+// Recorded data by experiment, so that stages sharing an experiment read it once.
 using TrajectoryCache = std::map<std::string, Trajectory>;
 
-// Reads and prepares one stage's experiments (used by RunIdentification and by tools).
-bool PrepareStageExperiments(const RunConfig& config, const StageConfig& stage,
-                             TrajectoryCache* cache, std::vector<Experiment>* experiments,
-                             std::string* error);
+// Reads and prepares experiments for a model (used by RunIdentification and by tools).
+bool PrepareExperiments(const RunConfig& config, const std::vector<std::string>& names,
+                        const ModelInfo& info, const ExperimentOptions& options,
+                        TrajectoryCache* cache, std::vector<Experiment>* experiments,
+                        std::string* error);
+
+// Fuses stage estimates (value, standard error) of one shared parameter. Inverse-variance
+// weighting needs every standard error; without them it falls back to the mean and says so
+// in `rule`.
+void FuseEstimates(const std::vector<double>& values, const std::vector<double>& std_errors,
+                   FusionRule rule, double* value, double* std_error, std::string* rule_used);
 
 }  // namespace vesselid

@@ -14,10 +14,38 @@ using nlohmann::json;
 
 json Number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
+json MetricsToJson(const std::vector<ExperimentFit>& fits) {
+  json metrics = json::array();
+  for (const ExperimentFit& fit : fits) {
+    for (const ChannelMetrics& m : fit.channels) {
+      metrics.push_back({{"experiment", m.experiment},
+                         {"output", m.output},
+                         {"samples", m.samples},
+                         {"rmse", Number(m.rmse)},
+                         {"mae", Number(m.mae)},
+                         {"r2", Number(m.r2)},
+                         {"fit_percent", Number(m.fit_percent)}});
+    }
+  }
+  return metrics;
+}
+
+// Seed 002's per-test cost sqrt(mean e^2), by experiment.
+json RmsCostToJson(const std::vector<ExperimentFit>& fits) {
+  json rms = json::object();
+  for (const ExperimentFit& fit : fits) rms[fit.experiment] = fit.rms_cost;
+  return rms;
+}
+
+json FitsToJson(const std::vector<ExperimentFit>& fits) {
+  return {{"metrics", MetricsToJson(fits)}, {"rms_cost", RmsCostToJson(fits)}};
+}
+
 json StageToJson(const StageResult& stage) {
   const StageSummary& s = stage.summary;
   json j;
   j["name"] = stage.name;
+  j["model"] = stage.model;
   j["time_seconds"] = s.time_seconds;
   if (s.global.run) {
     j["global_start"] = {{"variables", s.global.variables},
@@ -44,10 +72,15 @@ json StageToJson(const StageResult& stage) {
   j["notes"] = s.notes;
   json estimates = json::array();
   for (const Estimate& e : stage.estimates) {
-    json item = {{"name", e.name},           {"kind", e.kind},
-                 {"role", e.role},           {"value", e.value},
-                 {"start", e.start},         {"std_error", Number(e.std_error)},
-                 {"lower", Number(e.lower)}, {"upper", Number(e.upper)}};
+    json item = {{"name", e.name},
+                 {"kind", e.kind},
+                 {"role", e.role},
+                 {"value", e.value},
+                 {"start", e.start},
+                 {"std_error", Number(e.std_error)},
+                 {"lower", Number(e.lower)},
+                 {"upper", Number(e.upper)},
+                 {"undetermined", e.undetermined}};
     if (!e.experiment.empty()) item["experiment"] = e.experiment;
     estimates.push_back(item);
   }
@@ -61,37 +94,109 @@ json StageToJson(const StageResult& stage) {
     json matrix = json::array();
     for (int r = 0; r < stage.correlation.rows(); ++r) {
       json row = json::array();
-      for (int c = 0; c < stage.correlation.cols(); ++c)
+      for (int c = 0; c < stage.correlation.cols(); ++c) {
         row.push_back(Number(stage.correlation(r, c)));
+      }
       matrix.push_back(row);
     }
     j["correlation"] = {{"names", stage.correlation_names}, {"matrix", matrix}};
   }
-  json metrics = json::array();
-  for (const ExperimentFit& fit : s.fits) {
-    for (const ChannelMetrics& m : fit.channels) {
-      metrics.push_back({{"experiment", m.experiment},
-                         {"output", m.output},
-                         {"samples", m.samples},
-                         {"rmse", Number(m.rmse)},
-                         {"mae", Number(m.mae)},
-                         {"r2", Number(m.r2)},
-                         {"fit_percent", Number(m.fit_percent)}});
-    }
-  }
-  j["metrics"] = metrics;
-  json rms = json::object();
-  for (const ExperimentFit& fit : s.fits) rms[fit.experiment] = fit.rms_cost;
-  j["rms_cost"] = rms;
+  j["fit"] = FitsToJson(s.fits);
+  j["admissibility"] = stage.admissibility;
+  if (!stage.validation.empty()) j["validation"] = FitsToJson(stage.validation);
   return j;
 }
 
-std::string TraceFileName(const std::string& stage, const std::string& experiment) {
-  std::string name = stage + "." + experiment + ".csv";
+std::string TraceFileName(const std::string& prefix, const std::string& experiment) {
+  std::string name = prefix + "." + experiment + ".csv";
   for (char& c : name) {
     if (c == '/' || c == ' ') c = '_';
   }
   return name;
+}
+
+std::string MetricsTable(const std::vector<ExperimentFit>& fits) {
+  std::string out;
+  char line[256];
+  std::snprintf(line, sizeof(line), "  %-20s %-8s %8s %12s %12s %10s %8s %10s\n", "experiment",
+                "output", "samples", "RMSE", "MAE", "R2", "fit %", "rms cost");
+  out += line;
+  for (const ExperimentFit& fit : fits) {
+    for (const ChannelMetrics& m : fit.channels) {
+      std::snprintf(line, sizeof(line), "  %-20s %-8s %8d %12.4e %12.4e %10.6f %8.3f %10.4e\n",
+                    m.experiment.c_str(), m.output.c_str(), m.samples, m.rmse, m.mae, m.r2,
+                    m.fit_percent, fit.rms_cost);
+      out += line;
+    }
+  }
+  return out;
+}
+
+std::string EstimateLine(const std::string& name, const std::string& role, double value,
+                         double std_error, bool undetermined, const std::string& tail) {
+  char line[512];
+  if (undetermined) {
+    std::snprintf(line, sizeof(line), "  %-24s %-15s %16s %12s %10s  %s\n", name.c_str(),
+                  role.c_str(), "undetermined", "-", "-", tail.c_str());
+  } else if (std::isnan(std_error)) {
+    std::snprintf(line, sizeof(line), "  %-24s %-15s %16.8g %12s %10s  %s\n", name.c_str(),
+                  role.c_str(), value, "-", "-", tail.c_str());
+  } else {
+    std::snprintf(line, sizeof(line), "  %-24s %-15s %16.8g %12.4g %10.4g  %s\n", name.c_str(),
+                  role.c_str(), value, std_error, 100.0 * std_error / std::abs(value),
+                  tail.c_str());
+  }
+  return line;
+}
+
+std::string StageText(const StageResult& stage) {
+  const StageSummary& s = stage.summary;
+  std::ostringstream out;
+  char line[512];
+  out << "\n" << s.BriefReport() << " [" << stage.model << "]\n";
+  if (s.global.run) out << "  " << s.global.BriefReport() << "\n";
+  std::snprintf(line, sizeof(line), "  %-24s %-15s %16s %12s %10s\n", "name", "role", "value",
+                "std error", "rel. %");
+  out << line;
+  for (const Estimate& e : stage.estimates) {
+    if (e.role == "fixed") continue;
+    out << EstimateLine(e.name, e.role, e.value, e.std_error, e.undetermined, "");
+  }
+  for (const std::string& note : s.notes) out << "  note: " << note << "\n";
+  for (const std::string& d : s.uncertainty.undetermined) out << "  undetermined: " << d << "\n";
+  for (const std::string& a : stage.admissibility) out << "  not admissible: " << a << "\n";
+  if (stage.correlation.rows() > 1) {
+    out << "  strongest correlations:";
+    int shown = 0;
+    for (int r = 0; r < stage.correlation.rows() && shown < 6; ++r) {
+      for (int c = r + 1; c < stage.correlation.cols() && shown < 6; ++c) {
+        if (std::abs(stage.correlation(r, c)) < 0.9) continue;
+        std::snprintf(line, sizeof(line), " %s/%s %.4f;", stage.correlation_names[r].c_str(),
+                      stage.correlation_names[c].c_str(), stage.correlation(r, c));
+        out << line;
+        ++shown;
+      }
+    }
+    out << (shown == 0 ? " none above 0.9\n" : "\n");
+  }
+  out << MetricsTable(s.fits);
+  if (!stage.validation.empty()) out << "  local validation:\n" << MetricsTable(stage.validation);
+  return out.str();
+}
+
+bool WriteTraces(const std::string& folder, const std::string& prefix,
+                 const std::vector<ExperimentFit>& fits, std::string* error) {
+  for (const ExperimentFit& fit : fits) {
+    const std::string path = (fs::path(folder) / TraceFileName(prefix, fit.experiment)).string();
+    if (!WriteTrajectoryCsv(path + ".tmp", fit.trace, error)) return false;
+    std::error_code ec;
+    fs::rename(path + ".tmp", path, ec);
+    if (ec) {
+      *error = path + ": " + ec.message();
+      return false;
+    }
+  }
+  return true;
 }
 
 }  // namespace
@@ -105,71 +210,42 @@ json RunResultToJson(const RunConfig& config, const RunResult& result) {
   json stages = json::array();
   for (const StageResult& stage : result.stages) stages.push_back(StageToJson(stage));
   j["stages"] = stages;
-  // The final parameter table: each parameter as the last stage that handled it left it.
-  json parameters = json::object();
-  for (const StageResult& stage : result.stages) {
-    for (const Estimate& e : stage.estimates) {
-      if (e.kind != "parameter") continue;
-      parameters[e.name] = {{"value", e.value},
-                            {"std_error", Number(e.std_error)},
-                            {"role", e.role},
-                            {"stage", stage.name}};
-    }
+  j["fusion"] = FusionRuleToString(config.fusion);
+  json parameters = json::array();
+  for (const FinalParameter& f : result.parameters) {
+    parameters.push_back({{"name", f.name},
+                          {"value", f.value},
+                          {"std_error", Number(f.std_error)},
+                          {"role", f.role},
+                          {"stages", f.stages},
+                          {"rule", f.rule},
+                          {"undetermined", f.undetermined}});
   }
   j["parameters"] = parameters;
+  j["admissibility"] = result.admissibility;
+  if (config.has_final_validation) j["final_validation"] = FitsToJson(result.final_validation);
   return j;
 }
 
 std::string RunResultToText(const RunConfig& config, const RunResult& result) {
   std::ostringstream out;
-  char line[512];
   out << "vesselid run of " << config.path << " (model " << config.model->info().name << ")\n";
-  for (const StageResult& stage : result.stages) {
-    const StageSummary& s = stage.summary;
-    out << "\n" << s.BriefReport() << "\n";
-    if (s.global.run) out << "  " << s.global.BriefReport() << "\n";
-    std::snprintf(line, sizeof(line), "  %-24s %-15s %16s %12s %10s\n", "name", "role", "value",
-                  "std error", "rel. %");
-    out << line;
-    for (const Estimate& e : stage.estimates) {
-      if (e.role == "fixed" && e.kind == "initial_state") continue;
-      if (std::isnan(e.std_error)) {
-        std::snprintf(line, sizeof(line), "  %-24s %-15s %16.8g %12s %10s\n", e.name.c_str(),
-                      e.role.c_str(), e.value, "-", "-");
-      } else {
-        std::snprintf(line, sizeof(line), "  %-24s %-15s %16.8g %12.4g %10.4g\n", e.name.c_str(),
-                      e.role.c_str(), e.value, e.std_error,
-                      100.0 * e.std_error / std::abs(e.value));
-      }
-      out << line;
-    }
-    for (const std::string& note : s.notes) out << "  note: " << note << "\n";
-    for (const std::string& d : s.uncertainty.undetermined) out << "  undetermined: " << d << "\n";
-    if (stage.correlation.rows() > 1) {
-      out << "  strongest correlations:";
-      int shown = 0;
-      for (int r = 0; r < stage.correlation.rows() && shown < 6; ++r) {
-        for (int c = r + 1; c < stage.correlation.cols() && shown < 6; ++c) {
-          if (std::abs(stage.correlation(r, c)) < 0.9) continue;
-          std::snprintf(line, sizeof(line), " %s/%s %.4f;", stage.correlation_names[r].c_str(),
-                        stage.correlation_names[c].c_str(), stage.correlation(r, c));
-          out << line;
-          ++shown;
-        }
-      }
-      out << (shown == 0 ? " none above 0.9\n" : "\n");
-    }
-    std::snprintf(line, sizeof(line), "  %-20s %-8s %8s %12s %12s %10s %8s\n", "experiment",
-                  "output", "samples", "RMSE", "MAE", "R2", "fit %");
-    out << line;
-    for (const ExperimentFit& fit : s.fits) {
-      for (const ChannelMetrics& m : fit.channels) {
-        std::snprintf(line, sizeof(line), "  %-20s %-8s %8d %12.4e %12.4e %10.6f %8.3f\n",
-                      m.experiment.c_str(), m.output.c_str(), m.samples, m.rmse, m.mae, m.r2,
-                      m.fit_percent);
-        out << line;
-      }
-    }
+  for (const StageResult& stage : result.stages) out << StageText(stage);
+  out << "\nfinal parameters (shared: " << FusionRuleToString(config.fusion) << " fusion)\n";
+  char line[256];
+  std::snprintf(line, sizeof(line), "  %-24s %-15s %16s %12s %10s  %s\n", "name", "role", "value",
+                "std error", "rel. %", "from");
+  out << line;
+  for (const FinalParameter& f : result.parameters) {
+    std::string from;
+    for (const std::string& stage : f.stages) from += (from.empty() ? "" : ", ") + stage;
+    if (f.rule != "stage" && f.rule != "fixed") from += " (" + f.rule + ")";
+    out << EstimateLine(f.name, f.role, f.value, f.std_error, f.undetermined && f.role != "fixed",
+                        from);
+  }
+  for (const std::string& a : result.admissibility) out << "  not admissible: " << a << "\n";
+  if (config.has_final_validation) {
+    out << "\nfinal validation\n" << MetricsTable(result.final_validation);
   }
   return out.str();
 }
@@ -197,24 +273,20 @@ bool WriteFileAtomically(const std::string& path, const std::string& content, st
 bool WriteRunResults(const RunConfig& config, const RunResult& result, const std::string& out_dir,
                      std::string* error) {
   std::error_code ec;
-  fs::create_directories(fs::path(out_dir) / "traces", ec);
+  const std::string traces = (fs::path(out_dir) / "traces").string();
+  fs::create_directories(traces, ec);
   if (ec) {
     *error = out_dir + ": cannot create folder: " + ec.message();
     return false;
   }
   for (const StageResult& stage : result.stages) {
-    for (const ExperimentFit& fit : stage.summary.fits) {
-      const std::string path =
-          (fs::path(out_dir) / "traces" / TraceFileName(stage.name, fit.experiment)).string();
-      if (!WriteTrajectoryCsv(path + ".tmp", fit.trace, error)) return false;
-      fs::rename(path + ".tmp", path, ec);
-      if (ec) {
-        *error = path + ": " + ec.message();
-        return false;
-      }
+    if (!WriteTraces(traces, stage.name, stage.summary.fits, error) ||
+        !WriteTraces(traces, stage.name + ".validation", stage.validation, error)) {
+      return false;
     }
   }
-  if (!WriteFileAtomically((fs::path(out_dir) / "report.txt").string(),
+  if (!WriteTraces(traces, "final_validation", result.final_validation, error) ||
+      !WriteFileAtomically((fs::path(out_dir) / "report.txt").string(),
                            RunResultToText(config, result), error)) {
     return false;
   }

@@ -56,9 +56,10 @@ void EscapeExchangeRidge(const LocalSolveOptions& options, OutputErrorProblem* p
     b->set_value(std::clamp(mean / 1.5, b->lower, b->upper));
     LocalSolveSummary split;
     if (RunLocalSolve(options, problem, &split) && split.final_cost < local->final_cost) {
-      notes->push_back("left the " + a->name + " = " + b->name + " ridge (cost " +
-                       std::to_string(local->final_cost) + " -> " +
-                       std::to_string(split.final_cost) + ")");
+      char text[256];
+      std::snprintf(text, sizeof(text), "left the %s = %s ridge (cost %.6e -> %.6e)",
+                    a->name.c_str(), b->name.c_str(), local->final_cost, split.final_cost);
+      notes->push_back(text);
       split.initial_cost = local->initial_cost;
       split.iterations += local->iterations;
       split.time_seconds += local->time_seconds;

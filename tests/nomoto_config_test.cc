@@ -55,7 +55,7 @@ TEST(NomotoConfigs, CargoNoiseFree) {
       {"T1", 45.0}, {"T2", 6.0}, {"T3", 10.0}, {"K", 0.09}};
   for (const auto& [name, value] : truth)
     EXPECT_LT(RelativeError(estimates[name], value), 1e-4) << name;
-  EXPECT_GT(results["stages"][0]["metrics"][0]["r2"].get<double>(), 0.999999);
+  EXPECT_GT(results["stages"][0]["fit"]["metrics"][0]["r2"].get<double>(), 0.999999);
 }
 
 TEST(NomotoConfigs, PatrolNoiseFreeWithGlobalStart) {
