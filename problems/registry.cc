@@ -1,5 +1,6 @@
 #include "problems/registry.h"
 
+#include "problems/erunsal6dof/erunsal_family.h"
 #include "problems/nomoto/nomoto_family.h"
 
 namespace vesselid {
@@ -7,6 +8,7 @@ namespace vesselid {
 ModelRegistry DefaultRegistry() {
   ModelRegistry registry;
   registry.Register(nomoto::NomotoFamily());
+  registry.Register(erunsal6dof::ErunsalFamily());
   return registry;
 }
 
