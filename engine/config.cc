@@ -45,7 +45,7 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
                               const ModelInfo& info) {
   reader.CheckMap(node, path,
                   {"name", "file", "inputs", "outputs", "interpolation", "weights", "initial_state",
-                   "degrees", "window"});
+                   "degrees", "window", "segment_length"});
   ExperimentSpec spec;
   if (!node["name"]) reader.Fail(node, path, "missing key 'name'");
   if (!node["file"]) reader.Fail(node, path, "missing key 'file'");
@@ -99,6 +99,10 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
     }
     spec.t_begin = window[0];
     spec.t_end = window[1];
+  }
+  reader.Read(node, path, "segment_length", &spec.segment_length);
+  if (!(spec.segment_length >= 0.0)) {
+    reader.Fail(node["segment_length"], Child(path, "segment_length"), "must be >= 0");
   }
   return spec;
 }

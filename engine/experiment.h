@@ -30,6 +30,10 @@ struct ExperimentSpec {
   std::vector<std::string> degree_columns;       // columns recorded in degrees
   double t_begin = -std::numeric_limits<double>::infinity();
   double t_end = std::numeric_limits<double>::infinity();
+  // > 0: the record is identified as consecutive segments of this length, each simulated
+  // from its own initial state ("<name>@<k>"), so that errors do not grow over a long or
+  // unstable record (segmented output error).
+  double segment_length = 0.0;
 };
 
 struct ExperimentSample {

@@ -1,5 +1,6 @@
 #include "engine/pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -207,9 +208,25 @@ bool PrepareExperiments(const RunConfig& config, const std::vector<std::string>&
       if (!LoadExperimentData(*spec, &trajectory, error)) return false;
       cached = cache->emplace(name, std::move(trajectory)).first;
     }
-    Experiment experiment;
-    if (!BuildExperiment(*spec, cached->second, info, options, &experiment, error)) return false;
-    experiments->push_back(std::move(experiment));
+    const Trajectory& data = cached->second;
+    if (spec->segment_length <= 0.0) {
+      Experiment experiment;
+      if (!BuildExperiment(*spec, data, info, options, &experiment, error)) return false;
+      experiments->push_back(std::move(experiment));
+      continue;
+    }
+    const double begin = std::max(spec->t_begin, data.t.front());
+    const double end = std::min(spec->t_end, data.t.back());
+    int k = 1;
+    for (double t0 = begin; t0 + 0.5 * spec->segment_length < end; t0 += spec->segment_length) {
+      ExperimentSpec segment = *spec;
+      segment.name = spec->name + "@" + std::to_string(k++);
+      segment.t_begin = t0;
+      segment.t_end = std::min(end, t0 + spec->segment_length);
+      Experiment experiment;
+      if (!BuildExperiment(segment, data, info, options, &experiment, error)) return false;
+      experiments->push_back(std::move(experiment));
+    }
   }
   return true;
 }

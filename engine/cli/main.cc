@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "CLI/CLI.hpp"
+#include "glog/logging.h"
 #include "engine/config.h"
 #include "engine/pipeline.h"
 #include "engine/results_writer.h"
@@ -61,6 +62,9 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Ceres reports through glog; vesselid reports solver outcomes itself.
+  google::InitGoogleLogging(argv[0]);
+  FLAGS_minloglevel = google::GLOG_FATAL;
   CLI::App app{"vesselid: output-error identification of vessel motion models"};
   app.require_subcommand(1);
   std::string config_path, out_dir, data_dir;

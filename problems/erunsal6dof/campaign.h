@@ -8,6 +8,7 @@
 // Recorded at sample_time with Gaussian noise on positions, angles and forces.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,9 @@ struct CampaignRun {
   double step_time = 10.0;         // spiral step length, thrust sweep step
   double zigzag_heading = 20.0 * M_PI / 180.0;
   unsigned seed = 1;
+  // DOFs the run excites (seed 002 assumes e.g. that spiral tests leave heave, roll and pitch
+  // at rest); all six by default. Thrust tests are always restrained (none).
+  std::array<bool, 6> active = {true, true, true, true, true, true};
 };
 
 struct CampaignOptions {

@@ -53,7 +53,7 @@ CampaignRun ReadRun(const YamlReader& reader, const YAML::Node& node, const std:
                     const ModelInfo& info) {
   reader.CheckMap(node, key,
                   {"file", "type", "duration", "initial_state", "mean_command", "differential",
-                   "step_time", "zigzag_heading_deg", "seed"});
+                   "step_time", "zigzag_heading_deg", "seed", "active_dofs"});
   CampaignRun run;
   if (!node["file"]) reader.Fail(node, key, "missing key 'file'");
   if (!node["type"]) reader.Fail(node, key, "missing key 'type'");
@@ -85,6 +85,11 @@ CampaignRun ReadRun(const YamlReader& reader, const YAML::Node& node, const std:
   int seed = static_cast<int>(run.seed);
   reader.Read(node, key, "seed", &seed);
   run.seed = static_cast<unsigned>(seed);
+  if (const YAML::Node dofs = node["active_dofs"]) {
+    YAML::Node model(YAML::NodeType::Map);
+    model["active_dofs"] = dofs;
+    run.active = ReadModel(reader, model, key).active;
+  }
   if (!(run.step_time > 0)) reader.Fail(node, Child(key, "step_time"), "must be > 0");
   return run;
 }
@@ -101,11 +106,7 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
   if (simulation["model"]) full = YAML::Clone(simulation["model"]);
   Model free_model = ReadModel(reader, full, Child(path, "model"));
   free_model.active.fill(true);
-  Model restrained = free_model;
-  restrained.active.fill(false);
-  const std::unique_ptr<ModelHandle> free_handle = MakeHandle(free_model);
-  const std::unique_ptr<ModelHandle> restrained_handle = MakeHandle(restrained);
-  const ModelInfo& info = free_handle->info();
+  const ModelInfo info = free_model.Info();
 
   std::vector<double> truth = ReferenceParameters();
   if (const YAML::Node node = simulation["truth"]) {
@@ -144,8 +145,11 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
     return false;
   }
   for (const CampaignRun& run : runs) {
-    const ModelHandle& handle =
-        run.type == CampaignRun::Type::kThrust ? *restrained_handle : *free_handle;
+    Model truth_model = free_model;
+    truth_model.active = run.active;
+    if (run.type == CampaignRun::Type::kThrust) truth_model.active.fill(false);
+    const std::unique_ptr<ModelHandle> run_handle = MakeHandle(truth_model);
+    const ModelHandle& handle = *run_handle;
     Trajectory trajectory;
     if (!SimulateCampaignRun(handle, truth, options, run, &trajectory, error)) {
       *error = run.file + ": " + *error;
