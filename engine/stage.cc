@@ -70,6 +70,25 @@ void EscapeExchangeRidge(const LocalSolveOptions& options, OutputErrorProblem* p
   }
 }
 
+// Solves for the free initial states with every free parameter held constant.
+void SolveInitialStates(const LocalSolveOptions& options, OutputErrorProblem* problem) {
+  std::vector<const Variable*> held;
+  bool any_state = false;
+  for (const Variable& v : problem->variables()) {
+    if (!v.free) continue;
+    if (v.kind == Variable::Kind::kInitialState) {
+      any_state = true;
+    } else {
+      held.push_back(&v);
+    }
+  }
+  if (!any_state || held.empty()) return;
+  for (const Variable* v : held) problem->problem()->SetParameterBlockConstant(v->block);
+  LocalSolveSummary ignored;
+  RunLocalSolve(options, problem, &ignored);
+  for (const Variable* v : held) problem->problem()->SetParameterBlockVariable(v->block);
+}
+
 }  // namespace
 
 bool StageOptions::IsValid(std::string* error) const {
@@ -111,6 +130,7 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
   std::string last_failure;
   for (size_t i = 0; i < starts.size(); ++i) {
     problem->SetValues(starts[i]);
+    if (options.initial_states_first) SolveInitialStates(options.local, problem);
     LocalSolveSummary local;
     if (RunLocalSolve(options.local, problem, &local)) {
       EscapeExchangeRidge(options.local, problem, &local, &summary->notes);

@@ -20,6 +20,9 @@ struct StageOptions {
   GlobalStartOptions global;
   LocalSolveOptions local;
   bool compute_uncertainty = true;
+  // Before each refinement, solve for the free initial states alone with the parameters
+  // held: a segment started from zero velocities would otherwise drag the parameters away.
+  bool initial_states_first = true;
 
   bool IsValid(std::string* error) const;
 };
