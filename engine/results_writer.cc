@@ -188,13 +188,7 @@ bool WriteTraces(const std::string& folder, const std::string& prefix,
                  const std::vector<ExperimentFit>& fits, std::string* error) {
   for (const ExperimentFit& fit : fits) {
     const std::string path = (fs::path(folder) / TraceFileName(prefix, fit.experiment)).string();
-    if (!WriteTrajectoryCsv(path + ".tmp", fit.trace, error)) return false;
-    std::error_code ec;
-    fs::rename(path + ".tmp", path, ec);
-    if (ec) {
-      *error = path + ": " + ec.message();
-      return false;
-    }
+    if (!WriteTrajectoryCsv(path, fit.trace, error)) return false;
   }
   return true;
 }

@@ -130,7 +130,8 @@ bool ReadTrajectoryCsv(const std::string& path, Trajectory* trajectory, std::str
 }
 
 bool WriteTrajectoryCsv(const std::string& path, const Trajectory& trajectory, std::string* error) {
-  std::FILE* file = std::fopen(path.c_str(), "w");
+  const std::string temporary = path + ".tmp";
+  std::FILE* file = std::fopen(temporary.c_str(), "w");
   if (file == nullptr) {
     *error = path + ": cannot write file";
     return false;
@@ -149,9 +150,11 @@ bool WriteTrajectoryCsv(const std::string& path, const Trajectory& trajectory, s
     }
     std::fputc('\n', file);
   }
-  bool ok = std::fclose(file) == 0;
-  if (!ok) *error = path + ": write failed";
-  return ok;
+  if (std::fclose(file) != 0 || std::rename(temporary.c_str(), path.c_str()) != 0) {
+    *error = path + ": write failed";
+    return false;
+  }
+  return true;
 }
 
 }  // namespace vesselid

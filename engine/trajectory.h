@@ -30,7 +30,8 @@ Channel ExtractChannel(const Trajectory& trajectory, int column);
 // non-increasing time is rejected with "file:line: ..." in `error`.
 bool ReadTrajectoryCsv(const std::string& path, Trajectory* trajectory, std::string* error);
 
-// Writes columns to CSV (header `t,names...`; NaN written as an empty field).
+// Writes columns to CSV (header `t,names...`; NaN written as an empty field), through a
+// temporary file renamed at the end so that no reader sees a partial file.
 bool WriteTrajectoryCsv(const std::string& path, const Trajectory& trajectory, std::string* error);
 
 }  // namespace vesselid

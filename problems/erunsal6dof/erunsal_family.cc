@@ -156,12 +156,7 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
       return false;
     }
     const std::string target = (fs::path(out_dir) / run.file).string();
-    if (!WriteTrajectoryCsv(target + ".tmp", trajectory, error)) return false;
-    fs::rename(target + ".tmp", target, ec);
-    if (ec) {
-      *error = target + ": " + ec.message();
-      return false;
-    }
+    if (!WriteTrajectoryCsv(target, trajectory, error)) return false;
   }
   return true;
 }
