@@ -38,7 +38,6 @@ double ParameterSpec::EffectiveScale() const {
   return start != 0.0 ? std::abs(start) : 1.0;
 }
 
-bool ParameterSpec::HasFiniteBounds() const { return std::isfinite(lower) && std::isfinite(upper); }
 
 bool ParameterSpec::IsValid(const std::string& where, std::string* error) const {
   std::ostringstream message;

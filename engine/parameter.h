@@ -40,7 +40,6 @@ struct ParameterSpec {
   bool start_from_previous = false;
 
   double EffectiveScale() const;
-  bool HasFiniteBounds() const;
   // Bounds ordered, start finite and inside them, scale positive. `where` prefixes messages.
   bool IsValid(const std::string& where, std::string* error) const;
 };
