@@ -152,7 +152,10 @@ void ReadLocal(const YamlReader& reader, const YAML::Node& node, const std::stri
   }
   if (node["linear_solver"]) {
     std::string text = reader.String(node["linear_solver"], Child(path, "linear_solver"));
-    if (!ceres::StringToLinearSolverType(text, &local->linear_solver)) {
+    ceres::LinearSolverType type;
+    if (ceres::StringToLinearSolverType(text, &type)) {
+      local->linear_solver = type;
+    } else {
       reader.Fail(node["linear_solver"], Child(path, "linear_solver"),
                   "unknown linear solver '" + text +
                       "' (dense_qr, dense_normal_cholesky, sparse_normal_cholesky, dense_schur, "
@@ -206,8 +209,8 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
                       const RunConfig& config, const YAML::Node& model_node, size_t index) {
   reader.CheckMap(node, path,
                   {"name", "model", "experiments", "validation", "outputs", "parameters",
-                   "free_initial_states", "loss", "integration", "normalize_by_length", "global",
-                   "local", "uncertainty"});
+                   "free_initial_states", "loss", "integration", "normalize_by_length",
+                   "continuation", "global", "local", "uncertainty"});
   StageConfig stage;
   if (node["model"]) {
     stage.model = OverrideModel(reader, config, model_node, node["model"], Child(path, "model"));
@@ -254,6 +257,16 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
     stage.problem.free_initial_states = reader.Strings(node["free_initial_states"], key);
     CheckNames(reader, node["free_initial_states"], key, stage.problem.free_initial_states,
                info.states, "state", info);
+  }
+  if (const YAML::Node continuation = node["continuation"]) {
+    const std::string key = Child(path, "continuation");
+    stage.continuation = reader.Doubles(continuation, key);
+    for (size_t i = 0; i < stage.continuation.size(); ++i) {
+      const bool increasing = i == 0 || stage.continuation[i] > stage.continuation[i - 1];
+      if (!(stage.continuation[i] > 0.0) || !increasing) {
+        reader.Fail(continuation[i], Child(key, i), "segment lengths must be > 0 and increasing");
+      }
+    }
   }
   if (const YAML::Node loss = node["loss"]) {
     reader.CheckMap(loss, Child(path, "loss"), {"type", "scale"});

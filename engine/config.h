@@ -5,8 +5,8 @@
 //   experiments: [{name, file, inputs, outputs, interpolation, weights, initial_state,
 //                  degrees, window}]
 //   stages:      [{name, model, experiments, validation, outputs, parameters,
-//                  free_initial_states, loss, integration, normalize_by_length, global, local,
-//                  uncertainty}]
+//                  free_initial_states, loss, integration, normalize_by_length, continuation,
+//                  global, local, uncertainty}]
 //   fusion:      inverse_variance | mean
 //   final_validation: {experiments, outputs, model}
 //
@@ -39,6 +39,9 @@ struct StageConfig {
   std::vector<ParameterSpec> parameters;
   OutputErrorOptions problem;
   ExperimentOptions experiment;  // compared outputs, step bound, length normalisation
+  // Segment lengths (s, increasing) the stage is solved with first, each phase starting the
+  // next; empty: the stage is solved once on its experiments as configured.
+  std::vector<double> continuation;
 };
 
 // How a shared parameter's stage estimates become its final value.

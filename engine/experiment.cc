@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include "engine/record_start.h"
 
 namespace vesselid {
 namespace {
@@ -161,23 +164,36 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
     e.input_cache[(3 * steps) * nu + i] = right.back();
   }
 
-  // Initial state.
+  // Initial state: every mapped output's value (linear interpolation) and rate at t0; the
+  // same-named outputs as defaults, the model's guess over them for start values, given
+  // values over both.
+  const size_t ny = info.outputs.size();
+  std::vector<double> y0(ny, std::numeric_limits<double>::quiet_NaN()), ydot0 = y0;
+  for (const auto& [output, column_name] : spec.outputs) {
+    const int o = info.OutputIndex(output);
+    const int column = trajectory.Find(column_name);
+    if (o < 0 || column < 0) continue;
+    const Channel channel = ExtractChannel(trajectory, column);
+    if (channel.t.empty()) continue;
+    y0[o] = InterpolateAt(channel, Interpolation::kLinear, {t0})[0];
+    double value;
+    const bool angle = o < static_cast<int>(info.angle_outputs.size()) && info.angle_outputs[o];
+    ValueAndRateAt(channel, t0, options.rate_window, angle, &value, &ydot0[o]);
+  }
   e.initial_state.assign(info.states.size(), 0.0);
   for (size_t s = 0; s < info.states.size(); ++s) {
-    const std::string& state = info.states[s];
-    auto given = spec.initial_state.find(state);
-    if (given != spec.initial_state.end()) {
-      e.initial_state[s] = given->second;
-      continue;
-    }
-    auto mapped = spec.outputs.find(state);
-    if (info.OutputIndex(state) < 0 || mapped == spec.outputs.end()) continue;
-    int column = trajectory.Find(mapped->second);
-    if (column < 0) continue;
-    Channel channel = ExtractChannel(trajectory, column);
-    if (!channel.t.empty()) {
-      e.initial_state[s] = InterpolateAt(channel, Interpolation::kLinear, {t0})[0];
-    }
+    const int o = info.OutputIndex(info.states[s]);
+    if (o >= 0 && std::isfinite(y0[o])) e.initial_state[s] = y0[o];
+  }
+  e.initial_state_guess = e.initial_state;
+  if (options.state_guess) {
+    options.state_guess(y0.data(), ydot0.data(), e.initial_state_guess.data());
+  }
+  for (size_t s = 0; s < info.states.size(); ++s) {
+    auto given = spec.initial_state.find(info.states[s]);
+    if (given == spec.initial_state.end()) continue;
+    e.initial_state[s] = given->second;
+    e.initial_state_guess[s] = given->second;
   }
   *experiment = std::move(e);
   return true;

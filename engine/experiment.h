@@ -6,6 +6,7 @@
 // midpoint and end, so the simulation loop only reads an array.
 #pragma once
 
+#include <functional>
 #include <limits>
 #include <map>
 #include <string>
@@ -44,6 +45,7 @@ struct ExperimentSample {
 
 struct Experiment {
   std::string name;
+  std::string record;  // the configured experiment it comes from (a segment's whole record)
   int num_inputs = 0;
   std::vector<double> node_time;
   std::vector<int> node_substeps;      // steps from node k to k+1 (size nodes - 1)
@@ -54,21 +56,30 @@ struct Experiment {
   // zero-order-hold switch at a sample time acts from the next step on), then one row at the
   // last node: (3 * steps + 1) x num_inputs.
   std::vector<double> input_cache;
-  std::vector<double> initial_state;     // start values of the initial state
+  std::vector<double> initial_state;     // initial state where it is not estimated
+  std::vector<double> initial_state_guess;  // start values where it is (model's guess)
   std::vector<int> output_sample_count;  // per model output
 
   int num_nodes() const { return static_cast<int>(node_time.size()); }
   int num_samples() const { return static_cast<int>(samples.size()); }
 };
 
+// Start values of a model's states from its outputs measured at t0 and their rates (NaN where
+// not measured); x arrives holding the default start values (see BuildExperiment).
+using StateGuess = std::function<void(const double* y, const double* ydot, double* x)>;
+
 struct ExperimentOptions {
   std::vector<std::string> outputs;  // model outputs compared (empty: every mapped output)
   double max_step = 0.0;             // RK4 step bound; 0: median sample interval
   bool normalize_by_length = true;   // weights * 1/sqrt(samples): experiments weigh alike
+  StateGuess state_guess;            // optional (ModelHandle::GuessState)
+  double rate_window = 1.0;          // seconds of data behind each output rate at t0
 };
 
 // Builds the simulation grid, input cache and samples. Initial-state values come from
-// spec.initial_state, else from the output of the same name measured at t0, else 0.
+// spec.initial_state, else from the output of the same name measured at t0, else 0; the start
+// values of estimated initial states also take options.state_guess (the model's guess of,
+// e.g., velocities from measured position rates) over the latter two.
 // Errors name the experiment and the missing column or key.
 bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
                      const ModelInfo& info, const ExperimentOptions& options,

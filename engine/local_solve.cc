@@ -30,6 +30,16 @@ std::string LocalSolveSummary::BriefReport() const {
   return text;
 }
 
+ceres::LinearSolverType AutomaticLinearSolver(const OutputErrorProblem& problem) {
+  constexpr int kDenseLimit = 60;  // free unknowns a dense QR handles in negligible time
+  int per_experiment = 0;
+  for (const Variable& v : problem.variables()) {
+    if (v.free && v.experiment >= 0) ++per_experiment;
+  }
+  return per_experiment > 0 && problem.num_free() > kDenseLimit ? ceres::SPARSE_NORMAL_CHOLESKY
+                                                                 : ceres::DENSE_QR;
+}
+
 bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem,
                    LocalSolveSummary* summary) {
   *summary = LocalSolveSummary();
@@ -40,7 +50,7 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   }
   ceres::Solver::Options ceres_options;
   ceres_options.trust_region_strategy_type = options.trust_region;
-  ceres_options.linear_solver_type = options.linear_solver;
+  ceres_options.linear_solver_type = options.linear_solver.value_or(AutomaticLinearSolver(*problem));
   ceres_options.max_num_iterations = options.max_iterations;
   ceres_options.function_tolerance = options.function_tolerance;
   ceres_options.gradient_tolerance = options.gradient_tolerance;

@@ -1,6 +1,7 @@
 // Local refinement of an output-error problem with Ceres' trust-region solver.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "ceres/ceres.h"
@@ -11,9 +12,8 @@ namespace vesselid {
 struct LocalSolveOptions {
   // Trust-region strategy: levenberg_marquardt or dogleg.
   ceres::TrustRegionStrategyType trust_region = ceres::LEVENBERG_MARQUARDT;
-  // Linear solver: dense_qr for one experiment; sparse_schur / sparse_normal_cholesky
-  // (SuiteSparse) when many experiments carry their own blocks.
-  ceres::LinearSolverType linear_solver = ceres::DENSE_QR;
+  // Linear solver; unset: AutomaticLinearSolver below.
+  std::optional<ceres::LinearSolverType> linear_solver;
   int max_iterations = 200;
   double function_tolerance = 1e-12;
   double gradient_tolerance = 1e-14;
@@ -38,6 +38,14 @@ struct LocalSolveSummary {
 
   std::string BriefReport() const;
 };
+
+// dense_qr while the problem is small or has no per-experiment unknowns; otherwise
+// sparse_normal_cholesky (SuiteSparse): per-experiment initial states and parameters make
+// J^T J an arrow matrix (a dense corner of shared parameters, a block diagonal of the
+// rest), which a sparse Cholesky factors in time linear in the number of experiments. Schur
+// elimination does not help here: every unknown is its own size-1 block, so the blocks of
+// one experiment share a residual block and cannot be eliminated together.
+ceres::LinearSolverType AutomaticLinearSolver(const OutputErrorProblem& problem);
 
 // Solves from the problem's current values; leaves the solution in them.
 bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem,

@@ -9,6 +9,11 @@
 //     void Output(const T* x, const double* u, const T* p, T* y) const;
 //   };
 //
+// Optional members, found by ModelAdapter when present:
+//
+//     std::vector<std::string> Admissibility(const double* p) const;   // physical conditions
+//     void GuessState(const double* y, const double* ydot, double* x) const;  // see ModelHandle
+//
 // xdot = f(x, u, p) is the right-hand side; it returns false for an inadmissible or
 // non-finite state so that a diverging simulation fails the evaluation instead of
 // poisoning the solver. Known constants are double members, cast with T(...).

@@ -38,6 +38,10 @@ class ModelHandle {
   // Physical admissibility of parameter values (empty when admissible, or when the model
   // states no conditions).
   virtual std::vector<std::string> Admissibility(const double* p) const = 0;
+
+  // Start values of the states from outputs measured at t0 and their rates (NaN where not
+  // measured); x holds the defaults and keeps what the model cannot derive.
+  virtual void GuessState(const double* y, const double* ydot, double* x) const = 0;
 };
 
 // Detects a model's optional `std::vector<std::string> Admissibility(const double*) const`.
@@ -47,6 +51,14 @@ template <class Model>
 struct HasAdmissibility<
     Model, std::void_t<decltype(std::declval<const Model&>().Admissibility(nullptr))>>
     : std::true_type {};
+
+// Detects a model's optional `void GuessState(const double* y, const double* ydot, double* x)
+// const`.
+template <class Model, class = void>
+struct HasGuessState : std::false_type {};
+template <class Model>
+struct HasGuessState<Model, std::void_t<decltype(std::declval<const Model&>().GuessState(
+                                nullptr, nullptr, nullptr))>> : std::true_type {};
 
 template <class Model>
 class ModelAdapter final : public ModelHandle {
@@ -88,6 +100,10 @@ class ModelAdapter final : public ModelHandle {
     } else {
       return {};
     }
+  }
+
+  void GuessState(const double* y, const double* ydot, double* x) const override {
+    if constexpr (HasGuessState<Model>::value) model_.GuessState(y, ydot, x);
   }
 
   const Model& model() const { return model_; }

@@ -119,7 +119,9 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
       v.experiment = e;
       v.role = state_free[s] ? ParameterRole::kPerExperiment : ParameterRole::kFixed;
       v.free = state_free[s];
-      p->block_of_[e].push_back(add_variable(v, experiment.initial_state[s]));
+      const double start =
+          state_free[s] ? experiment.initial_state_guess[s] : experiment.initial_state[s];
+      p->block_of_[e].push_back(add_variable(v, start));
     }
   }
 

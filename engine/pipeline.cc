@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace vesselid {
@@ -63,7 +64,7 @@ bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
                      const std::vector<double>& values, TrajectoryCache* cache,
                      std::vector<ExperimentFit>* fits, std::string* error) {
   std::vector<Experiment> experiments;
-  if (!PrepareExperiments(config, names, model.info(), options, cache, &experiments, error)) {
+  if (!PrepareExperiments(config, names, model, options, cache, &experiments, error)) {
     return false;
   }
   std::vector<ParameterSpec> fixed;
@@ -196,9 +197,14 @@ void FuseEstimates(const std::vector<double>& values, const std::vector<double>&
 }
 
 bool PrepareExperiments(const RunConfig& config, const std::vector<std::string>& names,
-                        const ModelInfo& info, const ExperimentOptions& options,
+                        const ModelHandle& model, const ExperimentOptions& stage_options,
                         TrajectoryCache* cache, std::vector<Experiment>* experiments,
-                        std::string* error) {
+                        std::string* error, double segment_length) {
+  const ModelInfo& info = model.info();
+  ExperimentOptions options = stage_options;
+  options.state_guess = [&model](const double* y, const double* ydot, double* x) {
+    model.GuessState(y, ydot, x);
+  };
   experiments->clear();
   for (const std::string& name : names) {
     const ExperimentSpec* spec = config.FindExperiment(name);
@@ -209,27 +215,116 @@ bool PrepareExperiments(const RunConfig& config, const std::vector<std::string>&
       cached = cache->emplace(name, std::move(trajectory)).first;
     }
     const Trajectory& data = cached->second;
-    if (spec->segment_length <= 0.0) {
+    double length = spec->segment_length;
+    if (segment_length > 0.0) length = length > 0.0 ? std::min(length, segment_length) : segment_length;
+    if (length <= 0.0) {
       Experiment experiment;
       if (!BuildExperiment(*spec, data, info, options, &experiment, error)) return false;
+      experiment.record = name;
       experiments->push_back(std::move(experiment));
       continue;
     }
     const double begin = std::max(spec->t_begin, data.t.front());
     const double end = std::min(spec->t_end, data.t.back());
     int k = 1;
-    for (double t0 = begin; t0 + 0.5 * spec->segment_length < end; t0 += spec->segment_length) {
+    for (double t0 = begin; t0 + 0.5 * length < end; t0 += length) {
       ExperimentSpec segment = *spec;
       segment.name = spec->name + "@" + std::to_string(k++);
       segment.t_begin = t0;
-      segment.t_end = std::min(end, t0 + spec->segment_length);
+      segment.t_end = std::min(end, t0 + length);
       Experiment experiment;
       if (!BuildExperiment(segment, data, info, options, &experiment, error)) return false;
+      experiment.record = name;
       experiments->push_back(std::move(experiment));
     }
   }
   return true;
 }
+
+namespace {
+
+std::string FormatSeconds(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g s", seconds);
+  return text;
+}
+
+// An estimated initial state, keyed by record and start time, handed between phases.
+struct StateAt {
+  std::string record;
+  double t0;
+  std::vector<double> state;
+};
+
+// Start values of the next phase: estimated parameters (within their bounds) and the initial
+// states of segments that begin where a segment of the previous phase began.
+void CarryForward(const OutputErrorProblem& solved, std::vector<ParameterSpec>* specs,
+                  std::vector<StateAt>* states) {
+  const std::vector<double> values = solved.ParametersOf(0);
+  for (size_t i = 0; i < specs->size(); ++i) {
+    ParameterSpec& spec = (*specs)[i];
+    if (IsEstimatedOnce(spec.role)) spec.start = std::clamp(values[i], spec.lower, spec.upper);
+  }
+  states->clear();
+  for (int e = 0; e < static_cast<int>(solved.experiments().size()); ++e) {
+    const Experiment& experiment = solved.experiments()[e];
+    states->push_back({experiment.record, experiment.node_time.front(), solved.InitialStateOf(e)});
+  }
+}
+
+void StartFrom(const std::vector<StateAt>& states, std::vector<Experiment>* experiments) {
+  constexpr double kTimeTolerance = 1e-6;
+  for (Experiment& experiment : *experiments) {
+    for (const StateAt& s : states) {
+      if (s.record == experiment.record &&
+          std::abs(s.t0 - experiment.node_time.front()) < kTimeTolerance) {
+        experiment.initial_state_guess = s.state;
+      }
+    }
+  }
+}
+
+// Continuation phases of a stage: the problem solved with every training record cut into the
+// stage's shorter segments, shortest first, each phase from the previous one's solution. A
+// start far from the optimum cannot wrap a heading or lose a circling vessel's phase over a
+// few seconds, so the short horizons lead the long one into its basin. The first phase takes
+// the stage's global start; none reports uncertainty.
+bool RunContinuation(const RunConfig& config, const StageConfig& stage, const ModelHandle& model,
+                     TrajectoryCache* cache, std::vector<ParameterSpec>* specs,
+                     std::vector<StateAt>* states, std::vector<std::string>* notes,
+                     std::string* error) {
+  for (size_t phase = 0; phase < stage.continuation.size(); ++phase) {
+    const double length = stage.continuation[phase];
+    std::vector<Experiment> experiments;
+    if (!PrepareExperiments(config, stage.experiments, model, stage.experiment, cache,
+                            &experiments, error, length)) {
+      return false;
+    }
+    StartFrom(*states, &experiments);
+    std::unique_ptr<OutputErrorProblem> problem = OutputErrorProblem::Create(
+        &model, std::move(experiments), *specs, stage.problem, error);
+    if (problem == nullptr) return false;
+    StageOptions options = stage.options;
+    options.use_global_start = options.use_global_start && phase == 0;
+    options.compute_uncertainty = false;
+    StageSummary summary;
+    if (!RunStage(options, problem.get(), &summary)) {
+      *error = "continuation with " + FormatSeconds(length) + " segments: " + summary.message;
+      return false;
+    }
+    const LocalSolveSummary& local = summary.local();
+    char text[256];
+    std::snprintf(text, sizeof(text),
+                  "continuation: %s segments, cost %.6e -> %.6e after %d iterations, %.3f s",
+                  FormatSeconds(length).c_str(), local.initial_cost, local.final_cost,
+                  local.iterations, summary.time_seconds);
+    notes->push_back(text);
+    CarryForward(*problem, specs, states);
+  }
+  return true;
+}
+
+}  // namespace
 
 bool RunIdentification(const RunConfig& config, RunResult* result, std::string* error,
                        const StageObserver& observer) {
@@ -247,17 +342,39 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     const ModelHandle& model = stage.model ? *stage.model : *config.model;
     std::vector<ParameterSpec> specs;
     if (!ResolveParameters(stage, model.info(), ledger, &specs, error)) return fail(*error);
+    const std::vector<ParameterSpec> configured = specs;
+    std::vector<StateAt> states;
+    std::vector<std::string> continuation_notes;
+    const auto stage_start = std::chrono::steady_clock::now();
+    if (!RunContinuation(config, stage, model, &cache, &specs, &states, &continuation_notes,
+                         error)) {
+      return fail(*error);
+    }
     std::vector<Experiment> experiments;
-    if (!PrepareExperiments(config, stage.experiments, model.info(), stage.experiment, &cache,
+    if (!PrepareExperiments(config, stage.experiments, model, stage.experiment, &cache,
                             &experiments, error)) {
       return fail(*error);
     }
+    StartFrom(states, &experiments);
     std::unique_ptr<OutputErrorProblem> problem = OutputErrorProblem::Create(
         &model, std::move(experiments), specs, stage.problem, error);
     if (problem == nullptr) return fail(*error);
-    const std::vector<double> starts = problem->Values();
+    // Reported starts are the configured ones, not those continuation handed on.
+    std::vector<double> starts = problem->Values();
+    for (size_t i = 0; i < starts.size(); ++i) {
+      const Variable& v = problem->variables()[i];
+      if (v.kind == Variable::Kind::kParameter && v.experiment < 0) {
+        starts[i] = configured[v.index].start;
+      }
+    }
+    StageOptions options = stage.options;
+    options.use_global_start = options.use_global_start && stage.continuation.empty();
     StageSummary summary;
-    if (!RunStage(stage.options, problem.get(), &summary)) return fail(summary.message);
+    if (!RunStage(options, problem.get(), &summary)) return fail(summary.message);
+    summary.notes.insert(summary.notes.begin(), continuation_notes.begin(),
+                         continuation_notes.end());
+    summary.time_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start).count();
     StageResult stage_result = Collect(*problem, starts, std::move(summary));
     const std::vector<double> values = problem->ParametersOf(0);
     stage_result.admissibility = model.Admissibility(values.data());

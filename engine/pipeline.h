@@ -72,11 +72,14 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
 // Recorded data by experiment, so that stages sharing an experiment read it once.
 using TrajectoryCache = std::map<std::string, Trajectory>;
 
-// Reads and prepares experiments for a model (used by RunIdentification and by tools).
+// Reads and prepares experiments for a model (used by RunIdentification and by tools); the
+// model guesses initial states from the data (ModelHandle::GuessState). segment_length > 0
+// cuts every record into segments no longer than that (continuation phases); 0 keeps each
+// experiment's own segmentation.
 bool PrepareExperiments(const RunConfig& config, const std::vector<std::string>& names,
-                        const ModelInfo& info, const ExperimentOptions& options,
+                        const ModelHandle& model, const ExperimentOptions& options,
                         TrajectoryCache* cache, std::vector<Experiment>* experiments,
-                        std::string* error);
+                        std::string* error, double segment_length = 0.0);
 
 // Fuses stage estimates (value, standard error) of one shared parameter. Inverse-variance
 // weighting needs every standard error; without them it falls back to the mean and says so

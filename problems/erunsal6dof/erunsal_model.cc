@@ -1,6 +1,9 @@
 #include "problems/erunsal6dof/erunsal_model.h"
 
+#include <cmath>
+
 #include "Eigen/Dense"
+#include "Eigen/Geometry"
 
 namespace vesselid::erunsal6dof {
 
@@ -32,6 +35,33 @@ std::vector<double> ReferenceParameters() {
           -5.5,    -0.01,   -0.30,   -5.6128, -3.5059, -20.0,   -0.08,   -1.5,
           -0.1039, -0.0001, -1.0005, -2.3136, -3.9310, -30.0,   -0.05,   -1.0,
           -0.2605, 0.6487,  10.2,    0.10,    9.8,     -0.10};
+}
+
+void Model::GuessState(const double* y, const double* ydot, double* x) const {
+  auto rate = [&](int i) { return active[i] && std::isfinite(ydot[i]) ? ydot[i] : 0.0; };
+  auto known = [&](int first) {
+    return std::isfinite(ydot[first]) || std::isfinite(ydot[first + 1]) ||
+           std::isfinite(ydot[first + 2]);
+  };
+  const double phi = x[3], theta = x[4], psi = x[5];
+  const Eigen::Matrix3d R = (Eigen::AngleAxisd(psi, Eigen::Vector3d::UnitZ()) *
+                             Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitY()) *
+                             Eigen::AngleAxisd(phi, Eigen::Vector3d::UnitX()))
+                                .toRotationMatrix();
+  double nu[6];
+  const Eigen::Vector3d linear = R.transpose() * Eigen::Vector3d(rate(0), rate(1), rate(2));
+  const double phi_dot = rate(3), theta_dot = rate(4), psi_dot = rate(5);
+  const double angular[3] = {phi_dot - std::sin(theta) * psi_dot,
+                             std::cos(phi) * theta_dot + std::sin(phi) * std::cos(theta) * psi_dot,
+                             -std::sin(phi) * theta_dot + std::cos(phi) * std::cos(theta) * psi_dot};
+  for (int i = 0; i < 3; ++i) {
+    nu[i] = linear[i];
+    nu[3 + i] = angular[i];
+  }
+  for (int i = 0; i < 6; ++i) {
+    const bool derivable = known(i < 3 ? 0 : 3);
+    if (active[i] && derivable && std::isnan(y[6 + i])) x[6 + i] = nu[i];
+  }
 }
 
 ModelInfo Model::Info() const {

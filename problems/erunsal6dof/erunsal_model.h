@@ -72,6 +72,11 @@ struct Model {
   // part of the linear damping positive semi-definite. Empty when admissible.
   std::vector<std::string> Admissibility(const double* p) const;
 
+  // Start values of unmeasured body velocities from the measured position and Euler-angle
+  // rates: [u v w] = R(phi, theta, psi)^T [x' y' z'], [p q r] = T(phi, theta)^-1 [phi' theta'
+  // psi']; an unmeasured rate counts as zero, inactive DOFs stay zero.
+  void GuessState(const double* y, const double* ydot, double* x) const;
+
   template <class T>
   bool operator()(const T* x, const double* u, const T* p, T* xdot) const;
 

@@ -10,9 +10,17 @@
 //               T1 and T2 are exchangeable; the engine reports T1 >= T2.
 #pragma once
 
+#include <cmath>
+
 #include "engine/model.h"
 
 namespace vesselid::nomoto {
+
+// Start value of the yaw rate r (state 1) from the measured heading rate when r itself is not
+// measured (first-order and Norrbin models; y = [psi, r]).
+inline void GuessYawRate(const double* y, const double* ydot, double* x) {
+  if (std::isnan(y[1]) && std::isfinite(ydot[0])) x[1] = ydot[0];
+}
 
 struct FirstOrder {
   static constexpr int kNumStates = 2;   // psi, r
@@ -31,6 +39,10 @@ struct FirstOrder {
     xdot[0] = x[1];
     xdot[1] = (p[1] * (u[0] + p[2]) - x[1]) / time_constant;
     return true;
+  }
+
+  void GuessState(const double* y, const double* ydot, double* x) const {
+    GuessYawRate(y, ydot, x);
   }
 
   template <class T>
@@ -64,6 +76,10 @@ struct Norrbin {
     xdot[0] = r;
     xdot[1] = (p[1] * (u[0] + p[3]) - r - p[2] * r * r * r) / time_constant;
     return true;
+  }
+
+  void GuessState(const double* y, const double* ydot, double* x) const {
+    GuessYawRate(y, ydot, x);
   }
 
   template <class T>
