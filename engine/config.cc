@@ -299,10 +299,6 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
 
 }  // namespace
 
-const char* FusionRuleToString(FusionRule rule) {
-  return rule == FusionRule::kMean ? "mean" : "inverse_variance";
-}
-
 const ExperimentSpec* RunConfig::FindExperiment(const std::string& name) const {
   for (const ExperimentSpec& e : experiments) {
     if (e.name == name) return &e;
@@ -357,12 +353,9 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
     }
     if (const YAML::Node fusion = root["fusion"]) {
       const std::string rule = reader.String(fusion, "fusion");
-      if (rule == "inverse_variance") {
-        result.fusion = FusionRule::kInverseVariance;
-      } else if (rule == "mean") {
-        result.fusion = FusionRule::kMean;
-      } else {
-        reader.Fail(fusion, "fusion", "unknown rule '" + rule + "' (inverse_variance, mean)");
+      if (!StringToFusionRule(rule, &result.fusion)) {
+        reader.Fail(fusion, "fusion",
+                    "unknown rule '" + rule + "' (inverse_variance, mean, information)");
       }
     }
     if (const YAML::Node final = root["final_validation"]) {

@@ -7,7 +7,7 @@
 //   stages:      [{name, model, experiments, validation, outputs, parameters,
 //                  free_initial_states, loss, integration, normalize_by_length, continuation,
 //                  global, local, uncertainty}]
-//   fusion:      inverse_variance | mean
+//   fusion:      inverse_variance | mean | information (fusion.h)
 //   final_validation: {experiments, outputs, model}
 //
 // A stage's `model` map overrides keys of the run's `model` map (e.g. active DOFs). A
@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "engine/experiment.h"
+#include "engine/fusion.h"
 #include "engine/model_registry.h"
 #include "engine/output_error_problem.h"
 #include "engine/parameter.h"
@@ -44,12 +45,6 @@ struct StageConfig {
   std::vector<double> continuation;
 };
 
-// How a shared parameter's stage estimates become its final value.
-enum class FusionRule {
-  kInverseVariance,  // sum(v_i / s_i^2) / sum(1 / s_i^2), standard error 1 / sqrt(sum 1/s_i^2)
-  kMean,             // seed 002: plain average, standard error sqrt(sum s_i^2) / n
-};
-const char* FusionRuleToString(FusionRule rule);
 
 // Held-out runs simulated with the final parameters after the last stage.
 struct FinalValidationConfig {

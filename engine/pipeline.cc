@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <tuple>
 
 namespace vesselid {
 namespace {
@@ -121,8 +122,65 @@ void Record(const StageResult& stage, Ledger* ledger) {
   }
 }
 
+// Information fusion of every parameter that is shared in its last estimating stage, with
+// each stage's covariance block of the shared parameters it determined. False if a stage has
+// no covariance or the fusion is singular.
+bool FuseSharedJointly(const Ledger& ledger, const std::vector<StageResult>& stages,
+                       std::map<std::string, std::pair<double, double>>* fused) {
+  std::vector<std::string> names;
+  for (const auto& [name, entries] : ledger.estimates) {
+    if (entries.back().role == ParameterRole::kShared) names.push_back(name);
+  }
+  if (names.empty()) return true;
+  auto position = [&](const std::string& name) {
+    return static_cast<int>(std::find(names.begin(), names.end(), name) - names.begin());
+  };
+  std::vector<SharedEstimate> estimates;
+  for (const StageResult& stage : stages) {
+    std::vector<const Estimate*> shared;
+    for (const Estimate& e : stage.estimates) {
+      if (e.kind == "parameter" && e.role == "shared" && e.experiment.empty() &&
+          position(e.name) < static_cast<int>(names.size()) && !e.undetermined &&
+          std::isfinite(e.std_error)) {
+        shared.push_back(&e);
+      }
+    }
+    if (shared.empty()) continue;
+    std::vector<int> row;  // each estimate's row in the stage's correlation matrix
+    for (const Estimate* e : shared) {
+      const auto& c = stage.correlation_names;
+      const auto found = std::find(c.begin(), c.end(), e->name);
+      if (found == c.end()) return false;
+      row.push_back(static_cast<int>(found - c.begin()));
+    }
+    SharedEstimate estimate;
+    const int m = static_cast<int>(shared.size());
+    estimate.value.resize(m);
+    estimate.covariance.resize(m, m);
+    for (int i = 0; i < m; ++i) {
+      estimate.parameters.push_back(position(shared[i]->name));
+      estimate.value[i] = shared[i]->value;
+      for (int j = 0; j < m; ++j) {
+        estimate.covariance(i, j) =
+            stage.correlation(row[i], row[j]) * shared[i]->std_error * shared[j]->std_error;
+      }
+    }
+    estimates.push_back(std::move(estimate));
+  }
+  Eigen::VectorXd value;
+  Eigen::MatrixXd covariance;
+  if (!FuseJointly(static_cast<int>(names.size()), estimates, &value, &covariance)) return false;
+  for (size_t i = 0; i < names.size(); ++i) {
+    (*fused)[names[i]] = {value[i], std::sqrt(covariance(i, i))};
+  }
+  return true;
+}
+
 std::vector<FinalParameter> Finalise(const ModelInfo& info, const Ledger& ledger,
                                      const std::vector<StageResult>& stages, FusionRule rule) {
+  std::map<std::string, std::pair<double, double>> joint;
+  const bool joint_ok =
+      rule == FusionRule::kInformation && FuseSharedJointly(ledger, stages, &joint);
   std::vector<FinalParameter> parameters;
   for (size_t i = 0; i < info.parameters.size(); ++i) {
     FinalParameter f;
@@ -154,7 +212,13 @@ std::vector<FinalParameter> Finalise(const ModelInfo& info, const Ledger& ledger
         errors.push_back(e.std_error);
         f.stages.push_back(e.stage);
       }
-      FuseEstimates(values, errors, rule, &f.value, &f.std_error, &f.rule);
+      if (joint_ok) {
+        std::tie(f.value, f.std_error) = joint.at(f.name);
+        f.rule = "information";
+      } else {
+        FuseEstimates(values, errors, rule, &f.value, &f.std_error, &f.rule);
+        if (rule == FusionRule::kInformation) f.rule += " (information fusion singular)";
+      }
     } else {
       f.value = last.value;
       f.std_error = last.std_error;
@@ -168,33 +232,6 @@ std::vector<FinalParameter> Finalise(const ModelInfo& info, const Ledger& ledger
 }
 
 }  // namespace
-
-void FuseEstimates(const std::vector<double>& values, const std::vector<double>& std_errors,
-                   FusionRule rule, double* value, double* std_error, std::string* rule_used) {
-  const size_t n = values.size();
-  bool all_known = true;
-  for (double s : std_errors) all_known = all_known && std::isfinite(s) && s > 0;
-  if (rule == FusionRule::kInverseVariance && all_known) {
-    double weights = 0.0, sum = 0.0;
-    for (size_t i = 0; i < n; ++i) {
-      const double w = 1.0 / (std_errors[i] * std_errors[i]);
-      weights += w;
-      sum += w * values[i];
-    }
-    *value = sum / weights;
-    *std_error = 1.0 / std::sqrt(weights);
-    *rule_used = "inverse_variance";
-    return;
-  }
-  double sum = 0.0, variance = 0.0;
-  for (size_t i = 0; i < n; ++i) {
-    sum += values[i];
-    variance += std_errors[i] * std_errors[i];
-  }
-  *value = sum / n;
-  *std_error = std::sqrt(variance) / n;  // NaN if any stage left it undetermined
-  *rule_used = rule == FusionRule::kMean ? "mean" : "mean (a stage has no standard error)";
-}
 
 bool PrepareExperiments(const RunConfig& config, const std::vector<std::string>& names,
                         const ModelHandle& model, const ExperimentOptions& stage_options,
@@ -272,14 +309,33 @@ void CarryForward(const OutputErrorProblem& solved, std::vector<ParameterSpec>* 
   }
 }
 
-void StartFrom(const std::vector<StateAt>& states, std::vector<Experiment>* experiments) {
+bool FindState(const std::vector<StateAt>& states, const Experiment& experiment,
+               std::vector<double>* state) {
   constexpr double kTimeTolerance = 1e-6;
+  for (const StateAt& s : states) {
+    if (s.record == experiment.record &&
+        std::abs(s.t0 - experiment.node_time.front()) < kTimeTolerance) {
+      *state = s.state;
+      return true;
+    }
+  }
+  return false;
+}
+
+// Start values of the experiments' initial states from `states` where a segment matches.
+void StartFrom(const std::vector<StateAt>& states, std::vector<Experiment>* experiments) {
   for (Experiment& experiment : *experiments) {
-    for (const StateAt& s : states) {
-      if (s.record == experiment.record &&
-          std::abs(s.t0 - experiment.node_time.front()) < kTimeTolerance) {
-        experiment.initial_state_guess = s.state;
-      }
+    FindState(states, experiment, &experiment.initial_state_guess);
+  }
+}
+
+// The same on a created problem: its free initial states take the matching carried values.
+void SetCarriedStates(const std::vector<StateAt>& states, OutputErrorProblem* problem) {
+  for (const Variable& v : problem->variables()) {
+    std::vector<double> state;
+    if (v.kind == Variable::Kind::kInitialState && v.free &&
+        FindState(states, problem->experiments()[v.experiment], &state)) {
+      v.set_value(state[v.index]);
     }
   }
 }
@@ -355,10 +411,17 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
                             &experiments, error)) {
       return fail(*error);
     }
-    StartFrom(states, &experiments);
     std::unique_ptr<OutputErrorProblem> problem = OutputErrorProblem::Create(
         &model, std::move(experiments), specs, stage.problem, error);
     if (problem == nullptr) return fail(*error);
+    // After continuation the stage is refined twice: from the initial states the short
+    // segments estimated, and from the data's guess (the latter sometimes finds the lower
+    // of two nearby minima; both cost one refinement).
+    std::vector<std::vector<double>> extra_starts;
+    if (!states.empty()) {
+      extra_starts.push_back(problem->Values());
+      SetCarriedStates(states, problem.get());
+    }
     // Reported starts are the configured ones, not those continuation handed on.
     std::vector<double> starts = problem->Values();
     for (size_t i = 0; i < starts.size(); ++i) {
@@ -370,7 +433,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     StageOptions options = stage.options;
     options.use_global_start = options.use_global_start && stage.continuation.empty();
     StageSummary summary;
-    if (!RunStage(options, problem.get(), &summary)) return fail(summary.message);
+    if (!RunStage(options, problem.get(), &summary, extra_starts)) return fail(summary.message);
     summary.notes.insert(summary.notes.begin(), continuation_notes.begin(),
                          continuation_notes.end());
     summary.time_seconds =

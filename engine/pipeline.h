@@ -81,10 +81,4 @@ bool PrepareExperiments(const RunConfig& config, const std::vector<std::string>&
                         TrajectoryCache* cache, std::vector<Experiment>* experiments,
                         std::string* error, double segment_length = 0.0);
 
-// Fuses stage estimates (value, standard error) of one shared parameter. Inverse-variance
-// weighting needs every standard error; without them it falls back to the mean and says so
-// in `rule`.
-void FuseEstimates(const std::vector<double>& values, const std::vector<double>& std_errors,
-                   FusionRule rule, double* value, double* std_error, std::string* rule_used);
-
 }  // namespace vesselid

@@ -110,13 +110,15 @@ std::string StageSummary::BriefReport() const {
   return text;
 }
 
-bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSummary* summary) {
+bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSummary* summary,
+              const std::vector<std::vector<double>>& extra_starts) {
   *summary = StageSummary();
   summary->name = options.name;
   const auto start_time = std::chrono::steady_clock::now();
   if (!options.IsValid(&summary->message)) return false;
 
   std::vector<std::vector<double>> starts{problem->Values()};
+  starts.insert(starts.end(), extra_starts.begin(), extra_starts.end());
   if (options.use_global_start) {
     if (!RunGlobalStart(options.global, problem, &summary->global)) {
       summary->message = "global start: " + summary->global.message;

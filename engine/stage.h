@@ -32,7 +32,8 @@ struct StageSummary {
   bool usable = false;
   std::string message;
   GlobalStartSummary global;
-  std::vector<LocalSolveSummary> refinements;  // [0]: from the start point; then candidates
+  // [0]: from the start point; then extra starts, then global candidates.
+  std::vector<LocalSolveSummary> refinements;
   int chosen = -1;                             // index into refinements
   Uncertainty uncertainty;
   std::vector<ExperimentFit> fits;
@@ -43,6 +44,9 @@ struct StageSummary {
   std::string BriefReport() const;
 };
 
-bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSummary* summary);
+// Refines the problem's current values, then each of `extra_starts` (full value vectors, as
+// OutputErrorProblem::Values) and the global candidates; the lowest final cost wins.
+bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSummary* summary,
+              const std::vector<std::vector<double>>& extra_starts = {});
 
 }  // namespace vesselid
