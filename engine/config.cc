@@ -359,7 +359,8 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
       }
     }
     if (const YAML::Node final = root["final_validation"]) {
-      reader.CheckMap(final, "final_validation", {"experiments", "outputs", "model"});
+      reader.CheckMap(final, "final_validation",
+                      {"experiments", "outputs", "model", "free_initial_states"});
       FinalValidationConfig& v = result.final_validation;
       result.has_final_validation = true;
       if (final["model"]) {
@@ -378,6 +379,12 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
         v.experiment.outputs = reader.Strings(final["outputs"], "final_validation.outputs");
         CheckNames(reader, final["outputs"], "final_validation.outputs", v.experiment.outputs,
                    final_info.outputs, "output", final_info);
+      }
+      if (final["free_initial_states"]) {
+        const std::string key = "final_validation.free_initial_states";
+        v.free_initial_states = reader.Strings(final["free_initial_states"], key);
+        CheckNames(reader, final["free_initial_states"], key, v.free_initial_states,
+                   final_info.states, "state", final_info);
       }
     }
     *config = std::move(result);

@@ -8,7 +8,7 @@
 //                  free_initial_states, loss, integration, normalize_by_length, continuation,
 //                  global, local, uncertainty}]
 //   fusion:      inverse_variance | mean | information (fusion.h)
-//   final_validation: {experiments, outputs, model}
+//   final_validation: {experiments, outputs, model, free_initial_states}
 //
 // A stage's `model` map overrides keys of the run's `model` map (e.g. active DOFs). A
 // parameter without `start` starts from its latest estimate in an earlier stage (else the
@@ -36,7 +36,8 @@ struct StageConfig {
   // The stage's own restriction of the model (e.g. active DOFs); null: the run's model.
   std::shared_ptr<const ModelHandle> model;
   std::vector<std::string> experiments;  // names from RunConfig::experiments
-  std::vector<std::string> validation;   // held-out experiments simulated after the stage
+  // Held-out experiments simulated after the stage (its free initial states estimated first).
+  std::vector<std::string> validation;
   std::vector<ParameterSpec> parameters;
   OutputErrorOptions problem;
   ExperimentOptions experiment;  // compared outputs, step bound, length normalisation
@@ -49,6 +50,7 @@ struct StageConfig {
 // Held-out runs simulated with the final parameters after the last stage.
 struct FinalValidationConfig {
   std::vector<std::string> experiments;
+  std::vector<std::string> free_initial_states;  // estimated with the final parameters held
   std::shared_ptr<const ModelHandle> model;  // null: the run's model
   ExperimentOptions experiment;
 };

@@ -59,9 +59,13 @@ bool ResolveParameters(const StageConfig& stage, const ModelInfo& info, const Le
   return true;
 }
 
-// Simulates `names` with every parameter fixed at `values`; initial states from the data.
+// Simulates `names` with every parameter fixed at `values`. Initial states come from the
+// data, except `free_states`, which are estimated first with the parameters held (a decay
+// test's unmeasured initial yaw rate, a segment's velocities), as a validation of the
+// parameters, not of a guessed start.
 bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
                      const std::vector<std::string>& names, const ExperimentOptions& options,
+                     const std::vector<std::string>& free_states, const LocalSolveOptions& local,
                      const std::vector<double>& values, TrajectoryCache* cache,
                      std::vector<ExperimentFit>* fits, std::string* error) {
   std::vector<Experiment> experiments;
@@ -76,8 +80,19 @@ bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
     spec.role = ParameterRole::kFixed;
     fixed.push_back(spec);
   }
-  auto problem = OutputErrorProblem::Create(&model, std::move(experiments), fixed, {}, error);
-  return problem != nullptr && EvaluateFit(*problem, fits, error);
+  OutputErrorOptions problem_options;
+  problem_options.free_initial_states = free_states;
+  auto problem =
+      OutputErrorProblem::Create(&model, std::move(experiments), fixed, problem_options, error);
+  if (problem == nullptr) return false;
+  if (problem->num_free() > 0) {
+    LocalSolveSummary summary;
+    if (!RunLocalSolve(local, problem.get(), &summary)) {
+      *error = "initial-state estimate: " + summary.message;
+      return false;
+    }
+  }
+  return EvaluateFit(*problem, fits, error);
 }
 
 StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>& starts,
@@ -442,7 +457,8 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     const std::vector<double> values = problem->ParametersOf(0);
     stage_result.admissibility = model.Admissibility(values.data());
     if (!stage.validation.empty() &&
-        !SimulateHeldOut(config, model, stage.validation, stage.experiment, values, &cache,
+        !SimulateHeldOut(config, model, stage.validation, stage.experiment,
+                         stage.problem.free_initial_states, stage.options.local, values, &cache,
                          &stage_result.validation, error)) {
       return fail("validation: " + *error);
     }
@@ -458,8 +474,8 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
   if (config.has_final_validation) {
     const FinalValidationConfig& v = config.final_validation;
     const ModelHandle& model = v.model ? *v.model : *config.model;
-    if (!SimulateHeldOut(config, model, v.experiments, v.experiment, final_values, &cache,
-                         &run.final_validation, error)) {
+    if (!SimulateHeldOut(config, model, v.experiments, v.experiment, v.free_initial_states, {},
+                         final_values, &cache, &run.final_validation, error)) {
       *error = "final validation: " + *error;
       return false;
     }
