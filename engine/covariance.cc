@@ -11,7 +11,11 @@ namespace {
 
 // Singular values below this fraction of the largest are treated as zero.
 constexpr double kRankTolerance = 1e-8;
-
+// A variable takes part in an undetermined direction when its component in the unit
+// direction, in physical units or in relative changes (dp / |p|), is at least this large;
+// the two views catch both large parameters and small ones that scale along (a thruster
+// offset in the force-scale direction).
+constexpr double kInvolvedComponent = 0.01;
 
 // Dense Jacobian of the free variables, columns normalised; `norms` gets the column norms.
 bool NormalisedJacobian(OutputErrorProblem* problem, const std::vector<int>& variables,
@@ -48,12 +52,23 @@ bool RankDeficientCovariance(OutputErrorProblem* problem, Uncertainty* u, Eigen:
       pseudo += v.col(k) * v.col(k).transpose() / (sigma[k] * sigma[k]);
       continue;
     }
+    // The null vector in physical units (dp = dtheta * scale) and as relative changes.
+    Eigen::VectorXd physical(n), relative(n);
+    for (int i = 0; i < n; ++i) {
+      const Variable& var = problem->variables()[u->variables[i]];
+      physical[i] = v(i, k) / norms[i] * var.scale;
+      const double size = std::abs(var.value());
+      relative[i] = physical[i] / (size > 1e-3 * var.scale ? size : var.scale);
+    }
+    physical.normalize();
+    relative.normalize();
     std::string text;
     for (int i = 0; i < n; ++i) {
-      if (std::abs(v(i, k)) < 0.05) continue;
+      if (std::abs(physical[i]) < kInvolvedComponent && std::abs(relative[i]) < kInvolvedComponent)
+        continue;
       involved[i] = true;
       char term[160];
-      std::snprintf(term, sizeof(term), "%s%+.2f %s", text.empty() ? "" : " ", v(i, k),
+      std::snprintf(term, sizeof(term), "%s%+.2g %s", text.empty() ? "" : " ", physical[i],
                     problem->variables()[u->variables[i]].name.c_str());
       text += term;
     }

@@ -20,8 +20,9 @@ struct Uncertainty {
   Eigen::MatrixXd correlation;
   std::vector<double> std_errors;  // sqrt of the diagonal
   double residual_variance = 0.0;  // s^2
-  // Directions in normalised parameter space the data do not determine (rank deficiency),
-  // each as "0.71 T1 - 0.71 T2", and the variables taking part in any of them. Their
+  // Directions the data do not determine (rank deficiency), each as the unit direction in
+  // physical units along which the fit does not change ("+0.71 Iz +0.71 Nrdot"), and the
+  // variables taking part in any of them. Their
   // standard errors are NaN; the others come from the pseudo-inverse, which is exact for
   // the determined subspace.
   std::vector<std::string> undetermined;

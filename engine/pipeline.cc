@@ -137,14 +137,16 @@ void Record(const StageResult& stage, Ledger* ledger) {
   }
 }
 
-// Information fusion of every parameter that is shared in its last estimating stage, with
-// each stage's covariance block of the shared parameters it determined. False if a stage has
-// no covariance or the fusion is singular.
+// Information fusion of every parameter that is shared in its last estimating stage and
+// determined by at least one stage, with each stage's covariance block of the shared
+// parameters it determined. False if a stage has no covariance or the fusion is singular.
 bool FuseSharedJointly(const Ledger& ledger, const std::vector<StageResult>& stages,
                        std::map<std::string, std::pair<double, double>>* fused) {
   std::vector<std::string> names;
   for (const auto& [name, entries] : ledger.estimates) {
-    if (entries.back().role == ParameterRole::kShared) names.push_back(name);
+    bool determined = false;
+    for (const Ledger::Entry& e : entries) determined |= std::isfinite(e.std_error);
+    if (entries.back().role == ParameterRole::kShared && determined) names.push_back(name);
   }
   if (names.empty()) return true;
   auto position = [&](const std::string& name) {
@@ -227,12 +229,12 @@ std::vector<FinalParameter> Finalise(const ModelInfo& info, const Ledger& ledger
         errors.push_back(e.std_error);
         f.stages.push_back(e.stage);
       }
-      if (joint_ok) {
+      if (joint_ok && joint.count(f.name) > 0) {
         std::tie(f.value, f.std_error) = joint.at(f.name);
         f.rule = "information";
       } else {
         FuseEstimates(values, errors, rule, &f.value, &f.std_error, &f.rule);
-        if (rule == FusionRule::kInformation) f.rule += " (information fusion singular)";
+        if (rule == FusionRule::kInformation && !joint_ok) f.rule += " (information singular)";
       }
     } else {
       f.value = last.value;
