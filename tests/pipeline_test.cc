@@ -126,6 +126,15 @@ TEST_F(PipelineTest, SharedParametersFuseByInverseVarianceOrMean) {
   EXPECT_GT(weighted.final_validation[0].channels[0].r2, 0.999);
 }
 
+// With one shared parameter, information fusion reduces to inverse-variance weighting.
+TEST_F(PipelineTest, InformationFusionOfOneParameterIsInverseVariance) {
+  RunResult weighted = Run(kTwoStages);
+  RunResult joint = Run(std::string(kTwoStages) + "fusion: information\n");
+  EXPECT_NEAR(Final(joint, "T").value, Final(weighted, "T").value, 1e-9);
+  EXPECT_NEAR(Final(joint, "T").std_error, Final(weighted, "T").std_error, 1e-9);
+  EXPECT_EQ(Final(joint, "T").rule, "information");
+}
+
 TEST_F(PipelineTest, UnlistedParametersAreHeldAtTheirLatestEstimate) {
   RunResult result = Run(R"(stages:
   - name: both
@@ -166,17 +175,6 @@ stages:
   ASSERT_TRUE(LoadRunConfig((dir_ / "run.yaml").string(), "", DefaultRegistry(), &config, &error));
   EXPECT_FALSE(RunIdentification(config, &result, &error));
   EXPECT_NE(error.find("stage 'second': parameter 'T': carried start"), std::string::npos) << error;
-}
-
-TEST(FuseEstimates, FallsBackToTheMeanWithoutStandardErrors) {
-  double value, std_error;
-  std::string rule;
-  FuseEstimates({1.0, 3.0}, {0.1, NAN}, FusionRule::kInverseVariance, &value, &std_error, &rule);
-  EXPECT_DOUBLE_EQ(value, 2.0);
-  EXPECT_TRUE(std::isnan(std_error));
-  EXPECT_EQ(rule, "mean (a stage has no standard error)");
-  FuseEstimates({1.0, 3.0}, {0.1, 0.3}, FusionRule::kInverseVariance, &value, &std_error, &rule);
-  EXPECT_NEAR(value, (1.0 / 0.01 + 3.0 / 0.09) / (1 / 0.01 + 1 / 0.09), 1e-12);
 }
 
 }  // namespace
