@@ -1,0 +1,89 @@
+// Benchmark: seed 002's hierarchy (configs/erunsal_hierarchy.yaml) on the simulated reference
+// campaign, from starts 30 % off. Reports the campaign simulation time, each stage's wall
+// time (continuation, global start, refinements, covariance, validation) and the whole run,
+// the problem sizes, and the peak resident memory.
+// Run: build/tests/benchmark_erunsal [config.yaml]
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <set>
+
+#include "engine/pipeline.h"
+#include "problems/registry.h"
+
+namespace vesselid {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+int Main(int argc, char** argv) {
+  const std::string path = argc > 1 ? argv[1]
+                                    : std::string(VESSELID_SOURCE_DIR) +
+                                          "/configs/erunsal_hierarchy.yaml";
+  const std::filesystem::path data =
+      std::filesystem::temp_directory_path() / "vesselid_benchmark_erunsal";
+  std::filesystem::create_directories(data);
+  const ModelRegistry registry = DefaultRegistry();
+  RunConfig config;
+  std::string error;
+  if (!LoadRunConfig(path, data.string(), registry, &config, &error)) {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return 1;
+  }
+  auto start = Clock::now();
+  if (!config.model_family->simulate(YamlReader(path), config.simulation, *config.model,
+                                     data.string(), &error)) {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return 1;
+  }
+  std::printf("campaign simulation: %.3f s (%zu experiments)\n", Seconds(start),
+              config.experiments.size());
+
+  Clock::time_point stage_start;
+  RunResult result;
+  start = Clock::now();
+  const bool ok = RunIdentification(config, &result, &error,
+                                    [&](const StageResult* finished, const std::string& next) {
+                                      if (!next.empty()) stage_start = Clock::now();
+                                      if (finished == nullptr) return;
+                                      const StageSummary& s = finished->summary;
+                                      std::set<std::string> experiments;
+                                      for (const Estimate& e : finished->estimates) {
+                                        if (!e.experiment.empty()) experiments.insert(e.experiment);
+                                      }
+                                      std::printf(
+                                          "stage %-8s %8.3f s wall  %3d iterations  cost %.4e  "
+                                          "%3zu experiments/segments  %4zu variables\n",
+                                          s.name.c_str(), Seconds(stage_start),
+                                          s.local().iterations, s.local().final_cost,
+                                          experiments.size(), finished->estimates.size());
+                                    });
+  const double total = Seconds(start);
+  std::filesystem::remove_all(data);
+  if (!ok) {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return 1;
+  }
+  std::printf("whole hierarchy: %.3f s (including final validation)\n", total);
+  double worst_r2 = 1.0;
+  for (const ExperimentFit& fit : result.final_validation) {
+    for (const ChannelMetrics& c : fit.channels) worst_r2 = std::min(worst_r2, c.r2);
+  }
+  std::printf("final validation: worst R^2 %.6f\n", worst_r2);
+  rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  std::printf("peak resident memory: %.1f MB\n", usage.ru_maxrss / 1024.0);
+  return 0;
+}
+
+}  // namespace
+}  // namespace vesselid
+
+int main(int argc, char** argv) { return vesselid::Main(argc, argv); }
