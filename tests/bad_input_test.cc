@@ -191,6 +191,25 @@ TEST_F(BadInput, UnknownInterpolation) {
       "config\\.yaml:6: experiments\\[0\\]\\.interpolation: unknown interpolation 'quintic'");
 }
 
+TEST_F(BadInput, ContinuationNotIncreasing) {
+  EditConfig("    free_initial_states: [psi]", "    free_initial_states: [psi]\n    continuation: [10, 5]");
+  ExpectRejected("config\\.yaml:13: stages\\[0\\]\\.continuation\\[1\\]: segment lengths must be > "
+                 "0 and increasing");
+}
+
+TEST_F(BadInput, UnknownFusionRule) {
+  WriteConfig(std::string(kGoodConfig) + "fusion: median\n");
+  ExpectRejected("config\\.yaml:13: fusion: unknown rule 'median' \\(inverse_variance, mean, "
+                 "information\\)");
+}
+
+TEST_F(BadInput, UnknownStateInFinalValidation) {
+  WriteConfig(std::string(kGoodConfig) +
+              "final_validation: {experiments: [run], free_initial_states: [heading]}\n");
+  ExpectRejected("config\\.yaml:13: final_validation\\.free_initial_states: unknown state "
+                 "'heading'");
+}
+
 TEST_F(BadInput, DivergentSimulationFailsCleanly) {
   // Norrbin with a negative cubic term grows without bound from this start.
   std::string text = kGoodConfig;
