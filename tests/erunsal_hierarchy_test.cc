@@ -5,49 +5,18 @@
 // random-motion runs (R^2 >= 0.99 for x, y, psi).
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <string>
 
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
 #include "problems/erunsal6dof/erunsal_model.h"
+#include "tests/shipped_config.h"
 
 namespace vesselid {
 namespace {
 
-namespace fs = std::filesystem;
 using nlohmann::json;
-
-// The run takes half a minute, so it is made once and checked by the functions below (one
-// test: CTest runs each test in its own process).
-struct HierarchyRun {
-  json results;
-  std::string report;
-};
-
-HierarchyRun SimulateAndIdentify() {
-  const std::string config = std::string(VESSELID_SOURCE_DIR) + "/configs/erunsal_hierarchy.yaml";
-  const fs::path out = fs::temp_directory_path() / "vesselid_erunsal_hierarchy_test";
-  fs::remove_all(out);
-  const std::string binary = VESSELID_BINARY;
-  const std::string simulate =
-      binary + " simulate " + config + " --out " + out.string() + " > /dev/null";
-  const std::string run = binary + " run " + config + " --data " + out.string() + " --out " +
-                          out.string() + " --quiet > /dev/null";
-  HierarchyRun result;
-  EXPECT_EQ(std::system(simulate.c_str()), 0) << simulate;
-  EXPECT_EQ(std::system(run.c_str()), 0) << run;
-  std::ifstream in(out / "results.json");
-  result.results = json::parse(in);
-  std::ifstream report(out / "report.txt");
-  result.report.assign(std::istreambuf_iterator<char>(report), std::istreambuf_iterator<char>());
-  fs::remove_all(out);
-  return result;
-}
 
 void RecoversEveryEstimatedParameterWithinThreeStandardErrors(const json& results) {
   const std::vector<std::string> names = erunsal6dof::ParameterNames();
@@ -114,7 +83,9 @@ void FinalParametersReproduceTheRandomMotionRuns(const json& results) {
 }
 
 TEST(ErunsalHierarchy, ShippedConfigEndToEnd) {
-  const HierarchyRun run = SimulateAndIdentify();
+  // The run takes half a minute: made once, checked in sections (CTest runs each test in its
+  // own process).
+  const testing::ShippedRun run = testing::SimulateAndRun("erunsal_hierarchy");
   {
     SCOPED_TRACE("parameters");
     RecoversEveryEstimatedParameterWithinThreeStandardErrors(run.results);

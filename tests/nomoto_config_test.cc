@@ -1,39 +1,19 @@
 // The shipped Nomoto configs end to end through the command line: simulate, run, and check
 // results.json against the truth and the reported uncertainty.
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <map>
 #include <string>
 
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
+#include "tests/shipped_config.h"
 
 namespace vesselid {
 namespace {
 
-namespace fs = std::filesystem;
 using nlohmann::json;
 
-// Simulates and identifies configs/<name>.yaml; returns results.json.
-json RunConfig(const std::string& name) {
-  const std::string config = std::string(VESSELID_SOURCE_DIR) + "/configs/" + name + ".yaml";
-  const fs::path out = fs::temp_directory_path() / ("vesselid_config_test_" + name);
-  fs::remove_all(out);
-  const std::string binary = VESSELID_BINARY;
-  const std::string simulate =
-      binary + " simulate " + config + " --out " + out.string() + " > /dev/null";
-  const std::string run = binary + " run " + config + " --data " + out.string() + " --out " +
-                          out.string() + " --quiet > /dev/null";
-  EXPECT_EQ(std::system(simulate.c_str()), 0) << simulate;
-  EXPECT_EQ(std::system(run.c_str()), 0) << run;
-  std::ifstream in(out / "results.json");
-  json results = json::parse(in);
-  EXPECT_TRUE(fs::exists(out / "report.txt"));
-  fs::remove_all(out);
-  return results;
-}
+json RunConfig(const std::string& name) { return testing::SimulateAndRun(name).results; }
 
 std::map<std::string, json> Estimates(const json& stage) {
   std::map<std::string, json> estimates;

@@ -1,0 +1,43 @@
+// Runs a shipped config end to end through the command line, as a user would:
+// `vesselid simulate configs/<name>.yaml`, then `vesselid run` on the simulated data.
+#pragma once
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "gtest/gtest.h"
+#include "nlohmann/json.hpp"
+
+namespace vesselid::testing {
+
+struct ShippedRun {
+  nlohmann::json results;  // results.json
+  std::string report;      // report.txt
+};
+
+inline ShippedRun SimulateAndRun(const std::string& name) {
+  namespace fs = std::filesystem;
+  const std::string config = std::string(VESSELID_SOURCE_DIR) + "/configs/" + name + ".yaml";
+  const fs::path out = fs::temp_directory_path() / ("vesselid_shipped_config_" + name);
+  fs::remove_all(out);
+  const std::string binary = VESSELID_BINARY;
+  const std::string simulate =
+      binary + " simulate " + config + " --out " + out.string() + " > /dev/null";
+  const std::string run = binary + " run " + config + " --data " + out.string() + " --out " +
+                          out.string() + " --quiet > /dev/null";
+  ShippedRun result;
+  EXPECT_EQ(std::system(simulate.c_str()), 0) << simulate;
+  EXPECT_EQ(std::system(run.c_str()), 0) << run;
+  std::ifstream in(out / "results.json");
+  result.results = nlohmann::json::parse(in);
+  std::ifstream report(out / "report.txt");
+  EXPECT_TRUE(report.good()) << "no report.txt";
+  result.report.assign(std::istreambuf_iterator<char>(report), std::istreambuf_iterator<char>());
+  fs::remove_all(out);
+  return result;
+}
+
+}  // namespace vesselid::testing
