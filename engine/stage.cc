@@ -42,6 +42,24 @@ void OrderExchangeable(OutputErrorProblem* problem, std::vector<std::string>* no
   }
 }
 
+// Free variables that end on a bound: their standard errors assume an interior optimum, so
+// the report says which bound is active.
+void NoteActiveBounds(const OutputErrorProblem& problem, std::vector<std::string>* notes) {
+  for (const Variable& v : problem.variables()) {
+    if (!v.free || !v.bounded()) continue;
+    const double tolerance = 1e-6 * (v.upper - v.lower);
+    const double value = v.value();
+    const bool at_lower = value - v.lower <= tolerance, at_upper = v.upper - value <= tolerance;
+    if (!at_lower && !at_upper) continue;
+    char text[256];
+    std::snprintf(text, sizeof(text),
+                  "%s is at its %s bound %g: the data pull it further; its standard error "
+                  "assumes an interior optimum",
+                  v.name.c_str(), at_lower ? "lower" : "upper", at_lower ? v.lower : v.upper);
+    notes->push_back(text);
+  }
+}
+
 // A model symmetric in (a, b) has zero gradient across a = b, so a local solve that reaches
 // the ridge stays there. If it ended on it, restart with the pair split by a factor of 1.5
 // either way of its geometric mean and keep what is better.
@@ -154,6 +172,7 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
   }
   problem->SetValues(best_values);
   OrderExchangeable(problem, &summary->notes);
+  NoteActiveBounds(*problem, &summary->notes);
 
   if (options.compute_uncertainty &&
       !ComputeUncertainty(problem, best_cost, &summary->uncertainty)) {

@@ -2,6 +2,8 @@
 // stage that leaves such a combination free reports it by name and gives its parameters no
 // standard error, instead of precise-looking numbers. The contrasting stage with the
 // combination anchored determines everything.
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -49,7 +51,9 @@ constexpr char kManoeuvring[] = R"(
 class Identifiability : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(fs::temp_directory_path() / "vesselid_identifiability_test");
+    // One folder per process: CTest runs these tests in parallel processes.
+    dir_ = new fs::path(fs::temp_directory_path() /
+                        ("vesselid_identifiability_test_" + std::to_string(getpid())));
     fs::remove_all(*dir_);
     fs::create_directories(*dir_);
     std::ofstream(*dir_ / "campaign.yaml") << kCampaign << "stages: [{parameters: {}}]\n";

@@ -135,6 +135,21 @@ TEST_F(PipelineTest, InformationFusionOfOneParameterIsInverseVariance) {
   EXPECT_EQ(Final(joint, "T").rule, "information");
 }
 
+// T is 2 s; a bound at 1.5 s stops it there, and the stage says so.
+TEST_F(PipelineTest, EstimateOnItsBoundIsReported) {
+  RunResult result = Run(R"(stages:
+  - name: bounded
+    experiments: [a]
+    free_initial_states: [psi]
+    parameters:
+      T: {start: 1.0, lower: 0.1, upper: 1.5}
+      K: {start: -0.1, lower: -1, upper: -0.001}
+)");
+  const std::vector<std::string>& notes = result.stages[0].summary.notes;
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_EQ(notes[0].rfind("T is at its upper bound 1.5", 0), 0u) << notes[0];
+}
+
 TEST_F(PipelineTest, UnlistedParametersAreHeldAtTheirLatestEstimate) {
   RunResult result = Run(R"(stages:
   - name: both
