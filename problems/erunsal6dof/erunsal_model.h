@@ -110,46 +110,64 @@ bool Model::operator()(const T* x, const double* u, const T* p, T* xdot) const {
   const T &uu = nu[0], &v = nu[1], &w = nu[2], &pr = nu[3], &q = nu[4], &r = nu[5];
   const T &phi = eta[3], &theta = eta[4], &psi = eta[5];
 
-  // Mass matrix (symmetric; stored dense).
-  T M[6][6];
+  // Mass matrix: diagonal d plus the symmetric couplings M(sway, yaw) = -Yrdot and
+  // M(roll, yaw) = -Ixz. Only what the active set uses is formed (the hot path runs on Jets,
+  // where even a product with a zero costs the full width).
+  const T zero(0.0);
+  T d[6];
+  const Parameter added[6] = {kXudot, kYvdot, kZwdot, kKpdot, kMqdot, kNrdot};
+  const Parameter inertia[3] = {kIx, kIy, kIz};
   for (int i = 0; i < 6; ++i) {
-    for (int j = 0; j < 6; ++j) M[i][j] = T(0.0);
+    if (active[i]) d[i] = (i < 3 ? T(c.m) : p[inertia[i - 3]]) - p[added[i]];
   }
-  M[0][0] = c.m - p[kXudot];
-  M[1][1] = c.m - p[kYvdot];
-  M[2][2] = c.m - p[kZwdot];
-  M[3][3] = p[kIx] - p[kKpdot];
-  M[4][4] = p[kIy] - p[kMqdot];
-  M[5][5] = p[kIz] - p[kNrdot];
-  M[3][5] = M[5][3] = -p[kIxz];
-  M[1][5] = M[5][1] = -p[kYrdot];
+  const bool sway_yaw = active[1] && active[5], roll_yaw = active[3] && active[5];
+  const T m15 = sway_yaw ? -p[kYrdot] : zero, m35 = roll_yaw ? -p[kIxz] : zero;
+  auto entry = [&](int i, int j) -> const T& {
+    if (i == j) return d[i];
+    if ((i == 1 && j == 5) || (i == 5 && j == 1)) return m15;
+    if ((i == 3 && j == 5) || (i == 5 && j == 3)) return m35;
+    return zero;
+  };
 
-  // Kirchhoff Coriolis: h = M nu, C nu = [w x h1; w x h2 + v1 x h1].
-  T h[6];
+  // Kirchhoff Coriolis: h = M nu, C nu = [w x h1; w x h2 + v1 x h1]; inactive velocities are
+  // zero, so only active terms and rows are formed.
+  int index[6], k = 0;
   for (int i = 0; i < 6; ++i) {
-    h[i] = T(0.0);
-    for (int j = 0; j < 6; ++j) h[i] += M[i][j] * nu[j];
+    if (active[i]) index[k++] = i;
   }
-  T rhs[6];
-  rhs[0] = -(q * h[2] - r * h[1]);
-  rhs[1] = -(r * h[0] - pr * h[2]);
-  rhs[2] = -(pr * h[1] - q * h[0]);
-  rhs[3] = -(q * h[5] - r * h[4] + v * h[2] - w * h[1]);
-  rhs[4] = -(r * h[3] - pr * h[5] + w * h[0] - uu * h[2]);
-  rhs[5] = -(pr * h[4] - q * h[3] + uu * h[1] - v * h[0]);
+  T h[6];
+  for (int i = 0; i < 6; ++i) h[i] = active[i] ? d[i] * nu[i] : zero;
+  if (sway_yaw) {
+    h[1] += m15 * r;
+    h[5] += m15 * v;
+  }
+  if (roll_yaw) {
+    h[3] += m35 * r;
+    h[5] += m35 * pr;
+  }
+  T rhs[6];  // only active rows are used
+  for (int i = 0; i < 6; ++i) rhs[i] = T(0.0);
+  if (active[0]) rhs[0] = -(q * h[2] - r * h[1]);
+  if (active[1]) rhs[1] = -(r * h[0] - pr * h[2]);
+  if (active[2]) rhs[2] = -(pr * h[1] - q * h[0]);
+  if (active[3]) rhs[3] = -(q * h[5] - r * h[4] + v * h[2] - w * h[1]);
+  if (active[4]) rhs[4] = -(r * h[3] - pr * h[5] + w * h[0] - uu * h[2]);
+  if (active[5]) rhs[5] = -(pr * h[4] - q * h[3] + uu * h[1] - v * h[0]);
 
   // Damping (D nu enters with a minus sign: -D nu = +[Xu u + ...]).
-  rhs[0] += p[kXu] * uu + p[kXuu] * abs(uu) * uu;
-  rhs[1] += p[kYv] * v + p[kYr] * r + p[kYvv] * abs(v) * v;
-  rhs[2] += p[kZw] * w + p[kZww] * abs(w) * w;
-  rhs[3] += p[kKp] * pr + p[kKpp] * abs(pr) * pr;
-  rhs[4] += p[kMq] * q + p[kMqq] * abs(q) * q;
-  rhs[5] += p[kNv] * v + p[kNr] * r + p[kNrr] * abs(r) * r;
+  if (active[0]) rhs[0] += p[kXu] * uu + p[kXuu] * abs(uu) * uu;
+  if (active[1]) rhs[1] += p[kYv] * v + p[kYr] * r + p[kYvv] * abs(v) * v;
+  if (active[2]) rhs[2] += p[kZw] * w + p[kZww] * abs(w) * w;
+  if (active[3]) rhs[3] += p[kKp] * pr + p[kKpp] * abs(pr) * pr;
+  if (active[4]) rhs[4] += p[kMq] * q + p[kMqq] * abs(q) * q;
+  if (active[5]) rhs[5] += p[kNv] * v + p[kNr] * r + p[kNrr] * abs(r) * r;
 
-  // Restoring.
-  rhs[2] -= c.k_z * eta[2];
-  rhs[3] -= c.k_phi * sin(phi);
-  rhs[4] -= c.k_theta * sin(theta);
+  // Restoring (inactive angles are zero: no trigonometry on them).
+  const T sphi = active[3] ? sin(phi) : T(0.0), cphi = active[3] ? cos(phi) : T(1.0);
+  const T sth = active[4] ? sin(theta) : T(0.0), cth = active[4] ? cos(theta) : T(1.0);
+  if (active[2]) rhs[2] -= c.k_z * eta[2];
+  if (active[3]) rhs[3] -= c.k_phi * sphi;
+  if (active[4]) rhs[4] -= c.k_theta * sth;
 
   // Air drag on the velocity relative to the wind (still air when no wind input).
   T u_rw = uu, v_rw = v;
@@ -158,24 +176,22 @@ bool Model::operator()(const T* x, const double* u, const T* p, T* xdot) const {
     v_rw -= u[2] * sin(u[3] - psi);
   }
   const double half_rho = 0.5 * c.rho_air;
-  rhs[0] -= half_rho * c.A_x * p[kCDA] * abs(u_rw) * u_rw;
-  rhs[1] -= half_rho * c.A_y * p[kCDA] * abs(v_rw) * v_rw;
+  if (active[0]) rhs[0] -= half_rho * c.A_x * p[kCDA] * abs(u_rw) * u_rw;
+  if (active[1]) rhs[1] -= half_rho * c.A_y * p[kCDA] * abs(v_rw) * v_rw;
 
   // Thrusters.
-  T left, right;
-  Thrust(u, p, &left, &right);
-  rhs[0] += left + right;
-  rhs[5] += c.l_y * (left - right);
+  if (active[0] || active[5]) {
+    T left, right;
+    Thrust(u, p, &left, &right);
+    rhs[0] += left + right;
+    rhs[5] += c.l_y * (left - right);
+  }
 
   // Active accelerations: Cholesky solve of M[A,A] a = rhs[A].
-  int index[6], k = 0;
-  for (int i = 0; i < 6; ++i) {
-    if (active[i]) index[k++] = i;
-  }
   T L[6][6], a[6];
   for (int i = 0; i < k; ++i) {
     for (int j = 0; j <= i; ++j) {
-      T sum = M[index[i]][index[j]];
+      T sum = entry(index[i], index[j]);
       for (int l = 0; l < j; ++l) sum -= L[i][l] * L[j][l];
       if (i == j) {
         if (!(sum > 0.0)) return false;  // M[A,A] not positive definite
@@ -199,8 +215,7 @@ bool Model::operator()(const T* x, const double* u, const T* p, T* xdot) const {
   for (int i = 0; i < k; ++i) xdot[6 + index[i]] = a[i];
 
   // Kinematics eta' = J(eta) nu (zyx Euler angles), inactive DOFs held.
-  const T cphi = cos(phi), sphi = sin(phi), cth = cos(theta), sth = sin(theta);
-  const T cpsi = cos(psi), spsi = sin(psi);
+  const T cpsi = active[5] ? cos(psi) : T(1.0), spsi = active[5] ? sin(psi) : T(0.0);
   if (!(abs(cth) > 1e-6)) return false;  // Euler singularity
   const T eta_dot[6] = {
       cpsi * cth * uu + (cpsi * sth * sphi - spsi * cphi) * v + (spsi * sphi + cpsi * cphi * sth) * w,
