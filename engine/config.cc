@@ -205,6 +205,18 @@ std::shared_ptr<const ModelHandle> OverrideModel(const YamlReader& reader, const
   return config.model_family->make_model(reader, merged, path);
 }
 
+// A list of experiment names at `key`, each one the config defines.
+std::vector<std::string> ExperimentNames(const YamlReader& reader, const YAML::Node& node,
+                                         const std::string& key, const RunConfig& config) {
+  std::vector<std::string> names = reader.Strings(node, key);
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (config.FindExperiment(names[i]) == nullptr) {
+      reader.Fail(node[i], Child(key, i), "no experiment named '" + names[i] + "'");
+    }
+  }
+  return names;
+}
+
 StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                       const RunConfig& config, const YAML::Node& model_node, size_t index) {
   reader.CheckMap(node, path,
@@ -219,25 +231,15 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
   stage.options.name = "stage" + std::to_string(index + 1);
   reader.Read(node, path, "name", &stage.options.name);
   if (node["experiments"]) {
-    stage.experiments = reader.Strings(node["experiments"], Child(path, "experiments"));
-    for (size_t i = 0; i < stage.experiments.size(); ++i) {
-      if (config.FindExperiment(stage.experiments[i]) == nullptr) {
-        reader.Fail(node["experiments"][i], Child(Child(path, "experiments"), i),
-                    "no experiment named '" + stage.experiments[i] + "'");
-      }
-    }
+    stage.experiments =
+        ExperimentNames(reader, node["experiments"], Child(path, "experiments"), config);
   } else {
     for (const ExperimentSpec& e : config.experiments) stage.experiments.push_back(e.name);
   }
   if (stage.experiments.empty()) reader.Fail(node, path, "stage has no experiments");
   if (node["validation"]) {
-    stage.validation = reader.Strings(node["validation"], Child(path, "validation"));
-    for (size_t i = 0; i < stage.validation.size(); ++i) {
-      if (config.FindExperiment(stage.validation[i]) == nullptr) {
-        reader.Fail(node["validation"][i], Child(Child(path, "validation"), i),
-                    "no experiment named '" + stage.validation[i] + "'");
-      }
-    }
+    stage.validation =
+        ExperimentNames(reader, node["validation"], Child(path, "validation"), config);
   }
   if (node["outputs"]) {
     stage.experiment.outputs = reader.Strings(node["outputs"], Child(path, "outputs"));
@@ -368,13 +370,8 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
       }
       const ModelInfo& final_info = v.model ? v.model->info() : info;
       if (!final["experiments"]) reader.Fail(final, "final_validation", "missing key 'experiments'");
-      v.experiments = reader.Strings(final["experiments"], "final_validation.experiments");
-      for (size_t i = 0; i < v.experiments.size(); ++i) {
-        if (result.FindExperiment(v.experiments[i]) == nullptr) {
-          reader.Fail(final["experiments"][i], Child("final_validation.experiments", i),
-                      "no experiment named '" + v.experiments[i] + "'");
-        }
-      }
+      v.experiments =
+          ExperimentNames(reader, final["experiments"], "final_validation.experiments", result);
       if (final["outputs"]) {
         v.experiment.outputs = reader.Strings(final["outputs"], "final_validation.outputs");
         CheckNames(reader, final["outputs"], "final_validation.outputs", v.experiment.outputs,

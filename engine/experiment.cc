@@ -176,9 +176,8 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
     const Channel channel = ExtractChannel(trajectory, column);
     if (channel.t.empty()) continue;
     y0[o] = InterpolateAt(channel, Interpolation::kLinear, {t0})[0];
-    double value;
     const bool angle = o < static_cast<int>(info.angle_outputs.size()) && info.angle_outputs[o];
-    ValueAndRateAt(channel, t0, options.rate_window, angle, &value, &ydot0[o]);
+    RateAt(channel, t0, options.rate_window, angle, &ydot0[o]);
   }
   e.initial_state.assign(info.states.size(), 0.0);
   for (size_t s = 0; s < info.states.size(); ++s) {

@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <tuple>
+
+#include "engine/continuation.h"
 
 namespace vesselid {
 namespace {
@@ -294,110 +295,6 @@ bool PrepareExperiments(const RunConfig& config, const std::vector<std::string>&
   }
   return true;
 }
-
-namespace {
-
-std::string FormatSeconds(double seconds) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%g s", seconds);
-  return text;
-}
-
-// An estimated initial state, keyed by record and start time, handed between phases.
-struct StateAt {
-  std::string record;
-  double t0;
-  std::vector<double> state;
-};
-
-// Start values of the next phase: estimated parameters (within their bounds) and the initial
-// states of segments that begin where a segment of the previous phase began.
-void CarryForward(const OutputErrorProblem& solved, std::vector<ParameterSpec>* specs,
-                  std::vector<StateAt>* states) {
-  const std::vector<double> values = solved.ParametersOf(0);
-  for (size_t i = 0; i < specs->size(); ++i) {
-    ParameterSpec& spec = (*specs)[i];
-    if (IsEstimatedOnce(spec.role)) spec.start = std::clamp(values[i], spec.lower, spec.upper);
-  }
-  states->clear();
-  for (int e = 0; e < static_cast<int>(solved.experiments().size()); ++e) {
-    const Experiment& experiment = solved.experiments()[e];
-    states->push_back({experiment.record, experiment.node_time.front(), solved.InitialStateOf(e)});
-  }
-}
-
-bool FindState(const std::vector<StateAt>& states, const Experiment& experiment,
-               std::vector<double>* state) {
-  constexpr double kTimeTolerance = 1e-6;
-  for (const StateAt& s : states) {
-    if (s.record == experiment.record &&
-        std::abs(s.t0 - experiment.node_time.front()) < kTimeTolerance) {
-      *state = s.state;
-      return true;
-    }
-  }
-  return false;
-}
-
-// Start values of the experiments' initial states from `states` where a segment matches.
-void StartFrom(const std::vector<StateAt>& states, std::vector<Experiment>* experiments) {
-  for (Experiment& experiment : *experiments) {
-    FindState(states, experiment, &experiment.initial_state_guess);
-  }
-}
-
-// The same on a created problem: its free initial states take the matching carried values.
-void SetCarriedStates(const std::vector<StateAt>& states, OutputErrorProblem* problem) {
-  for (const Variable& v : problem->variables()) {
-    std::vector<double> state;
-    if (v.kind == Variable::Kind::kInitialState && v.free &&
-        FindState(states, problem->experiments()[v.experiment], &state)) {
-      v.set_value(state[v.index]);
-    }
-  }
-}
-
-// Continuation phases of a stage: the problem solved with every training record cut into the
-// stage's shorter segments, shortest first, each phase from the previous one's solution. A
-// start far from the optimum cannot wrap a heading or lose a circling vessel's phase over a
-// few seconds, so the short horizons lead the long one into its basin. The first phase takes
-// the stage's global start; none reports uncertainty.
-bool RunContinuation(const RunConfig& config, const StageConfig& stage, const ModelHandle& model,
-                     TrajectoryCache* cache, std::vector<ParameterSpec>* specs,
-                     std::vector<StateAt>* states, std::vector<std::string>* notes,
-                     std::string* error) {
-  for (size_t phase = 0; phase < stage.continuation.size(); ++phase) {
-    const double length = stage.continuation[phase];
-    std::vector<Experiment> experiments;
-    if (!PrepareExperiments(config, stage.experiments, model, stage.experiment, cache,
-                            &experiments, error, length)) {
-      return false;
-    }
-    StartFrom(*states, &experiments);
-    std::unique_ptr<OutputErrorProblem> problem = OutputErrorProblem::Create(
-        &model, std::move(experiments), *specs, stage.problem, error);
-    if (problem == nullptr) return false;
-    StageOptions options = stage.options;
-    options.use_global_start = options.use_global_start && phase == 0;
-    options.compute_uncertainty = false;
-    StageSummary summary;
-    if (!RunStage(options, problem.get(), &summary)) {
-      *error = "continuation with " + FormatSeconds(length) + " segments: " + summary.message;
-      return false;
-    }
-    const LocalSolveSummary& local = summary.local();
-    char text[256];
-    std::snprintf(text, sizeof(text),
-                  "continuation: %s segments, cost %.6e -> %.6e after %d iterations, %.3f s",
-                  FormatSeconds(length).c_str(), local.initial_cost, local.final_cost,
-                  local.iterations, summary.time_seconds);
-    notes->push_back(text);
-    CarryForward(*problem, specs, states);
-  }
-  return true;
-}
-
-}  // namespace
 
 bool RunIdentification(const RunConfig& config, RunResult* result, std::string* error,
                        const StageObserver& observer) {

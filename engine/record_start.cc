@@ -8,8 +8,7 @@
 
 namespace vesselid {
 
-bool ValueAndRateAt(const Channel& channel, double t0, double window, bool angle, double* value,
-                    double* rate) {
+bool RateAt(const Channel& channel, double t0, double window, bool angle, double* rate) {
   constexpr double kTimeTolerance = 1e-9;
   std::vector<double> dt, y;
   for (size_t i = 0; i < channel.t.size(); ++i) {
@@ -34,7 +33,6 @@ bool ValueAndRateAt(const Channel& channel, double t0, double window, bool angle
   }
   const Eigen::Vector3d c = normal.ldlt().solve(rhs);
   if (!c.allFinite()) return false;
-  *value = c[0];
   *rate = c[1] / span;
   return true;
 }
