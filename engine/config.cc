@@ -1,5 +1,6 @@
 #include "engine/config.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "ceres/types.h"
@@ -45,7 +46,7 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
                               const ModelInfo& info) {
   reader.CheckMap(node, path,
                   {"name", "file", "inputs", "outputs", "interpolation", "weights", "initial_state",
-                   "degrees", "window", "segment_length"});
+                   "degrees", "window", "segment_length", "segments"});
   ExperimentSpec spec;
   if (!node["name"]) reader.Fail(node, path, "missing key 'name'");
   if (!node["file"]) reader.Fail(node, path, "missing key 'file'");
@@ -103,6 +104,26 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
   reader.Read(node, path, "segment_length", &spec.segment_length);
   if (!(spec.segment_length >= 0.0)) {
     reader.Fail(node["segment_length"], Child(path, "segment_length"), "must be >= 0");
+  }
+  if (const YAML::Node n = node["segments"]) {
+    const std::string key = Child(path, "segments");
+    reader.CheckMap(n, key, {"column", "take", "validation_share", "seed"});
+    if (!n["column"]) reader.Fail(n, key, "missing key 'column'");
+    SegmentSelection& s = spec.segments;
+    s.column = reader.String(n["column"], Child(key, "column"));
+    if (n["take"] && !StringToTake(reader.String(n["take"], Child(key, "take")), &s.take)) {
+      reader.Fail(n["take"], Child(key, "take"), "expected all, training or validation");
+    }
+    reader.Read(n, key, "validation_share", &s.validation_share);
+    if (!(s.validation_share >= 0.0 && s.validation_share <= 1.0)) {
+      reader.Fail(n["validation_share"], Child(key, "validation_share"), "must be in [0, 1]");
+    }
+    int seed = static_cast<int>(s.seed);
+    reader.Read(n, key, "seed", &seed);
+    s.seed = static_cast<unsigned>(seed);
+    if (spec.segment_length > 0.0) {
+      reader.Fail(n, key, "segments and segment_length cannot be combined");
+    }
   }
   return spec;
 }
@@ -190,6 +211,67 @@ void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::str
   if (!global->IsValid(&error)) reader.Fail(node, path, error);
 }
 
+//   least_squares: {penalty: none|ridge|lasso, lambda, folds, robust,
+//                   regions: {<state>: [<region>...]}, grid, smoothing: {half_width, order},
+//                   max_profile_evaluations}
+void ReadLeastSquares(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                      const ModelHandle& model, StageConfig* stage) {
+  reader.CheckMap(node, path, {"penalty", "lambda", "folds", "robust", "regions", "grid",
+                               "smoothing", "max_profile_evaluations"});
+  const RegressionForm* form = model.regression_form();
+  const ModelInfo& info = model.info();
+  if (form == nullptr) reader.Fail(node, path, "model " + info.name + " has no equation-error form");
+  LeastSquaresOptions& ls = stage->least_squares;
+  if (node["penalty"]) {
+    const std::string penalty = reader.String(node["penalty"], Child(path, "penalty"));
+    if (penalty == "none") ls.regression.penalty = Penalty::kNone;
+    else if (penalty == "ridge") ls.regression.penalty = Penalty::kRidge;
+    else if (penalty == "lasso") ls.regression.penalty = Penalty::kLasso;
+    else reader.Fail(node["penalty"], Child(path, "penalty"), "expected none, ridge or lasso");
+  }
+  reader.Read(node, path, "lambda", &ls.regression.lambda);
+  reader.Read(node, path, "folds", &ls.regression.folds);
+  if (ls.regression.folds < 2) reader.Fail(node["folds"], Child(path, "folds"), "must be >= 2");
+  reader.Read(node, path, "robust", &ls.regression.robust);
+  reader.Read(node, path, "max_profile_evaluations", &ls.max_profile_evaluations);
+  if (const YAML::Node regions = node["regions"]) {
+    const std::string key = Child(path, "regions");
+    std::vector<std::string> states;
+    for (int s : form->states) states.push_back(info.states[s]);
+    reader.CheckMap(regions, key, states);
+    ls.regions.assign(states.size(), {});
+    for (size_t i = 0; i < states.size(); ++i) {
+      const YAML::Node list = regions[states[i]];
+      if (!list) continue;
+      const std::vector<std::string> names = reader.Strings(list, Child(key, states[i]));
+      for (size_t j = 0; j < names.size(); ++j) {
+        auto found = std::find(form->regions.begin(), form->regions.end(), names[j]);
+        if (found == form->regions.end()) {
+          reader.Fail(list[j], Child(Child(key, states[i]), j),
+                      "unknown region '" + names[j] + "' (" + JoinNames(form->regions) + ")");
+        }
+        ls.regions[i].push_back(static_cast<int>(found - form->regions.begin()));
+      }
+    }
+  }
+  RegressionDataOptions& data = stage->regression_data;
+  if (node["grid"]) {
+    data.grid_output = reader.String(node["grid"], Child(path, "grid"));
+    CheckNames(reader, node["grid"], Child(path, "grid"), std::vector<std::string>{data.grid_output}, info.outputs,
+               "output", info);
+  }
+  if (const YAML::Node smoothing = node["smoothing"]) {
+    const std::string key = Child(path, "smoothing");
+    reader.CheckMap(smoothing, key, {"half_width", "order"});
+    reader.Read(smoothing, key, "half_width", &data.smoothing.half_width);
+    reader.Read(smoothing, key, "order", &data.smoothing.order);
+    if (data.smoothing.half_width < 1 || data.smoothing.order < 1 ||
+        data.smoothing.order >= 2 * data.smoothing.half_width + 1) {
+      reader.Fail(smoothing, key, "need half_width >= 1 and 1 <= order < 2 half_width + 1");
+    }
+  }
+}
+
 // The run's model map with the keys of `override` replaced, built by the family.
 std::shared_ptr<const ModelHandle> OverrideModel(const YamlReader& reader, const RunConfig& config,
                                                  const YAML::Node& base,
@@ -220,9 +302,9 @@ std::vector<std::string> ExperimentNames(const YamlReader& reader, const YAML::N
 StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                       const RunConfig& config, const YAML::Node& model_node, size_t index) {
   reader.CheckMap(node, path,
-                  {"name", "model", "experiments", "validation", "outputs", "parameters",
-                   "free_initial_states", "loss", "integration", "normalize_by_length",
-                   "continuation", "global", "local", "uncertainty"});
+                  {"name", "type", "least_squares", "model", "experiments", "validation",
+                   "outputs", "parameters", "free_initial_states", "loss", "integration",
+                   "normalize_by_length", "continuation", "global", "local", "uncertainty"});
   StageConfig stage;
   if (node["model"]) {
     stage.model = OverrideModel(reader, config, model_node, node["model"], Child(path, "model"));
@@ -296,6 +378,27 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
   }
   if (node["local"]) ReadLocal(reader, node["local"], Child(path, "local"), &stage.options.local);
   reader.Read(node, path, "uncertainty", &stage.options.compute_uncertainty);
+  const std::string type =
+      node["type"] ? reader.String(node["type"], Child(path, "type")) : "output_error";
+  if (type == "least_squares") {
+    stage.kind = StageConfig::Kind::kLeastSquares;
+  } else if (type != "output_error") {
+    reader.Fail(node["type"], Child(path, "type"),
+                "unknown stage type '" + type + "' (output_error, least_squares)");
+  }
+  const ModelHandle& model = stage.model ? *stage.model : *config.model;
+  if (const YAML::Node ls = node["least_squares"]) {
+    ReadLeastSquares(reader, ls, Child(path, "least_squares"), model, &stage);
+  }
+  if (stage.kind == StageConfig::Kind::kLeastSquares) {
+    if (model.regression_form() == nullptr) {
+      reader.Fail(node["type"], Child(path, "type"),
+                  "model " + info.name + " has no equation-error form for a least-squares stage");
+    }
+    for (const char* key : {"free_initial_states", "loss", "continuation", "global", "local"}) {
+      if (node[key]) reader.Fail(node[key], Child(path, key), "not used by a least-squares stage");
+    }
+  }
   return stage;
 }
 

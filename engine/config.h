@@ -4,7 +4,8 @@
 //   simulation:  family-specific description of synthetic experiments (`vesselid simulate`)
 //   experiments: [{name, file, inputs, outputs, interpolation, weights, initial_state,
 //                  degrees, window}]
-//   stages:      [{name, model, experiments, validation, outputs, parameters,
+//   stages:      [{name, type, least_squares, model, experiments, validation, outputs,
+//                  parameters,
 //                  free_initial_states, loss, integration, normalize_by_length, continuation,
 //                  global, local, uncertainty}]
 //   fusion:      inverse_variance | mean | information (fusion.h)
@@ -24,6 +25,8 @@
 
 #include "engine/experiment.h"
 #include "engine/fusion.h"
+#include "engine/least_squares.h"
+#include "engine/regression_data.h"
 #include "engine/model_registry.h"
 #include "engine/output_error_problem.h"
 #include "engine/parameter.h"
@@ -32,7 +35,15 @@
 namespace vesselid {
 
 struct StageConfig {
+  // output_error: simulate and compare (the default); least_squares: equation-error regression
+  // of the model's derivative form (least_squares.h), its estimate starting the next stage.
+  enum class Kind { kOutputError, kLeastSquares };
+  Kind kind = Kind::kOutputError;
   StageOptions options;
+  LeastSquaresOptions least_squares;
+  // How records become regression data (least-squares stages, and the velocity metrics of
+  // any stage's validation when the model has an equation-error form).
+  RegressionDataOptions regression_data;
   // The stage's own restriction of the model (e.g. active DOFs); null: the run's model.
   std::shared_ptr<const ModelHandle> model;
   std::vector<std::string> experiments;  // names from RunConfig::experiments

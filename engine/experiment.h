@@ -14,6 +14,7 @@
 
 #include "engine/interpolation.h"
 #include "engine/model.h"
+#include "engine/segments.h"
 #include "engine/trajectory.h"
 
 namespace vesselid {
@@ -35,6 +36,9 @@ struct ExperimentSpec {
   // from its own initial state ("<name>@<k>"), so that errors do not grow over a long or
   // unstable record (segmented output error).
   double segment_length = 0.0;
+  // segments.column set: the record holds segments told apart by that column, each
+  // identified as "<name>@<id>" from its own initial state (see segments.h).
+  SegmentSelection segments;
 };
 
 struct ExperimentSample {

@@ -1,9 +1,36 @@
 #include "engine/metrics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace vesselid {
+
+void MetricAccumulator::Add(double simulated, double measured, bool angle) {
+  double residual = simulated - measured;
+  if (angle) residual = WrapAngle(residual);
+  ++n_;
+  sse_ += residual * residual;
+  sae_ += std::abs(residual);
+  sum_ += measured;
+  sum2_ += measured * measured;
+}
+
+ChannelMetrics MetricAccumulator::Finish(const std::string& experiment,
+                                         const std::string& output) const {
+  const double kNaN = std::numeric_limits<double>::quiet_NaN();
+  ChannelMetrics m;
+  m.experiment = experiment;
+  m.output = output;
+  m.samples = n_;
+  if (n_ == 0) return m;
+  m.rmse = std::sqrt(sse_ / n_);
+  m.mae = sae_ / n_;
+  const double sst = std::max(0.0, sum2_ - sum_ * sum_ / n_);
+  m.r2 = sst > 0 ? 1.0 - sse_ / sst : kNaN;
+  m.fit_percent = sst > 0 ? 100.0 * (1.0 - std::sqrt(sse_ / sst)) : kNaN;
+  return m;
+}
 
 bool EvaluateFit(const OutputErrorProblem& problem, std::vector<ExperimentFit>* fits,
                  std::string* error) {
@@ -32,37 +59,21 @@ bool EvaluateFit(const OutputErrorProblem& problem, std::vector<ExperimentFit>* 
       fit.trace.columns.emplace_back(experiment.num_nodes(), kMissing);
       fit.trace.columns.emplace_back(experiment.num_nodes(), kMissing);
     }
-    std::vector<double> sse(ny, 0.0), sae(ny, 0.0), sum(ny, 0.0), sum2(ny, 0.0);
-    double total_sse = 0.0;
+    std::vector<MetricAccumulator> channels(ny);
     for (int k = 0; k < experiment.num_nodes(); ++k) {
       for (int i = experiment.node_first_sample[k]; i < experiment.node_first_sample[k + 1]; ++i) {
         const ExperimentSample& s = experiment.samples[i];
         const double simulated = outputs[static_cast<size_t>(k) * ny + s.output];
-        double residual = simulated - s.value;
-        if (info.angle_outputs[s.output]) residual = WrapAngle(residual);
-        sse[s.output] += residual * residual;
-        sae[s.output] += std::abs(residual);
-        sum[s.output] += s.value;
-        sum2[s.output] += s.value * s.value;
-        total_sse += residual * residual;
+        channels[s.output].Add(simulated, s.value, info.angle_outputs[s.output]);
         fit.trace.columns[column_of[s.output]][k] = s.value;
         fit.trace.columns[column_of[s.output] + 1][k] = simulated;
       }
     }
+    double total_sse = 0.0;
     for (int c = 0; c < ny; ++c) {
-      const int count = experiment.output_sample_count[c];
-      if (count == 0) continue;
-      ChannelMetrics m;
-      m.experiment = experiment.name;
-      m.output = info.outputs[c];
-      m.samples = count;
-      m.rmse = std::sqrt(sse[c] / count);
-      m.mae = sae[c] / count;
-      const double sst = std::max(0.0, sum2[c] - sum[c] * sum[c] / count);
-      m.r2 = sst > 0 ? 1.0 - sse[c] / sst : std::numeric_limits<double>::quiet_NaN();
-      m.fit_percent = sst > 0 ? 100.0 * (1.0 - std::sqrt(sse[c] / sst))
-                              : std::numeric_limits<double>::quiet_NaN();
-      fit.channels.push_back(m);
+      total_sse += channels[c].sse();
+      if (channels[c].samples() == 0) continue;
+      fit.channels.push_back(channels[c].Finish(experiment.name, info.outputs[c]));
     }
     fit.rms_cost = std::sqrt(total_sse / std::max(1, experiment.num_samples()));
     fits->push_back(std::move(fit));

@@ -20,6 +20,19 @@ struct ChannelMetrics {
   double rmse = 0.0, mae = 0.0, r2 = 0.0, fit_percent = 0.0;
 };
 
+// Accumulates the errors e = simulated - measured of one channel into ChannelMetrics.
+class MetricAccumulator {
+ public:
+  void Add(double simulated, double measured, bool angle = false);
+  ChannelMetrics Finish(const std::string& experiment, const std::string& output) const;
+  int samples() const { return n_; }
+  double sse() const { return sse_; }
+
+ private:
+  int n_ = 0;
+  double sse_ = 0.0, sae_ = 0.0, sum_ = 0.0, sum2_ = 0.0;
+};
+
 struct ExperimentFit {
   std::string experiment;
   double rms_cost = 0.0;

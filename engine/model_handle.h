@@ -12,6 +12,7 @@
 #include "engine/experiment.h"
 #include "engine/experiment_cost.h"
 #include "engine/model.h"
+#include "engine/regression_form.h"
 
 namespace vesselid {
 
@@ -42,6 +43,14 @@ class ModelHandle {
   // Start values of the states from outputs measured at t0 and their rates (NaN where not
   // measured); x holds the defaults and keeps what the model cannot derive.
   virtual void GuessState(const double* y, const double* ydot, double* x) const = 0;
+
+  // Equation-error form for the least-squares stage (regression_form.h); null when the model
+  // has none. The other three members are only called when it has one.
+  virtual const RegressionForm* regression_form() const = 0;
+  virtual void Regressors(const double* p, RegressionRecord* record,
+                          std::vector<Eigen::MatrixXd>* phi) const = 0;
+  virtual void Coefficients(const double* p, double* theta) const = 0;
+  virtual int Region(const double* u) const = 0;
 };
 
 // Detects a model's optional `std::vector<std::string> Admissibility(const double*) const`.
@@ -60,10 +69,23 @@ template <class Model>
 struct HasGuessState<Model, std::void_t<decltype(std::declval<const Model&>().GuessState(
                                 nullptr, nullptr, nullptr))>> : std::true_type {};
 
+// Detects a model's optional equation-error form (`RegressionForm Regression() const` and the
+// members listed in regression_form.h).
+template <class Model, class = void>
+struct HasRegression : std::false_type {};
+template <class Model>
+struct HasRegression<Model, std::void_t<decltype(std::declval<const Model&>().Regression())>>
+    : std::true_type {};
+
 template <class Model>
 class ModelAdapter final : public ModelHandle {
  public:
-  explicit ModelAdapter(Model model) : model_(std::move(model)), info_(model_.Info()) {}
+  explicit ModelAdapter(Model model) : model_(std::move(model)), info_(model_.Info()) {
+    if constexpr (HasRegression<Model>::value) {
+      form_ = model_.Regression();
+      has_form_ = true;
+    }
+  }
 
   const ModelInfo& info() const override { return info_; }
 
@@ -106,11 +128,31 @@ class ModelAdapter final : public ModelHandle {
     if constexpr (HasGuessState<Model>::value) model_.GuessState(y, ydot, x);
   }
 
+  const RegressionForm* regression_form() const override {
+    return has_form_ ? &form_ : nullptr;
+  }
+  void Regressors(const double* p, RegressionRecord* record,
+                  std::vector<Eigen::MatrixXd>* phi) const override {
+    if constexpr (HasRegression<Model>::value) model_.Regressors(p, record, phi);
+  }
+  void Coefficients(const double* p, double* theta) const override {
+    if constexpr (HasRegression<Model>::value) model_.Coefficients(p, theta);
+  }
+  int Region(const double* u) const override {
+    if constexpr (HasRegression<Model>::value) {
+      return model_.Region(u);
+    } else {
+      return -1;
+    }
+  }
+
   const Model& model() const { return model_; }
 
  private:
   const Model model_;
   const ModelInfo info_;
+  RegressionForm form_;
+  bool has_form_ = false;
 };
 
 template <class Model>

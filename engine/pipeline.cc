@@ -7,6 +7,8 @@
 #include <tuple>
 
 #include "engine/continuation.h"
+#include "engine/least_squares_stage.h"
+#include "engine/velocity_validation.h"
 
 namespace vesselid {
 namespace {
@@ -249,6 +251,111 @@ std::vector<FinalParameter> Finalise(const ModelInfo& info, const Ledger& ledger
   return parameters;
 }
 
+
+// An output-error stage: continuation phases, the problem, RunStage, the result.
+bool RunOutputErrorStage(const RunConfig& config, const StageConfig& stage,
+                         const ModelHandle& model, std::vector<ParameterSpec>* resolved,
+                         TrajectoryCache* cache, StageResult* result, std::string* error) {
+  std::vector<ParameterSpec>& specs = *resolved;
+  const std::vector<ParameterSpec> configured = specs;
+  std::vector<StateAt> states;
+  std::vector<std::string> continuation_notes;
+  const auto stage_start = std::chrono::steady_clock::now();
+  if (!RunContinuation(config, stage, model, cache, &specs, &states, &continuation_notes,
+                       error)) {
+    return false;
+  }
+  std::vector<Experiment> experiments;
+  if (!PrepareExperiments(config, stage.experiments, model, stage.experiment, cache,
+                          &experiments, error)) {
+    return false;
+  }
+  std::unique_ptr<OutputErrorProblem> problem = OutputErrorProblem::Create(
+      &model, std::move(experiments), specs, stage.problem, error);
+  if (problem == nullptr) return false;
+  // After continuation the stage is refined twice: from the initial states the short
+  // segments estimated, and from the data's guess (the latter sometimes finds the lower
+  // of two nearby minima; both cost one refinement).
+  std::vector<std::vector<double>> extra_starts;
+  if (!states.empty()) {
+    extra_starts.push_back(problem->Values());
+    SetCarriedStates(states, problem.get());
+  }
+  // Reported starts are the configured ones, not those continuation handed on.
+  std::vector<double> starts = problem->Values();
+  for (size_t i = 0; i < starts.size(); ++i) {
+    const Variable& v = problem->variables()[i];
+    if (v.kind == Variable::Kind::kParameter && v.experiment < 0) {
+      starts[i] = configured[v.index].start;
+    }
+  }
+  StageOptions options = stage.options;
+  options.use_global_start = options.use_global_start && stage.continuation.empty();
+  StageSummary summary;
+  if (!RunStage(options, problem.get(), &summary, extra_starts)) {
+    *error = summary.message;
+    return false;
+  }
+  summary.notes.insert(summary.notes.begin(), continuation_notes.begin(),
+                       continuation_notes.end());
+  summary.time_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start).count();
+  *result = Collect(*problem, starts, std::move(summary));
+  return true;
+}
+
+}  // namespace
+
+bool RecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double segment_length,
+                 std::vector<ExperimentSpec>* specs, std::string* error) {
+  specs->clear();
+  if (!spec.segments.column.empty()) {
+    std::vector<SegmentRange> ranges;
+    if (!SelectSegments(data, spec.segments, &ranges, error)) {
+      *error = "experiment '" + spec.name + "': " + *error;
+      return false;
+    }
+    for (const SegmentRange& range : ranges) {
+      ExperimentSpec segment = spec;
+      segment.name = spec.name + "@" + std::to_string(range.id);
+      segment.t_begin = std::max(spec.t_begin, range.t_begin);
+      segment.t_end = std::min(spec.t_end, range.t_end);
+      if (segment.t_end > segment.t_begin) specs->push_back(segment);
+    }
+    return true;
+  }
+  double length = spec.segment_length;
+  if (segment_length > 0.0) length = length > 0.0 ? std::min(length, segment_length) : segment_length;
+  if (length <= 0.0) {
+    specs->push_back(spec);
+    return true;
+  }
+  const double begin = std::max(spec.t_begin, data.t.front());
+  const double end = std::min(spec.t_end, data.t.back());
+  int k = 1;
+  for (double t0 = begin; t0 + 0.5 * length < end; t0 += length) {
+    ExperimentSpec segment = spec;
+    segment.name = spec.name + "@" + std::to_string(k++);
+    segment.t_begin = t0;
+    segment.t_end = std::min(end, t0 + length);
+    specs->push_back(segment);
+  }
+  return true;
+}
+
+namespace {
+
+const Trajectory* LoadCached(const ExperimentSpec& spec, TrajectoryCache* cache,
+                             std::string* error) {
+  auto cached = cache->find(spec.name);
+  if (cached == cache->end()) {
+    Trajectory trajectory;
+    if (!LoadExperimentData(spec, &trajectory, error)) return nullptr;
+    cached = cache->emplace(spec.name, std::move(trajectory)).first;
+  }
+  return &cached->second;
+}
+
 }  // namespace
 
 bool PrepareExperiments(const RunConfig& config, const std::vector<std::string>& names,
@@ -263,34 +370,34 @@ bool PrepareExperiments(const RunConfig& config, const std::vector<std::string>&
   experiments->clear();
   for (const std::string& name : names) {
     const ExperimentSpec* spec = config.FindExperiment(name);
-    auto cached = cache->find(name);
-    if (cached == cache->end()) {
-      Trajectory trajectory;
-      if (!LoadExperimentData(*spec, &trajectory, error)) return false;
-      cached = cache->emplace(name, std::move(trajectory)).first;
-    }
-    const Trajectory& data = cached->second;
-    double length = spec->segment_length;
-    if (segment_length > 0.0) length = length > 0.0 ? std::min(length, segment_length) : segment_length;
-    if (length <= 0.0) {
+    const Trajectory* data = LoadCached(*spec, cache, error);
+    std::vector<ExperimentSpec> specs;
+    if (data == nullptr || !RecordSpecs(*spec, *data, segment_length, &specs, error)) return false;
+    for (const ExperimentSpec& s : specs) {
       Experiment experiment;
-      if (!BuildExperiment(*spec, data, info, options, &experiment, error)) return false;
+      if (!BuildExperiment(s, *data, info, options, &experiment, error)) return false;
       experiment.record = name;
       experiments->push_back(std::move(experiment));
-      continue;
     }
-    const double begin = std::max(spec->t_begin, data.t.front());
-    const double end = std::min(spec->t_end, data.t.back());
-    int k = 1;
-    for (double t0 = begin; t0 + 0.5 * length < end; t0 += length) {
-      ExperimentSpec segment = *spec;
-      segment.name = spec->name + "@" + std::to_string(k++);
-      segment.t_begin = t0;
-      segment.t_end = std::min(end, t0 + length);
-      Experiment experiment;
-      if (!BuildExperiment(segment, data, info, options, &experiment, error)) return false;
-      experiment.record = name;
-      experiments->push_back(std::move(experiment));
+  }
+  return true;
+}
+
+bool PrepareRegressionRecords(const RunConfig& config, const std::vector<std::string>& names,
+                              const ModelHandle& model, const RegressionDataOptions& options,
+                              TrajectoryCache* cache, std::vector<RegressionRecord>* records,
+                              std::string* error) {
+  records->clear();
+  for (const std::string& name : names) {
+    const ExperimentSpec* spec = config.FindExperiment(name);
+    const Trajectory* data = LoadCached(*spec, cache, error);
+    std::vector<ExperimentSpec> specs;
+    if (data == nullptr || !RecordSpecs(*spec, *data, 0.0, &specs, error)) return false;
+    for (const ExperimentSpec& s : specs) {
+      RegressionRecord record;
+      if (!BuildRegressionRecord(s, *data, model, options, &record, error)) return false;
+      record.record = name;
+      records->push_back(std::move(record));
     }
   }
   return true;
@@ -312,54 +419,37 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     const ModelHandle& model = stage.model ? *stage.model : *config.model;
     std::vector<ParameterSpec> specs;
     if (!ResolveParameters(stage, model.info(), ledger, &specs, error)) return fail(*error);
-    const std::vector<ParameterSpec> configured = specs;
-    std::vector<StateAt> states;
-    std::vector<std::string> continuation_notes;
-    const auto stage_start = std::chrono::steady_clock::now();
-    if (!RunContinuation(config, stage, model, &cache, &specs, &states, &continuation_notes,
-                         error)) {
+    StageResult stage_result;
+    if (stage.kind == StageConfig::Kind::kLeastSquares) {
+      if (!RunLeastSquaresStage(config, stage, model, specs, &cache, &stage_result, error)) {
+        return fail(*error);
+      }
+    } else if (!RunOutputErrorStage(config, stage, model, &specs, &cache, &stage_result, error)) {
       return fail(*error);
     }
-    std::vector<Experiment> experiments;
-    if (!PrepareExperiments(config, stage.experiments, model, stage.experiment, &cache,
-                            &experiments, error)) {
-      return fail(*error);
-    }
-    std::unique_ptr<OutputErrorProblem> problem = OutputErrorProblem::Create(
-        &model, std::move(experiments), specs, stage.problem, error);
-    if (problem == nullptr) return fail(*error);
-    // After continuation the stage is refined twice: from the initial states the short
-    // segments estimated, and from the data's guess (the latter sometimes finds the lower
-    // of two nearby minima; both cost one refinement).
-    std::vector<std::vector<double>> extra_starts;
-    if (!states.empty()) {
-      extra_starts.push_back(problem->Values());
-      SetCarriedStates(states, problem.get());
-    }
-    // Reported starts are the configured ones, not those continuation handed on.
-    std::vector<double> starts = problem->Values();
-    for (size_t i = 0; i < starts.size(); ++i) {
-      const Variable& v = problem->variables()[i];
-      if (v.kind == Variable::Kind::kParameter && v.experiment < 0) {
-        starts[i] = configured[v.index].start;
+    // Parameter values in model order (a per-experiment one: its first experiment's).
+    std::vector<double> values;
+    for (const std::string& name : model.info().parameters) {
+      for (const Estimate& e : stage_result.estimates) {
+        if (e.kind == "parameter" && e.name == name) {
+          values.push_back(e.value);
+          break;
+        }
       }
     }
-    StageOptions options = stage.options;
-    options.use_global_start = options.use_global_start && stage.continuation.empty();
-    StageSummary summary;
-    if (!RunStage(options, problem.get(), &summary, extra_starts)) return fail(summary.message);
-    summary.notes.insert(summary.notes.begin(), continuation_notes.begin(),
-                         continuation_notes.end());
-    summary.time_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start).count();
-    StageResult stage_result = Collect(*problem, starts, std::move(summary));
-    const std::vector<double> values = problem->ParametersOf(0);
     stage_result.admissibility = model.Admissibility(values.data());
-    if (!stage.validation.empty() &&
-        !SimulateHeldOut(config, model, stage.validation, stage.experiment,
-                         stage.problem.free_initial_states, stage.options.local, values, &cache,
-                         &stage_result.validation, error)) {
-      return fail("validation: " + *error);
+    if (!stage.validation.empty()) {
+      if (!SimulateHeldOut(config, model, stage.validation, stage.experiment,
+                           stage.problem.free_initial_states, stage.options.local, values,
+                           &cache, &stage_result.validation, error)) {
+        return fail("validation: " + *error);
+      }
+      if (model.regression_form() != nullptr &&
+          !ValidateVelocities(config, model, stage.validation, stage.regression_data,
+                              stage.least_squares, values, &cache,
+                              &stage_result.velocity_validation, error)) {
+        return fail("velocity validation: " + *error);
+      }
     }
     Record(stage_result, &ledger);
     run.stages.push_back(std::move(stage_result));
@@ -377,6 +467,15 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
                          final_values, &cache, &run.final_validation, error)) {
       *error = "final validation: " + *error;
       return false;
+    }
+    if (model.regression_form() != nullptr) {
+      const StageConfig& last = config.stages.back();
+      if (!ValidateVelocities(config, model, v.experiments, last.regression_data,
+                              last.least_squares, final_values, &cache,
+                              &run.final_velocity_validation, error)) {
+        *error = "final velocity validation: " + *error;
+        return false;
+      }
     }
   }
   run.time_seconds =

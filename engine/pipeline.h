@@ -15,6 +15,7 @@
 
 #include "Eigen/Dense"
 #include "engine/config.h"
+#include "engine/regression_data.h"
 #include "engine/stage.h"
 
 namespace vesselid {
@@ -41,6 +42,9 @@ struct StageResult {
   Eigen::MatrixXd correlation;
   std::vector<std::string> admissibility;    // empty: M SPD, damping PSD (as the model checks)
   std::vector<ExperimentFit> validation;     // held-out experiments of the stage
+  // Models with an equation-error form: one-step and free-run metrics of the regressed
+  // states on the held-out experiments (velocity_validation.h).
+  std::vector<ChannelMetrics> velocity_validation;
 };
 
 // A parameter's value after the whole run.
@@ -59,6 +63,7 @@ struct RunResult {
   std::vector<FinalParameter> parameters;  // model parameter order
   std::vector<std::string> admissibility;  // of the final values
   std::vector<ExperimentFit> final_validation;
+  std::vector<ChannelMetrics> final_velocity_validation;
   double time_seconds = 0.0;
 };
 
@@ -80,5 +85,16 @@ bool PrepareExperiments(const RunConfig& config, const std::vector<std::string>&
                         const ModelHandle& model, const ExperimentOptions& options,
                         TrajectoryCache* cache, std::vector<Experiment>* experiments,
                         std::string* error, double segment_length = 0.0);
+
+// The experiments a configured record is identified as: itself, its segments (segments
+// column) or consecutive pieces no longer than segment_length (its own or the given one).
+bool RecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double segment_length,
+                 std::vector<ExperimentSpec>* specs, std::string* error);
+
+// Equation-error records of `names` (each segment its own record).
+bool PrepareRegressionRecords(const RunConfig& config, const std::vector<std::string>& names,
+                              const ModelHandle& model, const RegressionDataOptions& options,
+                              TrajectoryCache* cache, std::vector<RegressionRecord>* records,
+                              std::string* error);
 
 }  // namespace vesselid

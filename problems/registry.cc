@@ -1,6 +1,7 @@
 #include "problems/registry.h"
 
 #include "problems/erunsal6dof/erunsal_family.h"
+#include "problems/input_gain/input_gain_family.h"
 #include "problems/nomoto/nomoto_family.h"
 
 namespace vesselid {
@@ -9,6 +10,7 @@ ModelRegistry DefaultRegistry() {
   ModelRegistry registry;
   registry.Register(nomoto::NomotoFamily());
   registry.Register(erunsal6dof::ErunsalFamily());
+  registry.Register(input_gain::InputGainFamily());
   return registry;
 }
 

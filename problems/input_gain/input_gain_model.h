@@ -1,0 +1,215 @@
+// Joint input-gain model of a twin-propeller catamaran (MODELS.md §3, seed 000).
+//
+//   n' = u cos psi - v sin psi,  e' = u sin psi + v cos psi,  psi' = r
+//   u' = f_u(nu) + b_u (T_L + T_R)
+//   v' = f_v(nu) + b_v (T_L - T_R)
+//   r' = f_r(nu) + b_r (T_L - T_R)
+//
+// f_i(nu) = sum_k c_ik phi_k(nu) over a configured basis (basis.h). Propeller thrust from
+// normalised PWM x (both propellers alike), with the dead zone [d_r, d_f] (0 by default):
+//   T_s(x) = s + k_f s^2,        s = x - d_f,   x > d_f
+//   T_s(x) = k_r1 s - k_r2 s^2,  s = x - d_r,   x < d_r,   else 0
+// (the forward linear coefficient is 1: the scale lives in the gains). Static variant:
+// T_i = T_s(u_i). Dynamic variant: states T_L, T_R with T_i' = (T_s(u_i) - T_i) / tau_T.
+//
+// Parameters, in order: the coefficients "u.<term>", "v.<term>", "r.<term>" of the three
+// bases, then b_u, b_v, b_r, k_f, k_r1, k_r2, d_f, d_r and (dynamic) tau_T.
+// Outputs n, e, psi (measured) and u, v, r (for velocity metrics; normally not measured).
+//
+// Equation-error form (regression_form.h): given the propeller parameters that enter the
+// thrust nonlinearly (d_f, d_r, tau_T: profiled), each velocity equation is linear in
+//   theta_u = [c_u..., b_u, b_u k_f, b_u k_r1, -b_u k_r2]
+// with regressors [phi(nu)..., S1, S2, S3, S4], S_j the sum (surge) or difference (sway, yaw)
+// over the propellers of s+, s+^2, s-, s-^2, filtered like the thrust in the dynamic variant
+// (T(k+1) = a T(k) + (1 - a) T_s(u(k)), a = exp(-dt / tau_T), seed 000 eq. 21).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "Eigen/Dense"
+#include "engine/model.h"
+#include "engine/regression_form.h"
+#include "problems/input_gain/basis.h"
+
+namespace vesselid::input_gain {
+
+// Terms of the surge, sway and yaw bases (indices into Term).
+struct Bases {
+  std::array<std::vector<int>, 3> terms = {
+      std::vector<int>{kTermOne, kTermU, kTermAbsUU, kTermVR, kTermRR},
+      std::vector<int>{kTermOne, kTermV, kTermR, kTermAbsVV, kTermUR, kTermUV},
+      std::vector<int>{kTermOne, kTermV, kTermR, kTermAbsRR, kTermUV, kTermUR}};
+};
+
+// Operating regions of seed 000 eq. 20 by the sign of the PWM of (left, right).
+enum Region { kForwardForward, kForwardReverse, kReverseForward, kReverseReverse };
+
+// Regressor columns of the propellers for one equation: sums or differences of
+// s+, s+^2, s-, s-^2 over the two propellers.
+constexpr int kPropellerColumns = 4;
+
+template <bool kDynamic>
+class InputGainModel {
+ public:
+  static constexpr int kNumStates = kDynamic ? 8 : 6;
+  static constexpr int kNumInputs = 2;   // u_L, u_R
+  static constexpr int kNumOutputs = 6;  // n, e, psi, u, v, r
+
+  explicit InputGainModel(Bases bases = Bases()) : bases_(std::move(bases)) {
+    int offset = 0;
+    for (int i = 0; i < 3; ++i) {
+      first_[i] = offset;
+      offset += static_cast<int>(bases_.terms[i].size());
+    }
+    gains_ = offset;
+  }
+
+  const Bases& bases() const { return bases_; }
+  int GainIndex() const { return gains_; }          // b_u, b_v, b_r
+  int PropellerIndex() const { return gains_ + 3; }  // k_f, k_r1, k_r2, d_f, d_r, tau_T
+
+  ModelInfo Info() const {
+    ModelInfo info;
+    info.name = kDynamic ? "input_gain_dynamic" : "input_gain_static";
+    info.states = {"n", "e", "psi", "u", "v", "r"};
+    if (kDynamic) info.states.insert(info.states.end(), {"T_L", "T_R"});
+    info.inputs = {"u_L", "u_R"};
+    info.outputs = {"n", "e", "psi", "u", "v", "r"};
+    const char* equation[3] = {"u", "v", "r"};
+    for (int i = 0; i < 3; ++i) {
+      for (int term : bases_.terms[i]) {
+        info.parameters.push_back(std::string(equation[i]) + "." + TermNames()[term]);
+        // Linear damping of each component starts negative (stable), the rest at 0.
+        const bool damping = (i == 0 && term == kTermU) || (i == 1 && term == kTermV) ||
+                             (i == 2 && term == kTermR);
+        info.parameter_defaults.push_back(damping ? -0.5 : 0.0);
+      }
+    }
+    info.parameters.insert(info.parameters.end(),
+                           {"b_u", "b_v", "b_r", "k_f", "k_r1", "k_r2", "d_f", "d_r"});
+    info.parameter_defaults.insert(info.parameter_defaults.end(),
+                                   {0.5, 0.0, 1.0, 0.5, 1.0, 0.0, 0.0, 0.0});
+    if (kDynamic) {
+      info.parameters.push_back("tau_T");
+      info.parameter_defaults.push_back(0.3);
+    }
+    info.angle_outputs = {false, false, true, false, false, false};
+    return info;
+  }
+
+  template <class T>
+  static T StaticThrust(double x, const T* prop) {
+    const T& k_f = prop[0];
+    const T& k_r1 = prop[1];
+    const T& k_r2 = prop[2];
+    const T& d_f = prop[3];
+    const T& d_r = prop[4];
+    if (x > d_f) {
+      const T s = x - d_f;
+      return s + k_f * s * s;
+    }
+    if (x < d_r) {
+      const T s = x - d_r;
+      return k_r1 * s - k_r2 * s * s;
+    }
+    return T(0.0);
+  }
+
+  template <class T>
+  bool operator()(const T* x, const double* in, const T* p, T* xdot) const {
+    using std::cos;
+    using std::sin;
+    const T& psi = x[2];
+    const T& u = x[3];
+    const T& v = x[4];
+    const T& r = x[5];
+    const T* prop = p + PropellerIndex();
+    T thrust_left, thrust_right;
+    if constexpr (kDynamic) {
+      const T& tau = prop[5];
+      if (!(tau > 0.0)) return false;
+      thrust_left = x[6];
+      thrust_right = x[7];
+      xdot[6] = (StaticThrust(in[0], prop) - thrust_left) / tau;
+      xdot[7] = (StaticThrust(in[1], prop) - thrust_right) / tau;
+    } else {
+      thrust_left = StaticThrust(in[0], prop);
+      thrust_right = StaticThrust(in[1], prop);
+    }
+    const T c = cos(psi), s = sin(psi);
+    xdot[0] = u * c - v * s;
+    xdot[1] = u * s + v * c;
+    xdot[2] = r;
+    const T* gain = p + gains_;
+    const T sum = thrust_left + thrust_right;
+    const T difference = thrust_left - thrust_right;
+    xdot[3] = Lumped(0, p, u, v, r) + gain[0] * sum;
+    xdot[4] = Lumped(1, p, u, v, r) + gain[1] * difference;
+    xdot[5] = Lumped(2, p, u, v, r) + gain[2] * difference;
+    return IsFinite(xdot[3]) && IsFinite(xdot[4]) && IsFinite(xdot[5]);
+  }
+
+  template <class T>
+  void Output(const T* x, const double* u, const T* p, T* y) const {
+    for (int i = 0; i < 6; ++i) y[i] = x[i];
+  }
+
+  // Body velocities from the position and heading rates: nu = R(psi)^T eta'.
+  void GuessState(const double* y, const double* ydot, double* x) const {
+    if (!std::isfinite(y[2])) return;
+    const double c = std::cos(y[2]), s = std::sin(y[2]);
+    if (std::isnan(y[3]) && std::isfinite(ydot[0]) && std::isfinite(ydot[1])) {
+      x[3] = c * ydot[0] + s * ydot[1];
+    }
+    if (std::isnan(y[4]) && std::isfinite(ydot[0]) && std::isfinite(ydot[1])) {
+      x[4] = -s * ydot[0] + c * ydot[1];
+    }
+    if (std::isnan(y[5]) && std::isfinite(ydot[2])) x[5] = ydot[2];
+  }
+
+  std::vector<std::string> Admissibility(const double* p) const {
+    std::vector<std::string> problems;
+    const double* prop = p + PropellerIndex();
+    if (prop[4] > prop[3]) problems.push_back("dead zone d_r > d_f");
+    if (kDynamic && !(prop[5] > 0)) problems.push_back("tau_T must be > 0");
+    return problems;
+  }
+
+  int Region(const double* in) const {
+    const bool left = in[0] >= 0.0, right = in[1] >= 0.0;
+    if (left && right) return kForwardForward;
+    if (left) return kForwardReverse;
+    if (right) return kReverseForward;
+    return kReverseReverse;
+  }
+
+  RegressionForm Regression() const;
+  void Regressors(const double* p, RegressionRecord* record,
+                  std::vector<Eigen::MatrixXd>* phi) const;
+  void Coefficients(const double* p, double* theta) const;
+
+ private:
+  template <class T>
+  static bool IsFinite(const T& value) {
+    using std::isfinite;
+    return isfinite(value);
+  }
+
+  template <class T>
+  T Lumped(int i, const T* p, const T& u, const T& v, const T& r) const {
+    const std::vector<int>& terms = bases_.terms[i];
+    const T* c = p + first_[i];
+    T f(0.0);
+    for (size_t k = 0; k < terms.size(); ++k) f += c[k] * TermValue(terms[k], u, v, r);
+    return f;
+  }
+
+  Bases bases_;
+  std::array<int, 3> first_{};
+  int gains_ = 0;
+};
+
+}  // namespace vesselid::input_gain
