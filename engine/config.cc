@@ -395,7 +395,7 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
       reader.Fail(node["type"], Child(path, "type"),
                   "model " + info.name + " has no equation-error form for a least-squares stage");
     }
-    for (const char* key : {"free_initial_states", "loss", "continuation", "global", "local"}) {
+    for (const char* key : {"loss", "continuation", "global"}) {
       if (node[key]) reader.Fail(node[key], Child(path, key), "not used by a least-squares stage");
     }
   }

@@ -409,7 +409,11 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
   RunResult run;
   TrajectoryCache cache;
   Ledger ledger;
+  // Velocity metrics compare with the data as the latest least-squares stage prepared it, so
+  // that every stage is measured against the same reconstruction.
+  RegressionDataOptions velocity_data;
   for (const StageConfig& stage : config.stages) {
+    if (stage.kind == StageConfig::Kind::kLeastSquares) velocity_data = stage.regression_data;
     const std::string where = "stage '" + stage.options.name + "': ";
     auto fail = [&](const std::string& what) {
       *error = where + what;
@@ -445,8 +449,8 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
         return fail("validation: " + *error);
       }
       if (model.regression_form() != nullptr &&
-          !ValidateVelocities(config, model, stage.validation, stage.regression_data,
-                              stage.least_squares, values, &cache,
+          !ValidateVelocities(config, model, stage.validation, velocity_data, values,
+                              &cache,
                               &stage_result.velocity_validation, error)) {
         return fail("velocity validation: " + *error);
       }
@@ -469,9 +473,8 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
       return false;
     }
     if (model.regression_form() != nullptr) {
-      const StageConfig& last = config.stages.back();
-      if (!ValidateVelocities(config, model, v.experiments, last.regression_data,
-                              last.least_squares, final_values, &cache,
+      if (!ValidateVelocities(config, model, v.experiments, velocity_data, final_values,
+                              &cache,
                               &run.final_velocity_validation, error)) {
         *error = "final velocity validation: " + *error;
         return false;

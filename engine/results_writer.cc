@@ -1,6 +1,8 @@
 #include "engine/results_writer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -40,6 +42,8 @@ json RmsCostToJson(const std::vector<ExperimentFit>& fits) {
 json FitsToJson(const std::vector<ExperimentFit>& fits) {
   return {{"metrics", MetricsToJson(fits)}, {"rms_cost", RmsCostToJson(fits)}};
 }
+
+json VelocityToJson(const std::vector<ChannelMetrics>& metrics);
 
 json StageToJson(const StageResult& stage) {
   const StageSummary& s = stage.summary;
@@ -104,6 +108,9 @@ json StageToJson(const StageResult& stage) {
   j["fit"] = FitsToJson(s.fits);
   j["admissibility"] = stage.admissibility;
   if (!stage.validation.empty()) j["validation"] = FitsToJson(stage.validation);
+  if (!stage.velocity_validation.empty()) {
+    j["velocity_validation"] = VelocityToJson(stage.velocity_validation);
+  }
   return j;
 }
 
@@ -115,21 +122,91 @@ std::string TraceFileName(const std::string& prefix, const std::string& experime
   return name;
 }
 
+std::string MetricsRow(const ChannelMetrics& m, double rms_cost) {
+  char line[256];
+  std::snprintf(line, sizeof(line), "  %-20s %-8s %8d %12.4e %12.4e %10.6f %8.3f %10.4e\n",
+                m.experiment.c_str(), m.output.c_str(), m.samples, m.rmse, m.mae, m.r2,
+                m.fit_percent, rms_cost);
+  return line;
+}
+
+// Per experiment and channel; beyond kMaxRows experiments (a campaign of segments) pooled
+// per channel: RMSE and MAE over all samples, R2 and fit % as the median over experiments.
 std::string MetricsTable(const std::vector<ExperimentFit>& fits) {
+  constexpr size_t kMaxRows = 12;
   std::string out;
   char line[256];
   std::snprintf(line, sizeof(line), "  %-20s %-8s %8s %12s %12s %10s %8s %10s\n", "experiment",
-                "output", "samples", "RMSE", "MAE", "R2", "fit %", "rms cost");
+                "output", "samples", "RMSE", "MAE", fits.size() > kMaxRows ? "median R2" : "R2",
+                "fit %", "rms cost");
   out += line;
+  if (fits.size() <= kMaxRows) {
+    for (const ExperimentFit& fit : fits) {
+      for (const ChannelMetrics& m : fit.channels) out += MetricsRow(m, fit.rms_cost);
+    }
+    return out;
+  }
+  std::map<std::string, std::vector<const ChannelMetrics*>> by_output;
+  std::vector<std::string> order;
+  double cost2 = 0.0;
   for (const ExperimentFit& fit : fits) {
+    cost2 += fit.rms_cost * fit.rms_cost;
     for (const ChannelMetrics& m : fit.channels) {
-      std::snprintf(line, sizeof(line), "  %-20s %-8s %8d %12.4e %12.4e %10.6f %8.3f %10.4e\n",
-                    m.experiment.c_str(), m.output.c_str(), m.samples, m.rmse, m.mae, m.r2,
-                    m.fit_percent, fit.rms_cost);
-      out += line;
+      if (by_output[m.output].empty()) order.push_back(m.output);
+      by_output[m.output].push_back(&m);
     }
   }
+  for (const std::string& output : order) {
+    const std::vector<const ChannelMetrics*>& list = by_output[output];
+    ChannelMetrics pooled;
+    pooled.experiment = "all " + std::to_string(fits.size());
+    pooled.output = output;
+    double sse = 0.0, sae = 0.0;
+    std::vector<double> r2, fit;
+    for (const ChannelMetrics* m : list) {
+      pooled.samples += m->samples;
+      sse += m->rmse * m->rmse * m->samples;
+      sae += m->mae * m->samples;
+      r2.push_back(m->r2);
+      fit.push_back(m->fit_percent);
+    }
+    pooled.rmse = std::sqrt(sse / std::max(1, pooled.samples));
+    pooled.mae = sae / std::max(1, pooled.samples);
+    std::sort(r2.begin(), r2.end());
+    std::sort(fit.begin(), fit.end());
+    pooled.r2 = r2[r2.size() / 2];
+    pooled.fit_percent = fit[fit.size() / 2];
+    out += MetricsRow(pooled, std::sqrt(cost2 / fits.size()));
+  }
   return out;
+}
+
+// One-step and free-run metrics of the regressed states.
+std::string VelocityTable(const std::vector<ChannelMetrics>& metrics) {
+  std::string out;
+  char line[256];
+  std::snprintf(line, sizeof(line), "  %-10s %-6s %8s %12s %12s %10s\n", "prediction", "state",
+                "samples", "MAE", "RMSE", "R2");
+  out += line;
+  for (const ChannelMetrics& m : metrics) {
+    std::snprintf(line, sizeof(line), "  %-10s %-6s %8d %12.4e %12.4e %10.6f\n",
+                  m.experiment.c_str(), m.output.c_str(), m.samples, m.mae, m.rmse, m.r2);
+    out += line;
+  }
+  return out;
+}
+
+json VelocityToJson(const std::vector<ChannelMetrics>& metrics) {
+  json j = json::array();
+  for (const ChannelMetrics& m : metrics) {
+    j.push_back({{"prediction", m.experiment},
+                 {"state", m.output},
+                 {"samples", m.samples},
+                 {"mae", Number(m.mae)},
+                 {"rmse", Number(m.rmse)},
+                 {"r2", Number(m.r2)}});
+  }
+  return j;
 }
 
 std::string EstimateLine(const std::string& name, const std::string& role, double value,
@@ -181,6 +258,10 @@ std::string StageText(const StageResult& stage) {
   }
   out << MetricsTable(s.fits);
   if (!stage.validation.empty()) out << "  local validation:\n" << MetricsTable(stage.validation);
+  if (!stage.velocity_validation.empty()) {
+    out << "  local validation of the velocities (data: Savitzky-Golay reconstruction):\n"
+        << VelocityTable(stage.velocity_validation);
+  }
   return out.str();
 }
 
@@ -218,6 +299,9 @@ json RunResultToJson(const RunConfig& config, const RunResult& result) {
   j["parameters"] = parameters;
   j["admissibility"] = result.admissibility;
   if (config.has_final_validation) j["final_validation"] = FitsToJson(result.final_validation);
+  if (!result.final_velocity_validation.empty()) {
+    j["final_velocity_validation"] = VelocityToJson(result.final_velocity_validation);
+  }
   return j;
 }
 
@@ -240,6 +324,10 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
   for (const std::string& a : result.admissibility) out << "  not admissible: " << a << "\n";
   if (config.has_final_validation) {
     out << "\nfinal validation\n" << MetricsTable(result.final_validation);
+  }
+  if (!result.final_velocity_validation.empty()) {
+    out << "final validation of the velocities\n"
+        << VelocityTable(result.final_velocity_validation);
   }
   return out.str();
 }

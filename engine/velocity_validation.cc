@@ -23,6 +23,9 @@ bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model,
     spec.t_end = record.t.back();
     ExperimentOptions options;
     options.outputs = {info.outputs[record.grid_output]};
+    // Ten RK4 steps per grid interval: the grid may be slow (GNSS) next to fast internal
+    // dynamics (a propeller lag), and a step beyond ~2.8 time constants is unstable.
+    options.max_step = record.dt / 10.0;
     Experiment experiment;
     if (!BuildExperiment(spec, cache.at(record.record), info, options, &experiment, error)) {
       return false;
@@ -55,13 +58,12 @@ bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model,
 
 bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
                         const std::vector<std::string>& names,
-                        const RegressionDataOptions& data, const LeastSquaresOptions& options,
-                        const std::vector<double>& p, TrajectoryCache* cache,
+                        const RegressionDataOptions& data, const std::vector<double>& p, TrajectoryCache* cache,
                         std::vector<ChannelMetrics>* metrics, std::string* error) {
   metrics->clear();
   std::vector<RegressionRecord> records;
   if (!PrepareRegressionRecords(config, names, model, data, cache, &records, error)) return false;
-  if (!OneStepMetrics(model, p, options, &records, "one-step", metrics, error)) return false;
+  if (!OneStepMetrics(model, p, LeastSquaresOptions(), &records, "one-step", metrics, error)) return false;
   return FreeRunMetrics(config, model, p, *cache, &records, metrics, error);
 }
 

@@ -16,11 +16,11 @@
 
 namespace vesselid {
 
-// Metrics per regressed state, labelled "one-step" and "free-run".
+// Metrics per regressed state over every sample (whatever regions a stage was fitted on),
+// labelled "one-step" and "free-run".
 bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
                         const std::vector<std::string>& names,
-                        const RegressionDataOptions& data, const LeastSquaresOptions& options,
-                        const std::vector<double>& p, TrajectoryCache* cache,
+                        const RegressionDataOptions& data, const std::vector<double>& p, TrajectoryCache* cache,
                         std::vector<ChannelMetrics>* metrics, std::string* error);
 
 // Free-run part on prepared records (which get the model's internal states at p).

@@ -13,9 +13,15 @@ namespace {
 using Random = std::mt19937;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-enum class Manoeuvre { kForwardConstant, kForwardVarying, kZigzag, kCircleConstant, kCircleVarying };
+enum class Manoeuvre {
+  kForwardConstant,
+  kForwardVarying,
+  kZigzag,
+  kCircleConstant,
+  kCircleVarying
+};
 
-// Probability of each type, in Manoeuvre order: forward 35 %, zigzag 15 %, circles 50 %.
+// Share of each type, in Manoeuvre order: forward 35 %, zigzag 15 %, circles 50 %.
 const double kShares[] = {0.175, 0.175, 0.15, 0.25, 0.25};
 
 // Output columns after t.
@@ -38,11 +44,19 @@ struct Profile {
   double amplitude[2] = {0.0, 0.0}, period[2] = {1.0, 1.0}, phase[2] = {0.0, 0.0};
 
   double operator()(double time) const {
-    const size_t k = std::upper_bound(t.begin(), t.end(), time) - t.begin();  // first knot > time
-    double y = k == 0 ? value.front() : k == t.size() ? value.back()
-             : value[k - 1] + (value[k] - value[k - 1]) * (time - t[k - 1]) / (t[k] - t[k - 1]);
-    for (int i = 0; i < 2; ++i) y += amplitude[i] * std::sin(2.0 * M_PI * time / period[i] + phase[i]);
+    double y = Knots(time);
+    for (int i = 0; i < 2; ++i) {
+      y += amplitude[i] * std::sin(2.0 * M_PI * time / period[i] + phase[i]);
+    }
     return y;
+  }
+
+  // Linear interpolation between the knots around `time`, held beyond the ends.
+  double Knots(double time) const {
+    const size_t k = std::upper_bound(t.begin(), t.end(), time) - t.begin();  // first knot > time
+    if (k == 0) return value.front();
+    if (k == t.size()) return value.back();
+    return value[k - 1] + (value[k] - value[k - 1]) * (time - t[k - 1]) / (t[k] - t[k - 1]);
   }
 };
 
@@ -84,10 +98,11 @@ Profile SpeedSteps(Random& random, double duration) {
   return p;
 }
 
-// Low means dominate (u_m = 0.15 + 0.45 s^2) so that the inner propeller often reverses.
-double CircleMean(Random& random) {
+// u_m = lo + (hi - lo) s^2, s uniform: low means dominate so that the inner propeller
+// (u_m - |u_d| < 0) often reverses.
+double CircleMean(Random& random, double lo, double hi) {
   const double s = Uniform(random, 0.0, 1.0);
-  return 0.15 + 0.45 * s * s;
+  return lo + (hi - lo) * s * s;
 }
 
 // Turn rate ramped (reversing the turn one time in four) or oscillating about a mean turn,
@@ -96,9 +111,9 @@ Profile CircleDifference(Random& random, double duration) {
   const double sign = Sign(random);
   if (Coin(random)) {
     const double end_sign = Uniform(random, 0.0, 1.0) < 0.75 ? sign : -sign;
-    return Ramp(duration, sign * Uniform(random, 0.2, 0.55), end_sign * Uniform(random, 0.2, 0.55));
+    return Ramp(duration, sign * Uniform(random, 0.3, 0.55), end_sign * Uniform(random, 0.3, 0.55));
   }
-  const double mean = Uniform(random, 0.2, 0.35);
+  const double mean = Uniform(random, 0.3, 0.4);
   Profile p = Constant(sign * mean);
   p.amplitude[0] = Uniform(random, 0.1, 0.55 - mean);
   p.period[0] = Uniform(random, 10.0, 40.0);
@@ -108,17 +123,23 @@ Profile CircleDifference(Random& random, double duration) {
 
 struct Segment {
   Manoeuvre type = Manoeuvre::kForwardConstant;
-  long begin = 0, end = 0;  // logged RK4 steps [begin, end)
-  Profile mean, difference;  // u_m, u_d (zigzag: u_d's initial value, switched in flight)
+  long begin = 0, end = 0;      // logged RK4 steps [begin, end)
+  Profile mean, difference;     // u_m, u_d (zigzag: u_d's initial value, switched in flight)
   double zigzag_heading = 0.0;  // rad
 };
 
-Manoeuvre DrawType(Random& random) {
-  double draw = Uniform(random, 0.0, 1.0);
-  for (int i = 0; i < 4; ++i) {
-    if ((draw -= kShares[i]) < 0.0) return static_cast<Manoeuvre>(i);
+// Segment types in random order, type i on round(count x cumulative share) - (previous)
+// segments, so the shares hold for every seed rather than on average.
+std::vector<Manoeuvre> ShuffledTypes(int count, Random& random) {
+  std::vector<Manoeuvre> types;
+  double cumulative = 0.0;
+  for (int i = 0; i < 5; ++i) {
+    cumulative += kShares[i];
+    const long last = i == 4 ? count : std::lround(cumulative * count);
+    while (static_cast<long>(types.size()) < last) types.push_back(static_cast<Manoeuvre>(i));
   }
-  return Manoeuvre::kCircleVarying;
+  std::shuffle(types.begin(), types.end(), random);
+  return types;
 }
 
 // Operator commands of one segment of the given type and duration.
@@ -138,12 +159,12 @@ void PlanCommands(double duration, Random& random, Segment* s) {
       s->zigzag_heading = Uniform(random, 15.0, 25.0) * M_PI / 180.0;
       break;
     case Manoeuvre::kCircleConstant:
-      s->mean = Constant(Uniform(random, 0.15, 0.5));
+      s->mean = Constant(CircleMean(random, 0.15, 0.5));
       s->difference = Constant(Sign(random) * Uniform(random, 0.25, 0.55));
       break;
     case Manoeuvre::kCircleVarying: {
-      const double from = CircleMean(random);
-      s->mean = Coin(random) ? Constant(from) : Ramp(duration, from, CircleMean(random));
+      const double from = CircleMean(random, 0.15, 0.6);
+      s->mean = Coin(random) ? Constant(from) : Ramp(duration, from, CircleMean(random, 0.15, 0.6));
       s->difference = CircleDifference(random, duration);
       break;
     }
@@ -172,6 +193,7 @@ std::vector<double> Durations(const CampaignOptions& o, Random& random) {
 // cumulative sums so that the logged total matches total_duration to one step.
 std::vector<Segment> PlanSegments(const CampaignOptions& o, Random& random) {
   const std::vector<double> durations = Durations(o, random);
+  const std::vector<Manoeuvre> types = ShuffledTypes(o.segments, random);
   const long gap = std::lround(o.gap / o.step);
   std::vector<Segment> segments(o.segments);
   double logged = 0.0;
@@ -180,7 +202,7 @@ std::vector<Segment> PlanSegments(const CampaignOptions& o, Random& random) {
     s.begin = (i + 1) * gap + std::lround(logged / o.step);
     logged += durations[i];
     s.end = (i + 1) * gap + std::lround(logged / o.step);
-    s.type = DrawType(random);
+    s.type = types[i];
     PlanCommands(durations[i], random, &s);
   }
   return segments;
@@ -253,8 +275,8 @@ class Voyage {
       if (pwm_.Due(k_)) {
         const double time = (k_ - s.begin) * options_.step;
         const double d = sign * s.difference(time), turned = x_[kPsi] - psi0;
-        if (s.type == Manoeuvre::kZigzag && (d > 0 ? turned >= s.zigzag_heading
-                                                   : turned <= -s.zigzag_heading)) {
+        if (s.type == Manoeuvre::kZigzag &&
+            (d > 0 ? turned >= s.zigzag_heading : turned <= -s.zigzag_heading)) {
           sign = -sign;
         }
         Command(s.mean(time), sign * s.difference(time));
@@ -278,7 +300,7 @@ class Voyage {
 
   bool Step(std::string* error) {
     if (!Rk4Step<CatamaranRhs, double>(rhs_, pwm_value_, pwm_value_, pwm_value_, nullptr,
-                                      options_.step, x_)) {
+                                       options_.step, x_)) {
       *error = "campaign: simulation failed at t = " + std::to_string(k_ * options_.step) + " s";
       return false;
     }
