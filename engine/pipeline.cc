@@ -449,8 +449,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
         return fail("validation: " + *error);
       }
       if (model.regression_form() != nullptr &&
-          !ValidateVelocities(config, model, stage.validation, velocity_data, values,
-                              &cache,
+          !ValidateVelocities(config, model, stage.validation, velocity_data, values, &cache,
                               &stage_result.velocity_validation, error)) {
         return fail("velocity validation: " + *error);
       }

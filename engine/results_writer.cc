@@ -185,11 +185,11 @@ std::string MetricsTable(const std::vector<ExperimentFit>& fits) {
 std::string VelocityTable(const std::vector<ChannelMetrics>& metrics) {
   std::string out;
   char line[256];
-  std::snprintf(line, sizeof(line), "  %-10s %-6s %8s %12s %12s %10s\n", "prediction", "state",
+  std::snprintf(line, sizeof(line), "  %-30s %-6s %8s %12s %12s %10s\n", "prediction", "state",
                 "samples", "MAE", "RMSE", "R2");
   out += line;
   for (const ChannelMetrics& m : metrics) {
-    std::snprintf(line, sizeof(line), "  %-10s %-6s %8d %12.4e %12.4e %10.6f\n",
+    std::snprintf(line, sizeof(line), "  %-30s %-6s %8d %12.4e %12.4e %10.6f\n",
                   m.experiment.c_str(), m.output.c_str(), m.samples, m.mae, m.rmse, m.r2);
     out += line;
   }

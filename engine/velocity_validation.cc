@@ -58,13 +58,27 @@ bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model,
 
 bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
                         const std::vector<std::string>& names,
-                        const RegressionDataOptions& data, const std::vector<double>& p, TrajectoryCache* cache,
-                        std::vector<ChannelMetrics>* metrics, std::string* error) {
+                        const RegressionDataOptions& data, const std::vector<double>& p,
+                        TrajectoryCache* cache, std::vector<ChannelMetrics>* metrics,
+                        std::string* error) {
   metrics->clear();
-  std::vector<RegressionRecord> records;
-  if (!PrepareRegressionRecords(config, names, model, data, cache, &records, error)) return false;
-  if (!OneStepMetrics(model, p, LeastSquaresOptions(), &records, "one-step", metrics, error)) return false;
-  return FreeRunMetrics(config, model, p, *cache, &records, metrics, error);
+  for (const std::string& name : names) {
+    std::vector<RegressionRecord> records;
+    std::vector<ChannelMetrics> one_step, free_run;
+    if (!PrepareRegressionRecords(config, {name}, model, data, cache, &records, error) ||
+        !OneStepMetrics(model, p, LeastSquaresOptions(), &records, "one-step", &one_step,
+                        error) ||
+        !FreeRunMetrics(config, model, p, *cache, &records, &free_run, error)) {
+      return false;
+    }
+    for (std::vector<ChannelMetrics>* part : {&one_step, &free_run}) {
+      for (ChannelMetrics& m : *part) {
+        m.experiment = name + " " + m.experiment;
+        metrics->push_back(m);
+      }
+    }
+  }
+  return true;
 }
 
 }  // namespace vesselid

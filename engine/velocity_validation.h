@@ -16,8 +16,8 @@
 
 namespace vesselid {
 
-// Metrics per regressed state over every sample (whatever regions a stage was fitted on),
-// labelled "one-step" and "free-run".
+// Metrics per experiment and regressed state over every sample (whatever regions a stage was
+// fitted on), labelled "<experiment> one-step" and "<experiment> free-run".
 bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
                         const std::vector<std::string>& names,
                         const RegressionDataOptions& data, const std::vector<double>& p, TrajectoryCache* cache,

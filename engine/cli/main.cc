@@ -2,12 +2,16 @@
 //
 //   vesselid simulate <config.yaml> --out <dir>                 synthetic experiments
 //   vesselid run      <config.yaml> [--data <dir>] --out <dir>  staged identification
+//   vesselid study    <config.yaml> [--data <dir>] --out <dir>  data-partition study of a
+//                                                                least-squares stage
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "CLI/CLI.hpp"
 #include "glog/logging.h"
 #include "engine/config.h"
+#include "engine/partition_study.h"
 #include "engine/pipeline.h"
 #include "engine/results_writer.h"
 #include "problems/registry.h"
@@ -59,6 +63,37 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
   return 0;
 }
 
+// The config's `study` section (or the defaults) on the config's data; study.txt and
+// study.json are written only when the study ran.
+int Study(const std::string& config_path, const std::string& data_dir, const std::string& out_dir,
+          bool quiet) {
+  const vesselid::ModelRegistry registry = vesselid::DefaultRegistry();
+  vesselid::RunConfig config;
+  std::string error;
+  if (!vesselid::LoadRunConfig(config_path, data_dir, registry, &config, &error))
+    return Fail(error);
+  auto progress = [quiet](const std::string& line) {
+    if (!quiet) std::fprintf(stderr, "%s\n", line.c_str());
+  };
+  vesselid::StudyResult result;
+  if (!vesselid::RunPartitionStudy(config, config.study, &result, &error, progress)) {
+    return Fail(error);
+  }
+  const std::string text = vesselid::StudyResultToText(result);
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (ec) return Fail(out_dir + ": cannot create folder: " + ec.message());
+  const std::filesystem::path out(out_dir);
+  if (!vesselid::WriteFileAtomically((out / "study.txt").string(), text, &error) ||
+      !vesselid::WriteFileAtomically((out / "study.json").string(),
+                                     vesselid::StudyResultToJson(result).dump(2) + "\n", &error)) {
+    return Fail(error);
+  }
+  if (!quiet) std::cout << text;
+  std::printf("\nstudy written to %s/study.json\n", out_dir.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -82,7 +117,17 @@ int main(int argc, char** argv) {
   run->add_option("--out", out_dir, "folder for results.json, report.txt, traces/")->required();
   run->add_flag("--quiet", quiet, "print only the results path");
 
+  CLI::App* study = app.add_subcommand("study", "data-partition study of a least-squares stage");
+  study->add_option("config", config_path, "run configuration (YAML) with a study section")
+      ->required();
+  study->add_option("--data", data_dir,
+                    "folder the experiment files are relative to "
+                    "(default: the config's folder)");
+  study->add_option("--out", out_dir, "folder for study.txt and study.json")->required();
+  study->add_flag("--quiet", quiet, "print only the results path");
+
   CLI11_PARSE(app, argc, argv);
   if (simulate->parsed()) return Simulate(config_path, out_dir);
+  if (study->parsed()) return Study(config_path, data_dir, out_dir, quiet);
   return Run(config_path, data_dir, out_dir, quiet);
 }

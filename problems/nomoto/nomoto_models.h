@@ -12,9 +12,35 @@
 
 #include <cmath>
 
+#include "Eigen/Dense"
 #include "engine/model.h"
+#include "engine/regression_form.h"
 
 namespace vesselid::nomoto {
+
+// Equation-error form of the first-order and Norrbin models (least-squares stage):
+//   r' = K/T delta + K delta_0/T - 1/T r [- alpha/T r^3]
+// theta = [K/T, K delta_0/T, -1/T (, -alpha/T)], regressors [delta, 1, r (, r^3)].
+inline RegressionForm YawRateRegression(bool cubic) {
+  RegressionForm form;
+  form.states = {1};
+  form.coefficients = {{"K/T", "K*delta_0/T", "-1/T"}};
+  if (cubic) form.coefficients[0].push_back("-alpha/T");
+  form.regions = {"all"};
+  return form;
+}
+
+inline void YawRateRegressors(bool cubic, RegressionRecord* record,
+                              std::vector<Eigen::MatrixXd>* phi) {
+  const int n = record->size();
+  phi->assign(1, Eigen::MatrixXd(n, cubic ? 4 : 3));
+  Eigen::MatrixXd& m = (*phi)[0];
+  for (int k = 0; k < n; ++k) {
+    const double r = record->x(k, 1);
+    m.row(k).head<3>() << record->u(k, 0), 1.0, r;
+    if (cubic) m(k, 3) = r * r * r;
+  }
+}
 
 // Start value of the yaw rate r (state 1) from the measured heading rate when r itself is not
 // measured (first-order and Norrbin models; y = [psi, r]).
@@ -44,6 +70,18 @@ struct FirstOrder {
   void GuessState(const double* y, const double* ydot, double* x) const {
     GuessYawRate(y, ydot, x);
   }
+
+  RegressionForm Regression() const { return YawRateRegression(false); }
+  void Regressors(const double*, RegressionRecord* record,
+                  std::vector<Eigen::MatrixXd>* phi) const {
+    YawRateRegressors(false, record, phi);
+  }
+  void Coefficients(const double* p, double* theta) const {
+    theta[0] = p[1] / p[0];
+    theta[1] = p[1] * p[2] / p[0];
+    theta[2] = -1.0 / p[0];
+  }
+  int Region(const double*) const { return 0; }
 
   template <class T>
   void Output(const T* x, const double* u, const T* p, T* y) const {
@@ -81,6 +119,19 @@ struct Norrbin {
   void GuessState(const double* y, const double* ydot, double* x) const {
     GuessYawRate(y, ydot, x);
   }
+
+  RegressionForm Regression() const { return YawRateRegression(true); }
+  void Regressors(const double*, RegressionRecord* record,
+                  std::vector<Eigen::MatrixXd>* phi) const {
+    YawRateRegressors(true, record, phi);
+  }
+  void Coefficients(const double* p, double* theta) const {
+    theta[0] = p[1] / p[0];
+    theta[1] = p[1] * p[3] / p[0];
+    theta[2] = -1.0 / p[0];
+    theta[3] = -p[2] / p[0];
+  }
+  int Region(const double*) const { return 0; }
 
   template <class T>
   void Output(const T* x, const double* u, const T* p, T* y) const {
