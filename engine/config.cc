@@ -405,8 +405,9 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
 //   study: {stage, experiments, partitions, validation_share, training_shares, methods, seed}
 StudyOptions ReadStudy(const YamlReader& reader, const YAML::Node& node, const RunConfig& config) {
   const std::string path = "study";
-  reader.CheckMap(node, path, {"stage", "experiments", "partitions", "validation_share",
-                               "training_shares", "methods", "seed"});
+  reader.CheckMap(node, path,
+                  {"stage", "experiments", "partitions", "validation_share", "training_shares",
+                   "methods", "seed"});
   StudyOptions study;
   if (const YAML::Node n = node["stage"]) {
     study.stage = reader.String(n, Child(path, "stage"));
@@ -431,7 +432,9 @@ StudyOptions ReadStudy(const YamlReader& reader, const YAML::Node& node, const R
         ExperimentNames(reader, node["experiments"], Child(path, "experiments"), config);
   }
   reader.Read(node, path, "partitions", &study.partitions);
-  if (study.partitions < 1) reader.Fail(node["partitions"], Child(path, "partitions"), "must be >= 1");
+  if (study.partitions < 1) {
+    reader.Fail(node["partitions"], Child(path, "partitions"), "must be >= 1");
+  }
   reader.Read(node, path, "validation_share", &study.validation_share);
   if (!(study.validation_share > 0.0 && study.validation_share < 1.0)) {
     reader.Fail(node["validation_share"], Child(path, "validation_share"), "must be in (0, 1)");
@@ -448,7 +451,9 @@ StudyOptions ReadStudy(const YamlReader& reader, const YAML::Node& node, const R
   }
   if (const YAML::Node n = node["methods"]) {
     study.methods = reader.Strings(n, Child(path, "methods"));
-    if (study.methods.empty()) reader.Fail(n, Child(path, "methods"), "expected segments and/or points");
+    if (study.methods.empty()) {
+      reader.Fail(n, Child(path, "methods"), "expected segments and/or points");
+    }
     for (size_t i = 0; i < study.methods.size(); ++i) {
       if (study.methods[i] != "segments" && study.methods[i] != "points") {
         reader.Fail(n[i], Child(Child(path, "methods"), i),

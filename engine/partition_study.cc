@@ -68,7 +68,8 @@ int CountUsed(const RegressionRecord& record) {
 
 // The training and validation records of a split.
 void ApplySplit(const StudyContext& c, const std::string& method, const std::vector<Part>& parts,
-                std::vector<RegressionRecord>* training, std::vector<RegressionRecord>* validation) {
+                std::vector<RegressionRecord>* training,
+                std::vector<RegressionRecord>* validation) {
   training->clear();
   validation->clear();
   if (method == "segments") {
@@ -92,6 +93,32 @@ void ApplySplit(const StudyContext& c, const std::string& method, const std::vec
     if (CountUsed(train) > 0) training->push_back(std::move(train));
     if (CountUsed(held) > 0) validation->push_back(std::move(held));
   }
+}
+
+// One-step "prediction" without a model, x^(k+1) = x(k), at the samples OneStepMetrics
+// measures (selected, in the equation's regions, with a finite derivative).
+std::vector<ChannelMetrics> PersistenceMetrics(const ModelHandle& model,
+                                               const LeastSquaresOptions& options,
+                                               const std::vector<RegressionRecord>& records) {
+  const RegressionForm& form = *model.regression_form();
+  std::vector<ChannelMetrics> metrics;
+  for (size_t i = 0; i < form.states.size(); ++i) {
+    const int s = form.states[i];
+    const std::vector<int> none;
+    const std::vector<int>& regions = i < options.regions.size() ? options.regions[i] : none;
+    MetricAccumulator accumulator;
+    for (const RegressionRecord& record : records) {
+      for (int k = 0; k + 1 < record.size(); ++k) {
+        const bool in_region = regions.empty() || std::find(regions.begin(), regions.end(),
+                                                            record.region[k]) != regions.end();
+        if (record.use[k] && in_region && std::isfinite(record.xdot(k, s))) {
+          accumulator.Add(record.x(k, s), record.x(k + 1, s));
+        }
+      }
+    }
+    metrics.push_back(accumulator.Finish("persistence", model.info().states[s]));
+  }
+  return metrics;
 }
 
 PartitionOutcome RunSplit(StudyContext* c, const std::string& method, unsigned seed,
@@ -136,11 +163,11 @@ PartitionOutcome RunSplit(StudyContext* c, const std::string& method, unsigned s
     return finish();
   }
   outcome.parameters = ls.values;
+  outcome.persistence = PersistenceMetrics(model, options, validation);
   outcome.usable = true;
   // Free run of whole held-out records; a diverging one leaves the split's one-step metrics.
-  if (method == "segments" &&
-      !FreeRunMetrics(*c->config, model, ls.values, c->cache, &validation, &outcome.free_run,
-                      &error)) {
+  if (method == "segments" && !FreeRunMetrics(*c->config, model, ls.values, c->cache, &validation,
+                                              &outcome.free_run, &error)) {
     outcome.free_run.clear();
     outcome.message = "free run: " + error;
   }
@@ -189,15 +216,19 @@ Spread SpreadOf(const std::vector<double>& values) {
 }
 
 const std::vector<ChannelMetrics>& Metrics(const PartitionOutcome& o, const std::string& part) {
-  return part == "training" ? o.training : part == "validation" ? o.validation : o.free_run;
+  return part == "training"      ? o.training
+         : part == "validation"  ? o.validation
+         : part == "persistence" ? o.persistence
+                                 : o.free_run;
 }
 
-// A metric (mae, r2) of one state over the usable splits of `outcomes` that have it.
+// mae, rmse or r2 of a channel; NaN without samples.
 double MetricValue(const ChannelMetrics& m, const std::string& metric) {
   if (m.samples == 0) return kNaN;
   return metric == "mae" ? m.mae : metric == "rmse" ? m.rmse : m.r2;
 }
 
+// A metric of one state in one part over the usable splits of `outcomes`.
 Spread MetricSpread(const std::vector<const PartitionOutcome*>& outcomes, const std::string& part,
                     const std::string& state, const std::string& metric) {
   std::vector<double> values;
@@ -268,14 +299,17 @@ json OutcomeToJson(const StudyResult& result, const PartitionOutcome& o) {
             {"training_share", o.training_share},
             {"usable", o.usable},
             {"message", o.message},
-            {"training", {{"records", o.training_records},
-                          {"samples", o.training_samples},
-                          {"one_step", MetricsToJson(o.training)}}},
-            {"validation", {{"records", o.validation_records},
-                            {"samples", o.validation_samples},
-                            {"one_step", MetricsToJson(o.validation)}}},
+            {"training",
+             {{"records", o.training_records},
+              {"samples", o.training_samples},
+              {"one_step", MetricsToJson(o.training)}}},
+            {"validation",
+             {{"records", o.validation_records},
+              {"samples", o.validation_samples},
+              {"one_step", MetricsToJson(o.validation)}}},
             {"time_seconds", o.time_seconds}};
   if (o.method == "segments") j["validation"]["free_run"] = MetricsToJson(o.free_run);
+  j["validation"]["persistence"] = MetricsToJson(o.persistence);
   json parameters = json::object();
   for (size_t i = 0; i < o.parameters.size(); ++i) {
     parameters[result.parameters[i]] = Number(o.parameters[i]);
@@ -376,8 +410,8 @@ bool RunPartitionStudy(const RunConfig& config, const StudyOptions& options, Stu
       return fail(*error);
     }
   }
-  if (!PrepareRegressionRecords(config, o.experiments, *c.model, c.stage->regression_data,
-                                &c.cache, &c.pool, error)) {
+  if (!PrepareRegressionRecords(config, o.experiments, *c.model, c.stage->regression_data, &c.cache,
+                                &c.pool, error)) {
     return fail(*error);
   }
   // A segment listed by two experiments of the pool (held-out segments and their copy with
@@ -386,14 +420,22 @@ bool RunPartitionStudy(const RunConfig& config, const StudyOptions& options, Stu
   std::vector<RegressionRecord> unique;
   for (RegressionRecord& record : c.pool) {
     if (record.size() == 0) continue;
-    const auto key = std::make_tuple(config.FindExperiment(record.record)->file,
-                                     record.t.front(), record.t.back());
+    const auto key = std::make_tuple(config.FindExperiment(record.record)->file, record.t.front(),
+                                     record.t.back());
     if (seen.insert(key).second) {
       unique.push_back(std::move(record));
     } else {
       ++r.duplicates;
     }
   }
+  // File and time order: a split by segments with seed s then holds out the segments an
+  // experiment's `segments: {validation_share, seed: s}` holds out (RandomValidationMask).
+  std::stable_sort(unique.begin(), unique.end(),
+                   [&](const RegressionRecord& a, const RegressionRecord& b) {
+                     const std::string& fa = config.FindExperiment(a.record)->file;
+                     const std::string& fb = config.FindExperiment(b.record)->file;
+                     return fa != fb ? fa < fb : a.t.front() < b.t.front();
+                   });
   c.pool = std::move(unique);
   for (const RegressionRecord& record : c.pool) c.samples += CountUsed(record);
   if (c.pool.empty()) return fail("the pool has no records");
@@ -449,16 +491,15 @@ std::string StudyResultToText(const StudyResult& result) {
     out << result.duplicates << " records listed twice in the pool (same file and window) "
         << "counted once\n";
   }
-  out
-      << "one-step: x(k+1) predicted from the data at k, each equation on its own regions; "
-         "free-run: held-out segments simulated whole\n";
+  out << "one-step: x(k+1) predicted from the data at k, each equation on its own regions;\n"
+      << "free-run: held-out segments simulated whole; x(k+1)=x(k): one-step without a model\n";
 
   // (a)
   out << "\n(a) " << o.partitions << " random partitions, training "
       << Format("%.0f %%", 100.0 * (1.0 - o.validation_share)) << " / validation "
       << Format("%.0f %%", 100.0 * o.validation_share)
       << ": validation metrics, mean ± SD over the partitions\n";
-  out << Pad("method", 10) << Pad("metric", 10) << Pad("n", 4);
+  out << Pad("method", 10) << Pad("metric", 13) << Pad("n", 4);
   for (const char* metric : {"MAE", "R2"}) {
     for (const std::string& s : result.states) out << Pad(std::string(metric) + " " + s, 20);
   }
@@ -466,11 +507,13 @@ std::string StudyResultToText(const StudyResult& result) {
   std::vector<std::string> failures;
   for (const std::string& method : o.methods) {
     const auto outcomes = OfMethod(result.repeated, method);
-    for (const char* part : {"validation", "free_run"}) {
-      if (std::string(part) == "free_run" && method != "segments") continue;
+    for (const std::string part : {"validation", "free_run", "persistence"}) {
+      if (part == "free_run" && method != "segments") continue;
       const Spread count = MetricSpread(outcomes, part, result.states.front(), "r2");
-      out << Pad(method, 10) << Pad(std::string(part) == "validation" ? "one-step" : "free-run", 10)
-          << Pad(std::to_string(count.n), 4);
+      const std::string label = part == "validation" ? "one-step"
+                                : part == "free_run" ? "free-run"
+                                                     : "x(k+1)=x(k)";
+      out << Pad(method, 10) << Pad(label, 13) << Pad(std::to_string(count.n), 4);
       for (const char* metric : {"mae", "r2"}) {
         for (const std::string& s : result.states) {
           out << Pad(MeanSd(MetricSpread(outcomes, part, s, metric)), 20);
@@ -487,9 +530,8 @@ std::string StudyResultToText(const StudyResult& result) {
   }
 
   // (b)
-  out << "\n(b) training share, validation "
-      << Format("%.0f %%", 100.0 * o.validation_share) << " (seed " << o.seed
-      << "): one-step metrics\n";
+  out << "\n(b) training share, validation " << Format("%.0f %%", 100.0 * o.validation_share)
+      << " (seed " << o.seed << "): one-step metrics\n";
   out << Pad("share", 7) << Pad("method", 10) << Pad("part", 12) << Pad("n", 7);
   for (const char* metric : {"MAE", "R2"}) {
     for (const std::string& s : result.states) out << Pad(std::string(metric) + " " + s, 10);
@@ -517,8 +559,7 @@ std::string StudyResultToText(const StudyResult& result) {
       out << "\n";
     }
     if (!b.message.empty() && b.usable) {
-      failures.push_back("(b) " + b.method + Format(" share %.2f: ", b.training_share) +
-                         b.message);
+      failures.push_back("(b) " + b.method + Format(" share %.2f: ", b.training_share) + b.message);
     }
   }
   out << "n: grid samples of the part; each equation is measured on those in its regions\n";
@@ -560,13 +601,13 @@ json StudyResultToJson(const StudyResult& result) {
                   {"training_shares", o.training_shares},
                   {"methods", o.methods},
                   {"seed", o.seed}};
-  j["pool"] = {{"records", result.records},
-               {"samples", result.samples},
-               {"duplicates", result.duplicates}};
+  j["pool"] = {
+      {"records", result.records}, {"samples", result.samples}, {"duplicates", result.duplicates}};
   j["states"] = result.states;
   json parameters = json::array();
   for (size_t i = 0; i < result.parameters.size(); ++i) {
-    parameters.push_back({{"name", result.parameters[i]}, {"held", static_cast<bool>(result.held[i])}});
+    parameters.push_back(
+        {{"name", result.parameters[i]}, {"held", static_cast<bool>(result.held[i])}});
   }
   j["parameters"] = parameters;
   json repeated = json::object();
@@ -582,15 +623,15 @@ json StudyResultToJson(const StudyResult& result) {
     m["partitions"] = partitions;
     m["failed"] = failed;
     json summary = json::object();
-    for (const char* part : {"training", "validation", "free_run"}) {
-      if (std::string(part) == "free_run" && method != "segments") continue;
+    for (const std::string part : {"training", "validation", "free_run", "persistence"}) {
+      if (part == "free_run" && method != "segments") continue;
       json states = json::object();
       for (const std::string& s : result.states) {
         states[s] = {{"mae", SpreadToJson(MetricSpread(outcomes, part, s, "mae"))},
                      {"r2", SpreadToJson(MetricSpread(outcomes, part, s, "r2"))}};
       }
-      summary[std::string(part) == "free_run" ? "free_run" : std::string(part) + "_one_step"] =
-          states;
+      const bool one_step = part == "training" || part == "validation";
+      summary[one_step ? part + "_one_step" : part] = states;
     }
     json spread = json::object();
     for (size_t i = 0; i < result.parameters.size(); ++i) {

@@ -65,6 +65,9 @@ struct PartitionOutcome {
   std::vector<ChannelMetrics> training;    // one-step, training part
   std::vector<ChannelMetrics> validation;  // one-step, validation part
   std::vector<ChannelMetrics> free_run;    // validation records simulated whole (segments)
+  // x^(k+1) = x(k) on the validation part's one-step samples: no model at all, the
+  // reference a one-step R^2 near 1 has to be read against.
+  std::vector<ChannelMetrics> persistence;
   double time_seconds = 0.0;
 };
 
@@ -73,10 +76,10 @@ struct StudyResult {
   std::string model;
   int records = 0;  // in the pool
   int samples = 0;
-  int duplicates = 0;  // records of the pool dropped as a second copy of a segment
-  std::vector<std::string> states;      // regressed states
-  std::vector<std::string> parameters;  // model order
-  std::vector<bool> held;               // parameters the stage does not estimate
+  int duplicates = 0;                      // second copies of a segment, dropped
+  std::vector<std::string> states;         // regressed states
+  std::vector<std::string> parameters;     // model order
+  std::vector<bool> held;                  // parameters the stage does not estimate
   std::vector<PartitionOutcome> repeated;  // (a): per method, `partitions` splits
   std::vector<PartitionOutcome> shares;    // (b): per training share, per method
   double time_seconds = 0.0;
