@@ -222,3 +222,61 @@ TEST_F(BadInput, DivergentSimulationFailsCleanly) {
 
 }  // namespace
 }  // namespace vesselid
+
+namespace vesselid {
+namespace {
+
+// A least-squares stage in front of the good config's output-error stage.
+const char* kLeastSquaresStage = R"(stages:
+  - name: regression
+    type: least_squares
+    least_squares: {robust: true}
+    parameters:
+      T: {start: 3.0, lower: 0.1, upper: 50.0}
+      K: {start: -0.1, lower: -1.0, upper: -0.001}
+  - name: fit)";
+
+TEST_F(BadInput, LeastSquaresStageStartsTheNext) {
+  EditConfig("stages:\n  - name: fit", kLeastSquaresStage);
+  Outcome outcome = Run();
+  EXPECT_EQ(outcome.status, 0) << outcome.output;
+  std::ifstream in(dir_ / "out" / "report.txt");
+  const std::string report((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(report.find("equation r'"), std::string::npos) << report;
+}
+
+TEST_F(BadInput, UnknownStageType) {
+  EditConfig("  - name: fit\n", "  - name: fit\n    type: least_square\n");
+  ExpectRejected("config\\.yaml:\\d+: stages\\[0\\]\\.type: unknown stage type 'least_square'");
+}
+
+TEST_F(BadInput, LeastSquaresStageNeedsAnEquationErrorForm) {
+  EditConfig("type: first_order}", "type: second_order}");
+  std::string text;
+  {
+    std::ifstream in(dir_ / "config.yaml");
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  text.replace(text.find("  - name: fit\n"), 14, "  - name: fit\n    type: least_squares\n");
+  text.replace(text.find("      T: {"), 10, "      T1: {");
+  WriteConfig(text);
+  ExpectRejected("stages\\[0\\]\\.type: model nomoto_second_order has no equation-error form");
+}
+
+TEST_F(BadInput, UnknownRegion) {
+  EditConfig("stages:\n  - name: fit", std::string(kLeastSquaresStage));
+  std::ifstream in(dir_ / "config.yaml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  text.replace(text.find("{robust: true}"), 14, "{regions: {r: [ff]}}");
+  WriteConfig(text);
+  ExpectRejected("stages\\[0\\]\\.least_squares\\.regions\\.r\\[0\\]: unknown region 'ff' \\(all\\)");
+}
+
+TEST_F(BadInput, MissingSegmentColumn) {
+  EditConfig("    outputs: {psi: psi}\n", "    outputs: {psi: psi}\n    segments: {column: leg}\n");
+  ExpectRejected("experiment 'run'.*no segment column 'leg'");
+}
+
+}  // namespace
+}  // namespace vesselid
