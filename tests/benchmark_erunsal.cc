@@ -12,39 +12,31 @@
 #include <set>
 
 #include "engine/pipeline.h"
+#include "tests/benchmark_campaign.h"
 #include "problems/registry.h"
 
 namespace vesselid {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double Seconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
+using benchmark::Clock;
+using benchmark::Seconds;
 
 int Main(int argc, char** argv) {
   const std::string path = argc > 1 ? argv[1]
                                     : std::string(VESSELID_SOURCE_DIR) +
                                           "/configs/erunsal_hierarchy.yaml";
-  const std::filesystem::path data =
-      std::filesystem::temp_directory_path() / "vesselid_benchmark_erunsal";
-  std::filesystem::create_directories(data);
   const ModelRegistry registry = DefaultRegistry();
   RunConfig config;
   std::string error;
-  if (!LoadRunConfig(path, data.string(), registry, &config, &error)) {
+  double simulation_seconds;
+  if (!benchmark::LoadAndSimulate(path, "vesselid_benchmark_erunsal", registry, &config,
+                                  &simulation_seconds, &error)) {
     std::fprintf(stderr, "%s\n", error.c_str());
     return 1;
   }
-  auto start = Clock::now();
-  if (!config.model_family->simulate(YamlReader(path), config.simulation, *config.model,
-                                     data.string(), &error)) {
-    std::fprintf(stderr, "%s\n", error.c_str());
-    return 1;
-  }
-  std::printf("campaign simulation: %.3f s (%zu experiments)\n", Seconds(start),
+  std::printf("campaign simulation: %.3f s (%zu experiments)\n", simulation_seconds,
               config.experiments.size());
+  auto start = Clock::now();
 
   Clock::time_point stage_start;
   RunResult result;
@@ -66,7 +58,7 @@ int Main(int argc, char** argv) {
                                           experiments.size(), finished->estimates.size());
                                     });
   const double total = Seconds(start);
-  std::filesystem::remove_all(data);
+  std::filesystem::remove_all(benchmark::DataFolder("vesselid_benchmark_erunsal"));
   if (!ok) {
     std::fprintf(stderr, "%s\n", error.c_str());
     return 1;

@@ -17,38 +17,30 @@
 #include "engine/partition_study.h"
 #include "engine/pipeline.h"
 #include "problems/registry.h"
+#include "tests/benchmark_campaign.h"
 
 namespace vesselid {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double Seconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
+using benchmark::Clock;
+using benchmark::Seconds;
 
 int Main(int argc, char** argv) {
   const std::string path = argc > 1 ? argv[1]
                                     : std::string(VESSELID_SOURCE_DIR) +
                                           "/configs/input_gain_static.yaml";
   const int iterations = argc > 2 ? std::atoi(argv[2]) : 10;
-  const std::filesystem::path data =
-      std::filesystem::temp_directory_path() / "vesselid_benchmark_input_gain";
-  std::filesystem::create_directories(data);
   const ModelRegistry registry = DefaultRegistry();
   RunConfig config;
   std::string error;
-  if (!LoadRunConfig(path, data.string(), registry, &config, &error)) {
+  double simulation_seconds;
+  if (!benchmark::LoadAndSimulate(path, "vesselid_benchmark_input_gain", registry, &config,
+                                  &simulation_seconds, &error)) {
     std::fprintf(stderr, "%s\n", error.c_str());
     return 1;
   }
+  std::printf("campaign simulation: %.3f s\n", simulation_seconds);
   auto start = Clock::now();
-  if (!config.model_family->simulate(YamlReader(path), config.simulation, *config.model,
-                                     data.string(), &error)) {
-    std::fprintf(stderr, "%s\n", error.c_str());
-    return 1;
-  }
-  std::printf("campaign simulation: %.3f s\n", Seconds(start));
 
   // The least-squares start.
   const StageConfig& ls_stage = config.stages.at(0);

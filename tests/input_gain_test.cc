@@ -162,6 +162,23 @@ TYPED_TEST(InputGainBattery, OutputErrorRecoversTruthWithinReportedUncertainty) 
   EXPECT_EQ(estimated, static_cast<int>(this->truth_.size()) - 2);
 }
 
+// Every parameter estimated from the model's default, except `held` (kept at its default).
+std::vector<ParameterSpec> DefaultSpecs(const ModelHandle& model,
+                                        const std::vector<std::string>& held = {}) {
+  std::vector<ParameterSpec> specs;
+  const ModelInfo& info = model.info();
+  for (size_t i = 0; i < info.parameters.size(); ++i) {
+    ParameterSpec s;
+    s.name = info.parameters[i];
+    s.start = info.parameter_defaults[i];
+    for (const std::string& name : held) {
+      if (name == s.name) s.role = ParameterRole::kFixed;
+    }
+    specs.push_back(s);
+  }
+  return specs;
+}
+
 // Regression records straight from the simulation on the 0.1 s command grid: exact states,
 // exact derivatives, exact held inputs.
 std::vector<RegressionRecord> ExactRecords(const ModelHandle& model, const std::vector<double>& p) {
@@ -271,14 +288,7 @@ TEST(InputGainLeastSquares, ReachesSeedOneStepLevelFromNoisyPositionsAndHeading)
     return records;
   };
   std::vector<RegressionRecord> training = records_of(1, 8), validation = records_of(20, 4);
-  std::vector<ParameterSpec> specs;
-  for (size_t i = 0; i < truth.size(); ++i) {
-    ParameterSpec s;
-    s.name = model->info().parameters[i];
-    s.start = model->info().parameter_defaults[i];
-    if (s.name == "d_f" || s.name == "d_r") s.role = ParameterRole::kFixed;
-    specs.push_back(s);
-  }
+  const std::vector<ParameterSpec> specs = DefaultSpecs(*model, {"d_f", "d_r"});
   LeastSquaresOptions options;
   options.regression.robust = true;
   LeastSquaresResult result;
@@ -327,13 +337,7 @@ TEST(NomotoLeastSquares, FirstOrderAndNorrbinRecoverExactDataExactly) {
       r.use.push_back(true);
     }
     std::vector<RegressionRecord> records = {r};
-    std::vector<ParameterSpec> specs;
-    for (size_t i = 0; i < truth.size(); ++i) {
-      ParameterSpec s;
-      s.name = model->info().parameters[i];
-      s.start = model->info().parameter_defaults[i];
-      specs.push_back(s);
-    }
+    const std::vector<ParameterSpec> specs = DefaultSpecs(*model);
     LeastSquaresResult result;
     LeastSquaresSummary summary;
     ASSERT_TRUE(RunLeastSquares(*model, specs, LeastSquaresOptions(), &records, &result, &summary))

@@ -23,11 +23,17 @@ int Fail(const std::string& message) {
   return 1;
 }
 
+// The registry outlives every config (a config points at its model family).
+bool Load(const std::string& config_path, const std::string& data_dir,
+          vesselid::RunConfig* config, std::string* error) {
+  static const vesselid::ModelRegistry registry = vesselid::DefaultRegistry();
+  return vesselid::LoadRunConfig(config_path, data_dir, registry, config, error);
+}
+
 int Simulate(const std::string& config_path, const std::string& out_dir) {
-  const vesselid::ModelRegistry registry = vesselid::DefaultRegistry();
   vesselid::RunConfig config;
   std::string error;
-  if (!vesselid::LoadRunConfig(config_path, out_dir, registry, &config, &error)) return Fail(error);
+  if (!Load(config_path, out_dir, &config, &error)) return Fail(error);
   vesselid::YamlReader reader(config_path);
   try {
     if (!config.model_family->simulate(reader, config.simulation, *config.model, out_dir, &error)) {
@@ -42,11 +48,9 @@ int Simulate(const std::string& config_path, const std::string& out_dir) {
 
 int Run(const std::string& config_path, const std::string& data_dir, const std::string& out_dir,
         bool quiet) {
-  const vesselid::ModelRegistry registry = vesselid::DefaultRegistry();
   vesselid::RunConfig config;
   std::string error;
-  if (!vesselid::LoadRunConfig(config_path, data_dir, registry, &config, &error))
-    return Fail(error);
+  if (!Load(config_path, data_dir, &config, &error)) return Fail(error);
   auto observer = [quiet](const vesselid::StageResult* finished, const std::string& next) {
     if (quiet) return;
     if (finished == nullptr) {
@@ -67,11 +71,9 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
 // study.json are written only when the study ran.
 int Study(const std::string& config_path, const std::string& data_dir, const std::string& out_dir,
           bool quiet) {
-  const vesselid::ModelRegistry registry = vesselid::DefaultRegistry();
   vesselid::RunConfig config;
   std::string error;
-  if (!vesselid::LoadRunConfig(config_path, data_dir, registry, &config, &error))
-    return Fail(error);
+  if (!Load(config_path, data_dir, &config, &error)) return Fail(error);
   auto progress = [quiet](const std::string& line) {
     if (!quiet) std::fprintf(stderr, "%s\n", line.c_str());
   };
