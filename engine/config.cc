@@ -4,8 +4,39 @@
 #include <filesystem>
 
 #include "ceres/types.h"
+#include "engine/config_sections.h"
 
 namespace vesselid {
+
+void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                GlobalStartOptions* global) {
+  reader.CheckMap(node, path,
+                  {"algorithm", "max_evaluations", "max_time", "seed", "population", "candidates",
+                   "min_separation"});
+  reader.Read(node, path, "algorithm", &global->algorithm);
+  reader.Read(node, path, "max_evaluations", &global->max_evaluations);
+  reader.Read(node, path, "max_time", &global->max_time_seconds);
+  int seed = static_cast<int>(global->seed);
+  reader.Read(node, path, "seed", &seed);
+  global->seed = static_cast<unsigned>(seed);
+  reader.Read(node, path, "population", &global->population);
+  reader.Read(node, path, "candidates", &global->candidates);
+  reader.Read(node, path, "min_separation", &global->min_separation);
+  std::string error;
+  if (!global->IsValid(&error)) reader.Fail(node, path, error);
+}
+
+std::vector<std::string> ExperimentNames(const YamlReader& reader, const YAML::Node& node,
+                                         const std::string& key, const RunConfig& config) {
+  std::vector<std::string> names = reader.Strings(node, key);
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (config.FindExperiment(names[i]) == nullptr) {
+      reader.Fail(node[i], Child(key, i), "no experiment named '" + names[i] + "'");
+    }
+  }
+  return names;
+}
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -193,23 +224,6 @@ void ReadLocal(const YamlReader& reader, const YAML::Node& node, const std::stri
   if (!local->IsValid(&error)) reader.Fail(node, path, error);
 }
 
-void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
-                GlobalStartOptions* global) {
-  reader.CheckMap(node, path,
-                  {"algorithm", "max_evaluations", "max_time", "seed", "population", "candidates",
-                   "min_separation"});
-  reader.Read(node, path, "algorithm", &global->algorithm);
-  reader.Read(node, path, "max_evaluations", &global->max_evaluations);
-  reader.Read(node, path, "max_time", &global->max_time_seconds);
-  int seed = static_cast<int>(global->seed);
-  reader.Read(node, path, "seed", &seed);
-  global->seed = static_cast<unsigned>(seed);
-  reader.Read(node, path, "population", &global->population);
-  reader.Read(node, path, "candidates", &global->candidates);
-  reader.Read(node, path, "min_separation", &global->min_separation);
-  std::string error;
-  if (!global->IsValid(&error)) reader.Fail(node, path, error);
-}
 
 //   least_squares: {penalty: none|ridge|lasso, lambda, folds, robust,
 //                   regions: {<state>: [<region>...]}, grid, smoothing: {half_width, order},
@@ -288,16 +302,6 @@ std::shared_ptr<const ModelHandle> OverrideModel(const YamlReader& reader, const
 }
 
 // A list of experiment names at `key`, each one the config defines.
-std::vector<std::string> ExperimentNames(const YamlReader& reader, const YAML::Node& node,
-                                         const std::string& key, const RunConfig& config) {
-  std::vector<std::string> names = reader.Strings(node, key);
-  for (size_t i = 0; i < names.size(); ++i) {
-    if (config.FindExperiment(names[i]) == nullptr) {
-      reader.Fail(node[i], Child(key, i), "no experiment named '" + names[i] + "'");
-    }
-  }
-  return names;
-}
 
 StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                       const RunConfig& config, const YAML::Node& model_node, size_t index) {
@@ -402,73 +406,6 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
   return stage;
 }
 
-//   study: {stage, experiments, partitions, validation_share, training_shares, methods, seed}
-StudyOptions ReadStudy(const YamlReader& reader, const YAML::Node& node, const RunConfig& config) {
-  const std::string path = "study";
-  reader.CheckMap(node, path,
-                  {"stage", "experiments", "partitions", "validation_share", "training_shares",
-                   "methods", "seed"});
-  StudyOptions study;
-  if (const YAML::Node n = node["stage"]) {
-    study.stage = reader.String(n, Child(path, "stage"));
-    const StageConfig* stage = nullptr;
-    for (const StageConfig& s : config.stages) {
-      if (s.options.name == study.stage) stage = &s;
-    }
-    if (stage == nullptr) {
-      reader.Fail(n, Child(path, "stage"), "no stage named '" + study.stage + "'");
-    }
-    if (stage->kind != StageConfig::Kind::kLeastSquares) {
-      reader.Fail(n, Child(path, "stage"),
-                  "stage '" + study.stage + "' is not a least_squares stage");
-    }
-  } else {
-    bool found = false;
-    for (const StageConfig& s : config.stages) found |= s.kind == StageConfig::Kind::kLeastSquares;
-    if (!found) reader.Fail(node, path, "the run has no least_squares stage to study");
-  }
-  if (node["experiments"]) {
-    study.experiments =
-        ExperimentNames(reader, node["experiments"], Child(path, "experiments"), config);
-  }
-  reader.Read(node, path, "partitions", &study.partitions);
-  if (study.partitions < 1) {
-    reader.Fail(node["partitions"], Child(path, "partitions"), "must be >= 1");
-  }
-  reader.Read(node, path, "validation_share", &study.validation_share);
-  if (!(study.validation_share > 0.0 && study.validation_share < 1.0)) {
-    reader.Fail(node["validation_share"], Child(path, "validation_share"), "must be in (0, 1)");
-  }
-  if (const YAML::Node n = node["training_shares"]) {
-    study.training_shares = reader.Doubles(n, Child(path, "training_shares"));
-    for (size_t i = 0; i < study.training_shares.size(); ++i) {
-      const double share = study.training_shares[i];
-      if (!(share > 0.0 && study.validation_share + share <= 1.0 + 1e-9)) {
-        reader.Fail(n[i], Child(Child(path, "training_shares"), i),
-                    "must be > 0 with validation_share + share <= 1");
-      }
-    }
-  }
-  if (const YAML::Node n = node["methods"]) {
-    study.methods = reader.Strings(n, Child(path, "methods"));
-    if (study.methods.empty()) {
-      reader.Fail(n, Child(path, "methods"), "expected segments and/or points");
-    }
-    for (size_t i = 0; i < study.methods.size(); ++i) {
-      if (study.methods[i] != "segments" && study.methods[i] != "points") {
-        reader.Fail(n[i], Child(Child(path, "methods"), i),
-                    "unknown method '" + study.methods[i] + "' (segments, points)");
-      }
-    }
-  }
-  int seed = static_cast<int>(study.seed);
-  reader.Read(node, path, "seed", &seed);
-  if (seed < 0) reader.Fail(node["seed"], Child(path, "seed"), "must be >= 0");
-  study.seed = static_cast<unsigned>(seed);
-  std::string error;
-  if (!study.IsValid(&error)) reader.Fail(node, path, error);
-  return study;
-}
 
 }  // namespace
 
@@ -557,7 +494,6 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
     }
     if (const YAML::Node study = root["study"]) {
       result.study = ReadStudy(reader, study, result);
-      result.has_study = true;
     }
     *config = std::move(result);
     return true;

@@ -10,8 +10,8 @@
 //                  global, local, uncertainty}]
 //   fusion:      inverse_variance | mean | information (fusion.h)
 //   final_validation: {experiments, outputs, model, free_initial_states}
-//   study:       {stage, experiments, partitions, validation_share, training_shares, methods,
-//                 seed}  (`vesselid study`, partition_study.h)
+//   study:       {seed, threads, profile, monte_carlo, starts, partitions}  (`vesselid study`,
+//                 study_options.h)
 //
 // A stage's `model` map overrides keys of the run's `model` map (e.g. active DOFs). A
 // parameter without `start` starts from its latest estimate in an earlier stage (else the
@@ -33,6 +33,7 @@
 #include "engine/output_error_problem.h"
 #include "engine/parameter.h"
 #include "engine/partition_study.h"
+#include "engine/study_options.h"
 #include "engine/stage.h"
 
 namespace vesselid {
@@ -81,9 +82,8 @@ struct RunConfig {
   FusionRule fusion = FusionRule::kInverseVariance;
   bool has_final_validation = false;
   FinalValidationConfig final_validation;
-  // Data-partition study of a least-squares stage (`vesselid study`); defaults when absent.
-  bool has_study = false;
-  StudyOptions study;
+  // Sensitivity studies (`vesselid study`); empty when the config has no study section.
+  StudyConfig study;
 
   const ExperimentSpec* FindExperiment(const std::string& name) const;
 };

@@ -403,17 +403,30 @@ bool PrepareRegressionRecords(const RunConfig& config, const std::vector<std::st
   return true;
 }
 
-bool RunIdentification(const RunConfig& config, RunResult* result, std::string* error,
-                       const StageObserver& observer) {
-  const auto start_time = std::chrono::steady_clock::now();
-  RunResult run;
-  TrajectoryCache cache;
-  Ledger ledger;
-  // Velocity metrics compare with the data as the latest least-squares stage prepared it, so
-  // that every stage is measured against the same reconstruction.
-  RegressionDataOptions velocity_data;
-  for (const StageConfig& stage : config.stages) {
-    if (stage.kind == StageConfig::Kind::kLeastSquares) velocity_data = stage.regression_data;
+namespace {
+
+// Velocity metrics compare with the data as the latest least-squares stage among the first
+// `count` prepared it, so that every stage is measured against the same reconstruction.
+RegressionDataOptions VelocityData(const RunConfig& config, size_t count) {
+  RegressionDataOptions options;
+  for (size_t i = 0; i < count; ++i) {
+    if (config.stages[i].kind == StageConfig::Kind::kLeastSquares) {
+      options = config.stages[i].regression_data;
+    }
+  }
+  return options;
+}
+
+// Runs stages [0, count) into `run`, recording every estimate in `ledger`.
+bool RunStages(const RunConfig& config, size_t count, TrajectoryCache* cache_ptr,
+               Ledger* ledger_ptr, RunResult* run_ptr, std::string* error,
+               const StageObserver& observer) {
+  TrajectoryCache& cache = *cache_ptr;
+  Ledger& ledger = *ledger_ptr;
+  RunResult& run = *run_ptr;
+  for (size_t index = 0; index < count; ++index) {
+    const StageConfig& stage = config.stages[index];
+    const RegressionDataOptions velocity_data = VelocityData(config, index + 1);
     const std::string where = "stage '" + stage.options.name + "': ";
     auto fail = [&](const std::string& what) {
       *error = where + what;
@@ -458,6 +471,37 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     run.stages.push_back(std::move(stage_result));
     if (observer) observer(&run.stages.back(), "");
   }
+  return true;
+}
+
+}  // namespace
+
+bool ResolveStage(const RunConfig& config, size_t index, std::vector<ParameterSpec>* specs,
+                  std::vector<StageResult>* before, std::string* error) {
+  TrajectoryCache cache;
+  Ledger ledger;
+  RunResult run;
+  if (!RunStages(config, index, &cache, &ledger, &run, error, nullptr)) return false;
+  const StageConfig& stage = config.stages[index];
+  const ModelHandle& model = stage.model ? *stage.model : *config.model;
+  if (!ResolveParameters(stage, model.info(), ledger, specs, error)) {
+    *error = "stage '" + stage.options.name + "': " + *error;
+    return false;
+  }
+  if (before != nullptr) *before = std::move(run.stages);
+  return true;
+}
+
+bool RunIdentification(const RunConfig& config, RunResult* result, std::string* error,
+                       const StageObserver& observer) {
+  const auto start_time = std::chrono::steady_clock::now();
+  RunResult run;
+  TrajectoryCache cache;
+  Ledger ledger;
+  if (!RunStages(config, config.stages.size(), &cache, &ledger, &run, error, observer)) {
+    return false;
+  }
+  const RegressionDataOptions velocity_data = VelocityData(config, config.stages.size());
   const ModelInfo& info = config.model->info();
   run.parameters = Finalise(info, ledger, run.stages, config.fusion);
   std::vector<double> final_values;

@@ -74,6 +74,12 @@ using StageObserver = std::function<void(const StageResult* finished, const std:
 bool RunIdentification(const RunConfig& config, RunResult* result, std::string* error,
                        const StageObserver& observer = nullptr);
 
+// The parameter specs stage `index` is solved with after stages [0, index) ran as a run
+// runs them (starts carried, unlisted parameters held at their latest estimates); `before`
+// (optional) receives those stages' results. Used by studies of one stage.
+bool ResolveStage(const RunConfig& config, size_t index, std::vector<ParameterSpec>* specs,
+                  std::vector<StageResult>* before, std::string* error);
+
 // Recorded data by experiment, so that stages sharing an experiment read it once.
 using TrajectoryCache = std::map<std::string, Trajectory>;
 

@@ -45,6 +45,56 @@ json FitsToJson(const std::vector<ExperimentFit>& fits) {
 
 json VelocityToJson(const std::vector<ChannelMetrics>& metrics);
 
+// Conditioning and sensitivities at the optimum (local_analysis.h); null numbers are
+// infinite or unknown (an infinite condition number: the information matrix is singular).
+json LocalAnalysisToJson(const LocalAnalysis& a) {
+  json j = {{"available", a.available}};
+  if (!a.available) {
+    j["message"] = a.message;
+    return j;
+  }
+  j["parameters"] = a.names;
+  j["profiled"] = a.profiled;
+  j["residual_variance"] = a.residual_variance;
+  j["condition_number"] = Number(a.condition_number);
+  json ratios = json::array();
+  const double lambda_max = std::max(a.eigenvalues.maxCoeff(), 0.0);
+  for (int k = 0; k < a.eigenvalues.size(); ++k) {
+    ratios.push_back(Number(lambda_max > 0 ? a.eigenvalues[k] / lambda_max : 0.0));
+  }
+  j["eigenvalue_ratios"] = ratios;
+  json directions = json::array();
+  for (const WeakDirection& d : a.directions) {
+    json coefficients = json::object();
+    for (size_t i = 0; i < a.names.size(); ++i) {
+      if (d.coefficients[i] != 0.0) coefficients[a.names[i]] = d.coefficients[i];
+    }
+    directions.push_back({{"combination", d.combination},
+                          {"coefficients", coefficients},
+                          {"eigenvalue_ratio", d.eigenvalue_ratio},
+                          {"std_dev", Number(d.std_dev)},
+                          {"std_dev_normalised", Number(d.std_dev_normalised)},
+                          {"status", DirectionStatusToString(d.status)}});
+  }
+  j["directions"] = directions;
+  json std_errors = json::object();
+  for (size_t i = 0; i < a.names.size(); ++i) std_errors[a.names[i]] = Number(a.std_errors[i]);
+  j["std_errors"] = std_errors;
+  auto table = [&](const Eigen::MatrixXd& values) {
+    json t = json::object();
+    for (size_t c = 0; c < a.channels.size(); ++c) {
+      json row = json::object();
+      for (size_t i = 0; i < a.names.size(); ++i) row[a.names[i]] = Number(values(c, i));
+      t[a.channels[c]] = row;
+    }
+    return t;
+  };
+  j["sensitivity"] = table(a.sensitivity);
+  j["noise_sensitivity"] = table(a.noise_sensitivity);
+  j["time_seconds"] = a.time_seconds;
+  return j;
+}
+
 json StageToJson(const StageResult& stage) {
   const StageSummary& s = stage.summary;
   json j;
@@ -104,6 +154,9 @@ json StageToJson(const StageResult& stage) {
       matrix.push_back(row);
     }
     j["correlation"] = {{"names", stage.correlation_names}, {"matrix", matrix}};
+  }
+  if (s.analysis.available || !s.analysis.message.empty()) {
+    j["local_analysis"] = LocalAnalysisToJson(s.analysis);
   }
   j["fit"] = FitsToJson(s.fits);
   j["admissibility"] = stage.admissibility;
@@ -226,6 +279,43 @@ std::string EstimateLine(const std::string& name, const std::string& role, doubl
   return line;
 }
 
+// Condition number, weak directions and the sensitivity table of a stage.
+std::string LocalAnalysisText(const LocalAnalysis& a) {
+  std::ostringstream out;
+  char line[512];
+  std::snprintf(line, sizeof(line),
+                "  local analysis (%zu shared parameters, %d per-experiment unknowns profiled "
+                "out, %.3f s): condition number %.4g\n",
+                a.names.size(), a.profiled, a.time_seconds, a.condition_number);
+  out << line;
+  for (const WeakDirection& d : a.directions) {
+    std::snprintf(line, sizeof(line), "    %s: %s (lambda/lambda_max %.3g, std %.4g along it)\n",
+                  DirectionStatusToString(d.status), d.combination.c_str(), d.eigenvalue_ratio,
+                  d.std_dev);
+    out << line;
+  }
+  out << "  sensitivity: % change of the channel per % change of the parameter (S) and noise "
+         "SDs per 100 % (Z)\n";
+  std::snprintf(line, sizeof(line), "    %-22s", "parameter");
+  out << line;
+  for (const std::string& c : a.channels) {
+    std::snprintf(line, sizeof(line), " %10s %10s", (c + " S").c_str(), (c + " Z").c_str());
+    out << line;
+  }
+  out << "\n";
+  for (size_t i = 0; i < a.names.size(); ++i) {
+    std::snprintf(line, sizeof(line), "    %-22s", a.names[i].c_str());
+    out << line;
+    for (size_t c = 0; c < a.channels.size(); ++c) {
+      std::snprintf(line, sizeof(line), " %10.4g %10.4g", a.sensitivity(c, i),
+                    a.noise_sensitivity(c, i));
+      out << line;
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
 std::string StageText(const StageResult& stage) {
   const StageSummary& s = stage.summary;
   std::ostringstream out;
@@ -256,6 +346,7 @@ std::string StageText(const StageResult& stage) {
     }
     out << (shown == 0 ? " none above 0.9\n" : "\n");
   }
+  if (s.analysis.available) out << LocalAnalysisText(s.analysis);
   out << MetricsTable(s.fits);
   if (!stage.validation.empty()) out << "  local validation:\n" << MetricsTable(stage.validation);
   if (!stage.velocity_validation.empty()) {

@@ -178,6 +178,13 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
       !ComputeUncertainty(problem, best_cost, &summary->uncertainty)) {
     summary->notes.push_back("uncertainty: " + summary->uncertainty.message);
   }
+  if (options.compute_uncertainty) {
+    LocalAnalysisOptions analysis;
+    analysis.num_threads = options.local.num_threads;
+    if (!ComputeLocalAnalysis(analysis, problem, &summary->analysis)) {
+      summary->notes.push_back("local analysis: " + summary->analysis.message);
+    }
+  }
   if (!EvaluateFit(*problem, &summary->fits, &summary->message)) return false;
   summary->usable = true;
   summary->time_seconds =

@@ -1,6 +1,6 @@
 // One identification stage: optional NLopt global start, Ceres refinement of the start point
 // and of every global candidate (the lowest final cost wins), ordering of exchangeable
-// parameters, uncertainty and fit metrics at the optimum.
+// parameters, uncertainty, local analysis and fit metrics at the optimum.
 #pragma once
 
 #include <string>
@@ -8,6 +8,7 @@
 
 #include "engine/covariance.h"
 #include "engine/global_start.h"
+#include "engine/local_analysis.h"
 #include "engine/local_solve.h"
 #include "engine/metrics.h"
 #include "engine/output_error_problem.h"
@@ -19,7 +20,7 @@ struct StageOptions {
   bool use_global_start = false;
   GlobalStartOptions global;
   LocalSolveOptions local;
-  bool compute_uncertainty = true;
+  bool compute_uncertainty = true;  // and the local analysis (local_analysis.h)
   // Before each refinement, solve for the free initial states alone with the parameters
   // held: a segment started from zero velocities would otherwise drag the parameters away.
   bool initial_states_first = true;
@@ -36,6 +37,7 @@ struct StageSummary {
   std::vector<LocalSolveSummary> refinements;
   int chosen = -1;                             // index into refinements
   Uncertainty uncertainty;
+  LocalAnalysis analysis;  // conditioning and sensitivities at the optimum
   std::vector<ExperimentFit> fits;
   std::vector<std::string> notes;
   double time_seconds = 0.0;

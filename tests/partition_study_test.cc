@@ -34,11 +34,11 @@ class PartitionStudy : public ::testing::Test {
         YAML::LoadFile(std::string(VESSELID_SOURCE_DIR) + "/configs/input_gain_static.yaml");
     config["simulation"]["segments"] = 24;
     config["simulation"]["duration_min"] = 10;
-    config["study"]["partitions"] = 3;
+    config["study"]["partitions"]["repetitions"] = 3;
     Write("study.yaml", config);
-    config["study"] = YAML::Load("{stage: refinement}");
+    config["study"] = YAML::Load("{partitions: {stage: refinement}}");
     Write("refinement.yaml", config);
-    config["study"] = YAML::Load("{partitons: 3}");
+    config["study"] = YAML::Load("{partitions: {repetitons: 3}}");
     Write("misspelt.yaml", config);
     const std::string simulate = std::string(VESSELID_BINARY) + " simulate " +
                                  (*dir_ / "study.yaml").string() + " --out " + dir_->string() +
@@ -69,10 +69,12 @@ class PartitionStudy : public ::testing::Test {
     return status;
   }
 
+  // The partitions part of study.json.
   static json Load(const std::string& out) {
     std::ifstream in(*dir_ / out / "study.json");
     EXPECT_TRUE(in.good()) << "no study.json in " << out;
-    return json::parse(in, nullptr, /*allow_exceptions=*/false);
+    const json j = json::parse(in, nullptr, /*allow_exceptions=*/false);
+    return j.is_object() && j.contains("partitions") ? j["partitions"] : json();
   }
 
   // The JSON without its timings, for comparing runs.
@@ -134,7 +136,7 @@ TEST_F(PartitionStudy, SameSeedGivesTheSameNumbers) {
 TEST_F(PartitionStudy, OutputErrorStageIsRejectedWithoutWritingResults) {
   std::string messages;
   EXPECT_NE(Study("refinement.yaml", "refinement", &messages), 0);
-  EXPECT_NE(messages.find("study.stage"), std::string::npos) << messages;
+  EXPECT_NE(messages.find("study.partitions.stage"), std::string::npos) << messages;
   EXPECT_NE(messages.find("not a least_squares stage"), std::string::npos) << messages;
   EXPECT_FALSE(fs::exists(*dir_ / "refinement" / "study.json"));
 }
@@ -145,7 +147,7 @@ TEST_F(PartitionStudy, MisspeltKeyNamesTheStudySection) {
   EXPECT_FALSE(LoadRunConfig((*dir_ / "misspelt.yaml").string(), dir_->string(), DefaultRegistry(),
                              &config, &error));
   EXPECT_NE(error.find("study"), std::string::npos) << error;
-  EXPECT_NE(error.find("partitons"), std::string::npos) << error;
+  EXPECT_NE(error.find("repetitons"), std::string::npos) << error;
 }
 
 TEST(StudyOptions, SharesMustFitTheData) {

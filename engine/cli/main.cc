@@ -2,8 +2,9 @@
 //
 //   vesselid simulate <config.yaml> --out <dir>                 synthetic experiments
 //   vesselid run      <config.yaml> [--data <dir>] --out <dir>  staged identification
-//   vesselid study    <config.yaml> [--data <dir>] --out <dir>  data-partition study of a
-//                                                                least-squares stage
+//   vesselid study    <config.yaml> [--data <dir>] --out <dir>  sensitivity studies (the
+//                     [--only part...] [--threads n]             config's `study` section;
+//                                                                also under mpirun -np K)
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -11,7 +12,8 @@
 #include "CLI/CLI.hpp"
 #include "glog/logging.h"
 #include "engine/config.h"
-#include "engine/partition_study.h"
+#include "engine/study.h"
+#include "engine/study_runner.h"
 #include "engine/pipeline.h"
 #include "engine/results_writer.h"
 #include "problems/registry.h"
@@ -67,28 +69,33 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
   return 0;
 }
 
-// The config's `study` section (or the defaults) on the config's data; study.txt and
-// study.json are written only when the study ran.
+// The config's `study` section on the config's data. Under `mpirun` every rank runs its share
+// of each part's cases and rank 0 alone writes study.txt and study.json, and only when every
+// part ran.
 int Study(const std::string& config_path, const std::string& data_dir, const std::string& out_dir,
-          bool quiet) {
+          const std::vector<std::string>& only, int threads, bool quiet) {
+  vesselid::ProcessGroup group(nullptr, nullptr);
   vesselid::RunConfig config;
   std::string error;
-  if (!Load(config_path, data_dir, &config, &error)) return Fail(error);
-  auto progress = [quiet](const std::string& line) {
-    if (!quiet) std::fprintf(stderr, "%s\n", line.c_str());
+  if (!Load(config_path, data_dir, &config, &error)) return group.root() ? Fail(error) : 1;
+  if (threads > 0) config.study.execution.threads = threads;
+  const bool report = !quiet && group.root();
+  auto progress = [report](const std::string& line) {
+    if (report) std::fprintf(stderr, "%s\n", line.c_str());
   };
-  vesselid::StudyResult result;
-  if (!vesselid::RunPartitionStudy(config, config.study, &result, &error, progress)) {
-    return Fail(error);
+  nlohmann::json result;
+  std::string text;
+  if (!vesselid::RunStudy(config, only, &result, &text, &error, progress)) {
+    return group.root() ? Fail(error) : 1;
   }
-  const std::string text = vesselid::StudyResultToText(result);
+  if (!group.root()) return 0;
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (ec) return Fail(out_dir + ": cannot create folder: " + ec.message());
   const std::filesystem::path out(out_dir);
   if (!vesselid::WriteFileAtomically((out / "study.txt").string(), text, &error) ||
-      !vesselid::WriteFileAtomically((out / "study.json").string(),
-                                     vesselid::StudyResultToJson(result).dump(2) + "\n", &error)) {
+      !vesselid::WriteFileAtomically((out / "study.json").string(), result.dump(2) + "\n",
+                                     &error)) {
     return Fail(error);
   }
   if (!quiet) std::cout << text;
@@ -119,7 +126,8 @@ int main(int argc, char** argv) {
   run->add_option("--out", out_dir, "folder for results.json, report.txt, traces/")->required();
   run->add_flag("--quiet", quiet, "print only the results path");
 
-  CLI::App* study = app.add_subcommand("study", "data-partition study of a least-squares stage");
+  CLI::App* study = app.add_subcommand(
+      "study", "sensitivity studies: profile likelihood, Monte Carlo, start points, partitions");
   study->add_option("config", config_path, "run configuration (YAML) with a study section")
       ->required();
   study->add_option("--data", data_dir,
@@ -127,9 +135,14 @@ int main(int argc, char** argv) {
                     "(default: the config's folder)");
   study->add_option("--out", out_dir, "folder for study.txt and study.json")->required();
   study->add_flag("--quiet", quiet, "print only the results path");
+  std::vector<std::string> only;
+  int threads = 0;
+  study->add_option("--only", only, "run only these parts (profile, monte_carlo, starts, partitions)");
+  study->add_option("--threads", threads, "worker threads per process (default: study.threads, "
+                    "else cores / processes)");
 
   CLI11_PARSE(app, argc, argv);
   if (simulate->parsed()) return Simulate(config_path, out_dir);
-  if (study->parsed()) return Study(config_path, data_dir, out_dir, quiet);
+  if (study->parsed()) return Study(config_path, data_dir, out_dir, only, threads, quiet);
   return Run(config_path, data_dir, out_dir, quiet);
 }

@@ -1,0 +1,70 @@
+// What `vesselid study` runs, as the config's `study` section describes it:
+//
+//   study:
+//     seed: 1          # every case's random numbers derive from it and the case index
+//     threads: 0       # worker threads per process; 0: cores / processes on the machine
+//     profile:     {stage, parameters, points, span, confidence}
+//     monte_carlo: {stage, runs, noise, truth, start, confidence}
+//     starts:      {stage, runs, sampling, global, tolerance}
+//     partitions:  {stage, experiments, repetitions, validation_share, training_shares,
+//                   methods}
+//
+// Each part studies one output-error stage of the run (least-squares stage for partitions),
+// the last one when `stage` is not given, with the parameters the run carries into it.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/global_start.h"
+#include "engine/partition_study.h"
+#include "engine/study_runner.h"
+
+namespace vesselid {
+
+// Profile likelihood: each listed parameter held on a grid while the others are re-estimated;
+// the confidence interval is where 2 (F(theta_j) - F^) / s^2 stays below chi2_1(confidence).
+struct ProfileOptions {
+  std::string stage;
+  std::vector<std::string> parameters;  // empty: every free parameter of the stage
+  int points = 21;                      // grid points per parameter (odd: one at the optimum)
+  double span = 4.0;                    // grid half-width in standard errors (bounds if none)
+  double confidence = 0.95;
+};
+
+// Monte Carlo noise study: the stage's experiments simulated with `truth`, Gaussian noise of
+// `noise` (per model output, in its units) added to every sample, identified `runs` times.
+struct MonteCarloOptions {
+  std::string stage;
+  int runs = 200;
+  std::map<std::string, double> noise;  // output -> standard deviation
+  std::map<std::string, double> truth;  // parameter -> value (default: simulation.truth)
+  bool start_at_truth = false;          // start: truth; default start: the stage's starts
+  double confidence = 0.95;             // of the intervals whose coverage is counted
+};
+
+// Start-point study: `runs` starts drawn in the bounds of the free parameters, each solved
+// locally only and with the global start first.
+struct StartPointOptions {
+  std::string stage;
+  int runs = 50;
+  bool log_sampling = false;      // sampling: log (positive bounds) or uniform
+  GlobalStartOptions global;      // the stage's own global options unless given
+  bool global_given = false;
+  // Two optima are the same when every free parameter agrees within tolerance * max(|value|,
+  // its scale); a start "reaches the best" when its optimum is the lowest-cost one.
+  double tolerance = 1e-3;
+};
+
+struct StudyConfig {
+  unsigned seed = 1;
+  CaseOptions execution;
+  std::optional<ProfileOptions> profile;
+  std::optional<MonteCarloOptions> monte_carlo;
+  std::optional<StartPointOptions> starts;
+  std::optional<StudyOptions> partitions;
+};
+
+}  // namespace vesselid
