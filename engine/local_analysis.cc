@@ -43,12 +43,22 @@ Eigen::MatrixXd PseudoInverse(const Eigen::MatrixXd& c) {
   return d.asDiagonal() * (v * inverse.asDiagonal() * v.transpose()) * d.asDiagonal();
 }
 
-// "T2 + 0.97 T3": the leading name, then the other kept terms in matrix order.
+// "T2 + 0.97 T3": the kept terms by decreasing normalised component (the leading one first).
 std::string CombinationText(const std::vector<std::string>& names,
-                            const std::vector<double>& coefficients, int lead) {
-  std::string text = names[lead];
+                            const std::vector<double>& coefficients,
+                            const Eigen::VectorXd& components) {
+  std::vector<int> order;
   for (size_t j = 0; j < names.size(); ++j) {
-    if (static_cast<int>(j) == lead || coefficients[j] == 0.0) continue;
+    if (coefficients[j] != 0.0) order.push_back(static_cast<int>(j));
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int i, int j) { return std::abs(components[i]) > std::abs(components[j]); });
+  std::string text;
+  for (int j : order) {
+    if (text.empty()) {
+      text = names[j];  // coefficient 1
+      continue;
+    }
     char term[256];
     std::snprintf(term, sizeof(term), " %c %.3g %s", coefficients[j] < 0 ? '-' : '+',
                   std::abs(coefficients[j]), names[j].c_str());
@@ -237,10 +247,10 @@ bool ComputeLocalAnalysis(const LocalAnalysisOptions& options, OutputErrorProble
     WeakDirection w;
     w.coefficients.assign(ns, 0.0);
     for (int i = 0; i < ns; ++i) {
-      if (std::abs(v(i, k)) >= options.min_component)
+      if (i == lead || std::abs(v(i, k)) >= options.min_component)
         w.coefficients[i] = v(i, k) * inverse_d[i] / lead_step;
     }
-    w.combination = CombinationText(a->names, w.coefficients, lead);
+    w.combination = CombinationText(a->names, w.coefficients, v.col(k));
     w.eigenvalue_ratio = ratio;
     const double lambda = a->eigenvalues[k];
     w.std_dev_normalised = lambda > 0 ? s / std::sqrt(lambda) : kInf;

@@ -15,13 +15,13 @@
 // errors agree with ComputeUncertainty's for the shared parameters.
 //
 // A direction v_k is reported as the parameter change dp = t D^-1 v_k written as a
-// combination ("T2 + 0.97 T3": dT2 = t, dT3 = 0.97 t), led by the parameter with the largest
-// normalised component (coefficient 1); terms whose normalised component is below
-// `min_component` are dropped. Its standard deviation is that of t, in the leading
+// combination ("T2 + 0.97 T3": dT2 = t, dT3 = 0.97 t), terms by decreasing normalised
+// component, led by the largest (coefficient 1); other terms whose normalised component is
+// below `min_component` are dropped. Its standard deviation is that of t, in the leading
 // parameter's units: std(t) = |(D^-1 v_k)_lead| s / sqrt(lambda_k); s / sqrt(lambda_k) itself
 // is kept too. Status by lambda_k / lambda_max (default thresholds): below 1e-10 (singular
-// values 1e-5 of the largest) undetermined, the fit cannot tell the change from noise-free
-// data; below 1e-4 (a condition number above 100 along it) poorly determined; else
+// values 1e-5 of the largest) undetermined, the data practically do not constrain the
+// change; below 1e-4 (a condition number above 100 along it) poorly determined; else
 // determined.
 //
 // Sensitivity of output channel c to shared parameter p_j, over every sample i of the channel

@@ -73,9 +73,14 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
     state_free[index] = true;
   }
 
+  // One array holds every block, in variable order, never reallocated: Ceres orders blocks
+  // by address in places (covariance), so addresses must follow the variables for results
+  // to be reproducible from run to run and thread to thread.
+  p->storage_.reserve(specs.size() * (p->experiments_.size() + 1) +
+                      info.states.size() * p->experiments_.size());
   auto add_variable = [&](Variable v, double start) {
-    p->storage_.push_back(std::make_unique<double>(start / v.scale));
-    v.block = p->storage_.back().get();
+    p->storage_.push_back(start / v.scale);
+    v.block = &p->storage_.back();
     p->variables_.push_back(v);
     return static_cast<int>(p->variables_.size()) - 1;
   };

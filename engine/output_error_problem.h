@@ -79,7 +79,7 @@ class OutputErrorProblem {
   std::vector<Experiment> experiments_;
   std::unique_ptr<ceres::LossFunction> loss_;
   std::unique_ptr<ceres::Problem> problem_;
-  std::vector<std::unique_ptr<double>> storage_;  // stable block addresses
+  std::vector<double> storage_;  // every block, reserved once: stable, ordered addresses
   std::vector<Variable> variables_;
   // block_of_[e][j]: variable index of block j (parameters, then states) of experiment e.
   std::vector<std::vector<int>> block_of_;

@@ -10,6 +10,9 @@
 #ifdef VESSELID_WITH_MPI
 #include <mpi.h>
 #endif
+#ifdef VESSELID_WITH_OPENMP
+#include <omp.h>
+#endif
 
 namespace vesselid {
 namespace {
@@ -50,6 +53,9 @@ std::vector<json> GatherOnRoot(const json& mine) {
 }  // namespace
 
 ProcessGroup::ProcessGroup(int* argc, char*** argv) {
+#ifdef VESSELID_WITH_OPENMP
+  omp_set_num_threads(1);  // the solves a study runs outside RunCases too
+#endif
 #ifdef VESSELID_WITH_MPI
   int provided = 0;
   MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
@@ -111,6 +117,10 @@ void RunCases(int count, const CaseFunction& run, const CaseOptions& options,
   std::atomic<size_t> next{0};
   std::mutex progress_mutex;
   auto worker = [&]() {
+#ifdef VESSELID_WITH_OPENMP
+    // One OpenMP thread inside each case (SuiteSparse): sums in a fixed order.
+    omp_set_num_threads(1);
+#endif
     for (size_t k = next++; k < mine.size(); k = next++) {
       json result;
       try {
