@@ -175,7 +175,11 @@ bool ComputeLocalAnalysis(const LocalAnalysisOptions& options, OutputErrorProble
         }
       }
     }
-    const Eigen::MatrixXd g = j.transpose() * j;
+    // J^T J as a rank update: unlike a general product, never split over OpenMP threads
+    // (thousands of small products would wait on each other on a busy machine).
+    Eigen::MatrixXd g = Eigen::MatrixXd::Zero(width, width);
+    g.selfadjointView<Eigen::Lower>().rankUpdate(j.transpose());
+    g = g.selfadjointView<Eigen::Lower>();
     ipp += g.topLeftCorner(ns, ns);
     if (locals[e] > 0) {
       const Eigen::MatrixXd b = g.topRightCorner(ns, locals[e]);

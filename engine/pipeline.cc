@@ -62,10 +62,7 @@ bool ResolveParameters(const StageConfig& stage, const ModelInfo& info, const Le
   return true;
 }
 
-// Simulates `names` with every parameter fixed at `values`. Initial states come from the
-// data, except `free_states`, which are estimated first with the parameters held (a decay
-// test's unmeasured initial yaw rate, a segment's velocities), as a validation of the
-// parameters, not of a guessed start.
+// Simulates `names` with every parameter fixed at `values` (HeldOutProblem).
 bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
                      const std::vector<std::string>& names, const ExperimentOptions& options,
                      const std::vector<std::string>& free_states, const LocalSolveOptions& local,
@@ -75,27 +72,9 @@ bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
   if (!PrepareExperiments(config, names, model, options, cache, &experiments, error)) {
     return false;
   }
-  std::vector<ParameterSpec> fixed;
-  for (size_t i = 0; i < values.size(); ++i) {
-    ParameterSpec spec;
-    spec.name = model.info().parameters[i];
-    spec.start = values[i];
-    spec.role = ParameterRole::kFixed;
-    fixed.push_back(spec);
-  }
-  OutputErrorOptions problem_options;
-  problem_options.free_initial_states = free_states;
-  auto problem =
-      OutputErrorProblem::Create(&model, std::move(experiments), fixed, problem_options, error);
-  if (problem == nullptr) return false;
-  if (problem->num_free() > 0) {
-    LocalSolveSummary summary;
-    if (!RunLocalSolve(local, problem.get(), &summary)) {
-      *error = "initial-state estimate: " + summary.message;
-      return false;
-    }
-  }
-  return EvaluateFit(*problem, fits, error);
+  const std::unique_ptr<OutputErrorProblem> problem =
+      HeldOutProblem(model, std::move(experiments), free_states, local, values, error);
+  return problem != nullptr && EvaluateFit(*problem, fits, error);
 }
 
 StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>& starts,
@@ -306,6 +285,35 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& stage,
 
 }  // namespace
 
+std::unique_ptr<OutputErrorProblem> HeldOutProblem(const ModelHandle& model,
+                                                   std::vector<Experiment> experiments,
+                                                   const std::vector<std::string>& free_states,
+                                                   const LocalSolveOptions& local,
+                                                   const std::vector<double>& values,
+                                                   std::string* error) {
+  std::vector<ParameterSpec> fixed;
+  for (size_t i = 0; i < values.size(); ++i) {
+    ParameterSpec spec;
+    spec.name = model.info().parameters[i];
+    spec.start = values[i];
+    spec.role = ParameterRole::kFixed;
+    fixed.push_back(spec);
+  }
+  OutputErrorOptions problem_options;
+  problem_options.free_initial_states = free_states;
+  auto problem =
+      OutputErrorProblem::Create(&model, std::move(experiments), fixed, problem_options, error);
+  if (problem == nullptr) return nullptr;
+  if (problem->num_free() > 0) {
+    LocalSolveSummary summary;
+    if (!RunLocalSolve(local, problem.get(), &summary)) {
+      *error = "initial-state estimate: " + summary.message;
+      return nullptr;
+    }
+  }
+  return problem;
+}
+
 bool RecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double segment_length,
                  std::vector<ExperimentSpec>* specs, std::string* error) {
   specs->clear();
@@ -417,14 +425,14 @@ RegressionDataOptions VelocityData(const RunConfig& config, size_t count) {
   return options;
 }
 
-// Runs stages [0, count) into `run`, recording every estimate in `ledger`.
-bool RunStages(const RunConfig& config, size_t count, TrajectoryCache* cache_ptr,
+// Runs stages [first, count) into `run`, recording every estimate in `ledger`.
+bool RunStages(const RunConfig& config, size_t first, size_t count, TrajectoryCache* cache_ptr,
                Ledger* ledger_ptr, RunResult* run_ptr, std::string* error,
                const StageObserver& observer) {
   TrajectoryCache& cache = *cache_ptr;
   Ledger& ledger = *ledger_ptr;
   RunResult& run = *run_ptr;
-  for (size_t index = 0; index < count; ++index) {
+  for (size_t index = first; index < count; ++index) {
     const StageConfig& stage = config.stages[index];
     const RegressionDataOptions velocity_data = VelocityData(config, index + 1);
     const std::string where = "stage '" + stage.options.name + "': ";
@@ -476,19 +484,50 @@ bool RunStages(const RunConfig& config, size_t count, TrajectoryCache* cache_ptr
 
 }  // namespace
 
+namespace {
+
+// Stages [0, result) are all stage `index` needs run before it: the last one estimating a
+// parameter that `index` carries (unlisted, or listed without a start).
+size_t StagesNeededBefore(const RunConfig& config, size_t index) {
+  const StageConfig& stage = config.stages[index];
+  const ModelHandle& model = stage.model ? *stage.model : *config.model;
+  auto carried = [&](const std::string& name) {
+    for (const ParameterSpec& spec : stage.parameters) {
+      if (spec.name == name) return spec.start_from_previous;
+    }
+    return true;
+  };
+  for (size_t k = index; k-- > 0;) {
+    for (const ParameterSpec& spec : config.stages[k].parameters) {
+      if (spec.role != ParameterRole::kFixed && model.info().ParameterIndex(spec.name) >= 0 &&
+          carried(spec.name)) {
+        return k + 1;
+      }
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
 bool ResolveStage(const RunConfig& config, size_t index, std::vector<ParameterSpec>* specs,
-                  std::vector<StageResult>* before, std::string* error) {
+                  std::vector<StageResult>* before, std::string* error, StageResult* solved) {
   TrajectoryCache cache;
   Ledger ledger;
   RunResult run;
-  if (!RunStages(config, index, &cache, &ledger, &run, error, nullptr)) return false;
+  const size_t needed = StagesNeededBefore(config, index);
+  if (!RunStages(config, 0, needed, &cache, &ledger, &run, error, nullptr)) return false;
   const StageConfig& stage = config.stages[index];
   const ModelHandle& model = stage.model ? *stage.model : *config.model;
   if (!ResolveParameters(stage, model.info(), ledger, specs, error)) {
     *error = "stage '" + stage.options.name + "': " + *error;
     return false;
   }
-  if (before != nullptr) *before = std::move(run.stages);
+  if (before != nullptr) *before = run.stages;
+  if (solved != nullptr) {
+    if (!RunStages(config, index, index + 1, &cache, &ledger, &run, error, nullptr)) return false;
+    *solved = run.stages.back();
+  }
   return true;
 }
 
@@ -498,7 +537,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
   RunResult run;
   TrajectoryCache cache;
   Ledger ledger;
-  if (!RunStages(config, config.stages.size(), &cache, &ledger, &run, error, observer)) {
+  if (!RunStages(config, 0, config.stages.size(), &cache, &ledger, &run, error, observer)) {
     return false;
   }
   const RegressionDataOptions velocity_data = VelocityData(config, config.stages.size());

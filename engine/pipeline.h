@@ -76,9 +76,23 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
 
 // The parameter specs stage `index` is solved with after stages [0, index) ran as a run
 // runs them (starts carried, unlisted parameters held at their latest estimates); `before`
-// (optional) receives those stages' results. Used by studies of one stage.
+// (optional) receives the results of those it needed (the stages up to the last one that
+// estimates a parameter stage `index` carries) and `solved` (optional) the stage's own, run as
+// the run runs it (continuation, global start). Used by studies of one stage.
 bool ResolveStage(const RunConfig& config, size_t index, std::vector<ParameterSpec>* specs,
-                  std::vector<StageResult>* before, std::string* error);
+                  std::vector<StageResult>* before, std::string* error,
+                  StageResult* solved = nullptr);
+
+// Held-out experiments with every parameter fixed at `values` (model order). Initial states
+// come from the data, except `free_states`, which are estimated first with the parameters
+// held (a decay test's unmeasured initial yaw rate, a segment's velocities), as a validation
+// of the parameters, not of a guessed start. The problem at those states; null with `error`.
+std::unique_ptr<OutputErrorProblem> HeldOutProblem(const ModelHandle& model,
+                                                   std::vector<Experiment> experiments,
+                                                   const std::vector<std::string>& free_states,
+                                                   const LocalSolveOptions& local,
+                                                   const std::vector<double>& values,
+                                                   std::string* error);
 
 // Recorded data by experiment, so that stages sharing an experiment read it once.
 using TrajectoryCache = std::map<std::string, Trajectory>;

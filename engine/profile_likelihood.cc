@@ -40,14 +40,12 @@ json IntervalEnd(const std::vector<double>& grid, const std::vector<double>& dev
   return {{"value", grid[previous]}, {"open", true}};
 }
 
-}  // namespace
-
-bool RunProfileLikelihood(const RunConfig& config, const ProfileOptions& options,
-                          const CaseOptions& execution, json* result, std::string* error,
-                          const CaseProgress& progress) {
-  const auto start_time = std::chrono::steady_clock::now();
+// Profiles of one stage: {stage, optimum, profiles, cases} on rank 0.
+bool ProfileStage(const RunConfig& config, const std::string& name, const ProfileOptions& options,
+                  const CaseOptions& execution, json* result, std::string* error,
+                  const CaseProgress& progress) {
   StudyStage stage;
-  if (!PrepareStudyStage(config, options.stage, &stage, error)) return false;
+  if (!PrepareStudyStage(config, name, &stage, error, /*solve=*/true)) return false;
   std::vector<int> profiled;  // positions in stage.free
   for (const std::string& name : options.parameters) {
     const auto at = std::find(stage.free_names.begin(), stage.free_names.end(), name);
@@ -62,8 +60,12 @@ bool RunProfileLikelihood(const RunConfig& config, const ProfileOptions& options
     for (size_t k = 0; k < stage.free.size(); ++k) profiled.push_back(static_cast<int>(k));
   }
 
-  // The optimum, as a run of the stage finds it.
-  StudySolve optimum = SolveStudyStage(stage, stage.experiments, stage.specs, stage.options);
+  // The optimum as the run finds it (continuation, global start), polished by a local solve
+  // of the study's own problem, which the profiles start from.
+  StageOptions local = stage.options;
+  local.use_global_start = false;
+  StudySolve optimum =
+      SolveStudyStage(stage, stage.experiments, stage.specs, local, &stage.run_optimum);
   if (!optimum.usable) {
     *error = "profile: stage '" + stage.stage->options.name + "': " + optimum.message;
     return false;
@@ -72,7 +74,7 @@ bool RunProfileLikelihood(const RunConfig& config, const ProfileOptions& options
   const int m = optimum.problem->num_residuals(), n = optimum.problem->num_free();
   const double s2 = m > n ? 2.0 * best_cost / (m - n) : NAN;
   const std::vector<double> best = optimum.Values(stage), se = optimum.StdErrors(stage);
-  const std::vector<double> best_values = optimum.problem->Values();
+  const std::map<std::string, double> best_values = ValuesByName(*optimum.problem);
 
   std::vector<std::vector<double>> grids;
   for (int k : profiled) {
@@ -89,8 +91,6 @@ bool RunProfileLikelihood(const RunConfig& config, const ProfileOptions& options
     grids.push_back(Grid(lo, best[k], hi, options.points));
   }
 
-  StageOptions local = stage.options;
-  local.use_global_start = false;
   local.compute_uncertainty = false;
   const int per = options.points;
   auto run_case = [&](int index) -> json {
@@ -148,12 +148,34 @@ bool RunProfileLikelihood(const RunConfig& config, const ProfileOptions& options
     profiles.push_back(p);
   }
   *result = {{"stage", stage.stage->options.name},
-             {"confidence", options.confidence},
-             {"threshold", threshold},
              {"optimum",
               {{"cost", best_cost}, {"residuals", m}, {"free", n}, {"residual_variance", s2}}},
              {"profiles", profiles},
-             {"cases", cases},
+             {"cases", cases}};
+  return true;
+}
+
+}  // namespace
+
+bool RunProfileLikelihood(const RunConfig& config, const ProfileOptions& options,
+                          const CaseOptions& execution, json* result, std::string* error,
+                          const CaseProgress& progress) {
+  const auto start_time = std::chrono::steady_clock::now();
+  std::vector<std::string> names = options.stages;
+  if (names.empty()) names.push_back("");  // the run's last output-error stage
+  json stages = json::array();
+  for (const std::string& name : names) {
+    json stage;
+    if (!ProfileStage(config, name, options, execution, &stage, error, progress)) return false;
+    stages.push_back(std::move(stage));
+  }
+  if (!ProcessGroup::Current().root()) {
+    *result = nullptr;
+    return true;
+  }
+  *result = {{"confidence", options.confidence},
+             {"threshold", ChiSquare1Quantile(options.confidence)},
+             {"stages", stages},
              {"time_seconds", std::chrono::duration<double>(
                                   std::chrono::steady_clock::now() - start_time)
                                   .count()}};
@@ -164,14 +186,9 @@ std::string ProfileText(const json& result) {
   std::string text;
   char line[512];
   std::snprintf(line, sizeof(line),
-                "Profile likelihood, stage %s: %.0f %% intervals where 2 dF / s^2 <= %.3f, "
-                "%.1f s\n",
-                result["stage"].get<std::string>().c_str(),
+                "Profile likelihood: %.0f %% intervals where 2 dF / s^2 <= %.3f, %.1f s\n",
                 100.0 * result["confidence"].get<double>(), result["threshold"].get<double>(),
                 NumberOr(result["time_seconds"], NAN));
-  text += line;
-  std::snprintf(line, sizeof(line), "  %-12s %13s %12s %27s %27s\n", "parameter", "estimate",
-                "SE", "profile interval", "linearised interval");
   text += line;
   auto end = [](const json& e, bool lower) {
     char s[64];
@@ -179,16 +196,25 @@ std::string ProfileText(const json& result) {
                   e["value"].get<double>());
     return std::string(s);
   };
-  for (const json& p : result["profiles"]) {
-    const std::string profile = "[" + end(p["lower"], true) + ", " + end(p["upper"], false) + "]";
-    char linear[96];
-    std::snprintf(linear, sizeof(linear), "[%.6g, %.6g]", NumberOr(p["linearised"][0], NAN),
-                  NumberOr(p["linearised"][1], NAN));
-    std::snprintf(line, sizeof(line), "  %-12s %13.6g %12.4g %27s %27s\n",
-                  p["parameter"].get<std::string>().c_str(), p["estimate"].get<double>(),
-                  NumberOr(p["std_error"], NAN), profile.c_str(), linear);
+  for (const json& stage : result["stages"]) {
+    std::snprintf(line, sizeof(line), "  stage %s (cost %.6e, %d residuals, %d unknowns):\n",
+                  stage["stage"].get<std::string>().c_str(), stage["optimum"]["cost"].get<double>(),
+                  stage["optimum"]["residuals"].get<int>(), stage["optimum"]["free"].get<int>());
     text += line;
-    if (p.contains("note")) text += "    note: " + p["note"].get<std::string>() + "\n";
+    std::snprintf(line, sizeof(line), "    %-12s %13s %12s %27s %27s\n", "parameter", "estimate",
+                  "SE", "profile interval", "linearised interval");
+    text += line;
+    for (const json& p : stage["profiles"]) {
+      const std::string profile = "[" + end(p["lower"], true) + ", " + end(p["upper"], false) + "]";
+      char linear[96];
+      std::snprintf(linear, sizeof(linear), "[%.6g, %.6g]", NumberOr(p["linearised"][0], NAN),
+                    NumberOr(p["linearised"][1], NAN));
+      std::snprintf(line, sizeof(line), "    %-12s %13.6g %12.4g %27s %27s\n",
+                    p["parameter"].get<std::string>().c_str(), p["estimate"].get<double>(),
+                    NumberOr(p["std_error"], NAN), profile.c_str(), linear);
+      text += line;
+      if (p.contains("note")) text += "      note: " + p["note"].get<std::string>() + "\n";
+    }
   }
   text += "  (\"<\" / \">\": the deviance stays below the threshold to the end of the grid)\n";
   return text;

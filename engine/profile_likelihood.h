@@ -21,7 +21,8 @@
 
 namespace vesselid {
 
-// On rank 0 `result` holds {optimum, profiles: [{parameter, grid, intervals}], cases}.
+// On rank 0 `result` holds {confidence, threshold, stages: [{stage, optimum, profiles:
+// [{parameter, estimate, lower, upper, linearised, points}], cases}]}; other ranks: null.
 bool RunProfileLikelihood(const RunConfig& config, const ProfileOptions& options,
                           const CaseOptions& execution, nlohmann::json* result,
                           std::string* error, const CaseProgress& progress = nullptr);

@@ -61,8 +61,11 @@ void NoteActiveBounds(const OutputErrorProblem& problem, std::vector<std::string
 }
 
 // A model symmetric in (a, b) has zero gradient across a = b, so a local solve that reaches
-// the ridge stays there. If it ended on it, restart with the pair split by a factor of 1.5
-// either way of its geometric mean and keep what is better.
+// the ridge stays there. If it ended on it, restart with the pair split by each of
+// kRidgeSplits either way of its geometric mean (the true pair may be an order of magnitude
+// apart, e.g. Nomoto T1/T2 ~ 7) and keep the best.
+constexpr double kRidgeSplits[] = {1.5, 4.0, 12.0};
+
 void EscapeExchangeRidge(const LocalSolveOptions& options, OutputErrorProblem* problem,
                          LocalSolveSummary* local, std::vector<std::string>* notes) {
   for (const auto& [a, b] : ExchangeablePairs(*problem)) {
@@ -70,21 +73,31 @@ void EscapeExchangeRidge(const LocalSolveOptions& options, OutputErrorProblem* p
     if (std::abs(va - vb) > 1e-3 * std::max(std::abs(va), std::abs(vb))) continue;
     const std::vector<double> ridge = problem->Values();
     const double mean = std::copysign(std::sqrt(std::abs(va * vb)), va);
-    a->set_value(std::clamp(mean * 1.5, a->lower, a->upper));
-    b->set_value(std::clamp(mean / 1.5, b->lower, b->upper));
-    LocalSolveSummary split;
-    if (RunLocalSolve(options, problem, &split) && split.final_cost < local->final_cost) {
-      char text[256];
-      std::snprintf(text, sizeof(text), "left the %s = %s ridge (cost %.6e -> %.6e)",
-                    a->name.c_str(), b->name.c_str(), local->final_cost, split.final_cost);
-      notes->push_back(text);
-      split.initial_cost = local->initial_cost;
-      split.iterations += local->iterations;
-      split.time_seconds += local->time_seconds;
-      *local = split;
-    } else {
+    std::vector<double> best_values;
+    LocalSolveSummary best = *local;
+    for (double split : kRidgeSplits) {
       problem->SetValues(ridge);
+      a->set_value(std::clamp(mean * split, a->lower, a->upper));
+      b->set_value(std::clamp(mean / split, b->lower, b->upper));
+      LocalSolveSummary attempt;
+      if (RunLocalSolve(options, problem, &attempt) && attempt.final_cost < best.final_cost) {
+        best = attempt;
+        best_values = problem->Values();
+      }
     }
+    if (best_values.empty()) {
+      problem->SetValues(ridge);
+      continue;
+    }
+    char text[256];
+    std::snprintf(text, sizeof(text), "left the %s = %s ridge (cost %.6e -> %.6e)",
+                  a->name.c_str(), b->name.c_str(), local->final_cost, best.final_cost);
+    notes->push_back(text);
+    best.initial_cost = local->initial_cost;
+    best.iterations += local->iterations;
+    best.time_seconds += local->time_seconds;
+    *local = best;
+    problem->SetValues(best_values);
   }
 }
 

@@ -86,7 +86,8 @@ bool RunStudy(const RunConfig& config, const std::vector<std::string>& only, jso
       StudyOptions options = *study.partitions;
       options.seed = study.seed;
       StudyResult partitions;
-      ok = RunPartitionStudy(config, options, &partitions, error, progress);
+      ok = RunPartitionStudy(config, options, study.execution, &partitions, error,
+                             case_progress);
       if (ok && group.root()) {
         section = StudyResultToJson(partitions);
         report += StudyResultToText(partitions);

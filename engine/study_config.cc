@@ -53,25 +53,48 @@ int Positive(const YamlReader& reader, const YAML::Node& node, const std::string
   return value;
 }
 
-//   profile: {stage, parameters, points, span, confidence}
+//   profile: {stage | stages, parameters, points, span, confidence}
 ProfileOptions ReadProfile(const YamlReader& reader, const YAML::Node& node,
                            const RunConfig& config) {
   const std::string path = "study.profile";
-  reader.CheckMap(node, path, {"stage", "parameters", "points", "span", "confidence"});
+  reader.CheckMap(node, path, {"stage", "stages", "parameters", "points", "span", "confidence"});
   ProfileOptions profile;
-  const StageConfig& stage = StudiedStage(reader, node, path, config,
-                                          StageConfig::Kind::kOutputError, &profile.stage);
+  if (node["stage"] && node["stages"]) {
+    reader.Fail(node["stages"], Child(path, "stages"), "give stage or stages, not both");
+  }
+  std::vector<const StageConfig*> stages;
+  if (const YAML::Node n = node["stages"]) {
+    profile.stages = reader.Strings(n, Child(path, "stages"));
+    for (size_t i = 0; i < profile.stages.size(); ++i) {
+      const StageConfig* found = nullptr;
+      for (const StageConfig& s : config.stages) {
+        if (s.options.name == profile.stages[i]) found = &s;
+      }
+      if (found == nullptr || found->kind != StageConfig::Kind::kOutputError) {
+        reader.Fail(n[i], Child(Child(path, "stages"), i),
+                    "no output_error stage named '" + profile.stages[i] + "'");
+      }
+      stages.push_back(found);
+    }
+  } else {
+    std::string name;
+    stages.push_back(
+        &StudiedStage(reader, node, path, config, StageConfig::Kind::kOutputError, &name));
+    if (node["stage"]) profile.stages.push_back(name);
+  }
   if (const YAML::Node n = node["parameters"]) {
     profile.parameters = reader.Strings(n, Child(path, "parameters"));
-    for (size_t i = 0; i < profile.parameters.size(); ++i) {
-      bool free = false;
-      for (const ParameterSpec& spec : stage.parameters) {
-        free |= spec.name == profile.parameters[i] && IsEstimatedOnce(spec.role);
-      }
-      if (!free) {
-        reader.Fail(n[i], Child(Child(path, "parameters"), i),
-                    "'" + profile.parameters[i] + "' is not a free parameter of stage '" +
-                        stage.options.name + "'");
+    for (const StageConfig* stage : stages) {
+      for (size_t i = 0; i < profile.parameters.size(); ++i) {
+        bool free = false;
+        for (const ParameterSpec& spec : stage->parameters) {
+          free |= spec.name == profile.parameters[i] && IsEstimatedOnce(spec.role);
+        }
+        if (!free) {
+          reader.Fail(n[i], Child(Child(path, "parameters"), i),
+                      "'" + profile.parameters[i] + "' is not a free parameter of stage '" +
+                          stage->options.name + "'");
+        }
       }
     }
   }
@@ -174,9 +197,15 @@ StudyOptions ReadPartitions(const YamlReader& reader, const YAML::Node& node,
                   {"stage", "experiments", "repetitions", "validation_share", "training_shares",
                    "methods"});
   StudyOptions study;
-  std::string stage;
-  StudiedStage(reader, node, path, config, StageConfig::Kind::kLeastSquares, &stage);
-  if (node["stage"]) study.stage = stage;
+  // Any stage: a least-squares or an output-error one (partition_study.h).
+  if (const YAML::Node n = node["stage"]) {
+    study.stage = reader.String(n, Child(path, "stage"));
+    if (PartitionStudyStage(config, study.stage) == nullptr) {
+      reader.Fail(n, Child(path, "stage"), "no stage named '" + study.stage + "'");
+    }
+  } else if (PartitionStudyStage(config, "") == nullptr) {
+    reader.Fail(node, path, "the run has no stage to study");
+  }
   if (node["experiments"]) {
     study.experiments =
         ExperimentNames(reader, node["experiments"], Child(path, "experiments"), config);

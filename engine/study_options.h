@@ -3,14 +3,18 @@
 //   study:
 //     seed: 1          # every case's random numbers derive from it and the case index
 //     threads: 0       # worker threads per process; 0: cores / processes on the machine
-//     profile:     {stage, parameters, points, span, confidence}
+//     profile:     {stage | stages, parameters, points, span, confidence}
 //     monte_carlo: {stage, runs, noise, truth, start, confidence}
 //     starts:      {stage, runs, sampling, global, tolerance}
 //     partitions:  {stage, experiments, repetitions, validation_share, training_shares,
 //                   methods}
 //
-// Each part studies one output-error stage of the run (least-squares stage for partitions),
-// the last one when `stage` is not given, with the parameters the run carries into it.
+// Each part studies one output-error stage of the run, the last one when `stage` is not
+// given, with the parameters the run carries into it. Partitions studies a least-squares or
+// an output-error stage (partition_study.h); without `stage`, the run's last stage when it is
+// an output-error one, else its first least-squares stage. Its `experiments` are the pool of
+// a least-squares stage (default: the stage's experiments and validation experiments) and
+// are added to an output-error stage's own experiments.
 #pragma once
 
 #include <map>
@@ -27,7 +31,7 @@ namespace vesselid {
 // Profile likelihood: each listed parameter held on a grid while the others are re-estimated;
 // the confidence interval is where 2 (F(theta_j) - F^) / s^2 stays below chi2_1(confidence).
 struct ProfileOptions {
-  std::string stage;
+  std::vector<std::string> stages;     // each profiled in turn; empty: the run's last one
   std::vector<std::string> parameters;  // empty: every free parameter of the stage
   int points = 21;                      // grid points per parameter (odd: one at the optimum)
   double span = 4.0;                    // grid half-width in standard errors (bounds if none)

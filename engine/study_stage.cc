@@ -22,7 +22,7 @@ std::vector<double> StudyStage::FreeStarts() const {
 }
 
 bool PrepareStudyStage(const RunConfig& config, const std::string& name, StudyStage* stage,
-                       std::string* error) {
+                       std::string* error, bool solve) {
   int index = -1;
   for (size_t i = 0; i < config.stages.size(); ++i) {
     const StageConfig& s = config.stages[i];
@@ -44,7 +44,11 @@ bool PrepareStudyStage(const RunConfig& config, const std::string& name, StudySt
   stage->config = &config;
   stage->stage = &s;
   stage->model = s.model ? s.model.get() : config.model.get();
-  if (!ResolveStage(config, index, &stage->specs, nullptr, error)) return false;
+  StageResult solved;
+  if (!ResolveStage(config, index, &stage->specs, nullptr, error, solve ? &solved : nullptr)) {
+    return false;
+  }
+  for (const Estimate& e : solved.estimates) stage->run_optimum[e.name] = e.value;
   TrajectoryCache cache;
   if (!PrepareExperiments(config, s.experiments, *stage->model, s.experiment, &cache,
                           &stage->experiments, error)) {
@@ -100,19 +104,17 @@ std::vector<double> StudySolve::StdErrors(const StudyStage& stage) const {
 
 StudySolve SolveStudyStage(const StudyStage& stage, std::vector<Experiment> experiments,
                            const std::vector<ParameterSpec>& specs, const StageOptions& options,
-                           const std::vector<double>* start) {
+                           const std::map<std::string, double>* start) {
   StudySolve solve;
   solve.problem = OutputErrorProblem::Create(stage.model, std::move(experiments), specs,
                                              stage.stage->problem, &solve.message);
   if (solve.problem == nullptr) return solve;
   if (start != nullptr) {
-    const std::vector<Variable>& variables = solve.problem->variables();
-    std::vector<double> values = *start;
-    for (size_t i = 0; i < variables.size(); ++i) {
-      const Variable& v = variables[i];
-      if (v.kind == Variable::Kind::kParameter && !v.free) values[i] = v.value();
+    for (const Variable& v : solve.problem->variables()) {
+      const auto value = start->find(v.name);
+      if (value == start->end() || (v.kind == Variable::Kind::kParameter && !v.free)) continue;
+      v.set_value(value->second);
     }
-    solve.problem->SetValues(values);
   }
   if (!RunStage(options, solve.problem.get(), &solve.summary)) {
     solve.message = solve.summary.message;
@@ -120,6 +122,12 @@ StudySolve SolveStudyStage(const StudyStage& stage, std::vector<Experiment> expe
   }
   solve.usable = true;
   return solve;
+}
+
+std::map<std::string, double> ValuesByName(const OutputErrorProblem& problem) {
+  std::map<std::string, double> values;
+  for (const Variable& v : problem.variables()) values[v.name] = v.value();
+  return values;
 }
 
 bool SimulateSamples(const StudyStage& stage, const std::vector<double>& parameters,

@@ -6,6 +6,7 @@
 // continuation phases; a stage that needs them is studied from starts close enough not to.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,15 +27,18 @@ struct StudyStage {
   StageOptions options;                 // the stage's, single-threaded
   std::vector<int> free;                // model indices of the free shared parameters
   std::vector<std::string> free_names;
+  // With PrepareStudyStage(..., solve = true): every unknown's value (by variable name) as
+  // the run's own solve of the stage found it, continuation and global start included.
+  std::map<std::string, double> run_optimum;
 
   // Starts of the free parameters, in `free` order.
   std::vector<double> FreeStarts() const;
 };
 
 // The output-error stage called `name` (empty: the run's last one), after the stages before
-// it ran. Errors name the stage.
+// it ran (and the stage itself with `solve`). Errors name the stage.
 bool PrepareStudyStage(const RunConfig& config, const std::string& name, StudyStage* stage,
-                       std::string* error);
+                       std::string* error, bool solve = false);
 
 // A solved variant: problem at its optimum and the stage summary.
 struct StudySolve {
@@ -48,12 +52,15 @@ struct StudySolve {
   std::vector<double> StdErrors(const StudyStage& stage) const;
 };
 
-// Solves the stage on `experiments` from `specs`. `start` (optional) holds a full value
-// vector of the problem (as OutputErrorProblem::Values) to start from; variables whose spec
-// is fixed keep their spec value. Never fails the caller: an unusable solve says why.
+// Solves the stage on `experiments` from `specs`. `start` (optional) gives start values by
+// variable name (as Variable::name); parameters whose spec is fixed keep their spec value.
+// Never fails the caller: an unusable solve says why.
 StudySolve SolveStudyStage(const StudyStage& stage, std::vector<Experiment> experiments,
                            const std::vector<ParameterSpec>& specs, const StageOptions& options,
-                           const std::vector<double>* start = nullptr);
+                           const std::map<std::string, double>* start = nullptr);
+
+// Every unknown's value by variable name.
+std::map<std::string, double> ValuesByName(const OutputErrorProblem& problem);
 
 // Per-sample noise-free outputs of the stage's experiments simulated with `parameters`
 // (model order) from the initial states the stage starts from (estimated ones from their
