@@ -134,8 +134,10 @@ bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& option
     return false;
   }
   std::vector<ParameterSpec> specs = stage.specs;
+  StageOptions stage_options = stage.options;
   if (options.start_at_truth) {
     for (int index : stage.free) specs[index].start = truth[index];
+    stage_options.use_global_start = false;  // noise alone, not the search, is measured
   }
   auto run_case = [&](int r) -> json {
     const auto case_start = std::chrono::steady_clock::now();
@@ -148,7 +150,7 @@ bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& option
         s.value = clean[e][i] + sigma[s.output] * normal(random);
       }
     }
-    StudySolve solve = SolveStudyStage(stage, std::move(experiments), specs, stage.options);
+    StudySolve solve = SolveStudyStage(stage, std::move(experiments), specs, stage_options);
     json c = {{"run", r}, {"usable", solve.usable}};
     if (!solve.usable) {
       c["message"] = solve.message;

@@ -45,7 +45,9 @@ struct MonteCarloOptions {
   int runs = 200;
   std::map<std::string, double> noise;  // output -> standard deviation
   std::map<std::string, double> truth;  // parameter -> value (default: simulation.truth)
-  bool start_at_truth = false;          // start: truth; default start: the stage's starts
+  // start: truth - a local solve from the truth (no global start: the noise alone is
+  // measured); start: stage (default) - the stage as configured, from its starts.
+  bool start_at_truth = false;
   double confidence = 0.95;             // of the intervals whose coverage is counted
 };
 
