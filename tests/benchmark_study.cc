@@ -13,24 +13,13 @@
 #include <string>
 
 #include "nlohmann/json.hpp"
+#include "tests/study_json.h"
 
 namespace {
 
+namespace testing = vesselid::testing;
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-json Comparable(json j) {
-  if (j.is_object()) {
-    for (const char* key : {"time_seconds", "mean_time_seconds", "processes",
-                            "threads_per_process"}) {
-      j.erase(key);
-    }
-    for (auto& [key, value] : j.items()) value = Comparable(value);
-  } else if (j.is_array()) {
-    for (json& value : j) value = Comparable(value);
-  }
-  return j;
-}
 
 // Runs the command; its wall time in seconds, or a negative value if it failed.
 double Timed(const std::string& command) {
@@ -80,10 +69,10 @@ int main(int argc, char** argv) {
   std::printf("  1 process,  1 thread : %8.1f s\n", one);
   std::printf("  1 process,  2 threads: %8.1f s  (x%.2f)  same results: %s\n", threads,
               one / threads,
-              Comparable(Load(dir / "threads")) == Comparable(reference) ? "yes" : "NO");
+              testing::ComparableStudy(Load(dir / "threads")) == testing::ComparableStudy(reference) ? "yes" : "NO");
   if (two > 0) {
     std::printf("  2 processes (mpirun) : %8.1f s  (x%.2f)  same results: %s\n", two, one / two,
-                Comparable(Load(dir / "two")) == Comparable(reference) ? "yes" : "NO");
+                testing::ComparableStudy(Load(dir / "two")) == testing::ComparableStudy(reference) ? "yes" : "NO");
   } else {
     std::printf("  2 processes (mpirun) : not built with MPI\n");
   }

@@ -18,6 +18,7 @@
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
 #include "problems/registry.h"
+#include "tests/study_cli.h"
 #include "yaml-cpp/yaml.h"
 
 namespace vesselid {
@@ -29,11 +30,7 @@ using nlohmann::json;
 class PartitionStudy : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    // One folder per process: CTest runs tests in parallel processes.
-    dir_ = new fs::path(fs::temp_directory_path() /
-                        ("vesselid_partition_study_test_" + std::to_string(getpid())));
-    fs::remove_all(*dir_);
-    fs::create_directories(*dir_);
+    folder_ = new testing::StudyFolder("vesselid_partition_study_test");
     // The shipped config on a smaller campaign, three partitions per method.
     YAML::Node config =
         YAML::LoadFile(std::string(VESSELID_SOURCE_DIR) + "/configs/input_gain_static.yaml");
@@ -65,67 +62,32 @@ class PartitionStudy : public ::testing::Test {
     Write("patrol.yaml", patrol);
     Simulate("patrol.yaml");
   }
-  static void TearDownTestSuite() {
-    fs::remove_all(*dir_);
-    delete dir_;
-  }
+  static void TearDownTestSuite() { delete folder_; }
 
   static void Write(const std::string& name, const YAML::Node& config) {
-    YAML::Emitter out;
-    out << config;
-    std::ofstream(*dir_ / name) << out.c_str() << "\n";
+    folder_->Write(name, config);
   }
-
-  static void Simulate(const std::string& config) {
-    const std::string simulate = std::string(VESSELID_BINARY) + " simulate " +
-                                 (*dir_ / config).string() + " --out " + dir_->string() +
-                                 " > /dev/null";
-    ASSERT_EQ(std::system(simulate.c_str()), 0) << simulate;
-  }
-
-  // Runs `vesselid study` on `config` into `out` (with `options`, e.g. --threads 1); its exit
-  // status and stderr.
+  static void Simulate(const std::string& config) { folder_->Simulate(config); }
   static int Study(const std::string& config, const std::string& out, std::string* messages,
                    const std::string& options = "") {
-    const fs::path log = *dir_ / (out + ".stderr");
-    const std::string command = std::string(VESSELID_BINARY) + " study " +
-                                (*dir_ / config).string() + " --data " + dir_->string() +
-                                " --out " + (*dir_ / out).string() + " " + options +
-                                " --quiet > /dev/null 2> " + log.string();
-    const int status = std::system(command.c_str());
-    std::ifstream in(log);
-    messages->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    return status;
+    return folder_->Study(config, out, messages, options);
   }
 
   // The partitions part of study.json.
   static json Load(const std::string& out) {
-    std::ifstream in(*dir_ / out / "study.json");
-    EXPECT_TRUE(in.good()) << "no study.json in " << out;
-    const json j = json::parse(in, nullptr, /*allow_exceptions=*/false);
+    const json j = folder_->Load(out);
     return j.is_object() && j.contains("partitions") ? j["partitions"] : json();
   }
 
-  // The JSON without its timings, for comparing runs.
-  static json WithoutTimes(json j) {
-    if (j.is_object()) {
-      j.erase("time_seconds");
-      for (auto& item : j.items()) item.value() = WithoutTimes(item.value());
-    } else if (j.is_array()) {
-      for (auto& item : j) item = WithoutTimes(item);
-    }
-    return j;
-  }
-
-  static fs::path* dir_;
+  static testing::StudyFolder* folder_;
 };
 
-fs::path* PartitionStudy::dir_ = nullptr;
+testing::StudyFolder* PartitionStudy::folder_ = nullptr;
 
 TEST_F(PartitionStudy, EveryPartitionFitsAndPredictsTheHeldOutVelocities) {
   std::string messages;
   ASSERT_EQ(Study("study.yaml", "first", &messages), 0) << messages;
-  EXPECT_TRUE(fs::exists(*dir_ / "first" / "study.txt"));
+  EXPECT_TRUE(fs::exists(folder_->dir() / "first" / "study.txt"));
   const json j = Load("first");
   ASSERT_FALSE(j.is_discarded());
   EXPECT_EQ(j["stage"], "least_squares");
@@ -159,16 +121,16 @@ TEST_F(PartitionStudy, SameSeedGivesTheSameNumbers) {
   std::string messages;
   ASSERT_EQ(Study("study.yaml", "once", &messages), 0) << messages;
   ASSERT_EQ(Study("study.yaml", "twice", &messages), 0) << messages;
-  EXPECT_EQ(WithoutTimes(Load("once")), WithoutTimes(Load("twice")));
+  EXPECT_EQ(testing::ComparableStudy(Load("once")), testing::ComparableStudy(Load("twice")));
 }
 
 TEST_F(PartitionStudy, ThreadCountDoesNotChangeTheNumbers) {
   std::string messages;
   ASSERT_EQ(Study("study.yaml", "one_thread", &messages, "--threads 1"), 0) << messages;
   ASSERT_EQ(Study("study.yaml", "two_threads", &messages, "--threads 2"), 0) << messages;
-  const json one = WithoutTimes(Load("one_thread"));
+  const json one = testing::ComparableStudy(Load("one_thread"));
   EXPECT_EQ(one["repeated"]["segments"]["partitions"].size(), 3u);
-  EXPECT_EQ(one, WithoutTimes(Load("two_threads")));
+  EXPECT_EQ(one, testing::ComparableStudy(Load("two_threads")));
 }
 
 TEST_F(PartitionStudy, UnknownStageIsRejectedWithoutWritingResults) {
@@ -176,13 +138,13 @@ TEST_F(PartitionStudy, UnknownStageIsRejectedWithoutWritingResults) {
   EXPECT_NE(Study("unknown_stage.yaml", "unknown_stage", &messages), 0);
   EXPECT_NE(messages.find("study.partitions.stage"), std::string::npos) << messages;
   EXPECT_NE(messages.find("no stage named 'nowhere'"), std::string::npos) << messages;
-  EXPECT_FALSE(fs::exists(*dir_ / "unknown_stage" / "study.json"));
+  EXPECT_FALSE(fs::exists(folder_->dir() / "unknown_stage" / "study.json"));
 }
 
 TEST_F(PartitionStudy, DefaultStageIsTheLastOutputErrorElseTheFirstLeastSquaresStage) {
   RunConfig config;
   std::string error;
-  ASSERT_TRUE(LoadRunConfig((*dir_ / "study.yaml").string(), dir_->string(), DefaultRegistry(),
+  ASSERT_TRUE(LoadRunConfig((folder_->dir() / "study.yaml").string(), folder_->dir().string(), DefaultRegistry(),
                             &config, &error))
       << error;
   ASSERT_NE(PartitionStudyStage(config, ""), nullptr);
@@ -197,7 +159,7 @@ TEST_F(PartitionStudy, DefaultStageIsTheLastOutputErrorElseTheFirstLeastSquaresS
 TEST_F(PartitionStudy, MisspeltKeyNamesTheStudySection) {
   RunConfig config;
   std::string error;
-  EXPECT_FALSE(LoadRunConfig((*dir_ / "misspelt.yaml").string(), dir_->string(), DefaultRegistry(),
+  EXPECT_FALSE(LoadRunConfig((folder_->dir() / "misspelt.yaml").string(), folder_->dir().string(), DefaultRegistry(),
                              &config, &error));
   EXPECT_NE(error.find("study"), std::string::npos) << error;
   EXPECT_NE(error.find("repetitons"), std::string::npos) << error;
@@ -263,7 +225,7 @@ TEST_F(PartitionStudy, OutputErrorStageFitsAndValidatesEverySplit) {
   // Table (b): shares 70 and 50 % per method, every split usable.
   ASSERT_EQ(j["shares"].size(), 4u);
   for (const json& b : j["shares"]) EXPECT_TRUE(b["usable"].get<bool>()) << b["message"];
-  std::ifstream text(*dir_ / "patrol" / "study.txt");
+  std::ifstream text(folder_->dir() / "patrol" / "study.txt");
   const std::string report((std::istreambuf_iterator<char>(text)),
                            std::istreambuf_iterator<char>());
   EXPECT_NE(report.find("output-error stage 'multisine'"), std::string::npos) << report;
@@ -274,9 +236,9 @@ TEST_F(PartitionStudy, OutputErrorNumbersDoNotDependOnTheThreadCount) {
   std::string messages;
   ASSERT_EQ(Study("patrol.yaml", "patrol_one", &messages, "--threads 1"), 0) << messages;
   ASSERT_EQ(Study("patrol.yaml", "patrol_two", &messages, "--threads 2"), 0) << messages;
-  const json one = WithoutTimes(Load("patrol_one"));
+  const json one = testing::ComparableStudy(Load("patrol_one"));
   EXPECT_EQ(one["repeated"]["points"]["failed"], 0);
-  EXPECT_EQ(one, WithoutTimes(Load("patrol_two")));
+  EXPECT_EQ(one, testing::ComparableStudy(Load("patrol_two")));
 }
 
 TEST(StudyOptions, SharesMustFitTheData) {

@@ -3,17 +3,14 @@
 // intervals against the linearised ones, start points with and without the global start,
 // identical merged results for any thread count and under `mpirun -np 2`, and bad study
 // input rejected with the key named and no study.json.
-#include <unistd.h>
-
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "engine/study_runner.h"
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
+#include "tests/study_cli.h"
 #include "yaml-cpp/yaml.h"
 
 namespace vesselid {
@@ -27,10 +24,7 @@ const double kTruth[] = {2.0875, 0.3179, 0.1830, -0.1724};  // T1, T2, T3, K
 class Study : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(fs::temp_directory_path() /
-                        ("vesselid_study_test_" + std::to_string(getpid())));
-    fs::remove_all(*dir_);
-    fs::create_directories(*dir_);
+    folder_ = new testing::StudyFolder("vesselid_study_test");
     YAML::Node config =
         YAML::LoadFile(std::string(VESSELID_SOURCE_DIR) + "/configs/nomoto_patrol_noise.yaml");
     for (YAML::Node e : config["simulation"]["experiments"]) e["duration"] = 120;
@@ -41,69 +35,30 @@ class Study : public ::testing::Test {
       monte_carlo: {stage: multisine, runs: 16, noise: {psi: 0.001745}, start: truth}
       profile: {stage: multisine, parameters: [T2, T3], points: 7, span: 3}
       starts: {stage: multisine, runs: 4, global: {max_evaluations: 150, candidates: 2}})");
-    Write("study.yaml", config);
+    folder_->Write("study.yaml", config);
     config["study"]["monte_carlo"]["noise"] = YAML::Load("{heading: 0.001}");
-    Write("bad_noise.yaml", config);
-    const std::string simulate = std::string(VESSELID_BINARY) + " simulate " +
-                                 (*dir_ / "study.yaml").string() + " --out " + dir_->string() +
-                                 " > /dev/null";
-    ASSERT_EQ(std::system(simulate.c_str()), 0) << simulate;
+    folder_->Write("bad_noise.yaml", config);
+    folder_->Simulate("study.yaml");
   }
-  static void TearDownTestSuite() {
-    fs::remove_all(*dir_);
-    delete dir_;
-  }
+  static void TearDownTestSuite() { delete folder_; }
 
-  static void Write(const std::string& name, const YAML::Node& config) {
-    YAML::Emitter out;
-    out << config;
-    std::ofstream(*dir_ / name) << out.c_str() << "\n";
-  }
-
-  // `vesselid study <config> <arguments>` into `out` (under `launcher` if given): exit status.
-  static int Run(const std::string& config, const std::string& out, const std::string& arguments,
+  static int Run(const std::string& config, const std::string& out, const std::string& options,
                  std::string* messages, const std::string& launcher = "") {
-    const fs::path log = *dir_ / (out + ".log");
-    const std::string command = launcher + std::string(VESSELID_BINARY) + " study " +
-                                (*dir_ / config).string() + " --data " + dir_->string() +
-                                " --out " + (*dir_ / out).string() + " --quiet " + arguments +
-                                " > " + log.string() + " 2>&1";
-    const int status = std::system(command.c_str());
-    std::ifstream in(log);
-    messages->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    return status;
+    return folder_->Study(config, out, messages, options, launcher);
   }
+  static json Load(const std::string& out) { return folder_->Load(out); }
+  static json Comparable(const json& j) { return testing::ComparableStudy(j); }
 
-  static json Load(const std::string& out) {
-    std::ifstream in(*dir_ / out / "study.json");
-    EXPECT_TRUE(in.good()) << "no study.json in " << out;
-    return json::parse(in, nullptr, /*allow_exceptions=*/false);
-  }
-
-  // The JSON without what legitimately differs between equal studies (timings, layout).
-  static json Comparable(json j) {
-    if (j.is_object()) {
-      for (const char* key : {"time_seconds", "mean_time_seconds", "processes",
-                              "threads_per_process"}) {
-        j.erase(key);
-      }
-      for (auto& [key, value] : j.items()) value = Comparable(value);
-    } else if (j.is_array()) {
-      for (json& value : j) value = Comparable(value);
-    }
-    return j;
-  }
-
-  static fs::path* dir_;
+  static testing::StudyFolder* folder_;
 };
 
-fs::path* Study::dir_ = nullptr;
+testing::StudyFolder* Study::folder_ = nullptr;
 
 TEST_F(Study, EveryPartMeasuresTheMultiSineIdentification) {
   std::string messages;
   ASSERT_EQ(Run("study.yaml", "all", "", &messages), 0) << messages;
   const json j = Load("all");
-  EXPECT_TRUE(fs::exists(*dir_ / "all" / "study.txt"));
+  EXPECT_TRUE(fs::exists(folder_->dir() / "all" / "study.txt"));
 
   // Monte Carlo: every run usable, bias within noise, intervals covering the truth.
   const json& mc = j["monte_carlo"]["summary"];
@@ -174,11 +129,11 @@ TEST_F(Study, BadStudyInputIsRejectedWithoutResults) {
   EXPECT_NE(Run("bad_noise.yaml", "bad_noise", "", &messages), 0);
   EXPECT_NE(messages.find("study.monte_carlo.noise.heading"), std::string::npos) << messages;
   EXPECT_NE(messages.find("unknown output 'heading'"), std::string::npos) << messages;
-  EXPECT_FALSE(fs::exists(*dir_ / "bad_noise" / "study.json"));
+  EXPECT_FALSE(fs::exists(folder_->dir() / "bad_noise" / "study.json"));
 
   EXPECT_NE(Run("study.yaml", "bad_part", "--only montecarlo", &messages), 0);
   EXPECT_NE(messages.find("unknown study part 'montecarlo'"), std::string::npos) << messages;
-  EXPECT_FALSE(fs::exists(*dir_ / "bad_part" / "study.json"));
+  EXPECT_FALSE(fs::exists(folder_->dir() / "bad_part" / "study.json"));
 }
 
 }  // namespace
