@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "engine/json_number.h"
 #include "engine/partition_study.h"
 #include "engine/statistics.h"
 
@@ -78,13 +79,12 @@ std::string Pad(const std::string& text, size_t width) {
   return text + std::string(width > length ? width - length : 1, ' ');
 }
 
-json Number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 double DoubleOr(const json& j, const char* key, double fallback) {
   return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : fallback;
 }
 
 json SpreadToJson(const MeanSd& s) {
-  return {{"n", s.n}, {"mean", Number(s.mean)}, {"sd", Number(s.sd)}};
+  return {{"n", s.n}, {"mean", JsonNumber(s.mean)}, {"sd", JsonNumber(s.sd)}};
 }
 
 // Metrics of a least-squares split: mae, rmse, r2; of an output-error one also fit %.
@@ -92,10 +92,10 @@ json MetricsToJson(const std::vector<ChannelMetrics>& metrics, bool fit_percent)
   json j = json::object();
   for (const ChannelMetrics& m : metrics) {
     j[m.output] = {{"samples", m.samples},
-                   {"mae", Number(MetricValue(m, "mae"))},
-                   {"rmse", Number(MetricValue(m, "rmse"))},
-                   {"r2", Number(MetricValue(m, "r2"))}};
-    if (fit_percent) j[m.output]["fit_percent"] = Number(MetricValue(m, "fit_percent"));
+                   {"mae", JsonNumber(MetricValue(m, "mae"))},
+                   {"rmse", JsonNumber(MetricValue(m, "rmse"))},
+                   {"r2", JsonNumber(MetricValue(m, "r2"))}};
+    if (fit_percent) j[m.output]["fit_percent"] = JsonNumber(MetricValue(m, "fit_percent"));
   }
   return j;
 }
@@ -339,7 +339,7 @@ json OutcomeToJson(const StudyResult& result, const PartitionOutcome& o) {
     j["training"] = {{"experiments", o.training_records},
                      {"samples", o.training_samples},
                      {"fit", MetricsToJson(o.training, true)},
-                     {"cost", Number(o.cost)}};
+                     {"cost", JsonNumber(o.cost)}};
     j["validation"] = {{"experiments", o.validation_records},
                        {"samples", o.validation_samples},
                        {"free_run", MetricsToJson(o.validation, true)}};
@@ -355,7 +355,7 @@ json OutcomeToJson(const StudyResult& result, const PartitionOutcome& o) {
   }
   json parameters = json::object();
   for (size_t i = 0; i < o.parameters.size(); ++i) {
-    parameters[result.parameters[i]] = Number(o.parameters[i]);
+    parameters[result.parameters[i]] = JsonNumber(o.parameters[i]);
   }
   j["parameters"] = parameters;
   return j;

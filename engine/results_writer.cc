@@ -8,13 +8,14 @@
 #include <fstream>
 #include <sstream>
 
+#include "engine/json_number.h"
+
 namespace vesselid {
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-json Number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 json MetricsToJson(const std::vector<ExperimentFit>& fits) {
   json metrics = json::array();
@@ -23,10 +24,10 @@ json MetricsToJson(const std::vector<ExperimentFit>& fits) {
       metrics.push_back({{"experiment", m.experiment},
                          {"output", m.output},
                          {"samples", m.samples},
-                         {"rmse", Number(m.rmse)},
-                         {"mae", Number(m.mae)},
-                         {"r2", Number(m.r2)},
-                         {"fit_percent", Number(m.fit_percent)}});
+                         {"rmse", JsonNumber(m.rmse)},
+                         {"mae", JsonNumber(m.mae)},
+                         {"r2", JsonNumber(m.r2)},
+                         {"fit_percent", JsonNumber(m.fit_percent)}});
     }
   }
   return metrics;
@@ -56,11 +57,11 @@ json LocalAnalysisToJson(const LocalAnalysis& a) {
   j["parameters"] = a.names;
   j["profiled"] = a.profiled;
   j["residual_variance"] = a.residual_variance;
-  j["condition_number"] = Number(a.condition_number);
+  j["condition_number"] = JsonNumber(a.condition_number);
   json ratios = json::array();
   const double lambda_max = std::max(a.eigenvalues.maxCoeff(), 0.0);
   for (int k = 0; k < a.eigenvalues.size(); ++k) {
-    ratios.push_back(Number(lambda_max > 0 ? a.eigenvalues[k] / lambda_max : 0.0));
+    ratios.push_back(JsonNumber(lambda_max > 0 ? a.eigenvalues[k] / lambda_max : 0.0));
   }
   j["eigenvalue_ratios"] = ratios;
   json directions = json::array();
@@ -72,19 +73,19 @@ json LocalAnalysisToJson(const LocalAnalysis& a) {
     directions.push_back({{"combination", d.combination},
                           {"coefficients", coefficients},
                           {"eigenvalue_ratio", d.eigenvalue_ratio},
-                          {"std_dev", Number(d.std_dev)},
-                          {"std_dev_normalised", Number(d.std_dev_normalised)},
+                          {"std_dev", JsonNumber(d.std_dev)},
+                          {"std_dev_normalised", JsonNumber(d.std_dev_normalised)},
                           {"status", DirectionStatusToString(d.status)}});
   }
   j["directions"] = directions;
   json std_errors = json::object();
-  for (size_t i = 0; i < a.names.size(); ++i) std_errors[a.names[i]] = Number(a.std_errors[i]);
+  for (size_t i = 0; i < a.names.size(); ++i) std_errors[a.names[i]] = JsonNumber(a.std_errors[i]);
   j["std_errors"] = std_errors;
   auto table = [&](const Eigen::MatrixXd& values) {
     json t = json::object();
     for (size_t c = 0; c < a.channels.size(); ++c) {
       json row = json::object();
-      for (size_t i = 0; i < a.names.size(); ++i) row[a.names[i]] = Number(values(c, i));
+      for (size_t i = 0; i < a.names.size(); ++i) row[a.names[i]] = JsonNumber(values(c, i));
       t[a.channels[c]] = row;
     }
     return t;
@@ -112,8 +113,8 @@ json StageToJson(const StageResult& stage) {
   }
   json refinements = json::array();
   for (const LocalSolveSummary& l : s.refinements) {
-    refinements.push_back({{"initial_cost", Number(l.initial_cost)},
-                           {"final_cost", Number(l.final_cost)},
+    refinements.push_back({{"initial_cost", JsonNumber(l.initial_cost)},
+                           {"final_cost", JsonNumber(l.final_cost)},
                            {"iterations", l.iterations},
                            {"time_seconds", l.time_seconds},
                            {"termination", l.termination},
@@ -131,9 +132,9 @@ json StageToJson(const StageResult& stage) {
                  {"role", e.role},
                  {"value", e.value},
                  {"start", e.start},
-                 {"std_error", Number(e.std_error)},
-                 {"lower", Number(e.lower)},
-                 {"upper", Number(e.upper)},
+                 {"std_error", JsonNumber(e.std_error)},
+                 {"lower", JsonNumber(e.lower)},
+                 {"upper", JsonNumber(e.upper)},
                  {"undetermined", e.undetermined}};
     if (!e.experiment.empty()) item["experiment"] = e.experiment;
     estimates.push_back(item);
@@ -149,7 +150,7 @@ json StageToJson(const StageResult& stage) {
     for (int r = 0; r < stage.correlation.rows(); ++r) {
       json row = json::array();
       for (int c = 0; c < stage.correlation.cols(); ++c) {
-        row.push_back(Number(stage.correlation(r, c)));
+        row.push_back(JsonNumber(stage.correlation(r, c)));
       }
       matrix.push_back(row);
     }
@@ -255,9 +256,9 @@ json VelocityToJson(const std::vector<ChannelMetrics>& metrics) {
     j.push_back({{"prediction", m.experiment},
                  {"state", m.output},
                  {"samples", m.samples},
-                 {"mae", Number(m.mae)},
-                 {"rmse", Number(m.rmse)},
-                 {"r2", Number(m.r2)}});
+                 {"mae", JsonNumber(m.mae)},
+                 {"rmse", JsonNumber(m.rmse)},
+                 {"r2", JsonNumber(m.r2)}});
   }
   return j;
 }
@@ -381,7 +382,7 @@ json RunResultToJson(const RunConfig& config, const RunResult& result) {
   for (const FinalParameter& f : result.parameters) {
     parameters.push_back({{"name", f.name},
                           {"value", f.value},
-                          {"std_error", Number(f.std_error)},
+                          {"std_error", JsonNumber(f.std_error)},
                           {"role", f.role},
                           {"stages", f.stages},
                           {"rule", f.rule},

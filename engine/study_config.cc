@@ -6,29 +6,41 @@
 namespace vesselid {
 namespace {
 
+const char* KindName(StageConfig::Kind kind) {
+  return kind == StageConfig::Kind::kOutputError ? "output_error" : "least_squares";
+}
+
+// The stage the name at `n` (key `key`) names, which must be of the required kind.
+const StageConfig& NamedStage(const YamlReader& reader, const YAML::Node& n,
+                              const std::string& key, const RunConfig& config,
+                              StageConfig::Kind kind) {
+  const std::string name = reader.String(n, key);
+  const StageConfig* found = nullptr;
+  for (const StageConfig& s : config.stages) {
+    if (s.options.name == name) found = &s;
+  }
+  if (found == nullptr) reader.Fail(n, key, "no stage named '" + name + "'");
+  if (found->kind != kind) {
+    reader.Fail(n, key, "stage '" + name + "' is not a " + KindName(kind) + " stage");
+  }
+  return *found;
+}
+
 // The stage a part studies: `stage` if given (of the required kind), else the last such one.
 const StageConfig& StudiedStage(const YamlReader& reader, const YAML::Node& node,
                                 const std::string& path, const RunConfig& config,
                                 StageConfig::Kind kind, std::string* name) {
-  const char* kind_name = kind == StageConfig::Kind::kOutputError ? "output_error" : "least_squares";
-  const StageConfig* found = nullptr;
   if (const YAML::Node n = node["stage"]) {
-    *name = reader.String(n, Child(path, "stage"));
-    for (const StageConfig& s : config.stages) {
-      if (s.options.name == *name) found = &s;
-    }
-    if (found == nullptr) reader.Fail(n, Child(path, "stage"), "no stage named '" + *name + "'");
-    if (found->kind != kind) {
-      reader.Fail(n, Child(path, "stage"),
-                  "stage '" + *name + "' is not a " + kind_name + " stage");
-    }
-    return *found;
+    const StageConfig& stage = NamedStage(reader, n, Child(path, "stage"), config, kind);
+    *name = stage.options.name;
+    return stage;
   }
+  const StageConfig* found = nullptr;
   for (const StageConfig& s : config.stages) {
     if (s.kind == kind) found = &s;
   }
   if (found == nullptr) {
-    reader.Fail(node, path, std::string("the run has no ") + kind_name + " stage to study");
+    reader.Fail(node, path, std::string("the run has no ") + KindName(kind) + " stage to study");
   }
   return *found;
 }
@@ -66,15 +78,8 @@ ProfileOptions ReadProfile(const YamlReader& reader, const YAML::Node& node,
   if (const YAML::Node n = node["stages"]) {
     profile.stages = reader.Strings(n, Child(path, "stages"));
     for (size_t i = 0; i < profile.stages.size(); ++i) {
-      const StageConfig* found = nullptr;
-      for (const StageConfig& s : config.stages) {
-        if (s.options.name == profile.stages[i]) found = &s;
-      }
-      if (found == nullptr || found->kind != StageConfig::Kind::kOutputError) {
-        reader.Fail(n[i], Child(Child(path, "stages"), i),
-                    "no output_error stage named '" + profile.stages[i] + "'");
-      }
-      stages.push_back(found);
+      stages.push_back(&NamedStage(reader, n[i], Child(Child(path, "stages"), i), config,
+                                   StageConfig::Kind::kOutputError));
     }
   } else {
     std::string name;

@@ -7,14 +7,6 @@
 
 namespace vesselid {
 
-nlohmann::json JsonNumber(double value) {
-  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
-
-double NumberOr(const nlohmann::json& value, double fallback) {
-  return value.is_number() ? value.get<double>() : fallback;
-}
-
 std::vector<double> StudyStage::FreeStarts() const {
   std::vector<double> starts;
   for (int index : free) starts.push_back(specs[index].start);

@@ -14,6 +14,7 @@
 #include "engine/config.h"
 #include "engine/output_error_problem.h"
 #include "engine/stage.h"
+#include "engine/json_number.h"
 #include "nlohmann/json.hpp"
 
 namespace vesselid {
@@ -67,9 +68,5 @@ std::map<std::string, double> ValuesByName(const OutputErrorProblem& problem);
 // guesses): clean[e][i] belongs to experiments[e].samples[i]. False if one diverges.
 bool SimulateSamples(const StudyStage& stage, const std::vector<double>& parameters,
                      std::vector<std::vector<double>>* clean, std::string* error);
-
-// JSON number or null (NaN, inf): studies' case records.
-nlohmann::json JsonNumber(double value);
-double NumberOr(const nlohmann::json& value, double fallback);
 
 }  // namespace vesselid
