@@ -37,10 +37,6 @@ std::vector<std::string> ExperimentNames(const YamlReader& reader, const YAML::N
   return names;
 }
 
-namespace {
-
-namespace fs = std::filesystem;
-
 void CheckNames(const YamlReader& reader, const YAML::Node& node, const std::string& key,
                 const std::vector<std::string>& names, const std::vector<std::string>& known,
                 const std::string& kind, const ModelInfo& info) {
@@ -54,6 +50,29 @@ void CheckNames(const YamlReader& reader, const YAML::Node& node, const std::str
     }
   }
 }
+
+void ReadRegressionData(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                        const ModelInfo& info, RegressionDataOptions* data) {
+  if (node["grid"]) {
+    data->grid_output = reader.String(node["grid"], Child(path, "grid"));
+    CheckNames(reader, node["grid"], Child(path, "grid"),
+               std::vector<std::string>{data->grid_output}, info.outputs, "output", info);
+  }
+  if (const YAML::Node smoothing = node["smoothing"]) {
+    const std::string key = Child(path, "smoothing");
+    reader.CheckMap(smoothing, key, {"half_width", "order"});
+    reader.Read(smoothing, key, "half_width", &data->smoothing.half_width);
+    reader.Read(smoothing, key, "order", &data->smoothing.order);
+    if (data->smoothing.half_width < 1 || data->smoothing.order < 1 ||
+        data->smoothing.order >= 2 * data->smoothing.half_width + 1) {
+      reader.Fail(smoothing, key, "need half_width >= 1 and 1 <= order < 2 half_width + 1");
+    }
+  }
+}
+
+namespace {
+
+namespace fs = std::filesystem;
 
 template <class V>
 std::vector<std::string> Keys(const std::map<std::string, V>& map) {
@@ -268,22 +287,7 @@ void ReadLeastSquares(const YamlReader& reader, const YAML::Node& node, const st
       }
     }
   }
-  RegressionDataOptions& data = stage->regression_data;
-  if (node["grid"]) {
-    data.grid_output = reader.String(node["grid"], Child(path, "grid"));
-    CheckNames(reader, node["grid"], Child(path, "grid"), std::vector<std::string>{data.grid_output}, info.outputs,
-               "output", info);
-  }
-  if (const YAML::Node smoothing = node["smoothing"]) {
-    const std::string key = Child(path, "smoothing");
-    reader.CheckMap(smoothing, key, {"half_width", "order"});
-    reader.Read(smoothing, key, "half_width", &data.smoothing.half_width);
-    reader.Read(smoothing, key, "order", &data.smoothing.order);
-    if (data.smoothing.half_width < 1 || data.smoothing.order < 1 ||
-        data.smoothing.order >= 2 * data.smoothing.half_width + 1) {
-      reader.Fail(smoothing, key, "need half_width >= 1 and 1 <= order < 2 half_width + 1");
-    }
-  }
+  ReadRegressionData(reader, node, path, info, &stage->regression_data);
 }
 
 // The run's model map with the keys of `override` replaced, built by the family.
@@ -306,7 +310,8 @@ std::shared_ptr<const ModelHandle> OverrideModel(const YamlReader& reader, const
 StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                       const RunConfig& config, const YAML::Node& model_node, size_t index) {
   reader.CheckMap(node, path,
-                  {"name", "type", "least_squares", "model", "experiments", "validation",
+                  {"name", "type", "least_squares", "step_regression", "model", "experiments",
+                   "validation",
                    "outputs", "parameters", "free_initial_states", "loss", "integration",
                    "normalize_by_length", "continuation", "global", "local", "uncertainty"});
   StageConfig stage;
@@ -332,8 +337,27 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
     CheckNames(reader, node["outputs"], Child(path, "outputs"), stage.experiment.outputs,
                info.outputs, "output", info);
   }
-  if (!node["parameters"]) reader.Fail(node, path, "missing key 'parameters'");
-  const YAML::Node parameters = node["parameters"];
+  const std::string type =
+      node["type"] ? reader.String(node["type"], Child(path, "type")) : "output_error";
+  if (type == "least_squares") {
+    stage.kind = StageConfig::Kind::kLeastSquares;
+  } else if (type == "step_regression") {
+    stage.kind = StageConfig::Kind::kStepRegression;
+  } else if (type != "output_error") {
+    reader.Fail(node["type"], Child(path, "type"),
+                "unknown stage type '" + type + "' (output_error, least_squares, step_regression)");
+  }
+  // A step-regression stage estimates every parameter of the damping-inertia form and holds
+  // the rest, so it lists none.
+  const bool lists_parameters = stage.kind != StageConfig::Kind::kStepRegression;
+  if (!lists_parameters && node["parameters"]) {
+    reader.Fail(node["parameters"], Child(path, "parameters"),
+                "a step-regression stage estimates every damping and inertia parameter; list none");
+  }
+  if (lists_parameters && !node["parameters"]) {
+    reader.Fail(node, path, "missing key 'parameters'");
+  }
+  const YAML::Node parameters = lists_parameters ? node["parameters"] : YAML::Node(YAML::NodeType::Map);
   reader.CheckMap(parameters, Child(path, "parameters"), info.parameters);
   for (const auto& item : parameters) {
     const std::string name = item.first.as<std::string>();
@@ -382,17 +406,26 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
   }
   if (node["local"]) ReadLocal(reader, node["local"], Child(path, "local"), &stage.options.local);
   reader.Read(node, path, "uncertainty", &stage.options.compute_uncertainty);
-  const std::string type =
-      node["type"] ? reader.String(node["type"], Child(path, "type")) : "output_error";
-  if (type == "least_squares") {
-    stage.kind = StageConfig::Kind::kLeastSquares;
-  } else if (type != "output_error") {
-    reader.Fail(node["type"], Child(path, "type"),
-                "unknown stage type '" + type + "' (output_error, least_squares)");
-  }
   const ModelHandle& model = stage.model ? *stage.model : *config.model;
   if (const YAML::Node ls = node["least_squares"]) {
     ReadLeastSquares(reader, ls, Child(path, "least_squares"), model, &stage);
+  }
+  if (const YAML::Node sr = node["step_regression"]) {
+    if (stage.kind != StageConfig::Kind::kStepRegression) {
+      reader.Fail(sr, Child(path, "step_regression"), "only for stages of type step_regression");
+    }
+  }
+  if (stage.kind == StageConfig::Kind::kStepRegression) {
+    if (model.damping_inertia_form() == nullptr) {
+      reader.Fail(node["type"], Child(path, "type"),
+                  "model " + info.name + " has no damping-inertia form for a step-regression stage");
+    }
+    ReadStepRegression(reader, node["step_regression"], Child(path, "step_regression"), model,
+                       &stage);
+    for (const char* key : {"loss", "continuation", "global", "least_squares",
+                            "free_initial_states", "normalize_by_length", "integration"}) {
+      if (node[key]) reader.Fail(node[key], Child(path, key), "not used by a step-regression stage");
+    }
   }
   if (stage.kind == StageConfig::Kind::kLeastSquares) {
     if (model.regression_form() == nullptr) {
@@ -422,7 +455,7 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
   try {
     const YAML::Node root = reader.Load();
     reader.CheckMap(root, "", {"description", "model", "simulation", "experiments", "stages",
-                               "fusion", "final_validation", "study"});
+                               "fusion", "final_validation", "surfaces", "study"});
     RunConfig result;
     result.path = path;
     reader.Read(root, "", "description", &result.description);
@@ -491,6 +524,9 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
         CheckNames(reader, final["free_initial_states"], key, v.free_initial_states,
                    final_info.states, "state", final_info);
       }
+    }
+    if (const YAML::Node surfaces = root["surfaces"]) {
+      result.surfaces = ReadSurfaces(reader, surfaces, *result.model);
     }
     if (const YAML::Node study = root["study"]) {
       result.study = ReadStudy(reader, study, result);

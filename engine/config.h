@@ -35,16 +35,20 @@
 #include "engine/partition_study.h"
 #include "engine/study_options.h"
 #include "engine/stage.h"
+#include "engine/step_regression.h"
 
 namespace vesselid {
 
 struct StageConfig {
   // output_error: simulate and compare (the default); least_squares: equation-error regression
-  // of the model's derivative form (least_squares.h), its estimate starting the next stage.
-  enum class Kind { kOutputError, kLeastSquares };
+  // of the model's derivative form (least_squares.h), its estimate starting the next stage;
+  // step_regression: seed 004's damping and inertia regression on steady states and steps
+  // (step_regression.h), for models with a damping-inertia form.
+  enum class Kind { kOutputError, kLeastSquares, kStepRegression };
   Kind kind = Kind::kOutputError;
   StageOptions options;
   LeastSquaresOptions least_squares;
+  StepRegressionOptions step_regression;
   // How records become regression data (least-squares stages, and the velocity metrics of
   // any stage's validation when the model has an equation-error form).
   RegressionDataOptions regression_data;
@@ -82,6 +86,9 @@ struct RunConfig {
   FusionRule fusion = FusionRule::kInverseVariance;
   bool has_final_validation = false;
   FinalValidationConfig final_validation;
+  // Damping and inertia surfaces written by `run` for models with a damping-inertia form
+  // (`surfaces: {<state>: [lower, upper, points], <state>: [...]}`); empty: none.
+  SurfaceGrid surfaces;
   // Sensitivity studies (`vesselid study`); empty when the config has no study section.
   StudyConfig study;
 

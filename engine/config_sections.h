@@ -19,6 +19,23 @@ void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::str
 std::vector<std::string> ExperimentNames(const YamlReader& reader, const YAML::Node& node,
                                          const std::string& key, const RunConfig& config);
 
+// Fails unless every name is in `known` (a model's `kind` names, e.g. outputs).
+void CheckNames(const YamlReader& reader, const YAML::Node& node, const std::string& key,
+                const std::vector<std::string>& names, const std::vector<std::string>& known,
+                const std::string& kind, const ModelInfo& info);
+
+// `grid` and `smoothing` keys of a regression stage's map (regression_data.h).
+void ReadRegressionData(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                        const ModelInfo& info, RegressionDataOptions* data);
+
+// The `step_regression` map of a step-regression stage (step_regression_config.cc).
+void ReadStepRegression(const YamlReader& reader, const YAML::Node& node,
+                        const std::string& path, const ModelHandle& model, StageConfig* stage);
+
+// `surfaces: {<state>: [lower, upper, points], ...}` for both regressed states of the model's
+// damping-inertia form.
+SurfaceGrid ReadSurfaces(const YamlReader& reader, const YAML::Node& node, const ModelHandle& model);
+
 // The `study` section (study_options.h).
 StudyConfig ReadStudy(const YamlReader& reader, const YAML::Node& node, const RunConfig& config);
 

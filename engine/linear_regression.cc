@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/lasso.h"
+
 namespace vesselid {
 namespace {
 
@@ -31,20 +33,9 @@ Eigen::VectorXd Fit(const Eigen::MatrixXd& x, const Eigen::VectorXd& y, const Ei
     if (penalty == Penalty::kRidge) h.diagonal().array() += lambda;
     theta = h.completeOrthogonalDecomposition().solve(moment);
   } else {
-    // Coordinate descent on 1/2 t'Gt - m't + lambda |t|_1, from the least-squares solution.
+    // 1/2 t'Gt - m't + lambda |t|_1, from the least-squares solution.
     theta = gram.completeOrthogonalDecomposition().solve(moment);
-    for (int sweep = 0; sweep < 1000; ++sweep) {
-      double change = 0.0;
-      for (int j = 0; j < p; ++j) {
-        if (gram(j, j) <= 0.0) continue;
-        const double rho = moment[j] - gram.row(j).dot(theta) + gram(j, j) * theta[j];
-        const double updated =
-            std::copysign(std::max(std::abs(rho) - lambda, 0.0), rho) / gram(j, j);
-        change = std::max(change, std::abs(updated - theta[j]));
-        theta[j] = updated;
-      }
-      if (change < 1e-12 * (1.0 + theta.cwiseAbs().maxCoeff())) break;
-    }
+    SolveLassoGram(gram, moment, Eigen::VectorXd::Constant(p, lambda), &theta);
   }
   return theta.cwiseQuotient(scale);
 }

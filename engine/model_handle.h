@@ -10,6 +10,7 @@
 
 #include "ceres/ceres.h"
 #include "engine/experiment.h"
+#include "engine/damping_inertia_form.h"
 #include "engine/experiment_cost.h"
 #include "engine/model.h"
 #include "engine/regression_form.h"
@@ -51,6 +52,10 @@ class ModelHandle {
                           std::vector<Eigen::MatrixXd>* phi) const = 0;
   virtual void Coefficients(const double* p, double* theta) const = 0;
   virtual int Region(const double* u) const = 0;
+
+  // Damping-inertia form for the step-regression stage (damping_inertia_form.h); null when
+  // the model has none.
+  virtual const DampingInertiaForm* damping_inertia_form() const = 0;
 };
 
 // Detects a model's optional `std::vector<std::string> Admissibility(const double*) const`.
@@ -77,6 +82,14 @@ template <class Model>
 struct HasRegression<Model, std::void_t<decltype(std::declval<const Model&>().Regression())>>
     : std::true_type {};
 
+// Detects a model's optional damping-inertia form (`DampingInertiaForm DampingInertia() const`).
+template <class Model, class = void>
+struct HasDampingInertia : std::false_type {};
+template <class Model>
+struct HasDampingInertia<
+    Model, std::void_t<decltype(std::declval<const Model&>().DampingInertia())>>
+    : std::true_type {};
+
 template <class Model>
 class ModelAdapter final : public ModelHandle {
  public:
@@ -84,6 +97,10 @@ class ModelAdapter final : public ModelHandle {
     if constexpr (HasRegression<Model>::value) {
       form_ = model_.Regression();
       has_form_ = true;
+    }
+    if constexpr (HasDampingInertia<Model>::value) {
+      damping_inertia_ = model_.DampingInertia();
+      has_damping_inertia_ = true;
     }
   }
 
@@ -146,6 +163,10 @@ class ModelAdapter final : public ModelHandle {
     }
   }
 
+  const DampingInertiaForm* damping_inertia_form() const override {
+    return has_damping_inertia_ ? &damping_inertia_ : nullptr;
+  }
+
   const Model& model() const { return model_; }
 
  private:
@@ -153,6 +174,8 @@ class ModelAdapter final : public ModelHandle {
   const ModelInfo info_;
   RegressionForm form_;
   bool has_form_ = false;
+  DampingInertiaForm damping_inertia_;
+  bool has_damping_inertia_ = false;
 };
 
 template <class Model>

@@ -134,6 +134,10 @@ bool RunPartitionStudy(const RunConfig& config, const StudyOptions& options,
     return fail(o.stage.empty() ? "the run has no stage to study"
                                 : "no stage named '" + o.stage + "'");
   }
+  if (stage->kind == StageConfig::Kind::kStepRegression) {
+    return fail("stage '" + stage->options.name +
+                "': partition studies refit least-squares or output-error stages only");
+  }
   r.options.stage = stage->options.name;
   const std::unique_ptr<PartitionPool> pool =
       stage->kind == StageConfig::Kind::kLeastSquares

@@ -8,6 +8,7 @@
 
 #include "engine/continuation.h"
 #include "engine/least_squares_stage.h"
+#include "engine/step_regression_stage.h"
 #include "engine/velocity_validation.h"
 
 namespace vesselid {
@@ -447,6 +448,10 @@ bool RunStages(const RunConfig& config, size_t first, size_t count, TrajectoryCa
     StageResult stage_result;
     if (stage.kind == StageConfig::Kind::kLeastSquares) {
       if (!RunLeastSquaresStage(config, stage, model, specs, &cache, &stage_result, error)) {
+        return fail(*error);
+      }
+    } else if (stage.kind == StageConfig::Kind::kStepRegression) {
+      if (!RunStepRegressionStage(config, stage, model, specs, &cache, &stage_result, error)) {
         return fail(*error);
       }
     } else if (!RunOutputErrorStage(config, stage, model, &specs, &cache, &stage_result, error)) {

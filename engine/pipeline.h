@@ -17,6 +17,7 @@
 #include "engine/config.h"
 #include "engine/regression_data.h"
 #include "engine/stage.h"
+#include "engine/step_regression.h"
 
 namespace vesselid {
 
@@ -45,6 +46,8 @@ struct StageResult {
   // Models with an equation-error form: one-step and free-run metrics of the regressed
   // states on the held-out experiments (velocity_validation.h).
   std::vector<ChannelMetrics> velocity_validation;
+  // Step-regression stages: the samples, lasso paths and timings (step_regression.h).
+  std::shared_ptr<const StepRegressionReport> step_regression;
 };
 
 // A parameter's value after the whole run.

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "engine/json_number.h"
+#include "engine/step_regression_writer.h"
 
 namespace vesselid {
 namespace {
@@ -165,6 +166,7 @@ json StageToJson(const StageResult& stage) {
   if (!stage.velocity_validation.empty()) {
     j["velocity_validation"] = VelocityToJson(stage.velocity_validation);
   }
+  if (stage.step_regression) j["step_regression"] = StepRegressionToJson(*stage.step_regression);
   return j;
 }
 
@@ -460,6 +462,7 @@ bool WriteRunResults(const RunConfig& config, const RunResult& result, const std
     }
   }
   if (!WriteTraces(traces, "final_validation", result.final_validation, error) ||
+      !WriteStepRegressionFiles(config, result, out_dir, error) ||
       !WriteFileAtomically((fs::path(out_dir) / "report.txt").string(),
                            RunResultToText(config, result), error)) {
     return false;

@@ -7,7 +7,12 @@ namespace vesselid {
 namespace {
 
 const char* KindName(StageConfig::Kind kind) {
-  return kind == StageConfig::Kind::kOutputError ? "output_error" : "least_squares";
+  switch (kind) {
+    case StageConfig::Kind::kOutputError: return "output_error";
+    case StageConfig::Kind::kLeastSquares: return "least_squares";
+    case StageConfig::Kind::kStepRegression: return "step_regression";
+  }
+  return "";
 }
 
 // The stage the name at `n` (key `key`) names, which must be of the required kind.

@@ -1,5 +1,6 @@
 #include "problems/registry.h"
 
+#include "problems/eriksen2dof/eriksen_family.h"
 #include "problems/erunsal6dof/erunsal_family.h"
 #include "problems/input_gain/input_gain_family.h"
 #include "problems/nomoto/nomoto_family.h"
@@ -11,6 +12,7 @@ ModelRegistry DefaultRegistry() {
   registry.Register(nomoto::NomotoFamily());
   registry.Register(erunsal6dof::ErunsalFamily());
   registry.Register(input_gain::InputGainFamily());
+  registry.Register(eriksen2dof::EriksenFamily());
   return registry;
 }
 
