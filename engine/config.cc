@@ -96,7 +96,7 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
                               const ModelInfo& info) {
   reader.CheckMap(node, path,
                   {"name", "file", "inputs", "outputs", "interpolation", "weights", "initial_state",
-                   "degrees", "window", "segment_length", "segments"});
+                   "degrees", "window", "segment_length", "segments", "input_range"});
   ExperimentSpec spec;
   if (!node["name"]) reader.Fail(node, path, "missing key 'name'");
   if (!node["file"]) reader.Fail(node, path, "missing key 'file'");
@@ -174,6 +174,30 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
     if (spec.segment_length > 0.0) {
       reader.Fail(n, key, "segments and segment_length cannot be combined");
     }
+  }
+  //   input_range: {<input>: [lower, upper], ..., min_duration: 10, skip: 0}
+  if (const YAML::Node n = node["input_range"]) {
+    const std::string key = Child(path, "input_range");
+    std::vector<std::string> allowed = info.inputs;
+    allowed.insert(allowed.end(), {"min_duration", "skip"});
+    reader.CheckMap(n, key, allowed);
+    reader.Read(n, key, "min_duration", &spec.input_range_min_duration);
+    reader.Read(n, key, "skip", &spec.input_range_skip);
+    if (!(spec.input_range_min_duration >= 0.0) || !(spec.input_range_skip >= 0.0)) {
+      reader.Fail(n, key, "min_duration and skip must be >= 0");
+    }
+    for (const std::string& input : info.inputs) {
+      if (!n[input]) continue;
+      if (spec.inputs.count(input) == 0) {
+        reader.Fail(n[input], Child(key, input), "input '" + input + "' is not mapped to a column");
+      }
+      const std::vector<double> range = reader.Doubles(n[input], Child(key, input));
+      if (range.size() != 2 || !(range[0] <= range[1])) {
+        reader.Fail(n[input], Child(key, input), "expected [lower, upper] with lower <= upper");
+      }
+      spec.input_range[input] = {range[0], range[1]};
+    }
+    if (spec.input_range.empty()) reader.Fail(n, key, "no input listed");
   }
   return spec;
 }

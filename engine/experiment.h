@@ -39,6 +39,13 @@ struct ExperimentSpec {
   // segments.column set: the record holds segments told apart by that column, each
   // identified as "<name>@<id>" from its own initial state (see segments.h).
   SegmentSelection segments;
+  // Model input -> [lower, upper]: only the stretches where every listed input is inside are
+  // identified, each from its own initial state ("<name>#<k>", input_range.h).
+  std::map<std::string, std::pair<double, double>> input_range;
+  double input_range_min_duration = 10.0;  // s, shorter stretches are dropped
+  // s dropped at the start of a stretch that follows one outside the ranges: the state is
+  // still leaving the region the model is not identified in.
+  double input_range_skip = 0.0;
 };
 
 struct ExperimentSample {

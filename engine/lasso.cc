@@ -20,16 +20,32 @@ constexpr int kRefreshSweeps = 64;
 
 int Sign(double v) { return (v > 0.0) - (v < 0.0); }
 
-// Solves the stationarity conditions of the current sign pattern of *beta,
-// G_AA z_A = m_A - penalty_A sign(beta_A), z = 0 off A, and replaces *beta by z if z keeps the
-// signs on the penalised coefficients and satisfies the optimality conditions everywhere.
-bool SolveSignPattern(const Eigen::MatrixXd& gram, const Eigen::VectorXd& moment,
-                      const Eigen::VectorXd& penalty, const Eigen::VectorXd& active_scale,
-                      Eigen::VectorXd* beta) {
+// 1/2 b'Gb - m'b + penalty'|b|, and in *size the sum of its terms' magnitudes (its rounding
+// scale).
+double Objective(const Eigen::MatrixXd& gram, const Eigen::VectorXd& moment,
+                 const Eigen::VectorXd& penalty, const Eigen::VectorXd& b, double* size) {
+  const double quadratic = 0.5 * b.dot(gram * b), linear = moment.dot(b);
+  const double l1 = penalty.dot(b.cwiseAbs());
+  *size = std::abs(quadratic) + std::abs(linear) + l1;
+  return quadratic - linear + l1;
+}
+
+enum class DirectStep { kOptimal, kMoved, kFailed };
+
+// Feature-sign step on the current sign pattern s of *beta (active set A = nonzeros): the
+// objective restricted to that orthant is the quadratic minimised by z,
+// G_AA z_A = m_A - penalty_A s_A, z = 0 off A. If z keeps the signs, *beta moves to z
+// (optimal if the conditions also hold off A); otherwise it moves along z - beta up to the
+// first penalised coefficient that reaches zero, which it zeroes. Either move lowers the
+// objective (checked, so a singular G_AA cannot make things worse).
+DirectStep FeatureSignStep(const Eigen::MatrixXd& gram, const Eigen::VectorXd& moment,
+                            const Eigen::VectorXd& penalty, const Eigen::VectorXd& scale,
+                            Eigen::VectorXd* beta) {
   const int p = static_cast<int>(moment.size());
+  Eigen::VectorXd& b = *beta;
   std::vector<int> active;
   for (int j = 0; j < p; ++j) {
-    if ((*beta)[j] != 0.0) active.push_back(j);
+    if (b[j] != 0.0) active.push_back(j);
   }
   const int k = static_cast<int>(active.size());
   Eigen::VectorXd z = Eigen::VectorXd::Zero(p);
@@ -38,29 +54,48 @@ bool SolveSignPattern(const Eigen::MatrixXd& gram, const Eigen::VectorXd& moment
     Eigen::VectorXd rhs(k);
     for (int a = 0; a < k; ++a) {
       for (int c = 0; c < k; ++c) g(a, c) = gram(active[a], active[c]);
-      rhs[a] = moment[active[a]] - penalty[active[a]] * Sign((*beta)[active[a]]);
+      rhs[a] = moment[active[a]] - penalty[active[a]] * Sign(b[active[a]]);
     }
-    const Eigen::VectorXd solution = g.ldlt().solve(rhs);
-    if (!solution.allFinite()) return false;
-    for (int a = 0; a < k; ++a) {
-      const int j = active[a];
-      if (penalty[j] > 0.0 && Sign(solution[a]) != Sign((*beta)[j])) return false;
-      z[j] = solution[a];
+    // Cholesky, much faster than pivoted LDLT at this size; LDLT when G_AA is singular.
+    const Eigen::LLT<Eigen::MatrixXd> cholesky(g);
+    const Eigen::VectorXd solution = cholesky.info() == Eigen::Success
+                                         ? Eigen::VectorXd(cholesky.solve(rhs))
+                                         : Eigen::VectorXd(g.ldlt().solve(rhs));
+    if (!solution.allFinite()) return DirectStep::kFailed;
+    for (int a = 0; a < k; ++a) z[active[a]] = solution[a];
+  }
+  // Largest step t in (0, 1] along z - b that keeps every penalised sign.
+  double t = 1.0;
+  int crossing = -1;
+  for (int j : active) {
+    if (penalty[j] > 0.0 && Sign(z[j]) != Sign(b[j])) {
+      const double reach = b[j] / (b[j] - z[j]);
+      if (reach < t) {
+        t = reach;
+        crossing = j;
+      }
     }
   }
+  Eigen::VectorXd moved = crossing < 0 ? z : Eigen::VectorXd(b + t * (z - b));
+  if (crossing >= 0) moved[crossing] = 0.0;
+  double size_before, size_after;
+  const double before = Objective(gram, moment, penalty, b, &size_before);
+  const double after = Objective(gram, moment, penalty, moved, &size_after);
+  if (!(after <= before + 1e-13 * std::max(size_before, size_after))) return DirectStep::kFailed;
+  b = moved;
+  if (crossing >= 0) return DirectStep::kMoved;
   const Eigen::VectorXd residual = moment - gram * z;  // minus the gradient
-  const Eigen::VectorXd size = moment.cwiseAbs() + gram.cwiseAbs() * z.cwiseAbs();
+  const Eigen::VectorXd rounding = moment.cwiseAbs() + gram.cwiseAbs() * z.cwiseAbs();
   for (int j = 0; j < p; ++j) {
-    if (active_scale[j] == 0.0) continue;  // a zero column: z_j = 0, no condition
-    const double slack = kKktSlack * size[j];
+    if (scale[j] == 0.0) continue;  // a zero column: z_j = 0, no condition
+    const double slack = kKktSlack * rounding[j];
     if (z[j] != 0.0) {
-      if (std::abs(residual[j] - penalty[j] * Sign(z[j])) > slack) return false;
+      if (std::abs(residual[j] - penalty[j] * Sign(z[j])) > slack) return DirectStep::kMoved;
     } else if (std::abs(residual[j]) > penalty[j] + slack) {
-      return false;
+      return DirectStep::kMoved;
     }
   }
-  *beta = z;
-  return true;
+  return DirectStep::kOptimal;
 }
 
 Eigen::VectorXd Factors(const LassoOptions& options, int columns) {
@@ -124,11 +159,19 @@ int SolveLassoGram(const Eigen::MatrixXd& gram, const Eigen::VectorXd& moment,
     if (pattern_changed) {
       backoff = 1;
       next_attempt = sweep + 1;
-    } else if (sweep >= next_attempt) {
-      if (SolveSignPattern(gram, moment, penalty, scale, &b)) break;
-      backoff *= 2;
-      next_attempt = sweep + backoff;
+      continue;
     }
+    if (sweep < next_attempt) continue;
+    const DirectStep step = FeatureSignStep(gram, moment, penalty, scale, &b);
+    if (step == DirectStep::kOptimal) break;
+    if (step == DirectStep::kMoved) {
+      residual = moment - gram * b;
+      for (int j = 0; j < p; ++j) pattern[j] = Sign(b[j]);
+      backoff = 1;
+    } else {
+      backoff *= 2;
+    }
+    next_attempt = sweep + backoff;
   }
   return sweep;
 }

@@ -28,9 +28,10 @@ namespace vesselid {
 
 // Minimises 1/2 b'Gb - m'b + sum_j penalty_j |b_j| (G symmetric positive semi-definite,
 // penalty_j >= 0) by cyclic coordinate descent, warm-started from *beta (in/out; resized to
-// zeros if its size does not match). Once the signs of the coefficients settle, the stationary
-// point of that sign pattern is solved for directly and accepted if it satisfies the optimality
-// conditions, so solutions are exact even on strongly correlated columns. Coefficients of
+// zeros if its size does not match). Whenever a sweep leaves the signs unchanged, a feature-sign
+// step solves for the stationary point of that sign pattern and moves there (or towards it,
+// up to the first coefficient that reaches zero); a point satisfying the optimality conditions
+// ends the descent, so solutions are exact even on strongly correlated columns. Coefficients of
 // columns with G_jj <= 0 are set to zero. Returns the sweeps used; `tolerance` bounds the last
 // sweep's largest change sqrt(G_jj) |delta b_j| relative to the largest sqrt(G_jj) |b_j|.
 int SolveLassoGram(const Eigen::MatrixXd& gram, const Eigen::VectorXd& moment,

@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "engine/continuation.h"
+#include "engine/input_range.h"
 #include "engine/least_squares_stage.h"
 #include "engine/step_regression_stage.h"
 #include "engine/velocity_validation.h"
@@ -315,7 +316,9 @@ std::unique_ptr<OutputErrorProblem> HeldOutProblem(const ModelHandle& model,
   return problem;
 }
 
-bool RecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double segment_length,
+namespace {
+
+bool WholeRecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double segment_length,
                  std::vector<ExperimentSpec>* specs, std::string* error) {
   specs->clear();
   if (!spec.segments.column.empty()) {
@@ -348,6 +351,19 @@ bool RecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double segm
     segment.t_begin = t0;
     segment.t_end = std::min(end, t0 + length);
     specs->push_back(segment);
+  }
+  return true;
+}
+
+}  // namespace
+
+bool RecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double segment_length,
+                 std::vector<ExperimentSpec>* specs, std::string* error) {
+  std::vector<ExperimentSpec> whole;
+  if (!WholeRecordSpecs(spec, data, segment_length, &whole, error)) return false;
+  specs->clear();
+  for (const ExperimentSpec& s : whole) {
+    if (!SplitByInputRange(s, data, specs, error)) return false;
   }
   return true;
 }

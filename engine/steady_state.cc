@@ -89,7 +89,9 @@ void AnalyseInterval(const std::vector<double>& t, const Eigen::MatrixXd& signal
     for (int r = 0; r < rows; ++r) {
       const int a = lo[r] - begin, b = hi[r] - begin;
       const int c = count[b] - count[a];
-      if (c == 0) continue;  // a gap: no evidence either way
+      // Near or in a gap an average of a few samples is as noisy as the raw signal: a row is
+      // tested only if at least half of its window's rows hold samples.
+      if (c == 0 || 2 * c < b - a) continue;
       const double deviation = (sum[b] - sum[a]) / c;
       if (std::abs(deviation) > band) violated[r] = 1;
     }

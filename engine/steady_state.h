@@ -16,8 +16,14 @@
 //
 // i.e. t_steady is the first time after which every smoothed signal stays inside its band
 // around its settled (last-half) value for the rest of the interval. The window is steady if
-// t_end - t_steady >= min_duration. A signal is testable in an interval if it has samples in H;
-// a row where ybar_i is missing (a gap longer than the smoothing) does not violate for signal i.
+// t_end - t_steady >= min_duration. A signal is testable in an interval if it has samples in H.
+// A row whose averaging window has samples of y_i in fewer than half of its rows (in or next to
+// a gap) is not tested for signal i: such an average is nearly as noisy as a raw sample.
+//
+// The window starts with a residual transient of up to about band_i, decaying with the time
+// constant T, so its mean is biased towards the previous level by up to about band_i T / W
+// (W = t_end - t_steady); with band 2 noise SDs that is a few standard errors of the mean for
+// W of 10 T. Smaller band_factor (in the absence of oscillations) or longer holds reduce it.
 //
 // Why an SD band around the last-half mean: with an ocean current the speed over ground
 // oscillates with the turn period while circling at steady state (the seed holds each level
