@@ -25,8 +25,9 @@
 namespace vesselid {
 
 // Jet sizes compiled for each model; a problem with more free directions is refused.
-using JetSizes = std::integer_sequence<int, 1, 2, 3, 4, 5, 6, 7, 8, 10, 12, 16, 20, 24, 32, 48, 64>;
-inline constexpr int kMaxJetSize = 64;
+using JetSizes =
+    std::integer_sequence<int, 1, 2, 3, 4, 5, 6, 7, 8, 10, 12, 16, 20, 24, 32, 48, 64, 80>;
+inline constexpr int kMaxJetSize = 80;
 
 template <class Model>
 class ExperimentCost final : public ceres::CostFunction {

@@ -39,8 +39,8 @@ enum class DirectStep { kOptimal, kMoved, kFailed };
 // first penalised coefficient that reaches zero, which it zeroes. Either move lowers the
 // objective (checked, so a singular G_AA cannot make things worse).
 DirectStep FeatureSignStep(const Eigen::MatrixXd& gram, const Eigen::VectorXd& moment,
-                            const Eigen::VectorXd& penalty, const Eigen::VectorXd& scale,
-                            Eigen::VectorXd* beta) {
+                           const Eigen::VectorXd& penalty, const Eigen::VectorXd& scale,
+                           Eigen::VectorXd* beta) {
   const int p = static_cast<int>(moment.size());
   Eigen::VectorXd& b = *beta;
   std::vector<int> active;
@@ -257,14 +257,14 @@ bool CrossValidateLasso(const Eigen::MatrixXd& x, const Eigen::VectorXd& y,
                         const LassoOptions& options, LassoPath* path, std::string* error) {
   const int n = static_cast<int>(x.rows()), p = static_cast<int>(x.cols());
   if (n == 0 || p == 0) {
-    *error = "lasso: no samples or no columns (" + std::to_string(n) + " x " +
-             std::to_string(p) + ")";
+    *error =
+        "lasso: no samples or no columns (" + std::to_string(n) + " x " + std::to_string(p) + ")";
     return false;
   }
   if (y.size() != n || w.size() != n || static_cast<int>(group.size()) != n) {
-    *error = "lasso: " + std::to_string(n) + " rows of regressors but " +
-             std::to_string(y.size()) + " targets, " + std::to_string(w.size()) +
-             " weights and " + std::to_string(group.size()) + " group ids";
+    *error = "lasso: " + std::to_string(n) + " rows of regressors but " + std::to_string(y.size()) +
+             " targets, " + std::to_string(w.size()) + " weights and " +
+             std::to_string(group.size()) + " group ids";
     return false;
   }
   if (!x.allFinite() || !y.allFinite() || !w.allFinite()) {
