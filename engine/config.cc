@@ -371,6 +371,11 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
     reader.Fail(node["type"], Child(path, "type"),
                 "unknown stage type '" + type + "' (output_error, least_squares, step_regression)");
   }
+  if (stage.kind == StageConfig::Kind::kStepRegression &&
+      (stage.model ? *stage.model : *config.model).damping_inertia_form() == nullptr) {
+    reader.Fail(node["type"], Child(path, "type"),
+                "model " + info.name + " has no damping-inertia form for a step-regression stage");
+  }
   // A step-regression stage estimates every parameter of the damping-inertia form and holds
   // the rest, so it lists none.
   const bool lists_parameters = stage.kind != StageConfig::Kind::kStepRegression;
@@ -440,10 +445,6 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
     }
   }
   if (stage.kind == StageConfig::Kind::kStepRegression) {
-    if (model.damping_inertia_form() == nullptr) {
-      reader.Fail(node["type"], Child(path, "type"),
-                  "model " + info.name + " has no damping-inertia form for a step-regression stage");
-    }
     ReadStepRegression(reader, node["step_regression"], Child(path, "step_regression"), model,
                        &stage);
     for (const char* key : {"loss", "continuation", "global", "least_squares",

@@ -278,5 +278,29 @@ TEST_F(BadInput, MissingSegmentColumn) {
   ExpectRejected("experiment 'run'.*no segment column 'leg'");
 }
 
+TEST_F(BadInput, StepRegressionNeedsADampingInertiaForm) {
+  EditConfig("  - name: fit\n", "  - name: fit\n    type: step_regression\n");
+  ExpectRejected("config\\.yaml:9: stages\\[0\\]\\.type: model nomoto_first_order has no "
+                 "damping-inertia form");
+}
+
+TEST_F(BadInput, UnknownInputInInputRange) {
+  EditConfig("    outputs: {psi: psi}\n",
+             "    outputs: {psi: psi}\n    input_range: {rudder: [-0.1, 0.1]}\n");
+  ExpectRejected("config\\.yaml:7: experiments\\[0\\]\\.input_range\\.rudder: unknown key");
+}
+
+TEST_F(BadInput, InvertedInputRange) {
+  EditConfig("    outputs: {psi: psi}\n",
+             "    outputs: {psi: psi}\n    input_range: {delta: [0.1, -0.1]}\n");
+  ExpectRejected("experiments\\[0\\]\\.input_range\\.delta: expected \\[lower, upper\\]");
+}
+
+TEST_F(BadInput, SurfacesNeedADampingInertiaForm) {
+  WriteConfig(std::string(kGoodConfig) + "surfaces: {U: [0, 18, 10], r: [-1, 1, 5]}\n");
+  ExpectRejected("config\\.yaml:13: surfaces: model nomoto_first_order has no damping and "
+                 "inertia terms");
+}
+
 }  // namespace
 }  // namespace vesselid
