@@ -93,9 +93,7 @@ bool FitFirstOrderStep(const std::vector<double>& t, const std::vector<double>& 
   const double log_min = std::log(options.min_time_constant);
   const double log_max = std::log(options.max_time_constant);
   const double step = (log_max - log_min) / (options.grid - 1);
-  auto grid_point = [&](int i) {
-    return i == options.grid - 1 ? log_max : log_min + i * step;
-  };
+  auto grid_point = [&](int i) { return i == options.grid - 1 ? log_max : log_min + i * step; };
 
   int best = 0;
   double best_cost = cost(log_min);

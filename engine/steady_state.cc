@@ -48,8 +48,8 @@ void AnalyseInterval(const std::vector<double>& t, const Eigen::MatrixXd& signal
 
   // The interval's last half H.
   const double t_half = 0.5 * (interval->t_begin + interval->t_end);
-  const int half_begin = static_cast<int>(
-      std::lower_bound(t.begin() + begin, t.begin() + end, t_half) - t.begin());
+  const int half_begin =
+      static_cast<int>(std::lower_bound(t.begin() + begin, t.begin() + end, t_half) - t.begin());
 
   // Centred moving-average window [lo_k, hi_k) of each row, shared by all signals.
   std::vector<int> lo(rows), hi(rows);
@@ -104,8 +104,7 @@ void AnalyseInterval(const std::vector<double>& t, const Eigen::MatrixXd& signal
     while (r > 0 && !violated[r - 1]) --r;
     interval->steady_begin = begin + r;
   }
-  interval->t_steady =
-      interval->steady_begin < end ? t[interval->steady_begin] : interval->t_end;
+  interval->t_steady = interval->steady_begin < end ? t[interval->steady_begin] : interval->t_end;
   interval->steady = any_testable && interval->steady_begin < end &&
                      interval->t_end - interval->t_steady >= options.min_duration;
 
@@ -157,8 +156,8 @@ bool FindSteadyStates(const std::vector<double>& t, const Eigen::MatrixXd& signa
   }
   if (signals.rows() != n || inputs.rows() != n) {
     *error = "steady states: " + std::to_string(n) + " times but " +
-             std::to_string(signals.rows()) + " signal rows and " +
-             std::to_string(inputs.rows()) + " input rows";
+             std::to_string(signals.rows()) + " signal rows and " + std::to_string(inputs.rows()) +
+             " input rows";
     return false;
   }
   if (s == 0 || q == 0) {

@@ -62,17 +62,17 @@ struct SteadyStateOptions {
 };
 
 struct InputInterval {
-  int begin = 0, end = 0;         // rows [begin, end) with constant inputs
-  double t_begin = 0.0;           // time of row begin
-  double t_end = 0.0;             // time of row end - 1
-  std::vector<double> input;      // the constant inputs (q), row begin's values
-  bool steady = false;            // a steady window of at least min_duration was found
+  int begin = 0, end = 0;     // rows [begin, end) with constant inputs
+  double t_begin = 0.0;       // time of row begin
+  double t_end = 0.0;         // time of row end - 1
+  std::vector<double> input;  // the constant inputs (q), row begin's values
+  bool steady = false;        // a steady window of at least min_duration was found
   // The settle test's window is rows [steady_begin, end); set even when it is too short to be
   // steady (steady_begin = end when no signal could be tested).
   int steady_begin = 0;
-  double t_steady = 0.0;          // time of row steady_begin (t_end if steady_begin = end)
-  std::vector<double> mean, sd;   // per signal over the window (NaN when not steady or no data)
-  std::vector<double> band;       // per signal, the band the settle test used (NaN: untestable)
+  double t_steady = 0.0;         // time of row steady_begin (t_end if steady_begin = end)
+  std::vector<double> mean, sd;  // per signal over the window (NaN when not steady or no data)
+  std::vector<double> band;      // per signal, the band the settle test used (NaN: untestable)
 };
 
 // Splits the record into constant-input intervals and finds the steady window at the end of

@@ -166,8 +166,7 @@ TEST(SteadyStates, WindowsStartAfterSettlingAndEndAtTheIntervalEnd) {
     const Plant plant = i == 0 ? kSpeed : kYaw;
     const double noise = i == 0 ? 0.01 : 0.0005;
     EXPECT_NEAR(interval.band[i], 2.0 * noise, 0.3 * noise) << j;
-    const double change =
-        TrueSteady(interval.input, i) - TrueSteady(intervals[j - 1].input, i);
+    const double change = TrueSteady(interval.input, i) - TrueSteady(intervals[j - 1].input, i);
     const double expected = plant.time_constant * std::log(std::abs(change) / interval.band[i]);
     const double settle = interval.t_steady - interval.t_begin;
     // The last noisy exceedance scatters the crossing: -0.3 T to +0.4 T in 99 % of 300 records.
@@ -190,10 +189,8 @@ TEST(SteadyStates, MeansEqualTheTrueSteadyValuesWithinTheNoise) {
     for (int i = 0; i < 2; ++i) {
       const double noise = i == 0 ? 0.01 : 0.0005;
       // The mean is the window's average: within 4 noise SEs of the noiseless average...
-      const Eigen::VectorXd truth =
-          record.truth.col(i).segment(interval.steady_begin, count);
-      EXPECT_NEAR(interval.mean[i], truth.mean(), 4.0 * noise / std::sqrt(count))
-          << j << " " << i;
+      const Eigen::VectorXd truth = record.truth.col(i).segment(interval.steady_begin, count);
+      EXPECT_NEAR(interval.mean[i], truth.mean(), 4.0 * noise / std::sqrt(count)) << j << " " << i;
       // ... which the residual transient moves off the steady value by at most ~band T / W.
       const double steady = TrueSteady(interval.input, i);
       EXPECT_LT(std::abs(truth.mean() - steady), TransientBias(interval, i)) << j << " " << i;
@@ -201,8 +198,7 @@ TEST(SteadyStates, MeansEqualTheTrueSteadyValuesWithinTheNoise) {
           << j << " " << i;
       // The SD holds the noise and the residual transient (its own SE is about 3.4 % here).
       const double spread = (truth.array() - truth.mean()).square().mean();
-      EXPECT_NEAR(interval.sd[i], std::sqrt(noise * noise + spread), 0.15 * noise)
-          << j << " " << i;
+      EXPECT_NEAR(interval.sd[i], std::sqrt(noise * noise + spread), 0.15 * noise) << j << " " << i;
     }
   }
 }
@@ -225,10 +221,10 @@ TEST(SteadyStates, CurrentOscillationIsAveragedOverFullTurns) {
     EXPECT_GE(window, 2.0 * record_options.current_period) << j;
     // Mean over a window of length W: the sinusoid leaves at most A P / (pi W), the residual
     // transient about band T / W.
-    const double bound = record_options.current_amplitude * record_options.current_period /
-                             (kPi * window) +
-                         interval.band[0] * kSpeed.time_constant / window +
-                         4.0 * 0.01 / std::sqrt(interval.end - interval.steady_begin);
+    const double bound =
+        record_options.current_amplitude * record_options.current_period / (kPi * window) +
+        interval.band[0] * kSpeed.time_constant / window +
+        4.0 * 0.01 / std::sqrt(interval.end - interval.steady_begin);
     EXPECT_NEAR(interval.mean[0], TrueSteady(interval.input, 0), bound) << j;
   }
   // A fixed band below the oscillation amplitude never holds for a full turn.
@@ -371,10 +367,8 @@ TEST(SteadyStates, BadInputsGiveFalseAndAMessage) {
     return !ok && error.find(word) != std::string::npos;
   };
   const SteadyStateOptions options;
-  EXPECT_TRUE(fails(record.t, record.signals.topRows(10), record.inputs, options, "rows"))
-      << error;
-  EXPECT_TRUE(fails({}, Eigen::MatrixXd(0, 2), Eigen::MatrixXd(0, 2), options, "no rows"))
-      << error;
+  EXPECT_TRUE(fails(record.t, record.signals.topRows(10), record.inputs, options, "rows")) << error;
+  EXPECT_TRUE(fails({}, Eigen::MatrixXd(0, 2), Eigen::MatrixXd(0, 2), options, "no rows")) << error;
   std::vector<double> t = record.t;
   t[50] = t[49];
   EXPECT_TRUE(fails(t, record.signals, record.inputs, options, "increasing")) << error;
