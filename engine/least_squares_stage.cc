@@ -60,15 +60,8 @@ bool RunLeastSquaresStage(const RunConfig& config, const StageConfig& stage,
   char line[256];
   for (const EquationSummary& e : summary.equations) {
     cost += 0.5 * e.residual_rms * e.residual_rms * e.samples;
-    ChannelMetrics m;
-    m.experiment = "equation-error";
-    m.output = e.state + "'";
-    m.samples = e.samples;
-    m.rmse = e.residual_rms;
-    m.r2 = e.r2;
-    m.mae = std::numeric_limits<double>::quiet_NaN();
-    m.fit_percent = std::numeric_limits<double>::quiet_NaN();
-    fit.channels.push_back(m);
+    fit.channels.push_back(
+        RegressionMetrics("equation-error", e.state + "'", e.samples, e.residual_rms, e.r2));
     std::snprintf(line, sizeof(line),
                   "equation %s': %d samples, %d rejected, lambda %.3g, R2 %.5f, rms %.4g",
                   e.state.c_str(), e.samples, e.rejected, e.lambda, e.r2, e.residual_rms);

@@ -5,6 +5,7 @@
 //   rms_cost (seed 002) = sqrt(mean e^2) over all compared samples of the experiment.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,13 @@ struct ChannelMetrics {
   int samples = 0;
   double rmse = 0.0, mae = 0.0, r2 = 0.0, fit_percent = 0.0;
 };
+
+// Metrics of a regression's fit to its samples (no MAE or fit %: only RMS residual and R2).
+inline ChannelMetrics RegressionMetrics(const std::string& experiment, const std::string& output,
+                                        int samples, double rms, double r2) {
+  const double unknown = std::numeric_limits<double>::quiet_NaN();
+  return {experiment, output, samples, rms, unknown, r2, unknown};
+}
 
 // Accumulates the errors e = simulated - measured of one channel into ChannelMetrics.
 class MetricAccumulator {

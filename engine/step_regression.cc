@@ -2,18 +2,13 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
+#include "engine/elapsed.h"
+
 namespace vesselid {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double Seconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
 
 // One term's sample set, before normalisation.
 struct SampleSet {
@@ -57,7 +52,7 @@ Eigen::MatrixXd Regressors(int degree, const SampleSet& set, const TermRegressio
 bool RegressTerm(const DampingInertiaForm& form, const SampleSet& set, bool inertia,
                  const StepRegressionOptions& options, TermRegression* term,
                  std::string* error) {
-  const auto start = Clock::now();
+  const auto start = SteadyClock::now();
   const int nb = form.num_basis();
   const int columns = nb + (inertia ? 1 : 0);
   term->samples = static_cast<int>(set.y.size());
@@ -133,7 +128,7 @@ bool RegressTerm(const DampingInertiaForm& form, const SampleSet& set, bool iner
       ExpandToModelBasis(form.degree, form.scale.data(), term->mean_x, term->sd_x, term->mean_y,
                          term->sd_y, term->normalised.head(nb));
   if (inertia) term->coefficients.push_back(term->sd_y * term->normalised[nb]);
-  term->seconds = Seconds(start);
+  term->seconds = SecondsSince(start);
   return true;
 }
 
@@ -186,7 +181,7 @@ bool RunStepRegression(const DampingInertiaForm& form,
   StepRegressionReport r;
   if (!ExtractStepSamples(form, records, options.samples, &r.samples, error)) return false;
 
-  auto start = Clock::now();
+  auto start = SteadyClock::now();
   SampleSet sets[4];
   for (const DampingSample& s : r.samples.damping) {
     for (int i = 0; i < 2; ++i) {
@@ -210,13 +205,13 @@ bool RunStepRegression(const DampingInertiaForm& form,
                                                                     : "term" + std::to_string(t);
     if (!sets[t].y.empty()) Normalise(sets[t], &r.terms[t]);
   }
-  r.normalisation_seconds = Seconds(start);
+  r.normalisation_seconds = SecondsSince(start);
 
-  start = Clock::now();
+  start = SteadyClock::now();
   for (int t = 0; t < 4; ++t) {
     if (!RegressTerm(form, sets[t], t >= 2, options, &r.terms[t], error)) return false;
   }
-  r.regression_seconds = Seconds(start);
+  r.regression_seconds = SecondsSince(start);
   *report = std::move(r);
   return true;
 }

@@ -1,17 +1,18 @@
 #include "engine/step_regression_stage.h"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <memory>
+
+#include "engine/elapsed.h"
 
 namespace vesselid {
 
 bool RunStepRegressionStage(const RunConfig& config, const StageConfig& stage,
                             const ModelHandle& model, const std::vector<ParameterSpec>& specs,
                             TrajectoryCache* cache, StageResult* result, std::string* error) {
-  const auto start_time = std::chrono::steady_clock::now();
+  const auto start_time = SteadyClock::now();
   const ModelInfo& info = model.info();
   const DampingInertiaForm* form = model.damping_inertia_form();
   if (form == nullptr) {
@@ -69,15 +70,7 @@ bool RunStepRegressionStage(const RunConfig& config, const StageConfig& stage,
   s.notes.push_back(line);
   for (const TermRegression& t : report->terms) {
     cost += 0.5 * t.rms * t.rms * t.samples;
-    ChannelMetrics m;
-    m.experiment = "step-regression";
-    m.output = t.name;
-    m.samples = t.samples;
-    m.rmse = t.rms;
-    m.r2 = t.r2;
-    m.mae = std::numeric_limits<double>::quiet_NaN();
-    m.fit_percent = std::numeric_limits<double>::quiet_NaN();
-    fit.channels.push_back(m);
+    fit.channels.push_back(RegressionMetrics("step-regression", t.name, t.samples, t.rms, t.r2));
     const int nonzero = t.path.nonzero[t.path.best];
     if (t.asymptote_grid.empty()) {
       std::snprintf(line, sizeof(line),
@@ -101,8 +94,7 @@ bool RunStepRegressionStage(const RunConfig& config, const StageConfig& stage,
   s.fits.push_back(fit);
   s.uncertainty.message = "none: lasso estimates have no covariance";
   r.step_regression = std::move(report);
-  s.time_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  s.time_seconds = SecondsSince(start_time);
   *result = std::move(r);
   return true;
 }

@@ -1,19 +1,14 @@
 #include "engine/step_samples.h"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <tuple>
 
+#include "engine/elapsed.h"
+
 namespace vesselid {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double Seconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
 
 // Group ids by key: the same input levels in the same record share one.
 class Groups {
@@ -81,12 +76,12 @@ bool ExtractStepSamples(const DampingInertiaForm& form,
       inputs.col(i) = record.u.col(form.inputs[i]);
     }
     std::vector<InputInterval> intervals;
-    auto start = Clock::now();
+    auto start = SteadyClock::now();
     if (!FindSteadyStates(record.t, signals, inputs, options.steady, &intervals, error)) {
       *error = record.name + ": " + *error;
       return false;
     }
-    out.window_seconds += Seconds(start);
+    out.window_seconds += SecondsSince(start);
     out.intervals += static_cast<int>(intervals.size());
 
     for (const InputInterval& v : intervals) {
@@ -111,7 +106,7 @@ bool ExtractStepSamples(const DampingInertiaForm& form,
       out.damping.push_back(s);
     }
 
-    start = Clock::now();
+    start = SteadyClock::now();
     for (size_t j = 1; j < intervals.size(); ++j) {
       const InputInterval& a = intervals[j - 1];
       const InputInterval& b = intervals[j];
@@ -167,7 +162,7 @@ bool ExtractStepSamples(const DampingInertiaForm& form,
       s.group = inertia_groups.Id(record.name + "|" + std::to_string(a.input[1 - i]), i, lo, hi);
       out.inertia[i].push_back(s);
     }
-    out.fit_seconds += Seconds(start);
+    out.fit_seconds += SecondsSince(start);
   }
 
   if (options.mirror && turn >= 0) {

@@ -98,8 +98,12 @@ TEST_F(StepRegression, RecoversTheDampingSurfaceAndTheInertiaScale) {
     const bool odd = MonomialPowerOfB(form.degree, k) % 2 == 1;
     for (int i = 0; i < 2; ++i) {
       const double damping = p[form.damping[i][k]];
-      if (odd == (i == 0)) EXPECT_NEAR(damping, 0.0, 1e-9) << info.parameters[form.damping[i][k]];
-      if (odd) EXPECT_NEAR(p[form.inertia[i][k]], 0.0, 1e-9) << info.parameters[form.inertia[i][k]];
+      if (odd == (i == 0)) {
+        EXPECT_NEAR(damping, 0.0, 1e-9) << info.parameters[form.damping[i][k]];
+      }
+      if (odd) {
+        EXPECT_NEAR(p[form.inertia[i][k]], 0.0, 1e-9) << info.parameters[form.inertia[i][k]];
+      }
     }
   }
   // Damping: sigma(x) = tau at every steady state, and the true surface inside the samples.

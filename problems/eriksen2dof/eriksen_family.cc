@@ -37,6 +37,14 @@ void ReadRange(const YamlReader& reader, const YAML::Node& map, const std::strin
   *upper = range[1];
 }
 
+// Reads an angle given in degrees at `name` into radians.
+void ReadDegrees(const YamlReader& reader, const YAML::Node& map, const std::string& path,
+                 const std::string& name, double* radians) {
+  double degrees = *radians / kDegree;
+  reader.Read(map, path, name, &degrees);
+  *radians = degrees * kDegree;
+}
+
 //   simulation: {steps_file, validation_file, seed, sample_period,
 //                rudder_settings, throttle_settings, throttle_step, rudder_step,
 //                hold: {min_settle, max_settle, min_steady, max_steady},
@@ -94,22 +102,16 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
     reader.Read(environment, key, "wind_speed", &o.wind_speed);
     reader.Read(environment, key, "gust_sd", &o.gust_sd);
     reader.Read(environment, key, "gust_time_constant", &o.gust_time_constant);
-    double current = o.current_direction / kDegree, wind = o.wind_direction / kDegree;
-    reader.Read(environment, key, "current_direction_deg", &current);
-    reader.Read(environment, key, "wind_direction_deg", &wind);
-    o.current_direction = current * kDegree;
-    o.wind_direction = wind * kDegree;
+    ReadDegrees(reader, environment, key, "current_direction_deg", &o.current_direction);
+    ReadDegrees(reader, environment, key, "wind_direction_deg", &o.wind_direction);
   }
   if (const YAML::Node noise = simulation["noise"]) {
     const std::string key = Child(path, "noise");
     reader.CheckMap(noise, key, {"position", "course_deg", "sog", "rot_deg"});
     reader.Read(noise, key, "position", &o.position_noise);
     reader.Read(noise, key, "sog", &o.sog_noise);
-    double course = o.course_noise / kDegree, rot = o.rot_noise / kDegree;
-    reader.Read(noise, key, "course_deg", &course);
-    reader.Read(noise, key, "rot_deg", &rot);
-    o.course_noise = course * kDegree;
-    o.rot_noise = rot * kDegree;
+    ReadDegrees(reader, noise, key, "course_deg", &o.course_noise);
+    ReadDegrees(reader, noise, key, "rot_deg", &o.rot_noise);
   }
   std::string invalid;
   if (!o.IsValid(&invalid)) reader.Fail(simulation, path, invalid);
