@@ -27,15 +27,7 @@ bool RunLeastSquaresStage(const RunConfig& config, const StageConfig& stage,
   r.name = stage.options.name;
   r.model = info.name;
   for (size_t i = 0; i < specs.size(); ++i) {
-    Estimate e;
-    e.name = specs[i].name;
-    e.kind = "parameter";
-    e.role = ParameterRoleToString(specs[i].role);
-    e.value = ls.values[i];
-    e.start = specs[i].start;
-    e.std_error = ls.std_errors[i];
-    e.lower = specs[i].lower;
-    e.upper = specs[i].upper;
+    Estimate e = ParameterEstimate(specs[i], ls.values[i], ls.std_errors[i]);
     e.undetermined = ls.undetermined[i];
     r.estimates.push_back(e);
   }

@@ -357,6 +357,19 @@ bool WholeRecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double
 
 }  // namespace
 
+Estimate ParameterEstimate(const ParameterSpec& spec, double value, double std_error) {
+  Estimate e;
+  e.name = spec.name;
+  e.kind = "parameter";
+  e.role = ParameterRoleToString(spec.role);
+  e.value = value;
+  e.start = spec.start;
+  e.std_error = std_error;
+  e.lower = spec.lower;
+  e.upper = spec.upper;
+  return e;
+}
+
 bool RecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double segment_length,
                  std::vector<ExperimentSpec>* specs, std::string* error) {
   std::vector<ExperimentSpec> whole;

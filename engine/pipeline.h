@@ -50,6 +50,10 @@ struct StageResult {
   std::shared_ptr<const StepRegressionReport> step_regression;
 };
 
+// A parameter's estimate as a regression stage reports it: name, role and bounds from its
+// spec, the value and standard error the stage found.
+Estimate ParameterEstimate(const ParameterSpec& spec, double value, double std_error);
+
 // A parameter's value after the whole run.
 struct FinalParameter {
   std::string name;

@@ -41,17 +41,16 @@ bool RunStepRegressionStage(const RunConfig& config, const StageConfig& stage,
   StageResult r;
   r.name = stage.options.name;
   r.model = info.name;
+  // The form's parameters are estimated without bounds or standard errors (lasso).
   for (size_t i = 0; i < specs.size(); ++i) {
-    Estimate e;
-    e.name = specs[i].name;
-    e.kind = "parameter";
-    e.role = estimated[i] ? "free" : ParameterRoleToString(specs[i].role);
-    e.value = values[i];
-    e.start = specs[i].start;
-    e.std_error = std::numeric_limits<double>::quiet_NaN();
-    e.lower = estimated[i] ? -std::numeric_limits<double>::infinity() : specs[i].lower;
-    e.upper = estimated[i] ? std::numeric_limits<double>::infinity() : specs[i].upper;
-    r.estimates.push_back(e);
+    ParameterSpec spec = specs[i];
+    if (estimated[i]) {
+      spec.role = ParameterRole::kFree;
+      spec.lower = -std::numeric_limits<double>::infinity();
+      spec.upper = std::numeric_limits<double>::infinity();
+    }
+    r.estimates.push_back(
+        ParameterEstimate(spec, values[i], std::numeric_limits<double>::quiet_NaN()));
   }
   StageSummary& s = r.summary;
   s.name = stage.options.name;
