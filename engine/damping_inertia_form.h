@@ -13,7 +13,6 @@
 #pragma once
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -68,36 +67,5 @@ struct SurfaceGrid {
 
   bool enabled() const { return points[0] > 0 && points[1] > 0; }
 };
-
-// CSV text of sigma_i and m_i on the grid, one row per point ("<state0>,<state1>,<terms>"),
-// the second state varying fastest.
-inline std::string SurfacesCsv(const DampingInertiaForm& form,
-                               const std::vector<std::string>& state_names, const double* p,
-                               const SurfaceGrid& grid) {
-  std::string out = state_names[form.states[0]] + "," + state_names[form.states[1]];
-  for (const std::string& name : form.term_names) out += "," + name;
-  out += "\n";
-  char field[32];
-  for (int i = 0; i < grid.points[0]; ++i) {
-    for (int j = 0; j < grid.points[1]; ++j) {
-      double x[2];
-      const int at[2] = {i, j};
-      for (int c = 0; c < 2; ++c) {
-        x[c] = grid.points[c] == 1 ? grid.lower[c]
-                                   : grid.lower[c] + (grid.upper[c] - grid.lower[c]) * at[c] /
-                                                         (grid.points[c] - 1);
-      }
-      double sigma[2], m[2];
-      EvaluateDampingInertia(form, p, x, sigma, m);
-      const double row[6] = {x[0], x[1], sigma[0], sigma[1], m[0], m[1]};
-      for (int c = 0; c < 6; ++c) {
-        std::snprintf(field, sizeof(field), "%.10g", row[c]);
-        out += (c == 0 ? "" : ",") + std::string(field);
-      }
-      out += "\n";
-    }
-  }
-  return out;
-}
 
 }  // namespace vesselid

@@ -357,6 +357,19 @@ bool WholeRecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double
 
 }  // namespace
 
+std::vector<double> StageParameterValues(const ModelInfo& info, const StageResult& stage) {
+  std::vector<double> values;
+  for (const std::string& name : info.parameters) {
+    for (const Estimate& e : stage.estimates) {
+      if (e.kind == "parameter" && e.name == name) {
+        values.push_back(e.value);
+        break;
+      }
+    }
+  }
+  return values;
+}
+
 Estimate ParameterEstimate(const ParameterSpec& spec, double value, double std_error) {
   Estimate e;
   e.name = spec.name;
@@ -486,16 +499,7 @@ bool RunStages(const RunConfig& config, size_t first, size_t count, TrajectoryCa
     } else if (!RunOutputErrorStage(config, stage, model, &specs, &cache, &stage_result, error)) {
       return fail(*error);
     }
-    // Parameter values in model order (a per-experiment one: its first experiment's).
-    std::vector<double> values;
-    for (const std::string& name : model.info().parameters) {
-      for (const Estimate& e : stage_result.estimates) {
-        if (e.kind == "parameter" && e.name == name) {
-          values.push_back(e.value);
-          break;
-        }
-      }
-    }
+    const std::vector<double> values = StageParameterValues(model.info(), stage_result);
     stage_result.admissibility = model.Admissibility(values.data());
     if (!stage.validation.empty()) {
       if (!SimulateHeldOut(config, model, stage.validation, stage.experiment,

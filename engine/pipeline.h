@@ -54,6 +54,9 @@ struct StageResult {
 // spec, the value and standard error the stage found.
 Estimate ParameterEstimate(const ParameterSpec& spec, double value, double std_error);
 
+// A stage's parameter values in model order (a per-experiment one: its first experiment's).
+std::vector<double> StageParameterValues(const ModelInfo& info, const StageResult& stage);
+
 // A parameter's value after the whole run.
 struct FinalParameter {
   std::string name;

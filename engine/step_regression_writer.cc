@@ -70,19 +70,27 @@ std::string AsymptoteCsv(const TermRegression& t) {
   return out;
 }
 
-// A stage's parameter values in model order.
-std::vector<double> StageValues(const ModelInfo& info, const StageResult& stage) {
-  std::vector<double> values(info.parameters.size(), 0.0);
-  for (size_t i = 0; i < info.parameters.size(); ++i) {
-    values[i] = info.parameter_defaults[i];
-    for (const Estimate& e : stage.estimates) {
-      if (e.kind == "parameter" && e.name == info.parameters[i]) {
-        values[i] = e.value;
-        break;
+// sigma_i and m_i on the grid, one row per point, the second state varying fastest.
+std::string SurfacesCsv(const DampingInertiaForm& form, const std::vector<std::string>& names,
+                        const double* p, const SurfaceGrid& grid) {
+  std::string out = names[0] + "," + names[1];
+  for (const std::string& name : form.term_names) out += "," + name;
+  out += "\n";
+  for (int i = 0; i < grid.points[0]; ++i) {
+    for (int j = 0; j < grid.points[1]; ++j) {
+      double x[2];
+      const int at[2] = {i, j};
+      for (int c = 0; c < 2; ++c) {
+        x[c] = grid.points[c] == 1 ? grid.lower[c]
+                                   : grid.lower[c] + (grid.upper[c] - grid.lower[c]) * at[c] /
+                                                         (grid.points[c] - 1);
       }
+      double sigma[2], m[2];
+      EvaluateDampingInertia(form, p, x, sigma, m);
+      out += Row({x[0], x[1], sigma[0], sigma[1], m[0], m[1]});
     }
   }
-  return values;
+  return out;
 }
 
 }  // namespace
@@ -161,9 +169,10 @@ bool WriteStepRegressionFiles(const RunConfig& config, const RunResult& result,
     return false;
   }
   for (const StageResult& stage : result.stages) {
-    const std::vector<double> values = StageValues(info, stage);
+    const std::vector<double> values = StageParameterValues(info, stage);
+    if (values.size() != info.parameters.size()) continue;
     if (!write("surfaces/" + stage.name + ".csv",
-               SurfacesCsv(*form, info.states, values.data(), config.surfaces))) {
+               SurfacesCsv(*form, names, values.data(), config.surfaces))) {
       return false;
     }
   }
@@ -171,7 +180,7 @@ bool WriteStepRegressionFiles(const RunConfig& config, const RunResult& result,
   for (const FinalParameter& f : result.parameters) final_values.push_back(f.value);
   return final_values.size() != info.parameters.size() ||
          write("surfaces/final.csv",
-               SurfacesCsv(*form, info.states, final_values.data(), config.surfaces));
+               SurfacesCsv(*form, names, final_values.data(), config.surfaces));
 }
 
 }  // namespace vesselid
