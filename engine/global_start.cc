@@ -18,6 +18,8 @@ struct SearchState {
   std::vector<double> base;   // values of all variables
   int evaluations = 0;
   int failed = 0;
+  const ProgressCallback* progress = nullptr;
+  std::vector<double> best_history;  // best finite cost after each evaluation
   // Every visited point, normalised, with its cost.
   std::vector<std::pair<double, std::vector<double>>> visited;
 };
@@ -36,6 +38,16 @@ double Objective(unsigned n, const double* z, double* gradient, void* data) {
     cost = kDivergedCost;
   }
   s->visited.emplace_back(cost, std::vector<double>(z, z + n));
+  double best = s->best_history.empty() ? std::nan("") : s->best_history.back();
+  if (cost < kDivergedCost && !(best <= cost)) best = cost;
+  s->best_history.push_back(best);
+  if (*s->progress) {
+    SolveProgress p;
+    p.phase = SolveProgress::Phase::kGlobal;
+    p.iteration = s->evaluations;
+    p.cost = best;
+    (*s->progress)(p);
+  }
   return cost;
 }
 
@@ -76,6 +88,7 @@ bool RunGlobalStart(const GlobalStartOptions& options, OutputErrorProblem* probl
   const auto start_time = std::chrono::steady_clock::now();
   SearchState state;
   state.problem = problem;
+  state.progress = &options.progress;
   state.base = problem->Values();
   const std::vector<Variable>& variables = problem->variables();
   for (size_t i = 0; i < variables.size(); ++i) {
@@ -120,6 +133,7 @@ bool RunGlobalStart(const GlobalStartOptions& options, OutputErrorProblem* probl
   summary->run = true;
   summary->evaluations = state.evaluations;
   summary->failed_evaluations = state.failed;
+  summary->best_cost_history = std::move(state.best_history);
 
   // Best distinct visited points.
   std::sort(state.visited.begin(), state.visited.end(),

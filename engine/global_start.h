@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/output_error_problem.h"
+#include "engine/progress.h"
 
 namespace vesselid {
 
@@ -20,6 +21,7 @@ struct GlobalStartOptions {
   int population = 0;            // 0: NLopt's default
   int candidates = 3;            // best distinct points handed to local refinement
   double min_separation = 0.05;  // between candidates, in normalised coordinates (max-norm)
+  ProgressCallback progress;     // after each evaluation; may be empty
 
   bool IsValid(std::string* error) const;
 };
@@ -36,6 +38,8 @@ struct GlobalStartSummary {
   // Full value vectors (as OutputErrorProblem::Values) of the candidates, best first.
   std::vector<std::vector<double>> candidates;
   std::vector<double> candidate_costs;
+  // Best finite cost after each evaluation (NaN until one is finite).
+  std::vector<double> best_cost_history;
 
   std::string BriefReport() const;
 };

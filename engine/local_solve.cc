@@ -3,6 +3,26 @@
 #include <cstdio>
 
 namespace vesselid {
+namespace {
+
+// Hands each Ceres iteration's cost to the progress callback.
+class ProgressReporter : public ceres::IterationCallback {
+ public:
+  explicit ProgressReporter(const ProgressCallback& progress) : progress_(progress) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    SolveProgress p;
+    p.phase = SolveProgress::Phase::kLocal;
+    p.iteration = summary.iteration;
+    p.cost = summary.cost;
+    progress_(p);
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const ProgressCallback& progress_;
+};
+
+}  // namespace
 
 bool LocalSolveOptions::IsValid(std::string* error) const {
   if (max_iterations < 0)
@@ -62,6 +82,8 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
     summary->message = error;
     return false;
   }
+  ProgressReporter reporter(options.progress);
+  if (options.progress) ceres_options.callbacks.push_back(&reporter);
   ceres::Solver::Summary ceres_summary;
   ceres::Solve(ceres_options, problem->problem(), &ceres_summary);
   summary->run = true;
@@ -74,6 +96,9 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   summary->time_seconds = ceres_summary.total_time_in_seconds;
   summary->termination = ceres::TerminationTypeToString(ceres_summary.termination_type);
   summary->message = ceres_summary.message;
+  for (const ceres::IterationSummary& it : ceres_summary.iterations) {
+    summary->cost_history.push_back(it.cost);
+  }
   if (!summary->usable && ceres_summary.initial_cost < 0) {
     summary->message = "the simulation diverges at the start values: " + summary->message;
   }

@@ -3,9 +3,11 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "ceres/ceres.h"
 #include "engine/output_error_problem.h"
+#include "engine/progress.h"
 
 namespace vesselid {
 
@@ -20,6 +22,7 @@ struct LocalSolveOptions {
   double parameter_tolerance = 1e-12;
   double max_time_seconds = 3600.0;
   int num_threads = 1;  // experiments evaluated in parallel
+  ProgressCallback progress;  // after each iteration; may be empty
 
   bool IsValid(std::string* error) const;
 };
@@ -35,6 +38,7 @@ struct LocalSolveSummary {
   double time_seconds = 0.0;
   std::string termination;  // Ceres termination type
   std::string message;
+  std::vector<double> cost_history;  // cost at each iteration, [0] the initial cost
 
   std::string BriefReport() const;
 };

@@ -236,7 +236,8 @@ std::vector<FinalParameter> Finalise(const ModelInfo& info, const Ledger& ledger
 // An output-error stage: continuation phases, the problem, RunStage, the result.
 bool RunOutputErrorStage(const RunConfig& config, const StageConfig& stage,
                          const ModelHandle& model, std::vector<ParameterSpec>* resolved,
-                         TrajectoryCache* cache, StageResult* result, std::string* error) {
+                         TrajectoryCache* cache, const ProgressCallback& progress,
+                         StageResult* result, std::string* error) {
   std::vector<ParameterSpec>& specs = *resolved;
   const std::vector<ParameterSpec> configured = specs;
   std::vector<StateAt> states;
@@ -272,6 +273,8 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& stage,
   }
   StageOptions options = stage.options;
   options.use_global_start = options.use_global_start && stage.continuation.empty();
+  options.local.progress = progress;
+  options.global.progress = progress;
   StageSummary summary;
   if (!RunStage(options, problem.get(), &summary, extra_starts)) {
     *error = summary.message;
@@ -471,7 +474,7 @@ RegressionDataOptions VelocityData(const RunConfig& config, size_t count) {
 // Runs stages [first, count) into `run`, recording every estimate in `ledger`.
 bool RunStages(const RunConfig& config, size_t first, size_t count, TrajectoryCache* cache_ptr,
                Ledger* ledger_ptr, RunResult* run_ptr, std::string* error,
-               const StageObserver& observer) {
+               const RunObserver& observer) {
   TrajectoryCache& cache = *cache_ptr;
   Ledger& ledger = *ledger_ptr;
   RunResult& run = *run_ptr;
@@ -483,7 +486,7 @@ bool RunStages(const RunConfig& config, size_t first, size_t count, TrajectoryCa
       *error = where + what;
       return false;
     };
-    if (observer) observer(nullptr, stage.options.name);
+    if (observer.stage_started) observer.stage_started(index, stage.options.name);
     const ModelHandle& model = stage.model ? *stage.model : *config.model;
     std::vector<ParameterSpec> specs;
     if (!ResolveParameters(stage, model.info(), ledger, &specs, error)) return fail(*error);
@@ -496,7 +499,8 @@ bool RunStages(const RunConfig& config, size_t first, size_t count, TrajectoryCa
       if (!RunStepRegressionStage(config, stage, model, specs, &cache, &stage_result, error)) {
         return fail(*error);
       }
-    } else if (!RunOutputErrorStage(config, stage, model, &specs, &cache, &stage_result, error)) {
+    } else if (!RunOutputErrorStage(config, stage, model, &specs, &cache, observer.progress,
+                                    &stage_result, error)) {
       return fail(*error);
     }
     const std::vector<double> values = StageParameterValues(model.info(), stage_result);
@@ -515,7 +519,9 @@ bool RunStages(const RunConfig& config, size_t first, size_t count, TrajectoryCa
     }
     Record(stage_result, &ledger);
     run.stages.push_back(std::move(stage_result));
-    if (observer) observer(&run.stages.back(), "");
+    if (observer.stage_finished && !observer.stage_finished(index, run.stages.back(), error)) {
+      return false;
+    }
   }
   return true;
 }
@@ -554,7 +560,7 @@ bool ResolveStage(const RunConfig& config, size_t index, std::vector<ParameterSp
   Ledger ledger;
   RunResult run;
   const size_t needed = StagesNeededBefore(config, index);
-  if (!RunStages(config, 0, needed, &cache, &ledger, &run, error, nullptr)) return false;
+  if (!RunStages(config, 0, needed, &cache, &ledger, &run, error, {})) return false;
   const StageConfig& stage = config.stages[index];
   const ModelHandle& model = stage.model ? *stage.model : *config.model;
   if (!ResolveParameters(stage, model.info(), ledger, specs, error)) {
@@ -563,19 +569,33 @@ bool ResolveStage(const RunConfig& config, size_t index, std::vector<ParameterSp
   }
   if (before != nullptr) *before = run.stages;
   if (solved != nullptr) {
-    if (!RunStages(config, index, index + 1, &cache, &ledger, &run, error, nullptr)) return false;
+    if (!RunStages(config, index, index + 1, &cache, &ledger, &run, error, {})) return false;
     *solved = run.stages.back();
   }
   return true;
 }
 
 bool RunIdentification(const RunConfig& config, RunResult* result, std::string* error,
-                       const StageObserver& observer) {
+                       const RunObserver& observer, std::vector<StageResult> finished) {
   const auto start_time = std::chrono::steady_clock::now();
   RunResult run;
   TrajectoryCache cache;
   Ledger ledger;
-  if (!RunStages(config, 0, config.stages.size(), &cache, &ledger, &run, error, observer)) {
+  if (finished.size() > config.stages.size()) {
+    *error = "the resumed run has more stages than the config";
+    return false;
+  }
+  for (size_t i = 0; i < finished.size(); ++i) {
+    if (finished[i].name != config.stages[i].options.name) {
+      *error = "resumed stage " + std::to_string(i + 1) + " is '" + finished[i].name +
+               "', the config's is '" + config.stages[i].options.name + "'";
+      return false;
+    }
+    Record(finished[i], &ledger);
+    run.stages.push_back(std::move(finished[i]));
+  }
+  if (!RunStages(config, run.stages.size(), config.stages.size(), &cache, &ledger, &run, error,
+                 observer)) {
     return false;
   }
   const RegressionDataOptions velocity_data = VelocityData(config, config.stages.size());

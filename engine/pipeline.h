@@ -15,6 +15,7 @@
 
 #include "Eigen/Dense"
 #include "engine/config.h"
+#include "engine/progress.h"
 #include "engine/regression_data.h"
 #include "engine/stage.h"
 #include "engine/step_regression.h"
@@ -77,12 +78,20 @@ struct RunResult {
   double time_seconds = 0.0;
 };
 
-// Observer told when a stage starts and ends (progress output); may be empty.
-using StageObserver = std::function<void(const StageResult* finished, const std::string& next)>;
+// What a run tells as it goes (terminal progress, checkpoints). Any member may be empty.
+struct RunObserver {
+  std::function<void(size_t index, const std::string& stage)> stage_started;
+  // After each stage, before the next starts; false (with `error`) stops the run.
+  std::function<bool(size_t index, const StageResult& stage, std::string* error)> stage_finished;
+  ProgressCallback progress;  // solver iterations and global evaluations of output-error stages
+};
 
 // Runs every stage. On failure nothing is returned but the message naming the stage and cause.
+// `finished` resumes a run: the results of its first stages, as an earlier run of the same
+// config and data produced them (checkpoint.h); the run goes on from the next stage.
 bool RunIdentification(const RunConfig& config, RunResult* result, std::string* error,
-                       const StageObserver& observer = nullptr);
+                       const RunObserver& observer = {},
+                       std::vector<StageResult> finished = {});
 
 // The parameter specs stage `index` is solved with after stages [0, index) ran as a run
 // runs them (starts carried, unlisted parameters held at their latest estimates); `before`

@@ -95,6 +95,8 @@ void EscapeExchangeRidge(const LocalSolveOptions& options, OutputErrorProblem* p
     notes->push_back(text);
     best.initial_cost = local->initial_cost;
     best.iterations += local->iterations;
+    best.cost_history.insert(best.cost_history.begin(), local->cost_history.begin(),
+                             local->cost_history.end());
     best.time_seconds += local->time_seconds;
     *local = best;
     problem->SetValues(best_values);
@@ -115,8 +117,10 @@ void SolveInitialStates(const LocalSolveOptions& options, OutputErrorProblem* pr
   }
   if (!any_state || held.empty()) return;
   for (const Variable* v : held) problem->problem()->SetParameterBlockConstant(v->block);
+  LocalSolveOptions quiet = options;
+  quiet.progress = nullptr;  // a preliminary solve: the stage reports its refinements
   LocalSolveSummary ignored;
-  RunLocalSolve(options, problem, &ignored);
+  RunLocalSolve(quiet, problem, &ignored);
   for (const Variable* v : held) problem->problem()->SetParameterBlockVariable(v->block);
 }
 
@@ -164,9 +168,17 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
   for (size_t i = 0; i < starts.size(); ++i) {
     problem->SetValues(starts[i]);
     if (options.initial_states_first) SolveInitialStates(options.local, problem);
+    LocalSolveOptions local_options = options.local;
+    if (options.local.progress) {
+      local_options.progress = [&options, i, &starts](SolveProgress p) {
+        p.refinement = static_cast<int>(i);
+        p.refinements = static_cast<int>(starts.size());
+        options.local.progress(p);
+      };
+    }
     LocalSolveSummary local;
-    if (RunLocalSolve(options.local, problem, &local)) {
-      EscapeExchangeRidge(options.local, problem, &local, &summary->notes);
+    if (RunLocalSolve(local_options, problem, &local)) {
+      EscapeExchangeRidge(local_options, problem, &local, &summary->notes);
     }
     summary->refinements.push_back(local);
     if (!local.usable) {

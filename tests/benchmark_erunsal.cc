@@ -41,22 +41,22 @@ int Main(int argc, char** argv) {
   Clock::time_point stage_start;
   RunResult result;
   start = Clock::now();
-  const bool ok = RunIdentification(config, &result, &error,
-                                    [&](const StageResult* finished, const std::string& next) {
-                                      if (!next.empty()) stage_start = Clock::now();
-                                      if (finished == nullptr) return;
-                                      const StageSummary& s = finished->summary;
-                                      std::set<std::string> experiments;
-                                      for (const Estimate& e : finished->estimates) {
-                                        if (!e.experiment.empty()) experiments.insert(e.experiment);
-                                      }
-                                      std::printf(
-                                          "stage %-8s %8.3f s wall  %3d iterations  cost %.4e  "
-                                          "%3zu experiments/segments  %4zu variables\n",
-                                          s.name.c_str(), Seconds(stage_start),
-                                          s.local().iterations, s.local().final_cost,
-                                          experiments.size(), finished->estimates.size());
-                                    });
+  RunObserver observer;
+  observer.stage_started = [&](size_t, const std::string&) { stage_start = Clock::now(); };
+  observer.stage_finished = [&](size_t, const StageResult& finished, std::string*) {
+    const StageSummary& s = finished.summary;
+    std::set<std::string> experiments;
+    for (const Estimate& e : finished.estimates) {
+      if (!e.experiment.empty()) experiments.insert(e.experiment);
+    }
+    std::printf(
+        "stage %-8s %8.3f s wall  %3d iterations  cost %.4e  "
+        "%3zu experiments/segments  %4zu variables\n",
+        s.name.c_str(), Seconds(stage_start), s.local().iterations, s.local().final_cost,
+        experiments.size(), finished.estimates.size());
+    return true;
+  };
+  const bool ok = RunIdentification(config, &result, &error, observer);
   const double total = Seconds(start);
   std::filesystem::remove_all(benchmark::DataFolder("vesselid_benchmark_erunsal"));
   if (!ok) {

@@ -2,6 +2,7 @@
 //
 //   vesselid simulate <config.yaml> --out <dir>                 synthetic experiments
 //   vesselid run      <config.yaml> [--data <dir>] --out <dir>  staged identification
+//                     [--resume] [--quiet | --verbose]
 //   vesselid study    <config.yaml> [--data <dir>] --out <dir>  sensitivity studies (the
 //                     [--only part...] [--threads n]             config's `study` section;
 //                                                                also under mpirun -np K)
@@ -11,6 +12,8 @@
 
 #include "CLI/CLI.hpp"
 #include "glog/logging.h"
+#include "engine/checkpoint.h"
+#include "engine/cli/terminal_progress.h"
 #include "engine/config.h"
 #include "engine/study.h"
 #include "engine/study_runner.h"
@@ -48,23 +51,54 @@ int Simulate(const std::string& config_path, const std::string& out_dir) {
   return 0;
 }
 
+struct RunFlags {
+  bool quiet = false;
+  bool verbose = false;
+  bool resume = false;
+};
+
+// A staged run: progress on stderr, a checkpoint in out_dir after each stage; with --resume,
+// the stages an earlier run of the same config and data finished are loaded, not rerun.
 int Run(const std::string& config_path, const std::string& data_dir, const std::string& out_dir,
-        bool quiet) {
+        const RunFlags& flags) {
   vesselid::RunConfig config;
-  std::string error;
-  if (!Load(config_path, data_dir, &config, &error)) return Fail(error);
-  auto observer = [quiet](const vesselid::StageResult* finished, const std::string& next) {
-    if (quiet) return;
-    if (finished == nullptr) {
-      std::fprintf(stderr, "stage %s: running\n", next.c_str());
-    } else {
-      std::fprintf(stderr, "%s\n", finished->summary.BriefReport().c_str());
-    }
+  std::string error, fingerprint;
+  if (!Load(config_path, data_dir, &config, &error) ||
+      !vesselid::RunFingerprint(config, &fingerprint, &error)) {
+    return Fail(error);
+  }
+  vesselid::TerminalProgress progress(
+      vesselid::TerminalProgress::ChooseMode(stderr, flags.quiet, flags.verbose), stderr,
+      config.stages.size());
+  std::vector<vesselid::StageResult> finished;
+  if (flags.resume && !vesselid::LoadCheckpoint(out_dir, fingerprint, &finished, &error)) {
+    return Fail(error);
+  }
+  if (flags.resume) {
+    progress.Note(finished.empty() ? "no checkpoint in " + out_dir + ": starting from the first stage"
+                                   : "resuming after stage '" + finished.back().name + "' (" +
+                                         std::to_string(finished.size()) + " of " +
+                                         std::to_string(config.stages.size()) +
+                                         " stages from the checkpoint)");
+  }
+  vesselid::RunObserver observer;
+  observer.stage_started = [&](size_t index, const std::string& name) {
+    progress.StageStarted(index, name);
+  };
+  observer.progress = [&](const vesselid::SolveProgress& p) { progress.Iteration(p); };
+  observer.stage_finished = [&](size_t index, const vesselid::StageResult& stage,
+                                std::string* error) {
+    progress.StageFinished(stage);
+    // A fresh run replaces an earlier checkpoint once its first stage is done.
+    if (index == 0 && !vesselid::StartCheckpoint(out_dir, fingerprint, error)) return false;
+    return vesselid::SaveStageCheckpoint(out_dir, fingerprint, index, stage, error);
   };
   vesselid::RunResult result;
-  if (!vesselid::RunIdentification(config, &result, &error, observer)) return Fail(error);
+  if (!vesselid::RunIdentification(config, &result, &error, observer, std::move(finished))) {
+    return Fail(error);
+  }
   if (!vesselid::WriteRunResults(config, result, out_dir, &error)) return Fail(error);
-  if (!quiet) std::cout << vesselid::RunResultToText(config, result);
+  if (!flags.quiet) std::cout << vesselid::RunResultToText(config, result);
   std::printf("\nresults written to %s/results.json\n", out_dir.c_str());
   return 0;
 }
@@ -123,8 +157,17 @@ int main(int argc, char** argv) {
   run->add_option("--data", data_dir,
                   "folder the experiment files are relative to "
                   "(default: the config's folder)");
-  run->add_option("--out", out_dir, "folder for results.json, report.txt, traces/")->required();
-  run->add_flag("--quiet", quiet, "print only the results path");
+  run->add_option("--out", out_dir,
+                  "folder for results.json, report.txt, report.html, traces/, checkpoint/")
+      ->required();
+  RunFlags run_flags;
+  CLI::Option* quiet_flag = run->add_flag("--quiet", run_flags.quiet, "print only the results path");
+  run->add_flag("--verbose", run_flags.verbose,
+                "a line per iteration and every stage note (default: a live status line on a "
+                "terminal, a line per stage otherwise)")
+      ->excludes(quiet_flag);
+  run->add_flag("--resume", run_flags.resume,
+                "continue from the last stage the checkpoint in --out finished");
 
   CLI::App* study = app.add_subcommand(
       "study", "sensitivity studies: profile likelihood, Monte Carlo, start points, partitions");
@@ -144,5 +187,5 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   if (simulate->parsed()) return Simulate(config_path, out_dir);
   if (study->parsed()) return Study(config_path, data_dir, out_dir, only, threads, quiet);
-  return Run(config_path, data_dir, out_dir, quiet);
+  return Run(config_path, data_dir, out_dir, run_flags);
 }
