@@ -24,12 +24,18 @@ std::vector<double> Grid(double lo, double center, double hi, int points) {
 }
 
 // One end of the interval: walking from the optimum (index `middle`) in `step` direction, the
-// first crossing of D = threshold, interpolated; open (the last grid value) if none.
+// first crossing of D = threshold, interpolated; open (the last grid value) if none, and
+// unsolved too if held values on the way could not be solved (their simulation diverges):
+// the interval may end there or beyond, the profile cannot tell.
 json IntervalEnd(const std::vector<double>& grid, const std::vector<double>& deviance,
                  int middle, int step, double threshold) {
   int previous = middle;
+  bool unsolved = false;
   for (int k = middle + step; k >= 0 && k < static_cast<int>(grid.size()); k += step) {
-    if (!std::isfinite(deviance[k])) continue;
+    if (!std::isfinite(deviance[k])) {
+      unsolved = true;
+      continue;
+    }
     if (deviance[k] > threshold) {
       const double d0 = std::max(0.0, deviance[previous]), d1 = deviance[k];
       const double w = d1 > d0 ? (threshold - d0) / (d1 - d0) : 1.0;
@@ -37,7 +43,7 @@ json IntervalEnd(const std::vector<double>& grid, const std::vector<double>& dev
     }
     previous = k;
   }
-  return {{"value", grid[previous]}, {"open", true}};
+  return {{"value", grid[previous]}, {"open", true}, {"unsolved", unsolved}};
 }
 
 // Profiles of one stage: {stage, optimum, profiles, cases} on rank 0.
@@ -192,8 +198,11 @@ std::string ProfileText(const json& result) {
   text += line;
   auto end = [](const json& e, bool lower) {
     char s[64];
-    std::snprintf(s, sizeof(s), "%s%.6g", e["open"].get<bool>() ? (lower ? "<" : ">") : "",
-                  e["value"].get<double>());
+    const char* mark = !e["open"].get<bool>()         ? ""
+                       : e.value("unsolved", false) ? "?"
+                       : lower                      ? "<"
+                                                    : ">";
+    std::snprintf(s, sizeof(s), "%s%.6g", mark, e["value"].get<double>());
     return std::string(s);
   };
   for (const json& stage : result["stages"]) {
@@ -216,7 +225,8 @@ std::string ProfileText(const json& result) {
       if (p.contains("note")) text += "      note: " + p["note"].get<std::string>() + "\n";
     }
   }
-  text += "  (\"<\" / \">\": the deviance stays below the threshold to the end of the grid)\n";
+  text += "  (\"<\" / \">\": the deviance stays below the threshold to the end of the grid; \"?\": held\n"
+          "  values beyond could not be solved, e.g. their simulation diverges)\n";
   return text;
 }
 

@@ -47,15 +47,14 @@ class StudyFolder {
   // (e.g. mpirun) if given: its exit status, and its stderr in `messages`.
   int Study(const std::string& config, const std::string& out, std::string* messages,
             const std::string& options = "", const std::string& launcher = "") const {
-    const std::filesystem::path log = dir_ / (out + ".stderr");
-    const std::string command = launcher + std::string(VESSELID_BINARY) + " study " +
-                                (dir_ / config).string() + " --data " + dir_.string() +
-                                " --out " + (dir_ / out).string() + " " + options +
-                                " --quiet > /dev/null 2> " + log.string();
-    const int status = std::system(command.c_str());
-    std::ifstream in(log);
-    messages->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    return status;
+    return Command("study", config, out, messages, options, launcher);
+  }
+
+  // `vesselid run <config> --out <out> <options>` on the folder's data: its exit status, and
+  // its stderr in `messages`.
+  int Run(const std::string& config, const std::string& out, std::string* messages,
+          const std::string& options = "") const {
+    return Command("run", config, out, messages, options);
   }
 
   // study.json of `out` (null if missing or unreadable).
@@ -67,6 +66,20 @@ class StudyFolder {
   }
 
  private:
+  int Command(const std::string& verb, const std::string& config, const std::string& out,
+              std::string* messages, const std::string& options,
+              const std::string& launcher = "") const {
+    const std::filesystem::path log = dir_ / (out + ".stderr");
+    const std::string command = launcher + std::string(VESSELID_BINARY) + " " + verb + " " +
+                                (dir_ / config).string() + " --data " + dir_.string() +
+                                " --out " + (dir_ / out).string() + " " + options +
+                                " --quiet > /dev/null 2> " + log.string();
+    const int status = std::system(command.c_str());
+    std::ifstream in(log);
+    messages->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    return status;
+  }
+
   std::filesystem::path dir_;
 };
 
