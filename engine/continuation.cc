@@ -54,9 +54,9 @@ void SetCarriedStates(const std::vector<StateAt>& states, OutputErrorProblem* pr
 }
 
 bool RunContinuation(const RunConfig& config, const StageConfig& stage, const ModelHandle& model,
-                     TrajectoryCache* cache, std::vector<ParameterSpec>* specs,
-                     std::vector<StateAt>* states, std::vector<std::string>* notes,
-                     std::string* error) {
+                     TrajectoryCache* cache, const ProgressCallback& progress,
+                     std::vector<ParameterSpec>* specs, std::vector<StateAt>* states,
+                     std::vector<std::string>* notes, std::string* error) {
   for (size_t phase = 0; phase < stage.continuation.size(); ++phase) {
     const double length = stage.continuation[phase];
     std::vector<Experiment> experiments;
@@ -71,6 +71,12 @@ bool RunContinuation(const RunConfig& config, const StageConfig& stage, const Mo
     StageOptions options = stage.options;
     options.use_global_start = options.use_global_start && phase == 0;
     options.compute_uncertainty = false;
+    if (progress) {
+      options.local.progress = options.global.progress = [&progress, length](SolveProgress p) {
+        p.segment_length = length;
+        progress(p);
+      };
+    }
     StageSummary summary;
     if (!RunStage(options, problem.get(), &summary)) {
       *error = "continuation with " + FormatSeconds(length) + " segments: " + summary.message;

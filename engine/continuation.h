@@ -22,11 +22,11 @@ struct StateAt {
 
 // Runs the stage's continuation phases (none if it has none). `specs` leave with the last
 // phase's estimates as starts (within their bounds), `states` with its segments' initial
-// states; `notes` get one line per phase.
+// states; `notes` get one line per phase. `progress` (may be empty) hears every phase's solves.
 bool RunContinuation(const RunConfig& config, const StageConfig& stage, const ModelHandle& model,
-                     TrajectoryCache* cache, std::vector<ParameterSpec>* specs,
-                     std::vector<StateAt>* states, std::vector<std::string>* notes,
-                     std::string* error);
+                     TrajectoryCache* cache, const ProgressCallback& progress,
+                     std::vector<ParameterSpec>* specs, std::vector<StateAt>* states,
+                     std::vector<std::string>* notes, std::string* error);
 
 // Free initial states of the problem's experiments take the carried values of segments that
 // begin where one of `states` began.

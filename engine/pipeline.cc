@@ -243,8 +243,8 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& stage,
   std::vector<StateAt> states;
   std::vector<std::string> continuation_notes;
   const auto stage_start = std::chrono::steady_clock::now();
-  if (!RunContinuation(config, stage, model, cache, &specs, &states, &continuation_notes,
-                       error)) {
+  if (!RunContinuation(config, stage, model, cache, progress, &specs, &states,
+                       &continuation_notes, error)) {
     return false;
   }
   std::vector<Experiment> experiments;

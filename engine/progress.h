@@ -13,6 +13,7 @@ struct SolveProgress {
   int refinements = 1;  // local: how many the stage runs
   int iteration = 0;    // Ceres iteration, or evaluations so far in the global search
   double cost = 0.0;    // Ceres: the iteration's cost; global: the best finite cost so far
+  double segment_length = 0.0;  // continuation phase: its segment length, s; 0: whole records
 };
 
 using ProgressCallback = std::function<void(const SolveProgress&)>;

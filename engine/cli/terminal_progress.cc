@@ -45,12 +45,23 @@ void TerminalProgress::StageStarted(size_t index, const std::string& name) {
 void TerminalProgress::Iteration(const SolveProgress& p) {
   if (mode_ != Mode::kLive && mode_ != Mode::kVerbose) return;
   if (mode_ == Mode::kLive && Since(last_draw_) < kRedrawSeconds) return;
+  // Verbose global search: a line when the best cost improves and every 100 evaluations.
+  if (mode_ == Mode::kVerbose && p.phase == SolveProgress::Phase::kGlobal) {
+    const bool improved = p.iteration == 1 || p.cost < global_best_;
+    global_best_ = p.cost;
+    if (!improved && p.iteration % 100 != 0) return;
+  }
   last_draw_ = std::chrono::steady_clock::now();
-  char phase[64];
+  char phase[128];
+  int n = 0;
+  if (p.segment_length > 0.0) {
+    n = std::snprintf(phase, sizeof(phase), "continuation on %g s segments, ", p.segment_length);
+  }
   if (p.phase == SolveProgress::Phase::kGlobal) {
-    std::snprintf(phase, sizeof(phase), "global search, evaluation %d, best cost", p.iteration);
+    std::snprintf(phase + n, sizeof(phase) - n, "global search, evaluation %d, best cost",
+                  p.iteration);
   } else {
-    std::snprintf(phase, sizeof(phase), "local refinement %d/%d, iteration %d, cost",
+    std::snprintf(phase + n, sizeof(phase) - n, "local refinement %d/%d, iteration %d, cost",
                   p.refinement + 1, p.refinements, p.iteration);
   }
   if (mode_ == Mode::kLive) ClearLive();

@@ -36,6 +36,7 @@ class TerminalProgress {
   size_t index_ = 0;
   std::string stage_;
   bool live_shown_ = false;
+  double global_best_ = 0.0;
   std::chrono::steady_clock::time_point stage_start_, last_draw_;
 };
 
