@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "engine/json_number.h"
+#include "engine/report_html.h"
 #include "engine/step_regression_writer.h"
 
 namespace vesselid {
@@ -464,7 +465,8 @@ bool WriteRunResults(const RunConfig& config, const RunResult& result, const std
   if (!WriteTraces(traces, "final_validation", result.final_validation, error) ||
       !WriteStepRegressionFiles(config, result, out_dir, error) ||
       !WriteFileAtomically((fs::path(out_dir) / "report.txt").string(),
-                           RunResultToText(config, result), error)) {
+                           RunResultToText(config, result), error) ||
+      !WriteRunReport(config, result, out_dir, error)) {
     return false;
   }
   return WriteFileAtomically((fs::path(out_dir) / "results.json").string(),
