@@ -13,6 +13,16 @@ std::string TermName(const StepRegressionReport& report, size_t k, const char* f
   return k < report.terms.size() ? report.terms[k].name : std::string(fallback);
 }
 
+// A figure of n panels, two to a row, and the start of its gnuplot commands.
+void StartPanelGrid(const std::string& name, int n, Figure* figure, std::ostringstream* s) {
+  const int cols = n > 1 ? 2 : 1, rows = (n + cols - 1) / cols;
+  *figure = Figure();
+  figure->name = name;
+  figure->width = cols == 2 ? 1100 : 620;
+  figure->height = rows * 300;
+  *s << kPlotStyle << "set multiplot layout " << rows << "," << cols << "\n";
+}
+
 struct SamplePanel {
   std::string title, x_label, y_label;
   SeriesPiece measured, mirrored;
@@ -23,14 +33,9 @@ struct SamplePanel {
 bool LassoPathFigure(const std::string& name, const StepRegressionReport& report, Figure* figure) {
   if (report.terms.empty()) return false;
   const int n = static_cast<int>(report.terms.size());
-  const int cols = n > 1 ? 2 : 1, rows = (n + cols - 1) / cols;
-  *figure = Figure();
-  figure->name = name;
-  figure->width = cols == 2 ? 1100 : 620;
-  figure->height = rows * 300;
   std::ostringstream s;
-  s << kPlotStyle << "set multiplot layout " << rows << "," << cols << "\n"
-    << "set logscale xy\nset format x '%.0e'\nset format y '%.1e'\n"
+  StartPanelGrid(name, n, figure, &s);
+  s << "set logscale xy\nset format x '%.0e'\nset format y '%.1e'\n"
     << "set xlabel 'lambda'\nset ylabel 'CV error'\nset key top left font ',10'\n"
     << "set offsets 0, 0, graph 0.3, 0\n";  // headroom: the key stays off the data
   for (int k = 0; k < n; ++k) {
@@ -105,15 +110,9 @@ bool StepSamplesFigure(const std::string& name, const StepRegressionReport& repo
                               }),
                panels.end());
   if (panels.empty()) return false;
-  const int n = static_cast<int>(panels.size());
-  const int cols = n > 1 ? 2 : 1, rows = (n + cols - 1) / cols;
-  *figure = Figure();
-  figure->name = name;
-  figure->width = cols == 2 ? 1100 : 620;
-  figure->height = rows * 300;
   std::ostringstream s;
-  s << kPlotStyle << "set multiplot layout " << rows << "," << cols << "\n"
-    << "set key top left font ',10'\nset offsets 0, 0, graph 0.3, 0\n";
+  StartPanelGrid(name, static_cast<int>(panels.size()), figure, &s);
+  s << "set key top left font ',10'\nset offsets 0, 0, graph 0.3, 0\n";
   // Scatter data are few (hundreds): written whole, not decimated.
   const size_t kAll = std::numeric_limits<size_t>::max();
   for (const SamplePanel& p : panels) {

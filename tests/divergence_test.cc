@@ -10,6 +10,7 @@
 
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
+#include "tests/patrol_config.h"
 #include "tests/study_cli.h"
 
 namespace vesselid {
@@ -18,17 +19,8 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-constexpr char kConfig[] = R"(
-model: {family: nomoto, type: second_order}
-simulation:
-  truth: {T1: 2.0875, T2: 0.3179, T3: 0.1830, K: -0.1724}
-  steering_gear: {Tm: 1.0, kp: 0.7, rudder_limit_deg: 35}
-  sample_time: 0.02
-  experiments:
-    - {file: patrol.csv, duration: 300, excitation: {type: sine, amplitude_deg: 20, period: 30}}
-experiments:
-  - {name: sine, file: patrol.csv, inputs: {delta: delta}, outputs: {psi: psi},
-     interpolation: {delta: cubic}}
+std::string ConfigText() {
+  return testing::PatrolConfigHead(300) + R"(
 stages:
   - name: second_order
     parameters:
@@ -44,9 +36,10 @@ study:
   monte_carlo: {runs: 3, noise: {psi: 0.001}, start: stage,
                 truth: {T1: 2.0875, T2: 0.3179, T3: 0.1830, K: -0.1724}}
 )";
+}
 
 std::string Config(const std::string& t1_start, const std::string& global) {
-  std::string text = kConfig;
+  std::string text = ConfigText();
   text.replace(text.find("T1_START"), 8, t1_start);
   text.replace(text.find("GLOBAL"), 6, global);
   return text;

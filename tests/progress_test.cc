@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "gtest/gtest.h"
+#include "tests/patrol_config.h"
 #include "tests/study_cli.h"
 
 namespace vesselid {
@@ -18,17 +19,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr char kConfig[] = R"(
-model: {family: nomoto, type: second_order}
-simulation:
-  truth: {T1: 2.0875, T2: 0.3179, T3: 0.1830, K: -0.1724}
-  steering_gear: {Tm: 1.0, kp: 0.7, rudder_limit_deg: 35}
-  sample_time: 0.02
-  experiments:
-    - {file: patrol.csv, duration: 120, excitation: {type: sine, amplitude_deg: 20, period: 30}}
-experiments:
-  - {name: sine, file: patrol.csv, inputs: {delta: delta}, outputs: {psi: psi},
-     interpolation: {delta: cubic}}
+std::string ConfigText() {
+  return testing::PatrolConfigHead(120) + R"(
 stages:
   - name: gain
     parameters:
@@ -41,12 +33,13 @@ stages:
       K: {lower: -2.0, upper: -0.001}
     global: {algorithm: GN_CRS2_LM, max_evaluations: 100, seed: 1}
 )";
+}
 
 class ProgressTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     folder_ = new testing::StudyFolder("vesselid_progress");
-    std::ofstream(folder_->dir() / "two_stages.yaml") << kConfig;
+    std::ofstream(folder_->dir() / "two_stages.yaml") << ConfigText();
     folder_->Simulate("two_stages.yaml");
   }
   static void TearDownTestSuite() { delete folder_; }

@@ -17,6 +17,7 @@
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
 #include "problems/registry.h"
+#include "tests/shipped_config.h"
 
 namespace vesselid {
 namespace {
@@ -253,16 +254,9 @@ size_t ExpectedPlots(const nlohmann::json& results) {
 
 TEST(ReportHtmlTest, ErunsalHierarchyReportRendersEveryPlot) {
   ASSERT_TRUE(HaveProgram("gnuplot")) << kNoGnuplot;
-  const std::string config = std::string(VESSELID_SOURCE_DIR) + "/configs/erunsal_hierarchy.yaml";
   const fs::path out = fs::temp_directory_path() / "vesselid_report_html_erunsal";
-  fs::remove_all(out);
-  const std::string binary = VESSELID_BINARY;
-  const std::string simulate =
-      binary + " simulate " + config + " --out " + out.string() + " > /dev/null";
-  const std::string run = binary + " run " + config + " --data " + out.string() + " --out " +
-                          out.string() + " --quiet > /dev/null";
-  ASSERT_EQ(std::system(simulate.c_str()), 0) << simulate;
-  ASSERT_EQ(std::system(run.c_str()), 0) << run;
+  testing::SimulateAndRunInto("erunsal_hierarchy", out);
+  ASSERT_FALSE(HasFatalFailure());
 
   std::ifstream in(out / "results.json");
   const nlohmann::json results = nlohmann::json::parse(in);

@@ -18,19 +18,24 @@ struct ShippedRun {
   std::string report;      // report.txt
 };
 
-inline ShippedRun SimulateAndRun(const std::string& name) {
-  namespace fs = std::filesystem;
+// Simulates and runs configs/<name>.yaml into `out` (data and results side by side).
+inline void SimulateAndRunInto(const std::string& name, const std::filesystem::path& out) {
   const std::string config = std::string(VESSELID_SOURCE_DIR) + "/configs/" + name + ".yaml";
-  const fs::path out = fs::temp_directory_path() / ("vesselid_shipped_config_" + name);
-  fs::remove_all(out);
+  std::filesystem::remove_all(out);
   const std::string binary = VESSELID_BINARY;
   const std::string simulate =
       binary + " simulate " + config + " --out " + out.string() + " > /dev/null";
   const std::string run = binary + " run " + config + " --data " + out.string() + " --out " +
                           out.string() + " --quiet > /dev/null";
+  ASSERT_EQ(std::system(simulate.c_str()), 0) << simulate;
+  ASSERT_EQ(std::system(run.c_str()), 0) << run;
+}
+
+inline ShippedRun SimulateAndRun(const std::string& name) {
+  namespace fs = std::filesystem;
+  const fs::path out = fs::temp_directory_path() / ("vesselid_shipped_config_" + name);
+  SimulateAndRunInto(name, out);
   ShippedRun result;
-  EXPECT_EQ(std::system(simulate.c_str()), 0) << simulate;
-  EXPECT_EQ(std::system(run.c_str()), 0) << run;
   std::ifstream in(out / "results.json");
   result.results = nlohmann::json::parse(in);
   std::ifstream report(out / "report.txt");
