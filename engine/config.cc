@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 
 #include "ceres/types.h"
 #include "engine/config_sections.h"
@@ -63,6 +64,12 @@ void ReadRegressionData(const YamlReader& reader, const YAML::Node& node, const 
     reader.CheckMap(smoothing, key, {"half_width", "order"});
     reader.Read(smoothing, key, "half_width", &data->smoothing.half_width);
     reader.Read(smoothing, key, "order", &data->smoothing.order);
+    // The window, 2 half_width + 1 samples, must fit an int here and in SavitzkyGolay.
+    constexpr int kMaxHalfWidth = (std::numeric_limits<int>::max() - 1) / 2;
+    if (data->smoothing.half_width > kMaxHalfWidth) {
+      reader.Fail(smoothing["half_width"], Child(key, "half_width"),
+                  "must be <= " + std::to_string(kMaxHalfWidth));
+    }
     if (data->smoothing.half_width < 1 || data->smoothing.order < 1 ||
         data->smoothing.order >= 2 * data->smoothing.half_width + 1) {
       reader.Fail(smoothing, key, "need half_width >= 1 and 1 <= order < 2 half_width + 1");
@@ -322,7 +329,7 @@ std::shared_ptr<const ModelHandle> OverrideModel(const YamlReader& reader, const
   if (!override.IsMap()) reader.Fail(override, path, "expected a map of model keys");
   YAML::Node merged = YAML::Clone(base);
   for (const auto& item : override) {
-    const std::string key = item.first.as<std::string>();
+    const std::string key = reader.KeyName(item.first, path);
     if (key == "family") reader.Fail(item.first, Child(path, key), "a stage cannot change the family");
     merged[key] = item.second;
   }

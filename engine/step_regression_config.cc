@@ -137,6 +137,7 @@ SurfaceGrid ReadSurfaces(const YamlReader& reader, const YAML::Node& node,
   }
   SurfaceGrid grid;
   const ModelInfo& info = model.info();
+  if (!node.IsMap()) reader.Fail(node, path, "expected a map");
   for (int i = 0; i < 2; ++i) {
     if (!node[info.states[form->states[i]]]) {
       reader.Fail(node, path, "missing key '" + info.states[form->states[i]] + "'");
@@ -144,9 +145,13 @@ SurfaceGrid ReadSurfaces(const YamlReader& reader, const YAML::Node& node,
   }
   ReadPerName(reader, node, path, info.states, form->states,
               [&](size_t i, const YAML::Node& v, const std::string& k) {
+                // Bounded: the surfaces CSV, points x points rows, is built in memory.
+                constexpr double kMaxPoints = 1000;
                 const std::vector<double> d = reader.Doubles(v, k);
-                if (d.size() != 3 || !(d[0] < d[1]) || d[2] < 2 || d[2] != std::floor(d[2])) {
-                  reader.Fail(v, k, "expected [lower, upper, points] with lower < upper, points >= 2");
+                if (d.size() != 3 || !(d[0] < d[1]) || d[2] < 2 || d[2] > kMaxPoints ||
+                    d[2] != std::floor(d[2])) {
+                  reader.Fail(v, k, "expected [lower, upper, points] with lower < upper, "
+                                    "2 <= points <= 1000");
                 }
                 grid.lower[i] = d[0];
                 grid.upper[i] = d[1];

@@ -144,7 +144,8 @@ MonteCarloOptions ReadMonteCarlo(const YamlReader& reader, const YAML::Node& nod
   }
   // The truth: study's own, else the simulation's (the parameters the data were made with).
   // (Copy-constructed once: YAML::Node's operator= would write through to the node.)
-  const bool simulated = !node["truth"] && config.simulation && config.simulation["truth"];
+  const bool simulated =
+      !node["truth"] && config.simulation.IsMap() && config.simulation["truth"];
   const YAML::Node truth = simulated ? config.simulation["truth"] : node["truth"];
   const std::string truth_path = simulated ? "simulation.truth" : Child(path, "truth");
   if (!truth) reader.Fail(node, path, "missing key 'truth' (and no simulation.truth)");

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <set>
 #include <sstream>
 
 namespace vesselid {
@@ -33,7 +34,10 @@ std::vector<std::string> SplitFields(const std::string& line) {
 bool ParseNumber(const std::string& field, double* value) {
   const char* first = field.data();
   const char* last = first + field.size();
-  if (first != last && *first == '+') ++first;
+  // from_chars takes a '-' but no '+': skip one '+', and not before a '-' ("+-1").
+  if (first != last && *first == '+') {
+    if (++first != last && *first == '-') return false;
+  }
   auto [ptr, ec] = std::from_chars(first, last, *value);
   return ec == std::errc() && ptr == last && std::isfinite(*value);
 }
@@ -81,12 +85,11 @@ bool ReadTrajectoryCsv(const std::string& path, Trajectory* trajectory, std::str
     break;
   }
   if (header.empty()) return fail("empty file, expected a header row");
+  std::set<std::string> seen;  // not a pairwise check: that is quadratic in a wide header
   for (size_t i = 0; i < header.size(); ++i) {
     if (header[i].empty())
       return fail("empty column name in header (column " + std::to_string(i + 1) + ")");
-    for (size_t j = 0; j < i; ++j) {
-      if (header[j] == header[i]) return fail("duplicate column '" + header[i] + "'");
-    }
+    if (!seen.insert(header[i]).second) return fail("duplicate column '" + header[i] + "'");
     if (header[i] == "t") {
       time_column = static_cast<int>(i);
     } else {

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "yaml-cpp/depthguard.h"
+
 namespace vesselid {
 
 YAML::Node YamlReader::Load() const {
@@ -9,6 +11,10 @@ YAML::Node YamlReader::Load() const {
     return YAML::LoadFile(file_);
   } catch (const YAML::BadFile&) {
     throw ConfigError(file_ + ": cannot open file");
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp's own message for this is "bad file".
+    throw ConfigError(file_ + ":" + std::to_string(e.mark.line + 1) +
+                      ": YAML syntax error: lists or maps nested too deeply");
   } catch (const YAML::Exception& e) {
     throw ConfigError(file_ + ":" + std::to_string(e.mark.line + 1) +
                       ": YAML syntax error: " + e.msg);
@@ -20,14 +26,23 @@ void YamlReader::Fail(const YAML::Node& node, const std::string& key,
   std::string where = file_;
   if (node.IsDefined() && node.Mark().line >= 0)
     where += ":" + std::to_string(node.Mark().line + 1);
-  throw ConfigError(where + ": " + key + ": " + what);
+  // An empty key is the top level of the file.
+  throw ConfigError(where + ": " + (key.empty() ? "" : key + ": ") + what);
+}
+
+std::string YamlReader::KeyName(const YAML::Node& name, const std::string& key) const {
+  // as<std::string>() would throw "bad conversion", naming neither the key nor the map.
+  if (!name.IsScalar() && !name.IsNull()) {
+    Fail(name, key, "a key must be a name, not a list or map");
+  }
+  return name.as<std::string>();
 }
 
 void YamlReader::CheckMap(const YAML::Node& node, const std::string& key,
                           const std::vector<std::string>& allowed) const {
   if (!node.IsMap()) Fail(node, key, "expected a map");
   for (const auto& item : node) {
-    const std::string name = item.first.as<std::string>();
+    const std::string name = KeyName(item.first, key);
     bool known = false;
     for (const std::string& a : allowed) known = known || a == name;
     if (!known) {
@@ -102,7 +117,7 @@ std::map<std::string, std::string> YamlReader::StringMap(const YAML::Node& node,
   if (!node.IsMap()) Fail(node, key, "expected a map");
   std::map<std::string, std::string> values;
   for (const auto& item : node) {
-    const std::string name = item.first.as<std::string>();
+    const std::string name = KeyName(item.first, key);
     values[name] = String(item.second, Child(key, name));
   }
   return values;
@@ -113,7 +128,7 @@ std::map<std::string, double> YamlReader::DoubleMap(const YAML::Node& node,
   if (!node.IsMap()) Fail(node, key, "expected a map");
   std::map<std::string, double> values;
   for (const auto& item : node) {
-    const std::string name = item.first.as<std::string>();
+    const std::string name = KeyName(item.first, key);
     values[name] = Double(item.second, Child(key, name));
   }
   return values;

@@ -27,9 +27,12 @@ class YamlReader {
 
   const std::string& file() const { return file_; }
 
-  // "file:line: key: what"
+  // "file:line: key: what"; "file:line: what" for the top level (key "").
   [[noreturn]] void Fail(const YAML::Node& node, const std::string& key,
                          const std::string& what) const;
+
+  // The name of a map's key `name` (in the map at `key`): a list or map as a key is an error.
+  std::string KeyName(const YAML::Node& name, const std::string& key) const;
 
   // Requires a map whose keys are all in `allowed`.
   void CheckMap(const YAML::Node& node, const std::string& key,
