@@ -34,6 +34,25 @@ struct SparseTable {
     if (cells.count(row) == 0) rows.push_back(row);
     cells[row][column] = text;
   }
+
+  // The table, rows keyed "first\nsecond": two heading columns, then one per column.
+  std::string Html(const std::string& first, const std::string& second) const {
+    std::string text = "<div class=\"scroll\"><table class=\"paper\">\n<tr>" + Th(first) +
+                       Th(second);
+    for (const std::string& c : columns) text += Th(c);
+    text += "</tr>\n";
+    for (const std::string& row : rows) {
+      const size_t cut = row.find('\n');
+      text += "<tr>" + Td(row.substr(0, cut)) + Td(row.substr(cut + 1));
+      const std::map<std::string, std::string>& line = cells.at(row);
+      for (const std::string& c : columns) {
+        const auto at = line.find(c);
+        text += at == line.end() ? "<td></td>" : Num(at->second);
+      }
+      text += "</tr>\n";
+    }
+    return text + "</table></div>\n";
+  }
 };
 
 std::string ParametersByStage(const RunConfig& config, const RunResult& result) {
@@ -119,7 +138,7 @@ std::string CostPerTest(const RunResult& result) {
   for (const StageResult& stage : result.stages) {
     for (const ExperimentFit& fit : stage.summary.fits) {
       if (!IsSimulationFit(fit)) continue;
-      const std::string row = stage.name + "\n" + fit.experiment;
+      const std::string row = fit.experiment + "\n" + stage.name;
       table.Set(row, "√(mean e²)", HtmlNumber(fit.rms_cost, "%.4g"));
       for (const ChannelMetrics& m : fit.channels) {
         table.Set(row, "fit % " + m.output, HtmlNumber(m.fit_percent, "%.2f"));
@@ -131,20 +150,7 @@ std::string CostPerTest(const RunResult& result) {
   out +=
       "<p>Per identification experiment: the stage that fits it, the cost "
       "√(mean e²) over all compared samples, and the fit % per output.</p>\n";
-  std::string text =
-      "<div class=\"scroll\"><table class=\"paper\">\n<tr>" + Th("experiment") + Th("stage");
-  for (const std::string& c : table.columns) text += Th(c);
-  text += "</tr>\n";
-  for (const std::string& row : table.rows) {
-    const size_t cut = row.find('\n');
-    text += "<tr>" + Td(row.substr(cut + 1)) + Td(row.substr(0, cut));
-    for (const std::string& c : table.columns) {
-      const auto at = table.cells[row].find(c);
-      text += at == table.cells[row].end() ? "<td></td>" : Num(at->second);
-    }
-    text += "</tr>\n";
-  }
-  return out + Fold(text + "</table></div>\n", table.rows.size(),
+  return out + Fold(table.Html("experiment", "stage"), table.rows.size(),
                     std::to_string(table.rows.size()) + " experiments", kOpenRows);
 }
 
@@ -165,20 +171,7 @@ std::string ValidationFit(const RunResult& result) {
   out +=
       "<p>Fit % of the held-out experiments, simulated with each stage's estimates and with "
       "the final values.</p>\n";
-  std::string text =
-      "<div class=\"scroll\"><table class=\"paper\">\n<tr>" + Th("experiment") + Th("output");
-  for (const std::string& c : table.columns) text += Th(c);
-  text += "</tr>\n";
-  for (const std::string& row : table.rows) {
-    const size_t cut = row.find('\n');
-    text += "<tr>" + Td(row.substr(0, cut)) + Td(row.substr(cut + 1));
-    for (const std::string& c : table.columns) {
-      const auto at = table.cells[row].find(c);
-      text += at == table.cells[row].end() ? "<td></td>" : Num(at->second);
-    }
-    text += "</tr>\n";
-  }
-  return out + Fold(text + "</table></div>\n", table.rows.size(),
+  return out + Fold(table.Html("experiment", "output"), table.rows.size(),
                     std::to_string(table.rows.size()) + " rows", kOpenRows);
 }
 
