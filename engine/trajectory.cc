@@ -1,12 +1,13 @@
 #include "engine/trajectory.h"
 
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <limits>
 #include <set>
 #include <sstream>
+
+#include "engine/number_text.h"
 
 namespace vesselid {
 namespace {
@@ -28,18 +29,6 @@ std::vector<std::string> SplitFields(const std::string& line) {
     start = comma + 1;
   }
   return fields;
-}
-
-// Parses a whole field as a finite double.
-bool ParseNumber(const std::string& field, double* value) {
-  const char* first = field.data();
-  const char* last = first + field.size();
-  // from_chars takes a '-' but no '+': skip one '+', and not before a '-' ("+-1").
-  if (first != last && *first == '+') {
-    if (++first != last && *first == '-') return false;
-  }
-  auto [ptr, ec] = std::from_chars(first, last, *value);
-  return ec == std::errc() && ptr == last && std::isfinite(*value);
 }
 
 }  // namespace
@@ -112,7 +101,7 @@ bool ReadTrajectoryCsv(const std::string& path, Trajectory* trajectory, std::str
     size_t channel = 0;
     for (size_t i = 0; i < fields.size(); ++i) {
       double value = kMissing;
-      if (!fields[i].empty() && !ParseNumber(fields[i], &value)) {
+      if (!fields[i].empty() && !ParseFiniteNumber(fields[i], &value)) {
         return fail("column '" + header[i] + "': '" + fields[i] + "' is not a finite number");
       }
       if (static_cast<int>(i) == time_column) {

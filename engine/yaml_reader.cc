@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "engine/number_text.h"
 #include "yaml-cpp/depthguard.h"
 
 namespace vesselid {
@@ -62,12 +63,8 @@ double YamlReader::Double(const YAML::Node& node, const std::string& key) const 
   const std::string text = node.Scalar();
   if (text == "inf" || text == "+inf" || text == ".inf") return INFINITY;
   if (text == "-inf" || text == "-.inf") return -INFINITY;
-  try {
-    size_t used = 0;
-    double value = std::stod(text, &used);
-    if (used == text.size() && std::isfinite(value)) return value;
-  } catch (const std::exception&) {
-  }
+  double value;
+  if (ParseFiniteNumber(text, &value)) return value;
   Fail(node, key, "'" + text + "' is not a finite number");
 }
 
