@@ -3,8 +3,8 @@
 // and print them with their standard errors.
 #include <cstdio>
 
-#include "engine/output_error_problem.h"
-#include "engine/stage.h"
+#include "engine/solve/output_error_problem.h"
+#include "engine/solve/stage.h"
 #include "problems/nomoto/closed_loop_simulator.h"
 #include "problems/nomoto/nomoto_models.h"
 

@@ -1,7 +1,7 @@
 // Every model family the vesselid binary knows, in one registry.
 #pragma once
 
-#include "engine/model_registry.h"
+#include "engine/config/model_registry.h"
 
 namespace vesselid {
 

@@ -6,7 +6,7 @@
 #include <regex>
 #include <string>
 
-#include "engine/trajectory.h"
+#include "engine/data/trajectory.h"
 #include "gtest/gtest.h"
 #include "problems/nomoto/closed_loop_simulator.h"
 #include "problems/nomoto/nomoto_models.h"

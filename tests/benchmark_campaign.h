@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "engine/config.h"
+#include "engine/config/config.h"
 #include "problems/registry.h"
 
 namespace vesselid::benchmark {

@@ -9,7 +9,7 @@
 
 #include <cstdio>
 
-#include "engine/pipeline.h"
+#include "engine/run/pipeline.h"
 #include "problems/registry.h"
 #include "tests/benchmark_campaign.h"
 

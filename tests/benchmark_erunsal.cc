@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <set>
 
-#include "engine/pipeline.h"
+#include "engine/run/pipeline.h"
 #include "tests/benchmark_campaign.h"
 #include "problems/registry.h"
 

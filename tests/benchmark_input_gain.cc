@@ -12,10 +12,10 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "engine/least_squares_stage.h"
-#include "engine/local_solve.h"
-#include "engine/partition_study.h"
-#include "engine/pipeline.h"
+#include "engine/run/least_squares_stage.h"
+#include "engine/solve/local_solve.h"
+#include "engine/study/partition_study.h"
+#include "engine/run/pipeline.h"
 #include "problems/registry.h"
 #include "tests/benchmark_campaign.h"
 

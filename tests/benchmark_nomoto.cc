@@ -5,8 +5,8 @@
 #include <chrono>
 #include <cstdio>
 
-#include "engine/output_error_problem.h"
-#include "engine/stage.h"
+#include "engine/solve/output_error_problem.h"
+#include "engine/solve/stage.h"
 #include "tests/nomoto_data.h"
 
 namespace vesselid {

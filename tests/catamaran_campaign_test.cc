@@ -6,8 +6,8 @@
 #include <iostream>
 #include <map>
 
-#include "engine/rk4.h"
-#include "engine/trajectory.h"
+#include "engine/model/rk4.h"
+#include "engine/data/trajectory.h"
 #include "gtest/gtest.h"
 #include "problems/input_gain/campaign.h"
 #include "problems/input_gain/catamaran.h"

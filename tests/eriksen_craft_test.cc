@@ -6,8 +6,8 @@
 #include <set>
 #include <vector>
 
-#include "engine/rk4.h"
-#include "engine/trajectory.h"
+#include "engine/model/rk4.h"
+#include "engine/data/trajectory.h"
 #include "gtest/gtest.h"
 #include "problems/eriksen2dof/campaign.h"
 #include "problems/eriksen2dof/craft.h"

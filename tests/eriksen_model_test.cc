@@ -5,10 +5,10 @@
 #include <cmath>
 #include <random>
 
-#include "engine/local_solve.h"
-#include "engine/output_error_problem.h"
-#include "engine/polynomial_basis.h"
-#include "engine/stage.h"
+#include "engine/solve/local_solve.h"
+#include "engine/solve/output_error_problem.h"
+#include "engine/model/polynomial_basis.h"
+#include "engine/solve/stage.h"
 #include "gtest/gtest.h"
 #include "problems/eriksen2dof/handle.h"
 #include "tests/eriksen_data.h"

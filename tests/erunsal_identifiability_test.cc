@@ -9,7 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include "engine/pipeline.h"
+#include "engine/run/pipeline.h"
 #include "gtest/gtest.h"
 #include "problems/registry.h"
 

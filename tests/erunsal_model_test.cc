@@ -3,7 +3,7 @@
 // behaviour quoted in MODELS.md.
 #include <cmath>
 
-#include "engine/open_loop_simulation.h"
+#include "engine/model/open_loop_simulation.h"
 #include "gtest/gtest.h"
 #include "problems/erunsal6dof/erunsal_model.h"
 #include "problems/erunsal6dof/handle.h"

@@ -1,6 +1,6 @@
 // Fusion rules for shared parameters: mean, per-parameter inverse variance, and joint
 // information fusion, on cases where they differ.
-#include "engine/fusion.h"
+#include "engine/run/fusion.h"
 
 #include <cmath>
 

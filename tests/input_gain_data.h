@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/model_handle.h"
-#include "engine/trajectory.h"
+#include "engine/model/model_handle.h"
+#include "engine/data/trajectory.h"
 #include "problems/input_gain/input_gain_model.h"
 
 namespace vesselid::testing {

@@ -5,10 +5,10 @@
 // level from noisy positions and heading.
 #include <cmath>
 
-#include "engine/least_squares.h"
-#include "engine/output_error_problem.h"
-#include "engine/regression_data.h"
-#include "engine/stage.h"
+#include "engine/regression/least_squares.h"
+#include "engine/solve/output_error_problem.h"
+#include "engine/regression/regression_data.h"
+#include "engine/solve/stage.h"
 #include "gtest/gtest.h"
 #include "problems/input_gain/input_gain_handles.h"
 #include "problems/nomoto/nomoto_handles.h"

@@ -1,5 +1,5 @@
 // Experiments cut to the stretches where their inputs lie inside configured ranges.
-#include "engine/input_range.h"
+#include "engine/model/input_range.h"
 #include "gtest/gtest.h"
 
 namespace vesselid {

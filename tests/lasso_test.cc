@@ -2,7 +2,7 @@
 // correlated and polynomial designs, lambda_max, unpenalised columns, the least-squares limit,
 // leave-one-group-out CV against a brute-force refit per fold, support recovery, weights,
 // and clear errors. Every expectation is computed from the data, not from the solver's Gram.
-#include "engine/lasso.h"
+#include "engine/regression/lasso.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // Equation-error least squares: exact recovery, standard errors against their formula,
 // seed 003's robust weighting against gross outliers, ridge and lasso with cross-validated
 // penalties, and clear errors.
-#include "engine/linear_regression.h"
+#include "engine/regression/linear_regression.h"
 
 #include <cmath>
 #include <random>

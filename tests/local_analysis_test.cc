@@ -1,11 +1,11 @@
 // Local analysis at the optimum: the Schur-complement standard errors agree with Ceres'
 // covariance, an exchangeable pair at its ridge shows as an undetermined direction naming
 // both, and sensitivities of a well-excited experiment are finite and positive.
-#include "engine/local_analysis.h"
+#include "engine/solve/local_analysis.h"
 
 #include <cmath>
 
-#include "engine/stage.h"
+#include "engine/solve/stage.h"
 #include "gtest/gtest.h"
 #include "tests/nomoto_data.h"
 

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <random>
 
-#include "engine/covariance.h"
-#include "engine/local_solve.h"
-#include "engine/output_error_problem.h"
-#include "engine/stage.h"
+#include "engine/solve/covariance.h"
+#include "engine/solve/local_solve.h"
+#include "engine/solve/output_error_problem.h"
+#include "engine/solve/stage.h"
 #include "gtest/gtest.h"
 #include "tests/jacobian_check.h"
 #include "tests/nomoto_data.h"

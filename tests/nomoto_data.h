@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "engine/experiment.h"
-#include "engine/model_handle.h"
-#include "engine/parameter.h"
+#include "engine/model/experiment.h"
+#include "engine/model/model_handle.h"
+#include "engine/solve/parameter.h"
 #include "problems/nomoto/closed_loop_simulator.h"
 #include "problems/nomoto/nomoto_models.h"
 

@@ -3,8 +3,8 @@
 // (seed 003's ESO + RW-LSSVR reached 0.1-6.5 %).
 #include <cmath>
 
-#include "engine/output_error_problem.h"
-#include "engine/stage.h"
+#include "engine/solve/output_error_problem.h"
+#include "engine/solve/stage.h"
 #include "gtest/gtest.h"
 #include "tests/nomoto_data.h"
 

@@ -1,10 +1,10 @@
-// The number syntax shared by the CSV and YAML readers (engine/number_text.h).
-#include "engine/number_text.h"
+// The number syntax shared by the CSV and YAML readers (engine/base/number_text.h).
+#include "engine/base/number_text.h"
 
 #include <cmath>
 #include <limits>
 
-#include "engine/yaml_reader.h"
+#include "engine/config/yaml_reader.h"
 #include "gtest/gtest.h"
 
 namespace vesselid {

@@ -1,10 +1,10 @@
 // Structure of output-error problems: several experiments sharing parameters, parameters
 // declared per experiment, multi-rate outputs, robust losses and the NLopt global start.
-#include "engine/output_error_problem.h"
+#include "engine/solve/output_error_problem.h"
 
 #include <cmath>
 
-#include "engine/stage.h"
+#include "engine/solve/stage.h"
 #include "gtest/gtest.h"
 #include "tests/nomoto_data.h"
 

@@ -13,8 +13,8 @@
 #include <iterator>
 #include <string>
 
-#include "engine/config.h"
-#include "engine/partition_study.h"
+#include "engine/config/config.h"
+#include "engine/study/partition_study.h"
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
 #include "problems/registry.h"

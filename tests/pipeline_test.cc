@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "engine/pipeline.h"
+#include "engine/run/pipeline.h"
 #include "gtest/gtest.h"
 #include "problems/nomoto/closed_loop_simulator.h"
 #include "problems/nomoto/nomoto_handles.h"

@@ -1,7 +1,7 @@
 // The HTML run report: base64 and min/max decimation on known cases, a hand-made result with
 // awkward names (with and without gnuplot), and the shipped Erunsal hierarchy end to end: every
 // plot results.json implies is in report.html and renders in headless Chromium.
-#include "engine/report_html.h"
+#include "engine/output/report_html.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -11,9 +11,9 @@
 #include <random>
 #include <set>
 
-#include "engine/base64.h"
-#include "engine/decimation.h"
-#include "engine/report_figures.h"
+#include "engine/output/base64.h"
+#include "engine/output/decimation.h"
+#include "engine/output/report_figures.h"
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
 #include "problems/registry.h"

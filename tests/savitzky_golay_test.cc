@@ -1,6 +1,6 @@
 // Savitzky-Golay smoothing and differentiation: exact on polynomials up to the order (ends
 // included), noise reduction as the theory gives, and clear errors for unusable options.
-#include "engine/savitzky_golay.h"
+#include "engine/data/savitzky_golay.h"
 
 #include <cmath>
 #include <random>

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-#include "engine/pipeline.h"
-#include "engine/step_regression.h"
+#include "engine/run/pipeline.h"
+#include "engine/step_regression/step_regression.h"
 #include "gtest/gtest.h"
 #include "problems/eriksen2dof/handle.h"
 #include "tests/eriksen_data.h"

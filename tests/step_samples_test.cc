@@ -8,8 +8,8 @@
 #include <limits>
 #include <random>
 
-#include "engine/first_order_step.h"
-#include "engine/steady_state.h"
+#include "engine/step_regression/first_order_step.h"
+#include "engine/step_regression/steady_state.h"
 #include "gtest/gtest.h"
 
 namespace vesselid {

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "engine/study_runner.h"
+#include "engine/study/study_runner.h"
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
 #include "tests/study_cli.h"

@@ -1,11 +1,11 @@
 // CSV reading and input interpolation.
-#include "engine/trajectory.h"
+#include "engine/data/trajectory.h"
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 
-#include "engine/interpolation.h"
+#include "engine/data/interpolation.h"
 #include "gtest/gtest.h"
 
 namespace vesselid {

@@ -12,13 +12,13 @@
 
 #include "CLI/CLI.hpp"
 #include "glog/logging.h"
-#include "engine/checkpoint.h"
+#include "engine/output/checkpoint.h"
 #include "engine/cli/terminal_progress.h"
-#include "engine/config.h"
-#include "engine/study.h"
-#include "engine/study_runner.h"
-#include "engine/pipeline.h"
-#include "engine/results_writer.h"
+#include "engine/config/config.h"
+#include "engine/study/study.h"
+#include "engine/study/study_runner.h"
+#include "engine/run/pipeline.h"
+#include "engine/output/results_writer.h"
 #include "problems/registry.h"
 
 namespace {

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <string>
 
-#include "engine/pipeline.h"
+#include "engine/run/pipeline.h"
 
 namespace vesselid {
 

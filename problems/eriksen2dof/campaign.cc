@@ -4,7 +4,7 @@
 #include <array>
 #include <random>
 
-#include "engine/rk4.h"
+#include "engine/model/rk4.h"
 
 namespace vesselid::eriksen2dof {
 namespace {

@@ -40,7 +40,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/trajectory.h"
+#include "engine/data/trajectory.h"
 #include "problems/eriksen2dof/craft.h"
 
 namespace vesselid::eriksen2dof {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/rk4.h"
+#include "engine/model/rk4.h"
 
 namespace vesselid::eriksen2dof {
 namespace {

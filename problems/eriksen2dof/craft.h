@@ -112,7 +112,7 @@ bool CraftDerivative(const CraftParameters& p, const double* x, const double* ta
 // Speed over ground and course over ground (rad, atan2(E', N')) of state x.
 void GroundTrack(const double* x, const CraftEnvironment& environment, double* sog, double* course);
 
-// The right-hand side as an Rk4Step model (engine/rk4.h); holds pointers, not copies.
+// The right-hand side as an Rk4Step model (engine/model/rk4.h); holds pointers, not copies.
 struct CraftRhs {
   static constexpr int kNumStates = kCraftStates;
   const CraftParameters* parameters;

@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "engine/damping_inertia_form.h"
-#include "engine/model.h"
-#include "engine/polynomial_basis.h"
+#include "engine/model/damping_inertia_form.h"
+#include "engine/model/model.h"
+#include "engine/model/polynomial_basis.h"
 
 namespace vesselid::eriksen2dof {
 

@@ -4,7 +4,7 @@
 
 #include <memory>
 
-#include "engine/model_handle.h"
+#include "engine/model/model_handle.h"
 #include "problems/eriksen2dof/eriksen_model.h"
 
 namespace vesselid::eriksen2dof {

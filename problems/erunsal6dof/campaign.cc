@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "engine/open_loop_simulation.h"
+#include "engine/model/open_loop_simulation.h"
 
 namespace vesselid::erunsal6dof {
 namespace {

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/model_handle.h"
-#include "engine/trajectory.h"
+#include "engine/model/model_handle.h"
+#include "engine/data/trajectory.h"
 
 namespace vesselid::erunsal6dof {
 

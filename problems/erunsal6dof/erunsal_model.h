@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/model.h"
+#include "engine/model/model.h"
 
 namespace vesselid::erunsal6dof {
 

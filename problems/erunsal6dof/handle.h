@@ -3,7 +3,7 @@
 
 #include <memory>
 
-#include "engine/model_handle.h"
+#include "engine/model/model_handle.h"
 #include "problems/erunsal6dof/erunsal_model.h"
 
 namespace vesselid::erunsal6dof {

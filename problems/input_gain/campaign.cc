@@ -5,7 +5,7 @@
 #include <random>
 #include <vector>
 
-#include "engine/rk4.h"
+#include "engine/model/rk4.h"
 
 namespace vesselid::input_gain {
 namespace {

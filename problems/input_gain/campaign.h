@@ -26,7 +26,7 @@
 #include <cmath>
 #include <string>
 
-#include "engine/trajectory.h"
+#include "engine/data/trajectory.h"
 #include "problems/input_gain/catamaran.h"
 
 namespace vesselid::input_gain {

@@ -4,7 +4,7 @@
 
 #include <memory>
 
-#include "engine/model_handle.h"
+#include "engine/model/model_handle.h"
 #include "problems/input_gain/input_gain_model.h"
 
 namespace vesselid::input_gain {

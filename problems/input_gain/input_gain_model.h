@@ -30,8 +30,8 @@
 #include <vector>
 
 #include "Eigen/Dense"
-#include "engine/model.h"
-#include "engine/regression_form.h"
+#include "engine/model/model.h"
+#include "engine/model/regression_form.h"
 #include "problems/input_gain/basis.h"
 
 namespace vesselid::input_gain {

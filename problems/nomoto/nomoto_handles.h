@@ -5,7 +5,7 @@
 
 #include <memory>
 
-#include "engine/model_handle.h"
+#include "engine/model/model_handle.h"
 
 namespace vesselid::nomoto {
 

@@ -13,8 +13,8 @@
 #include <cmath>
 
 #include "Eigen/Dense"
-#include "engine/model.h"
-#include "engine/regression_form.h"
+#include "engine/model/model.h"
+#include "engine/model/regression_form.h"
 
 namespace vesselid::nomoto {
 

@@ -1,4 +1,4 @@
-// Fuzz target for LoadRunConfig (engine/config.h) with every model family of the vesselid
+// Fuzz target for LoadRunConfig (engine/config/config.h) with every model family of the vesselid
 // binary, study section included: any bytes give either a config that keeps the reader's
 // promises (known experiments, valid parameters and study options) or false with a message
 // naming the file. Experiment files are only named by a config, not read, so none is needed.
@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "engine/config.h"
+#include "engine/config/config.h"
 #include "problems/registry.h"
 #include "tests/fuzz/fuzz_input_file.h"
 

@@ -1,4 +1,4 @@
-// Fuzz target for ReadTrajectoryCsv (engine/trajectory.h): any bytes give either a trajectory
+// Fuzz target for ReadTrajectoryCsv (engine/data/trajectory.h): any bytes give either a trajectory
 // that keeps the reader's promises (strictly increasing finite time, one finite-or-NaN value
 // per row and channel) or false with a "file:line: ..." message.
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <set>
 #include <string>
 
-#include "engine/trajectory.h"
+#include "engine/data/trajectory.h"
 #include "tests/fuzz/fuzz_input_file.h"
 
 // Undefined behaviour is a finding, not a warning: stop at the first report so that

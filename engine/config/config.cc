@@ -1,0 +1,577 @@
+#include "engine/config/config.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <limits>
+
+#include "ceres/types.h"
+#include "engine/config/config_sections.h"
+
+namespace vesselid {
+
+void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                GlobalStartOptions* global) {
+  reader.CheckMap(node, path,
+                  {"algorithm", "max_evaluations", "max_time", "seed", "population", "candidates",
+                   "min_separation"});
+  reader.Read(node, path, "algorithm", &global->algorithm);
+  reader.Read(node, path, "max_evaluations", &global->max_evaluations);
+  reader.Read(node, path, "max_time", &global->max_time_seconds);
+  int seed = static_cast<int>(global->seed);
+  reader.Read(node, path, "seed", &seed);
+  global->seed = static_cast<unsigned>(seed);
+  reader.Read(node, path, "population", &global->population);
+  reader.Read(node, path, "candidates", &global->candidates);
+  reader.Read(node, path, "min_separation", &global->min_separation);
+  std::string error;
+  if (!global->IsValid(&error)) reader.Fail(node, path, error);
+}
+
+std::vector<std::string> ExperimentNames(const YamlReader& reader, const YAML::Node& node,
+                                         const std::string& key, const RunConfig& config) {
+  std::vector<std::string> names = reader.Strings(node, key);
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (config.FindExperiment(names[i]) == nullptr) {
+      reader.Fail(node[i], Child(key, i), "no experiment named '" + names[i] + "'");
+    }
+  }
+  return names;
+}
+
+void CheckNames(const YamlReader& reader, const YAML::Node& node, const std::string& key,
+                const std::vector<std::string>& names, const std::vector<std::string>& known,
+                const std::string& kind, const ModelInfo& info) {
+  for (const std::string& name : names) {
+    bool found = false;
+    for (const std::string& k : known) found = found || k == name;
+    if (!found) {
+      reader.Fail(node, key,
+                  "unknown " + kind + " '" + name + "' (model " + info.name + " has " +
+                      JoinNames(known) + ")");
+    }
+  }
+}
+
+void ReadRegressionData(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                        const ModelInfo& info, RegressionDataOptions* data) {
+  if (node["grid"]) {
+    data->grid_output = reader.String(node["grid"], Child(path, "grid"));
+    CheckNames(reader, node["grid"], Child(path, "grid"),
+               std::vector<std::string>{data->grid_output}, info.outputs, "output", info);
+  }
+  if (const YAML::Node smoothing = node["smoothing"]) {
+    const std::string key = Child(path, "smoothing");
+    reader.CheckMap(smoothing, key, {"half_width", "order"});
+    reader.Read(smoothing, key, "half_width", &data->smoothing.half_width);
+    reader.Read(smoothing, key, "order", &data->smoothing.order);
+    // The window, 2 half_width + 1 samples, must fit an int here and in SavitzkyGolay.
+    constexpr int kMaxHalfWidth = (std::numeric_limits<int>::max() - 1) / 2;
+    if (data->smoothing.half_width > kMaxHalfWidth) {
+      reader.Fail(smoothing["half_width"], Child(key, "half_width"),
+                  "must be <= " + std::to_string(kMaxHalfWidth));
+    }
+    if (data->smoothing.half_width < 1 || data->smoothing.order < 1 ||
+        data->smoothing.order >= 2 * data->smoothing.half_width + 1) {
+      reader.Fail(smoothing, key, "need half_width >= 1 and 1 <= order < 2 half_width + 1");
+    }
+  }
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+template <class V>
+std::vector<std::string> Keys(const std::map<std::string, V>& map) {
+  std::vector<std::string> keys;
+  for (const auto& item : map) keys.push_back(item.first);
+  return keys;
+}
+
+Interpolation ReadInterpolation(const YamlReader& reader, const YAML::Node& node,
+                                const std::string& key) {
+  Interpolation interpolation;
+  if (!StringToInterpolation(reader.String(node, key), &interpolation)) {
+    reader.Fail(node, key,
+                "unknown interpolation '" + node.Scalar() + "' (zero_order_hold, linear, cubic)");
+  }
+  return interpolation;
+}
+
+ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
+                              const std::string& path, const fs::path& base,
+                              const ModelInfo& info) {
+  reader.CheckMap(node, path,
+                  {"name", "file", "inputs", "outputs", "interpolation", "weights", "initial_state",
+                   "degrees", "window", "segment_length", "segments", "input_range"});
+  ExperimentSpec spec;
+  if (!node["name"]) reader.Fail(node, path, "missing key 'name'");
+  if (!node["file"]) reader.Fail(node, path, "missing key 'file'");
+  spec.name = reader.String(node["name"], Child(path, "name"));
+  const std::string file = reader.String(node["file"], Child(path, "file"));
+  spec.file = fs::path(file).is_absolute() ? file : (base / file).lexically_normal().string();
+  bool inputs_required = false;
+  for (size_t i = 0; i < info.inputs.size(); ++i) inputs_required |= !info.InputOptional(static_cast<int>(i));
+  if (!node["inputs"] && inputs_required) reader.Fail(node, path, "missing key 'inputs'");
+  if (node["inputs"]) {
+    spec.inputs = reader.StringMap(node["inputs"], Child(path, "inputs"));
+    CheckNames(reader, node["inputs"], Child(path, "inputs"), Keys(spec.inputs), info.inputs,
+               "input", info);
+  }
+  if (!node["outputs"]) reader.Fail(node, path, "missing key 'outputs'");
+  spec.outputs = reader.StringMap(node["outputs"], Child(path, "outputs"));
+  CheckNames(reader, node["outputs"], Child(path, "outputs"), Keys(spec.outputs), info.outputs,
+             "output", info);
+  if (const YAML::Node n = node["interpolation"]) {
+    const std::string key = Child(path, "interpolation");
+    if (n.IsScalar()) {
+      spec.default_interpolation = ReadInterpolation(reader, n, key);
+    } else {
+      reader.CheckMap(n, key, info.inputs);
+      for (const auto& item : n) {
+        const std::string input = item.first.as<std::string>();
+        spec.interpolation[input] = ReadInterpolation(reader, item.second, Child(key, input));
+      }
+    }
+  }
+  if (const YAML::Node n = node["weights"]) {
+    spec.output_weights = reader.DoubleMap(n, Child(path, "weights"));
+    CheckNames(reader, n, Child(path, "weights"), Keys(spec.output_weights), info.outputs, "output",
+               info);
+    for (const auto& [output, weight] : spec.output_weights) {
+      if (!(weight >= 0.0))
+        reader.Fail(n[output], Child(Child(path, "weights"), output), "weight must be >= 0");
+    }
+  }
+  if (const YAML::Node n = node["initial_state"]) {
+    spec.initial_state = reader.DoubleMap(n, Child(path, "initial_state"));
+    CheckNames(reader, n, Child(path, "initial_state"), Keys(spec.initial_state), info.states,
+               "state", info);
+  }
+  if (const YAML::Node n = node["degrees"])
+    spec.degree_columns = reader.Strings(n, Child(path, "degrees"));
+  if (const YAML::Node n = node["window"]) {
+    std::vector<double> window = reader.Doubles(n, Child(path, "window"));
+    if (window.size() != 2 || !(window[0] < window[1])) {
+      reader.Fail(n, Child(path, "window"), "expected [t_begin, t_end] with t_begin < t_end");
+    }
+    spec.t_begin = window[0];
+    spec.t_end = window[1];
+  }
+  reader.Read(node, path, "segment_length", &spec.segment_length);
+  if (!(spec.segment_length >= 0.0)) {
+    reader.Fail(node["segment_length"], Child(path, "segment_length"), "must be >= 0");
+  }
+  if (const YAML::Node n = node["segments"]) {
+    const std::string key = Child(path, "segments");
+    reader.CheckMap(n, key, {"column", "take", "validation_share", "seed"});
+    if (!n["column"]) reader.Fail(n, key, "missing key 'column'");
+    SegmentSelection& s = spec.segments;
+    s.column = reader.String(n["column"], Child(key, "column"));
+    if (n["take"] && !StringToTake(reader.String(n["take"], Child(key, "take")), &s.take)) {
+      reader.Fail(n["take"], Child(key, "take"), "expected all, training or validation");
+    }
+    reader.Read(n, key, "validation_share", &s.validation_share);
+    if (!(s.validation_share >= 0.0 && s.validation_share <= 1.0)) {
+      reader.Fail(n["validation_share"], Child(key, "validation_share"), "must be in [0, 1]");
+    }
+    int seed = static_cast<int>(s.seed);
+    reader.Read(n, key, "seed", &seed);
+    s.seed = static_cast<unsigned>(seed);
+    if (spec.segment_length > 0.0) {
+      reader.Fail(n, key, "segments and segment_length cannot be combined");
+    }
+  }
+  //   input_range: {<input>: [lower, upper], ..., min_duration: 10, skip: 0}
+  if (const YAML::Node n = node["input_range"]) {
+    const std::string key = Child(path, "input_range");
+    std::vector<std::string> allowed = info.inputs;
+    allowed.insert(allowed.end(), {"min_duration", "skip"});
+    reader.CheckMap(n, key, allowed);
+    reader.Read(n, key, "min_duration", &spec.input_range_min_duration);
+    reader.Read(n, key, "skip", &spec.input_range_skip);
+    if (!(spec.input_range_min_duration >= 0.0) || !(spec.input_range_skip >= 0.0)) {
+      reader.Fail(n, key, "min_duration and skip must be >= 0");
+    }
+    for (const std::string& input : info.inputs) {
+      if (!n[input]) continue;
+      if (spec.inputs.count(input) == 0) {
+        reader.Fail(n[input], Child(key, input), "input '" + input + "' is not mapped to a column");
+      }
+      const std::vector<double> range = reader.Doubles(n[input], Child(key, input));
+      if (range.size() != 2 || !(range[0] <= range[1])) {
+        reader.Fail(n[input], Child(key, input), "expected [lower, upper] with lower <= upper");
+      }
+      spec.input_range[input] = {range[0], range[1]};
+    }
+    if (spec.input_range.empty()) reader.Fail(n, key, "no input listed");
+  }
+  return spec;
+}
+
+ParameterSpec ReadParameter(const YamlReader& reader, const YAML::Node& node,
+                            const std::string& path, const std::string& name) {
+  ParameterSpec spec;
+  spec.name = name;
+  if (node.IsScalar()) {
+    spec.start = reader.Double(node, path);
+  } else {
+    reader.CheckMap(node, path, {"start", "lower", "upper", "scale", "role"});
+    if (node["start"]) {
+      spec.start = reader.Double(node["start"], Child(path, "start"));
+    } else {
+      spec.start_from_previous = true;
+    }
+    reader.Read(node, path, "lower", &spec.lower);
+    reader.Read(node, path, "upper", &spec.upper);
+    reader.Read(node, path, "scale", &spec.scale);
+    if (node["role"]) {
+      const std::string role = reader.String(node["role"], Child(path, "role"));
+      if (!StringToParameterRole(role, &spec.role)) {
+        reader.Fail(node["role"], Child(path, "role"),
+                    "unknown role '" + role + "' (free, fixed, per_experiment, isolated, shared)");
+      }
+    }
+  }
+  std::string error;
+  if (!spec.IsValid(reader.file(), &error)) {
+    reader.Fail(node, path, error.substr(reader.file().size() + 2));
+  }
+  return spec;
+}
+
+void ReadLocal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+               LocalSolveOptions* local) {
+  reader.CheckMap(node, path,
+                  {"trust_region", "linear_solver", "max_iterations", "function_tolerance",
+                   "gradient_tolerance", "parameter_tolerance", "max_time", "num_threads"});
+  if (node["trust_region"]) {
+    std::string text = reader.String(node["trust_region"], Child(path, "trust_region"));
+    if (!ceres::StringToTrustRegionStrategyType(text, &local->trust_region)) {
+      reader.Fail(node["trust_region"], Child(path, "trust_region"),
+                  "unknown trust region '" + text + "' (levenberg_marquardt, dogleg)");
+    }
+  }
+  if (node["linear_solver"]) {
+    std::string text = reader.String(node["linear_solver"], Child(path, "linear_solver"));
+    ceres::LinearSolverType type;
+    if (ceres::StringToLinearSolverType(text, &type)) {
+      local->linear_solver = type;
+    } else {
+      reader.Fail(node["linear_solver"], Child(path, "linear_solver"),
+                  "unknown linear solver '" + text +
+                      "' (dense_qr, dense_normal_cholesky, sparse_normal_cholesky, dense_schur, "
+                      "sparse_schur, iterative_schur, cgnr)");
+    }
+  }
+  reader.Read(node, path, "max_iterations", &local->max_iterations);
+  reader.Read(node, path, "function_tolerance", &local->function_tolerance);
+  reader.Read(node, path, "gradient_tolerance", &local->gradient_tolerance);
+  reader.Read(node, path, "parameter_tolerance", &local->parameter_tolerance);
+  reader.Read(node, path, "max_time", &local->max_time_seconds);
+  reader.Read(node, path, "num_threads", &local->num_threads);
+  std::string error;
+  if (!local->IsValid(&error)) reader.Fail(node, path, error);
+}
+
+
+//   least_squares: {penalty: none|ridge|lasso, lambda, folds, robust,
+//                   regions: {<state>: [<region>...]}, grid, smoothing: {half_width, order},
+//                   max_profile_evaluations}
+void ReadLeastSquares(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                      const ModelHandle& model, StageConfig* stage) {
+  reader.CheckMap(node, path, {"penalty", "lambda", "folds", "robust", "regions", "grid",
+                               "smoothing", "max_profile_evaluations"});
+  const RegressionForm* form = model.regression_form();
+  const ModelInfo& info = model.info();
+  if (form == nullptr) reader.Fail(node, path, "model " + info.name + " has no equation-error form");
+  LeastSquaresOptions& ls = stage->least_squares;
+  if (node["penalty"]) {
+    const std::string penalty = reader.String(node["penalty"], Child(path, "penalty"));
+    if (penalty == "none") ls.regression.penalty = Penalty::kNone;
+    else if (penalty == "ridge") ls.regression.penalty = Penalty::kRidge;
+    else if (penalty == "lasso") ls.regression.penalty = Penalty::kLasso;
+    else reader.Fail(node["penalty"], Child(path, "penalty"), "expected none, ridge or lasso");
+  }
+  reader.Read(node, path, "lambda", &ls.regression.lambda);
+  reader.Read(node, path, "folds", &ls.regression.folds);
+  if (ls.regression.folds < 2) reader.Fail(node["folds"], Child(path, "folds"), "must be >= 2");
+  reader.Read(node, path, "robust", &ls.regression.robust);
+  reader.Read(node, path, "max_profile_evaluations", &ls.max_profile_evaluations);
+  if (const YAML::Node regions = node["regions"]) {
+    const std::string key = Child(path, "regions");
+    std::vector<std::string> states;
+    for (int s : form->states) states.push_back(info.states[s]);
+    reader.CheckMap(regions, key, states);
+    ls.regions.assign(states.size(), {});
+    for (size_t i = 0; i < states.size(); ++i) {
+      const YAML::Node list = regions[states[i]];
+      if (!list) continue;
+      const std::vector<std::string> names = reader.Strings(list, Child(key, states[i]));
+      for (size_t j = 0; j < names.size(); ++j) {
+        auto found = std::find(form->regions.begin(), form->regions.end(), names[j]);
+        if (found == form->regions.end()) {
+          reader.Fail(list[j], Child(Child(key, states[i]), j),
+                      "unknown region '" + names[j] + "' (" + JoinNames(form->regions) + ")");
+        }
+        ls.regions[i].push_back(static_cast<int>(found - form->regions.begin()));
+      }
+    }
+  }
+  ReadRegressionData(reader, node, path, info, &stage->regression_data);
+}
+
+// The run's model map with the keys of `override` replaced, built by the family.
+std::shared_ptr<const ModelHandle> OverrideModel(const YamlReader& reader, const RunConfig& config,
+                                                 const YAML::Node& base,
+                                                 const YAML::Node& override,
+                                                 const std::string& path) {
+  if (!override.IsMap()) reader.Fail(override, path, "expected a map of model keys");
+  YAML::Node merged = YAML::Clone(base);
+  for (const auto& item : override) {
+    const std::string key = reader.KeyName(item.first, path);
+    if (key == "family") reader.Fail(item.first, Child(path, key), "a stage cannot change the family");
+    merged[key] = item.second;
+  }
+  return config.model_family->make_model(reader, merged, path);
+}
+
+// A list of experiment names at `key`, each one the config defines.
+
+StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                      const RunConfig& config, const YAML::Node& model_node, size_t index) {
+  reader.CheckMap(node, path,
+                  {"name", "type", "least_squares", "step_regression", "model", "experiments",
+                   "validation",
+                   "outputs", "parameters", "free_initial_states", "loss", "integration",
+                   "normalize_by_length", "continuation", "global", "local", "uncertainty"});
+  StageConfig stage;
+  if (node["model"]) {
+    stage.model = OverrideModel(reader, config, model_node, node["model"], Child(path, "model"));
+  }
+  const ModelInfo& info = stage.model ? stage.model->info() : config.model->info();
+  stage.options.name = "stage" + std::to_string(index + 1);
+  reader.Read(node, path, "name", &stage.options.name);
+  if (node["experiments"]) {
+    stage.experiments =
+        ExperimentNames(reader, node["experiments"], Child(path, "experiments"), config);
+  } else {
+    for (const ExperimentSpec& e : config.experiments) stage.experiments.push_back(e.name);
+  }
+  if (stage.experiments.empty()) reader.Fail(node, path, "stage has no experiments");
+  if (node["validation"]) {
+    stage.validation =
+        ExperimentNames(reader, node["validation"], Child(path, "validation"), config);
+  }
+  if (node["outputs"]) {
+    stage.experiment.outputs = reader.Strings(node["outputs"], Child(path, "outputs"));
+    CheckNames(reader, node["outputs"], Child(path, "outputs"), stage.experiment.outputs,
+               info.outputs, "output", info);
+  }
+  const std::string type =
+      node["type"] ? reader.String(node["type"], Child(path, "type")) : "output_error";
+  if (type == "least_squares") {
+    stage.kind = StageConfig::Kind::kLeastSquares;
+  } else if (type == "step_regression") {
+    stage.kind = StageConfig::Kind::kStepRegression;
+  } else if (type != "output_error") {
+    reader.Fail(node["type"], Child(path, "type"),
+                "unknown stage type '" + type + "' (output_error, least_squares, step_regression)");
+  }
+  if (stage.kind == StageConfig::Kind::kStepRegression &&
+      (stage.model ? *stage.model : *config.model).damping_inertia_form() == nullptr) {
+    reader.Fail(node["type"], Child(path, "type"),
+                "model " + info.name + " has no damping-inertia form for a step-regression stage");
+  }
+  // A step-regression stage estimates every parameter of the damping-inertia form and holds
+  // the rest, so it lists none.
+  const bool lists_parameters = stage.kind != StageConfig::Kind::kStepRegression;
+  if (!lists_parameters && node["parameters"]) {
+    reader.Fail(node["parameters"], Child(path, "parameters"),
+                "a step-regression stage estimates every damping and inertia parameter; list none");
+  }
+  if (lists_parameters && !node["parameters"]) {
+    reader.Fail(node, path, "missing key 'parameters'");
+  }
+  const YAML::Node parameters = lists_parameters ? node["parameters"] : YAML::Node(YAML::NodeType::Map);
+  reader.CheckMap(parameters, Child(path, "parameters"), info.parameters);
+  for (const auto& item : parameters) {
+    const std::string name = item.first.as<std::string>();
+    stage.parameters.push_back(
+        ReadParameter(reader, item.second, Child(Child(path, "parameters"), name), name));
+  }
+  if (node["free_initial_states"]) {
+    const std::string key = Child(path, "free_initial_states");
+    stage.problem.free_initial_states = reader.Strings(node["free_initial_states"], key);
+    CheckNames(reader, node["free_initial_states"], key, stage.problem.free_initial_states,
+               info.states, "state", info);
+  }
+  if (const YAML::Node continuation = node["continuation"]) {
+    const std::string key = Child(path, "continuation");
+    stage.continuation = reader.Doubles(continuation, key);
+    for (size_t i = 0; i < stage.continuation.size(); ++i) {
+      const bool increasing = i == 0 || stage.continuation[i] > stage.continuation[i - 1];
+      if (!(stage.continuation[i] > 0.0) || !increasing) {
+        reader.Fail(continuation[i], Child(key, i), "segment lengths must be > 0 and increasing");
+      }
+    }
+  }
+  if (const YAML::Node loss = node["loss"]) {
+    reader.CheckMap(loss, Child(path, "loss"), {"type", "scale"});
+    reader.Read(loss, Child(path, "loss"), "type", &stage.problem.loss);
+    reader.Read(loss, Child(path, "loss"), "scale", &stage.problem.loss_scale);
+    const std::string& t = stage.problem.loss;
+    if (t != "none" && t != "huber" && t != "cauchy" && t != "soft_l1" && t != "arctan") {
+      reader.Fail(loss["type"], Child(path, "loss.type"),
+                  "unknown loss '" + t + "' (none, huber, cauchy, soft_l1, arctan)");
+    }
+    if (!(stage.problem.loss_scale > 0))
+      reader.Fail(loss, Child(path, "loss.scale"), "must be > 0");
+  }
+  if (const YAML::Node integration = node["integration"]) {
+    reader.CheckMap(integration, Child(path, "integration"), {"max_step"});
+    reader.Read(integration, Child(path, "integration"), "max_step", &stage.experiment.max_step);
+    if (!(stage.experiment.max_step >= 0)) {
+      reader.Fail(integration, Child(path, "integration.max_step"), "must be >= 0");
+    }
+  }
+  reader.Read(node, path, "normalize_by_length", &stage.experiment.normalize_by_length);
+  if (node["global"]) {
+    stage.options.use_global_start = true;
+    ReadGlobal(reader, node["global"], Child(path, "global"), &stage.options.global);
+  }
+  if (node["local"]) ReadLocal(reader, node["local"], Child(path, "local"), &stage.options.local);
+  reader.Read(node, path, "uncertainty", &stage.options.compute_uncertainty);
+  const ModelHandle& model = stage.model ? *stage.model : *config.model;
+  if (const YAML::Node ls = node["least_squares"]) {
+    ReadLeastSquares(reader, ls, Child(path, "least_squares"), model, &stage);
+  }
+  if (const YAML::Node sr = node["step_regression"]) {
+    if (stage.kind != StageConfig::Kind::kStepRegression) {
+      reader.Fail(sr, Child(path, "step_regression"), "only for stages of type step_regression");
+    }
+  }
+  if (stage.kind == StageConfig::Kind::kStepRegression) {
+    ReadStepRegression(reader, node["step_regression"], Child(path, "step_regression"), model,
+                       &stage);
+    for (const char* key : {"loss", "continuation", "global", "least_squares",
+                            "free_initial_states", "normalize_by_length", "integration"}) {
+      if (node[key]) reader.Fail(node[key], Child(path, key), "not used by a step-regression stage");
+    }
+  }
+  if (stage.kind == StageConfig::Kind::kLeastSquares) {
+    if (model.regression_form() == nullptr) {
+      reader.Fail(node["type"], Child(path, "type"),
+                  "model " + info.name + " has no equation-error form for a least-squares stage");
+    }
+    for (const char* key : {"loss", "continuation", "global"}) {
+      if (node[key]) reader.Fail(node[key], Child(path, key), "not used by a least-squares stage");
+    }
+  }
+  return stage;
+}
+
+
+}  // namespace
+
+const ExperimentSpec* RunConfig::FindExperiment(const std::string& name) const {
+  for (const ExperimentSpec& e : experiments) {
+    if (e.name == name) return &e;
+  }
+  return nullptr;
+}
+
+bool LoadRunConfig(const std::string& path, const std::string& data_dir,
+                   const ModelRegistry& registry, RunConfig* config, std::string* error) {
+  YamlReader reader(path);
+  try {
+    const YAML::Node root = reader.Load();
+    reader.CheckMap(root, "", {"description", "model", "simulation", "experiments", "stages",
+                               "fusion", "final_validation", "surfaces", "study"});
+    RunConfig result;
+    result.path = path;
+    reader.Read(root, "", "description", &result.description);
+    const YAML::Node model = root["model"];
+    if (!model) reader.Fail(root, "model", "missing key");
+    if (!model.IsMap() || !model["family"])
+      reader.Fail(model, "model", "expected a map with 'family'");
+    result.family = reader.String(model["family"], "model.family");
+    result.model_family = registry.Find(result.family);
+    if (result.model_family == nullptr) {
+      reader.Fail(
+          model["family"], "model.family",
+          "unknown model family '" + result.family + "' (" + JoinNames(registry.Names()) + ")");
+    }
+    result.model = result.model_family->make_model(reader, model, "model");
+    const ModelInfo& info = result.model->info();
+    if (root["simulation"]) result.simulation = root["simulation"];
+
+    const fs::path base = data_dir.empty() ? fs::path(path).parent_path() : fs::path(data_dir);
+    const YAML::Node experiments = root["experiments"];
+    if (!experiments) reader.Fail(root, "experiments", "missing key");
+    reader.CheckSequence(experiments, "experiments");
+    for (size_t i = 0; i < experiments.size(); ++i) {
+      ExperimentSpec spec =
+          ReadExperiment(reader, experiments[i], Child("experiments", i), base, info);
+      if (result.FindExperiment(spec.name) != nullptr) {
+        reader.Fail(experiments[i]["name"], Child(Child("experiments", i), "name"),
+                    "duplicate experiment name '" + spec.name + "'");
+      }
+      result.experiments.push_back(std::move(spec));
+    }
+    const YAML::Node stages = root["stages"];
+    if (!stages) reader.Fail(root, "stages", "missing key");
+    reader.CheckSequence(stages, "stages");
+    if (stages.size() == 0) reader.Fail(stages, "stages", "at least one stage is needed");
+    for (size_t i = 0; i < stages.size(); ++i) {
+      result.stages.push_back(ReadStage(reader, stages[i], Child("stages", i), result, model, i));
+    }
+    if (const YAML::Node fusion = root["fusion"]) {
+      const std::string rule = reader.String(fusion, "fusion");
+      if (!StringToFusionRule(rule, &result.fusion)) {
+        reader.Fail(fusion, "fusion",
+                    "unknown rule '" + rule + "' (inverse_variance, mean, information)");
+      }
+    }
+    if (const YAML::Node final = root["final_validation"]) {
+      reader.CheckMap(final, "final_validation",
+                      {"experiments", "outputs", "model", "free_initial_states"});
+      FinalValidationConfig& v = result.final_validation;
+      result.has_final_validation = true;
+      if (final["model"]) {
+        v.model = OverrideModel(reader, result, model, final["model"], "final_validation.model");
+      }
+      const ModelInfo& final_info = v.model ? v.model->info() : info;
+      if (!final["experiments"]) reader.Fail(final, "final_validation", "missing key 'experiments'");
+      v.experiments =
+          ExperimentNames(reader, final["experiments"], "final_validation.experiments", result);
+      if (final["outputs"]) {
+        v.experiment.outputs = reader.Strings(final["outputs"], "final_validation.outputs");
+        CheckNames(reader, final["outputs"], "final_validation.outputs", v.experiment.outputs,
+                   final_info.outputs, "output", final_info);
+      }
+      if (final["free_initial_states"]) {
+        const std::string key = "final_validation.free_initial_states";
+        v.free_initial_states = reader.Strings(final["free_initial_states"], key);
+        CheckNames(reader, final["free_initial_states"], key, v.free_initial_states,
+                   final_info.states, "state", final_info);
+      }
+    }
+    if (const YAML::Node surfaces = root["surfaces"]) {
+      result.surfaces = ReadSurfaces(reader, surfaces, *result.model);
+    }
+    if (const YAML::Node study = root["study"]) {
+      result.study = ReadStudy(reader, study, result);
+    }
+    *config = std::move(result);
+    return true;
+  } catch (const ConfigError& e) {
+    *error = e.what();
+    return false;
+  } catch (const YAML::Exception& e) {
+    *error = path + (e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1)) + ": " + e.msg;
+    return false;
+  }
+}
+
+}  // namespace vesselid

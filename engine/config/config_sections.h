@@ -1,0 +1,42 @@
+// Readers of config sections shared by the files that parse a run config (config.cc,
+// study_config.cc). Each fails through YamlReader with the file, line and key.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/config/config.h"
+#include "engine/config/yaml_reader.h"
+
+namespace vesselid {
+
+// `global: {algorithm, max_evaluations, max_time, seed, population, candidates,
+// min_separation}` over the values already in `global`.
+void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                GlobalStartOptions* global);
+
+// A list of experiment names, each configured.
+std::vector<std::string> ExperimentNames(const YamlReader& reader, const YAML::Node& node,
+                                         const std::string& key, const RunConfig& config);
+
+// Fails unless every name is in `known` (a model's `kind` names, e.g. outputs).
+void CheckNames(const YamlReader& reader, const YAML::Node& node, const std::string& key,
+                const std::vector<std::string>& names, const std::vector<std::string>& known,
+                const std::string& kind, const ModelInfo& info);
+
+// `grid` and `smoothing` keys of a regression stage's map (regression_data.h).
+void ReadRegressionData(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                        const ModelInfo& info, RegressionDataOptions* data);
+
+// The `step_regression` map of a step-regression stage (step_regression_config.cc).
+void ReadStepRegression(const YamlReader& reader, const YAML::Node& node,
+                        const std::string& path, const ModelHandle& model, StageConfig* stage);
+
+// `surfaces: {<state>: [lower, upper, points], ...}` for both regressed states of the model's
+// damping-inertia form.
+SurfaceGrid ReadSurfaces(const YamlReader& reader, const YAML::Node& node, const ModelHandle& model);
+
+// The `study` section (study_options.h).
+StudyConfig ReadStudy(const YamlReader& reader, const YAML::Node& node, const RunConfig& config);
+
+}  // namespace vesselid

@@ -1,0 +1,39 @@
+// The model families a run can name in its `model.family` key. Each family builds its model
+// from the config's `model` map and can simulate the experiments of its `simulation` map.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/model/model_handle.h"
+#include "engine/config/yaml_reader.h"
+
+namespace vesselid {
+
+struct ModelFamily {
+  std::string name;
+  std::string description;
+  // Builds the model from the `model` map at `path`; config errors are thrown as ConfigError.
+  std::function<std::unique_ptr<ModelHandle>(const YamlReader& reader, const YAML::Node& model,
+                                             const std::string& path)>
+      make_model;
+  // Writes the experiments described by the `simulation` map as CSV files into out_dir.
+  // Config errors are thrown as ConfigError; I/O errors are returned.
+  std::function<bool(const YamlReader& reader, const YAML::Node& simulation,
+                     const ModelHandle& model, const std::string& out_dir, std::string* error)>
+      simulate;
+};
+
+class ModelRegistry {
+ public:
+  void Register(ModelFamily family) { families_.push_back(std::move(family)); }
+  const ModelFamily* Find(const std::string& name) const;
+  std::vector<std::string> Names() const;
+
+ private:
+  std::vector<ModelFamily> families_;
+};
+
+}  // namespace vesselid

@@ -1,0 +1,283 @@
+// The config's `study` section (study_options.h), checked against the run's stages and model.
+#include <algorithm>
+
+#include "engine/config/config_sections.h"
+
+namespace vesselid {
+namespace {
+
+const char* KindName(StageConfig::Kind kind) {
+  switch (kind) {
+    case StageConfig::Kind::kOutputError: return "output_error";
+    case StageConfig::Kind::kLeastSquares: return "least_squares";
+    case StageConfig::Kind::kStepRegression: return "step_regression";
+  }
+  return "";
+}
+
+// The stage the name at `n` (key `key`) names, which must be of the required kind.
+const StageConfig& NamedStage(const YamlReader& reader, const YAML::Node& n,
+                              const std::string& key, const RunConfig& config,
+                              StageConfig::Kind kind) {
+  const std::string name = reader.String(n, key);
+  const StageConfig* found = nullptr;
+  for (const StageConfig& s : config.stages) {
+    if (s.options.name == name) found = &s;
+  }
+  if (found == nullptr) reader.Fail(n, key, "no stage named '" + name + "'");
+  if (found->kind != kind) {
+    reader.Fail(n, key, "stage '" + name + "' is not a " + KindName(kind) + " stage");
+  }
+  return *found;
+}
+
+// The stage a part studies: `stage` if given (of the required kind), else the last such one.
+const StageConfig& StudiedStage(const YamlReader& reader, const YAML::Node& node,
+                                const std::string& path, const RunConfig& config,
+                                StageConfig::Kind kind, std::string* name) {
+  if (const YAML::Node n = node["stage"]) {
+    const StageConfig& stage = NamedStage(reader, n, Child(path, "stage"), config, kind);
+    *name = stage.options.name;
+    return stage;
+  }
+  const StageConfig* found = nullptr;
+  for (const StageConfig& s : config.stages) {
+    if (s.kind == kind) found = &s;
+  }
+  if (found == nullptr) {
+    reader.Fail(node, path, std::string("the run has no ") + KindName(kind) + " stage to study");
+  }
+  return *found;
+}
+
+const ModelHandle& StageModel(const StageConfig& stage, const RunConfig& config) {
+  return stage.model ? *stage.model : *config.model;
+}
+
+double Confidence(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                  double value) {
+  reader.Read(node, path, "confidence", &value);
+  if (!(value > 0.0 && value < 1.0)) {
+    reader.Fail(node["confidence"], Child(path, "confidence"), "must be in (0, 1)");
+  }
+  return value;
+}
+
+int Positive(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+             const std::string& key, int value) {
+  reader.Read(node, path, key, &value);
+  if (value < 1) reader.Fail(node[key], Child(path, key), "must be >= 1");
+  return value;
+}
+
+//   profile: {stage | stages, parameters, points, span, confidence}
+ProfileOptions ReadProfile(const YamlReader& reader, const YAML::Node& node,
+                           const RunConfig& config) {
+  const std::string path = "study.profile";
+  reader.CheckMap(node, path, {"stage", "stages", "parameters", "points", "span", "confidence"});
+  ProfileOptions profile;
+  if (node["stage"] && node["stages"]) {
+    reader.Fail(node["stages"], Child(path, "stages"), "give stage or stages, not both");
+  }
+  std::vector<const StageConfig*> stages;
+  if (const YAML::Node n = node["stages"]) {
+    profile.stages = reader.Strings(n, Child(path, "stages"));
+    for (size_t i = 0; i < profile.stages.size(); ++i) {
+      stages.push_back(&NamedStage(reader, n[i], Child(Child(path, "stages"), i), config,
+                                   StageConfig::Kind::kOutputError));
+    }
+  } else {
+    std::string name;
+    stages.push_back(
+        &StudiedStage(reader, node, path, config, StageConfig::Kind::kOutputError, &name));
+    if (node["stage"]) profile.stages.push_back(name);
+  }
+  if (const YAML::Node n = node["parameters"]) {
+    profile.parameters = reader.Strings(n, Child(path, "parameters"));
+    for (const StageConfig* stage : stages) {
+      for (size_t i = 0; i < profile.parameters.size(); ++i) {
+        bool free = false;
+        for (const ParameterSpec& spec : stage->parameters) {
+          free |= spec.name == profile.parameters[i] && IsEstimatedOnce(spec.role);
+        }
+        if (!free) {
+          reader.Fail(n[i], Child(Child(path, "parameters"), i),
+                      "'" + profile.parameters[i] + "' is not a free parameter of stage '" +
+                          stage->options.name + "'");
+        }
+      }
+    }
+  }
+  profile.points = Positive(reader, node, path, "points", profile.points);
+  if (profile.points < 3 || profile.points % 2 == 0) {
+    reader.Fail(node["points"], Child(path, "points"),
+                "must be odd and >= 3 (the optimum is the middle point)");
+  }
+  reader.Read(node, path, "span", &profile.span);
+  if (!(profile.span > 0.0)) reader.Fail(node["span"], Child(path, "span"), "must be > 0");
+  profile.confidence = Confidence(reader, node, path, profile.confidence);
+  return profile;
+}
+
+//   monte_carlo: {stage, runs, noise: {<output>: sd}, truth: {<parameter>: value},
+//                 start: stage|truth, confidence}
+MonteCarloOptions ReadMonteCarlo(const YamlReader& reader, const YAML::Node& node,
+                                 const RunConfig& config) {
+  const std::string path = "study.monte_carlo";
+  reader.CheckMap(node, path, {"stage", "runs", "noise", "truth", "start", "confidence"});
+  MonteCarloOptions mc;
+  const StageConfig& stage =
+      StudiedStage(reader, node, path, config, StageConfig::Kind::kOutputError, &mc.stage);
+  const ModelInfo& info = StageModel(stage, config).info();
+  mc.runs = Positive(reader, node, path, "runs", mc.runs);
+  if (!node["noise"]) reader.Fail(node, path, "missing key 'noise' ({<output>: sd})");
+  mc.noise = reader.DoubleMap(node["noise"], Child(path, "noise"));
+  for (const auto& [name, sd] : mc.noise) {
+    if (info.OutputIndex(name) < 0) {
+      reader.Fail(node["noise"], Child(Child(path, "noise"), name),
+                  "unknown output '" + name + "' (model " + info.name + " has " +
+                      JoinNames(info.outputs) + ")");
+    }
+    if (!(sd >= 0.0)) {
+      reader.Fail(node["noise"], Child(Child(path, "noise"), name), "must be >= 0");
+    }
+  }
+  // The truth: study's own, else the simulation's (the parameters the data were made with).
+  // (Copy-constructed once: YAML::Node's operator= would write through to the node.)
+  const bool simulated =
+      !node["truth"] && config.simulation.IsMap() && config.simulation["truth"];
+  const YAML::Node truth = simulated ? config.simulation["truth"] : node["truth"];
+  const std::string truth_path = simulated ? "simulation.truth" : Child(path, "truth");
+  if (!truth) reader.Fail(node, path, "missing key 'truth' (and no simulation.truth)");
+  mc.truth = reader.DoubleMap(truth, truth_path);
+  for (const auto& [name, value] : mc.truth) {
+    if (info.ParameterIndex(name) < 0) {
+      reader.Fail(truth, Child(truth_path, name),
+                  "unknown parameter '" + name + "' (model " + info.name + ")");
+    }
+  }
+  for (const ParameterSpec& spec : stage.parameters) {
+    if (IsEstimatedOnce(spec.role) && mc.truth.count(spec.name) == 0) {
+      reader.Fail(truth, truth_path, "no value for free parameter '" + spec.name + "'");
+    }
+  }
+  if (const YAML::Node n = node["start"]) {
+    const std::string start = reader.String(n, Child(path, "start"));
+    if (start != "stage" && start != "truth") {
+      reader.Fail(n, Child(path, "start"), "expected stage or truth, got '" + start + "'");
+    }
+    mc.start_at_truth = start == "truth";
+  }
+  mc.confidence = Confidence(reader, node, path, mc.confidence);
+  return mc;
+}
+
+//   starts: {stage, runs, sampling: uniform|log, global: {...}, tolerance}
+StartPointOptions ReadStarts(const YamlReader& reader, const YAML::Node& node,
+                             const RunConfig& config) {
+  const std::string path = "study.starts";
+  reader.CheckMap(node, path, {"stage", "runs", "sampling", "global", "tolerance"});
+  StartPointOptions starts;
+  const StageConfig& stage =
+      StudiedStage(reader, node, path, config, StageConfig::Kind::kOutputError, &starts.stage);
+  starts.runs = Positive(reader, node, path, "runs", starts.runs);
+  if (const YAML::Node n = node["sampling"]) {
+    const std::string sampling = reader.String(n, Child(path, "sampling"));
+    if (sampling != "uniform" && sampling != "log") {
+      reader.Fail(n, Child(path, "sampling"), "expected uniform or log, got '" + sampling + "'");
+    }
+    starts.log_sampling = sampling == "log";
+  }
+  starts.global = stage.options.global;
+  if (const YAML::Node n = node["global"]) {
+    ReadGlobal(reader, n, Child(path, "global"), &starts.global);
+    starts.global_given = true;
+  }
+  reader.Read(node, path, "tolerance", &starts.tolerance);
+  if (!(starts.tolerance > 0.0)) {
+    reader.Fail(node["tolerance"], Child(path, "tolerance"), "must be > 0");
+  }
+  return starts;
+}
+
+//   partitions: {stage, experiments, repetitions, validation_share, training_shares, methods}
+StudyOptions ReadPartitions(const YamlReader& reader, const YAML::Node& node,
+                            const RunConfig& config) {
+  const std::string path = "study.partitions";
+  reader.CheckMap(node, path,
+                  {"stage", "experiments", "repetitions", "validation_share", "training_shares",
+                   "methods"});
+  StudyOptions study;
+  // Any stage: a least-squares or an output-error one (partition_study.h).
+  if (const YAML::Node n = node["stage"]) {
+    study.stage = reader.String(n, Child(path, "stage"));
+    if (PartitionStudyStage(config, study.stage) == nullptr) {
+      reader.Fail(n, Child(path, "stage"), "no stage named '" + study.stage + "'");
+    }
+  } else if (PartitionStudyStage(config, "") == nullptr) {
+    reader.Fail(node, path, "the run has no stage to study");
+  }
+  if (node["experiments"]) {
+    study.experiments =
+        ExperimentNames(reader, node["experiments"], Child(path, "experiments"), config);
+  }
+  study.partitions = Positive(reader, node, path, "repetitions", study.partitions);
+  reader.Read(node, path, "validation_share", &study.validation_share);
+  if (!(study.validation_share > 0.0 && study.validation_share < 1.0)) {
+    reader.Fail(node["validation_share"], Child(path, "validation_share"), "must be in (0, 1)");
+  }
+  if (const YAML::Node n = node["training_shares"]) {
+    study.training_shares = reader.Doubles(n, Child(path, "training_shares"));
+    for (size_t i = 0; i < study.training_shares.size(); ++i) {
+      const double share = study.training_shares[i];
+      if (!(share > 0.0 && study.validation_share + share <= 1.0 + 1e-9)) {
+        reader.Fail(n[i], Child(Child(path, "training_shares"), i),
+                    "must be > 0 with validation_share + share <= 1");
+      }
+    }
+  }
+  if (const YAML::Node n = node["methods"]) {
+    study.methods = reader.Strings(n, Child(path, "methods"));
+    if (study.methods.empty()) {
+      reader.Fail(n, Child(path, "methods"), "expected segments and/or points");
+    }
+    for (size_t i = 0; i < study.methods.size(); ++i) {
+      if (study.methods[i] != "segments" && study.methods[i] != "points") {
+        reader.Fail(n[i], Child(Child(path, "methods"), i),
+                    "unknown method '" + study.methods[i] + "' (segments, points)");
+      }
+    }
+  }
+  std::string error;
+  if (!study.IsValid(&error)) reader.Fail(node, path, error);
+  return study;
+}
+
+}  // namespace
+
+//   study: {seed, threads, profile, monte_carlo, starts, partitions}
+StudyConfig ReadStudy(const YamlReader& reader, const YAML::Node& node, const RunConfig& config) {
+  const std::string path = "study";
+  reader.CheckMap(node, path,
+                  {"seed", "threads", "profile", "monte_carlo", "starts", "partitions"});
+  StudyConfig study;
+  int seed = static_cast<int>(study.seed);
+  reader.Read(node, path, "seed", &seed);
+  if (seed < 0) reader.Fail(node["seed"], Child(path, "seed"), "must be >= 0");
+  study.seed = static_cast<unsigned>(seed);
+  reader.Read(node, path, "threads", &study.execution.threads);
+  if (study.execution.threads < 0) {
+    reader.Fail(node["threads"], Child(path, "threads"), "must be >= 0 (0: every core)");
+  }
+  if (const YAML::Node n = node["profile"]) study.profile = ReadProfile(reader, n, config);
+  if (const YAML::Node n = node["monte_carlo"]) {
+    study.monte_carlo = ReadMonteCarlo(reader, n, config);
+  }
+  if (const YAML::Node n = node["starts"]) study.starts = ReadStarts(reader, n, config);
+  if (const YAML::Node n = node["partitions"]) {
+    study.partitions = ReadPartitions(reader, n, config);
+  }
+  return study;
+}
+
+}  // namespace vesselid

@@ -1,0 +1,151 @@
+#include "engine/config/yaml_reader.h"
+
+#include <cmath>
+
+#include "engine/base/number_text.h"
+#include "yaml-cpp/depthguard.h"
+
+namespace vesselid {
+
+YAML::Node YamlReader::Load() const {
+  try {
+    return YAML::LoadFile(file_);
+  } catch (const YAML::BadFile&) {
+    throw ConfigError(file_ + ": cannot open file");
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp's own message for this is "bad file".
+    throw ConfigError(file_ + ":" + std::to_string(e.mark.line + 1) +
+                      ": YAML syntax error: lists or maps nested too deeply");
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(file_ + ":" + std::to_string(e.mark.line + 1) +
+                      ": YAML syntax error: " + e.msg);
+  }
+}
+
+void YamlReader::Fail(const YAML::Node& node, const std::string& key,
+                      const std::string& what) const {
+  std::string where = file_;
+  if (node.IsDefined() && node.Mark().line >= 0)
+    where += ":" + std::to_string(node.Mark().line + 1);
+  // An empty key is the top level of the file.
+  throw ConfigError(where + ": " + (key.empty() ? "" : key + ": ") + what);
+}
+
+std::string YamlReader::KeyName(const YAML::Node& name, const std::string& key) const {
+  // as<std::string>() would throw "bad conversion", naming neither the key nor the map.
+  if (!name.IsScalar() && !name.IsNull()) {
+    Fail(name, key, "a key must be a name, not a list or map");
+  }
+  return name.as<std::string>();
+}
+
+void YamlReader::CheckMap(const YAML::Node& node, const std::string& key,
+                          const std::vector<std::string>& allowed) const {
+  if (!node.IsMap()) Fail(node, key, "expected a map");
+  for (const auto& item : node) {
+    const std::string name = KeyName(item.first, key);
+    bool known = false;
+    for (const std::string& a : allowed) known = known || a == name;
+    if (!known) {
+      std::string list;
+      for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      Fail(item.first, Child(key, name), "unknown key (allowed: " + list + ")");
+    }
+  }
+}
+
+void YamlReader::CheckSequence(const YAML::Node& node, const std::string& key) const {
+  if (!node.IsSequence()) Fail(node, key, "expected a list");
+}
+
+double YamlReader::Double(const YAML::Node& node, const std::string& key) const {
+  if (!node.IsScalar()) Fail(node, key, "expected a number");
+  const std::string text = node.Scalar();
+  if (text == "inf" || text == "+inf" || text == ".inf") return INFINITY;
+  if (text == "-inf" || text == "-.inf") return -INFINITY;
+  double value;
+  if (ParseFiniteNumber(text, &value)) return value;
+  Fail(node, key, "'" + text + "' is not a finite number");
+}
+
+int YamlReader::Int(const YAML::Node& node, const std::string& key) const {
+  if (!node.IsScalar()) Fail(node, key, "expected an integer");
+  try {
+    size_t used = 0;
+    long value = std::stol(node.Scalar(), &used);
+    if (used == node.Scalar().size() && value >= INT32_MIN && value <= INT32_MAX) {
+      return static_cast<int>(value);
+    }
+  } catch (const std::exception&) {
+  }
+  Fail(node, key, "'" + node.Scalar() + "' is not an integer");
+}
+
+bool YamlReader::Bool(const YAML::Node& node, const std::string& key) const {
+  if (node.IsScalar()) {
+    const std::string& text = node.Scalar();
+    if (text == "true" || text == "yes" || text == "on") return true;
+    if (text == "false" || text == "no" || text == "off") return false;
+  }
+  Fail(node, key, "expected true or false");
+}
+
+std::string YamlReader::String(const YAML::Node& node, const std::string& key) const {
+  if (!node.IsScalar()) Fail(node, key, "expected a string");
+  return node.Scalar();
+}
+
+std::vector<std::string> YamlReader::Strings(const YAML::Node& node, const std::string& key) const {
+  CheckSequence(node, key);
+  std::vector<std::string> values;
+  for (size_t i = 0; i < node.size(); ++i) values.push_back(String(node[i], Child(key, i)));
+  return values;
+}
+
+std::vector<double> YamlReader::Doubles(const YAML::Node& node, const std::string& key) const {
+  CheckSequence(node, key);
+  std::vector<double> values;
+  for (size_t i = 0; i < node.size(); ++i) values.push_back(Double(node[i], Child(key, i)));
+  return values;
+}
+
+std::map<std::string, std::string> YamlReader::StringMap(const YAML::Node& node,
+                                                         const std::string& key) const {
+  if (!node.IsMap()) Fail(node, key, "expected a map");
+  std::map<std::string, std::string> values;
+  for (const auto& item : node) {
+    const std::string name = KeyName(item.first, key);
+    values[name] = String(item.second, Child(key, name));
+  }
+  return values;
+}
+
+std::map<std::string, double> YamlReader::DoubleMap(const YAML::Node& node,
+                                                    const std::string& key) const {
+  if (!node.IsMap()) Fail(node, key, "expected a map");
+  std::map<std::string, double> values;
+  for (const auto& item : node) {
+    const std::string name = KeyName(item.first, key);
+    values[name] = Double(item.second, Child(key, name));
+  }
+  return values;
+}
+
+void YamlReader::Read(const YAML::Node& map, const std::string& path, const std::string& name,
+                      double* out) const {
+  if (map[name]) *out = Double(map[name], Child(path, name));
+}
+void YamlReader::Read(const YAML::Node& map, const std::string& path, const std::string& name,
+                      int* out) const {
+  if (map[name]) *out = Int(map[name], Child(path, name));
+}
+void YamlReader::Read(const YAML::Node& map, const std::string& path, const std::string& name,
+                      bool* out) const {
+  if (map[name]) *out = Bool(map[name], Child(path, name));
+}
+void YamlReader::Read(const YAML::Node& map, const std::string& path, const std::string& name,
+                      std::string* out) const {
+  if (map[name]) *out = String(map[name], Child(path, name));
+}
+
+}  // namespace vesselid

@@ -1,0 +1,201 @@
+#include "engine/model/experiment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "engine/data/record_start.h"
+
+namespace vesselid {
+namespace {
+
+constexpr double kTimeTolerance = 1e-9;
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+}  // namespace
+
+bool LoadExperimentData(const ExperimentSpec& spec, Trajectory* trajectory, std::string* error) {
+  if (!ReadTrajectoryCsv(spec.file, trajectory, error)) return false;
+  for (const std::string& column : spec.degree_columns) {
+    int c = trajectory->Find(column);
+    if (c < 0) {
+      *error = spec.file + ": no column '" + column + "' (listed in experiment '" + spec.name +
+               "' degrees)";
+      return false;
+    }
+    for (double& v : trajectory->columns[c]) v *= M_PI / 180.0;
+  }
+  return true;
+}
+
+bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
+                     const ModelInfo& info, const ExperimentOptions& options,
+                     Experiment* experiment, std::string* error) {
+  auto fail = [&](const std::string& what) {
+    *error = "experiment '" + spec.name + "' (" + trajectory.source + "): " + what;
+    return false;
+  };
+  Experiment e;
+  e.name = spec.name;
+  e.num_inputs = static_cast<int>(info.inputs.size());
+  const double t0 = std::max(spec.t_begin, trajectory.t.front());
+  const double t_end = std::min(spec.t_end, trajectory.t.back());
+  if (!(t_end > t0)) return fail("empty time window");
+
+  // Selected outputs and their channels.
+  std::vector<std::string> selected = options.outputs;
+  if (selected.empty()) {
+    for (const auto& [output, column] : spec.outputs) selected.push_back(output);
+  }
+  if (selected.empty()) return fail("no outputs mapped to columns");
+  struct OutputChannel {
+    int output;
+    double weight;
+    Channel channel;
+  };
+  std::vector<OutputChannel> channels;
+  for (const std::string& output : selected) {
+    int index = info.OutputIndex(output);
+    if (index < 0) {
+      return fail("unknown output '" + output + "' (model " + info.name + " has " +
+                  JoinNames(info.outputs) + ")");
+    }
+    auto mapped = spec.outputs.find(output);
+    if (mapped == spec.outputs.end())
+      return fail("output '" + output + "' is not mapped to a column");
+    int column = trajectory.Find(mapped->second);
+    if (column < 0) return fail("no column '" + mapped->second + "' for output '" + output + "'");
+    auto weight = spec.output_weights.find(output);
+    OutputChannel oc{index, weight == spec.output_weights.end() ? 1.0 : weight->second,
+                     ExtractChannel(trajectory, column)};
+    if (oc.channel.t.empty()) return fail("column '" + mapped->second + "' has no samples");
+    channels.push_back(std::move(oc));
+  }
+
+  // Nodes: t0 and every output sample time inside the window.
+  std::vector<double> times{t0};
+  for (const OutputChannel& oc : channels) {
+    for (double t : oc.channel.t) {
+      if (t >= t0 - kTimeTolerance && t <= t_end + kTimeTolerance) times.push_back(t);
+    }
+  }
+  std::sort(times.begin(), times.end());
+  for (double t : times) {
+    if (e.node_time.empty() || t - e.node_time.back() > kTimeTolerance) e.node_time.push_back(t);
+  }
+  const int nodes = e.num_nodes();
+  if (nodes < 2) return fail("fewer than two sample times in the window");
+
+  // Samples grouped by node.
+  std::vector<std::vector<ExperimentSample>> by_node(nodes);
+  e.output_sample_count.assign(info.outputs.size(), 0);
+  for (const OutputChannel& oc : channels) {
+    size_t k = 0;
+    for (size_t i = 0; i < oc.channel.t.size(); ++i) {
+      const double t = oc.channel.t[i];
+      if (t < t0 - kTimeTolerance || t > t_end + kTimeTolerance) continue;
+      while (e.node_time[k] < t - kTimeTolerance) ++k;
+      by_node[k].push_back({oc.output, oc.channel.value[i], oc.weight});
+      ++e.output_sample_count[oc.output];
+    }
+  }
+  for (int k = 0; k < nodes; ++k) {
+    e.node_first_sample.push_back(e.num_samples());
+    e.samples.insert(e.samples.end(), by_node[k].begin(), by_node[k].end());
+  }
+  e.node_first_sample.push_back(e.num_samples());
+  if (options.normalize_by_length) {
+    const double scale = 1.0 / std::sqrt(static_cast<double>(e.num_samples()));
+    for (ExperimentSample& s : e.samples) s.weight *= scale;
+  }
+
+  // Step sizes.
+  std::vector<double> intervals;
+  for (int k = 0; k + 1 < nodes; ++k) intervals.push_back(e.node_time[k + 1] - e.node_time[k]);
+  const double max_step = options.max_step > 0 ? options.max_step : Median(intervals);
+  // Per step: start and midpoint (right limits), end (left limit); then the last node.
+  std::vector<double> right_times, end_times;
+  for (int k = 0; k + 1 < nodes; ++k) {
+    int m = std::max(1, static_cast<int>(std::ceil(intervals[k] / max_step - 1e-6)));
+    double h = intervals[k] / m;
+    e.node_substeps.push_back(m);
+    e.node_step.push_back(h);
+    for (int s = 0; s < m; ++s) {
+      right_times.push_back(e.node_time[k] + s * h);
+      right_times.push_back(e.node_time[k] + (s + 0.5) * h);
+      end_times.push_back(s + 1 == m ? e.node_time[k + 1] : e.node_time[k] + (s + 1) * h);
+    }
+  }
+  right_times.push_back(e.node_time.back());
+  const size_t steps = end_times.size();
+
+  // Input cache.
+  const int nu = e.num_inputs;
+  e.input_cache.assign((3 * steps + 1) * nu, 0.0);
+  for (int i = 0; i < nu; ++i) {
+    const std::string& input = info.inputs[i];
+    auto mapped = spec.inputs.find(input);
+    if (mapped == spec.inputs.end() && info.InputOptional(i)) {
+      for (size_t j = 0; j < 3 * steps + 1; ++j) {
+        e.input_cache[j * nu + i] = std::numeric_limits<double>::quiet_NaN();
+      }
+      continue;
+    }
+    if (mapped == spec.inputs.end()) return fail("input '" + input + "' is not mapped to a column");
+    int column = trajectory.Find(mapped->second);
+    if (column < 0) return fail("no column '" + mapped->second + "' for input '" + input + "'");
+    Channel channel = ExtractChannel(trajectory, column);
+    if (channel.t.empty()) return fail("input column '" + mapped->second + "' has no samples");
+    auto method = spec.interpolation.find(input);
+    Interpolation interpolation =
+        method == spec.interpolation.end() ? spec.default_interpolation : method->second;
+    const std::vector<double> right = InterpolateAt(channel, interpolation, right_times);
+    const std::vector<double> end = InterpolateAt(channel, interpolation, end_times, true);
+    for (size_t j = 0; j < steps; ++j) {
+      e.input_cache[(3 * j) * nu + i] = right[2 * j];
+      e.input_cache[(3 * j + 1) * nu + i] = right[2 * j + 1];
+      e.input_cache[(3 * j + 2) * nu + i] = end[j];
+    }
+    e.input_cache[(3 * steps) * nu + i] = right.back();
+  }
+
+  // Initial state: every mapped output's value (linear interpolation) and rate at t0; the
+  // same-named outputs as defaults, the model's guess over them for start values, given
+  // values over both.
+  const size_t ny = info.outputs.size();
+  std::vector<double> y0(ny, std::numeric_limits<double>::quiet_NaN()), ydot0 = y0;
+  for (const auto& [output, column_name] : spec.outputs) {
+    const int o = info.OutputIndex(output);
+    const int column = trajectory.Find(column_name);
+    if (o < 0 || column < 0) continue;
+    const Channel channel = ExtractChannel(trajectory, column);
+    if (channel.t.empty()) continue;
+    y0[o] = InterpolateAt(channel, Interpolation::kLinear, {t0})[0];
+    const bool angle = o < static_cast<int>(info.angle_outputs.size()) && info.angle_outputs[o];
+    RateAt(channel, t0, options.rate_window, angle, &ydot0[o]);
+  }
+  e.initial_state.assign(info.states.size(), 0.0);
+  for (size_t s = 0; s < info.states.size(); ++s) {
+    const int o = info.OutputIndex(info.states[s]);
+    if (o >= 0 && std::isfinite(y0[o])) e.initial_state[s] = y0[o];
+  }
+  e.initial_state_guess = e.initial_state;
+  if (options.state_guess) {
+    options.state_guess(y0.data(), ydot0.data(), e.initial_state_guess.data());
+  }
+  for (size_t s = 0; s < info.states.size(); ++s) {
+    auto given = spec.initial_state.find(info.states[s]);
+    if (given == spec.initial_state.end()) continue;
+    e.initial_state[s] = given->second;
+    e.initial_state_guess[s] = given->second;
+  }
+  *experiment = std::move(e);
+  return true;
+}
+
+}  // namespace vesselid

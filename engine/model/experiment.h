@@ -1,0 +1,102 @@
+// One recorded experiment prepared for output-error simulation.
+//
+// The integration grid has a node at the start time t0 and at every time where a selected
+// output is sampled; between nodes k and k+1 it takes node_substeps[k] equal RK4 steps of
+// length node_step[k] <= max_step. Inputs are interpolated once, at every step's start,
+// midpoint and end, so the simulation loop only reads an array.
+#pragma once
+
+#include <functional>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "engine/data/interpolation.h"
+#include "engine/model/model.h"
+#include "engine/data/segments.h"
+#include "engine/data/trajectory.h"
+
+namespace vesselid {
+
+// What a config says about one experiment.
+struct ExperimentSpec {
+  std::string name;
+  std::string file;                                    // CSV path as resolved by the config
+  std::map<std::string, std::string> inputs;           // model input -> column
+  std::map<std::string, std::string> outputs;          // model output -> column
+  std::map<std::string, Interpolation> interpolation;  // per model input (default below)
+  Interpolation default_interpolation = Interpolation::kLinear;
+  std::map<std::string, double> output_weights;  // per model output, default 1
+  std::map<std::string, double> initial_state;   // per state; absent: see BuildExperiment
+  std::vector<std::string> degree_columns;       // columns recorded in degrees
+  double t_begin = -std::numeric_limits<double>::infinity();
+  double t_end = std::numeric_limits<double>::infinity();
+  // > 0: the record is identified as consecutive segments of this length, each simulated
+  // from its own initial state ("<name>@<k>"), so that errors do not grow over a long or
+  // unstable record (segmented output error).
+  double segment_length = 0.0;
+  // segments.column set: the record holds segments told apart by that column, each
+  // identified as "<name>@<id>" from its own initial state (see segments.h).
+  SegmentSelection segments;
+  // Model input -> [lower, upper]: only the stretches where every listed input is inside are
+  // identified, each from its own initial state ("<name>#<k>", input_range.h).
+  std::map<std::string, std::pair<double, double>> input_range;
+  double input_range_min_duration = 10.0;  // s, shorter stretches are dropped
+  // s dropped at the start of a stretch that follows one outside the ranges: the state is
+  // still leaving the region the model is not identified in.
+  double input_range_skip = 0.0;
+};
+
+struct ExperimentSample {
+  int output;     // model output index
+  double value;   // measurement
+  double weight;  // residual = weight * (simulated - value)
+};
+
+struct Experiment {
+  std::string name;
+  std::string record;  // the configured experiment it comes from (a segment's whole record)
+  int num_inputs = 0;
+  std::vector<double> node_time;
+  std::vector<int> node_substeps;      // steps from node k to k+1 (size nodes - 1)
+  std::vector<double> node_step;       // their length
+  std::vector<int> node_first_sample;  // samples of node k: [first[k], first[k+1])
+  std::vector<ExperimentSample> samples;
+  // Inputs per RK4 step at its start, midpoint and end (the end as a left limit, so a
+  // zero-order-hold switch at a sample time acts from the next step on), then one row at the
+  // last node: (3 * steps + 1) x num_inputs.
+  std::vector<double> input_cache;
+  std::vector<double> initial_state;     // initial state where it is not estimated
+  std::vector<double> initial_state_guess;  // start values where it is (model's guess)
+  std::vector<int> output_sample_count;  // per model output
+
+  int num_nodes() const { return static_cast<int>(node_time.size()); }
+  int num_samples() const { return static_cast<int>(samples.size()); }
+};
+
+// Start values of a model's states from its outputs measured at t0 and their rates (NaN where
+// not measured); x arrives holding the default start values (see BuildExperiment).
+using StateGuess = std::function<void(const double* y, const double* ydot, double* x)>;
+
+struct ExperimentOptions {
+  std::vector<std::string> outputs;  // model outputs compared (empty: every mapped output)
+  double max_step = 0.0;             // RK4 step bound; 0: median sample interval
+  bool normalize_by_length = true;   // weights * 1/sqrt(samples): experiments weigh alike
+  StateGuess state_guess;            // optional (ModelHandle::GuessState)
+  double rate_window = 1.0;          // seconds of data behind each output rate at t0
+};
+
+// Builds the simulation grid, input cache and samples. Initial-state values come from
+// spec.initial_state, else from the output of the same name measured at t0, else 0; the start
+// values of estimated initial states also take options.state_guess (the model's guess of,
+// e.g., velocities from measured position rates) over the latter two.
+// Errors name the experiment and the missing column or key.
+bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
+                     const ModelInfo& info, const ExperimentOptions& options,
+                     Experiment* experiment, std::string* error);
+
+// Reads the CSV named by spec.file and converts degree columns to radians.
+bool LoadExperimentData(const ExperimentSpec& spec, Trajectory* trajectory, std::string* error);
+
+}  // namespace vesselid

@@ -1,0 +1,159 @@
+// Output-error residuals of one whole experiment as a Ceres cost function.
+//
+// Parameter blocks (all of size 1): the model parameters in model order, then the initial
+// state in state order. A block holds theta = value / scale. Residual i, for sample i of
+// output c at node k:
+//   r_i = w_i (y_c(x_k, u_k, p) - y_i)          (wrapped to (-pi, pi] for angle outputs)
+// and, with a per-sample robust loss rho, r~_i = sign(r_i) sqrt(rho(r_i^2)) so that
+// 1/2 sum r~^2 = 1/2 sum rho(r^2) (Ceres applies losses per block, not per sample).
+//
+// Derivatives: the whole experiment is simulated once on Jets whose dimension is the number
+// of blocks Ceres asks a Jacobian for (constant blocks cost nothing), chosen from a fixed list
+// of sizes.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "ceres/ceres.h"
+#include "engine/base/check.h"
+#include "engine/model/experiment.h"
+#include "engine/model/simulate.h"
+
+namespace vesselid {
+
+// Jet sizes compiled for each model; a problem with more free directions is refused.
+using JetSizes =
+    std::integer_sequence<int, 1, 2, 3, 4, 5, 6, 7, 8, 10, 12, 16, 20, 24, 32, 48, 64, 80>;
+inline constexpr int kMaxJetSize = 80;
+
+template <class Model>
+class ExperimentCost final : public ceres::CostFunction {
+ public:
+  // `experiment` and `loss` (may be null) must outlive the cost function.
+  ExperimentCost(const Model& model, const Experiment* experiment,
+                 std::vector<double> parameter_scales, std::vector<bool> angle_outputs,
+                 const ceres::LossFunction* loss)
+      : model_(model),
+        experiment_(experiment),
+        scales_(std::move(parameter_scales)),
+        angle_outputs_(std::move(angle_outputs)),
+        loss_(loss) {
+    num_parameters_ = static_cast<int>(scales_.size());
+    for (int i = 0; i < num_parameters_ + Model::kNumStates; ++i) {
+      mutable_parameter_block_sizes()->push_back(1);
+    }
+    set_num_residuals(experiment->num_samples());
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    int directions = 0;
+    if (jacobians != nullptr) {
+      for (int b = 0; b < NumBlocks(); ++b) directions += jacobians[b] != nullptr;
+    }
+    if (directions == 0) return EvaluateScalar<double>(parameters, residuals, nullptr);
+    return Dispatch(JetSizes{}, directions, parameters, residuals, jacobians);
+  }
+
+ private:
+  int NumBlocks() const { return num_parameters_ + Model::kNumStates; }
+
+  template <int... Sizes>
+  bool Dispatch(std::integer_sequence<int, Sizes...>, int directions,
+                double const* const* parameters, double* residuals, double** jacobians) const {
+    bool ok = false, done = false;
+    ((!done && Sizes >= directions ? (done = true, ok = EvaluateScalar<ceres::Jet<double, Sizes>>(
+                                                       parameters, residuals, jacobians))
+                                   : false),
+     ...);
+    VESSELID_CHECK(done);  // the problem builder refuses more than kMaxJetSize directions
+    return ok;
+  }
+
+  // Seeds block b with derivative `slope` in its direction (if it has one).
+  template <class T>
+  static void Seed(double value, double slope, int direction, T* out) {
+    if constexpr (std::is_same_v<T, double>) {
+      *out = value;
+    } else {
+      *out = T(value);
+      if (direction >= 0) out->v[direction] = slope;
+    }
+  }
+
+  template <class T>
+  bool EvaluateScalar(double const* const* parameters, double* residuals,
+                      double** jacobians) const {
+    constexpr int n = Model::kNumStates;
+    std::vector<int> direction(NumBlocks(), -1);
+    int count = 0;
+    if (jacobians != nullptr) {
+      for (int b = 0; b < NumBlocks(); ++b) {
+        if (jacobians[b] != nullptr) direction[b] = count++;
+      }
+    }
+    std::vector<T> p(num_parameters_);
+    for (int i = 0; i < num_parameters_; ++i) {
+      Seed(parameters[i][0] * scales_[i], scales_[i], direction[i], &p[i]);
+    }
+    std::array<T, n> x;
+    for (int i = 0; i < n; ++i) {
+      Seed(parameters[num_parameters_ + i][0], 1.0, direction[num_parameters_ + i], &x[i]);
+    }
+
+    const Experiment& e = *experiment_;
+    std::array<T, Model::kNumOutputs> y;
+    auto visit = [&](int k, const T* state, const double* u) {
+      const int first = e.node_first_sample[k], last = e.node_first_sample[k + 1];
+      if (first == last) return;
+      model_.Output(state, u, p.data(), y.data());
+      for (int i = first; i < last; ++i) {
+        const ExperimentSample& s = e.samples[i];
+        T r = y[s.output] - s.value;
+        if (angle_outputs_[s.output]) {
+          r -= 2.0 * M_PI * std::round(ScalarPart(r) / (2.0 * M_PI));
+        }
+        r *= s.weight;
+        StoreResidual(r, i, direction, count, residuals, jacobians);
+      }
+    };
+    if (!SimulateExperiment(model_, e, p.data(), x.data(), visit)) return false;
+    for (int i = 0; i < e.num_samples(); ++i) {
+      if (!std::isfinite(residuals[i])) return false;
+    }
+    return true;
+  }
+
+  template <class T>
+  void StoreResidual(const T& r, int i, const std::vector<int>& direction, int count,
+                     double* residuals, double** jacobians) const {
+    const double value = ScalarPart(r);
+    double slope = 1.0;  // d r~ / d r
+    double robust = value;
+    if (loss_ != nullptr && value != 0.0) {
+      double rho[3];
+      loss_->Evaluate(value * value, rho);
+      const double root = std::sqrt(rho[0]);
+      robust = std::copysign(root, value);
+      slope = rho[1] * std::abs(value) / root;
+    }
+    residuals[i] = robust;
+    if constexpr (!std::is_same_v<T, double>) {
+      for (int b = 0; b < NumBlocks(); ++b) {
+        if (direction[b] >= 0) jacobians[b][i] = slope * r.v[direction[b]];
+      }
+    }
+  }
+
+  const Model model_;
+  const Experiment* experiment_;
+  std::vector<double> scales_;
+  std::vector<bool> angle_outputs_;
+  const ceres::LossFunction* loss_;
+  int num_parameters_ = 0;
+};
+
+}  // namespace vesselid

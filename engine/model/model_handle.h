@@ -1,0 +1,186 @@
+// A model behind one small interface, so that the engine can hold any model chosen at run
+// time. The virtual calls happen once per experiment evaluation, never per integration step:
+// ModelAdapter<Model> instantiates the templated simulation for the concrete model.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "ceres/ceres.h"
+#include "engine/model/experiment.h"
+#include "engine/model/damping_inertia_form.h"
+#include "engine/model/experiment_cost.h"
+#include "engine/model/model.h"
+#include "engine/model/regression_form.h"
+
+namespace vesselid {
+
+class ModelHandle {
+ public:
+  virtual ~ModelHandle() = default;
+  virtual const ModelInfo& info() const = 0;
+
+  // Output-error cost of one experiment (see experiment_cost.h for the block layout).
+  virtual ceres::CostFunction* NewExperimentCost(const Experiment* experiment,
+                                                 std::vector<double> parameter_scales,
+                                                 const ceres::LossFunction* loss) const = 0;
+
+  // Simulates in double from x0 with parameters p; `outputs` gets every model output at every
+  // node (row-major, nodes x outputs). False if the simulation diverges.
+  virtual bool SimulateOutputs(const Experiment& experiment, const double* p, const double* x0,
+                               std::vector<double>* outputs) const = 0;
+
+  // The right-hand side and output map in double, for simulators and tools (not the hot path).
+  virtual bool Derivative(const double* x, const double* u, const double* p,
+                          double* xdot) const = 0;
+  virtual void Output(const double* x, const double* u, const double* p, double* y) const = 0;
+
+  // Physical admissibility of parameter values (empty when admissible, or when the model
+  // states no conditions).
+  virtual std::vector<std::string> Admissibility(const double* p) const = 0;
+
+  // Start values of the states from outputs measured at t0 and their rates (NaN where not
+  // measured); x holds the defaults and keeps what the model cannot derive.
+  virtual void GuessState(const double* y, const double* ydot, double* x) const = 0;
+
+  // Equation-error form for the least-squares stage (regression_form.h); null when the model
+  // has none. The other three members are only called when it has one.
+  virtual const RegressionForm* regression_form() const = 0;
+  virtual void Regressors(const double* p, RegressionRecord* record,
+                          std::vector<Eigen::MatrixXd>* phi) const = 0;
+  virtual void Coefficients(const double* p, double* theta) const = 0;
+  virtual int Region(const double* u) const = 0;
+
+  // Damping-inertia form for the step-regression stage (damping_inertia_form.h); null when
+  // the model has none.
+  virtual const DampingInertiaForm* damping_inertia_form() const = 0;
+};
+
+// Detects a model's optional `std::vector<std::string> Admissibility(const double*) const`.
+template <class Model, class = void>
+struct HasAdmissibility : std::false_type {};
+template <class Model>
+struct HasAdmissibility<
+    Model, std::void_t<decltype(std::declval<const Model&>().Admissibility(nullptr))>>
+    : std::true_type {};
+
+// Detects a model's optional `void GuessState(const double* y, const double* ydot, double* x)
+// const`.
+template <class Model, class = void>
+struct HasGuessState : std::false_type {};
+template <class Model>
+struct HasGuessState<Model, std::void_t<decltype(std::declval<const Model&>().GuessState(
+                                nullptr, nullptr, nullptr))>> : std::true_type {};
+
+// Detects a model's optional equation-error form (`RegressionForm Regression() const` and the
+// members listed in regression_form.h).
+template <class Model, class = void>
+struct HasRegression : std::false_type {};
+template <class Model>
+struct HasRegression<Model, std::void_t<decltype(std::declval<const Model&>().Regression())>>
+    : std::true_type {};
+
+// Detects a model's optional damping-inertia form (`DampingInertiaForm DampingInertia() const`).
+template <class Model, class = void>
+struct HasDampingInertia : std::false_type {};
+template <class Model>
+struct HasDampingInertia<
+    Model, std::void_t<decltype(std::declval<const Model&>().DampingInertia())>>
+    : std::true_type {};
+
+template <class Model>
+class ModelAdapter final : public ModelHandle {
+ public:
+  explicit ModelAdapter(Model model) : model_(std::move(model)), info_(model_.Info()) {
+    if constexpr (HasRegression<Model>::value) {
+      form_ = model_.Regression();
+      has_form_ = true;
+    }
+    if constexpr (HasDampingInertia<Model>::value) {
+      damping_inertia_ = model_.DampingInertia();
+      has_damping_inertia_ = true;
+    }
+  }
+
+  const ModelInfo& info() const override { return info_; }
+
+  ceres::CostFunction* NewExperimentCost(const Experiment* experiment,
+                                         std::vector<double> parameter_scales,
+                                         const ceres::LossFunction* loss) const override {
+    return new ExperimentCost<Model>(model_, experiment, std::move(parameter_scales),
+                                     info_.angle_outputs, loss);
+  }
+
+  bool SimulateOutputs(const Experiment& e, const double* p, const double* x0,
+                       std::vector<double>* outputs) const override {
+    constexpr int ny = Model::kNumOutputs;
+    outputs->assign(static_cast<size_t>(e.num_nodes()) * ny, 0.0);
+    std::array<double, Model::kNumStates> x;
+    std::copy(x0, x0 + Model::kNumStates, x.begin());
+    double* out = outputs->data();
+    return SimulateExperiment(model_, e, p, x.data(),
+                              [&](int k, const double* state, const double* u) {
+                                model_.Output(state, u, p, out + static_cast<size_t>(k) * ny);
+                              });
+  }
+
+  bool Derivative(const double* x, const double* u, const double* p, double* xdot) const override {
+    return model_(x, u, p, xdot);
+  }
+  void Output(const double* x, const double* u, const double* p, double* y) const override {
+    model_.Output(x, u, p, y);
+  }
+
+  std::vector<std::string> Admissibility(const double* p) const override {
+    if constexpr (HasAdmissibility<Model>::value) {
+      return model_.Admissibility(p);
+    } else {
+      return {};
+    }
+  }
+
+  void GuessState(const double* y, const double* ydot, double* x) const override {
+    if constexpr (HasGuessState<Model>::value) model_.GuessState(y, ydot, x);
+  }
+
+  const RegressionForm* regression_form() const override {
+    return has_form_ ? &form_ : nullptr;
+  }
+  void Regressors(const double* p, RegressionRecord* record,
+                  std::vector<Eigen::MatrixXd>* phi) const override {
+    if constexpr (HasRegression<Model>::value) model_.Regressors(p, record, phi);
+  }
+  void Coefficients(const double* p, double* theta) const override {
+    if constexpr (HasRegression<Model>::value) model_.Coefficients(p, theta);
+  }
+  int Region(const double* u) const override {
+    if constexpr (HasRegression<Model>::value) {
+      return model_.Region(u);
+    } else {
+      return -1;
+    }
+  }
+
+  const DampingInertiaForm* damping_inertia_form() const override {
+    return has_damping_inertia_ ? &damping_inertia_ : nullptr;
+  }
+
+  const Model& model() const { return model_; }
+
+ private:
+  const Model model_;
+  const ModelInfo info_;
+  RegressionForm form_;
+  bool has_form_ = false;
+  DampingInertiaForm damping_inertia_;
+  bool has_damping_inertia_ = false;
+};
+
+template <class Model>
+std::unique_ptr<ModelHandle> MakeModelHandle(Model model) {
+  return std::make_unique<ModelAdapter<Model>>(std::move(model));
+}
+
+}  // namespace vesselid

@@ -1,0 +1,157 @@
+#include "engine/output/checkpoint.h"
+
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "engine/output/results_writer.h"
+#include "engine/output/stage_result_archive.h"
+#include "nlohmann/json.hpp"
+
+namespace vesselid {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr char kFolder[] = "checkpoint";
+constexpr char kManifest[] = "manifest.json";
+
+bool ReadBytes(const std::string& path, std::string* bytes, std::string* error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    *error = path + ": cannot open";
+    return false;
+  }
+  bytes->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (in.bad()) {
+    *error = path + ": read failed";
+    return false;
+  }
+  return true;
+}
+
+void Fnv1a(const std::string& bytes, uint64_t* hash) {
+  for (unsigned char c : bytes) {
+    *hash ^= c;
+    *hash *= 0x100000001b3ULL;
+  }
+}
+
+std::string StageFile(size_t index) {
+  char name[32];
+  std::snprintf(name, sizeof(name), "stage_%03zu.cbor", index + 1);
+  return name;
+}
+
+bool WriteManifest(const fs::path& folder, const std::string& fingerprint,
+                   const std::vector<std::string>& stages, std::string* error) {
+  const json manifest = {{"fingerprint", fingerprint}, {"stages", stages}};
+  return WriteFileAtomically((folder / kManifest).string(), manifest.dump(2) + "\n", error);
+}
+
+bool ReadManifest(const fs::path& folder, json* manifest, std::string* error) {
+  std::string bytes;
+  if (!ReadBytes((folder / kManifest).string(), &bytes, error)) return false;
+  *manifest = json::parse(bytes, nullptr, false);
+  if (manifest->is_discarded() || !(*manifest)["fingerprint"].is_string() ||
+      !(*manifest)["stages"].is_array()) {
+    *error = (folder / kManifest).string() + ": not a vesselid checkpoint manifest";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool RunFingerprint(const RunConfig& config, std::string* fingerprint, std::string* error) {
+  uint64_t hash = 0xcbf29ce484222325ULL;
+  std::string bytes;
+  if (!ReadBytes(config.path, &bytes, error)) return false;
+  Fnv1a(bytes, &hash);
+  for (const ExperimentSpec& spec : config.experiments) {
+    // A file that cannot be read counts as absent: the run itself reports it when it
+    // needs the data.
+    std::string ignored;
+    if (!ReadBytes(spec.file, &bytes, &ignored)) bytes = "absent";
+    Fnv1a(spec.name, &hash);
+    Fnv1a(bytes, &hash);
+  }
+  char hex[20];
+  std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(hash));
+  *fingerprint = hex;
+  return true;
+}
+
+bool StartCheckpoint(const std::string& out_dir, const std::string& fingerprint,
+                     std::string* error) {
+  const fs::path folder = fs::path(out_dir) / kFolder;
+  std::error_code ec;
+  fs::remove_all(folder, ec);
+  fs::create_directories(folder, ec);
+  if (ec) {
+    *error = folder.string() + ": cannot create folder: " + ec.message();
+    return false;
+  }
+  return WriteManifest(folder, fingerprint, {}, error);
+}
+
+bool SaveStageCheckpoint(const std::string& out_dir, const std::string& fingerprint, size_t index,
+                         const StageResult& stage, std::string* error) {
+  const fs::path folder = fs::path(out_dir) / kFolder;
+  json manifest;
+  if (!ReadManifest(folder, &manifest, error)) return false;
+  std::vector<std::string> stages = manifest["stages"].get<std::vector<std::string>>();
+  if (manifest["fingerprint"] != fingerprint || stages.size() != index) {
+    *error = folder.string() + ": checkpoint does not continue this run";
+    return false;
+  }
+  const std::vector<std::uint8_t> cbor = json::to_cbor(StageResultToArchive(stage));
+  if (!WriteFileAtomically((folder / StageFile(index)).string(),
+                           std::string(cbor.begin(), cbor.end()), error)) {
+    return false;
+  }
+  stages.push_back(stage.name);
+  return WriteManifest(folder, fingerprint, stages, error);
+}
+
+bool LoadCheckpoint(const std::string& out_dir, const std::string& fingerprint,
+                    std::vector<StageResult>* finished, std::string* error) {
+  finished->clear();
+  const fs::path folder = fs::path(out_dir) / kFolder;
+  if (!fs::exists(folder / kManifest)) return true;
+  json manifest;
+  if (!ReadManifest(folder, &manifest, error)) return false;
+  if (manifest["fingerprint"] != fingerprint) {
+    *error = folder.string() +
+             ": the checkpoint was made from another config or other data; run without "
+             "--resume to start again";
+    return false;
+  }
+  const std::vector<std::string> stages = manifest["stages"].get<std::vector<std::string>>();
+  for (size_t i = 0; i < stages.size(); ++i) {
+    const std::string path = (folder / StageFile(i)).string();
+    std::string bytes;
+    if (!ReadBytes(path, &bytes, error)) return false;
+    const json archive = json::from_cbor(bytes, true, false);
+    StageResult stage;
+    if (archive.is_discarded()) {
+      *error = path + ": not a CBOR stage archive";
+      return false;
+    }
+    if (!StageResultFromArchive(archive, &stage, error)) {
+      *error = path + ": " + *error;
+      return false;
+    }
+    if (stage.name != stages[i]) {
+      *error = path + ": holds stage '" + stage.name + "', the manifest names '" + stages[i] + "'";
+      return false;
+    }
+    finished->push_back(std::move(stage));
+  }
+  return true;
+}
+
+}  // namespace vesselid

@@ -1,0 +1,34 @@
+// Checkpoints of a staged run. After each stage, OUT/checkpoint/ holds every finished stage's
+// whole result (stage_result_archive.h, as CBOR: every double exact) and a manifest naming
+// them with the fingerprint of the config and data they came from. `vesselid run --resume`
+// loads them and goes on from the next stage, with the results an uninterrupted run gives.
+// Each file is written to a temporary name and renamed, the manifest last, so a run killed
+// at any instant leaves the previous checkpoint intact.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/config/config.h"
+#include "engine/run/pipeline.h"
+
+namespace vesselid {
+
+// FNV-1a (64 bit) over the config file and every experiment's data file, in hex: a resumed
+// run must see the same bytes as the run it continues.
+bool RunFingerprint(const RunConfig& config, std::string* fingerprint, std::string* error);
+
+// A fresh run: removes any earlier checkpoint in out_dir and starts an empty one.
+bool StartCheckpoint(const std::string& out_dir, const std::string& fingerprint,
+                     std::string* error);
+
+// Adds finished stage `index` (0-based; stages [0, index) are already saved).
+bool SaveStageCheckpoint(const std::string& out_dir, const std::string& fingerprint, size_t index,
+                         const StageResult& stage, std::string* error);
+
+// The finished stages of the checkpoint in out_dir; empty when there is none. False when there
+// is one but it belongs to another config or other data, or cannot be read.
+bool LoadCheckpoint(const std::string& out_dir, const std::string& fingerprint,
+                    std::vector<StageResult>* finished, std::string* error);
+
+}  // namespace vesselid

@@ -1,0 +1,173 @@
+#include "engine/output/report_figures.h"
+
+#include <stdlib.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <sstream>
+
+#include "engine/output/decimation.h"
+
+namespace vesselid {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Figures after a failing one are retried at most this often.
+constexpr int kMaxRuns = 6;
+// gnuplot's messages kept per failed run.
+constexpr size_t kMaxMessage = 1500;
+
+std::string ShellQuote(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string ReadFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+bool WriteFile(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  return static_cast<bool>(out);
+}
+
+std::string DataName(size_t figure, size_t k) {
+  return "f" + std::to_string(figure) + "_" + std::to_string(k) + ".dat";
+}
+
+std::string SvgName(size_t figure) { return "f" + std::to_string(figure) + ".svg"; }
+
+// The script drawing figures [first, end); each finished figure prints its index to `done`.
+std::string Script(const std::vector<Figure>& figures, size_t first, const std::string& folder,
+                   const std::string& done) {
+  std::ostringstream s;
+  s << "cd " << GnuplotString(folder) << "\n"
+    << "set print " << GnuplotString(done) << "\n";
+  for (size_t i = first; i < figures.size(); ++i) {
+    const Figure& f = figures[i];
+    s << "reset\n"
+      << "set encoding utf8\n"
+      << "set terminal svg size " << f.width << "," << f.height
+      << " font 'DejaVu Sans,11' noenhanced background rgb 'white'\n"
+      << "set output " << GnuplotString(SvgName(i)) << "\n"
+      << "set datafile missing 'NaN'\n";
+    for (size_t k = 0; k < f.data.size(); ++k) {
+      s << "D" << k << " = " << GnuplotString(DataName(i, k)) << "\n";
+    }
+    s << f.script << "\nunset multiplot\nset output\nprint " << i << "\n";
+  }
+  return s.str();
+}
+
+std::string Tail(const std::string& text) {
+  return text.size() <= kMaxMessage ? text : "..." + text.substr(text.size() - kMaxMessage);
+}
+
+}  // namespace
+
+std::string GnuplotString(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) {
+    if (c == '\'') {
+      out += "''";
+    } else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      out += ' ';
+    } else {
+      out += c;
+    }
+  }
+  return out + "'";
+}
+
+std::string GnuplotNumber(double value) {
+  if (!std::isfinite(value)) return "NaN";
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.7g", value);
+  return text;
+}
+
+std::string SeriesData(const std::vector<SeriesPiece>& pieces, size_t max_points) {
+  size_t total = 0;
+  for (const SeriesPiece& p : pieces) total += p.y.size();
+  std::string out;
+  char line[64];
+  bool first = true;
+  for (const SeriesPiece& p : pieces) {
+    if (p.y.empty()) continue;
+    const size_t share =
+        total <= max_points ? p.y.size() : std::max<size_t>(2, max_points * p.y.size() / total);
+    if (!first) out += "\n";
+    first = false;
+    for (size_t k : MinMaxDecimation(p.y, share)) {
+      std::snprintf(line, sizeof(line), "%.9g %.7g\n", p.x[k], p.y[k]);
+      out += line;
+    }
+  }
+  return out;
+}
+
+FigureRendering RenderFigures(const std::vector<Figure>& figures) {
+  FigureRendering result;
+  result.svg.assign(figures.size(), "");
+  if (figures.empty()) return result;
+  std::string pattern = (fs::temp_directory_path() / "vesselid_report_XXXXXX").string();
+  if (mkdtemp(pattern.data()) == nullptr) {
+    result.error =
+        "cannot create a temporary folder for the plots in " + fs::temp_directory_path().string();
+    return result;
+  }
+  const fs::path folder = pattern;
+  for (size_t i = 0; i < figures.size(); ++i) {
+    for (size_t k = 0; k < figures[i].data.size(); ++k) {
+      if (!WriteFile(folder / DataName(i, k), figures[i].data[k])) {
+        result.error = (folder / DataName(i, k)).string() + ": write failed";
+        fs::remove_all(folder);
+        return result;
+      }
+    }
+  }
+  size_t first = 0;
+  for (int run = 0; run < kMaxRuns && first < figures.size(); ++run) {
+    const std::string tag = std::to_string(run);
+    const fs::path script = folder / ("figures" + tag + ".gp");
+    const fs::path messages = folder / ("gnuplot" + tag + ".txt");
+    if (!WriteFile(script, Script(figures, first, folder.string(), "done" + tag + ".txt"))) {
+      result.error = script.string() + ": write failed";
+      break;
+    }
+    const std::string command = "gnuplot -d " + ShellQuote(script.string()) + " > /dev/null 2> " +
+                                ShellQuote(messages.string());
+    const int status = std::system(command.c_str());
+    std::set<size_t> done;
+    std::istringstream done_list(ReadFile(folder / ("done" + tag + ".txt")));
+    for (size_t i; done_list >> i;) done.insert(i);
+    for (size_t i : done) result.svg[i] = ReadFile(folder / SvgName(i));
+    if (status == 0) break;
+    const bool missing = status == -1 || (WIFEXITED(status) && WEXITSTATUS(status) == 127);
+    size_t failed = first;
+    while (failed < figures.size() && done.count(failed) > 0) ++failed;
+    if (!result.error.empty()) result.error += "\n";
+    if (missing) {
+      result.error += "gnuplot could not be run: " + Tail(ReadFile(messages));
+      break;
+    }
+    result.error += (failed < figures.size() ? "figure " + figures[failed].name + ": " : "") +
+                    Tail(ReadFile(messages));
+    first = failed + 1;
+  }
+  std::error_code ec;
+  fs::remove_all(folder, ec);
+  return result;
+}
+
+}  // namespace vesselid

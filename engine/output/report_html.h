@@ -1,0 +1,31 @@
+// The run report, report.html: one self-contained page (no network: styles and script inline,
+// plots embedded as data: URIs of SVGs drawn by gnuplot, report_figures.h).
+//
+//   per stage   summary (cost, iterations, termination, time, notes); measured vs simulated
+//               outputs and residuals, a figure per record of the stage's fit (its segments
+//               together) with metrics; the estimates; the correlation heat map of the shared
+//               parameters (per-experiment unknowns left out); the cost history; validation
+//               figures of held-out records; step-regression tables, lasso CV paths and samples
+//   final       parameter table, admissibility, final validation figures and metrics
+//   papers      parameters by stage, cost per test, validation fit %
+//
+// Every plot is `<img class="plot" data-plot="<key>">`; once the page has loaded, a script
+// writes the number that rendered and the total to body data-plots-loaded / data-plots-total.
+// Without gnuplot the page still has every table, and a notice says why plots are missing.
+#pragma once
+
+#include <string>
+
+#include "engine/config/config.h"
+#include "engine/run/pipeline.h"
+
+namespace vesselid {
+
+// Writes out_dir/report.html atomically. False only when the file cannot be written.
+bool WriteRunReport(const RunConfig& config, const RunResult& result, const std::string& out_dir,
+                    std::string* error);
+
+// The page itself, for WriteRunReport and tests.
+std::string RunReportHtml(const RunConfig& config, const RunResult& result);
+
+}  // namespace vesselid

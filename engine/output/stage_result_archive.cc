@@ -1,0 +1,129 @@
+#include "engine/output/stage_result_archive.h"
+
+#include <memory>
+
+namespace nlohmann {
+
+// Eigen matrices and vectors as {rows, cols, column-major data}.
+template <>
+struct adl_serializer<Eigen::MatrixXd> {
+  static void to_json(json& j, const Eigen::MatrixXd& m) {
+    j = {{"rows", m.rows()},
+         {"cols", m.cols()},
+         {"data", std::vector<double>(m.data(), m.data() + m.size())}};
+  }
+  static void from_json(const json& j, Eigen::MatrixXd& m) {
+    const auto data = j.at("data").get<std::vector<double>>();
+    m.resize(j.at("rows").get<Eigen::Index>(), j.at("cols").get<Eigen::Index>());
+    if (static_cast<size_t>(m.size()) != data.size()) throw json::other_error::create(
+        501, "matrix data does not match its size", &j);
+    std::copy(data.begin(), data.end(), m.data());
+  }
+};
+
+template <>
+struct adl_serializer<Eigen::VectorXd> {
+  static void to_json(json& j, const Eigen::VectorXd& v) {
+    j = std::vector<double>(v.data(), v.data() + v.size());
+  }
+  static void from_json(const json& j, Eigen::VectorXd& v) {
+    const auto data = j.get<std::vector<double>>();
+    v = Eigen::Map<const Eigen::VectorXd>(data.data(), static_cast<Eigen::Index>(data.size()));
+  }
+};
+
+}  // namespace nlohmann
+
+namespace vesselid {
+
+// Every member of each type, so that a restored stage is the stage. A member missing here
+// is lost on resume; the resume test compares every output of a resumed run with an
+// uninterrupted one.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Trajectory, source, t, names, columns)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ChannelMetrics, experiment, output, samples, rmse, mae, r2,
+                                   fit_percent)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ExperimentFit, experiment, rms_cost, channels, trace)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(GlobalStartSummary, run, variables, evaluations,
+                                   failed_evaluations, best_cost, time_seconds, result, message,
+                                   candidates, candidate_costs, best_cost_history)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LocalSolveSummary, run, usable, initial_cost, final_cost,
+                                   iterations, successful_steps, unsuccessful_steps, time_seconds,
+                                   termination, message, cost_history)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Uncertainty, available, message, variables, covariance,
+                                   correlation, std_errors, residual_variance, undetermined,
+                                   undetermined_variables)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(WeakDirection, combination, coefficients, eigenvalue_ratio,
+                                   std_dev, std_dev_normalised, status)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LocalAnalysis, available, message, parameters, names,
+                                   profiled, num_residuals, num_free, residual_variance,
+                                   information, eigenvalues, condition_number, directions,
+                                   std_errors, channels, sensitivity, noise_sensitivity,
+                                   time_seconds)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(StageSummary, name, usable, message, global, refinements,
+                                   chosen, uncertainty, analysis, fits, notes, time_seconds)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Estimate, name, kind, role, experiment, value, start,
+                                   std_error, lower, upper, undetermined)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(DampingSample, record, t, duration, x, sigma, turns, weight,
+                                   group, mirrored)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(InertiaSample, record, term, t, x, inertia, gain,
+                                   time_constant, rms, weight, group, mirrored)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(StepSamples, damping, inertia, intervals, steady, steps, notes,
+                                   window_seconds, fit_seconds)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LassoPath, lambda, beta, nonzero, cv_error, cv_standard_error,
+                                   best, one_standard_error, groups, sweeps)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(TermRegression::AsymptoteCv, a, b, cv_error, lambda)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(TermRegression, name, samples, groups, mean_x, sd_x, mean_y,
+                                   sd_y, path, lambda, normalised, a, b, asymptote_grid,
+                                   coefficients, r2, rms, seconds)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(StepRegressionReport, samples, terms, normalisation_seconds,
+                                   regression_seconds)
+
+namespace {
+constexpr int kArchiveVersion = 1;
+}  // namespace
+
+nlohmann::json StageResultToArchive(const StageResult& stage) {
+  nlohmann::json j = {{"archive_version", kArchiveVersion},
+                      {"name", stage.name},
+                      {"model", stage.model},
+                      {"summary", stage.summary},
+                      {"estimates", stage.estimates},
+                      {"correlation_names", stage.correlation_names},
+                      {"correlation", stage.correlation},
+                      {"admissibility", stage.admissibility},
+                      {"validation", stage.validation},
+                      {"velocity_validation", stage.velocity_validation}};
+  if (stage.step_regression) j["step_regression"] = *stage.step_regression;
+  return j;
+}
+
+bool StageResultFromArchive(const nlohmann::json& j, StageResult* stage, std::string* error) {
+  try {
+    if (j.at("archive_version").get<int>() != kArchiveVersion) {
+      *error = "stage archive version " + j.at("archive_version").dump() + ", expected " +
+               std::to_string(kArchiveVersion);
+      return false;
+    }
+    StageResult s;
+    j.at("name").get_to(s.name);
+    j.at("model").get_to(s.model);
+    j.at("summary").get_to(s.summary);
+    j.at("estimates").get_to(s.estimates);
+    j.at("correlation_names").get_to(s.correlation_names);
+    j.at("correlation").get_to(s.correlation);
+    j.at("admissibility").get_to(s.admissibility);
+    j.at("validation").get_to(s.validation);
+    j.at("velocity_validation").get_to(s.velocity_validation);
+    if (j.contains("step_regression")) {
+      s.step_regression =
+          std::make_shared<const StepRegressionReport>(j.at("step_regression").get<StepRegressionReport>());
+    }
+    *stage = std::move(s);
+    return true;
+  } catch (const nlohmann::json::exception& e) {
+    *error = std::string("stage archive: ") + e.what();
+    return false;
+  }
+}
+
+}  // namespace vesselid

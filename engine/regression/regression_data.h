@@ -1,0 +1,34 @@
+// Equation-error data of one record (seed 000 §5.1): every signal brought to the sample
+// times of one output (the slowest, e.g. GNSS at 5 Hz), causally, then smoothed and
+// differentiated by Savitzky-Golay; states from the outputs and their rates by the model's
+// guess (body velocities from position and heading rates), their derivatives by a second
+// Savitzky-Golay pass.
+//
+// Causal alignment at grid time t: an output takes its last sample at or before t,
+// extrapolated linearly from the sample before it (exact at its own sample times); an input
+// takes its last sample (the command held by the actuator). Angle outputs are unwrapped first
+// and stay continuous.
+#pragma once
+
+#include <string>
+
+#include "engine/model/experiment.h"
+#include "engine/model/model_handle.h"
+#include "engine/model/regression_form.h"
+#include "engine/data/savitzky_golay.h"
+#include "engine/data/trajectory.h"
+
+namespace vesselid {
+
+struct RegressionDataOptions {
+  std::string grid_output;  // output whose sample times are the grid; empty: the sparsest
+  SavitzkyGolayOptions smoothing = {4, 2, 0};  // window and degree (derivative is set inside)
+  double max_gap = 1.5;  // grid intervals longer than this many median intervals are an error
+};
+
+// Builds the record of `spec` (its window) from `data`. Errors name the experiment.
+bool BuildRegressionRecord(const ExperimentSpec& spec, const Trajectory& data,
+                           const ModelHandle& model, const RegressionDataOptions& options,
+                           RegressionRecord* record, std::string* error);
+
+}  // namespace vesselid

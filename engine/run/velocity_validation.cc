@@ -1,0 +1,84 @@
+#include "engine/run/velocity_validation.h"
+
+#include <cmath>
+
+namespace vesselid {
+
+bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model,
+                    const std::vector<double>& p, const TrajectoryCache& cache,
+                    std::vector<RegressionRecord>* records, std::vector<ChannelMetrics>* metrics,
+                    std::string* error) {
+  const ModelInfo& info = model.info();
+  const RegressionForm& form = *model.regression_form();
+  const int ny = static_cast<int>(info.outputs.size());
+  std::vector<MetricAccumulator> accumulators(form.states.size());
+  for (RegressionRecord& record : *records) {
+    std::vector<Eigen::MatrixXd> phi;
+    model.Regressors(p.data(), &record, &phi);  // internal states at p
+    // The record's own window and grid: nodes at the grid output's samples.
+    ExperimentSpec spec = *config.FindExperiment(record.record);
+    spec.name = record.name;
+    spec.segments = SegmentSelection();
+    spec.t_begin = record.t.front();
+    spec.t_end = record.t.back();
+    ExperimentOptions options;
+    options.outputs = {info.outputs[record.grid_output]};
+    // Ten RK4 steps per grid interval: the grid may be slow (GNSS) next to fast internal
+    // dynamics (a propeller lag), and a step beyond ~2.8 time constants is unstable.
+    options.max_step = record.dt / 10.0;
+    Experiment experiment;
+    if (!BuildExperiment(spec, cache.at(record.record), info, options, &experiment, error)) {
+      return false;
+    }
+    if (experiment.num_nodes() != record.size()) {
+      *error = "experiment '" + record.name + "': simulation grid does not match the record";
+      return false;
+    }
+    const Eigen::VectorXd x0 = record.x.row(0).transpose();
+    std::vector<double> outputs;
+    if (!model.SimulateOutputs(experiment, p.data(), x0.data(), &outputs)) {
+      *error = "free run of '" + record.name + "' diverges";
+      return false;
+    }
+    for (size_t i = 0; i < form.states.size(); ++i) {
+      const int s = form.states[i];
+      const int o = info.OutputIndex(info.states[s]);
+      if (o < 0) continue;
+      for (int k = 1; k < record.size(); ++k) {
+        accumulators[i].Add(outputs[static_cast<size_t>(k) * ny + o], record.x(k, s));
+      }
+    }
+  }
+  for (size_t i = 0; i < form.states.size(); ++i) {
+    if (accumulators[i].samples() == 0) continue;
+    metrics->push_back(accumulators[i].Finish("free-run", info.states[form.states[i]]));
+  }
+  return true;
+}
+
+bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
+                        const std::vector<std::string>& names,
+                        const RegressionDataOptions& data, const std::vector<double>& p,
+                        TrajectoryCache* cache, std::vector<ChannelMetrics>* metrics,
+                        std::string* error) {
+  metrics->clear();
+  for (const std::string& name : names) {
+    std::vector<RegressionRecord> records;
+    std::vector<ChannelMetrics> one_step, free_run;
+    if (!PrepareRegressionRecords(config, {name}, model, data, cache, &records, error) ||
+        !OneStepMetrics(model, p, LeastSquaresOptions(), &records, "one-step", &one_step,
+                        error) ||
+        !FreeRunMetrics(config, model, p, *cache, &records, &free_run, error)) {
+      return false;
+    }
+    for (std::vector<ChannelMetrics>* part : {&one_step, &free_run}) {
+      for (ChannelMetrics& m : *part) {
+        m.experiment = name + " " + m.experiment;
+        metrics->push_back(m);
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace vesselid

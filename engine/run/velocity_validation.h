@@ -1,0 +1,32 @@
+// Velocity metrics of held-out records for a model with an equation-error form (seed 000's
+// validation, and the harder one):
+//   one-step: x(k+1) predicted from the data's state at k (least_squares.h, OneStepMetrics);
+//   free-run: each record simulated whole from the data's state at its first grid sample
+//             (internal states as the model reconstructs them from the inputs), the
+//             regressed states compared with the data's at every grid sample.
+// "The data's state" is the Savitzky-Golay reconstruction of regression_data.h.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/regression/least_squares.h"
+#include "engine/solve/metrics.h"
+#include "engine/run/pipeline.h"
+
+namespace vesselid {
+
+// Metrics per experiment and regressed state over every sample (whatever regions a stage was
+// fitted on), labelled "<experiment> one-step" and "<experiment> free-run".
+bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
+                        const std::vector<std::string>& names,
+                        const RegressionDataOptions& data, const std::vector<double>& p, TrajectoryCache* cache,
+                        std::vector<ChannelMetrics>* metrics, std::string* error);
+
+// Free-run part on prepared records (which get the model's internal states at p).
+bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model,
+                    const std::vector<double>& p, const TrajectoryCache& cache,
+                    std::vector<RegressionRecord>* records, std::vector<ChannelMetrics>* metrics,
+                    std::string* error);
+
+}  // namespace vesselid

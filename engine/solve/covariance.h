@@ -1,0 +1,37 @@
+// Parameter uncertainty at the optimum from Ceres' covariance estimate:
+//   Cov(theta) = s^2 (J^T J)^-1,  s^2 = 2 F / (m - n)   (F final cost, m residuals, n free)
+// converted to physical units with the scales, plus standard errors and correlations.
+// A rank-deficient Jacobian is reported, with the combination that is undetermined.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "Eigen/Dense"
+#include "engine/solve/output_error_problem.h"
+
+namespace vesselid {
+
+struct Uncertainty {
+  bool available = false;
+  std::string message;         // why not available, or a rank-deficiency note
+  std::vector<int> variables;  // free variable indices, in matrix order
+  Eigen::MatrixXd covariance;  // physical units
+  Eigen::MatrixXd correlation;
+  std::vector<double> std_errors;  // sqrt of the diagonal
+  double residual_variance = 0.0;  // s^2
+  // Directions the data do not determine (rank deficiency), each as the unit direction in
+  // physical units along which the fit does not change ("+0.71 Iz +0.71 Nrdot"), and the
+  // variables taking part in any of them. Their
+  // standard errors are NaN; the others come from the pseudo-inverse, which is exact for
+  // the determined subspace.
+  std::vector<std::string> undetermined;
+  std::vector<int> undetermined_variables;
+
+  // Standard error of variable `index`, or NaN if unknown.
+  double StdError(int index) const;
+};
+
+bool ComputeUncertainty(OutputErrorProblem* problem, double final_cost, Uncertainty* uncertainty);
+
+}  // namespace vesselid

@@ -1,0 +1,108 @@
+#include "engine/solve/local_solve.h"
+
+#include <cstdio>
+
+namespace vesselid {
+namespace {
+
+// Hands each Ceres iteration's cost to the progress callback.
+class ProgressReporter : public ceres::IterationCallback {
+ public:
+  explicit ProgressReporter(const ProgressCallback& progress) : progress_(progress) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    SolveProgress p;
+    p.phase = SolveProgress::Phase::kLocal;
+    p.iteration = summary.iteration;
+    p.cost = summary.cost;
+    progress_(p);
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const ProgressCallback& progress_;
+};
+
+}  // namespace
+
+bool LocalSolveOptions::IsValid(std::string* error) const {
+  if (max_iterations < 0)
+    *error = "max_iterations must be >= 0";
+  else if (!(function_tolerance >= 0.0))
+    *error = "function_tolerance must be >= 0";
+  else if (!(gradient_tolerance >= 0.0))
+    *error = "gradient_tolerance must be >= 0";
+  else if (!(parameter_tolerance >= 0.0))
+    *error = "parameter_tolerance must be >= 0";
+  else if (!(max_time_seconds > 0.0))
+    *error = "max_time_seconds must be > 0";
+  else if (num_threads < 1)
+    *error = "num_threads must be >= 1";
+  else
+    return true;
+  return false;
+}
+
+std::string LocalSolveSummary::BriefReport() const {
+  if (!run) return "local solve: not run";
+  char text[256];
+  std::snprintf(text, sizeof(text), "local solve: cost %.6e -> %.6e, %d iterations, %.3f s, %s",
+                initial_cost, final_cost, iterations, time_seconds, termination.c_str());
+  return text;
+}
+
+ceres::LinearSolverType AutomaticLinearSolver(const OutputErrorProblem& problem) {
+  constexpr int kDenseLimit = 60;  // free unknowns a dense QR handles in negligible time
+  int per_experiment = 0;
+  for (const Variable& v : problem.variables()) {
+    if (v.free && v.experiment >= 0) ++per_experiment;
+  }
+  return per_experiment > 0 && problem.num_free() > kDenseLimit ? ceres::SPARSE_NORMAL_CHOLESKY
+                                                                 : ceres::DENSE_QR;
+}
+
+bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem,
+                   LocalSolveSummary* summary) {
+  *summary = LocalSolveSummary();
+  std::string error;
+  if (!options.IsValid(&error)) {
+    summary->message = error;
+    return false;
+  }
+  ceres::Solver::Options ceres_options;
+  ceres_options.trust_region_strategy_type = options.trust_region;
+  ceres_options.linear_solver_type = options.linear_solver.value_or(AutomaticLinearSolver(*problem));
+  ceres_options.max_num_iterations = options.max_iterations;
+  ceres_options.function_tolerance = options.function_tolerance;
+  ceres_options.gradient_tolerance = options.gradient_tolerance;
+  ceres_options.parameter_tolerance = options.parameter_tolerance;
+  ceres_options.max_solver_time_in_seconds = options.max_time_seconds;
+  ceres_options.num_threads = options.num_threads;
+  ceres_options.logging_type = ceres::SILENT;
+  if (!ceres_options.IsValid(&error)) {
+    summary->message = error;
+    return false;
+  }
+  ProgressReporter reporter(options.progress);
+  if (options.progress) ceres_options.callbacks.push_back(&reporter);
+  ceres::Solver::Summary ceres_summary;
+  ceres::Solve(ceres_options, problem->problem(), &ceres_summary);
+  summary->run = true;
+  summary->usable = ceres_summary.IsSolutionUsable();
+  summary->initial_cost = ceres_summary.initial_cost;
+  summary->final_cost = ceres_summary.final_cost;
+  summary->iterations = static_cast<int>(ceres_summary.iterations.size()) - 1;
+  summary->successful_steps = ceres_summary.num_successful_steps;
+  summary->unsuccessful_steps = ceres_summary.num_unsuccessful_steps;
+  summary->time_seconds = ceres_summary.total_time_in_seconds;
+  summary->termination = ceres::TerminationTypeToString(ceres_summary.termination_type);
+  summary->message = ceres_summary.message;
+  for (const ceres::IterationSummary& it : ceres_summary.iterations) {
+    summary->cost_history.push_back(it.cost);
+  }
+  if (!summary->usable && ceres_summary.initial_cost < 0) {
+    summary->message = "the simulation diverges at the start values: " + summary->message;
+  }
+  return summary->usable;
+}
+
+}  // namespace vesselid

@@ -1,0 +1,58 @@
+// Local refinement of an output-error problem with Ceres' trust-region solver.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ceres/ceres.h"
+#include "engine/solve/output_error_problem.h"
+#include "engine/solve/progress.h"
+
+namespace vesselid {
+
+struct LocalSolveOptions {
+  // Trust-region strategy: levenberg_marquardt or dogleg.
+  ceres::TrustRegionStrategyType trust_region = ceres::LEVENBERG_MARQUARDT;
+  // Linear solver; unset: AutomaticLinearSolver below.
+  std::optional<ceres::LinearSolverType> linear_solver;
+  int max_iterations = 200;
+  double function_tolerance = 1e-12;
+  double gradient_tolerance = 1e-14;
+  double parameter_tolerance = 1e-12;
+  double max_time_seconds = 3600.0;
+  int num_threads = 1;  // experiments evaluated in parallel
+  ProgressCallback progress;  // after each iteration; may be empty
+
+  bool IsValid(std::string* error) const;
+};
+
+struct LocalSolveSummary {
+  bool run = false;
+  bool usable = false;  // Ceres ended with a usable solution
+  double initial_cost = -1.0;
+  double final_cost = -1.0;
+  int iterations = 0;
+  int successful_steps = 0;
+  int unsuccessful_steps = 0;
+  double time_seconds = 0.0;
+  std::string termination;  // Ceres termination type
+  std::string message;
+  std::vector<double> cost_history;  // cost at each iteration, [0] the initial cost
+
+  std::string BriefReport() const;
+};
+
+// dense_qr while the problem is small or has no per-experiment unknowns; otherwise
+// sparse_normal_cholesky (SuiteSparse): per-experiment initial states and parameters make
+// J^T J an arrow matrix (a dense corner of shared parameters, a block diagonal of the
+// rest), which a sparse Cholesky factors in time linear in the number of experiments. Schur
+// elimination does not help here: every unknown is its own size-1 block, so the blocks of
+// one experiment share a residual block and cannot be eliminated together.
+ceres::LinearSolverType AutomaticLinearSolver(const OutputErrorProblem& problem);
+
+// Solves from the problem's current values; leaves the solution in them.
+bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem,
+                   LocalSolveSummary* summary);
+
+}  // namespace vesselid

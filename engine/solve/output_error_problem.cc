@@ -1,0 +1,203 @@
+#include "engine/solve/output_error_problem.h"
+
+#include <algorithm>
+#include <map>
+
+namespace vesselid {
+namespace {
+
+bool MakeLoss(const OutputErrorOptions& options, std::unique_ptr<ceres::LossFunction>* loss,
+              std::string* error) {
+  const std::string& type = options.loss;
+  const double a = options.loss_scale;
+  if (type == "none") {
+    loss->reset();
+  } else if (!(a > 0.0)) {
+    *error = "loss scale must be positive";
+    return false;
+  } else if (type == "huber") {
+    loss->reset(new ceres::HuberLoss(a));
+  } else if (type == "cauchy") {
+    loss->reset(new ceres::CauchyLoss(a));
+  } else if (type == "soft_l1") {
+    loss->reset(new ceres::SoftLOneLoss(a));
+  } else if (type == "arctan") {
+    loss->reset(new ceres::ArctanLoss(a));
+  } else {
+    *error = "unknown loss '" + type + "' (none, huber, cauchy, soft_l1, arctan)";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
+    const ModelHandle* model, std::vector<Experiment> experiments,
+    const std::vector<ParameterSpec>& parameters, const OutputErrorOptions& options,
+    std::string* error) {
+  const ModelInfo& info = model->info();
+  std::unique_ptr<OutputErrorProblem> p(new OutputErrorProblem);
+  p->model_ = model;
+  p->experiments_ = std::move(experiments);
+  if (p->experiments_.empty()) {
+    *error = "no experiments";
+    return nullptr;
+  }
+  if (!MakeLoss(options, &p->loss_, error)) return nullptr;
+
+  // Specs by model parameter index; unnamed parameters fixed at their defaults.
+  std::vector<ParameterSpec> specs(info.parameters.size());
+  for (size_t i = 0; i < specs.size(); ++i) {
+    specs[i].name = info.parameters[i];
+    specs[i].start = info.parameter_defaults[i];
+    specs[i].role = ParameterRole::kFixed;
+  }
+  for (const ParameterSpec& spec : parameters) {
+    int index = info.ParameterIndex(spec.name);
+    if (index < 0) {
+      *error = "unknown parameter '" + spec.name + "' (model " + info.name + " has " +
+               JoinNames(info.parameters) + ")";
+      return nullptr;
+    }
+    specs[index] = spec;
+  }
+  std::vector<bool> state_free(info.states.size(), false);
+  for (const std::string& state : options.free_initial_states) {
+    int index = info.StateIndex(state);
+    if (index < 0) {
+      *error = "unknown state '" + state + "' in free initial states (model " + info.name +
+               " has " + JoinNames(info.states) + ")";
+      return nullptr;
+    }
+    state_free[index] = true;
+  }
+
+  // One array holds every block, in variable order, never reallocated: Ceres orders blocks
+  // by address in places (covariance), so addresses must follow the variables for results
+  // to be reproducible from run to run and thread to thread.
+  p->storage_.reserve(specs.size() * (p->experiments_.size() + 1) +
+                      info.states.size() * p->experiments_.size());
+  auto add_variable = [&](Variable v, double start) {
+    p->storage_.push_back(start / v.scale);
+    v.block = &p->storage_.back();
+    p->variables_.push_back(v);
+    return static_cast<int>(p->variables_.size()) - 1;
+  };
+  const int num_experiments = static_cast<int>(p->experiments_.size());
+  p->block_of_.assign(num_experiments, {});
+  std::vector<int> shared(specs.size(), -1);
+  for (size_t i = 0; i < specs.size(); ++i) {
+    if (specs[i].role == ParameterRole::kPerExperiment) continue;
+    Variable v;
+    v.name = specs[i].name;
+    v.index = static_cast<int>(i);
+    v.role = specs[i].role;
+    v.scale = specs[i].EffectiveScale();
+    v.lower = specs[i].lower;
+    v.upper = specs[i].upper;
+    v.free = IsEstimatedOnce(specs[i].role);
+    shared[i] = add_variable(v, specs[i].start);
+  }
+  for (int e = 0; e < num_experiments; ++e) {
+    const Experiment& experiment = p->experiments_[e];
+    for (size_t i = 0; i < specs.size(); ++i) {
+      if (shared[i] >= 0) {
+        p->block_of_[e].push_back(shared[i]);
+        continue;
+      }
+      Variable v;
+      v.name = specs[i].name + "[" + experiment.name + "]";
+      v.index = static_cast<int>(i);
+      v.experiment = e;
+      v.role = ParameterRole::kPerExperiment;
+      v.scale = specs[i].EffectiveScale();
+      v.lower = specs[i].lower;
+      v.upper = specs[i].upper;
+      p->block_of_[e].push_back(add_variable(v, specs[i].start));
+    }
+    for (size_t s = 0; s < info.states.size(); ++s) {
+      Variable v;
+      v.name = "x0." + info.states[s] + "[" + experiment.name + "]";
+      v.kind = Variable::Kind::kInitialState;
+      v.index = static_cast<int>(s);
+      v.experiment = e;
+      v.role = state_free[s] ? ParameterRole::kPerExperiment : ParameterRole::kFixed;
+      v.free = state_free[s];
+      const double start =
+          state_free[s] ? experiment.initial_state_guess[s] : experiment.initial_state[s];
+      p->block_of_[e].push_back(add_variable(v, start));
+    }
+  }
+
+  p->problem_ = std::make_unique<ceres::Problem>();
+  std::vector<double> scales(specs.size());
+  for (size_t i = 0; i < specs.size(); ++i) scales[i] = specs[i].EffectiveScale();
+  for (int e = 0; e < num_experiments; ++e) {
+    int directions = 0;
+    std::vector<double*> blocks;
+    for (int index : p->block_of_[e]) {
+      blocks.push_back(p->variables_[index].block);
+      directions += p->variables_[index].free;
+    }
+    if (directions > kMaxJetSize) {
+      *error = "experiment '" + p->experiments_[e].name + "' has " + std::to_string(directions) +
+               " free quantities; at most " + std::to_string(kMaxJetSize) + " are supported";
+      return nullptr;
+    }
+    p->problem_->AddResidualBlock(
+        model->NewExperimentCost(&p->experiments_[e], scales, p->loss_.get()), nullptr, blocks);
+  }
+  for (const Variable& v : p->variables_) {
+    if (!v.free) {
+      p->problem_->SetParameterBlockConstant(v.block);
+      continue;
+    }
+    if (std::isfinite(v.lower)) p->problem_->SetParameterLowerBound(v.block, 0, v.lower / v.scale);
+    if (std::isfinite(v.upper)) p->problem_->SetParameterUpperBound(v.block, 0, v.upper / v.scale);
+  }
+  return p;
+}
+
+int OutputErrorProblem::num_residuals() const {
+  int total = 0;
+  for (const Experiment& e : experiments_) total += e.num_samples();
+  return total;
+}
+
+int OutputErrorProblem::num_free() const {
+  return static_cast<int>(std::count_if(variables_.begin(), variables_.end(),
+                                        [](const Variable& v) { return v.free; }));
+}
+
+std::vector<double> OutputErrorProblem::ParametersOf(int e) const {
+  std::vector<double> values;
+  const size_t n = model_->info().parameters.size();
+  for (size_t j = 0; j < n; ++j) values.push_back(variables_[block_of_[e][j]].value());
+  return values;
+}
+
+std::vector<double> OutputErrorProblem::InitialStateOf(int e) const {
+  std::vector<double> values;
+  const size_t n = model_->info().parameters.size();
+  for (size_t j = n; j < block_of_[e].size(); ++j)
+    values.push_back(variables_[block_of_[e][j]].value());
+  return values;
+}
+
+std::vector<double> OutputErrorProblem::Values() const {
+  std::vector<double> values;
+  for (const Variable& v : variables_) values.push_back(v.value());
+  return values;
+}
+
+void OutputErrorProblem::SetValues(const std::vector<double>& values) {
+  for (size_t i = 0; i < variables_.size(); ++i) variables_[i].set_value(values[i]);
+}
+
+bool OutputErrorProblem::Cost(double* cost) {
+  ceres::Problem::EvaluateOptions options;
+  return problem_->Evaluate(options, cost, nullptr, nullptr, nullptr);
+}
+
+}  // namespace vesselid

@@ -1,0 +1,88 @@
+// The output-error problem of one stage: every experiment simulated over its whole length,
+// one Ceres residual block per experiment, every scalar unknown its own parameter block.
+//
+//   min over p, x0_e   1/2 sum_e sum_i rho( (w_i (y(t_i; p, x0_e, u_e) - y_i))^2 )
+//
+// Shared parameters are one block used by every experiment's residual block; per-experiment
+// parameters and initial states are separate blocks per experiment (the sparse structure
+// Ceres' Schur and SuiteSparse solvers exploit). Fixed quantities are constant blocks.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ceres/ceres.h"
+#include "engine/model/experiment.h"
+#include "engine/model/model_handle.h"
+#include "engine/solve/parameter.h"
+
+namespace vesselid {
+
+// One scalar unknown of the problem.
+struct Variable {
+  enum class Kind { kParameter, kInitialState };
+  std::string name;  // "T1", "delta_0[run2]", "x0.psi[run2]"
+  Kind kind = Kind::kParameter;
+  int index = 0;        // parameter or state index in the model
+  int experiment = -1;  // -1: shared by all experiments
+  ParameterRole role = ParameterRole::kFree;
+  double scale = 1.0;
+  double lower = -std::numeric_limits<double>::infinity();
+  double upper = std::numeric_limits<double>::infinity();
+  bool free = true;
+  double* block = nullptr;  // holds value / scale
+
+  double value() const { return *block * scale; }
+  void set_value(double v) const { *block = v / scale; }
+  bool bounded() const { return std::isfinite(lower) && std::isfinite(upper); }
+};
+
+struct OutputErrorOptions {
+  std::vector<std::string> free_initial_states;  // estimated per experiment
+  std::string loss = "none";                     // none, huber, cauchy, soft_l1, arctan
+  double loss_scale = 1.0;                       // residual size where the loss bends
+};
+
+class OutputErrorProblem {
+ public:
+  // `parameters` names model parameters; unnamed ones are fixed at the model's default.
+  // Errors name the offending parameter, state or experiment.
+  static std::unique_ptr<OutputErrorProblem> Create(const ModelHandle* model,
+                                                    std::vector<Experiment> experiments,
+                                                    const std::vector<ParameterSpec>& parameters,
+                                                    const OutputErrorOptions& options,
+                                                    std::string* error);
+
+  ceres::Problem* problem() { return problem_.get(); }
+  const ModelHandle& model() const { return *model_; }
+  const std::vector<Variable>& variables() const { return variables_; }
+  const std::vector<Experiment>& experiments() const { return experiments_; }
+  int num_residuals() const;
+  int num_free() const;
+
+  // Model parameters and initial state as experiment e sees them (physical units).
+  std::vector<double> ParametersOf(int e) const;
+  std::vector<double> InitialStateOf(int e) const;
+
+  // Values of all variables (physical) and back; used to restart from candidates.
+  std::vector<double> Values() const;
+  void SetValues(const std::vector<double>& values);
+
+  // 1/2 sum r^2 at the current values; false if any simulation diverges.
+  bool Cost(double* cost);
+
+ private:
+  OutputErrorProblem() = default;
+
+  const ModelHandle* model_ = nullptr;
+  std::vector<Experiment> experiments_;
+  std::unique_ptr<ceres::LossFunction> loss_;
+  std::unique_ptr<ceres::Problem> problem_;
+  std::vector<double> storage_;  // every block, reserved once: stable, ordered addresses
+  std::vector<Variable> variables_;
+  // block_of_[e][j]: variable index of block j (parameters, then states) of experiment e.
+  std::vector<std::vector<int>> block_of_;
+};
+
+}  // namespace vesselid

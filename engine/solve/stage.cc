@@ -1,0 +1,220 @@
+#include "engine/solve/stage.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+namespace vesselid {
+namespace {
+
+// Shared free variables of each exchangeable pair.
+std::vector<std::pair<const Variable*, const Variable*>> ExchangeablePairs(
+    const OutputErrorProblem& problem) {
+  std::vector<std::pair<const Variable*, const Variable*>> pairs;
+  for (const auto& [first, second] : problem.model().info().exchangeable) {
+    const Variable* a = nullptr;
+    const Variable* b = nullptr;
+    for (const Variable& v : problem.variables()) {
+      if (v.kind != Variable::Kind::kParameter || v.experiment >= 0 || !v.free) continue;
+      if (v.index == first) a = &v;
+      if (v.index == second) b = &v;
+    }
+    if (a != nullptr && b != nullptr) pairs.emplace_back(a, b);
+  }
+  return pairs;
+}
+
+// Reports the members of each exchangeable pair in decreasing order (the model is symmetric
+// in them, so the swap leaves every simulation unchanged).
+void OrderExchangeable(OutputErrorProblem* problem, std::vector<std::string>* notes) {
+  for (const auto& [a, b] : ExchangeablePairs(*problem)) {
+    const double va = a->value(), vb = b->value();
+    if (va >= vb) continue;
+    if (vb > a->upper || vb < a->lower || va > b->upper || va < b->lower) {
+      notes->push_back(a->name + " < " + b->name + " and their bounds forbid the swap");
+      continue;
+    }
+    a->set_value(vb);
+    b->set_value(va);
+    notes->push_back("swapped " + a->name + " and " + b->name + " so that " + a->name +
+                     " >= " + b->name);
+  }
+}
+
+// Free variables that end on a bound: their standard errors assume an interior optimum, so
+// the report says which bound is active.
+void NoteActiveBounds(const OutputErrorProblem& problem, std::vector<std::string>* notes) {
+  for (const Variable& v : problem.variables()) {
+    if (!v.free || !v.bounded()) continue;
+    const double tolerance = 1e-6 * (v.upper - v.lower);
+    const double value = v.value();
+    const bool at_lower = value - v.lower <= tolerance, at_upper = v.upper - value <= tolerance;
+    if (!at_lower && !at_upper) continue;
+    char text[256];
+    std::snprintf(text, sizeof(text),
+                  "%s is at its %s bound %g: the data pull it further; its standard error "
+                  "assumes an interior optimum",
+                  v.name.c_str(), at_lower ? "lower" : "upper", at_lower ? v.lower : v.upper);
+    notes->push_back(text);
+  }
+}
+
+// A model symmetric in (a, b) has zero gradient across a = b, so a local solve that reaches
+// the ridge stays there. If it ended on it, restart with the pair split by each of
+// kRidgeSplits either way of its geometric mean (the true pair may be an order of magnitude
+// apart, e.g. Nomoto T1/T2 ~ 7) and keep the best.
+constexpr double kRidgeSplits[] = {1.5, 4.0, 12.0};
+
+void EscapeExchangeRidge(const LocalSolveOptions& options, OutputErrorProblem* problem,
+                         LocalSolveSummary* local, std::vector<std::string>* notes) {
+  for (const auto& [a, b] : ExchangeablePairs(*problem)) {
+    const double va = a->value(), vb = b->value();
+    if (std::abs(va - vb) > 1e-3 * std::max(std::abs(va), std::abs(vb))) continue;
+    const std::vector<double> ridge = problem->Values();
+    const double mean = std::copysign(std::sqrt(std::abs(va * vb)), va);
+    std::vector<double> best_values;
+    LocalSolveSummary best = *local;
+    for (double split : kRidgeSplits) {
+      problem->SetValues(ridge);
+      a->set_value(std::clamp(mean * split, a->lower, a->upper));
+      b->set_value(std::clamp(mean / split, b->lower, b->upper));
+      LocalSolveSummary attempt;
+      if (RunLocalSolve(options, problem, &attempt) && attempt.final_cost < best.final_cost) {
+        best = attempt;
+        best_values = problem->Values();
+      }
+    }
+    if (best_values.empty()) {
+      problem->SetValues(ridge);
+      continue;
+    }
+    char text[256];
+    std::snprintf(text, sizeof(text), "left the %s = %s ridge (cost %.6e -> %.6e)",
+                  a->name.c_str(), b->name.c_str(), local->final_cost, best.final_cost);
+    notes->push_back(text);
+    best.initial_cost = local->initial_cost;
+    best.iterations += local->iterations;
+    best.cost_history.insert(best.cost_history.begin(), local->cost_history.begin(),
+                             local->cost_history.end());
+    best.time_seconds += local->time_seconds;
+    *local = best;
+    problem->SetValues(best_values);
+  }
+}
+
+// Solves for the free initial states with every free parameter held constant.
+void SolveInitialStates(const LocalSolveOptions& options, OutputErrorProblem* problem) {
+  std::vector<const Variable*> held;
+  bool any_state = false;
+  for (const Variable& v : problem->variables()) {
+    if (!v.free) continue;
+    if (v.kind == Variable::Kind::kInitialState) {
+      any_state = true;
+    } else {
+      held.push_back(&v);
+    }
+  }
+  if (!any_state || held.empty()) return;
+  for (const Variable* v : held) problem->problem()->SetParameterBlockConstant(v->block);
+  LocalSolveOptions quiet = options;
+  quiet.progress = nullptr;  // a preliminary solve: the stage reports its refinements
+  LocalSolveSummary ignored;
+  RunLocalSolve(quiet, problem, &ignored);
+  for (const Variable* v : held) problem->problem()->SetParameterBlockVariable(v->block);
+}
+
+}  // namespace
+
+bool StageOptions::IsValid(std::string* error) const {
+  if (!local.IsValid(error)) return false;
+  return !use_global_start || global.IsValid(error);
+}
+
+std::string StageSummary::BriefReport() const {
+  char text[512];
+  if (!usable) {
+    std::snprintf(text, sizeof(text), "stage %s failed: %s", name.c_str(), message.c_str());
+    return text;
+  }
+  const LocalSolveSummary& l = local();
+  std::snprintf(text, sizeof(text),
+                "stage %s: cost %.6e after %d iterations (%s), %zu refinement(s), %.3f s",
+                name.c_str(), l.final_cost, l.iterations, l.termination.c_str(), refinements.size(),
+                time_seconds);
+  return text;
+}
+
+bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSummary* summary,
+              const std::vector<std::vector<double>>& extra_starts) {
+  *summary = StageSummary();
+  summary->name = options.name;
+  const auto start_time = std::chrono::steady_clock::now();
+  if (!options.IsValid(&summary->message)) return false;
+
+  std::vector<std::vector<double>> starts{problem->Values()};
+  starts.insert(starts.end(), extra_starts.begin(), extra_starts.end());
+  if (options.use_global_start) {
+    if (!RunGlobalStart(options.global, problem, &summary->global)) {
+      summary->message = "global start: " + summary->global.message;
+      return false;
+    }
+    for (const std::vector<double>& c : summary->global.candidates) starts.push_back(c);
+  }
+
+  std::vector<double> best_values;
+  double best_cost = 0.0;
+  std::string last_failure;
+  for (size_t i = 0; i < starts.size(); ++i) {
+    problem->SetValues(starts[i]);
+    if (options.initial_states_first) SolveInitialStates(options.local, problem);
+    LocalSolveOptions local_options = options.local;
+    if (options.local.progress) {
+      local_options.progress = [&options, i, &starts](SolveProgress p) {
+        p.refinement = static_cast<int>(i);
+        p.refinements = static_cast<int>(starts.size());
+        options.local.progress(p);
+      };
+    }
+    LocalSolveSummary local;
+    if (RunLocalSolve(local_options, problem, &local)) {
+      EscapeExchangeRidge(local_options, problem, &local, &summary->notes);
+    }
+    summary->refinements.push_back(local);
+    if (!local.usable) {
+      last_failure = local.message;
+      continue;
+    }
+    if (summary->chosen < 0 || local.final_cost < best_cost) {
+      summary->chosen = static_cast<int>(i);
+      best_cost = local.final_cost;
+      best_values = problem->Values();
+    }
+  }
+  if (summary->chosen < 0) {
+    summary->message = "no local refinement succeeded: " + last_failure;
+    return false;
+  }
+  problem->SetValues(best_values);
+  OrderExchangeable(problem, &summary->notes);
+  NoteActiveBounds(*problem, &summary->notes);
+
+  if (options.compute_uncertainty &&
+      !ComputeUncertainty(problem, best_cost, &summary->uncertainty)) {
+    summary->notes.push_back("uncertainty: " + summary->uncertainty.message);
+  }
+  if (options.compute_uncertainty) {
+    LocalAnalysisOptions analysis;
+    analysis.num_threads = options.local.num_threads;
+    if (!ComputeLocalAnalysis(analysis, problem, &summary->analysis)) {
+      summary->notes.push_back("local analysis: " + summary->analysis.message);
+    }
+  }
+  if (!EvaluateFit(*problem, &summary->fits, &summary->message)) return false;
+  summary->usable = true;
+  summary->time_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  return true;
+}
+
+}  // namespace vesselid
