@@ -3,8 +3,7 @@
 // and print them with their standard errors.
 #include <cstdio>
 
-#include "engine/solve/output_error_problem.h"
-#include "engine/solve/stage.h"
+#include "engine/vesselid.h"
 #include "problems/nomoto/closed_loop_simulator.h"
 #include "problems/nomoto/nomoto_models.h"
 

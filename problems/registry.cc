@@ -1,9 +1,9 @@
 #include "problems/registry.h"
 
-#include "problems/eriksen2dof/eriksen_family.h"
-#include "problems/erunsal6dof/erunsal_family.h"
-#include "problems/input_gain/input_gain_family.h"
-#include "problems/nomoto/nomoto_family.h"
+#include "problems/eriksen2dof/eriksen_config.h"
+#include "problems/erunsal6dof/erunsal_config.h"
+#include "problems/input_gain/input_gain_config.h"
+#include "problems/nomoto/nomoto_config.h"
 
 namespace vesselid {
 

@@ -11,14 +11,16 @@
 #include <iostream>
 
 #include "CLI/CLI.hpp"
-#include "glog/logging.h"
-#include "engine/output/checkpoint.h"
+#include "engine/base/atomic_file.h"
 #include "engine/cli/terminal_progress.h"
 #include "engine/config/config.h"
+#include "engine/output/checkpoint.h"
+#include "engine/output/results_text.h"
+#include "engine/output/results_writer.h"
+#include "engine/run/pipeline.h"
 #include "engine/study/study.h"
 #include "engine/study/study_runner.h"
-#include "engine/run/pipeline.h"
-#include "engine/output/results_writer.h"
+#include "glog/logging.h"
 #include "problems/registry.h"
 
 namespace {
@@ -30,22 +32,17 @@ int Fail(const std::string& message) {
 
 // The registry outlives every config (a config points at its model family).
 bool Load(const std::string& config_path, const std::string& data_dir,
-          vesselid::RunConfig* config, std::string* error) {
+          vesselid::ConfigFile* config, std::string* error) {
   static const vesselid::ModelRegistry registry = vesselid::DefaultRegistry();
-  return vesselid::LoadRunConfig(config_path, data_dir, registry, config, error);
+  return vesselid::LoadConfigFile(config_path, data_dir, registry, config, error);
 }
 
 int Simulate(const std::string& config_path, const std::string& out_dir) {
-  vesselid::RunConfig config;
+  vesselid::ConfigFile config;
   std::string error;
-  if (!Load(config_path, out_dir, &config, &error)) return Fail(error);
-  vesselid::YamlReader reader(config_path);
-  try {
-    if (!config.model_family->simulate(reader, config.simulation, *config.model, out_dir, &error)) {
-      return Fail(error);
-    }
-  } catch (const vesselid::ConfigError& e) {
-    return Fail(e.what());
+  if (!Load(config_path, out_dir, &config, &error) ||
+      !vesselid::SimulateConfig(config, out_dir, &error)) {
+    return Fail(error);
   }
   std::printf("simulated experiments of %s into %s\n", config_path.c_str(), out_dir.c_str());
   return 0;
@@ -61,12 +58,13 @@ struct RunFlags {
 // the stages an earlier run of the same config and data finished are loaded, not rerun.
 int Run(const std::string& config_path, const std::string& data_dir, const std::string& out_dir,
         const RunFlags& flags) {
-  vesselid::RunConfig config;
+  vesselid::ConfigFile file;
   std::string error, fingerprint;
-  if (!Load(config_path, data_dir, &config, &error) ||
-      !vesselid::RunFingerprint(config, &fingerprint, &error)) {
+  if (!Load(config_path, data_dir, &file, &error) ||
+      !vesselid::RunFingerprint(file.run, &fingerprint, &error)) {
     return Fail(error);
   }
+  const vesselid::RunConfig& config = file.run;
   vesselid::TerminalProgress progress(
       vesselid::TerminalProgress::ChooseMode(stderr, flags.quiet, flags.verbose), stderr,
       config.stages.size());
@@ -109,7 +107,7 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
 int Study(const std::string& config_path, const std::string& data_dir, const std::string& out_dir,
           const std::vector<std::string>& only, int threads, bool quiet) {
   vesselid::ProcessGroup group(nullptr, nullptr);
-  vesselid::RunConfig config;
+  vesselid::ConfigFile config;
   std::string error;
   if (!Load(config_path, data_dir, &config, &error)) return group.root() ? Fail(error) : 1;
   if (threads > 0) config.study.execution.threads = threads;
@@ -119,7 +117,7 @@ int Study(const std::string& config_path, const std::string& data_dir, const std
   };
   nlohmann::json result;
   std::string text;
-  if (!vesselid::RunStudy(config, only, &result, &text, &error, progress)) {
+  if (!vesselid::RunStudy(config.run, config.study, only, &result, &text, &error, progress)) {
     return group.root() ? Fail(error) : 1;
   }
   if (!group.root()) return 0;

@@ -9,74 +9,6 @@
 
 namespace vesselid {
 
-void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
-                GlobalStartOptions* global) {
-  reader.CheckMap(node, path,
-                  {"algorithm", "max_evaluations", "max_time", "seed", "population", "candidates",
-                   "min_separation"});
-  reader.Read(node, path, "algorithm", &global->algorithm);
-  reader.Read(node, path, "max_evaluations", &global->max_evaluations);
-  reader.Read(node, path, "max_time", &global->max_time_seconds);
-  int seed = static_cast<int>(global->seed);
-  reader.Read(node, path, "seed", &seed);
-  global->seed = static_cast<unsigned>(seed);
-  reader.Read(node, path, "population", &global->population);
-  reader.Read(node, path, "candidates", &global->candidates);
-  reader.Read(node, path, "min_separation", &global->min_separation);
-  std::string error;
-  if (!global->IsValid(&error)) reader.Fail(node, path, error);
-}
-
-std::vector<std::string> ExperimentNames(const YamlReader& reader, const YAML::Node& node,
-                                         const std::string& key, const RunConfig& config) {
-  std::vector<std::string> names = reader.Strings(node, key);
-  for (size_t i = 0; i < names.size(); ++i) {
-    if (config.FindExperiment(names[i]) == nullptr) {
-      reader.Fail(node[i], Child(key, i), "no experiment named '" + names[i] + "'");
-    }
-  }
-  return names;
-}
-
-void CheckNames(const YamlReader& reader, const YAML::Node& node, const std::string& key,
-                const std::vector<std::string>& names, const std::vector<std::string>& known,
-                const std::string& kind, const ModelInfo& info) {
-  for (const std::string& name : names) {
-    bool found = false;
-    for (const std::string& k : known) found = found || k == name;
-    if (!found) {
-      reader.Fail(node, key,
-                  "unknown " + kind + " '" + name + "' (model " + info.name + " has " +
-                      JoinNames(known) + ")");
-    }
-  }
-}
-
-void ReadRegressionData(const YamlReader& reader, const YAML::Node& node, const std::string& path,
-                        const ModelInfo& info, RegressionDataOptions* data) {
-  if (node["grid"]) {
-    data->grid_output = reader.String(node["grid"], Child(path, "grid"));
-    CheckNames(reader, node["grid"], Child(path, "grid"),
-               std::vector<std::string>{data->grid_output}, info.outputs, "output", info);
-  }
-  if (const YAML::Node smoothing = node["smoothing"]) {
-    const std::string key = Child(path, "smoothing");
-    reader.CheckMap(smoothing, key, {"half_width", "order"});
-    reader.Read(smoothing, key, "half_width", &data->smoothing.half_width);
-    reader.Read(smoothing, key, "order", &data->smoothing.order);
-    // The window, 2 half_width + 1 samples, must fit an int here and in SavitzkyGolay.
-    constexpr int kMaxHalfWidth = (std::numeric_limits<int>::max() - 1) / 2;
-    if (data->smoothing.half_width > kMaxHalfWidth) {
-      reader.Fail(smoothing["half_width"], Child(key, "half_width"),
-                  "must be <= " + std::to_string(kMaxHalfWidth));
-    }
-    if (data->smoothing.half_width < 1 || data->smoothing.order < 1 ||
-        data->smoothing.order >= 2 * data->smoothing.half_width + 1) {
-      reader.Fail(smoothing, key, "need half_width >= 1 and 1 <= order < 2 half_width + 1");
-    }
-  }
-}
-
 namespace {
 
 namespace fs = std::filesystem;
@@ -322,7 +254,8 @@ void ReadLeastSquares(const YamlReader& reader, const YAML::Node& node, const st
 }
 
 // The run's model map with the keys of `override` replaced, built by the family.
-std::shared_ptr<const ModelHandle> OverrideModel(const YamlReader& reader, const RunConfig& config,
+std::shared_ptr<const ModelHandle> OverrideModel(const YamlReader& reader,
+                                                 const ModelFamily& family,
                                                  const YAML::Node& base,
                                                  const YAML::Node& override,
                                                  const std::string& path) {
@@ -333,13 +266,14 @@ std::shared_ptr<const ModelHandle> OverrideModel(const YamlReader& reader, const
     if (key == "family") reader.Fail(item.first, Child(path, key), "a stage cannot change the family");
     merged[key] = item.second;
   }
-  return config.model_family->make_model(reader, merged, path);
+  return family.make_model(reader, merged, path);
 }
 
 // A list of experiment names at `key`, each one the config defines.
 
 StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const std::string& path,
-                      const RunConfig& config, const YAML::Node& model_node, size_t index) {
+                      const RunConfig& config, const ModelFamily& family,
+                      const YAML::Node& model_node, size_t index) {
   reader.CheckMap(node, path,
                   {"name", "type", "least_squares", "step_regression", "model", "experiments",
                    "validation",
@@ -347,7 +281,7 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
                    "normalize_by_length", "continuation", "global", "local", "uncertainty"});
   StageConfig stage;
   if (node["model"]) {
-    stage.model = OverrideModel(reader, config, model_node, node["model"], Child(path, "model"));
+    stage.model = OverrideModel(reader, family, model_node, node["model"], Child(path, "model"));
   }
   const ModelInfo& info = stage.model ? stage.model->info() : config.model->info();
   stage.options.name = "stage" + std::to_string(index + 1);
@@ -370,16 +304,12 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
   }
   const std::string type =
       node["type"] ? reader.String(node["type"], Child(path, "type")) : "output_error";
-  if (type == "least_squares") {
-    stage.kind = StageConfig::Kind::kLeastSquares;
-  } else if (type == "step_regression") {
-    stage.kind = StageConfig::Kind::kStepRegression;
-  } else if (type != "output_error") {
+  if (!StringToStageKind(type, &stage.kind)) {
     reader.Fail(node["type"], Child(path, "type"),
                 "unknown stage type '" + type + "' (output_error, least_squares, step_regression)");
   }
   if (stage.kind == StageConfig::Kind::kStepRegression &&
-      (stage.model ? *stage.model : *config.model).damping_inertia_form() == nullptr) {
+      config.StageModel(stage).damping_inertia_form() == nullptr) {
     reader.Fail(node["type"], Child(path, "type"),
                 "model " + info.name + " has no damping-inertia form for a step-regression stage");
   }
@@ -442,7 +372,7 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
   }
   if (node["local"]) ReadLocal(reader, node["local"], Child(path, "local"), &stage.options.local);
   reader.Read(node, path, "uncertainty", &stage.options.compute_uncertainty);
-  const ModelHandle& model = stage.model ? *stage.model : *config.model;
+  const ModelHandle& model = config.StageModel(stage);
   if (const YAML::Node ls = node["least_squares"]) {
     ReadLeastSquares(reader, ls, Child(path, "least_squares"), model, &stage);
   }
@@ -474,21 +404,15 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
 
 }  // namespace
 
-const ExperimentSpec* RunConfig::FindExperiment(const std::string& name) const {
-  for (const ExperimentSpec& e : experiments) {
-    if (e.name == name) return &e;
-  }
-  return nullptr;
-}
-
-bool LoadRunConfig(const std::string& path, const std::string& data_dir,
-                   const ModelRegistry& registry, RunConfig* config, std::string* error) {
+bool LoadConfigFile(const std::string& path, const std::string& data_dir,
+                    const ModelRegistry& registry, ConfigFile* config, std::string* error) {
   YamlReader reader(path);
   try {
     const YAML::Node root = reader.Load();
     reader.CheckMap(root, "", {"description", "model", "simulation", "experiments", "stages",
                                "fusion", "final_validation", "surfaces", "study"});
-    RunConfig result;
+    ConfigFile file;
+    RunConfig& result = file.run;
     result.path = path;
     reader.Read(root, "", "description", &result.description);
     const YAML::Node model = root["model"];
@@ -496,15 +420,15 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
     if (!model.IsMap() || !model["family"])
       reader.Fail(model, "model", "expected a map with 'family'");
     result.family = reader.String(model["family"], "model.family");
-    result.model_family = registry.Find(result.family);
-    if (result.model_family == nullptr) {
+    file.family = registry.Find(result.family);
+    if (file.family == nullptr) {
       reader.Fail(
           model["family"], "model.family",
           "unknown model family '" + result.family + "' (" + JoinNames(registry.Names()) + ")");
     }
-    result.model = result.model_family->make_model(reader, model, "model");
+    result.model = file.family->make_model(reader, model, "model");
     const ModelInfo& info = result.model->info();
-    if (root["simulation"]) result.simulation = root["simulation"];
+    if (root["simulation"]) file.simulation = root["simulation"];
 
     const fs::path base = data_dir.empty() ? fs::path(path).parent_path() : fs::path(data_dir);
     const YAML::Node experiments = root["experiments"];
@@ -524,7 +448,8 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
     reader.CheckSequence(stages, "stages");
     if (stages.size() == 0) reader.Fail(stages, "stages", "at least one stage is needed");
     for (size_t i = 0; i < stages.size(); ++i) {
-      result.stages.push_back(ReadStage(reader, stages[i], Child("stages", i), result, model, i));
+      result.stages.push_back(
+          ReadStage(reader, stages[i], Child("stages", i), result, *file.family, model, i));
     }
     if (const YAML::Node fusion = root["fusion"]) {
       const std::string rule = reader.String(fusion, "fusion");
@@ -539,7 +464,7 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
       FinalValidationConfig& v = result.final_validation;
       result.has_final_validation = true;
       if (final["model"]) {
-        v.model = OverrideModel(reader, result, model, final["model"], "final_validation.model");
+        v.model = OverrideModel(reader, *file.family, model, final["model"], "final_validation.model");
       }
       const ModelInfo& final_info = v.model ? v.model->info() : info;
       if (!final["experiments"]) reader.Fail(final, "final_validation", "missing key 'experiments'");
@@ -561,15 +486,33 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
       result.surfaces = ReadSurfaces(reader, surfaces, *result.model);
     }
     if (const YAML::Node study = root["study"]) {
-      result.study = ReadStudy(reader, study, result);
+      file.study = ReadStudy(reader, study, result, file.simulation);
     }
-    *config = std::move(result);
+    *config = std::move(file);
     return true;
   } catch (const ConfigError& e) {
     *error = e.what();
     return false;
   } catch (const YAML::Exception& e) {
     *error = path + (e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1)) + ": " + e.msg;
+    return false;
+  }
+}
+
+bool LoadRunConfig(const std::string& path, const std::string& data_dir,
+                   const ModelRegistry& registry, RunConfig* config, std::string* error) {
+  ConfigFile file;
+  if (!LoadConfigFile(path, data_dir, registry, &file, error)) return false;
+  *config = std::move(file.run);
+  return true;
+}
+
+bool SimulateConfig(const ConfigFile& config, const std::string& out_dir, std::string* error) {
+  try {
+    return config.family->simulate(YamlReader(config.run.path), config.simulation,
+                                   *config.run.model, out_dir, error);
+  } catch (const ConfigError& e) {
+    *error = e.what();
     return false;
   }
 }

@@ -1,4 +1,5 @@
-// A run as a YAML config describes it, parsed at the edge into plain structs.
+// A config file, parsed at the edge into plain structs: the staged run (run/run_config.h),
+// the studies (study/study_options.h), the model family and its simulation map.
 //
 //   model:       {family: nomoto, type: second_order, ...family keys}
 //   simulation:  family-specific description of synthetic experiments (`vesselid simulate`)
@@ -21,83 +22,33 @@
 // start outside them is an error naming file, line and key.
 #pragma once
 
-#include <memory>
 #include <string>
-#include <vector>
 
-#include "engine/model/experiment.h"
-#include "engine/run/fusion.h"
-#include "engine/regression/least_squares.h"
-#include "engine/regression/regression_data.h"
 #include "engine/config/model_registry.h"
-#include "engine/solve/output_error_problem.h"
-#include "engine/solve/parameter.h"
-#include "engine/study/partition_study.h"
+#include "engine/run/run_config.h"
 #include "engine/study/study_options.h"
-#include "engine/solve/stage.h"
-#include "engine/step_regression/step_regression.h"
+#include "yaml-cpp/yaml.h"
 
 namespace vesselid {
 
-struct StageConfig {
-  // output_error: simulate and compare (the default); least_squares: equation-error regression
-  // of the model's derivative form (least_squares.h), its estimate starting the next stage;
-  // step_regression: seed 004's damping and inertia regression on steady states and steps
-  // (step_regression.h), for models with a damping-inertia form.
-  enum class Kind { kOutputError, kLeastSquares, kStepRegression };
-  Kind kind = Kind::kOutputError;
-  StageOptions options;
-  LeastSquaresOptions least_squares;
-  StepRegressionOptions step_regression;
-  // How records become regression data (least-squares stages, and the velocity metrics of
-  // any stage's validation when the model has an equation-error form).
-  RegressionDataOptions regression_data;
-  // The stage's own restriction of the model (e.g. active DOFs); null: the run's model.
-  std::shared_ptr<const ModelHandle> model;
-  std::vector<std::string> experiments;  // names from RunConfig::experiments
-  // Held-out experiments simulated after the stage (its free initial states estimated first).
-  std::vector<std::string> validation;
-  std::vector<ParameterSpec> parameters;
-  OutputErrorOptions problem;
-  ExperimentOptions experiment;  // compared outputs, step bound, length normalisation
-  // Segment lengths (s, increasing) the stage is solved with first, each phase starting the
-  // next; empty: the stage is solved once on its experiments as configured.
-  std::vector<double> continuation;
-};
-
-
-// Held-out runs simulated with the final parameters after the last stage.
-struct FinalValidationConfig {
-  std::vector<std::string> experiments;
-  std::vector<std::string> free_initial_states;  // estimated with the final parameters held
-  std::shared_ptr<const ModelHandle> model;  // null: the run's model
-  ExperimentOptions experiment;
-};
-
-struct RunConfig {
-  std::string path;
-  std::string description;
-  std::string family;
-  std::shared_ptr<const ModelHandle> model;
-  const ModelFamily* model_family = nullptr;
-  YAML::Node simulation;  // handed to the family's simulator, parsed there
-  std::vector<ExperimentSpec> experiments;
-  std::vector<StageConfig> stages;
-  FusionRule fusion = FusionRule::kInverseVariance;
-  bool has_final_validation = false;
-  FinalValidationConfig final_validation;
-  // Damping and inertia surfaces written by `run` for models with a damping-inertia form
-  // (`surfaces: {<state>: [lower, upper, points], <state>: [...]}`); empty: none.
-  SurfaceGrid surfaces;
-  // Sensitivity studies (`vesselid study`); empty when the config has no study section.
-  StudyConfig study;
-
-  const ExperimentSpec* FindExperiment(const std::string& name) const;
+struct ConfigFile {
+  RunConfig run;
+  StudyConfig study;                   // empty when the config has no study section
+  const ModelFamily* family = nullptr;  // the registry's entry for run.family
+  YAML::Node simulation;                // the family's `simulation` map (may be null)
 };
 
 // Experiment files are resolved against data_dir when it is not empty, else against the
-// config file's folder.
+// config file's folder. The registry must outlive `config` (config->family points into it).
+bool LoadConfigFile(const std::string& path, const std::string& data_dir,
+                    const ModelRegistry& registry, ConfigFile* config, std::string* error);
+
+// The run part of a config file alone.
 bool LoadRunConfig(const std::string& path, const std::string& data_dir,
                    const ModelRegistry& registry, RunConfig* config, std::string* error);
+
+// Writes the config's synthetic experiments (its `simulation` map) into out_dir through its
+// family; a config error names the file, line and key.
+bool SimulateConfig(const ConfigFile& config, const std::string& out_dir, std::string* error);
 
 }  // namespace vesselid

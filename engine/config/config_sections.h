@@ -1,12 +1,14 @@
-// Readers of config sections shared by the files that parse a run config (config.cc,
-// study_config.cc). Each fails through YamlReader with the file, line and key.
+// Readers of config sections shared by the files that parse a config (config.cc,
+// study_config.cc, step_regression_config.cc). Each fails through YamlReader with the file,
+// line and key.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "engine/config/config.h"
 #include "engine/config/yaml_reader.h"
+#include "engine/run/run_config.h"
+#include "engine/study/study_options.h"
 
 namespace vesselid {
 
@@ -36,7 +38,9 @@ void ReadStepRegression(const YamlReader& reader, const YAML::Node& node,
 // damping-inertia form.
 SurfaceGrid ReadSurfaces(const YamlReader& reader, const YAML::Node& node, const ModelHandle& model);
 
-// The `study` section (study_options.h).
-StudyConfig ReadStudy(const YamlReader& reader, const YAML::Node& node, const RunConfig& config);
+// The `study` section (study_options.h); a Monte Carlo part without its own `truth` takes the
+// `simulation` map's.
+StudyConfig ReadStudy(const YamlReader& reader, const YAML::Node& node, const RunConfig& config,
+                      const YAML::Node& simulation);
 
 }  // namespace vesselid

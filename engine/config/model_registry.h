@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/model/model_handle.h"
 #include "engine/config/yaml_reader.h"
+#include "engine/model/model_handle.h"
 
 namespace vesselid {
 

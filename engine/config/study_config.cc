@@ -6,15 +6,6 @@
 namespace vesselid {
 namespace {
 
-const char* KindName(StageConfig::Kind kind) {
-  switch (kind) {
-    case StageConfig::Kind::kOutputError: return "output_error";
-    case StageConfig::Kind::kLeastSquares: return "least_squares";
-    case StageConfig::Kind::kStepRegression: return "step_regression";
-  }
-  return "";
-}
-
 // The stage the name at `n` (key `key`) names, which must be of the required kind.
 const StageConfig& NamedStage(const YamlReader& reader, const YAML::Node& n,
                               const std::string& key, const RunConfig& config,
@@ -26,7 +17,7 @@ const StageConfig& NamedStage(const YamlReader& reader, const YAML::Node& n,
   }
   if (found == nullptr) reader.Fail(n, key, "no stage named '" + name + "'");
   if (found->kind != kind) {
-    reader.Fail(n, key, "stage '" + name + "' is not a " + KindName(kind) + " stage");
+    reader.Fail(n, key, "stage '" + name + "' is not a " + StageKindToString(kind) + " stage");
   }
   return *found;
 }
@@ -45,13 +36,9 @@ const StageConfig& StudiedStage(const YamlReader& reader, const YAML::Node& node
     if (s.kind == kind) found = &s;
   }
   if (found == nullptr) {
-    reader.Fail(node, path, std::string("the run has no ") + KindName(kind) + " stage to study");
+    reader.Fail(node, path, std::string("the run has no ") + StageKindToString(kind) + " stage to study");
   }
   return *found;
-}
-
-const ModelHandle& StageModel(const StageConfig& stage, const RunConfig& config) {
-  return stage.model ? *stage.model : *config.model;
 }
 
 double Confidence(const YamlReader& reader, const YAML::Node& node, const std::string& path,
@@ -122,13 +109,13 @@ ProfileOptions ReadProfile(const YamlReader& reader, const YAML::Node& node,
 //   monte_carlo: {stage, runs, noise: {<output>: sd}, truth: {<parameter>: value},
 //                 start: stage|truth, confidence}
 MonteCarloOptions ReadMonteCarlo(const YamlReader& reader, const YAML::Node& node,
-                                 const RunConfig& config) {
+                                 const RunConfig& config, const YAML::Node& simulation) {
   const std::string path = "study.monte_carlo";
   reader.CheckMap(node, path, {"stage", "runs", "noise", "truth", "start", "confidence"});
   MonteCarloOptions mc;
   const StageConfig& stage =
       StudiedStage(reader, node, path, config, StageConfig::Kind::kOutputError, &mc.stage);
-  const ModelInfo& info = StageModel(stage, config).info();
+  const ModelInfo& info = config.StageModel(stage).info();
   mc.runs = Positive(reader, node, path, "runs", mc.runs);
   if (!node["noise"]) reader.Fail(node, path, "missing key 'noise' ({<output>: sd})");
   mc.noise = reader.DoubleMap(node["noise"], Child(path, "noise"));
@@ -145,8 +132,8 @@ MonteCarloOptions ReadMonteCarlo(const YamlReader& reader, const YAML::Node& nod
   // The truth: study's own, else the simulation's (the parameters the data were made with).
   // (Copy-constructed once: YAML::Node's operator= would write through to the node.)
   const bool simulated =
-      !node["truth"] && config.simulation.IsMap() && config.simulation["truth"];
-  const YAML::Node truth = simulated ? config.simulation["truth"] : node["truth"];
+      !node["truth"] && simulation.IsMap() && simulation["truth"];
+  const YAML::Node truth = simulated ? simulation["truth"] : node["truth"];
   const std::string truth_path = simulated ? "simulation.truth" : Child(path, "truth");
   if (!truth) reader.Fail(node, path, "missing key 'truth' (and no simulation.truth)");
   mc.truth = reader.DoubleMap(truth, truth_path);
@@ -256,7 +243,8 @@ StudyOptions ReadPartitions(const YamlReader& reader, const YAML::Node& node,
 }  // namespace
 
 //   study: {seed, threads, profile, monte_carlo, starts, partitions}
-StudyConfig ReadStudy(const YamlReader& reader, const YAML::Node& node, const RunConfig& config) {
+StudyConfig ReadStudy(const YamlReader& reader, const YAML::Node& node, const RunConfig& config,
+                      const YAML::Node& simulation) {
   const std::string path = "study";
   reader.CheckMap(node, path,
                   {"seed", "threads", "profile", "monte_carlo", "starts", "partitions"});
@@ -271,7 +259,7 @@ StudyConfig ReadStudy(const YamlReader& reader, const YAML::Node& node, const Ru
   }
   if (const YAML::Node n = node["profile"]) study.profile = ReadProfile(reader, n, config);
   if (const YAML::Node n = node["monte_carlo"]) {
-    study.monte_carlo = ReadMonteCarlo(reader, n, config);
+    study.monte_carlo = ReadMonteCarlo(reader, n, config, simulation);
   }
   if (const YAML::Node n = node["starts"]) study.starts = ReadStarts(reader, n, config);
   if (const YAML::Node n = node["partitions"]) {

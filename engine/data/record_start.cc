@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "Eigen/Dense"
-#include "engine/model/model.h"
+#include "engine/base/angle.h"
 
 namespace vesselid {
 

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "engine/data/interpolation.h"
-#include "engine/model/model.h"
 #include "engine/data/segments.h"
 #include "engine/data/trajectory.h"
+#include "engine/model/model.h"
 
 namespace vesselid {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/model/experiment.h"
 #include "engine/data/trajectory.h"
+#include "engine/model/experiment.h"
 
 namespace vesselid {
 

@@ -24,6 +24,8 @@
 #include <utility>
 #include <vector>
 
+#include "engine/base/angle.h"
+
 namespace vesselid {
 
 struct ModelInfo {
@@ -48,9 +50,6 @@ struct ModelInfo {
   int InputIndex(const std::string& name) const;
   int OutputIndex(const std::string& name) const;
 };
-
-// An angle difference wrapped to (-pi, pi].
-inline double WrapAngle(double a) { return a - 2.0 * M_PI * std::round(a / (2.0 * M_PI)); }
 
 // Joins names as "a, b, c" for messages.
 std::string JoinNames(const std::vector<std::string>& names);

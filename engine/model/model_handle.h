@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "ceres/ceres.h"
-#include "engine/model/experiment.h"
 #include "engine/model/damping_inertia_form.h"
+#include "engine/model/experiment.h"
 #include "engine/model/experiment_cost.h"
 #include "engine/model/model.h"
 #include "engine/model/regression_form.h"

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "engine/data/interpolation.h"
-#include "engine/model/model_handle.h"
 #include "engine/data/trajectory.h"
+#include "engine/model/model_handle.h"
 
 namespace vesselid {
 

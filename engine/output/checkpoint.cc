@@ -6,7 +6,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "engine/output/results_writer.h"
+#include "engine/base/atomic_file.h"
 #include "engine/output/stage_result_archive.h"
 #include "nlohmann/json.hpp"
 

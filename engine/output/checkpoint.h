@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/config/config.h"
-#include "engine/run/pipeline.h"
+#include "engine/run/run_config.h"
+#include "engine/run/run_result.h"
 
 namespace vesselid {
 

@@ -3,12 +3,12 @@
 #include <filesystem>
 #include <sstream>
 
-#include "engine/output/base64.h"
+#include "engine/base/atomic_file.h"
 #include "engine/base/elapsed.h"
+#include "engine/output/base64.h"
 #include "engine/output/report_figures.h"
 #include "engine/output/report_plots.h"
 #include "engine/output/report_tables.h"
-#include "engine/output/results_writer.h"
 
 namespace vesselid {
 namespace {

@@ -16,8 +16,8 @@
 
 #include <string>
 
-#include "engine/config/config.h"
-#include "engine/run/pipeline.h"
+#include "engine/run/run_config.h"
+#include "engine/run/run_result.h"
 
 namespace vesselid {
 

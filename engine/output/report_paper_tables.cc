@@ -64,7 +64,7 @@ std::string ParametersByStage(const RunConfig& config, const RunResult& result) 
     std::map<std::string, const Estimate*> own;
     std::set<std::string> each;
     for (const Estimate& e : stage.estimates) {
-      if (e.kind != "parameter" || e.role == "fixed") continue;
+      if (e.kind != EstimateKind::kParameter || e.role == ParameterRole::kFixed) continue;
       if (e.experiment.empty()) {
         own[e.name] = &e;
       } else {
@@ -108,7 +108,7 @@ std::string ParametersByStage(const RunConfig& config, const RunResult& result) 
     }
     if (f != final_values.end()) {
       const FinalParameter& p = *f->second;
-      row += Num(ValueWithError(p.value, p.std_error, p.undetermined && p.role != "fixed")) +
+      row += Num(ValueWithError(p.value, p.std_error, p.undetermined && p.role != ParameterRole::kFixed)) +
              Td(p.rule);
     } else {
       row += "<td></td><td></td>";

@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "Eigen/Dense"
-#include "engine/solve/metrics.h"
 #include "engine/output/report_figures.h"
+#include "engine/solve/metrics.h"
 #include "engine/solve/stage.h"
 #include "engine/step_regression/step_regression.h"
 

@@ -29,9 +29,9 @@ std::string Interval(double value, double std_error, bool undetermined) {
 std::string EstimateRow(const Estimate& e, bool with_experiment) {
   std::string row = "<tr>" + Td(e.name);
   if (with_experiment) {
-    row += Td(e.experiment) + Td(e.kind == "initial_state" ? "initial state" : "parameter");
+    row += Td(e.experiment) + Td(e.kind == EstimateKind::kInitialState ? "initial state" : "parameter");
   }
-  return row + Td(e.role) + Num(HtmlNumber(e.value, "%.8g")) +
+  return row + Td(ParameterRoleToString(e.role)) + Num(HtmlNumber(e.value, "%.8g")) +
          Num(HtmlNumber(e.std_error, "%.4g")) +
          Num(Interval(e.value, e.std_error, e.undetermined)) + Num(HtmlNumber(e.start, "%.6g")) +
          Num(Bounds(e.lower, e.upper)) + "</tr>\n";
@@ -121,7 +121,7 @@ std::string EstimatesTables(const std::vector<Estimate>& estimates) {
   std::string shared, per_experiment, fixed;
   size_t shared_count = 0, per_experiment_count = 0, fixed_count = 0;
   for (const Estimate& e : estimates) {
-    if (e.role == "fixed") {
+    if (e.role == ParameterRole::kFixed) {
       fixed +=
           "<tr>" + Td(e.name) + Td(e.experiment) + Num(HtmlNumber(e.value, "%.8g")) + "</tr>\n";
       ++fixed_count;
@@ -160,10 +160,11 @@ std::string FinalParametersTable(const std::vector<FinalParameter>& parameters) 
   for (const FinalParameter& f : parameters) {
     std::string stages;
     for (const std::string& s : f.stages) stages += (stages.empty() ? "" : ", ") + s;
-    const bool fixed = f.role == "fixed";
+    const bool fixed = f.role == ParameterRole::kFixed;
     rows += "<tr" + std::string(fixed ? " class=\"fixed\"" : "") + ">" + Td(f.name) +
             Num(HtmlNumber(f.value, "%.8g")) + Num(HtmlNumber(f.std_error, "%.4g")) +
-            Num(fixed ? "—" : Interval(f.value, f.std_error, f.undetermined)) + Td(f.role) +
+            Num(fixed ? "—" : Interval(f.value, f.std_error, f.undetermined)) +
+            Td(ParameterRoleToString(f.role)) +
             Td(stages) + Td(f.rule) + "</tr>\n";
   }
   return "<table class=\"estimates\">\n<tr>" + Th("parameter") + Th("value") + Th("std. error") +

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "engine/config/config.h"
+#include "engine/run/run_config.h"
+#include "engine/run/run_result.h"
 #include "engine/solve/metrics.h"
-#include "engine/run/pipeline.h"
 #include "engine/step_regression/step_regression.h"
 
 namespace vesselid {

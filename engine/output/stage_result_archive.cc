@@ -61,6 +61,19 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LocalAnalysis, available, message, parameters
                                    time_seconds)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(StageSummary, name, usable, message, global, refinements,
                                    chosen, uncertainty, analysis, fits, notes, time_seconds)
+// Kind and role as the words results.json uses; an unknown word fails the archive.
+void to_json(nlohmann::json& j, EstimateKind kind) { j = EstimateKindToString(kind); }
+void from_json(const nlohmann::json& j, EstimateKind& kind) {
+  if (!StringToEstimateKind(j.get<std::string>(), &kind)) {
+    throw nlohmann::json::other_error::create(501, "unknown estimate kind " + j.dump(), &j);
+  }
+}
+void to_json(nlohmann::json& j, ParameterRole role) { j = ParameterRoleToString(role); }
+void from_json(const nlohmann::json& j, ParameterRole& role) {
+  if (!StringToParameterRole(j.get<std::string>(), &role)) {
+    throw nlohmann::json::other_error::create(501, "unknown parameter role " + j.dump(), &j);
+  }
+}
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Estimate, name, kind, role, experiment, value, start,
                                    std_error, lower, upper, undetermined)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(DampingSample, record, t, duration, x, sigma, turns, weight,

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "engine/run/pipeline.h"
+#include "engine/run/run_result.h"
 #include "nlohmann/json.hpp"
 
 namespace vesselid {

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "engine/base/atomic_file.h"
 #include "engine/base/json_number.h"
-#include "engine/output/results_writer.h"
 
 namespace vesselid {
 namespace {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/config/config.h"
-#include "engine/run/pipeline.h"
+#include "engine/run/run_config.h"
+#include "engine/run/run_result.h"
 #include "nlohmann/json.hpp"
 
 namespace vesselid {

@@ -19,11 +19,11 @@
 #include <vector>
 
 #include "Eigen/Dense"
+#include "engine/model/model_handle.h"
+#include "engine/model/regression_form.h"
 #include "engine/regression/linear_regression.h"
 #include "engine/solve/metrics.h"
-#include "engine/model/model_handle.h"
 #include "engine/solve/parameter.h"
-#include "engine/model/regression_form.h"
 
 namespace vesselid {
 

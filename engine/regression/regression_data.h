@@ -12,11 +12,11 @@
 
 #include <string>
 
+#include "engine/data/savitzky_golay.h"
+#include "engine/data/trajectory.h"
 #include "engine/model/experiment.h"
 #include "engine/model/model_handle.h"
 #include "engine/model/regression_form.h"
-#include "engine/data/savitzky_golay.h"
-#include "engine/data/trajectory.h"
 
 namespace vesselid {
 

@@ -8,8 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "engine/run/records.h"
+#include "engine/run/run_config.h"
 #include "engine/solve/output_error_problem.h"
-#include "engine/run/pipeline.h"
 
 namespace vesselid {
 

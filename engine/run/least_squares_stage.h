@@ -6,7 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "engine/run/pipeline.h"
+#include "engine/model/model_handle.h"
+#include "engine/run/records.h"
+#include "engine/run/run_config.h"
+#include "engine/run/run_result.h"
+#include "engine/solve/parameter.h"
 
 namespace vesselid {
 

@@ -11,8 +11,9 @@
 #include <vector>
 
 #include "engine/regression/least_squares.h"
+#include "engine/run/records.h"
+#include "engine/run/run_config.h"
 #include "engine/solve/metrics.h"
-#include "engine/run/pipeline.h"
 
 namespace vesselid {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/solve/output_error_problem.h"
 #include "engine/data/trajectory.h"
+#include "engine/solve/output_error_problem.h"
 
 namespace vesselid {
 

@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "engine/model/damping_inertia_form.h"
-#include "engine/step_regression/first_order_step.h"
 #include "engine/model/regression_form.h"
+#include "engine/step_regression/first_order_step.h"
 #include "engine/step_regression/steady_state.h"
 
 namespace vesselid {

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <random>
 
-#include "engine/config/config.h"
+#include "engine/run/run_config.h"
 
 namespace vesselid {
 

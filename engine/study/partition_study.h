@@ -33,8 +33,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/solve/metrics.h"
 #include "engine/model/model.h"
+#include "engine/solve/metrics.h"
 #include "engine/solve/parameter.h"
 #include "engine/study/study_runner.h"
 #include "nlohmann/json.hpp"

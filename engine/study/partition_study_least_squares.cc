@@ -5,11 +5,12 @@
 #include <set>
 #include <tuple>
 
-#include "engine/config/config.h"
 #include "engine/regression/least_squares.h"
-#include "engine/study/partition_study.h"
 #include "engine/run/pipeline.h"
+#include "engine/run/records.h"
+#include "engine/run/run_config.h"
 #include "engine/run/velocity_validation.h"
+#include "engine/study/partition_study.h"
 
 namespace vesselid {
 namespace partition_internal {

@@ -11,9 +11,11 @@
 #include <set>
 #include <tuple>
 
-#include "engine/config/config.h"
-#include "engine/study/partition_study.h"
+#include "engine/run/held_out.h"
 #include "engine/run/pipeline.h"
+#include "engine/run/records.h"
+#include "engine/run/run_config.h"
+#include "engine/study/partition_study.h"
 #include "engine/study/study_stage.h"
 
 namespace vesselid {

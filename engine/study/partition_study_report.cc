@@ -6,8 +6,8 @@
 #include <sstream>
 
 #include "engine/base/json_number.h"
-#include "engine/study/partition_study.h"
 #include "engine/base/statistics.h"
+#include "engine/study/partition_study.h"
 
 namespace vesselid {
 namespace {

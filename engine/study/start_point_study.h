@@ -12,7 +12,7 @@
 
 #include <string>
 
-#include "engine/config/config.h"
+#include "engine/run/run_config.h"
 #include "engine/study/study_options.h"
 #include "nlohmann/json.hpp"
 

@@ -19,11 +19,11 @@ const std::vector<std::string>& StudyPartNames() {
   return names;
 }
 
-bool RunStudy(const RunConfig& config, const std::vector<std::string>& only, json* result,
+bool RunStudy(const RunConfig& config, const StudyConfig& study,
+              const std::vector<std::string>& only, json* result,
               std::string* text, std::string* error,
               const std::function<void(const std::string&)>& progress) {
   const auto start_time = std::chrono::steady_clock::now();
-  const StudyConfig& study = config.study;
   auto configured = [&](const std::string& part) {
     if (part == "profile") return study.profile.has_value();
     if (part == "monte_carlo") return study.monte_carlo.has_value();

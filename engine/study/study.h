@@ -6,7 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/config/config.h"
+#include "engine/run/run_config.h"
+#include "engine/study/study_options.h"
 #include "nlohmann/json.hpp"
 
 namespace vesselid {
@@ -17,7 +18,8 @@ const std::vector<std::string>& StudyPartNames();
 // Runs the configured parts (`only` non-empty: just those, each must be configured). On rank
 // 0, `result` holds {config, processes, threads, <part>: {...}} and `text` the report; other
 // ranks get null and an empty text. `progress` gets one line per finished case.
-bool RunStudy(const RunConfig& config, const std::vector<std::string>& only,
+bool RunStudy(const RunConfig& config, const StudyConfig& study,
+              const std::vector<std::string>& only,
               nlohmann::json* result, std::string* text, std::string* error,
               const std::function<void(const std::string&)>& progress = nullptr);
 

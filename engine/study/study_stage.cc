@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "engine/run/pipeline.h"
+#include "engine/run/records.h"
 
 namespace vesselid {
 

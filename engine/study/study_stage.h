@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "engine/config/config.h"
+#include "engine/base/json_number.h"
+#include "engine/run/run_config.h"
 #include "engine/solve/output_error_problem.h"
 #include "engine/solve/stage.h"
-#include "engine/base/json_number.h"
 #include "nlohmann/json.hpp"
 
 namespace vesselid {

@@ -1,4 +1,4 @@
-#include "problems/input_gain/input_gain_handles.h"
+#include "problems/input_gain/handles.h"
 
 namespace vesselid::input_gain {
 

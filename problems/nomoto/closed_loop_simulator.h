@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/model/model_handle.h"
 #include "engine/data/trajectory.h"
+#include "engine/model/model_handle.h"
 
 namespace vesselid::nomoto {
 

@@ -1,4 +1,4 @@
-#include "problems/nomoto/nomoto_handles.h"
+#include "problems/nomoto/handles.h"
 #include "problems/nomoto/nomoto_models.h"
 
 namespace vesselid::nomoto {

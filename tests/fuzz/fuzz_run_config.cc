@@ -1,4 +1,4 @@
-// Fuzz target for LoadRunConfig (engine/config/config.h) with every model family of the vesselid
+// Fuzz target for LoadConfigFile (engine/config/config.h) with every model family of the vesselid
 // binary, study section included: any bytes give either a config that keeps the reader's
 // promises (known experiments, valid parameters and study options) or false with a message
 // naming the file. Experiment files are only named by a config, not read, so none is needed.
@@ -17,8 +17,7 @@ extern "C" const char* __ubsan_default_options() { return "halt_on_error=1:print
 namespace vesselid {
 namespace {
 
-void CheckStudy(const RunConfig& config) {
-  const StudyConfig& study = config.study;
+void CheckStudy(const RunConfig& config, const StudyConfig& study) {
   FUZZ_CHECK(study.execution.threads >= 0);
   if (study.profile) {
     FUZZ_CHECK(study.profile->points >= 3 && study.profile->points % 2 == 1);
@@ -34,9 +33,10 @@ void CheckStudy(const RunConfig& config) {
   }
 }
 
-void CheckConfig(const RunConfig& config) {
-  FUZZ_CHECK(config.model != nullptr && config.model_family != nullptr);
-  FUZZ_CHECK(config.model_family->name == config.family);
+void CheckConfig(const ConfigFile& file) {
+  const RunConfig& config = file.run;
+  FUZZ_CHECK(config.model != nullptr && file.family != nullptr);
+  FUZZ_CHECK(file.family->name == config.family);
   for (const ExperimentSpec& e : config.experiments) {
     FUZZ_CHECK(config.FindExperiment(e.name) == &e);
     FUZZ_CHECK(!(e.t_begin >= e.t_end));
@@ -60,7 +60,7 @@ void CheckConfig(const RunConfig& config) {
       FUZZ_CHECK(config.FindExperiment(name) != nullptr);
     }
   }
-  CheckStudy(config);
+  CheckStudy(config, file.study);
 }
 
 }  // namespace
@@ -70,9 +70,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const vesselid::ModelRegistry registry = vesselid::DefaultRegistry();
   static vesselid::fuzz::FuzzInputFile file("config.yaml");
   const std::string& path = file.Write(data, size);
-  vesselid::RunConfig config;
+  vesselid::ConfigFile config;
   std::string error;
-  if (!vesselid::LoadRunConfig(path, "", registry, &config, &error)) {
+  if (!vesselid::LoadConfigFile(path, "", registry, &config, &error)) {
     FUZZ_CHECK(error.compare(0, path.size() + 1, path + ":") == 0);
     return 0;
   }

@@ -1,0 +1,12 @@
+// Files written whole or not at all: the content goes to "<path>.tmp", which is renamed onto
+// the path (atomic on POSIX), so a failed or interrupted run never leaves a partial file.
+#pragma once
+
+#include <string>
+
+namespace vesselid {
+
+// Writes `content` to path via a temporary file and rename.
+bool WriteFileAtomically(const std::string& path, const std::string& content, std::string* error);
+
+}  // namespace vesselid

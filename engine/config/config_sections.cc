@@ -1,0 +1,76 @@
+// Section readers shared by config.cc, study_config.cc and step_regression_config.cc.
+#include "engine/config/config_sections.h"
+
+#include <limits>
+
+namespace vesselid {
+
+void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                GlobalStartOptions* global) {
+  reader.CheckMap(node, path,
+                  {"algorithm", "max_evaluations", "max_time", "seed", "population", "candidates",
+                   "min_separation"});
+  reader.Read(node, path, "algorithm", &global->algorithm);
+  reader.Read(node, path, "max_evaluations", &global->max_evaluations);
+  reader.Read(node, path, "max_time", &global->max_time_seconds);
+  int seed = static_cast<int>(global->seed);
+  reader.Read(node, path, "seed", &seed);
+  global->seed = static_cast<unsigned>(seed);
+  reader.Read(node, path, "population", &global->population);
+  reader.Read(node, path, "candidates", &global->candidates);
+  reader.Read(node, path, "min_separation", &global->min_separation);
+  std::string error;
+  if (!global->IsValid(&error)) reader.Fail(node, path, error);
+}
+
+std::vector<std::string> ExperimentNames(const YamlReader& reader, const YAML::Node& node,
+                                         const std::string& key, const RunConfig& config) {
+  std::vector<std::string> names = reader.Strings(node, key);
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (config.FindExperiment(names[i]) == nullptr) {
+      reader.Fail(node[i], Child(key, i), "no experiment named '" + names[i] + "'");
+    }
+  }
+  return names;
+}
+
+void CheckNames(const YamlReader& reader, const YAML::Node& node, const std::string& key,
+                const std::vector<std::string>& names, const std::vector<std::string>& known,
+                const std::string& kind, const ModelInfo& info) {
+  for (const std::string& name : names) {
+    bool found = false;
+    for (const std::string& k : known) found = found || k == name;
+    if (!found) {
+      reader.Fail(node, key,
+                  "unknown " + kind + " '" + name + "' (model " + info.name + " has " +
+                      JoinNames(known) + ")");
+    }
+  }
+}
+
+void ReadRegressionData(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                        const ModelInfo& info, RegressionDataOptions* data) {
+  if (node["grid"]) {
+    data->grid_output = reader.String(node["grid"], Child(path, "grid"));
+    CheckNames(reader, node["grid"], Child(path, "grid"),
+               std::vector<std::string>{data->grid_output}, info.outputs, "output", info);
+  }
+  if (const YAML::Node smoothing = node["smoothing"]) {
+    const std::string key = Child(path, "smoothing");
+    reader.CheckMap(smoothing, key, {"half_width", "order"});
+    reader.Read(smoothing, key, "half_width", &data->smoothing.half_width);
+    reader.Read(smoothing, key, "order", &data->smoothing.order);
+    // The window, 2 half_width + 1 samples, must fit an int here and in SavitzkyGolay.
+    constexpr int kMaxHalfWidth = (std::numeric_limits<int>::max() - 1) / 2;
+    if (data->smoothing.half_width > kMaxHalfWidth) {
+      reader.Fail(smoothing["half_width"], Child(key, "half_width"),
+                  "must be <= " + std::to_string(kMaxHalfWidth));
+    }
+    if (data->smoothing.half_width < 1 || data->smoothing.order < 1 ||
+        data->smoothing.order >= 2 * data->smoothing.half_width + 1) {
+      reader.Fail(smoothing, key, "need half_width >= 1 and 1 <= order < 2 half_width + 1");
+    }
+  }
+}
+
+}  // namespace vesselid

@@ -1,0 +1,205 @@
+#include "engine/output/results_json.h"
+
+#include "engine/base/json_number.h"
+#include "engine/output/step_regression_writer.h"
+
+namespace vesselid {
+namespace {
+
+using nlohmann::json;
+
+json VelocityToJson(const std::vector<ChannelMetrics>& metrics) {
+  json j = json::array();
+  for (const ChannelMetrics& m : metrics) {
+    j.push_back({{"prediction", m.experiment},
+                 {"state", m.output},
+                 {"samples", m.samples},
+                 {"mae", JsonNumber(m.mae)},
+                 {"rmse", JsonNumber(m.rmse)},
+                 {"r2", JsonNumber(m.r2)}});
+  }
+  return j;
+}
+
+json MetricsToJson(const std::vector<ExperimentFit>& fits) {
+  json metrics = json::array();
+  for (const ExperimentFit& fit : fits) {
+    for (const ChannelMetrics& m : fit.channels) {
+      metrics.push_back({{"experiment", m.experiment},
+                         {"output", m.output},
+                         {"samples", m.samples},
+                         {"rmse", JsonNumber(m.rmse)},
+                         {"mae", JsonNumber(m.mae)},
+                         {"r2", JsonNumber(m.r2)},
+                         {"fit_percent", JsonNumber(m.fit_percent)}});
+    }
+  }
+  return metrics;
+}
+
+// Seed 002's per-test cost sqrt(mean e^2), by experiment.
+json RmsCostToJson(const std::vector<ExperimentFit>& fits) {
+  json rms = json::object();
+  for (const ExperimentFit& fit : fits) rms[fit.experiment] = fit.rms_cost;
+  return rms;
+}
+
+json FitsToJson(const std::vector<ExperimentFit>& fits) {
+  return {{"metrics", MetricsToJson(fits)}, {"rms_cost", RmsCostToJson(fits)}};
+}
+
+// Conditioning and sensitivities at the optimum (local_analysis.h); null numbers are
+// infinite or unknown (an infinite condition number: the information matrix is singular).
+json LocalAnalysisToJson(const LocalAnalysis& a) {
+  json j = {{"available", a.available}};
+  if (!a.available) {
+    j["message"] = a.message;
+    return j;
+  }
+  j["parameters"] = a.names;
+  j["profiled"] = a.profiled;
+  j["residual_variance"] = a.residual_variance;
+  j["condition_number"] = JsonNumber(a.condition_number);
+  json ratios = json::array();
+  const double lambda_max = std::max(a.eigenvalues.maxCoeff(), 0.0);
+  for (int k = 0; k < a.eigenvalues.size(); ++k) {
+    ratios.push_back(JsonNumber(lambda_max > 0 ? a.eigenvalues[k] / lambda_max : 0.0));
+  }
+  j["eigenvalue_ratios"] = ratios;
+  json directions = json::array();
+  for (const WeakDirection& d : a.directions) {
+    json coefficients = json::object();
+    for (size_t i = 0; i < a.names.size(); ++i) {
+      if (d.coefficients[i] != 0.0) coefficients[a.names[i]] = d.coefficients[i];
+    }
+    directions.push_back({{"combination", d.combination},
+                          {"coefficients", coefficients},
+                          {"eigenvalue_ratio", d.eigenvalue_ratio},
+                          {"std_dev", JsonNumber(d.std_dev)},
+                          {"std_dev_normalised", JsonNumber(d.std_dev_normalised)},
+                          {"status", DirectionStatusToString(d.status)}});
+  }
+  j["directions"] = directions;
+  json std_errors = json::object();
+  for (size_t i = 0; i < a.names.size(); ++i) std_errors[a.names[i]] = JsonNumber(a.std_errors[i]);
+  j["std_errors"] = std_errors;
+  auto table = [&](const Eigen::MatrixXd& values) {
+    json t = json::object();
+    for (size_t c = 0; c < a.channels.size(); ++c) {
+      json row = json::object();
+      for (size_t i = 0; i < a.names.size(); ++i) row[a.names[i]] = JsonNumber(values(c, i));
+      t[a.channels[c]] = row;
+    }
+    return t;
+  };
+  j["sensitivity"] = table(a.sensitivity);
+  j["noise_sensitivity"] = table(a.noise_sensitivity);
+  j["time_seconds"] = a.time_seconds;
+  return j;
+}
+
+json StageToJson(const StageResult& stage) {
+  const StageSummary& s = stage.summary;
+  json j;
+  j["name"] = stage.name;
+  j["model"] = stage.model;
+  j["time_seconds"] = s.time_seconds;
+  if (s.global.run) {
+    j["global_start"] = {{"variables", s.global.variables},
+                         {"evaluations", s.global.evaluations},
+                         {"diverged_evaluations", s.global.failed_evaluations},
+                         {"best_cost", s.global.best_cost},
+                         {"candidate_costs", s.global.candidate_costs},
+                         {"time_seconds", s.global.time_seconds},
+                         {"result", s.global.result}};
+  }
+  json refinements = json::array();
+  for (const LocalSolveSummary& l : s.refinements) {
+    refinements.push_back({{"initial_cost", JsonNumber(l.initial_cost)},
+                           {"final_cost", JsonNumber(l.final_cost)},
+                           {"iterations", l.iterations},
+                           {"time_seconds", l.time_seconds},
+                           {"termination", l.termination},
+                           {"usable", l.usable}});
+  }
+  j["refinements"] = refinements;
+  j["chosen_refinement"] = s.chosen;
+  j["cost"] = s.local().final_cost;
+  j["iterations"] = s.local().iterations;
+  j["notes"] = s.notes;
+  json estimates = json::array();
+  for (const Estimate& e : stage.estimates) {
+    json item = {{"name", e.name},
+                 {"kind", EstimateKindToString(e.kind)},
+                 {"role", ParameterRoleToString(e.role)},
+                 {"value", e.value},
+                 {"start", e.start},
+                 {"std_error", JsonNumber(e.std_error)},
+                 {"lower", JsonNumber(e.lower)},
+                 {"upper", JsonNumber(e.upper)},
+                 {"undetermined", e.undetermined}};
+    if (!e.experiment.empty()) item["experiment"] = e.experiment;
+    estimates.push_back(item);
+  }
+  j["estimates"] = estimates;
+  const Uncertainty& u = s.uncertainty;
+  j["uncertainty"] = {{"available", u.available},
+                      {"message", u.message},
+                      {"residual_variance", u.residual_variance},
+                      {"undetermined", u.undetermined}};
+  if (u.available) {
+    json matrix = json::array();
+    for (int r = 0; r < stage.correlation.rows(); ++r) {
+      json row = json::array();
+      for (int c = 0; c < stage.correlation.cols(); ++c) {
+        row.push_back(JsonNumber(stage.correlation(r, c)));
+      }
+      matrix.push_back(row);
+    }
+    j["correlation"] = {{"names", stage.correlation_names}, {"matrix", matrix}};
+  }
+  if (s.analysis.available || !s.analysis.message.empty()) {
+    j["local_analysis"] = LocalAnalysisToJson(s.analysis);
+  }
+  j["fit"] = FitsToJson(s.fits);
+  j["admissibility"] = stage.admissibility;
+  if (!stage.validation.empty()) j["validation"] = FitsToJson(stage.validation);
+  if (!stage.velocity_validation.empty()) {
+    j["velocity_validation"] = VelocityToJson(stage.velocity_validation);
+  }
+  if (stage.step_regression) j["step_regression"] = StepRegressionToJson(*stage.step_regression);
+  return j;
+}
+
+}  // namespace
+
+json RunResultToJson(const RunConfig& config, const RunResult& result) {
+  json j;
+  j["vesselid_version"] = "0.1.0";
+  j["config"] = config.path;
+  j["model"] = {{"family", config.family}, {"name", config.model->info().name}};
+  j["time_seconds"] = result.time_seconds;
+  json stages = json::array();
+  for (const StageResult& stage : result.stages) stages.push_back(StageToJson(stage));
+  j["stages"] = stages;
+  j["fusion"] = FusionRuleToString(config.fusion);
+  json parameters = json::array();
+  for (const FinalParameter& f : result.parameters) {
+    parameters.push_back({{"name", f.name},
+                          {"value", f.value},
+                          {"std_error", JsonNumber(f.std_error)},
+                          {"role", ParameterRoleToString(f.role)},
+                          {"stages", f.stages},
+                          {"rule", f.rule},
+                          {"undetermined", f.undetermined}});
+  }
+  j["parameters"] = parameters;
+  j["admissibility"] = result.admissibility;
+  if (config.has_final_validation) j["final_validation"] = FitsToJson(result.final_validation);
+  if (!result.final_velocity_validation.empty()) {
+    j["final_velocity_validation"] = VelocityToJson(result.final_velocity_validation);
+  }
+  return j;
+}
+
+}  // namespace vesselid

@@ -1,0 +1,46 @@
+// What a staged run knows of each parameter as its stages finish (seed 002's bookkeeping):
+// the latest estimate, which starts later stages and holds the parameters they do not list,
+// and every estimate with its stage, standard error and role, from which the final values
+// are made: isolated and free parameters from the last stage that estimated them, shared
+// ones fused over all their stage estimates (fusion.h).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "engine/model/model.h"
+#include "engine/run/fusion.h"
+#include "engine/run/run_config.h"
+#include "engine/run/run_result.h"
+#include "engine/solve/parameter.h"
+
+namespace vesselid {
+
+struct ParameterLedger {
+  struct Entry {
+    std::string stage;
+    double value;
+    double std_error;  // NaN when undetermined
+    ParameterRole role;
+  };
+  std::map<std::string, double> latest;
+  std::map<std::string, std::vector<Entry>> estimates;
+};
+
+// Full parameter list of a stage: starts resolved from the ledger, unlisted ones fixed there.
+// False when a carried start falls outside the stage's bounds.
+bool ResolveParameters(const StageConfig& stage, const ModelInfo& info,
+                       const ParameterLedger& ledger, std::vector<ParameterSpec>* specs,
+                       std::string* error);
+
+// Enters a finished stage's estimates of parameters estimated once (free, isolated, shared).
+void RecordStage(const StageResult& stage, ParameterLedger* ledger);
+
+// Every model parameter's final value under `rule` (information: the shared parameters
+// fused jointly with each stage's covariance block, per parameter when that is singular).
+std::vector<FinalParameter> FinalParameters(const ModelInfo& info, const ParameterLedger& ledger,
+                                            const std::vector<StageResult>& stages,
+                                            FusionRule rule);
+
+}  // namespace vesselid

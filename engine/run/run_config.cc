@@ -1,0 +1,35 @@
+#include "engine/run/run_config.h"
+
+namespace vesselid {
+
+const char* StageKindToString(StageConfig::Kind kind) {
+  switch (kind) {
+    case StageConfig::Kind::kLeastSquares:
+      return "least_squares";
+    case StageConfig::Kind::kStepRegression:
+      return "step_regression";
+    case StageConfig::Kind::kOutputError:
+      break;
+  }
+  return "output_error";
+}
+
+bool StringToStageKind(const std::string& text, StageConfig::Kind* kind) {
+  for (StageConfig::Kind k : {StageConfig::Kind::kOutputError, StageConfig::Kind::kLeastSquares,
+                              StageConfig::Kind::kStepRegression}) {
+    if (text == StageKindToString(k)) {
+      *kind = k;
+      return true;
+    }
+  }
+  return false;
+}
+
+const ExperimentSpec* RunConfig::FindExperiment(const std::string& name) const {
+  for (const ExperimentSpec& e : experiments) {
+    if (e.name == name) return &e;
+  }
+  return nullptr;
+}
+
+}  // namespace vesselid

@@ -1,0 +1,87 @@
+// A staged run as plain data: the model, the recorded experiments, the stages in order, how
+// shared parameters are fused and what is validated at the end. No YAML and no studies: a
+// config file is parsed into this at the edge (config/config.h), and a program can fill it
+// in C++ (examples/staged_run.cc).
+//
+// A stage's parameter without a start (start_from_previous) starts from its latest estimate
+// in an earlier stage (else the model default); parameters a stage does not list are held at
+// that value.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/model/damping_inertia_form.h"
+#include "engine/model/experiment.h"
+#include "engine/model/model_handle.h"
+#include "engine/regression/least_squares.h"
+#include "engine/regression/regression_data.h"
+#include "engine/run/fusion.h"
+#include "engine/solve/output_error_problem.h"
+#include "engine/solve/parameter.h"
+#include "engine/solve/stage.h"
+#include "engine/step_regression/step_regression.h"
+
+namespace vesselid {
+
+struct StageConfig {
+  // output_error: simulate and compare (the default); least_squares: equation-error regression
+  // of the model's derivative form (least_squares.h), its estimate starting the next stage;
+  // step_regression: seed 004's damping and inertia regression on steady states and steps
+  // (step_regression.h), for models with a damping-inertia form.
+  enum class Kind { kOutputError, kLeastSquares, kStepRegression };
+  Kind kind = Kind::kOutputError;
+  StageOptions options;  // options.name is the stage's name
+  LeastSquaresOptions least_squares;
+  StepRegressionOptions step_regression;
+  // How records become regression data (least-squares stages, and the velocity metrics of
+  // any stage's validation when the model has an equation-error form).
+  RegressionDataOptions regression_data;
+  // The stage's own restriction of the model (e.g. active DOFs); null: the run's model.
+  std::shared_ptr<const ModelHandle> model;
+  std::vector<std::string> experiments;  // names from RunConfig::experiments
+  // Held-out experiments simulated after the stage (its free initial states estimated first).
+  std::vector<std::string> validation;
+  std::vector<ParameterSpec> parameters;
+  OutputErrorOptions problem;
+  ExperimentOptions experiment;  // compared outputs, step bound, length normalisation
+  // Segment lengths (s, increasing) the stage is solved with first, each phase starting the
+  // next; empty: the stage is solved once on its experiments as configured.
+  std::vector<double> continuation;
+};
+
+// "output_error", "least_squares", "step_regression" (a config's stage `type`).
+const char* StageKindToString(StageConfig::Kind kind);
+bool StringToStageKind(const std::string& text, StageConfig::Kind* kind);
+
+// Held-out runs simulated with the final parameters after the last stage.
+struct FinalValidationConfig {
+  std::vector<std::string> experiments;
+  std::vector<std::string> free_initial_states;  // estimated with the final parameters held
+  std::shared_ptr<const ModelHandle> model;  // null: the run's model
+  ExperimentOptions experiment;
+};
+
+struct RunConfig {
+  std::string path;         // the config file (messages, checkpoint fingerprint); may be empty
+  std::string description;
+  std::string family;       // the model family's name, as reported
+  std::shared_ptr<const ModelHandle> model;
+  std::vector<ExperimentSpec> experiments;  // files resolved to paths
+  std::vector<StageConfig> stages;
+  FusionRule fusion = FusionRule::kInverseVariance;
+  bool has_final_validation = false;
+  FinalValidationConfig final_validation;
+  // Damping and inertia surfaces written by `run` for models with a damping-inertia form
+  // (`surfaces: {<state>: [lower, upper, points], <state>: [...]}`); empty: none.
+  SurfaceGrid surfaces;
+
+  const ExperimentSpec* FindExperiment(const std::string& name) const;
+  // The model a stage is solved with: its own restriction, else the run's.
+  const ModelHandle& StageModel(const StageConfig& stage) const {
+    return stage.model ? *stage.model : *model;
+  }
+};
+
+}  // namespace vesselid

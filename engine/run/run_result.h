@@ -1,0 +1,81 @@
+// What a staged run reports: per stage its estimates, correlations, fits and validation; after
+// the last stage every parameter's final value. Plain data, written by output/ (results.json,
+// report.txt, report.html) and archived by checkpoints; names become text only there.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "Eigen/Dense"
+#include "engine/model/model.h"
+#include "engine/solve/parameter.h"
+#include "engine/solve/stage.h"
+#include "engine/step_regression/step_regression.h"
+
+namespace vesselid {
+
+// What an estimate is of: a model parameter or an experiment's initial state.
+enum class EstimateKind { kParameter, kInitialState };
+
+const char* EstimateKindToString(EstimateKind kind);  // "parameter", "initial_state"
+bool StringToEstimateKind(const std::string& text, EstimateKind* kind);
+
+// One estimated or fixed quantity of a stage as reported.
+struct Estimate {
+  std::string name;
+  EstimateKind kind = EstimateKind::kParameter;
+  ParameterRole role = ParameterRole::kFree;
+  std::string experiment;  // empty when one value serves every experiment
+  double value = 0.0;
+  double start = 0.0;
+  double std_error = 0.0;  // NaN when fixed or undetermined
+  double lower = 0.0, upper = 0.0;
+  bool undetermined = false;  // part of a combination the stage's data do not determine
+};
+
+struct StageResult {
+  std::string name;
+  std::string model;  // the stage's model (restriction) name
+  StageSummary summary;
+  std::vector<Estimate> estimates;
+  std::vector<std::string> correlation_names;  // free variables, matrix order
+  Eigen::MatrixXd correlation;
+  std::vector<std::string> admissibility;    // empty: M SPD, damping PSD (as the model checks)
+  std::vector<ExperimentFit> validation;     // held-out experiments of the stage
+  // Models with an equation-error form: one-step and free-run metrics of the regressed
+  // states on the held-out experiments (velocity_validation.h).
+  std::vector<ChannelMetrics> velocity_validation;
+  // Step-regression stages: the samples, lasso paths and timings (step_regression.h).
+  std::shared_ptr<const StepRegressionReport> step_regression;
+};
+
+// A parameter's estimate as a regression stage reports it: name, role and bounds from its
+// spec, the value and standard error the stage found.
+Estimate ParameterEstimate(const ParameterSpec& spec, double value, double std_error);
+
+// A stage's parameter values in model order (a per-experiment one: its first experiment's).
+std::vector<double> StageParameterValues(const ModelInfo& info, const StageResult& stage);
+
+// A parameter's value after the whole run.
+struct FinalParameter {
+  std::string name;
+  double value = 0.0;
+  double std_error = 0.0;  // NaN when fixed or undetermined
+  // Role in the last stage that estimated it; kFixed if none did.
+  ParameterRole role = ParameterRole::kFixed;
+  std::vector<std::string> stages;  // stages whose estimates make the value
+  std::string rule;        // how: "stage", "inverse_variance", "mean" or "fixed" (fusion.h)
+  bool undetermined = false;
+};
+
+struct RunResult {
+  std::vector<StageResult> stages;
+  std::vector<FinalParameter> parameters;  // model parameter order
+  std::vector<std::string> admissibility;  // of the final values
+  std::vector<ExperimentFit> final_validation;
+  std::vector<ChannelMetrics> final_velocity_validation;
+  double time_seconds = 0.0;
+};
+
+}  // namespace vesselid

@@ -1,7 +1,0 @@
-#include "problems/erunsal6dof/handle.h"
-
-namespace vesselid::erunsal6dof {
-
-std::unique_ptr<ModelHandle> MakeHandle(const Model& model) { return MakeModelHandle(model); }
-
-}  // namespace vesselid::erunsal6dof

@@ -1,0 +1,96 @@
+#include "problems/input_gain/input_gain_config.h"
+
+#include <filesystem>
+
+#include "problems/input_gain/campaign.h"
+#include "problems/input_gain/handles.h"
+
+namespace vesselid::input_gain {
+namespace {
+
+namespace fs = std::filesystem;
+
+//   model: {family: input_gain, type: static | dynamic,
+//           bases: {u: [1, u, "|u|u", vr, rr], v: [...], r: [...]}}
+std::unique_ptr<ModelHandle> MakeModel(const YamlReader& reader, const YAML::Node& model,
+                                       const std::string& path) {
+  reader.CheckMap(model, path, {"family", "type", "bases"});
+  Bases bases;
+  if (const YAML::Node node = model["bases"]) {
+    const std::string key = Child(path, "bases");
+    reader.CheckMap(node, key, {"u", "v", "r"});
+    const char* equations[3] = {"u", "v", "r"};
+    for (int i = 0; i < 3; ++i) {
+      const YAML::Node list = node[equations[i]];
+      if (!list) continue;
+      const std::string where = Child(key, equations[i]);
+      std::vector<std::string> names = reader.Strings(list, where);
+      bases.terms[i].clear();
+      for (size_t j = 0; j < names.size(); ++j) {
+        int term;
+        if (!StringToTerm(names[j], &term)) {
+          std::string known;
+          for (const std::string& n : TermNames()) known += (known.empty() ? "" : ", ") + n;
+          reader.Fail(list[j], Child(where, j), "unknown term '" + names[j] + "' (" + known + ")");
+        }
+        for (int existing : bases.terms[i]) {
+          if (existing == term) reader.Fail(list[j], Child(where, j), "term listed twice");
+        }
+        bases.terms[i].push_back(term);
+      }
+    }
+  }
+  const std::string type =
+      model["type"] ? reader.String(model["type"], Child(path, "type")) : "static";
+  if (type == "static") return MakeStaticHandle(bases);
+  if (type == "dynamic") return MakeDynamicHandle(bases);
+  reader.Fail(model["type"], Child(path, "type"),
+              "unknown input-gain variant '" + type + "' (static, dynamic)");
+}
+
+//   simulation: {file, segments, duration_min, seed, noise: {position, heading_deg}}
+bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const ModelHandle&,
+              const std::string& out_dir, std::string* error) {
+  const std::string path = "simulation";
+  if (!simulation) reader.Fail(simulation, path, "missing: the config has no simulation section");
+  reader.CheckMap(simulation, path, {"file", "segments", "duration_min", "seed", "noise"});
+  if (!simulation["file"]) reader.Fail(simulation, Child(path, "file"), "missing");
+  const std::string file = reader.String(simulation["file"], Child(path, "file"));
+  CampaignOptions options;
+  reader.Read(simulation, path, "segments", &options.segments);
+  double minutes = options.total_duration / 60.0;
+  reader.Read(simulation, path, "duration_min", &minutes);
+  options.total_duration = minutes * 60.0;
+  int seed = static_cast<int>(options.seed);
+  reader.Read(simulation, path, "seed", &seed);
+  options.seed = static_cast<unsigned>(seed);
+  if (const YAML::Node noise = simulation["noise"]) {
+    const std::string key = Child(path, "noise");
+    reader.CheckMap(noise, key, {"position", "heading_deg"});
+    reader.Read(noise, key, "position", &options.gnss_noise);
+    double heading = options.heading_noise * 180.0 / M_PI;
+    reader.Read(noise, key, "heading_deg", &heading);
+    options.heading_noise = heading * M_PI / 180.0;
+  }
+  std::string invalid;
+  if (!options.IsValid(&invalid)) reader.Fail(simulation, path, invalid);
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec) {
+    *error = out_dir + ": cannot create folder: " + ec.message();
+    return false;
+  }
+  Trajectory campaign;
+  if (!SimulateCampaign(CatamaranParameters(), options, &campaign, error)) return false;
+  return WriteTrajectoryCsv((fs::path(out_dir) / file).string(), campaign, error);
+}
+
+}  // namespace
+
+ModelFamily InputGainFamily() {
+  return {"input_gain",
+          "joint input-gain model of a twin-propeller catamaran (static or dynamic propellers)",
+          MakeModel, Simulate};
+}
+
+}  // namespace vesselid::input_gain
