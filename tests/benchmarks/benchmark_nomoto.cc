@@ -31,7 +31,7 @@ double MeanTime(F&& f) {
 }
 
 void Report(const char* name, const testing::SeedVessel& vessel, bool global_start) {
-  auto model = MakeModelHandle(nomoto::SecondOrder());
+  auto model = nomoto::MakeSecondOrderHandle();
   Experiment e = testing::MakeExperiment(*model, vessel.truth, vessel.loop);
   std::vector<ParameterSpec> specs = testing::FiftyPercentOff(vessel.truth);
   std::string error;

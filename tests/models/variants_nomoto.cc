@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "problems/nomoto/closed_loop_simulator.h"
-#include "problems/nomoto/nomoto_models.h"
+#include "problems/nomoto/handles.h"
 #include "tests/models/model_factory.h"
 #include "tests/support/nomoto_data.h"
 
@@ -91,19 +91,21 @@ RecoveryCase Recovery(const ModelHandle& model, const std::vector<double>& truth
   return c;
 }
 
-template <class Model>
-ModelVariant Variant(const std::string& name, std::vector<double> truth) {
-  return {name, [] { return MakeModelHandle(Model()); }, std::move(truth), Jacobian, Rk4,
-          Recovery};
+ModelVariant Variant(const std::string& name,
+                     std::function<std::unique_ptr<ModelHandle>()> make,
+                     std::vector<double> truth) {
+  return {name, std::move(make), std::move(truth), Jacobian, Rk4, Recovery};
 }
 
 }  // namespace
 
 void AddNomotoVariants(std::vector<ModelVariant>* variants) {
-  variants->push_back(Variant<nomoto::FirstOrder>("NomotoFirstOrder", {2.0, -0.17, 0.01}));
-  variants->push_back(Variant<nomoto::SecondOrder>(
-      "NomotoSecondOrder", {2.0875, 0.3179, 0.1830, -0.1724, 0.01}));
-  variants->push_back(Variant<nomoto::Norrbin>("NomotoNorrbin", {2.0, -0.17, 40.0, 0.01}));
+  variants->push_back(
+      Variant("NomotoFirstOrder", nomoto::MakeFirstOrderHandle, {2.0, -0.17, 0.01}));
+  variants->push_back(Variant("NomotoSecondOrder", nomoto::MakeSecondOrderHandle,
+                              {2.0875, 0.3179, 0.1830, -0.1724, 0.01}));
+  variants->push_back(
+      Variant("NomotoNorrbin", nomoto::MakeNorrbinHandle, {2.0, -0.17, 40.0, 0.01}));
 }
 
 }  // namespace vesselid::testing

@@ -11,7 +11,6 @@
 #include "engine/model/model_handle.h"
 #include "engine/solve/parameter.h"
 #include "problems/nomoto/closed_loop_simulator.h"
-#include "problems/nomoto/nomoto_models.h"
 
 namespace vesselid::testing {
 

@@ -9,7 +9,7 @@
 #include "engine/data/trajectory.h"
 #include "gtest/gtest.h"
 #include "problems/nomoto/closed_loop_simulator.h"
-#include "problems/nomoto/nomoto_models.h"
+#include "problems/nomoto/handles.h"
 
 namespace vesselid {
 namespace {
@@ -43,7 +43,7 @@ class BadInput : public ::testing::Test {
             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
-    auto model = MakeModelHandle(nomoto::FirstOrder());
+    auto model = nomoto::MakeFirstOrderHandle();
     nomoto::ClosedLoopOptions loop;
     loop.duration = 60.0;
     loop.sample_time = 0.1;

@@ -18,7 +18,7 @@ struct SeedResult {
 
 SeedResult Identify(const testing::SeedVessel& vessel, Interpolation interpolation,
                     bool global_start, std::vector<ParameterSpec> specs = {}) {
-  auto model = MakeModelHandle(nomoto::SecondOrder());
+  auto model = nomoto::MakeSecondOrderHandle();
   Experiment e = testing::MakeExperiment(*model, vessel.truth, vessel.loop, interpolation);
   std::string error;
   if (specs.empty()) specs = testing::FiftyPercentOff(vessel.truth);

@@ -42,7 +42,7 @@ std::vector<ParameterSpec> SecondOrderSpecs(const std::vector<double>& start) {
 
 class LocalAnalysisTest : public ::testing::Test {
  protected:
-  std::unique_ptr<ModelHandle> model_ = MakeModelHandle(nomoto::SecondOrder());
+  std::unique_ptr<ModelHandle> model_ = nomoto::MakeSecondOrderHandle();
 
   // Two experiments sharing T1..K, each with its own rudder bias and initial heading.
   std::unique_ptr<OutputErrorProblem> TwoExperiments(const std::vector<double>& truth,

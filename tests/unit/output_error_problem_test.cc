@@ -42,7 +42,7 @@ double ValueOf(const OutputErrorProblem& p, const std::string& name) {
 }
 
 TEST(OutputErrorProblem, PerExperimentBiasWithSharedDynamics) {
-  auto model = MakeModelHandle(nomoto::FirstOrder());
+  auto model = nomoto::MakeFirstOrderHandle();
   std::vector<Experiment> runs = {
       testing::MakeExperiment(*model, {2.0, -0.17, 0.02}, ShortLoop(20, 1), Interpolation::kCubic,
                               "a"),
@@ -66,7 +66,7 @@ TEST(OutputErrorProblem, PerExperimentBiasWithSharedDynamics) {
 }
 
 TEST(OutputErrorProblem, MultiRateOutputsComparedOnlyWhereSampled) {
-  auto model = MakeModelHandle(nomoto::FirstOrder());
+  auto model = nomoto::MakeFirstOrderHandle();
   Trajectory data;
   std::string error;
   ASSERT_TRUE(
@@ -96,7 +96,7 @@ TEST(OutputErrorProblem, MultiRateOutputsComparedOnlyWhereSampled) {
 }
 
 TEST(OutputErrorProblem, RobustLossResistsHeadingOutliers) {
-  auto model = MakeModelHandle(nomoto::FirstOrder());
+  auto model = nomoto::MakeFirstOrderHandle();
   nomoto::ClosedLoopOptions loop = ShortLoop(20, 3);
   loop.heading_noise = 0.002;
   Experiment e = testing::MakeExperiment(*model, {2.0, -0.17, 0.0}, loop);
@@ -122,7 +122,7 @@ TEST(OutputErrorProblem, RobustLossResistsHeadingOutliers) {
 }
 
 TEST(OutputErrorProblem, GlobalStartRefinesBestCandidates) {
-  auto model = MakeModelHandle(nomoto::Norrbin());
+  auto model = nomoto::MakeNorrbinHandle();
   Experiment e = testing::MakeExperiment(*model, {2.0, -0.17, 40.0, 0.0}, ShortLoop(20, 4));
   std::string error;
   auto problem = OutputErrorProblem::Create(
@@ -145,7 +145,7 @@ TEST(OutputErrorProblem, GlobalStartRefinesBestCandidates) {
 }
 
 TEST(OutputErrorProblem, RejectsUnknownNamesAndTooManyDirections) {
-  auto model = MakeModelHandle(nomoto::FirstOrder());
+  auto model = nomoto::MakeFirstOrderHandle();
   Experiment e = testing::MakeExperiment(*model, {2.0, -0.17, 0.0}, ShortLoop(20, 1));
   std::string error;
   EXPECT_EQ(OutputErrorProblem::Create(model.get(), {e}, {Spec("Q", 1, 0, 2)}, {}, &error),
