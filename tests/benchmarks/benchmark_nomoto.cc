@@ -7,6 +7,7 @@
 
 #include "engine/solve/output_error_problem.h"
 #include "engine/solve/stage.h"
+#include "problems/nomoto/handles.h"
 #include "tests/support/nomoto_data.h"
 
 namespace vesselid {

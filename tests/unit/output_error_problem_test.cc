@@ -6,6 +6,7 @@
 
 #include "engine/solve/stage.h"
 #include "gtest/gtest.h"
+#include "problems/nomoto/handles.h"
 #include "tests/support/nomoto_data.h"
 
 namespace vesselid {
