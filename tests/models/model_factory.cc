@@ -35,6 +35,20 @@ Experiment Build(const ExperimentSpec& spec, const Trajectory& data, const Model
   return e;
 }
 
+Rk4Case MakeRk4Case(const ModelInfo& info, ExperimentSpec spec, Trajectory data,
+                    double reference_step, std::array<double, 3> steps, double tolerance) {
+  Rk4Case c;
+  c.build = [info, spec = std::move(spec), data = std::move(data)](double max_step) {
+    ExperimentOptions options;
+    options.max_step = max_step;
+    return Build(spec, data, info, options);
+  };
+  c.reference_step = reference_step;
+  c.steps = steps;
+  c.tolerance = tolerance;
+  return c;
+}
+
 ParameterSpec PerturbedSpec(const std::string& name, double truth, int index,
                             double perturbation) {
   ParameterSpec s;

@@ -91,6 +91,9 @@ std::vector<double> JacobianPoint(const std::vector<double>& truth,
 // Builds `spec` on `data` for the model; throws std::runtime_error with the message.
 Experiment Build(const ExperimentSpec& spec, const Trajectory& data, const ModelInfo& info,
                  const ExperimentOptions& options = {});
+// The RK4 case of `spec` on `data`: built with each max_step, the reference and three steps.
+Rk4Case MakeRk4Case(const ModelInfo& info, ExperimentSpec spec, Trajectory data,
+                    double reference_step, std::array<double, 3> steps, double tolerance);
 // Free parameter specs started at truth * (1 + perturbation), the sign alternating by index.
 ParameterSpec PerturbedSpec(const std::string& name, double truth, int index,
                             double perturbation);

@@ -43,17 +43,7 @@ Rk4Case Rk4(const ModelHandle& model) {
   const Trajectory data = SimulateRuns(model, truth, {{{40, 0.4, 0.5}}}, 0.8, 0.0, 0.0, 1);
   ExperimentSpec spec = Spec({"E", "U", "r"});
   spec.initial_state = {{"U", 2.0}, {"r", -0.2}, {"chi", 0.0}, {"N", 0.0}, {"E", 0.0}};
-  const ModelInfo info = model.info();
-  Rk4Case c;
-  c.build = [spec, data, info](double max_step) {
-    ExperimentOptions options;
-    options.max_step = max_step;
-    return Build(spec, data, info, options);
-  };
-  c.reference_step = 0.8 / 256;
-  c.steps = {0.4, 0.2, 0.1};
-  c.tolerance = 0.4;
-  return c;
+  return MakeRk4Case(model.info(), spec, data, 0.8 / 256, {0.4, 0.2, 0.1}, 0.4);
 }
 
 // Random simultaneous steps of both inputs over the envelope with 0.05 m/s and 0.2 deg/s

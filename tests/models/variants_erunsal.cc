@@ -61,7 +61,6 @@ JacobianCase Jacobian(const erunsal6dof::Model& model, const ModelHandle& handle
 // step), simulated with steps of a half, a quarter and an eighth of it: the fastest active
 // DOF sets the scale (heave and pitch periods are ~0.6 s; the planar DOFs are slower).
 Rk4Case Rk4(const erunsal6dof::Model& model, const ModelHandle& handle, double sample) {
-  const ModelInfo info = handle.info();
   Trajectory data = ErunsalCommands(4.0, sample, false);
   if (model.active[kSurge] && !model.active[kHeave]) {
     // A steady turn: the planar drag |v|v, |r|r is not C2 where v or r change sign.
@@ -72,17 +71,9 @@ Rk4Case Rk4(const erunsal6dof::Model& model, const ModelHandle& handle, double s
     data.names.push_back(column);
     data.columns.emplace_back(data.t.size(), 0.0);
   }
-  const ExperimentSpec spec = SweepSpec(model, info, ErunsalInitialState(model));
-  Rk4Case c;
-  c.build = [spec, data, info](double max_step) {
-    ExperimentOptions options;
-    options.max_step = max_step;
-    return Build(spec, data, info, options);
-  };
-  c.reference_step = sample / 256;
-  c.steps = {sample / 2, sample / 4, sample / 8};
-  c.tolerance = 0.35;
-  return c;
+  const ExperimentSpec spec = SweepSpec(model, handle.info(), ErunsalInitialState(model));
+  return MakeRk4Case(handle.info(), spec, data, sample / 256,
+                     {sample / 2, sample / 4, sample / 8}, 0.35);
 }
 
 // Three free decays of the restricted model itself released from `state` = each of `starts`

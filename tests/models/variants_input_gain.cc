@@ -37,22 +37,12 @@ Rk4Case Rk4(const ModelHandle& model) {
     data.columns[3].push_back(0.6);
     data.columns[4].push_back(0.3);
   }
-  const ModelInfo info = model.info();
   ExperimentSpec spec = LumpedSpec("constant");
-  for (const std::string& state : info.states) spec.initial_state[state] = 0.0;
+  for (const std::string& state : model.info().states) spec.initial_state[state] = 0.0;
   spec.initial_state["u"] = 0.8;
   spec.initial_state["v"] = -0.1;
   spec.initial_state["r"] = 0.1;
-  Rk4Case c;
-  c.build = [spec, data, info](double max_step) {
-    ExperimentOptions options;
-    options.max_step = max_step;
-    return Build(spec, data, info, options);
-  };
-  c.reference_step = 0.8 / 512;
-  c.steps = {0.1, 0.05, 0.025};
-  c.tolerance = 0.35;
-  return c;
+  return MakeRk4Case(model.info(), spec, data, 0.8 / 512, {0.1, 0.05, 0.025}, 0.35);
 }
 
 // Six 40 s runs with 0.02 m and 0.3 deg noise, residuals weighted by 1 / noise SD so that the

@@ -54,17 +54,7 @@ Rk4Case Rk4(const ModelHandle& model) {
   spec.inputs = {{"delta", "delta"}};
   spec.outputs = {{"psi", "psi"}};
   spec.initial_state = {{model.info().states[1], 0.05}};
-  const ModelInfo info = model.info();
-  Rk4Case c;
-  c.build = [spec, data, info](double max_step) {
-    ExperimentOptions options;
-    options.max_step = max_step;
-    return Build(spec, data, info, options);
-  };
-  c.reference_step = 0.8 / 512;
-  c.steps = {0.1, 0.05, 0.025};
-  c.tolerance = 0.35;
-  return c;
+  return MakeRk4Case(model.info(), spec, data, 0.8 / 512, {0.1, 0.05, 0.025}, 0.35);
 }
 
 // 600 s with 0.1 deg heading noise from +-30 %; the bias starts at zero and the first
