@@ -146,8 +146,8 @@ std::string StageText(const StageResult& stage) {
   out << line;
   for (const Estimate& e : stage.estimates) {
     if (e.role == ParameterRole::kFixed) continue;
-    out << EstimateLine(e.name, ParameterRoleToString(e.role), e.value, e.std_error,
-                        e.undetermined, "");
+    out << EstimateLine(e.name, ParameterRoleToString(e.role), e.value, e.std_error, e.undetermined,
+                        "");
   }
   for (const std::string& note : s.notes) out << "  note: " << note << "\n";
   for (const std::string& d : s.uncertainty.undetermined) out << "  undetermined: " << d << "\n";

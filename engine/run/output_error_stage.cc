@@ -25,7 +25,7 @@ StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>
     Estimate e;
     e.name = v.name;
     e.kind = v.kind == Variable::Kind::kParameter ? EstimateKind::kParameter
-                                                    : EstimateKind::kInitialState;
+                                                  : EstimateKind::kInitialState;
     e.role = v.role;
     e.experiment = v.experiment >= 0 ? problem.experiments()[v.experiment].name : "";
     e.value = v.value();
@@ -55,17 +55,17 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& stage,
   std::vector<StateAt> states;
   std::vector<std::string> continuation_notes;
   const auto stage_start = std::chrono::steady_clock::now();
-  if (!RunContinuation(config, stage, model, cache, progress, &specs, &states,
-                       &continuation_notes, error)) {
+  if (!RunContinuation(config, stage, model, cache, progress, &specs, &states, &continuation_notes,
+                       error)) {
     return false;
   }
   std::vector<Experiment> experiments;
-  if (!PrepareExperiments(config, stage.experiments, model, stage.experiment, cache,
-                          &experiments, error)) {
+  if (!PrepareExperiments(config, stage.experiments, model, stage.experiment, cache, &experiments,
+                          error)) {
     return false;
   }
-  std::unique_ptr<OutputErrorProblem> problem = OutputErrorProblem::Create(
-      &model, std::move(experiments), specs, stage.problem, error);
+  std::unique_ptr<OutputErrorProblem> problem =
+      OutputErrorProblem::Create(&model, std::move(experiments), specs, stage.problem, error);
   if (problem == nullptr) return false;
   // After continuation the stage is refined twice: from the initial states the short
   // segments estimated, and from the data's guess (the latter sometimes finds the lower
@@ -92,8 +92,7 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& stage,
     *error = summary.message;
     return false;
   }
-  summary.notes.insert(summary.notes.begin(), continuation_notes.begin(),
-                       continuation_notes.end());
+  summary.notes.insert(summary.notes.begin(), continuation_notes.begin(), continuation_notes.end());
   summary.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start).count();
   *result = Collect(*problem, starts, std::move(summary));

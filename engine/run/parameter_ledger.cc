@@ -29,9 +29,9 @@ bool FuseSharedJointly(const ParameterLedger& ledger, const std::vector<StageRes
   for (const StageResult& stage : stages) {
     std::vector<const Estimate*> shared;
     for (const Estimate& e : stage.estimates) {
-      if (e.kind == EstimateKind::kParameter && e.role == ParameterRole::kShared && e.experiment.empty() &&
-          position(e.name) < static_cast<int>(names.size()) && !e.undetermined &&
-          std::isfinite(e.std_error)) {
+      if (e.kind == EstimateKind::kParameter && e.role == ParameterRole::kShared &&
+          e.experiment.empty() && position(e.name) < static_cast<int>(names.size()) &&
+          !e.undetermined && std::isfinite(e.std_error)) {
         shared.push_back(&e);
       }
     }
@@ -75,7 +75,8 @@ bool ResolveParameters(const StageConfig& stage, const ModelInfo& info,
   for (size_t i = 0; i < info.parameters.size(); ++i) {
     const std::string& name = info.parameters[i];
     auto latest = ledger.latest.find(name);
-    const double carried = latest != ledger.latest.end() ? latest->second : info.parameter_defaults[i];
+    const double carried =
+        latest != ledger.latest.end() ? latest->second : info.parameter_defaults[i];
     ParameterSpec spec;
     bool listed = false;
     for (const ParameterSpec& s : stage.parameters) {
@@ -168,6 +169,5 @@ std::vector<FinalParameter> FinalParameters(const ModelInfo& info, const Paramet
   }
   return parameters;
 }
-
 
 }  // namespace vesselid

@@ -61,8 +61,8 @@ bool RunStages(const RunConfig& config, size_t first, size_t count, TrajectoryCa
     stage_result.admissibility = model.Admissibility(values.data());
     if (!stage.validation.empty()) {
       if (!SimulateHeldOut(config, model, stage.validation, stage.experiment,
-                           stage.problem.free_initial_states, stage.options.local, values,
-                           &cache, &stage_result.validation, error)) {
+                           stage.problem.free_initial_states, stage.options.local, values, &cache,
+                           &stage_result.validation, error)) {
         return fail("validation: " + *error);
       }
       if (model.regression_form() != nullptr &&
@@ -163,8 +163,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
       return false;
     }
     if (model.regression_form() != nullptr) {
-      if (!ValidateVelocities(config, model, v.experiments, velocity_data, final_values,
-                              &cache,
+      if (!ValidateVelocities(config, model, v.experiments, velocity_data, final_values, &cache,
                               &run.final_velocity_validation, error)) {
         *error = "final velocity validation: " + *error;
         return false;

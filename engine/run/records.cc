@@ -28,7 +28,8 @@ bool WholeRecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double
     return true;
   }
   double length = spec.segment_length;
-  if (segment_length > 0.0) length = length > 0.0 ? std::min(length, segment_length) : segment_length;
+  if (segment_length > 0.0)
+    length = length > 0.0 ? std::min(length, segment_length) : segment_length;
   if (length <= 0.0) {
     specs->push_back(spec);
     return true;

@@ -59,14 +59,14 @@ bool StringToStageKind(const std::string& text, StageConfig::Kind* kind);
 struct FinalValidationConfig {
   std::vector<std::string> experiments;
   std::vector<std::string> free_initial_states;  // estimated with the final parameters held
-  std::shared_ptr<const ModelHandle> model;  // null: the run's model
+  std::shared_ptr<const ModelHandle> model;      // null: the run's model
   ExperimentOptions experiment;
 };
 
 struct RunConfig {
-  std::string path;         // the config file (messages, checkpoint fingerprint); may be empty
+  std::string path;  // the config file (messages, checkpoint fingerprint); may be empty
   std::string description;
-  std::string family;       // the model family's name, as reported
+  std::string family;  // the model family's name, as reported
   std::shared_ptr<const ModelHandle> model;
   std::vector<ExperimentSpec> experiments;  // files resolved to paths
   std::vector<StageConfig> stages;

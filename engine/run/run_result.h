@@ -41,8 +41,8 @@ struct StageResult {
   std::vector<Estimate> estimates;
   std::vector<std::string> correlation_names;  // free variables, matrix order
   Eigen::MatrixXd correlation;
-  std::vector<std::string> admissibility;    // empty: M SPD, damping PSD (as the model checks)
-  std::vector<ExperimentFit> validation;     // held-out experiments of the stage
+  std::vector<std::string> admissibility;  // empty: M SPD, damping PSD (as the model checks)
+  std::vector<ExperimentFit> validation;   // held-out experiments of the stage
   // Models with an equation-error form: one-step and free-run metrics of the regressed
   // states on the held-out experiments (velocity_validation.h).
   std::vector<ChannelMetrics> velocity_validation;
@@ -65,7 +65,7 @@ struct FinalParameter {
   // Role in the last stage that estimated it; kFixed if none did.
   ParameterRole role = ParameterRole::kFixed;
   std::vector<std::string> stages;  // stages whose estimates make the value
-  std::string rule;        // how: "stage", "inverse_variance", "mean" or "fixed" (fusion.h)
+  std::string rule;  // how: "stage", "inverse_variance", "mean" or "fixed" (fusion.h)
   bool undetermined = false;
 };
 

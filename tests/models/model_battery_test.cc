@@ -43,8 +43,7 @@ TEST_P(ModelBattery, Rk4ConvergesWithFourthOrder) {
     for (size_t k = 0; k < y.size(); ++k) error = std::max(error, std::abs(y[k] - reference[k]));
     return error;
   };
-  const double e1 = max_error(c.steps[0]), e2 = max_error(c.steps[1]),
-               e3 = max_error(c.steps[2]);
+  const double e1 = max_error(c.steps[0]), e2 = max_error(c.steps[1]), e3 = max_error(c.steps[2]);
   EXPECT_NEAR(std::log2(e1 / e2), 4.0, c.tolerance) << e1 << " " << e2;
   EXPECT_NEAR(std::log2(e2 / e3), 4.0, c.tolerance) << e2 << " " << e3;
 }
@@ -75,8 +74,8 @@ TEST_P(ModelBattery, RecoversTruthWithinReportedUncertainty) {
   }
   EXPECT_EQ(estimated, c.free_parameters);
   if (c.residual_sd > 0.0) {
-    EXPECT_NEAR(std::sqrt(summary.uncertainty.residual_variance / c.residual_weight),
-                c.residual_sd, c.residual_tolerance * c.residual_sd);
+    EXPECT_NEAR(std::sqrt(summary.uncertainty.residual_variance / c.residual_weight), c.residual_sd,
+                c.residual_tolerance * c.residual_sd);
   }
 }
 

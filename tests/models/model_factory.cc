@@ -49,8 +49,7 @@ Rk4Case MakeRk4Case(const ModelInfo& info, ExperimentSpec spec, Trajectory data,
   return c;
 }
 
-ParameterSpec PerturbedSpec(const std::string& name, double truth, int index,
-                            double perturbation) {
+ParameterSpec PerturbedSpec(const std::string& name, double truth, int index, double perturbation) {
   ParameterSpec s;
   s.name = name;
   s.start = truth * (index % 2 == 0 ? 1.0 + perturbation : 1.0 - perturbation);

@@ -48,8 +48,8 @@ struct RecoveryCase {
   std::vector<Experiment> experiments;
   std::vector<ParameterSpec> specs;
   OutputErrorOptions options;
-  int free_parameters = 0;    // how many the specs estimate (checked)
-  double sigmas = 3.0;        // |estimate - truth| < sigmas * standard error
+  int free_parameters = 0;              // how many the specs estimate (checked)
+  double sigmas = 3.0;                  // |estimate - truth| < sigmas * standard error
   double max_relative_std_error = 0.0;  // > 0: standard error < this * max(|truth|, 0.01)
   // > 0: sqrt(residual variance / residual_weight) within residual_tolerance (relative) of
   // residual_sd, the noise SD in weighted residual units; residual_weight is the squared
@@ -63,11 +63,9 @@ struct ModelVariant {
   std::string name;  // test name suffix: letters, digits and underscores
   std::function<std::unique_ptr<ModelHandle>()> make;
   std::vector<double> truth;
-  std::function<JacobianCase(const ModelHandle& model, const std::vector<double>& truth)>
-      jacobian;
+  std::function<JacobianCase(const ModelHandle& model, const std::vector<double>& truth)> jacobian;
   std::function<Rk4Case(const ModelHandle& model)> rk4;
-  std::function<RecoveryCase(const ModelHandle& model, const std::vector<double>& truth)>
-      recovery;
+  std::function<RecoveryCase(const ModelHandle& model, const std::vector<double>& truth)> recovery;
 };
 
 // gtest prints a variant by its name.
@@ -95,7 +93,6 @@ Experiment Build(const ExperimentSpec& spec, const Trajectory& data, const Model
 Rk4Case MakeRk4Case(const ModelInfo& info, ExperimentSpec spec, Trajectory data,
                     double reference_step, std::array<double, 3> steps, double tolerance);
 // Free parameter specs started at truth * (1 + perturbation), the sign alternating by index.
-ParameterSpec PerturbedSpec(const std::string& name, double truth, int index,
-                            double perturbation);
+ParameterSpec PerturbedSpec(const std::string& name, double truth, int index, double perturbation);
 
 }  // namespace vesselid::testing

@@ -50,8 +50,7 @@ Rk4Case Rk4(const ModelHandle& model) {
 // noise, residuals weighted by 1 / noise SD; the 12 non-zero coefficients from +20 / -15 %.
 RecoveryCase Recovery(const ModelHandle& model, const std::vector<double>& truth) {
   std::mt19937 random(3);
-  std::uniform_real_distribution<double> throttle(0.05, 0.6), rudder(-1.0, 1.0),
-      hold(8.0, 30.0);
+  std::uniform_real_distribution<double> throttle(0.05, 0.6), rudder(-1.0, 1.0), hold(8.0, 30.0);
   std::vector<Level> levels;
   for (int k = 0; k < 60; ++k) levels.push_back({hold(random), throttle(random), rudder(random)});
   const double rot_noise = 0.2 * M_PI / 180.0;

@@ -42,8 +42,7 @@ JacobianCase Jacobian(const erunsal6dof::Model& model, const ModelHandle& handle
   const std::vector<double> x0 = ErunsalInitialState(model);
   Trajectory data;
   std::string error;
-  if (!SimulateOpenLoop(handle, truth, x0, ErunsalCommands(6.0, 0.05, true), {}, &data,
-                        &error)) {
+  if (!SimulateOpenLoop(handle, truth, x0, ErunsalCommands(6.0, 0.05, true), {}, &data, &error)) {
     throw std::runtime_error(error);
   }
   ExperimentSpec spec = SweepSpec(model, info, x0);
@@ -72,8 +71,8 @@ Rk4Case Rk4(const erunsal6dof::Model& model, const ModelHandle& handle, double s
     data.columns.emplace_back(data.t.size(), 0.0);
   }
   const ExperimentSpec spec = SweepSpec(model, handle.info(), ErunsalInitialState(model));
-  return MakeRk4Case(handle.info(), spec, data, sample / 256,
-                     {sample / 2, sample / 4, sample / 8}, 0.35);
+  return MakeRk4Case(handle.info(), spec, data, sample / 256, {sample / 2, sample / 4, sample / 8},
+                     0.35);
 }
 
 // Three free decays of the restricted model itself released from `state` = each of `starts`
@@ -97,8 +96,8 @@ RecoveryCase Recovery(const erunsal6dof::Model& model, const ModelHandle& handle
     run.active = model.active;
     Trajectory data;
     std::string error;
-    if (!erunsal6dof::SimulateCampaignRun(handle, truth, erunsal6dof::CampaignOptions(), run,
-                                          &data, &error)) {
+    if (!erunsal6dof::SimulateCampaignRun(handle, truth, erunsal6dof::CampaignOptions(), run, &data,
+                                          &error)) {
       throw std::runtime_error(error);
     }
     ExperimentSpec spec;
@@ -167,8 +166,8 @@ void AddErunsalVariants(std::vector<ModelVariant>* variants) {
   variants->push_back(Variant("ErunsalRoll", {kRoll}, 0.4, RollDecays));
   variants->push_back(Variant("ErunsalSwayRollYaw", {kSway, kRoll, kYaw}, 0.4, RollDecays));
   variants->push_back(Variant("ErunsalSurgeSwayYaw", {kSurge, kSway, kYaw}, 0.8, YawDecays));
-  variants->push_back(Variant("ErunsalSixDof", {kSurge, kSway, kHeave, kRoll, kPitch, kYaw},
-                              0.1, HeaveDecays));
+  variants->push_back(
+      Variant("ErunsalSixDof", {kSurge, kSway, kHeave, kRoll, kPitch, kYaw}, 0.1, HeaveDecays));
 }
 
 }  // namespace vesselid::testing

@@ -81,8 +81,7 @@ RecoveryCase Recovery(const ModelHandle& model, const std::vector<double>& truth
   return c;
 }
 
-ModelVariant Variant(const std::string& name,
-                     std::function<std::unique_ptr<ModelHandle>()> make,
+ModelVariant Variant(const std::string& name, std::function<std::unique_ptr<ModelHandle>()> make,
                      std::vector<double> truth) {
   return {name, std::move(make), std::move(truth), Jacobian, Rk4, Recovery};
 }
