@@ -59,10 +59,12 @@ JacobianCase Jacobian(const erunsal6dof::Model& model, const ModelHandle& handle
 // 4 s of sweeps sampled every `sample` s (inputs linear between samples, so smooth within a
 // step), simulated with steps of a half, a quarter and an eighth of it: the fastest active
 // DOF sets the scale (heave and pitch periods are ~0.6 s; the planar DOFs are slower).
-Rk4Case Rk4(const erunsal6dof::Model& model, const ModelHandle& handle, double sample) {
+// `steady_turn`: constant commands instead, for sets whose drag |v|v, |r|r would lose
+// smoothness (not C2) where the sweeps make v or r change sign.
+Rk4Case Rk4(const erunsal6dof::Model& model, const ModelHandle& handle, double sample,
+            bool steady_turn) {
   Trajectory data = ErunsalCommands(4.0, sample, false);
-  if (model.active[kSurge] && !model.active[kHeave]) {
-    // A steady turn: the planar drag |v|v, |r|r is not C2 where v or r change sign.
+  if (steady_turn) {
     data.columns[0].assign(data.t.size(), 0.8);
     data.columns[1].assign(data.t.size(), 0.3);
   }
@@ -124,6 +126,7 @@ RecoveryCase Recovery(const erunsal6dof::Model& model, const ModelHandle& handle
 }
 
 ModelVariant Variant(const std::string& name, const std::vector<int>& dofs, double rk4_sample,
+                     bool steady_turn,
                      std::function<RecoveryCase(const erunsal6dof::Model&, const ModelHandle&,
                                                 const std::vector<double>&)>
                          recovery) {
@@ -135,7 +138,9 @@ ModelVariant Variant(const std::string& name, const std::vector<int>& dofs, doub
   v.jacobian = [model](const ModelHandle& h, const std::vector<double>& truth) {
     return Jacobian(model, h, truth);
   };
-  v.rk4 = [model, rk4_sample](const ModelHandle& h) { return Rk4(model, h, rk4_sample); };
+  v.rk4 = [model, rk4_sample, steady_turn](const ModelHandle& h) {
+    return Rk4(model, h, rk4_sample, steady_turn);
+  };
   v.recovery = [model, recovery](const ModelHandle& h, const std::vector<double>& truth) {
     return recovery(model, h, truth);
   };
@@ -163,11 +168,11 @@ RecoveryCase HeaveDecays(const erunsal6dof::Model& model, const ModelHandle& han
 }  // namespace
 
 void AddErunsalVariants(std::vector<ModelVariant>* variants) {
-  variants->push_back(Variant("ErunsalRoll", {kRoll}, 0.4, RollDecays));
-  variants->push_back(Variant("ErunsalSwayRollYaw", {kSway, kRoll, kYaw}, 0.4, RollDecays));
-  variants->push_back(Variant("ErunsalSurgeSwayYaw", {kSurge, kSway, kYaw}, 0.8, YawDecays));
-  variants->push_back(
-      Variant("ErunsalSixDof", {kSurge, kSway, kHeave, kRoll, kPitch, kYaw}, 0.1, HeaveDecays));
+  variants->push_back(Variant("ErunsalRoll", {kRoll}, 0.4, false, RollDecays));
+  variants->push_back(Variant("ErunsalSwayRollYaw", {kSway, kRoll, kYaw}, 0.4, false, RollDecays));
+  variants->push_back(Variant("ErunsalSurgeSwayYaw", {kSurge, kSway, kYaw}, 0.8, true, YawDecays));
+  variants->push_back(Variant("ErunsalSixDof", {kSurge, kSway, kHeave, kRoll, kPitch, kYaw}, 0.1,
+                              false, HeaveDecays));
 }
 
 }  // namespace vesselid::testing
