@@ -92,12 +92,22 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
     return vesselid::SaveStageCheckpoint(out_dir, fingerprint, index, stage, error);
   };
   vesselid::RunResult result;
-  if (!vesselid::RunIdentification(config, &result, &error, observer, std::move(finished))) {
-    return Fail(error);
-  }
-  if (!vesselid::WriteRunResults(config, result, out_dir, &error)) return Fail(error);
+  const bool complete =
+      vesselid::RunIdentification(config, &result, &error, observer, std::move(finished));
+  // A run that stopped after finishing a stage still writes what it finished.
+  if (!complete && result.stages.empty()) return Fail(error);
+  std::string write_error;
+  if (!vesselid::WriteRunResults(config, result, out_dir, &write_error)) return Fail(write_error);
   if (!flags.quiet) std::cout << vesselid::RunResultToText(config, result);
+  for (const std::string& w : result.warnings) {
+    std::fprintf(stderr, "vesselid: warning: %s\n", w.c_str());
+  }
   std::printf("\nresults written to %s/results.json\n", out_dir.c_str());
+  if (!complete) {
+    return Fail("the run stopped in stage '" + result.stopped_stage + "': " + error + "; the " +
+                std::to_string(result.stages.size()) + " finished stage(s) are in " + out_dir +
+                "/results.json");
+  }
   return 0;
 }
 

@@ -35,7 +35,7 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
                               const ModelInfo& info) {
   reader.CheckMap(node, path,
                   {"name", "file", "inputs", "outputs", "interpolation", "weights", "initial_state",
-                   "degrees", "window", "segment_length", "segments", "input_range"});
+                   "degrees", "window", "segment_length", "segments", "input_range", "wrap"});
   ExperimentSpec spec;
   if (!node["name"]) reader.Fail(node, path, "missing key 'name'");
   if (!node["file"]) reader.Fail(node, path, "missing key 'file'");
@@ -79,6 +79,18 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
     spec.initial_state = reader.DoubleMap(n, Child(path, "initial_state"));
     CheckNames(reader, n, Child(path, "initial_state"), Keys(spec.initial_state), info.states,
                "state", info);
+  }
+  if (const YAML::Node n = node["wrap"]) {
+    const std::string key = Child(path, "wrap");
+    spec.wrapped_outputs = reader.Strings(n, key);
+    CheckNames(reader, n, key, spec.wrapped_outputs, info.outputs, "output", info);
+    for (size_t i = 0; i < spec.wrapped_outputs.size(); ++i) {
+      const int o = info.OutputIndex(spec.wrapped_outputs[i]);
+      if (o >= static_cast<int>(info.angle_outputs.size()) || !info.angle_outputs[o]) {
+        reader.Fail(n[i], Child(key, i), "output '" + spec.wrapped_outputs[i] +
+                                             "' is not an angle; only angles can be wrapped");
+      }
+    }
   }
   if (const YAML::Node n = node["degrees"])
     spec.degree_columns = reader.Strings(n, Child(path, "degrees"));
@@ -137,6 +149,16 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
       spec.input_range[input] = {range[0], range[1]};
     }
     if (spec.input_range.empty()) reader.Fail(n, key, "no input listed");
+  }
+  // A given initial state is the record's start (with segment_length: its first piece's).
+  // Segments and input-range stretches each start somewhere else.
+  for (const char* cut : {"segments", "input_range"}) {
+    if (node["initial_state"] && node[cut]) {
+      reader.Fail(node["initial_state"], Child(path, "initial_state"),
+                  std::string("cannot be combined with '") + cut +
+                      "': each segment starts from its own state; estimate it with the "
+                      "stage's free_initial_states");
+    }
   }
   return spec;
 }
@@ -410,7 +432,7 @@ bool LoadConfigFile(const std::string& path, const std::string& data_dir,
   try {
     const YAML::Node root = reader.Load();
     reader.CheckMap(root, "", {"description", "model", "simulation", "experiments", "stages",
-                               "fusion", "final_validation", "surfaces", "study"});
+                               "fusion", "final", "final_validation", "surfaces", "study"});
     ConfigFile file;
     RunConfig& result = file.run;
     result.path = path;
@@ -456,6 +478,12 @@ bool LoadConfigFile(const std::string& path, const std::string& data_dir,
       if (!StringToFusionRule(rule, &result.fusion)) {
         reader.Fail(fusion, "fusion",
                     "unknown rule '" + rule + "' (inverse_variance, mean, information)");
+      }
+    }
+    if (const YAML::Node final = root["final"]) {
+      const std::string choice = reader.String(final, "final");
+      if (!StringToFinalChoice(choice, &result.final_choice)) {
+        reader.Fail(final, "final", "unknown choice '" + choice + "' (best_validation, last)");
       }
     }
     if (const YAML::Node final = root["final_validation"]) {

@@ -2,14 +2,43 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
+#include "engine/base/angle.h"
 #include "engine/data/record_start.h"
 
 namespace vesselid {
 namespace {
 
 constexpr double kTimeTolerance = 1e-9;
+
+// An output's column as a channel; an angle output not compared modulo one turn is unwrapped,
+// and refused where two samples are too far apart to tell which way it turned.
+bool OutputChannelOf(const Trajectory& trajectory, int column, const ModelInfo& info, int output,
+                     bool wrapped, Channel* channel, std::string* error) {
+  *channel = ExtractChannel(trajectory, column);
+  const bool angle =
+      output < static_cast<int>(info.angle_outputs.size()) && info.angle_outputs[output];
+  if (!angle || wrapped) return true;
+  const std::vector<double> raw = channel->value;
+  if (UnwrapAngles(&channel->value) <= kMaxAngleStep) return true;
+  for (size_t k = 1; k < raw.size(); ++k) {
+    const double step = WrapAngle(raw[k] - raw[k - 1]);
+    if (std::abs(step) <= kMaxAngleStep) continue;
+    char text[400];
+    std::snprintf(text, sizeof(text),
+                  "angle output '%s' (column '%s') changes by %.0f deg between t = %g and %g: "
+                  "the sampling cannot tell which way it turned, so it cannot be unwrapped; "
+                  "list '%s' in the experiment's wrap: to compare it modulo one turn",
+                  info.outputs[output].c_str(), trajectory.names[column].c_str(),
+                  std::abs(step) * 180.0 / M_PI, channel->t[k - 1], channel->t[k],
+                  info.outputs[output].c_str());
+    *error = text;
+    break;
+  }
+  return false;
+}
 
 double Median(std::vector<double> values) {
   if (values.empty()) return 0.0;
@@ -58,6 +87,11 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
     double weight;
     Channel channel;
   };
+  e.wrapped_outputs.assign(info.outputs.size(), false);
+  for (const std::string& output : spec.wrapped_outputs) {
+    const int index = info.OutputIndex(output);
+    if (index >= 0) e.wrapped_outputs[index] = true;
+  }
   std::vector<OutputChannel> channels;
   for (const std::string& output : selected) {
     int index = info.OutputIndex(output);
@@ -71,8 +105,10 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
     int column = trajectory.Find(mapped->second);
     if (column < 0) return fail("no column '" + mapped->second + "' for output '" + output + "'");
     auto weight = spec.output_weights.find(output);
-    OutputChannel oc{index, weight == spec.output_weights.end() ? 1.0 : weight->second,
-                     ExtractChannel(trajectory, column)};
+    OutputChannel oc{index, weight == spec.output_weights.end() ? 1.0 : weight->second, {}};
+    if (!OutputChannelOf(trajectory, column, info, index, e.Wrapped(index), &oc.channel, error)) {
+      return fail(*error);
+    }
     if (oc.channel.t.empty()) return fail("column '" + mapped->second + "' has no samples");
     channels.push_back(std::move(oc));
   }
@@ -173,7 +209,10 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
     const int o = info.OutputIndex(output);
     const int column = trajectory.Find(column_name);
     if (o < 0 || column < 0) continue;
-    const Channel channel = ExtractChannel(trajectory, column);
+    Channel channel;
+    if (!OutputChannelOf(trajectory, column, info, o, e.Wrapped(o), &channel, error)) {
+      return fail(*error);
+    }
     if (channel.t.empty()) continue;
     y0[o] = InterpolateAt(channel, Interpolation::kLinear, {t0})[0];
     const bool angle = o < static_cast<int>(info.angle_outputs.size()) && info.angle_outputs[o];

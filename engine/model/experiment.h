@@ -30,6 +30,9 @@ struct ExperimentSpec {
   std::map<std::string, double> output_weights;  // per model output, default 1
   std::map<std::string, double> initial_state;   // per state; absent: see BuildExperiment
   std::vector<std::string> degree_columns;       // columns recorded in degrees
+  // Angle outputs compared modulo one turn (residual wrapped to (-pi, pi]) instead of
+  // unwrapped: for a sensor whose jumps the sampling cannot resolve.
+  std::vector<std::string> wrapped_outputs;
   double t_begin = -std::numeric_limits<double>::infinity();
   double t_end = std::numeric_limits<double>::infinity();
   // > 0: the record is identified as consecutive segments of this length, each simulated
@@ -70,6 +73,11 @@ struct Experiment {
   std::vector<double> initial_state;     // initial state where it is not estimated
   std::vector<double> initial_state_guess;  // start values where it is (model's guess)
   std::vector<int> output_sample_count;  // per model output
+  std::vector<bool> wrapped_outputs;     // per model output: residual wrapped (empty: none)
+
+  bool Wrapped(int output) const {
+    return output < static_cast<int>(wrapped_outputs.size()) && wrapped_outputs[output];
+  }
 
   int num_nodes() const { return static_cast<int>(node_time.size()); }
   int num_samples() const { return static_cast<int>(samples.size()); }
@@ -86,6 +94,10 @@ struct ExperimentOptions {
   StateGuess state_guess;            // optional (ModelHandle::GuessState)
   double rate_window = 1.0;          // seconds of data behind each output rate at t0
 };
+
+// Largest change of an unwrapped angle output between two samples: beyond it the direction
+// of the turn is ambiguous, and BuildExperiment refuses the record (or its `wrap` is needed).
+inline constexpr double kMaxAngleStep = M_PI / 2;
 
 // Builds the simulation grid, input cache and samples. Initial-state values come from
 // spec.initial_state, else from the output of the same name measured at t0, else 0; the start

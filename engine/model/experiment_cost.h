@@ -34,12 +34,11 @@ class ExperimentCost final : public ceres::CostFunction {
  public:
   // `experiment` and `loss` (may be null) must outlive the cost function.
   ExperimentCost(const Model& model, const Experiment* experiment,
-                 std::vector<double> parameter_scales, std::vector<bool> angle_outputs,
-                 const ceres::LossFunction* loss)
+                 std::vector<double> parameter_scales, const ceres::LossFunction* loss)
       : model_(model),
         experiment_(experiment),
         scales_(std::move(parameter_scales)),
-        angle_outputs_(std::move(angle_outputs)),
+        wrapped_(experiment->wrapped_outputs),
         loss_(loss) {
     num_parameters_ = static_cast<int>(scales_.size());
     for (int i = 0; i < num_parameters_ + Model::kNumStates; ++i) {
@@ -113,7 +112,7 @@ class ExperimentCost final : public ceres::CostFunction {
       for (int i = first; i < last; ++i) {
         const ExperimentSample& s = e.samples[i];
         T r = y[s.output] - s.value;
-        if (angle_outputs_[s.output]) {
+        if (!wrapped_.empty() && wrapped_[s.output]) {
           r -= 2.0 * M_PI * std::round(ScalarPart(r) / (2.0 * M_PI));
         }
         r *= s.weight;
@@ -151,7 +150,7 @@ class ExperimentCost final : public ceres::CostFunction {
   const Model model_;
   const Experiment* experiment_;
   std::vector<double> scales_;
-  std::vector<bool> angle_outputs_;
+  std::vector<bool> wrapped_;  // per output: residual wrapped to (-pi, pi] (empty: none)
   const ceres::LossFunction* loss_;
   int num_parameters_ = 0;
 };

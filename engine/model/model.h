@@ -35,7 +35,10 @@ struct ModelInfo {
   std::vector<std::string> outputs;
   std::vector<std::string> parameters;
   std::vector<double> parameter_defaults;  // typical values, one per parameter
-  std::vector<bool> angle_outputs;         // residuals wrapped to (-pi, pi]
+  // Outputs that are angles: their measurements are unwrapped when read (continuous across
+  // +-pi) and compared with the simulated angle as they are, unless an experiment lists them
+  // in `wrap` (ExperimentSpec::wrapped_outputs).
+  std::vector<bool> angle_outputs;
   // Parameter pairs the model is symmetric in (e.g. Nomoto T1, T2); reported first >= second.
   std::vector<std::pair<int, int>> exchangeable;
   // Inputs an experiment may leave unmapped; the model then sees NaN and decides what that

@@ -3,6 +3,7 @@
 // ModelAdapter<Model> instantiates the templated simulation for the concrete model.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -28,7 +29,8 @@ class ModelHandle {
                                                  const ceres::LossFunction* loss) const = 0;
 
   // Simulates in double from x0 with parameters p; `outputs` gets every model output at every
-  // node (row-major, nodes x outputs). False if the simulation diverges.
+  // node (row-major, nodes x outputs). False if the simulation diverges; the nodes it did not
+  // reach are then NaN (DivergenceTime, metrics.h).
   virtual bool SimulateOutputs(const Experiment& experiment, const double* p, const double* x0,
                                std::vector<double>* outputs) const = 0;
 
@@ -109,14 +111,14 @@ class ModelAdapter final : public ModelHandle {
   ceres::CostFunction* NewExperimentCost(const Experiment* experiment,
                                          std::vector<double> parameter_scales,
                                          const ceres::LossFunction* loss) const override {
-    return new ExperimentCost<Model>(model_, experiment, std::move(parameter_scales),
-                                     info_.angle_outputs, loss);
+    return new ExperimentCost<Model>(model_, experiment, std::move(parameter_scales), loss);
   }
 
   bool SimulateOutputs(const Experiment& e, const double* p, const double* x0,
                        std::vector<double>* outputs) const override {
     constexpr int ny = Model::kNumOutputs;
-    outputs->assign(static_cast<size_t>(e.num_nodes()) * ny, 0.0);
+    outputs->assign(static_cast<size_t>(e.num_nodes()) * ny,
+                    std::numeric_limits<double>::quiet_NaN());
     std::array<double, Model::kNumStates> x;
     std::copy(x0, x0 + Model::kNumStates, x.begin());
     double* out = outputs->data();

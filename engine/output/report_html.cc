@@ -1,11 +1,14 @@
 #include "engine/output/report_html.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 
 #include "engine/base/atomic_file.h"
 #include "engine/base/elapsed.h"
 #include "engine/output/base64.h"
+#include "engine/run/held_out.h"
+#include "engine/run/run_warnings.h"
 #include "engine/output/report_figures.h"
 #include "engine/output/report_plots.h"
 #include "engine/output/report_tables.h"
@@ -16,6 +19,7 @@ namespace {
 constexpr char kStyle[] = R"(<style>
 body { font-family: "DejaVu Sans", Verdana, Arial, sans-serif; font-size: 14px; line-height: 1.45;
        color: #222; max-width: 1180px; margin: 0 auto; padding: 0 24px 60px; }
+.warnings li, p.warning { color: #8a1c1c; }
 h1 { font-size: 24px; border-bottom: 2px solid #34506b; padding-bottom: 6px; }
 h2 { font-size: 20px; margin-top: 44px; border-bottom: 1px solid #c8d0d8; padding-bottom: 3px; }
 h3 { font-size: 16px; margin: 26px 0 6px; color: #34506b; }
@@ -127,11 +131,15 @@ class ReportPage {
   std::vector<std::string> alts_;
 };
 
+// Angle outputs some experiment compares modulo one turn: plotted on one turn too.
 std::vector<std::string> AngleOutputs(const RunConfig& config) {
-  const ModelInfo& info = config.model->info();
   std::vector<std::string> angles;
-  for (size_t k = 0; k < info.outputs.size() && k < info.angle_outputs.size(); ++k) {
-    if (info.angle_outputs[k]) angles.push_back(info.outputs[k]);
+  for (const ExperimentSpec& e : config.experiments) {
+    for (const std::string& output : e.wrapped_outputs) {
+      if (std::find(angles.begin(), angles.end(), output) == angles.end()) {
+        angles.push_back(output);
+      }
+    }
   }
   return angles;
 }
@@ -190,6 +198,12 @@ void StageSection(const RunConfig& config, const StageResult& stage, size_t numb
   }
   for (const std::string& d : s.uncertainty.undetermined) notes.push_back("undetermined: " + d);
   for (const std::string& a : stage.admissibility) notes.push_back("not admissible: " + a);
+  if (stage.held_out.done) {
+    notes.push_back("held-out check against the stage's start: " +
+                    DescribeHeldOut(stage.held_out) +
+                    (stage.held_out.worse ? " (worse)" : " (not worse)"));
+  }
+  if (!stage.rejected.empty()) notes.insert(notes.begin(), "set aside: " + stage.rejected);
   if (!notes.empty()) {
     html << "<ul class=\"notes\">\n";
     for (const std::string& note : notes) html << "<li>" << HtmlEscape(note) << "</li>\n";
@@ -263,13 +277,15 @@ void FinalSection(const RunConfig& config, const RunResult& result, ReportPage* 
        << HtmlEscape(FusionRuleToString(config.fusion))
        << "</strong> rule; isolated and free ones from the last stage that estimated them.</p>\n"
        << FinalParametersTable(result.parameters);
-  if (result.admissibility.empty()) {
-    html << "<p>The final values are admissible.</p>\n";
+  std::vector<std::string> doubts;
+  for (const std::string& a : result.admissibility) doubts.push_back("not admissible: " + a);
+  FinalHeldOutFailed(result, &doubts);
+  if (doubts.empty()) {
+    html << "<p>The final values are admissible"
+         << (result.final_validation.empty() ? "" : " and predict the held-out data") << ".</p>\n";
   } else {
     html << "<ul class=\"notes\">\n";
-    for (const std::string& a : result.admissibility) {
-      html << "<li>not admissible: " << HtmlEscape(a) << "</li>\n";
-    }
+    for (const std::string& d : doubts) html << "<li>" << HtmlEscape(d) << "</li>\n";
     html << "</ul>\n";
   }
   if (!result.final_validation.empty() || !result.final_velocity_validation.empty()) {
@@ -326,6 +342,17 @@ std::string RunReportHtml(const RunConfig& config, const RunResult& result) {
        << "</td></tr>\n<tr><th>run time</th><td>" << HtmlNumber(result.time_seconds, "%.2f")
        << " s</td></tr>\n</table>\n<p id=\"plot-status\" class=\"muted\"></p>\n"
        << kNoticeMark << "\n";
+  if (!result.stopped_stage.empty()) {
+    html << "<p class=\"warning\"><strong>The run stopped in stage '"
+         << HtmlEscape(result.stopped_stage) << "'</strong>: " << HtmlEscape(result.stop_message)
+         << "</p>\n";
+  }
+  if (!result.warnings.empty()) {
+    html << "<section id=\"warnings\">\n<h2>Warnings (" << result.warnings.size()
+         << ")</h2>\n<ul class=\"warnings\">\n";
+    for (const std::string& w : result.warnings) html << "<li>" << HtmlEscape(w) << "</li>\n";
+    html << "</ul>\n</section>\n";
+  }
   Contents(result, &html);
   for (size_t k = 0; k < result.stages.size(); ++k) {
     StageSection(config, result.stages[k], k + 1, &page);

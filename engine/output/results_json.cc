@@ -31,21 +31,48 @@ json MetricsToJson(const std::vector<ExperimentFit>& fits) {
                          {"rmse", JsonNumber(m.rmse)},
                          {"mae", JsonNumber(m.mae)},
                          {"r2", JsonNumber(m.r2)},
-                         {"fit_percent", JsonNumber(m.fit_percent)}});
+                         {"fit_percent", JsonNumber(m.fit_percent)},
+                         {"hold_mae", JsonNumber(m.hold_mae)},
+                         {"noise", JsonNumber(m.noise)}});
     }
   }
   return metrics;
 }
 
+// Experiments whose simulation diverged, with the reason.
+json DivergedToJson(const std::vector<ExperimentFit>& fits) {
+  json diverged = json::object();
+  for (const ExperimentFit& fit : fits) {
+    if (fit.diverged) diverged[fit.experiment] = fit.message;
+  }
+  return diverged;
+}
+
+json HeldOutToJson(const HeldOutCheck& check) {
+  json outputs = json::array();
+  for (size_t i = 0; i < check.outputs.size(); ++i) {
+    outputs.push_back({{"output", check.outputs[i]},
+                       {"start_mae", JsonNumber(check.start_mae[i])},
+                       {"stage_mae", JsonNumber(check.stage_mae[i])}});
+  }
+  return {{"outputs", outputs},
+          {"start_diverged", check.start_diverged},
+          {"stage_diverged", check.stage_diverged},
+          {"worse", check.worse}};
+}
+
 // Seed 002's per-test cost sqrt(mean e^2), by experiment.
 json RmsCostToJson(const std::vector<ExperimentFit>& fits) {
   json rms = json::object();
-  for (const ExperimentFit& fit : fits) rms[fit.experiment] = fit.rms_cost;
+  for (const ExperimentFit& fit : fits) rms[fit.experiment] = JsonNumber(fit.rms_cost);
   return rms;
 }
 
 json FitsToJson(const std::vector<ExperimentFit>& fits) {
-  return {{"metrics", MetricsToJson(fits)}, {"rms_cost", RmsCostToJson(fits)}};
+  json j = {{"metrics", MetricsToJson(fits)}, {"rms_cost", RmsCostToJson(fits)}};
+  const json diverged = DivergedToJson(fits);
+  if (!diverged.empty()) j["diverged"] = diverged;
+  return j;
 }
 
 // Conditioning and sensitivities at the optimum (local_analysis.h); null numbers are
@@ -164,6 +191,9 @@ json StageToJson(const StageResult& stage) {
   j["fit"] = FitsToJson(s.fits);
   j["admissibility"] = stage.admissibility;
   if (!stage.validation.empty()) j["validation"] = FitsToJson(stage.validation);
+  if (stage.held_out.done) j["held_out_check"] = HeldOutToJson(stage.held_out);
+  if (!stage.rejected.empty()) j["rejected"] = stage.rejected;
+  if (stage.integration_step > 0.0) j["integration_step"] = stage.integration_step;
   if (!stage.velocity_validation.empty()) {
     j["velocity_validation"] = VelocityToJson(stage.velocity_validation);
   }
@@ -179,6 +209,11 @@ json RunResultToJson(const RunConfig& config, const RunResult& result) {
   j["config"] = config.path;
   j["model"] = {{"family", config.family}, {"name", config.model->info().name}};
   j["time_seconds"] = result.time_seconds;
+  j["warnings"] = result.warnings;
+  if (!result.stopped_stage.empty()) {
+    j["stopped"] = {{"stage", result.stopped_stage}, {"message", result.stop_message}};
+  }
+  j["final"] = FinalChoiceToString(config.final_choice);
   json stages = json::array();
   for (const StageResult& stage : result.stages) stages.push_back(StageToJson(stage));
   j["stages"] = stages;

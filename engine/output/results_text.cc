@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "engine/run/held_out.h"
+
 namespace vesselid {
 namespace {
 
@@ -25,6 +27,9 @@ std::string MetricsTable(const std::vector<ExperimentFit>& fits) {
                 "output", "samples", "RMSE", "MAE", fits.size() > kMaxRows ? "median R2" : "R2",
                 "fit %", "rms cost");
   out += line;
+  for (const ExperimentFit& fit : fits) {
+    if (fit.diverged) out += "  " + fit.experiment + ": " + fit.message + "\n";
+  }
   if (fits.size() <= kMaxRows) {
     for (const ExperimentFit& fit : fits) {
       for (const ChannelMetrics& m : fit.channels) out += MetricsRow(m, fit.rms_cost);
@@ -34,7 +39,10 @@ std::string MetricsTable(const std::vector<ExperimentFit>& fits) {
   std::map<std::string, std::vector<const ChannelMetrics*>> by_output;
   std::vector<std::string> order;
   double cost2 = 0.0;
+  int measured = 0;
   for (const ExperimentFit& fit : fits) {
+    if (fit.diverged) continue;
+    ++measured;
     cost2 += fit.rms_cost * fit.rms_cost;
     for (const ChannelMetrics& m : fit.channels) {
       if (by_output[m.output].empty()) order.push_back(m.output);
@@ -61,7 +69,7 @@ std::string MetricsTable(const std::vector<ExperimentFit>& fits) {
     std::sort(fit.begin(), fit.end());
     pooled.r2 = r2[r2.size() / 2];
     pooled.fit_percent = fit[fit.size() / 2];
-    out += MetricsRow(pooled, std::sqrt(cost2 / fits.size()));
+    out += MetricsRow(pooled, std::sqrt(cost2 / std::max(1, measured)));
   }
   return out;
 }
@@ -169,6 +177,11 @@ std::string StageText(const StageResult& stage) {
   if (s.analysis.available) out << LocalAnalysisText(s.analysis);
   out << MetricsTable(s.fits);
   if (!stage.validation.empty()) out << "  local validation:\n" << MetricsTable(stage.validation);
+  if (stage.held_out.done) {
+    out << "  held-out check against the stage's start: " << DescribeHeldOut(stage.held_out)
+        << (stage.held_out.worse ? " (worse)" : " (not worse)") << "\n";
+  }
+  if (!stage.rejected.empty()) out << "  set aside: " << stage.rejected << "\n";
   if (!stage.velocity_validation.empty()) {
     out << "  local validation of the velocities (data: Savitzky-Golay reconstruction):\n"
         << VelocityTable(stage.velocity_validation);
@@ -181,6 +194,13 @@ std::string StageText(const StageResult& stage) {
 std::string RunResultToText(const RunConfig& config, const RunResult& result) {
   std::ostringstream out;
   out << "vesselid run of " << config.path << " (model " << config.model->info().name << ")\n";
+  if (!result.stopped_stage.empty()) {
+    out << "STOPPED in stage '" << result.stopped_stage << "': " << result.stop_message << "\n";
+  }
+  if (!result.warnings.empty()) {
+    out << "\nwarnings (" << result.warnings.size() << ")\n";
+    for (const std::string& w : result.warnings) out << "  warning: " << w << "\n";
+  }
   for (const StageResult& stage : result.stages) out << StageText(stage);
   out << "\nfinal parameters (shared: " << FusionRuleToString(config.fusion) << " fusion)\n";
   char line[256];

@@ -41,8 +41,11 @@ namespace vesselid {
 // uninterrupted one.
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Trajectory, source, t, names, columns)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ChannelMetrics, experiment, output, samples, rmse, mae, r2,
-                                   fit_percent)
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ExperimentFit, experiment, rms_cost, channels, trace)
+                                   fit_percent, hold_mae, noise)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ExperimentFit, experiment, diverged, message, rms_cost,
+                                   channels, trace)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(HeldOutCheck, done, outputs, start_mae, stage_mae,
+                                   start_diverged, stage_diverged, worse)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(GlobalStartSummary, run, variables, evaluations,
                                    failed_evaluations, best_cost, time_seconds, result, message,
                                    candidates, candidate_costs, best_cost_history)
@@ -92,7 +95,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(StepRegressionReport, samples, terms, normali
                                    regression_seconds)
 
 namespace {
-constexpr int kArchiveVersion = 1;
+constexpr int kArchiveVersion = 2;
 }  // namespace
 
 nlohmann::json StageResultToArchive(const StageResult& stage) {
@@ -105,6 +108,9 @@ nlohmann::json StageResultToArchive(const StageResult& stage) {
                       {"correlation", stage.correlation},
                       {"admissibility", stage.admissibility},
                       {"validation", stage.validation},
+                      {"held_out", stage.held_out},
+                      {"rejected", stage.rejected},
+                      {"integration_step", stage.integration_step},
                       {"velocity_validation", stage.velocity_validation}};
   if (stage.step_regression) j["step_regression"] = *stage.step_regression;
   return j;
@@ -126,6 +132,9 @@ bool StageResultFromArchive(const nlohmann::json& j, StageResult* stage, std::st
     j.at("correlation").get_to(s.correlation);
     j.at("admissibility").get_to(s.admissibility);
     j.at("validation").get_to(s.validation);
+    j.at("held_out").get_to(s.held_out);
+    j.at("rejected").get_to(s.rejected);
+    j.at("integration_step").get_to(s.integration_step);
     j.at("velocity_validation").get_to(s.velocity_validation);
     if (j.contains("step_regression")) {
       s.step_regression =

@@ -16,13 +16,6 @@ int LastAtOrBefore(const std::vector<double>& times, double t) {
   return static_cast<int>(it - times.begin()) - 1;
 }
 
-// Unwraps an angle channel so that it has no jumps of more than pi.
-void Unwrap(std::vector<double>* angle) {
-  for (size_t k = 1; k < angle->size(); ++k) {
-    (*angle)[k] = (*angle)[k - 1] + WrapAngle((*angle)[k] - (*angle)[k - 1]);
-  }
-}
-
 double CausalValue(const Channel& c, double t) {
   const int j = LastAtOrBefore(c.t, t);
   if (j < 0) return c.value.front();  // before the first sample: its value
@@ -69,7 +62,7 @@ bool BuildRegressionRecord(const ExperimentSpec& spec, const Trajectory& data,
     if (column < 0) return fail("no column '" + column_name + "' for output '" + output + "'");
     outputs[index] = Window(ExtractChannel(data, column), t0, t1);
     if (outputs[index].t.size() < 2) return fail("output '" + output + "' has < 2 samples");
-    if (info.angle_outputs[index]) Unwrap(&outputs[index].value);
+    if (info.angle_outputs[index]) UnwrapAngles(&outputs[index].value);
     mapped[index] = true;
     if (options.grid_output.empty()) {
       if (grid < 0 || outputs[index].t.size() < outputs[grid].t.size()) grid = index;

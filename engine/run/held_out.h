@@ -11,6 +11,7 @@
 #include "engine/model/experiment.h"
 #include "engine/model/model_handle.h"
 #include "engine/run/records.h"
+#include "engine/run/run_result.h"
 #include "engine/run/run_config.h"
 #include "engine/solve/local_solve.h"
 #include "engine/solve/metrics.h"
@@ -27,11 +28,21 @@ std::unique_ptr<OutputErrorProblem> HeldOutProblem(const ModelHandle& model,
                                                    const std::vector<double>& values,
                                                    std::string* error);
 
-// Prepares the records `names` and fits them as HeldOutProblem does, into `fits`.
+// Prepares the records `names` and fits them as HeldOutProblem does, into `fits`. A record
+// whose free run diverges, or whose initial states cannot be estimated, is recorded as
+// diverged with the reason (ExperimentFit::diverged); false only when the records cannot be
+// prepared.
 bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
                      const std::vector<std::string>& names, const ExperimentOptions& options,
                      const std::vector<std::string>& free_states, const LocalSolveOptions& local,
                      const std::vector<double>& values, TrajectoryCache* cache,
                      std::vector<ExperimentFit>* fits, std::string* error);
+
+// The held-out check of a stage from its fits and those of its start values (HeldOutCheck).
+HeldOutCheck CompareHeldOut(const std::vector<ExperimentFit>& start,
+                            const std::vector<ExperimentFit>& stage);
+
+// "worse on held-out data than its start: MAE psi 0.01 -> 0.03, ...".
+std::string DescribeHeldOut(const HeldOutCheck& check);
 
 }  // namespace vesselid

@@ -1,11 +1,13 @@
 #include "engine/run/output_error_stage.h"
 
 #include <chrono>
+#include <cstdio>
 #include <limits>
 #include <memory>
 
 #include "engine/run/continuation.h"
 #include "engine/run/records.h"
+#include "engine/solve/step_stability.h"
 
 namespace vesselid {
 namespace {
@@ -42,6 +44,73 @@ StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>
   }
   result.summary = std::move(summary);
   return result;
+}
+
+constexpr int kMaxStepReductions = 3;
+
+// While the estimate's dynamics are faster than the integration step can follow
+// (step_stability.h), prepares the experiments with a step that can and refines again from
+// the estimate; the step used goes to result->integration_step (0: the configured one).
+bool FollowTheDynamics(const RunConfig& config, const StageConfig& stage,
+                       const ModelHandle& model, StageOptions options, TrajectoryCache* cache,
+                       std::unique_ptr<OutputErrorProblem>* problem, StageSummary* summary,
+                       StageResult* result, std::string* error) {
+  options.use_global_start = false;
+  ExperimentOptions finer = stage.experiment;
+  for (int reduction = 0;; ++reduction) {
+    const StepStability stability = CheckStepStability(**problem);
+    if (stability.worst <= kStepStabilityLimit) return true;
+    if (reduction == kMaxStepReductions) {
+      summary->notes.push_back("integration step too long for the estimate's dynamics after " +
+                               std::to_string(kMaxStepReductions) + " reductions: " +
+                               stability.Describe() +
+                               "; the estimate may fit the integrator, not the vessel");
+      return true;
+    }
+    finer.max_step = stability.SafeStep();
+    char text[128];
+    std::snprintf(text, sizeof(text), "integration step reduced to %.3g s and the stage refined "
+                  "again: ", finer.max_step);
+    summary->notes.push_back(text + stability.Describe());
+    std::vector<Experiment> experiments;
+    if (!PrepareExperiments(config, stage.experiments, model, finer, cache, &experiments,
+                            error)) {
+      return false;
+    }
+    std::vector<ParameterSpec> specs;
+    const std::vector<double> values = (*problem)->ParametersOf(0);
+    for (size_t i = 0; i < values.size(); ++i) {
+      const Variable* shared = nullptr;
+      for (const Variable& v : (*problem)->variables()) {
+        if (v.kind == Variable::Kind::kParameter && v.index == static_cast<int>(i)) shared = &v;
+      }
+      ParameterSpec spec;
+      spec.name = model.info().parameters[i];
+      spec.start = values[i];
+      spec.role = shared != nullptr ? shared->role : ParameterRole::kFixed;
+      if (shared != nullptr) {
+        spec.lower = shared->lower;
+        spec.upper = shared->upper;
+        spec.scale = shared->scale;
+      }
+      specs.push_back(spec);
+    }
+    std::unique_ptr<OutputErrorProblem> refined =
+        OutputErrorProblem::Create(&model, std::move(experiments), specs, stage.problem, error);
+    if (refined == nullptr) return false;
+    refined->SetValues((*problem)->Values());  // per-experiment values and states too
+    StageSummary again;
+    if (!RunStage(options, refined.get(), &again)) {
+      *error = "refinement with the integration step reduced to " + std::to_string(finer.max_step) +
+               " s: " + again.message;
+      return false;
+    }
+    again.notes.insert(again.notes.begin(), summary->notes.begin(), summary->notes.end());
+    again.name = summary->name;
+    *summary = std::move(again);
+    *problem = std::move(refined);
+    result->integration_step = finer.max_step;
+  }
 }
 
 }  // namespace
@@ -92,10 +161,15 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& stage,
     *error = summary.message;
     return false;
   }
+  if (!FollowTheDynamics(config, stage, model, options, cache, &problem, &summary, result, error)) {
+    return false;
+  }
   summary.notes.insert(summary.notes.begin(), continuation_notes.begin(), continuation_notes.end());
   summary.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start).count();
+  const double integration_step = result->integration_step;
   *result = Collect(*problem, starts, std::move(summary));
+  result->integration_step = integration_step;
   return true;
 }
 

@@ -89,7 +89,13 @@ bool ResolveParameters(const StageConfig& stage, const ModelInfo& info,
       spec.name = name;
       spec.role = ParameterRole::kFixed;
       spec.start = carried;
-    } else if (spec.start_from_previous) {
+    }
+    auto bounds = ledger.bounds.find(name);
+    if (listed && spec.role != ParameterRole::kFixed && bounds != ledger.bounds.end()) {
+      if (!std::isfinite(spec.lower)) spec.lower = bounds->second.first;
+      if (!std::isfinite(spec.upper)) spec.upper = bounds->second.second;
+    }
+    if (listed && spec.start_from_previous) {
       spec.start = carried;
       spec.start_from_previous = false;
       if (spec.role != ParameterRole::kFixed && (carried < spec.lower || carried > spec.upper)) {
@@ -109,6 +115,7 @@ void RecordStage(const StageResult& stage, ParameterLedger* ledger) {
     if (e.kind != EstimateKind::kParameter || !e.experiment.empty()) continue;
     if (!IsEstimatedOnce(e.role)) continue;
     ledger->latest[e.name] = e.value;
+    ledger->bounds[e.name] = {e.lower, e.upper};
     ledger->estimates[e.name].push_back(
         {stage.name, e.value, e.undetermined ? kUnknown : e.std_error, e.role});
   }

@@ -25,11 +25,15 @@ struct ParameterLedger {
     ParameterRole role;
   };
   std::map<std::string, double> latest;
+  // Bounds of the latest estimate: a later stage that lists the parameter without a bound
+  // keeps that bound (a refinement must not lose what kept an earlier stage physical).
+  std::map<std::string, std::pair<double, double>> bounds;
   std::map<std::string, std::vector<Entry>> estimates;
 };
 
-// Full parameter list of a stage: starts resolved from the ledger, unlisted ones fixed there.
-// False when a carried start falls outside the stage's bounds.
+// Full parameter list of a stage: starts resolved from the ledger, unlisted ones fixed there,
+// bounds a listed one does not give taken from its latest estimate. False when a carried
+// start falls outside the stage's bounds.
 bool ResolveParameters(const StageConfig& stage, const ModelInfo& info,
                        const ParameterLedger& ledger, std::vector<ParameterSpec>* specs,
                        std::string* error);

@@ -7,6 +7,7 @@
 #include "engine/run/output_error_stage.h"
 #include "engine/run/parameter_ledger.h"
 #include "engine/run/records.h"
+#include "engine/run/run_warnings.h"
 #include "engine/run/step_regression_stage.h"
 #include "engine/run/velocity_validation.h"
 
@@ -23,6 +24,46 @@ RegressionDataOptions VelocityData(const RunConfig& config, size_t count) {
     }
   }
   return options;
+}
+
+// The stage's held-out fits at its estimate and at its start (HeldOutCheck); a stage worse
+// than its start is set aside under final: best_validation.
+bool ValidateStage(const RunConfig& config, const StageConfig& stage, const ModelHandle& model,
+                   const RegressionDataOptions& velocity_data,
+                   const std::vector<double>& start_values, const std::vector<double>& values,
+                   TrajectoryCache* cache, StageResult* result, std::string* error) {
+  std::vector<ExperimentFit> at_start;
+  ExperimentOptions options = stage.experiment;
+  if (result->integration_step > 0.0) options.max_step = result->integration_step;
+  if (!SimulateHeldOut(config, model, stage.validation, options,
+                       stage.problem.free_initial_states, stage.options.local, values, cache,
+                       &result->validation, error) ||
+      !SimulateHeldOut(config, model, stage.validation, options,
+                       stage.problem.free_initial_states, stage.options.local, start_values,
+                       cache, &at_start, error)) {
+    *error = "validation: " + *error;
+    return false;
+  }
+  for (const ExperimentFit& fit : result->validation) {
+    if (fit.diverged) result->summary.notes.push_back("validation: " + fit.message);
+  }
+  result->held_out = CompareHeldOut(at_start, result->validation);
+  if (result->held_out.worse && config.final_choice == FinalChoice::kBestValidation) {
+    result->rejected = "worse on held-out data than its start (" +
+                       DescribeHeldOut(result->held_out) +
+                       "): its estimates are set aside and later stages and the final values "
+                       "take its start values (final: last would keep them)";
+  }
+  if (model.regression_form() != nullptr) {
+    std::vector<std::string> diverged;
+    if (!ValidateVelocities(config, model, stage.validation, velocity_data, values, cache,
+                            &result->velocity_validation, &diverged, error)) {
+      *error = "velocity validation: " + *error;
+      return false;
+    }
+    for (const std::string& d : diverged) result->summary.notes.push_back(d);
+  }
+  return true;
 }
 
 // Runs stages [first, count) into `run`, recording every estimate in `ledger`.
@@ -44,6 +85,8 @@ bool RunStages(const RunConfig& config, size_t first, size_t count, TrajectoryCa
     const ModelHandle& model = config.StageModel(stage);
     std::vector<ParameterSpec> specs;
     if (!ResolveParameters(stage, model.info(), ledger, &specs, error)) return fail(*error);
+    std::vector<double> start_values;
+    for (const ParameterSpec& spec : specs) start_values.push_back(spec.start);
     StageResult stage_result;
     if (stage.kind == StageConfig::Kind::kLeastSquares) {
       if (!RunLeastSquaresStage(config, stage, model, specs, &cache, &stage_result, error)) {
@@ -59,19 +102,12 @@ bool RunStages(const RunConfig& config, size_t first, size_t count, TrajectoryCa
     }
     const std::vector<double> values = StageParameterValues(model.info(), stage_result);
     stage_result.admissibility = model.Admissibility(values.data());
-    if (!stage.validation.empty()) {
-      if (!SimulateHeldOut(config, model, stage.validation, stage.experiment,
-                           stage.problem.free_initial_states, stage.options.local, values, &cache,
-                           &stage_result.validation, error)) {
-        return fail("validation: " + *error);
-      }
-      if (model.regression_form() != nullptr &&
-          !ValidateVelocities(config, model, stage.validation, velocity_data, values, &cache,
-                              &stage_result.velocity_validation, error)) {
-        return fail("velocity validation: " + *error);
-      }
+    if (!stage.validation.empty() &&
+        !ValidateStage(config, stage, model, velocity_data, start_values, values, &cache,
+                       &stage_result, error)) {
+      return fail(*error);
     }
-    RecordStage(stage_result, &ledger);
+    if (stage_result.rejected.empty()) RecordStage(stage_result, &ledger);
     run.stages.push_back(std::move(stage_result));
     if (observer.stage_finished && !observer.stage_finished(index, run.stages.back(), error)) {
       return false;
@@ -141,39 +177,60 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
                "', the config's is '" + config.stages[i].options.name + "'";
       return false;
     }
-    RecordStage(finished[i], &ledger);
+    if (finished[i].rejected.empty()) RecordStage(finished[i], &ledger);
     run.stages.push_back(std::move(finished[i]));
   }
-  if (!RunStages(config, run.stages.size(), config.stages.size(), &cache, &ledger, &run, error,
+  std::string stop;
+  if (!RunStages(config, run.stages.size(), config.stages.size(), &cache, &ledger, &run, &stop,
                  observer)) {
-    return false;
+    *error = stop;
+    if (run.stages.empty()) return false;
+    // The finished stages are a result: reported with where and why the run stopped.
+    run.stopped_stage = run.stages.size() < config.stages.size()
+                            ? config.stages[run.stages.size()].options.name
+                            : run.stages.back().name;
+    run.stop_message = stop;
   }
-  const RegressionDataOptions velocity_data = VelocityData(config, config.stages.size());
+  std::vector<StageResult> accepted;
+  for (const StageResult& s : run.stages) {
+    if (s.rejected.empty()) accepted.push_back(s);
+  }
   const ModelInfo& info = config.model->info();
-  run.parameters = FinalParameters(info, ledger, run.stages, config.fusion);
+  run.parameters = FinalParameters(info, ledger, accepted, config.fusion);
   std::vector<double> final_values;
   for (const FinalParameter& f : run.parameters) final_values.push_back(f.value);
   run.admissibility = config.model->Admissibility(final_values.data());
-  if (config.has_final_validation) {
+  if (config.has_final_validation && run.stopped_stage.empty()) {
     const FinalValidationConfig& v = config.final_validation;
     const ModelHandle& model = v.model ? *v.model : *config.model;
-    if (!SimulateHeldOut(config, model, v.experiments, v.experiment, v.free_initial_states, {},
+    // The shortest step a stage needed for its estimate's dynamics serves the final values.
+    ExperimentOptions options = v.experiment;
+    for (const StageResult& s : accepted) {
+      if (s.integration_step > 0.0 && (options.max_step <= 0.0 || s.integration_step < options.max_step)) {
+        options.max_step = s.integration_step;
+      }
+    }
+    if (!SimulateHeldOut(config, model, v.experiments, options, v.free_initial_states, {},
                          final_values, &cache, &run.final_validation, error)) {
       *error = "final validation: " + *error;
       return false;
     }
     if (model.regression_form() != nullptr) {
+      const RegressionDataOptions velocity_data = VelocityData(config, config.stages.size());
+      std::vector<std::string> diverged;
       if (!ValidateVelocities(config, model, v.experiments, velocity_data, final_values, &cache,
-                              &run.final_velocity_validation, error)) {
+                              &run.final_velocity_validation, &diverged, error)) {
         *error = "final velocity validation: " + *error;
         return false;
       }
+      for (const std::string& d : diverged) run.warnings.push_back("final validation: " + d);
     }
   }
+  AddRunWarnings(config, &run);
   run.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   *result = std::move(run);
-  return true;
+  return result->stopped_stage.empty();
 }
 
 }  // namespace vesselid

@@ -8,7 +8,25 @@
 namespace vesselid {
 namespace {
 
-// The record itself, its `segment` column's segments or consecutive pieces of a length.
+// Consecutive pieces of `length` of [begin, end] of `spec` named "<prefix><k>", k from 1; a
+// remainder shorter than half the length is left out. A given initial state is the record's:
+// pieces after the first start from the data.
+void SplitByLength(const ExperimentSpec& spec, const std::string& prefix, double begin,
+                   double end, double length, std::vector<ExperimentSpec>* specs) {
+  int k = 1;
+  for (double t0 = begin; t0 + 0.5 * length < end; t0 += length) {
+    ExperimentSpec piece = spec;
+    piece.name = prefix + std::to_string(k);
+    piece.t_begin = t0;
+    piece.t_end = std::min(end, t0 + length);
+    if (k++ > 1) piece.initial_state.clear();
+    specs->push_back(piece);
+  }
+}
+
+// The record itself, its `segment` column's segments or consecutive pieces of a length; with
+// `segment_length` > 0 (continuation) every segment is cut into pieces of that length too,
+// "<name>@<id>.<k>".
 bool WholeRecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double segment_length,
                       std::vector<ExperimentSpec>* specs, std::string* error) {
   specs->clear();
@@ -23,7 +41,13 @@ bool WholeRecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double
       segment.name = spec.name + "@" + std::to_string(range.id);
       segment.t_begin = std::max(spec.t_begin, range.t_begin);
       segment.t_end = std::min(spec.t_end, range.t_end);
-      if (segment.t_end > segment.t_begin) specs->push_back(segment);
+      if (!(segment.t_end > segment.t_begin)) continue;
+      if (segment_length > 0.0) {
+        SplitByLength(segment, segment.name + ".", segment.t_begin, segment.t_end,
+                      segment_length, specs);
+      } else {
+        specs->push_back(segment);
+      }
     }
     return true;
   }
@@ -36,14 +60,7 @@ bool WholeRecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double
   }
   const double begin = std::max(spec.t_begin, data.t.front());
   const double end = std::min(spec.t_end, data.t.back());
-  int k = 1;
-  for (double t0 = begin; t0 + 0.5 * length < end; t0 += length) {
-    ExperimentSpec segment = spec;
-    segment.name = spec.name + "@" + std::to_string(k++);
-    segment.t_begin = t0;
-    segment.t_end = std::min(end, t0 + length);
-    specs->push_back(segment);
-  }
+  SplitByLength(spec, spec.name + "@", begin, end, length, specs);
   return true;
 }
 

@@ -25,6 +25,20 @@ bool StringToStageKind(const std::string& text, StageConfig::Kind* kind) {
   return false;
 }
 
+const char* FinalChoiceToString(FinalChoice choice) {
+  return choice == FinalChoice::kLast ? "last" : "best_validation";
+}
+
+bool StringToFinalChoice(const std::string& text, FinalChoice* choice) {
+  for (FinalChoice c : {FinalChoice::kBestValidation, FinalChoice::kLast}) {
+    if (text == FinalChoiceToString(c)) {
+      *choice = c;
+      return true;
+    }
+  }
+  return false;
+}
+
 const ExperimentSpec* RunConfig::FindExperiment(const std::string& name) const {
   for (const ExperimentSpec& e : experiments) {
     if (e.name == name) return &e;

@@ -63,6 +63,13 @@ struct FinalValidationConfig {
   ExperimentOptions experiment;
 };
 
+// Which estimate a stage that is worse on its held-out data than its start leaves to the
+// later stages and the final values (`final:`): the better one (its start), or its own.
+enum class FinalChoice { kBestValidation, kLast };
+
+const char* FinalChoiceToString(FinalChoice choice);  // "best_validation", "last"
+bool StringToFinalChoice(const std::string& text, FinalChoice* choice);
+
 struct RunConfig {
   std::string path;  // the config file (messages, checkpoint fingerprint); may be empty
   std::string description;
@@ -71,6 +78,7 @@ struct RunConfig {
   std::vector<ExperimentSpec> experiments;  // files resolved to paths
   std::vector<StageConfig> stages;
   FusionRule fusion = FusionRule::kInverseVariance;
+  FinalChoice final_choice = FinalChoice::kBestValidation;
   bool has_final_validation = false;
   FinalValidationConfig final_validation;
   // Damping and inertia surfaces written by `run` for models with a damping-inertia form

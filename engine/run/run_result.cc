@@ -17,14 +17,19 @@ bool StringToEstimateKind(const std::string& text, EstimateKind* kind) {
 }
 
 std::vector<double> StageParameterValues(const ModelInfo& info, const StageResult& stage) {
+  // Per-experiment estimates are named "<parameter>[<experiment>]".
+  auto base_name = [](const std::string& name) { return name.substr(0, name.find('[')); };
   std::vector<double> values;
-  for (const std::string& name : info.parameters) {
+  for (size_t i = 0; i < info.parameters.size(); ++i) {
+    double sum = 0.0;
+    int count = 0;
     for (const Estimate& e : stage.estimates) {
-      if (e.kind == EstimateKind::kParameter && e.name == name) {
-        values.push_back(e.value);
-        break;
-      }
+      if (e.kind != EstimateKind::kParameter || base_name(e.name) != info.parameters[i]) continue;
+      sum += e.value;
+      ++count;
+      if (e.experiment.empty()) break;
     }
+    values.push_back(count > 0 ? sum / count : info.parameter_defaults[i]);
   }
   return values;
 }

@@ -34,6 +34,20 @@ struct Estimate {
   bool undetermined = false;  // part of a combination the stage's data do not determine
 };
 
+// A stage's fit to its held-out experiments beside the fit of the values it started from:
+// per compared output the MAE pooled over the held-out samples, and how many held-out runs
+// diverged. `worse`: more runs diverged, or the mean MAE ratio stage / start exceeds
+// kHeldOutTolerance.
+struct HeldOutCheck {
+  bool done = false;
+  std::vector<std::string> outputs;
+  std::vector<double> start_mae, stage_mae;
+  int start_diverged = 0, stage_diverged = 0;
+  bool worse = false;
+};
+
+inline constexpr double kHeldOutTolerance = 1.01;
+
 struct StageResult {
   std::string name;
   std::string model;  // the stage's model (restriction) name
@@ -43,6 +57,13 @@ struct StageResult {
   Eigen::MatrixXd correlation;
   std::vector<std::string> admissibility;  // empty: M SPD, damping PSD (as the model checks)
   std::vector<ExperimentFit> validation;   // held-out experiments of the stage
+  HeldOutCheck held_out;                   // validation against the stage's start values
+  // > 0: the integration step the stage was solved with, shorter than the configured one
+  // because its estimate's dynamics were too fast for that (step_stability.h).
+  double integration_step = 0.0;
+  // Non-empty: why the run set the stage's estimates aside (final: best_validation); later
+  // stages and the final values take its start values instead.
+  std::string rejected;
   // Models with an equation-error form: one-step and free-run metrics of the regressed
   // states on the held-out experiments (velocity_validation.h).
   std::vector<ChannelMetrics> velocity_validation;
@@ -54,7 +75,9 @@ struct StageResult {
 // spec, the value and standard error the stage found.
 Estimate ParameterEstimate(const ParameterSpec& spec, double value, double std_error);
 
-// A stage's parameter values in model order (a per-experiment one: its first experiment's).
+// A stage's parameter values in model order, one per model parameter: a per-experiment one
+// is the mean over the stage's experiments (a held-out run has no value of its own); one the
+// stage does not report, the model's default.
 std::vector<double> StageParameterValues(const ModelInfo& info, const StageResult& stage);
 
 // A parameter's value after the whole run.
@@ -70,7 +93,12 @@ struct FinalParameter {
 };
 
 struct RunResult {
-  std::vector<StageResult> stages;
+  std::vector<StageResult> stages;  // the finished ones
+  // Everything doubtful about the result, each naming the stage, parameter or experiment:
+  // printed on stderr and first in every output (run_warnings.h).
+  std::vector<std::string> warnings;
+  // Set when the run stopped before its last stage: the stage it stopped in and why.
+  std::string stopped_stage, stop_message;
   std::vector<FinalParameter> parameters;  // model parameter order
   std::vector<std::string> admissibility;  // of the final values
   std::vector<ExperimentFit> final_validation;

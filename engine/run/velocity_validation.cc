@@ -7,7 +7,7 @@ namespace vesselid {
 bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model,
                     const std::vector<double>& p, const TrajectoryCache& cache,
                     std::vector<RegressionRecord>* records, std::vector<ChannelMetrics>* metrics,
-                    std::string* error) {
+                    std::vector<std::string>* diverged, std::string* error) {
   const ModelInfo& info = model.info();
   const RegressionForm& form = *model.regression_form();
   const int ny = static_cast<int>(info.outputs.size());
@@ -37,8 +37,9 @@ bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model,
     const Eigen::VectorXd x0 = record.x.row(0).transpose();
     std::vector<double> outputs;
     if (!model.SimulateOutputs(experiment, p.data(), x0.data(), &outputs)) {
-      *error = "free run of '" + record.name + "' diverges";
-      return false;
+      diverged->push_back("free run of " + DivergenceMessage(experiment, outputs, ny) +
+                          "; left out of the free-run metrics");
+      continue;
     }
     for (size_t i = 0; i < form.states.size(); ++i) {
       const int s = form.states[i];
@@ -60,7 +61,7 @@ bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
                         const std::vector<std::string>& names,
                         const RegressionDataOptions& data, const std::vector<double>& p,
                         TrajectoryCache* cache, std::vector<ChannelMetrics>* metrics,
-                        std::string* error) {
+                        std::vector<std::string>* diverged, std::string* error) {
   metrics->clear();
   for (const std::string& name : names) {
     std::vector<RegressionRecord> records;
@@ -68,7 +69,7 @@ bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
     if (!PrepareRegressionRecords(config, {name}, model, data, cache, &records, error) ||
         !OneStepMetrics(model, p, LeastSquaresOptions(), &records, "one-step", &one_step,
                         error) ||
-        !FreeRunMetrics(config, model, p, *cache, &records, &free_run, error)) {
+        !FreeRunMetrics(config, model, p, *cache, &records, &free_run, diverged, error)) {
       return false;
     }
     for (std::vector<ChannelMetrics>* part : {&one_step, &free_run}) {

@@ -18,16 +18,18 @@
 namespace vesselid {
 
 // Metrics per experiment and regressed state over every sample (whatever regions a stage was
-// fitted on), labelled "<experiment> one-step" and "<experiment> free-run".
+// fitted on), labelled "<experiment> one-step" and "<experiment> free-run". A record whose
+// free run diverges is left out of the free-run metrics with a line in `diverged`.
 bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
-                        const std::vector<std::string>& names,
-                        const RegressionDataOptions& data, const std::vector<double>& p, TrajectoryCache* cache,
-                        std::vector<ChannelMetrics>* metrics, std::string* error);
+                        const std::vector<std::string>& names, const RegressionDataOptions& data,
+                        const std::vector<double>& p, TrajectoryCache* cache,
+                        std::vector<ChannelMetrics>* metrics, std::vector<std::string>* diverged,
+                        std::string* error);
 
 // Free-run part on prepared records (which get the model's internal states at p).
 bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model,
                     const std::vector<double>& p, const TrajectoryCache& cache,
                     std::vector<RegressionRecord>* records, std::vector<ChannelMetrics>* metrics,
-                    std::string* error);
+                    std::vector<std::string>* diverged, std::string* error);
 
 }  // namespace vesselid

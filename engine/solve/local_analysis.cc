@@ -192,7 +192,7 @@ bool ComputeLocalAnalysis(const LocalAnalysisOptions& options, OutputErrorProble
       const int c = sample.output;
       if (std::isnan(first[c])) first[c] = sample.value;
       double y = sample.value;
-      if (info.angle_outputs[c]) y = WrapAngle(y - first[c]);
+      if (experiment.Wrapped(c)) y = WrapAngle(y - first[c]);
       sum[c] += y;
       sum2[c] += y * y;
       ++count[c];

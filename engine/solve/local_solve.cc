@@ -1,6 +1,9 @@
 #include "engine/solve/local_solve.h"
 
+#include <cmath>
 #include <cstdio>
+
+#include "engine/solve/metrics.h"
 
 namespace vesselid {
 namespace {
@@ -60,6 +63,19 @@ ceres::LinearSolverType AutomaticLinearSolver(const OutputErrorProblem& problem)
                                                                  : ceres::DENSE_QR;
 }
 
+namespace {
+
+// A failed solve's reason as a user can act on it (Ceres speaks of its own options).
+std::string InEngineWords(const ceres::Solver::Summary& summary) {
+  if (summary.message.find("max_num_consecutive_invalid_steps") != std::string::npos) {
+    return "from this start every step the solver tried made a simulation diverge or the "
+           "cost non-finite; no step could be taken (Ceres: " + summary.message + ")";
+  }
+  return summary.message;
+}
+
+}  // namespace
+
 bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem,
                    LocalSolveSummary* summary) {
   *summary = LocalSolveSummary();
@@ -100,7 +116,19 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
     summary->cost_history.push_back(it.cost);
   }
   if (!summary->usable && ceres_summary.initial_cost < 0) {
-    summary->message = "the simulation diverges at the start values: " + summary->message;
+    // Name the experiment and time (the values are still the start values).
+    std::vector<ExperimentFit> fits;
+    std::string divergence;
+    summary->message =
+        EvaluateFit(*problem, &fits, &divergence)
+            ? "the cost is not finite at the start values (a weight or data value too large?)"
+            : "the simulation diverges at the start values: " + divergence;
+  } else if (summary->usable && !std::isfinite(summary->final_cost)) {
+    summary->usable = false;
+    summary->termination = "FAILURE";
+    summary->message = "the cost is not finite (weights or data too large?)";
+  } else if (!summary->usable) {
+    summary->message = InEngineWords(ceres_summary);
   }
   return summary->usable;
 }

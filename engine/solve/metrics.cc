@@ -2,13 +2,25 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+
+#include "engine/base/angle.h"
 
 namespace vesselid {
 
 void MetricAccumulator::Add(double simulated, double measured, bool angle) {
   double residual = simulated - measured;
   if (angle) residual = WrapAngle(residual);
+  if (n_ == 0) first_ = measured;
+  if (n_ >= 2) {
+    double d2 = measured - 2.0 * previous_[1] + previous_[0];
+    if (angle) d2 = WrapAngle(d2);
+    second_difference2_ += d2 * d2;
+  }
+  previous_[0] = previous_[1];
+  previous_[1] = measured;
+  hold_sae_ += std::abs(angle ? WrapAngle(measured - first_) : measured - first_);
   ++n_;
   sse_ += residual * residual;
   sae_ += std::abs(residual);
@@ -26,15 +38,44 @@ ChannelMetrics MetricAccumulator::Finish(const std::string& experiment,
   if (n_ == 0) return m;
   m.rmse = std::sqrt(sse_ / n_);
   m.mae = sae_ / n_;
+  m.hold_mae = hold_sae_ / n_;
+  if (n_ >= 3) m.noise = std::sqrt(second_difference2_ / (n_ - 2) / 6.0);
   const double sst = std::max(0.0, sum2_ - sum_ * sum_ / n_);
   m.r2 = sst > 0 ? 1.0 - sse_ / sst : kNaN;
   m.fit_percent = sst > 0 ? 100.0 * (1.0 - std::sqrt(sse_ / sst)) : kNaN;
   return m;
 }
 
+double DivergenceTime(const Experiment& experiment, const std::vector<double>& outputs,
+                      int num_outputs) {
+  double reached = std::numeric_limits<double>::quiet_NaN();
+  for (int k = 0; k < experiment.num_nodes(); ++k) {
+    const size_t first = static_cast<size_t>(k) * num_outputs;
+    if (first >= outputs.size()) break;
+    bool finite = true;
+    for (int c = 0; c < num_outputs; ++c) finite &= std::isfinite(outputs[first + c]);
+    if (!finite) break;
+    reached = experiment.node_time[k];
+  }
+  return reached;
+}
+
+std::string DivergenceMessage(const Experiment& experiment, const std::vector<double>& outputs,
+                              int num_outputs) {
+  const double t = DivergenceTime(experiment, outputs, num_outputs);
+  char text[64];
+  if (std::isnan(t)) {
+    std::snprintf(text, sizeof(text), "at its start (t = %g s)", experiment.node_time.front());
+  } else {
+    std::snprintf(text, sizeof(text), "after t = %g s", t);
+  }
+  return "simulation of experiment '" + experiment.name + "' diverges " + text;
+}
+
 bool EvaluateFit(const OutputErrorProblem& problem, std::vector<ExperimentFit>* fits,
                  std::string* error) {
   fits->clear();
+  std::string first_divergence;
   const ModelInfo& info = problem.model().info();
   const int ny = static_cast<int>(info.outputs.size());
   const double kMissing = std::numeric_limits<double>::quiet_NaN();
@@ -43,12 +84,13 @@ bool EvaluateFit(const OutputErrorProblem& problem, std::vector<ExperimentFit>* 
     std::vector<double> p = problem.ParametersOf(static_cast<int>(e));
     std::vector<double> x0 = problem.InitialStateOf(static_cast<int>(e));
     std::vector<double> outputs;
-    if (!problem.model().SimulateOutputs(experiment, p.data(), x0.data(), &outputs)) {
-      *error = "simulation of experiment '" + experiment.name + "' diverges";
-      return false;
-    }
     ExperimentFit fit;
     fit.experiment = experiment.name;
+    if (!problem.model().SimulateOutputs(experiment, p.data(), x0.data(), &outputs)) {
+      fit.diverged = true;
+      fit.message = DivergenceMessage(experiment, outputs, ny);
+      if (first_divergence.empty()) first_divergence = fit.message;
+    }
     fit.trace.t = experiment.node_time;
     std::vector<int> column_of(ny, -1);
     for (int c = 0; c < ny; ++c) {
@@ -64,7 +106,7 @@ bool EvaluateFit(const OutputErrorProblem& problem, std::vector<ExperimentFit>* 
       for (int i = experiment.node_first_sample[k]; i < experiment.node_first_sample[k + 1]; ++i) {
         const ExperimentSample& s = experiment.samples[i];
         const double simulated = outputs[static_cast<size_t>(k) * ny + s.output];
-        channels[s.output].Add(simulated, s.value, info.angle_outputs[s.output]);
+        channels[s.output].Add(simulated, s.value, experiment.Wrapped(s.output));
         fit.trace.columns[column_of[s.output]][k] = s.value;
         fit.trace.columns[column_of[s.output] + 1][k] = simulated;
       }
@@ -73,12 +115,14 @@ bool EvaluateFit(const OutputErrorProblem& problem, std::vector<ExperimentFit>* 
     for (int c = 0; c < ny; ++c) {
       total_sse += channels[c].sse();
       if (channels[c].samples() == 0) continue;
-      fit.channels.push_back(channels[c].Finish(experiment.name, info.outputs[c]));
+      if (!fit.diverged) fit.channels.push_back(channels[c].Finish(experiment.name, info.outputs[c]));
     }
-    fit.rms_cost = std::sqrt(total_sse / std::max(1, experiment.num_samples()));
+    fit.rms_cost = fit.diverged ? std::numeric_limits<double>::quiet_NaN()
+                                : std::sqrt(total_sse / std::max(1, experiment.num_samples()));
     fits->push_back(std::move(fit));
   }
-  return true;
+  if (!first_divergence.empty()) *error = first_divergence;
+  return first_divergence.empty();
 }
 
 }  // namespace vesselid

@@ -1,5 +1,5 @@
-// Fit of simulated to measured outputs, per experiment and channel (e = y_sim - y_meas,
-// angle channels wrapped):
+// Fit of simulated to measured outputs, per experiment and channel (e = y_sim - y_meas; an
+// angle is compared unwrapped unless the experiment wraps it, Experiment::Wrapped):
 //   RMSE = sqrt(mean e^2), MAE = mean |e|, R^2 = 1 - SSE/SST,
 //   fit % (NRMSE) = 100 (1 - ||e|| / ||y - mean y||),
 //   rms_cost (seed 002) = sqrt(mean e^2) over all compared samples of the experiment.
@@ -19,13 +19,20 @@ struct ChannelMetrics {
   std::string output;
   int samples = 0;
   double rmse = 0.0, mae = 0.0, r2 = 0.0, fit_percent = 0.0;
+  // MAE of the plainest prediction, holding the first measured value: a simulation worse
+  // than it predicts nothing.
+  double hold_mae = std::numeric_limits<double>::quiet_NaN();
+  // Noise level of the measurement from the data alone, sqrt(mean (second difference)^2 / 6)
+  // of consecutive samples (white noise of sigma gives 6 sigma^2; a smooth signal adds
+  // little): a fit whose RMSE is many times it has missed the signal, not the noise.
+  double noise = std::numeric_limits<double>::quiet_NaN();
 };
 
 // Metrics of a regression's fit to its samples (no MAE or fit %: only RMS residual and R2).
 inline ChannelMetrics RegressionMetrics(const std::string& experiment, const std::string& output,
                                         int samples, double rms, double r2) {
   const double unknown = std::numeric_limits<double>::quiet_NaN();
-  return {experiment, output, samples, rms, unknown, r2, unknown};
+  return {experiment, output, samples, rms, unknown, r2, unknown, unknown, unknown};
 }
 
 // Accumulates the errors e = simulated - measured of one channel into ChannelMetrics.
@@ -38,17 +45,32 @@ class MetricAccumulator {
 
  private:
   int n_ = 0;
-  double sse_ = 0.0, sae_ = 0.0, sum_ = 0.0, sum2_ = 0.0;
+  double sse_ = 0.0, sae_ = 0.0, sum_ = 0.0, sum2_ = 0.0, hold_sae_ = 0.0, first_ = 0.0;
+  double previous_[2] = {0.0, 0.0}, second_difference2_ = 0.0;
 };
 
 struct ExperimentFit {
   std::string experiment;
+  // The simulation diverged (or its initial states could not be estimated): no metrics, the
+  // reason in `message` ("diverges after t = 12.3 s"), the trace up to where it got.
+  bool diverged = false;
+  std::string message;
   double rms_cost = 0.0;
   std::vector<ChannelMetrics> channels;
   Trajectory trace;  // t, <output>_measured, <output>_simulated per compared output
 };
 
-// Simulates every experiment at the problem's current values. False if one diverges.
+// Time of the last node a simulation reached (its outputs are finite), from the outputs
+// SimulateOutputs left: NaN from the node where it stopped on.
+double DivergenceTime(const Experiment& experiment, const std::vector<double>& outputs,
+                      int num_outputs);
+
+// "simulation of experiment 'run2' diverges after t = 12.3 s".
+std::string DivergenceMessage(const Experiment& experiment, const std::vector<double>& outputs,
+                              int num_outputs);
+
+// Simulates every experiment at the problem's current values; one that diverges is recorded
+// as such (ExperimentFit::diverged). False (with `error` naming it) if any diverged.
 bool EvaluateFit(const OutputErrorProblem& problem, std::vector<ExperimentFit>* fits,
                  std::string* error);
 

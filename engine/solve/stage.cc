@@ -65,12 +65,15 @@ void NoteActiveBounds(const OutputErrorProblem& problem, std::vector<std::string
 // kRidgeSplits either way of its geometric mean (the true pair may be an order of magnitude
 // apart, e.g. Nomoto T1/T2 ~ 7) and keep the best.
 constexpr double kRidgeSplits[] = {1.5, 4.0, 12.0};
+constexpr double kRidgeGain = 1e-9;  // relative cost decrease that counts as leaving it
+
+bool OnRidge(double a, double b) { return std::abs(a - b) <= 1e-3 * std::max(std::abs(a), std::abs(b)); }
 
 void EscapeExchangeRidge(const LocalSolveOptions& options, OutputErrorProblem* problem,
                          LocalSolveSummary* local, std::vector<std::string>* notes) {
   for (const auto& [a, b] : ExchangeablePairs(*problem)) {
     const double va = a->value(), vb = b->value();
-    if (std::abs(va - vb) > 1e-3 * std::max(std::abs(va), std::abs(vb))) continue;
+    if (!OnRidge(va, vb)) continue;
     const std::vector<double> ridge = problem->Values();
     const double mean = std::copysign(std::sqrt(std::abs(va * vb)), va);
     std::vector<double> best_values;
@@ -80,13 +83,19 @@ void EscapeExchangeRidge(const LocalSolveOptions& options, OutputErrorProblem* p
       a->set_value(std::clamp(mean * split, a->lower, a->upper));
       b->set_value(std::clamp(mean / split, b->lower, b->upper));
       LocalSolveSummary attempt;
-      if (RunLocalSolve(options, problem, &attempt) && attempt.final_cost < best.final_cost) {
+      // Left only where the split reached a lower cost off the ridge.
+      if (RunLocalSolve(options, problem, &attempt) &&
+          attempt.final_cost < best.final_cost - kRidgeGain * local->final_cost &&
+          !OnRidge(a->value(), b->value())) {
         best = attempt;
         best_values = problem->Values();
       }
     }
     if (best_values.empty()) {
       problem->SetValues(ridge);
+      notes->push_back("ended on the " + a->name + " = " + b->name +
+                       " ridge: starts split either way of it found no lower cost, so the "
+                       "data do not tell the two apart here");
       continue;
     }
     char text[256];
@@ -165,6 +174,7 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
   std::vector<double> best_values;
   double best_cost = 0.0;
   std::string last_failure;
+  std::vector<std::string> ridge_notes, chosen_ridge_notes;  // of the refinement kept
   for (size_t i = 0; i < starts.size(); ++i) {
     problem->SetValues(starts[i]);
     if (options.initial_states_first) SolveInitialStates(options.local, problem);
@@ -177,8 +187,9 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
       };
     }
     LocalSolveSummary local;
+    ridge_notes.clear();
     if (RunLocalSolve(local_options, problem, &local)) {
-      EscapeExchangeRidge(local_options, problem, &local, &summary->notes);
+      EscapeExchangeRidge(local_options, problem, &local, &ridge_notes);
     }
     summary->refinements.push_back(local);
     if (!local.usable) {
@@ -189,6 +200,7 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
       summary->chosen = static_cast<int>(i);
       best_cost = local.final_cost;
       best_values = problem->Values();
+      chosen_ridge_notes = ridge_notes;
     }
   }
   if (summary->chosen < 0) {
@@ -196,6 +208,7 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
     return false;
   }
   problem->SetValues(best_values);
+  summary->notes.insert(summary->notes.end(), chosen_ridge_notes.begin(), chosen_ridge_notes.end());
   OrderExchangeable(problem, &summary->notes);
   NoteActiveBounds(*problem, &summary->notes);
 

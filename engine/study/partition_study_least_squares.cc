@@ -92,10 +92,12 @@ class LeastSquaresPartitionPool : public PartitionPool {
     outcome.persistence = PersistenceMetrics(*model, options, validation);
     outcome.usable = true;
     // Free run of whole held-out records; a diverging one leaves the split's one-step metrics.
-    if (method == "segments" && !FreeRunMetrics(*config, *model, ls.values, cache, &validation,
-                                                &outcome.free_run, &error)) {
+    std::vector<std::string> diverged;
+    if (method == "segments" && (!FreeRunMetrics(*config, *model, ls.values, cache, &validation,
+                                                 &outcome.free_run, &diverged, &error) ||
+                                 !diverged.empty())) {
       outcome.free_run.clear();
-      outcome.message = "free run: " + error;
+      outcome.message = diverged.empty() ? "free run: " + error : diverged.front();
     }
     return outcome;
   }

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <sstream>
 #include <string>
 
 #include "engine/data/trajectory.h"
@@ -300,6 +301,64 @@ TEST_F(BadInput, SurfacesNeedADampingInertiaForm) {
   WriteConfig(std::string(kGoodConfig) + "surfaces: {U: [0, 18, 10], r: [-1, 1, 5]}\n");
   ExpectRejected("config\\.yaml:13: surfaces: model nomoto_first_order has no damping and "
                  "inertia terms");
+}
+
+TEST_F(BadInput, InitialStateOfASegmentedRecord) {
+  EditConfig("    outputs: {psi: psi}\n",
+             "    outputs: {psi: psi}\n    segments: {column: t}\n    initial_state: {psi: 0}\n");
+  ExpectRejected("config\\.yaml:8: experiments\\[0\\]\\.initial_state: cannot be combined with "
+                 "'segments'");
+}
+
+TEST_F(BadInput, WrapOfAnOutputThatIsNotAnAngle) {
+  EditConfig("    outputs: {psi: psi}\n", "    outputs: {psi: psi}\n    wrap: [r]\n");
+  ExpectRejected("experiments\\[0\\]\\.wrap\\[0\\]: output 'r' is not an angle");
+}
+
+TEST_F(BadInput, UnknownFinalChoice) {
+  WriteConfig(std::string(kGoodConfig) + "final: best\n");
+  ExpectRejected("config\\.yaml:13: final: unknown choice 'best' \\(best_validation, last\\)");
+}
+
+// Weights so large that the cost overflows: a failure, never a converged result.
+TEST_F(BadInput, WeightThatOverflowsTheCost) {
+  EditConfig("    outputs: {psi: psi}\n", "    outputs: {psi: psi}\n    weights: {psi: 1.0e300}\n");
+  ExpectRejected("stage 'fit'.*cost is not finite");
+}
+
+// A heading that jumps by more than the sampling can resolve cannot be unwrapped.
+TEST_F(BadInput, HeadingJumpTooLargeToUnwrap) {
+  EditDataLine(30, "");
+  std::ifstream in(dir_ / "data.csv");
+  std::string header, row, all;
+  std::getline(in, header);
+  all = header + "\n";
+  const int psi = [&] {
+    std::stringstream names(header);
+    std::string name;
+    for (int i = 0; std::getline(names, name, ','); ++i) {
+      if (name == "psi") return i;
+    }
+    return -1;
+  }();
+  ASSERT_GE(psi, 0);
+  for (int n = 2; std::getline(in, row); ++n) {
+    if (row.empty()) continue;
+    if (n >= 30) {  // from here on the heading is 2 rad further round
+      std::stringstream fields(row);
+      std::string field, out;
+      for (int i = 0; std::getline(fields, field, ','); ++i) {
+        if (i == psi) field = std::to_string(std::stod(field) + 2.0);
+        out += (i > 0 ? "," : "") + field;
+      }
+      row = out;
+    }
+    all += row + "\n";
+  }
+  in.close();
+  std::ofstream(dir_ / "data.csv") << all;
+  ExpectRejected("angle output 'psi' \\(column 'psi'\\) changes by 115 deg between t = .*"
+                 "list 'psi' in the experiment's wrap:");
 }
 
 }  // namespace

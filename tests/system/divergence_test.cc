@@ -52,6 +52,19 @@ class DivergenceTest : public ::testing::Test {
     std::ofstream(folder_->dir() / "global.yaml")
         << Config("3.0", "global: {algorithm: GN_CRS2_LM, max_evaluations: 150, seed: 1}");
     std::ofstream(folder_->dir() / "diverging_start.yaml") << Config("-3.0", "");
+    // A finished stage, then one that diverges at its start values.
+    std::ofstream(folder_->dir() / "second_diverges.yaml") << testing::PatrolConfigHead(300) + R"(
+stages:
+  - name: first
+    parameters:
+      T1: {start: 3.0, lower: 0.01, upper: 20.0}
+      T2: {start: 0.2, lower: 0.01, upper: 20.0}
+      T3: {start: 0.27, lower: 0.0, upper: 5.0}
+      K: {start: -0.11, lower: -2.0, upper: 2.0}
+  - name: second
+    parameters:
+      T1: {start: -3.0, lower: -5.0, upper: 20.0}
+)";
     folder_->Simulate("global.yaml");
   }
   static void TearDownTestSuite() { delete folder_; }
@@ -95,6 +108,33 @@ TEST_F(DivergenceTest, DivergingStartStopsTheRunWithAMessageAndNoResults) {
   EXPECT_NE(messages.find("diverges at the start values"), std::string::npos) << messages;
   EXPECT_FALSE(fs::exists(folder_->dir() / "diverging" / "results.json"));
   EXPECT_FALSE(fs::exists(folder_->dir() / "diverging" / "report.html"));
+}
+
+// Item 6 of the refinement issue: no finished work is thrown away. The run stops in the
+// second stage with a message naming the experiment and time, and still writes the first
+// stage's results, saying where it stopped.
+TEST_F(DivergenceTest, StageThatDivergesKeepsTheFinishedStagesResults) {
+  std::string messages;
+  EXPECT_NE(folder_->Run("second_diverges.yaml", "second", &messages), 0);
+  EXPECT_NE(messages.find("stopped in stage 'second'"), std::string::npos) << messages;
+  EXPECT_NE(messages.find("experiment 'sine' diverges"), std::string::npos) << messages;
+  EXPECT_NE(messages.find(" t = "), std::string::npos) << messages;
+  const json results = Results("second");
+  ASSERT_EQ(results["stages"].size(), 1u);
+  EXPECT_EQ(results["stages"][0]["name"], "first");
+  EXPECT_EQ(results["stopped"]["stage"], "second");
+  ASSERT_FALSE(results["warnings"].empty());
+  EXPECT_NE(results["warnings"][0].get<std::string>().find("stopped in stage 'second'"),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(folder_->dir() / "second" / "report.html"));
+  std::ifstream text(folder_->dir() / "second" / "report.txt");
+  const std::string report((std::istreambuf_iterator<char>(text)),
+                           std::istreambuf_iterator<char>());
+  EXPECT_NE(report.find("STOPPED in stage 'second'"), std::string::npos);
+  // The final values are the first stage's.
+  for (const json& p : results["parameters"]) {
+    if (p["name"] == "T1") EXPECT_NEAR(p["value"].get<double>(), 2.0875, 1e-3);
+  }
 }
 
 TEST_F(DivergenceTest, StudiesRecordDivergingCasesAndGoOn) {

@@ -7,6 +7,7 @@
 #include "engine/config/config.h"
 #include "engine/run/pipeline.h"
 #include "engine/run/records.h"
+#include "engine/solve/step_stability.h"
 #include "gtest/gtest.h"
 #include "problems/nomoto/closed_loop_simulator.h"
 #include "problems/nomoto/handles.h"
@@ -43,6 +44,19 @@ class PipelineTest : public ::testing::Test {
       ASSERT_TRUE(WriteTrajectoryCsv((dir_ / ("run" + std::to_string(i) + ".csv")).string(),
                                      data, &error));
     }
+    // A record of another vessel (T 4 s, K -0.3): data whose structure is not the others'.
+    nomoto::ClosedLoopOptions loop;
+    loop.duration = 120.0;
+    loop.sample_time = 0.05;
+    loop.controller_gain = 0.7;
+    loop.excitation.amplitude = 0.3;
+    loop.excitation.periods = {20.0};
+    loop.heading_noise = 0.002;
+    loop.seed = 20;
+    Trajectory data;
+    std::string error;
+    ASSERT_TRUE(nomoto::SimulateClosedLoop(*model, {4.0, -0.3, 0.0}, loop, &data, &error));
+    ASSERT_TRUE(WriteTrajectoryCsv((dir_ / "other.csv").string(), data, &error));
   }
   void TearDown() override { fs::remove_all(dir_); }
 
@@ -52,6 +66,7 @@ experiments:
   - {name: a, file: run0.csv, inputs: {delta: delta}, outputs: {psi: psi}}
   - {name: b, file: run1.csv, inputs: {delta: delta}, outputs: {psi: psi}}
   - {name: c, file: run2.csv, inputs: {delta: delta}, outputs: {psi: psi}}
+  - {name: other, file: other.csv, inputs: {delta: delta}, outputs: {psi: psi}}
 )" + stages_and_more;
     std::ofstream(dir_ / "run.yaml") << text;
     RunConfig config;
@@ -62,6 +77,13 @@ experiments:
         << error;
     EXPECT_TRUE(RunIdentification(config, &result, &error)) << error;
     return result;
+  }
+
+  static bool HasWarning(const RunResult& result, const std::string& text) {
+    for (const std::string& w : result.warnings) {
+      if (w.find(text) != std::string::npos) return true;
+    }
+    return false;
   }
 
   static const Estimate& Find(const StageResult& stage, const std::string& name) {
@@ -192,6 +214,134 @@ stages:
   ASSERT_TRUE(LoadRunConfig((dir_ / "run.yaml").string(), "", DefaultRegistry(), &config, &error));
   EXPECT_FALSE(RunIdentification(config, &result, &error));
   EXPECT_NE(error.find("stage 'second': parameter 'T': carried start"), std::string::npos) << error;
+}
+
+// A refinement on a record of another vessel is worse on the held-out run than the stage it
+// started from: the run says so and, by default, keeps the better estimate.
+const char* kRefinedOnAnotherVessel = R"(stages:
+  - name: first
+    experiments: [a]
+    validation: [c]
+    free_initial_states: [psi]
+    parameters:
+      T: {start: 3.0, lower: 0.1, upper: 20}
+      K: {start: -0.1, lower: -1, upper: -0.001}
+  - name: refinement
+    experiments: [other]
+    validation: [c]
+    free_initial_states: [psi]
+    parameters:
+      T: {}
+      K: {}
+final_validation: {experiments: [c]}
+)";
+
+TEST_F(PipelineTest, StageWorseOnHeldOutDataIsSetAsideAndNamed) {
+  RunResult result = Run(kRefinedOnAnotherVessel);
+  ASSERT_EQ(result.stages.size(), 2u);
+  const StageResult& refinement = result.stages[1];
+  ASSERT_TRUE(refinement.held_out.done);
+  EXPECT_TRUE(refinement.held_out.worse);
+  EXPECT_FALSE(refinement.rejected.empty());
+  EXPECT_TRUE(result.stages[0].rejected.empty());
+  EXPECT_NEAR(Find(refinement, "T").value, 4.0, 0.2);  // what the other vessel has
+  // The final values are the first stage's, the better one on held-out data.
+  EXPECT_DOUBLE_EQ(Final(result, "T").value, Find(result.stages[0], "T").value);
+  EXPECT_EQ(Final(result, "T").stages, (std::vector<std::string>{"first"}));
+  EXPECT_TRUE(HasWarning(result, "stage 'refinement': worse on held-out data than its start"));
+  EXPECT_GT(result.final_validation[0].channels[0].r2, 0.999);
+}
+
+TEST_F(PipelineTest, FinalLastKeepsTheWorseStageWithAWarning) {
+  RunResult result = Run(std::string(kRefinedOnAnotherVessel) + "final: last\n");
+  ASSERT_EQ(result.stages.size(), 2u);
+  EXPECT_TRUE(result.stages[1].rejected.empty());
+  EXPECT_NEAR(Final(result, "T").value, 4.0, 0.2);
+  EXPECT_TRUE(HasWarning(result, "kept because of final: last"));
+}
+
+// A carried parameter listed without bounds keeps the bounds of the stage that estimated it.
+TEST_F(PipelineTest, CarriedParameterKeepsItsEarlierBounds) {
+  RunResult result = Run(R"(stages:
+  - name: first
+    experiments: [a]
+    free_initial_states: [psi]
+    parameters:
+      T: {start: 3.0, lower: 0.1, upper: 20}
+      K: {start: -0.1, lower: -1, upper: -0.001}
+  - name: second
+    experiments: [b]
+    free_initial_states: [psi]
+    parameters:
+      T: {}
+      K: {lower: -0.5}
+)");
+  ASSERT_EQ(result.stages.size(), 2u);
+  EXPECT_EQ(Find(result.stages[1], "T").lower, 0.1);
+  EXPECT_EQ(Find(result.stages[1], "T").upper, 20.0);
+  EXPECT_EQ(Find(result.stages[1], "K").lower, -0.5);  // given: the stage's own
+  EXPECT_EQ(Find(result.stages[1], "K").upper, -0.001);
+}
+
+// A per-experiment rudder bias with a validation run: the held-out run is simulated with the
+// mean bias (and, under the sanitizers, without reading past the stage's values).
+TEST_F(PipelineTest, PerExperimentParameterWithValidation) {
+  RunResult result = Run(R"(stages:
+  - name: biased
+    experiments: [a, b]
+    validation: [c]
+    free_initial_states: [psi]
+    parameters:
+      T: {start: 3.0, lower: 0.1, upper: 20}
+      K: {start: -0.1, lower: -1, upper: -0.001}
+      delta_0: {start: 0.0, lower: -0.1, upper: 0.1, role: per_experiment}
+)");
+  ASSERT_EQ(result.stages.size(), 1u);
+  ASSERT_EQ(result.stages[0].validation.size(), 1u);
+  EXPECT_FALSE(result.stages[0].validation[0].diverged);
+  EXPECT_GT(result.stages[0].validation[0].channels[0].r2, 0.999);
+}
+
+// A time constant (0.3 s) shorter than the sample interval (1 s, the default step) is past
+// RK4's accuracy: the stage shortens the step, refines again and finds the vessel's value
+// instead of one the integrator makes. Data: the exact discrete response to a held rudder.
+TEST_F(PipelineTest, StepTooLongForTheDynamicsIsShortened) {
+  const double T = 0.3, K = -0.17, h = 1.0, a = std::exp(-h / T);
+  Trajectory data;
+  data.names = {"delta", "psi"};
+  data.columns.resize(2);
+  double r = 0.0, psi = 0.0;
+  for (int k = 0; k <= 300; ++k) {
+    const double delta = (k / 10) % 2 == 0 ? 0.2 : -0.1;
+    data.t.push_back(k * h);
+    data.columns[0].push_back(delta);
+    data.columns[1].push_back(psi);
+    const double r_next = a * r + (1 - a) * K * delta;
+    psi += K * delta * h - T * (r_next - r);
+    r = r_next;
+  }
+  std::string error;
+  ASSERT_TRUE(WriteTrajectoryCsv((dir_ / "fast.csv").string(), data, &error)) << error;
+  std::ofstream(dir_ / "run.yaml") << R"(model: {family: nomoto, type: first_order}
+experiments:
+  - {name: fast, file: fast.csv, inputs: {delta: delta}, outputs: {psi: psi},
+     interpolation: zero_order_hold}
+stages:
+  - name: fit
+    parameters:
+      T: {start: 3.0, lower: 0.01, upper: 20}
+      K: {start: -0.1, lower: -1, upper: -0.001}
+)";
+  RunConfig config;
+  RunResult result;
+  ASSERT_TRUE(LoadRunConfig((dir_ / "run.yaml").string(), "", DefaultRegistry(), &config, &error));
+  ASSERT_TRUE(RunIdentification(config, &result, &error)) << error;
+  const StageResult& stage = result.stages[0];
+  EXPECT_GT(stage.integration_step, 0.0);
+  EXPECT_LE(stage.integration_step, T * kStepStabilityLimit);
+  EXPECT_NEAR(Find(stage, "T").value, T, 0.01 * T);
+  EXPECT_NEAR(Find(stage, "K").value, K, 0.01 * std::abs(K));
+  EXPECT_TRUE(HasWarning(result, "integration step reduced"));
 }
 
 }  // namespace

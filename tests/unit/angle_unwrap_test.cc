@@ -1,0 +1,134 @@
+// Angles compared as angles: a measured heading is unwrapped when an experiment is built, and
+// a simulated heading whole turns off is scored as turns off, not as nearly perfect; wrapping
+// the residual is an explicit choice per output. Records split by a segment column are cut
+// into continuation pieces too. Data: the first-order Nomoto step response in closed form
+// (not the engine's integrator), heading stored wrapped to (-pi, pi] as a compass logs it.
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/base/angle.h"
+#include "engine/model/experiment.h"
+#include "engine/run/records.h"
+#include "engine/solve/metrics.h"
+#include "engine/solve/output_error_problem.h"
+#include "gtest/gtest.h"
+#include "problems/nomoto/handles.h"
+
+namespace vesselid {
+namespace {
+
+constexpr double kT = 2.0, kK = 0.2, kRudder = 0.15;  // steady turn 0.03 rad/s
+
+// psi(t) of T r' + r = K delta from rest: K delta (t - T (1 - exp(-t / T))).
+double Heading(double t) { return kK * kRudder * (t - kT * (1.0 - std::exp(-t / kT))); }
+
+// 1000 s of a steady turn (30 rad, almost five turns), heading logged wrapped, and a
+// segment column splitting it at 500 s.
+Trajectory TurningRecord() {
+  Trajectory data;
+  data.source = "turn.csv";
+  data.names = {"delta", "psi", "segment"};
+  data.columns.resize(3);
+  for (int k = 0; k <= 10000; ++k) {
+    const double t = 0.1 * k;
+    data.t.push_back(t);
+    data.columns[0].push_back(kRudder);
+    data.columns[1].push_back(WrapAngle(Heading(t)));
+    data.columns[2].push_back(t < 500.0 ? 1 : 2);
+  }
+  return data;
+}
+
+ExperimentSpec Spec() {
+  ExperimentSpec spec;
+  spec.name = "turn";
+  spec.inputs = {{"delta", "delta"}};
+  spec.outputs = {{"psi", "psi"}};
+  return spec;
+}
+
+class AngleTest : public ::testing::Test {
+ protected:
+  Experiment Build(const ExperimentSpec& spec, const Trajectory& data) {
+    Experiment e;
+    std::string error;
+    EXPECT_TRUE(BuildExperiment(spec, data, model_->info(), ExperimentOptions(), &e, &error))
+        << error;
+    return e;
+  }
+
+  // RMSE of psi simulated with gain `k` (T and the bias at their true values).
+  double HeadingRmse(const Experiment& experiment, double k) {
+    std::vector<ParameterSpec> specs(3);
+    const char* names[] = {"T", "K", "delta_0"};
+    const double values[] = {kT, k, 0.0};
+    for (int i = 0; i < 3; ++i) {
+      specs[i].name = names[i];
+      specs[i].start = values[i];
+      specs[i].role = ParameterRole::kFixed;
+    }
+    std::string error;
+    auto problem = OutputErrorProblem::Create(model_.get(), {experiment}, specs,
+                                              OutputErrorOptions(), &error);
+    EXPECT_NE(problem, nullptr) << error;
+    std::vector<ExperimentFit> fits;
+    EXPECT_TRUE(EvaluateFit(*problem, &fits, &error)) << error;
+    return fits[0].channels[0].rmse;
+  }
+
+  std::unique_ptr<ModelHandle> model_ = nomoto::MakeFirstOrderHandle();
+};
+
+TEST_F(AngleTest, MeasuredHeadingIsUnwrappedWhenRead) {
+  const Experiment e = Build(Spec(), TurningRecord());
+  ASSERT_EQ(e.num_samples(), 10001);
+  double largest_error = 0.0;
+  for (int k = 0; k < e.num_samples(); ++k) {
+    largest_error = std::max(largest_error, std::abs(e.samples[k].value - Heading(0.1 * k)));
+  }
+  EXPECT_LT(largest_error, 1e-12);
+  EXPECT_GT(e.samples.back().value, 4 * 2 * M_PI);  // the turns are all there
+}
+
+TEST_F(AngleTest, HeadingTurnsOffIsScoredAsTurnsOff) {
+  const Experiment e = Build(Spec(), TurningRecord());
+  EXPECT_LT(HeadingRmse(e, kK), 1e-4);  // RK4 on the closed form
+  // A gain that ends three whole turns further round.
+  const double off = kK * (1.0 + 3 * 2 * M_PI / Heading(1000.0));
+  EXPECT_GT(HeadingRmse(e, off), 8.0);  // RMSE of an error growing to 6 pi: 6 pi / sqrt(3)
+  // Wrapped on request, the same error reads as at most half a turn.
+  ExperimentSpec wrapped = Spec();
+  wrapped.wrapped_outputs = {"psi"};
+  const Experiment w = Build(wrapped, TurningRecord());
+  EXPECT_LT(HeadingRmse(w, off), M_PI / std::sqrt(3.0) + 0.1);
+  EXPECT_LE(std::abs(w.samples.back().value), M_PI);  // the samples stay as logged
+}
+
+TEST_F(AngleTest, UnwrapAnglesTakesTheShorterWayRound) {
+  std::vector<double> angles = {3.0, -3.0, 3.1, -3.1};
+  const double largest = UnwrapAngles(&angles);
+  EXPECT_NEAR(angles[1], 2 * M_PI - 3.0, 1e-12);
+  EXPECT_NEAR(angles[3], 2 * M_PI - 3.1, 1e-12);
+  EXPECT_NEAR(largest, 2 * M_PI - 6.0, 1e-12);
+}
+
+// continuation: [10] on a record split by a segment column cuts every segment into pieces.
+TEST_F(AngleTest, ContinuationCutsSegmentColumnRecordsIntoPieces) {
+  ExperimentSpec spec = Spec();
+  spec.segments.column = "segment";
+  std::vector<ExperimentSpec> whole, pieces;
+  std::string error;
+  ASSERT_TRUE(RecordSpecs(spec, TurningRecord(), 0.0, &whole, &error)) << error;
+  ASSERT_TRUE(RecordSpecs(spec, TurningRecord(), 100.0, &pieces, &error)) << error;
+  ASSERT_EQ(whole.size(), 2u);
+  ASSERT_EQ(pieces.size(), 10u);
+  EXPECT_EQ(pieces[0].name, "turn@1.1");
+  EXPECT_EQ(pieces[5].name, "turn@2.1");
+  EXPECT_DOUBLE_EQ(pieces[5].t_begin, whole[1].t_begin);
+  EXPECT_DOUBLE_EQ(pieces[4].t_end, whole[0].t_end);
+}
+
+}  // namespace
+}  // namespace vesselid
