@@ -300,7 +300,8 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
                   {"name", "type", "least_squares", "step_regression", "model", "experiments",
                    "validation",
                    "outputs", "parameters", "free_initial_states", "loss", "integration",
-                   "normalize_by_length", "continuation", "global", "local", "uncertainty"});
+                   "normalize_by_length", "continuation", "global", "local", "uncertainty",
+                   "initial_state_prior", "outliers"});
   StageConfig stage;
   if (node["model"]) {
     stage.model = OverrideModel(reader, family, model_node, node["model"], Child(path, "model"));
@@ -358,6 +359,44 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
     CheckNames(reader, node["free_initial_states"], key, stage.problem.free_initial_states,
                info.states, "state", info);
   }
+  //   initial_state_prior: segments | all | off, or {apply: ..., scale: 1, bounds: 3}
+  if (const YAML::Node n = node["initial_state_prior"]) {
+    const std::string key = Child(path, "initial_state_prior");
+    InitialStatePrior& prior = stage.problem.prior;
+    auto read_apply = [&](const YAML::Node& value, const std::string& where) {
+      const std::string text = reader.String(value, where);
+      if (text == "segments") prior.apply = InitialStatePrior::Apply::kSegments;
+      else if (text == "all") prior.apply = InitialStatePrior::Apply::kAll;
+      else if (text == "off") prior.apply = InitialStatePrior::Apply::kOff;
+      else reader.Fail(value, where, "expected segments, all or off");
+    };
+    if (n.IsScalar()) {
+      read_apply(n, key);
+    } else {
+      reader.CheckMap(n, key, {"apply", "scale", "bounds"});
+      if (n["apply"]) read_apply(n["apply"], Child(key, "apply"));
+      reader.Read(n, key, "scale", &prior.scale);
+      reader.Read(n, key, "bounds", &prior.bounds);
+      if (!(prior.scale > 0.0)) reader.Fail(n["scale"], Child(key, "scale"), "must be > 0");
+      if (!(prior.bounds >= 0.0)) reader.Fail(n["bounds"], Child(key, "bounds"), "must be >= 0");
+    }
+  }
+  //   outliers: {action: note | downweight | drop, threshold: 5}
+  if (const YAML::Node n = node["outliers"]) {
+    const std::string key = Child(path, "outliers");
+    reader.CheckMap(n, key, {"action", "threshold"});
+    if (n["action"]) {
+      const std::string action = reader.String(n["action"], Child(key, "action"));
+      if (action == "note") stage.outliers.action = OutlierOptions::Action::kNote;
+      else if (action == "downweight") stage.outliers.action = OutlierOptions::Action::kDownweight;
+      else if (action == "drop") stage.outliers.action = OutlierOptions::Action::kDrop;
+      else reader.Fail(n["action"], Child(key, "action"), "expected note, downweight or drop");
+    }
+    reader.Read(n, key, "threshold", &stage.outliers.threshold);
+    if (!(stage.outliers.threshold > 0.0)) {
+      reader.Fail(n["threshold"], Child(key, "threshold"), "must be > 0");
+    }
+  }
   if (const YAML::Node continuation = node["continuation"]) {
     const std::string key = Child(path, "continuation");
     stage.continuation = reader.Doubles(continuation, key);
@@ -407,7 +446,8 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
     ReadStepRegression(reader, node["step_regression"], Child(path, "step_regression"), model,
                        &stage);
     for (const char* key : {"loss", "continuation", "global", "least_squares",
-                            "free_initial_states", "normalize_by_length", "integration"}) {
+                            "free_initial_states", "normalize_by_length", "integration",
+                            "initial_state_prior", "outliers"}) {
       if (node[key]) reader.Fail(node[key], Child(path, key), "not used by a step-regression stage");
     }
   }
@@ -416,7 +456,7 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
       reader.Fail(node["type"], Child(path, "type"),
                   "model " + info.name + " has no equation-error form for a least-squares stage");
     }
-    for (const char* key : {"loss", "continuation", "global"}) {
+    for (const char* key : {"loss", "continuation", "global", "outliers"}) {
       if (node[key]) reader.Fail(node[key], Child(path, key), "not used by a least-squares stage");
     }
   }

@@ -8,7 +8,7 @@
 
 namespace vesselid {
 
-bool RateAt(const Channel& channel, double t0, double window, bool angle, double* rate) {
+bool FitStart(const Channel& channel, double t0, double window, bool angle, StartFit* fit) {
   constexpr double kTimeTolerance = 1e-9;
   std::vector<double> dt, y;
   for (size_t i = 0; i < channel.t.size(); ++i) {
@@ -33,7 +33,26 @@ bool RateAt(const Channel& channel, double t0, double window, bool angle, double
   }
   const Eigen::Vector3d c = normal.ldlt().solve(rhs);
   if (!c.allFinite()) return false;
-  *rate = c[1] / span;
+  double ssr = 0.0;
+  for (size_t i = 0; i < dt.size(); ++i) {
+    const double s = dt[i] / span;
+    const double e = y[i] - (c[0] + c[1] * s + c[2] * s * s);
+    ssr += e * e;
+  }
+  const int dof = static_cast<int>(dt.size()) - 3;
+  const Eigen::Matrix3d inverse = normal.inverse();
+  const double s2 = dof > 0 ? ssr / dof : std::nan("");
+  fit->value = c[0];
+  fit->rate = c[1] / span;
+  fit->value_sigma = std::sqrt(s2 * inverse(0, 0));
+  fit->rate_sigma = std::sqrt(s2 * inverse(1, 1)) / span;
+  return true;
+}
+
+bool RateAt(const Channel& channel, double t0, double window, bool angle, double* rate) {
+  StartFit fit;
+  if (!FitStart(channel, t0, window, angle, &fit)) return false;
+  *rate = fit.rate;
   return true;
 }
 

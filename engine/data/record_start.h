@@ -11,7 +11,17 @@
 
 namespace vesselid {
 
-// False (rate untouched) if the channel has fewer than three samples at or after t0.
+// The fit's value and rate at t0 with their standard errors from its residual
+// (s^2 = SSR / (m - 3), covariance s^2 (X'X)^-1); the errors are NaN with only three samples.
+struct StartFit {
+  double value = 0.0, rate = 0.0;
+  double value_sigma = 0.0, rate_sigma = 0.0;
+};
+
+// False (fit untouched) if the channel has fewer than three samples at or after t0.
+bool FitStart(const Channel& channel, double t0, double window, bool angle, StartFit* fit);
+
+// The rate alone (FitStart).
 bool RateAt(const Channel& channel, double t0, double window, bool angle, double* rate);
 
 }  // namespace vesselid

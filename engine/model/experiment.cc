@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "engine/base/angle.h"
+#include "engine/data/noise_level.h"
 #include "engine/data/record_start.h"
 
 namespace vesselid {
@@ -205,6 +206,7 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
   // values over both.
   const size_t ny = info.outputs.size();
   std::vector<double> y0(ny, std::numeric_limits<double>::quiet_NaN()), ydot0 = y0;
+  std::vector<double> y0_sigma(ny, 0.0), ydot0_sigma(ny, 0.0);
   for (const auto& [output, column_name] : spec.outputs) {
     const int o = info.OutputIndex(output);
     const int column = trajectory.Find(column_name);
@@ -216,22 +218,74 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
     if (channel.t.empty()) continue;
     y0[o] = InterpolateAt(channel, Interpolation::kLinear, {t0})[0];
     const bool angle = o < static_cast<int>(info.angle_outputs.size()) && info.angle_outputs[o];
-    RateAt(channel, t0, options.rate_window, angle, &ydot0[o]);
+    StartFit fit;
+    if (FitStart(channel, t0, options.rate_window, angle, &fit)) {
+      ydot0[o] = fit.rate;
+      y0_sigma[o] = fit.value_sigma;
+      ydot0_sigma[o] = fit.rate_sigma;
+    }
   }
+  // x(y0, ydot0): same-named outputs, then the model's guess over them.
+  auto guess = [&](const std::vector<double>& y, const std::vector<double>& ydot) {
+    std::vector<double> x(info.states.size(), 0.0);
+    for (size_t s = 0; s < info.states.size(); ++s) {
+      const int o = info.OutputIndex(info.states[s]);
+      if (o >= 0 && std::isfinite(y[o])) x[s] = y[o];
+    }
+    if (options.state_guess) options.state_guess(y.data(), ydot.data(), x.data());
+    return x;
+  };
   e.initial_state.assign(info.states.size(), 0.0);
   for (size_t s = 0; s < info.states.size(); ++s) {
     const int o = info.OutputIndex(info.states[s]);
     if (o >= 0 && std::isfinite(y0[o])) e.initial_state[s] = y0[o];
   }
-  e.initial_state_guess = e.initial_state;
-  if (options.state_guess) {
-    options.state_guess(y0.data(), ydot0.data(), e.initial_state_guess.data());
+  e.initial_state_guess = guess(y0, ydot0);
+  // Each guess's standard error: the start fits' errors propagated one at a time.
+  std::vector<double> variance(info.states.size(), 0.0);
+  bool known = true;
+  for (size_t o = 0; o < ny; ++o) {
+    for (auto [values, sigma] : {std::pair{&y0, &y0_sigma}, std::pair{&ydot0, &ydot0_sigma}}) {
+      if (!std::isfinite((*values)[o]) || (*sigma)[o] == 0.0) continue;
+      known &= std::isfinite((*sigma)[o]);
+      if (!known) break;
+      std::vector<double> y = y0, ydot = ydot0;
+      (values == &y0 ? y : ydot)[o] += (*sigma)[o];
+      const std::vector<double> moved = guess(y, ydot);
+      for (size_t s = 0; s < moved.size(); ++s) {
+        const double d = moved[s] - e.initial_state_guess[s];
+        if (std::isfinite(d)) variance[s] += d * d;
+      }
+    }
+  }
+  e.initial_state_sigma.assign(info.states.size(), std::numeric_limits<double>::quiet_NaN());
+  for (size_t s = 0; s < info.states.size() && known; ++s) {
+    if (variance[s] > 0.0) e.initial_state_sigma[s] = std::sqrt(variance[s]);
   }
   for (size_t s = 0; s < info.states.size(); ++s) {
     auto given = spec.initial_state.find(info.states[s]);
     if (given == spec.initial_state.end()) continue;
     e.initial_state[s] = given->second;
     e.initial_state_guess[s] = given->second;
+    e.initial_state_sigma[s] = std::numeric_limits<double>::quiet_NaN();
+  }
+  // Prior weight: the outputs' weighted noise level (second differences of the samples).
+  double noise2 = 0.0;
+  int counted = 0;
+  for (const OutputChannel& oc : channels) {
+    NoiseLevel level;
+    for (size_t i = 0; i < oc.channel.t.size(); ++i) {
+      const double t = oc.channel.t[i];
+      if (t >= t0 - kTimeTolerance && t <= t_end + kTimeTolerance) level.Add(oc.channel.value[i]);
+    }
+    const double sigma = level.Sigma();
+    if (!std::isfinite(sigma)) continue;
+    noise2 += level.count() * (oc.weight * sigma) * (oc.weight * sigma);
+    counted += level.count();
+  }
+  if (counted > 0) {
+    e.prior_weight = std::sqrt(noise2 / counted);
+    if (options.normalize_by_length) e.prior_weight /= std::sqrt(static_cast<double>(e.num_samples()));
   }
   *experiment = std::move(e);
   return true;

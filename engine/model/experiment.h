@@ -72,6 +72,13 @@ struct Experiment {
   std::vector<double> input_cache;
   std::vector<double> initial_state;     // initial state where it is not estimated
   std::vector<double> initial_state_guess;  // start values where it is (model's guess)
+  // Standard error of each guess, propagated from the start fits of the outputs it comes from
+  // (record_start.h); NaN where the data say nothing of the state.
+  std::vector<double> initial_state_sigma;
+  // Residual weight that makes an initial-state prior count as one sample: the weighted noise
+  // level of the experiment's outputs (ChannelMetrics::noise) over the length normalisation.
+  double prior_weight = 0.0;
+  bool segment = false;  // a piece of a longer record (segments, segment_length, input_range)
   std::vector<int> output_sample_count;  // per model output
   std::vector<bool> wrapped_outputs;     // per model output: residual wrapped (empty: none)
 

@@ -1,7 +1,10 @@
 #include "engine/run/output_error_stage.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <map>
 #include <limits>
 #include <memory>
 
@@ -48,14 +51,60 @@ StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>
 
 constexpr int kMaxStepReductions = 3;
 
+// The stage solved again on `experiments` from the estimate of `solved`: parameters keep their
+// roles, bounds and scales; per-experiment values and initial states carry over by name.
+std::unique_ptr<OutputErrorProblem> RefineFrom(const OutputErrorProblem& solved,
+                                               std::vector<Experiment> experiments,
+                                               const StageConfig& stage, StageOptions options,
+                                               StageSummary* summary, std::string* error) {
+  const ModelHandle& model = solved.model();
+  const std::vector<double> values = solved.ParametersOf(0);
+  std::vector<ParameterSpec> specs;
+  for (size_t i = 0; i < values.size(); ++i) {
+    const Variable* parameter = nullptr;
+    for (const Variable& v : solved.variables()) {
+      if (v.kind == Variable::Kind::kParameter && v.index == static_cast<int>(i)) parameter = &v;
+    }
+    ParameterSpec spec;
+    spec.name = model.info().parameters[i];
+    spec.start = values[i];
+    spec.role = parameter->role;
+    spec.lower = parameter->lower;
+    spec.upper = parameter->upper;
+    spec.scale = parameter->scale;
+    if (!parameter->free && spec.role != ParameterRole::kPerExperiment) {
+      spec.role = ParameterRole::kFixed;
+    }
+    specs.push_back(spec);
+  }
+  std::unique_ptr<OutputErrorProblem> refined =
+      OutputErrorProblem::Create(&model, std::move(experiments), specs, stage.problem, error);
+  if (refined == nullptr) return nullptr;
+  std::map<std::string, double> by_name;
+  for (const Variable& v : solved.variables()) by_name[v.name] = v.value();
+  for (const Variable& v : refined->variables()) {
+    auto found = by_name.find(v.name);
+    if (found != by_name.end()) v.set_value(std::clamp(found->second, v.lower, v.upper));
+  }
+  options.use_global_start = false;
+  StageSummary again;
+  if (!RunStage(options, refined.get(), &again)) {
+    *error = again.message;
+    return nullptr;
+  }
+  again.notes.insert(again.notes.begin(), summary->notes.begin(), summary->notes.end());
+  again.name = summary->name;
+  *summary = std::move(again);
+  return refined;
+}
+
 // While the estimate's dynamics are faster than the integration step can follow
 // (step_stability.h), prepares the experiments with a step that can and refines again from
 // the estimate; the step used goes to result->integration_step (0: the configured one).
 bool FollowTheDynamics(const RunConfig& config, const StageConfig& stage,
-                       const ModelHandle& model, StageOptions options, TrajectoryCache* cache,
-                       std::unique_ptr<OutputErrorProblem>* problem, StageSummary* summary,
-                       StageResult* result, std::string* error) {
-  options.use_global_start = false;
+                       const ModelHandle& model, const StageOptions& options,
+                       TrajectoryCache* cache, std::unique_ptr<OutputErrorProblem>* problem,
+                       StageSummary* summary, StageResult* result, std::string* error) {
   ExperimentOptions finer = stage.experiment;
   for (int reduction = 0;; ++reduction) {
     const StepStability stability = CheckStepStability(**problem);
@@ -69,48 +118,121 @@ bool FollowTheDynamics(const RunConfig& config, const StageConfig& stage,
     }
     finer.max_step = stability.SafeStep();
     char text[128];
-    std::snprintf(text, sizeof(text), "integration step reduced to %.3g s and the stage refined "
-                  "again: ", finer.max_step);
+    std::snprintf(text, sizeof(text),
+                  "integration step reduced to %.3g s and the stage refined again: ",
+                  finer.max_step);
     summary->notes.push_back(text + stability.Describe());
     std::vector<Experiment> experiments;
     if (!PrepareExperiments(config, stage.experiments, model, finer, cache, &experiments,
                             error)) {
       return false;
     }
-    std::vector<ParameterSpec> specs;
-    const std::vector<double> values = (*problem)->ParametersOf(0);
-    for (size_t i = 0; i < values.size(); ++i) {
-      const Variable* shared = nullptr;
-      for (const Variable& v : (*problem)->variables()) {
-        if (v.kind == Variable::Kind::kParameter && v.index == static_cast<int>(i)) shared = &v;
-      }
-      ParameterSpec spec;
-      spec.name = model.info().parameters[i];
-      spec.start = values[i];
-      spec.role = shared != nullptr ? shared->role : ParameterRole::kFixed;
-      if (shared != nullptr) {
-        spec.lower = shared->lower;
-        spec.upper = shared->upper;
-        spec.scale = shared->scale;
-      }
-      specs.push_back(spec);
-    }
     std::unique_ptr<OutputErrorProblem> refined =
-        OutputErrorProblem::Create(&model, std::move(experiments), specs, stage.problem, error);
-    if (refined == nullptr) return false;
-    refined->SetValues((*problem)->Values());  // per-experiment values and states too
-    StageSummary again;
-    if (!RunStage(options, refined.get(), &again)) {
-      *error = "refinement with the integration step reduced to " + std::to_string(finer.max_step) +
-               " s: " + again.message;
+        RefineFrom(**problem, std::move(experiments), stage, options, summary, error);
+    if (refined == nullptr) {
+      *error = "refinement with the integration step reduced to " +
+               std::to_string(finer.max_step) + " s: " + *error;
       return false;
     }
-    again.notes.insert(again.notes.begin(), summary->notes.begin(), summary->notes.end());
-    again.name = summary->name;
-    *summary = std::move(again);
     *problem = std::move(refined);
     result->integration_step = finer.max_step;
   }
+}
+
+double Median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values.empty() ? 0.0 : values[values.size() / 2];
+}
+
+std::string Format(const char* format, double a, double b = 0.0, double c = 0.0,
+                   double d = 0.0) {
+  char text[160];
+  std::snprintf(text, sizeof(text), format, a, b, c, d);
+  return text;
+}
+
+// Names the experiments the fit does not serve (OutlierOptions) and, if asked, refines again
+// with them down-weighted or dropped.
+bool HandleOutliers(const StageConfig& stage, const StageOptions& options,
+                    std::unique_ptr<OutputErrorProblem>* problem, StageSummary* summary,
+                    std::string* error) {
+  const OutputErrorProblem& solved = **problem;
+  const int count = static_cast<int>(solved.experiments().size());
+  if (count < 3 || static_cast<int>(summary->fits.size()) != count) return true;
+  std::vector<double> rms;
+  for (const ExperimentFit& fit : summary->fits) rms.push_back(fit.rms_cost);
+  const double median = Median(rms);
+  std::vector<double> deviations;
+  for (double r : rms) deviations.push_back(std::abs(r - median));
+  const double limit = median + stage.outliers.threshold * 1.4826 * Median(deviations);
+  std::vector<double> factor(count, 1.0);  // weight scale per experiment
+  std::vector<std::pair<double, std::string>> costly, far;
+  for (int e = 0; e < count; ++e) {
+    if (rms[e] > limit) {
+      costly.emplace_back(rms[e], solved.experiments()[e].name);
+      factor[e] = std::min(factor[e], limit / rms[e]);
+    }
+  }
+  int free_states = 0;
+  for (const Variable& v : solved.variables()) {
+    if (v.kind != Variable::Kind::kInitialState || !v.free) continue;
+    ++free_states;
+    const Experiment& e = solved.experiments()[v.experiment];
+    const double sigma = v.index < static_cast<int>(e.initial_state_sigma.size())
+                             ? e.initial_state_sigma[v.index]
+                             : std::nan("");
+    const double guess = e.initial_state_guess[v.index];
+    const double z = std::abs(v.value() - guess) / sigma;
+    if (!(z > 3.0)) continue;
+    far.emplace_back(z, v.name + Format(" = %.4g (guess %.4g +- %.2g, %.0f standard errors)",
+                                        v.value(), guess, sigma, z));
+    factor[v.experiment] = std::min(factor[v.experiment], 3.0 / z);
+  }
+  auto list = [](std::vector<std::pair<double, std::string>> items) {
+    std::sort(items.rbegin(), items.rend());
+    std::string text;
+    for (size_t i = 0; i < items.size() && i < 6; ++i) text += (i > 0 ? ", " : "") + items[i].second;
+    return text + (items.size() > 6 ? ", ..." : "");
+  };
+  if (!costly.empty()) {
+    for (auto& [cost, name] : costly) name += Format(" (%.3g)", cost);
+    summary->notes.push_back("outliers: " + std::to_string(costly.size()) + " of " +
+                             std::to_string(count) +
+                             " experiments fit far worse than the rest (RMS cost above " +
+                             Format("%.3g", limit) + " = median + " +
+                             Format("%g", stage.outliers.threshold) + " x MAD): " + list(costly));
+  }
+  if (!far.empty()) {
+    summary->notes.push_back("outliers: " + std::to_string(far.size()) + " of " +
+                             std::to_string(free_states) +
+                             " initial states end far from the data's guess: " + list(far));
+  }
+  if (stage.outliers.action == OutlierOptions::Action::kNote || (costly.empty() && far.empty())) {
+    return true;
+  }
+  std::vector<Experiment> experiments;
+  int acted = 0;
+  for (int e = 0; e < count; ++e) {
+    Experiment experiment = solved.experiments()[e];
+    if (factor[e] < 1.0) {
+      ++acted;
+      if (stage.outliers.action == OutlierOptions::Action::kDrop) continue;
+      for (ExperimentSample& sample : experiment.samples) sample.weight *= factor[e];
+      experiment.prior_weight *= factor[e];
+    }
+    experiments.push_back(std::move(experiment));
+  }
+  const bool drop = stage.outliers.action == OutlierOptions::Action::kDrop;
+  summary->notes.push_back("outliers: the stage refined again with " + std::to_string(acted) +
+                           " experiment(s) " + (drop ? "dropped" : "down-weighted"));
+  std::unique_ptr<OutputErrorProblem> refined =
+      RefineFrom(solved, std::move(experiments), stage, options, summary, error);
+  if (refined == nullptr) {
+    *error = "refinement without the outliers: " + *error;
+    return false;
+  }
+  *problem = std::move(refined);
+  return true;
 }
 
 }  // namespace
@@ -161,7 +283,9 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& stage,
     *error = summary.message;
     return false;
   }
-  if (!FollowTheDynamics(config, stage, model, options, cache, &problem, &summary, result, error)) {
+  if (!FollowTheDynamics(config, stage, model, options, cache, &problem, &summary, result,
+                         error) ||
+      !HandleOutliers(stage, options, &problem, &summary, error)) {
     return false;
   }
   summary.notes.insert(summary.notes.begin(), continuation_notes.begin(), continuation_notes.end());

@@ -121,6 +121,7 @@ bool PrepareExperiments(const RunConfig& config, const std::vector<std::string>&
         Experiment experiment;
         if (!BuildExperiment(s, data, info, options, &experiment, error)) return false;
         experiment.record = name;
+        experiment.segment = s.name != name;
         experiments->push_back(std::move(experiment));
         return true;
       },

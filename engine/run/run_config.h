@@ -25,6 +25,16 @@
 
 namespace vesselid {
 
+// Experiments (segments) of an output-error stage that its fit does not serve: a cost above
+// median + threshold x 1.4826 MAD of the experiments' RMS costs, or initial states more than
+// 3 standard errors from the data's guess. Always named in a note; `downweight` refines again
+// with each such experiment's weights scaled by median / its RMS cost, `drop` without them.
+struct OutlierOptions {
+  enum class Action { kNote, kDownweight, kDrop };
+  Action action = Action::kNote;
+  double threshold = 5.0;
+};
+
 struct StageConfig {
   // output_error: simulate and compare (the default); least_squares: equation-error regression
   // of the model's derivative form (least_squares.h), its estimate starting the next stage;
@@ -49,6 +59,7 @@ struct StageConfig {
   // Segment lengths (s, increasing) the stage is solved with first, each phase starting the
   // next; empty: the stage is solved once on its experiments as configured.
   std::vector<double> continuation;
+  OutlierOptions outliers;
 };
 
 // "output_error", "least_squares", "step_regression" (a config's stage `type`).

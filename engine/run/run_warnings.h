@@ -6,6 +6,7 @@
 //   * a held-out run whose simulation diverged;
 //   * an estimate at a bound; a stage or final value that is not admissible;
 //   * an integration step shortened, or still too long, for an estimate's dynamics;
+//   * outlier experiments and initial states far from their guess (OutlierOptions);
 //   * a failed fit: a channel with negative R^2, or an RMSE above kFailedFitNoiseRatio times
 //     the noise level of its data (ChannelMetrics::noise);
 //   * final values whose held-out simulation diverges or predicts worse than holding the

@@ -102,6 +102,7 @@ bool ComputeLocalAnalysis(const LocalAnalysisOptions& options, OutputErrorProble
   std::vector<int> locals(num_experiments, 0);
   ceres::Problem::EvaluateOptions evaluate;
   evaluate.num_threads = options.num_threads;
+  evaluate.residual_blocks = problem->data_residual_blocks();  // rows: experiment, sample
   for (size_t i = 0; i < variables.size(); ++i) {
     const Variable& v = variables[i];
     if (!v.free) continue;

@@ -13,13 +13,11 @@ void MetricAccumulator::Add(double simulated, double measured, bool angle) {
   double residual = simulated - measured;
   if (angle) residual = WrapAngle(residual);
   if (n_ == 0) first_ = measured;
-  if (n_ >= 2) {
-    double d2 = measured - 2.0 * previous_[1] + previous_[0];
-    if (angle) d2 = WrapAngle(d2);
-    second_difference2_ += d2 * d2;
+  if (angle) {
+    noise_.Add(measured, [](double d) { return WrapAngle(d); });
+  } else {
+    noise_.Add(measured);
   }
-  previous_[0] = previous_[1];
-  previous_[1] = measured;
   hold_sae_ += std::abs(angle ? WrapAngle(measured - first_) : measured - first_);
   ++n_;
   sse_ += residual * residual;
@@ -39,7 +37,7 @@ ChannelMetrics MetricAccumulator::Finish(const std::string& experiment,
   m.rmse = std::sqrt(sse_ / n_);
   m.mae = sae_ / n_;
   m.hold_mae = hold_sae_ / n_;
-  if (n_ >= 3) m.noise = std::sqrt(second_difference2_ / (n_ - 2) / 6.0);
+  m.noise = noise_.Sigma();
   const double sst = std::max(0.0, sum2_ - sum_ * sum_ / n_);
   m.r2 = sst > 0 ? 1.0 - sse_ / sst : kNaN;
   m.fit_percent = sst > 0 ? 100.0 * (1.0 - std::sqrt(sse_ / sst)) : kNaN;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/data/noise_level.h"
 #include "engine/data/trajectory.h"
 #include "engine/solve/output_error_problem.h"
 
@@ -22,9 +23,8 @@ struct ChannelMetrics {
   // MAE of the plainest prediction, holding the first measured value: a simulation worse
   // than it predicts nothing.
   double hold_mae = std::numeric_limits<double>::quiet_NaN();
-  // Noise level of the measurement from the data alone, sqrt(mean (second difference)^2 / 6)
-  // of consecutive samples (white noise of sigma gives 6 sigma^2; a smooth signal adds
-  // little): a fit whose RMSE is many times it has missed the signal, not the noise.
+  // Noise level of the measurement from the data alone (noise_level.h): a fit whose RMSE is
+  // many times it has missed the signal, not the noise.
   double noise = std::numeric_limits<double>::quiet_NaN();
 };
 
@@ -46,7 +46,7 @@ class MetricAccumulator {
  private:
   int n_ = 0;
   double sse_ = 0.0, sae_ = 0.0, sum_ = 0.0, sum2_ = 0.0, hold_sae_ = 0.0, first_ = 0.0;
-  double previous_[2] = {0.0, 0.0}, second_difference2_ = 0.0;
+  NoiseLevel noise_;
 };
 
 struct ExperimentFit {

@@ -1,6 +1,7 @@
 #include "engine/solve/output_error_problem.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 namespace vesselid {
@@ -31,6 +32,78 @@ bool MakeLoss(const OutputErrorOptions& options, std::unique_ptr<ceres::LossFunc
 }
 
 }  // namespace
+
+namespace {
+
+// r = a (x - guess) on a block holding x / scale.
+class PriorCost final : public ceres::SizedCostFunction<1, 1> {
+ public:
+  PriorCost(double weight, double guess, double scale)
+      : weight_(weight), guess_(guess), scale_(scale) {}
+  bool Evaluate(double const* const* x, double* residual, double** jacobian) const override {
+    residual[0] = weight_ * (x[0][0] * scale_ - guess_);
+    if (jacobian != nullptr && jacobian[0] != nullptr) jacobian[0][0] = weight_ * scale_;
+    return true;
+  }
+
+ private:
+  double weight_, guess_, scale_;
+};
+
+double Median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values.empty() ? std::nan("") : values[values.size() / 2];
+}
+
+}  // namespace
+
+void OutputErrorProblem::AddInitialStatePriors(const InitialStatePrior& prior,
+                                               OutputErrorProblem* p) {
+  if (prior.apply == InitialStatePrior::Apply::kOff) return;
+  auto applies = [&](const Experiment& e) {
+    return prior.apply == InitialStatePrior::Apply::kAll || e.segment;
+  };
+  const size_t num_states = p->model_->info().states.size();
+  for (size_t s = 0; s < num_states; ++s) {
+    std::vector<Variable*> states;
+    std::vector<double> guesses, magnitudes, sigmas;
+    for (Variable& v : p->variables_) {
+      if (v.kind != Variable::Kind::kInitialState || !v.free || v.index != static_cast<int>(s)) {
+        continue;
+      }
+      const Experiment& e = p->experiments_[v.experiment];
+      const double sigma = e.initial_state_sigma.size() > s ? e.initial_state_sigma[s] : NAN;
+      if (!applies(e) || !(sigma > 0.0) || !std::isfinite(sigma)) continue;
+      states.push_back(&v);
+      guesses.push_back(e.initial_state_guess[s]);
+      magnitudes.push_back(std::abs(e.initial_state_guess[s]));
+      sigmas.push_back(sigma);
+    }
+    if (states.empty()) continue;
+    const double median = Median(guesses);
+    std::vector<double> deviations;
+    for (double g : guesses) deviations.push_back(std::abs(g - median));
+    const double reach =
+        prior.bounds * std::max({1.4826 * Median(deviations),
+                                 0.5 * *std::max_element(magnitudes.begin(), magnitudes.end()),
+                                 10.0 * Median(sigmas)});
+    for (size_t i = 0; i < states.size(); ++i) {
+      Variable& v = *states[i];
+      const Experiment& e = p->experiments_[v.experiment];
+      const double guess = guesses[i];
+      if (e.prior_weight > 0.0) {
+        p->problem_->AddResidualBlock(
+            new PriorCost(e.prior_weight / (prior.scale * sigmas[i]), guess, v.scale), nullptr,
+            v.block);
+      }
+      if (reach > 0.0 && std::isfinite(reach)) {
+        v.lower = std::max(v.lower, guess - reach);
+        v.upper = std::min(v.upper, guess + reach);
+        v.set_value(std::clamp(v.value(), v.lower, v.upper));
+      }
+    }
+  }
+}
 
 std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
     const ModelHandle* model, std::vector<Experiment> experiments,
@@ -145,9 +218,10 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
                " free quantities; at most " + std::to_string(kMaxJetSize) + " are supported";
       return nullptr;
     }
-    p->problem_->AddResidualBlock(
-        model->NewExperimentCost(&p->experiments_[e], scales, p->loss_.get()), nullptr, blocks);
+    p->data_blocks_.push_back(p->problem_->AddResidualBlock(
+        model->NewExperimentCost(&p->experiments_[e], scales, p->loss_.get()), nullptr, blocks));
   }
+  AddInitialStatePriors(options.prior, p.get());
   for (const Variable& v : p->variables_) {
     if (!v.free) {
       p->problem_->SetParameterBlockConstant(v.block);

@@ -38,8 +38,22 @@ struct Variable {
   bool bounded() const { return std::isfinite(lower) && std::isfinite(upper); }
 };
 
+// A free initial state is tied to the data's guess of it (Experiment::initial_state_guess)
+// by a prior that counts as one sample,
+//   r = prior_weight (x0 - guess) / (scale sigma_guess),
+// and kept within guess +- bounds B, B = `bounds` x max(1.4826 MAD of the guesses of that
+// state over the problem's experiments, half their largest magnitude, 10 x median sigma),
+// so that it cannot float off to absorb what the model does not explain.
+struct InitialStatePrior {
+  enum class Apply { kSegments, kAll, kOff };  // kSegments: experiments cut from a record
+  Apply apply = Apply::kSegments;
+  double scale = 1.0;   // multiplies each guess's standard error
+  double bounds = 3.0;  // 0: no bounds
+};
+
 struct OutputErrorOptions {
   std::vector<std::string> free_initial_states;  // estimated per experiment
+  InitialStatePrior prior;
   std::string loss = "none";                     // none, huber, cauchy, soft_l1, arctan
   double loss_scale = 1.0;                       // residual size where the loss bends
 };
@@ -58,7 +72,11 @@ class OutputErrorProblem {
   const ModelHandle& model() const { return *model_; }
   const std::vector<Variable>& variables() const { return variables_; }
   const std::vector<Experiment>& experiments() const { return experiments_; }
-  int num_residuals() const;
+  int num_residuals() const;  // data samples (initial-state priors not counted)
+  // The residual blocks of the experiments, in experiment order (without the priors).
+  const std::vector<ceres::ResidualBlockId>& data_residual_blocks() const {
+    return data_blocks_;
+  }
   int num_free() const;
 
   // Model parameters and initial state as experiment e sees them (physical units).
@@ -74,11 +92,14 @@ class OutputErrorProblem {
 
  private:
   OutputErrorProblem() = default;
+  // Prior residuals and bounds of the free initial states (InitialStatePrior).
+  static void AddInitialStatePriors(const InitialStatePrior& prior, OutputErrorProblem* p);
 
   const ModelHandle* model_ = nullptr;
   std::vector<Experiment> experiments_;
   std::unique_ptr<ceres::LossFunction> loss_;
   std::unique_ptr<ceres::Problem> problem_;
+  std::vector<ceres::ResidualBlockId> data_blocks_;
   std::vector<double> storage_;  // every block, reserved once: stable, ordered addresses
   std::vector<Variable> variables_;
   // block_of_[e][j]: variable index of block j (parameters, then states) of experiment e.

@@ -228,6 +228,14 @@ struct CatamaranRhs {
   }
 };
 
+struct QuadraticUsvRhs {
+  static constexpr int kNumStates = kQuadraticUsvStates;
+  const QuadraticUsvParameters* parameters;
+  bool operator()(const double* x, const double* pwm, const double*, double* xdot) const {
+    return QuadraticUsvDerivative(*parameters, x, pwm, xdot);
+  }
+};
+
 // Wraps an angle to (-pi, pi].
 double WrapAngle(double angle) {
   const double wrapped = std::remainder(angle, 2.0 * M_PI);
@@ -235,11 +243,11 @@ double WrapAngle(double angle) {
 }
 
 // The voyage as it runs: vessel state, joystick command held until the next PWM sample, and
-// the log being written.
+// the log being written. `Rhs` is the vessel (x' of its state, n e psi u v r first).
+template <class Rhs>
 class Voyage {
  public:
-  Voyage(const CatamaranParameters& parameters, const CampaignOptions& options)
-      : rhs_{&parameters}, options_(options) {
+  Voyage(const Rhs& rhs, const CampaignOptions& options) : rhs_(rhs), options_(options) {
     std::seed_seq noise_seed{options.seed, 1u};
     noise_.seed(noise_seed);
     MultipleOfStep(options.gnss_period, options.step, &gnss_.period);
@@ -254,6 +262,12 @@ class Voyage {
   // Unlogged transition up to step `end`: the command ramps linearly from the last one to
   // the segment's first, (u_m, u_d) = last + (k - k0) / (end - k0) (first - last).
   bool Transition(long end, double mean, double difference, std::string* error) {
+    if (abrupt_) {  // the command stays until the segment starts: it begins mid-manoeuvre
+      while (k_ < end) {
+        if (!Step(error)) return false;
+      }
+      return true;
+    }
     const long k0 = k_;
     const double mean0 = mean_, difference0 = difference_;
     while (k_ < end) {
@@ -289,6 +303,9 @@ class Voyage {
 
   Trajectory Release() { return std::move(out_); }
 
+  void SetAbrupt(bool abrupt) { abrupt_ = abrupt; }
+  void SetGlitch(bool glitch) { glitch_ = glitch; }
+
  private:
   // u_L = clamp(u_m + u_d, -1, 1), u_R = clamp(u_m - u_d, -1, 1), held until the next sample.
   void Command(double mean, double difference) {
@@ -299,8 +316,8 @@ class Voyage {
   }
 
   bool Step(std::string* error) {
-    if (!Rk4Step<CatamaranRhs, double>(rhs_, pwm_value_, pwm_value_, pwm_value_, nullptr,
-                                       options_.step, x_)) {
+    if (!Rk4Step<Rhs, double>(rhs_, pwm_value_, pwm_value_, pwm_value_, nullptr, options_.step,
+                              x_)) {
       *error = "campaign: simulation failed at t = " + std::to_string(k_ * options_.step) + " s";
       return false;
     }
@@ -320,6 +337,10 @@ class Voyage {
     if (gnss) {
       row[kNorth] = x_[kN] + options_.gnss_noise * unit(noise_);
       row[kEast] = x_[kE] + options_.gnss_noise * unit(noise_);
+      if (glitch_ && ++gnss_in_segment_ == 40) {  // one fix thrown off, 8 s in
+        row[kNorth] += options_.defects.glitch_offset;
+        row[kEast] -= 0.5 * options_.defects.glitch_offset;
+      }
     }
     if (ahrs) {
       row[kHeading] = WrapAngle(x_[kPsi] + options_.heading_noise * unit(noise_));
@@ -335,11 +356,13 @@ class Voyage {
     for (size_t c = 0; c < out_.columns.size(); ++c) out_.columns[c].push_back(row[c]);
   }
 
-  CatamaranRhs rhs_;
+  Rhs rhs_;
   const CampaignOptions& options_;
   Random noise_;
   Clock gnss_, ahrs_, pwm_;
-  double x_[kCatamaranStates] = {};
+  double x_[Rhs::kNumStates] = {};
+  bool abrupt_ = false, glitch_ = false;
+  int gnss_in_segment_ = 0;
   double mean_ = 0.0, difference_ = 0.0, pwm_value_[2] = {0.0, 0.0};
   long k_ = 0;
   Trajectory out_;
@@ -379,23 +402,40 @@ bool CampaignOptions::IsValid(std::string* error) const {
   return true;
 }
 
-bool SimulateCampaign(const CatamaranParameters& parameters, const CampaignOptions& options,
-                      Trajectory* out, std::string* error) {
+namespace {
+
+template <class Rhs>
+bool Simulate(const Rhs& rhs, const CampaignOptions& options, const std::string& vessel,
+              Trajectory* out, std::string* error) {
   if (!options.IsValid(error)) return false;
   std::seed_seq plan_seed{options.seed, 0u};
   Random random(plan_seed);
   const std::vector<Segment> segments = PlanSegments(options, random);
-  Voyage voyage(parameters, options);
+  Voyage<Rhs> voyage(rhs, options);
   for (int i = 0; i < options.segments; ++i) {
     const Segment& s = segments[i];
+    voyage.SetAbrupt(i == options.defects.abrupt_start_segment);
+    voyage.SetGlitch(i == options.defects.glitch_segment);
     if (!voyage.Transition(s.begin, s.mean(0.0), s.difference(0.0), error) ||
         !voyage.Run(i, s, error)) {
       return false;
     }
   }
   *out = voyage.Release();
-  out->source = "input_gain campaign, seed " + std::to_string(options.seed);
+  out->source = "input_gain campaign (" + vessel + "), seed " + std::to_string(options.seed);
   return true;
+}
+
+}  // namespace
+
+bool SimulateCampaign(const CatamaranParameters& parameters, const CampaignOptions& options,
+                      Trajectory* out, std::string* error) {
+  return Simulate(CatamaranRhs{&parameters}, options, "catamaran", out, error);
+}
+
+bool SimulateCampaign(const QuadraticUsvParameters& parameters, const CampaignOptions& options,
+                      Trajectory* out, std::string* error) {
+  return Simulate(QuadraticUsvRhs{&parameters}, options, "quadratic-thrust USV", out, error);
 }
 
 }  // namespace vesselid::input_gain

@@ -28,8 +28,18 @@
 
 #include "engine/data/trajectory.h"
 #include "problems/input_gain/catamaran.h"
+#include "problems/input_gain/quadratic_usv.h"
 
 namespace vesselid::input_gain {
+
+// Real-log defects put into a campaign (segment indices; -1: none): a segment whose
+// transition is skipped, so that its first seconds are a manoeuvre starting, and a segment
+// with one GNSS fix thrown off by `glitch_offset` m north (half of it west).
+struct LogDefects {
+  int abrupt_start_segment = -1;
+  int glitch_segment = -1;
+  double glitch_offset = 12.0;
+};
 
 struct CampaignOptions {
   int segments = 127;
@@ -47,12 +57,17 @@ struct CampaignOptions {
   unsigned seed = 1;    // operator plan; the noise uses an independent stream of the same seed
   double step = 0.005;  // s, RK4 step; periods and offsets must be multiples of it
   bool truth_columns = true;  // add noiseless u_true, v_true, r_true on AHRS rows
+  LogDefects defects;
 
   bool IsValid(std::string* error) const;
 };
 
-// Simulates the whole campaign from rest at the origin, heading north.
+// Simulates the whole campaign from rest at the origin, heading north, with seed 000's
+// catamaran or with the quadratic-thrust USV (quadratic_usv.h: a structure the identified
+// model does not have).
 bool SimulateCampaign(const CatamaranParameters& parameters, const CampaignOptions& options,
+                      Trajectory* out, std::string* error);
+bool SimulateCampaign(const QuadraticUsvParameters& parameters, const CampaignOptions& options,
                       Trajectory* out, std::string* error);
 
 }  // namespace vesselid::input_gain

@@ -48,12 +48,15 @@ std::unique_ptr<ModelHandle> MakeModel(const YamlReader& reader, const YAML::Nod
               "unknown input-gain variant '" + type + "' (static, dynamic)");
 }
 
-//   simulation: {file, segments, duration_min, seed, noise: {position, heading_deg}}
+//   simulation: {file, segments, duration_min, seed, noise: {position, heading_deg},
+//                vessel: catamaran | quadratic_usv, segment_s: [min, max],
+//                defects: {abrupt_start_segment, glitch_segment}}
 bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const ModelHandle&,
               const std::string& out_dir, std::string* error) {
   const std::string path = "simulation";
   if (!simulation) reader.Fail(simulation, path, "missing: the config has no simulation section");
-  reader.CheckMap(simulation, path, {"file", "segments", "duration_min", "seed", "noise"});
+  reader.CheckMap(simulation, path, {"file", "segments", "duration_min", "seed", "noise", "vessel",
+                                     "segment_s", "defects"});
   if (!simulation["file"]) reader.Fail(simulation, Child(path, "file"), "missing");
   const std::string file = reader.String(simulation["file"], Child(path, "file"));
   CampaignOptions options;
@@ -72,6 +75,25 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
     reader.Read(noise, key, "heading_deg", &heading);
     options.heading_noise = heading * M_PI / 180.0;
   }
+  if (const YAML::Node range = simulation["segment_s"]) {
+    const std::vector<double> bounds = reader.Doubles(range, Child(path, "segment_s"));
+    if (bounds.size() != 2) reader.Fail(range, Child(path, "segment_s"), "expected [min, max]");
+    options.min_segment = bounds[0];
+    options.max_segment = bounds[1];
+  }
+  if (const YAML::Node defects = simulation["defects"]) {
+    const std::string key = Child(path, "defects");
+    reader.CheckMap(defects, key, {"abrupt_start_segment", "glitch_segment", "glitch_offset"});
+    reader.Read(defects, key, "abrupt_start_segment", &options.defects.abrupt_start_segment);
+    reader.Read(defects, key, "glitch_segment", &options.defects.glitch_segment);
+    reader.Read(defects, key, "glitch_offset", &options.defects.glitch_offset);
+  }
+  std::string vessel = "catamaran";
+  if (simulation["vessel"]) vessel = reader.String(simulation["vessel"], Child(path, "vessel"));
+  if (vessel != "catamaran" && vessel != "quadratic_usv") {
+    reader.Fail(simulation["vessel"], Child(path, "vessel"),
+                "unknown vessel '" + vessel + "' (catamaran, quadratic_usv)");
+  }
   std::string invalid;
   if (!options.IsValid(&invalid)) reader.Fail(simulation, path, invalid);
   std::error_code ec;
@@ -81,7 +103,11 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
     return false;
   }
   Trajectory campaign;
-  if (!SimulateCampaign(CatamaranParameters(), options, &campaign, error)) return false;
+  const bool simulated =
+      vessel == "catamaran"
+          ? SimulateCampaign(CatamaranParameters(), options, &campaign, error)
+          : SimulateCampaign(QuadraticUsvParameters(), options, &campaign, error);
+  if (!simulated) return false;
   return WriteTrajectoryCsv((fs::path(out_dir) / file).string(), campaign, error);
 }
 
