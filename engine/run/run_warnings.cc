@@ -96,6 +96,13 @@ void AddRunWarnings(const RunConfig& config, RunResult* run) {
       if (WarningNote(note)) w.push_back(where + note);
     }
     for (const std::string& a : stage.admissibility) w.push_back(where + "not admissible: " + a);
+    if (stage.summary.usable && stage.summary.chosen >= 0 &&
+        stage.summary.local().termination == "NO_CONVERGENCE") {
+      w.push_back(where + "the solver stopped after " +
+                  std::to_string(stage.summary.local().iterations) +
+                  " iterations without converging (local.max_iterations): the estimate may not "
+                  "be an optimum");
+    }
     FailedFits(where, stage.summary.fits, &w);
   }
   for (const std::string& a : run->admissibility) w.push_back("final values not admissible: " + a);

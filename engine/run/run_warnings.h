@@ -7,6 +7,7 @@
 //   * an estimate at a bound; a stage or final value that is not admissible;
 //   * an integration step shortened, or still too long, for an estimate's dynamics;
 //   * outlier experiments and initial states far from their guess (OutlierOptions);
+//   * a solve that stopped at its iteration limit without converging;
 //   * a failed fit: a channel with negative R^2, or an RMSE above kFailedFitNoiseRatio times
 //     the noise level of its data (ChannelMetrics::noise);
 //   * final values whose held-out simulation diverges or predicts worse than holding the

@@ -1,0 +1,138 @@
+// Surge-sway-yaw fits of spirals of several turns from random starts, the engine against a
+// plain SciPy least-squares fit on the same data (reference_3dof.py, an implementation of
+// MODELS.md section 1 written from the spec, also the data's simulator): how many of the
+// fixed starts reach the optimum, and at what time, with headings compared unwrapped (the
+// default) and modulo one turn (`wrap: [psi]`).
+//
+//   build/tests/benchmarks/benchmark_spirals [starts]        (default 11 starts, +-30 %)
+//
+// A start succeeds when every estimate is within 5 % (+ 0.01 absolute) of the truth.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "nlohmann/json.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const std::vector<std::pair<std::string, double>> kTruth = {
+    {"Iz", 0.80},   {"Xudot", -1.0946}, {"Yvdot", -1.0536}, {"Yrdot", -1.4353},
+    {"Xu", -5.6128}, {"Yv", -3.5059},   {"Yr", -0.0001},    {"Nv", -1.0005},
+    {"Nr", -0.1039}, {"Xuu", -2.3136},  {"Yvv", -3.9310},   {"Nrr", -0.2605}};
+const std::map<std::string, std::pair<double, double>> kBounds = {
+    {"Iz", {0.01, 10}},   {"Xudot", {-10, 5}}, {"Yvdot", {-10, 5}}, {"Yrdot", {-10, 5}},
+    {"Xu", {-60, 0}},     {"Yv", {-40, 0}},    {"Yr", {-1, 1}},     {"Nv", {-10, 0}},
+    {"Nr", {-2, 0}},      {"Xuu", {-30, 0}},   {"Yvv", {-40, 0}},   {"Nrr", {-3, 0}}};
+constexpr int kRuns = 5;
+const char* kPython = "/usr/bin/python3";  // Debian's, with python3-scipy
+
+double Timed(const std::string& command) {
+  const auto start = std::chrono::steady_clock::now();
+  if (std::system(command.c_str()) != 0) return -1.0;
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool Success(const std::map<std::string, double>& estimate) {
+  for (const auto& [name, truth] : kTruth) {
+    auto found = estimate.find(name);
+    if (found == estimate.end() || !(std::abs(found->second - truth) <= 0.05 * std::abs(truth) + 0.01)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::string Config(const std::map<std::string, double>& start, bool wrap) {
+  std::string text = "model: {family: erunsal6dof, active_dofs: [surge, sway, yaw]}\nexperiments:\n";
+  for (int k = 0; k < kRuns; ++k) {
+    const std::string run = "run" + std::to_string(k);
+    text += "  - {name: " + run + ", file: " + run +
+            ".csv, inputs: {c_L: c_L, c_R: c_R}, outputs: {x: x, y: y, psi: psi}, "
+            "interpolation: zero_order_hold" + std::string(wrap ? ", wrap: [psi]" : "") + "}\n";
+  }
+  text += "stages:\n  - name: fit\n    integration: {max_step: 0.02}\n    parameters:\n";
+  for (const auto& [name, value] : start) {
+    const auto& [lower, upper] = kBounds.at(name);
+    text += "      " + name + ": {start: " + std::to_string(value) +
+            ", lower: " + std::to_string(lower) + ", upper: " + std::to_string(upper) + "}\n";
+  }
+  return text;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int count = argc > 1 ? std::atoi(argv[1]) : 11;
+  const fs::path dir = fs::temp_directory_path() / "vesselid_benchmark_spirals";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string script = std::string(VESSELID_SOURCE_DIR) + "/tests/benchmarks/reference_3dof.py";
+  if (Timed(std::string(kPython) + " " + script + " simulate " + dir.string() + " 2> " +
+            (dir / "simulate.log").string()) < 0) {
+    std::fprintf(stderr, "the reference simulation failed (is python3-scipy installed?)\n");
+    return 1;
+  }
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> factor(0.7, 1.3);
+  std::vector<std::map<std::string, double>> starts(count);
+  json starts_json = json::array();
+  for (auto& start : starts) {
+    for (const auto& [name, truth] : kTruth) start[name] = truth * factor(random);
+    starts_json.push_back(start);
+  }
+  std::ofstream(dir / "starts.json") << starts_json.dump();
+
+  std::printf("surge-sway-yaw fit of %d spiral/zigzag runs, %d starts within +-30 %% of the truth\n",
+              kRuns, count);
+  std::printf("  %-34s %10s %12s\n", "", "successes", "time/start");
+  for (bool wrap : {false, true}) {
+    int successes = 0;
+    double seconds = 0.0;
+    for (int i = 0; i < count; ++i) {
+      const fs::path config = dir / ("start" + std::to_string(i) + ".yaml");
+      const fs::path out = dir / ("out" + std::to_string(i));
+      std::ofstream(config) << Config(starts[i], wrap);
+      const double t = Timed(std::string(VESSELID_BINARY) + " run " + config.string() + " --out " +
+                             out.string() + " --quiet > /dev/null 2>&1");
+      seconds += std::max(0.0, t);
+      std::ifstream in(out / "results.json");
+      const json results = json::parse(in, nullptr, false);
+      if (results.is_discarded()) continue;
+      std::map<std::string, double> estimate;
+      for (const json& p : results["parameters"]) estimate[p["name"]] = p["value"].get<double>();
+      successes += Success(estimate);
+    }
+    std::printf("  %-34s %7d/%-2d %10.1f s\n",
+                wrap ? "vesselid, heading wrapped (wrap:)" : "vesselid, heading unwrapped", successes,
+                count, seconds / count);
+  }
+  const fs::path fits = dir / "scipy.json";
+  const double scipy_time = Timed(std::string(kPython) + " " + script + " fit " + dir.string() +
+                                  " " + (dir / "starts.json").string() + " > " + fits.string());
+  std::ifstream in(fits);
+  const json reference = json::parse(in, nullptr, false);
+  if (scipy_time < 0 || reference.is_discarded()) {
+    std::fprintf(stderr, "the SciPy fit failed\n");
+    return 1;
+  }
+  int successes = 0;
+  for (const json& r : reference["results"]) {
+    std::map<std::string, double> estimate;
+    for (const auto& [name, value] : r["estimate"].items()) estimate[name] = value.get<double>();
+    successes += Success(estimate);
+  }
+  std::printf("  %-34s %7d/%-2d %10.1f s\n", "SciPy least_squares (trf)", successes, count,
+              scipy_time / count);
+  fs::remove_all(dir);
+  return 0;
+}
