@@ -85,9 +85,10 @@ bool RunContinuation(const RunConfig& config, const StageConfig& stage, const Mo
     const LocalSolveSummary& local = summary.local();
     char text[256];
     std::snprintf(text, sizeof(text),
-                  "continuation: %s segments, cost %.6e -> %.6e after %d iterations, %.3f s",
-                  FormatSeconds(length).c_str(), local.initial_cost, local.final_cost,
-                  local.iterations, summary.time_seconds);
+                  "continuation: %s segments (%zu pieces), cost %.6e -> %.6e after %d "
+                  "iterations, %.3f s",
+                  FormatSeconds(length).c_str(), problem->experiments().size(),
+                  local.initial_cost, local.final_cost, local.iterations, summary.time_seconds);
     notes->push_back(text);
     CarryForward(*problem, specs, states);
   }

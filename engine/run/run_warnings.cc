@@ -92,6 +92,19 @@ void AddRunWarnings(const RunConfig& config, RunResult* run) {
       w.push_back(where + "worse on held-out data than its start (" +
                   DescribeHeldOut(stage.held_out) + "), kept because of final: last");
     }
+    if (!stage.held_out.worse) {
+      for (size_t i = 0; i < stage.held_out.outputs.size(); ++i) {
+        if (stage.held_out.stage_mae[i] > kHeldOutTolerance * stage.held_out.start_mae[i]) {
+          char text[200];
+          std::snprintf(text, sizeof(text),
+                        "predicts the held-out %s worse than its start (MAE %.4g -> %.4g), though "
+                        "better over all outputs",
+                        stage.held_out.outputs[i].c_str(), stage.held_out.start_mae[i],
+                        stage.held_out.stage_mae[i]);
+          w.push_back(where + text);
+        }
+      }
+    }
     for (const std::string& note : stage.summary.notes) {
       if (WarningNote(note)) w.push_back(where + note);
     }

@@ -2,7 +2,8 @@
 // report.html and results.json (RunResult::warnings), each naming its stage, parameter or
 // experiment:
 //   * the run stopped before its last stage;
-//   * a stage worse on its held-out data than its start (set aside, or kept by final: last);
+//   * a stage worse on its held-out data than its start (set aside, or kept by final: last),
+//     or worse on one held-out output though better over all;
 //   * a held-out run whose simulation diverged;
 //   * an estimate at a bound; a stage or final value that is not admissible;
 //   * an integration step shortened, or still too long, for an estimate's dynamics;

@@ -26,6 +26,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -175,6 +176,23 @@ class InputGainModel {
     const double* prop = p + PropellerIndex();
     if (prop[4] > prop[3]) problems.push_back("dead zone d_r > d_f");
     if (kDynamic && !(prop[5] > 0)) problems.push_back("tau_T must be > 0");
+    // Passive damping: each velocity's own linear and quadratic terms must not feed it.
+    const char* equation[3] = {"u", "v", "r"};
+    const int own[3][2] = {{kTermU, kTermAbsUU}, {kTermV, kTermAbsVV}, {kTermR, kTermAbsRR}};
+    for (int i = 0; i < 3; ++i) {
+      for (int k = 0; k < static_cast<int>(bases_.terms[i].size()); ++k) {
+        const int term = bases_.terms[i][k];
+        const double value = p[first_[i] + k];
+        if ((term != own[i][0] && term != own[i][1]) || !(value > 0.0)) continue;
+        char text[160];
+        std::snprintf(text, sizeof(text),
+                      "%s.%s = %+.4g > 0: %s damping of %s that feeds the motion (passive "
+                      "damping is <= 0)",
+                      equation[i], TermNames()[term].c_str(), value,
+                      term == own[i][0] ? "linear" : "quadratic", equation[i]);
+        problems.push_back(text);
+      }
+    }
     return problems;
   }
 

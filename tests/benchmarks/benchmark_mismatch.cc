@@ -79,7 +79,7 @@ void Report(const std::string& label, const fs::path& dir, double seconds) {
     }
     std::printf("%s\n", s.contains("rejected") ? "  (set aside)" : "");
   }
-  std::printf("  final free-run R2 (held-out, vs the SG reconstruction):");
+  std::printf("  final free-run R2 (held-out, vs the simulator's true velocities):");
   for (const json& m : r["final_velocity_validation"]) {
     if (m["prediction"].get<std::string>().find("free-run") == std::string::npos) continue;
     std::printf(" %s %.3f", m["state"].get<std::string>().c_str(), m["r2"].get<double>());

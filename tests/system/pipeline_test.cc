@@ -344,5 +344,43 @@ stages:
   EXPECT_TRUE(HasWarning(result, "integration step reduced"));
 }
 
+// continuation on a record split by a segment column cuts each segment into pieces (it was
+// once a silent no-op there), and the held-out segments are validated.
+TEST_F(PipelineTest, ContinuationOnSegmentColumnRecords) {
+  Trajectory data;
+  std::string error;
+  ASSERT_TRUE(ReadTrajectoryCsv((dir_ / "run0.csv").string(), &data, &error)) << error;
+  data.names.push_back("segment");
+  data.columns.emplace_back();
+  for (double t : data.t) data.columns.back().push_back(t < 40 ? 1 : t < 80 ? 2 : 3);
+  ASSERT_TRUE(WriteTrajectoryCsv((dir_ / "segmented.csv").string(), data, &error)) << error;
+  std::ofstream(dir_ / "run.yaml") << R"(model: {family: nomoto, type: first_order}
+experiments:
+  - {name: train, file: segmented.csv, inputs: {delta: delta}, outputs: {psi: psi},
+     segments: {column: segment, take: training, validation_share: 0.34, seed: 2}}
+  - {name: held, file: segmented.csv, inputs: {delta: delta}, outputs: {psi: psi},
+     segments: {column: segment, take: validation, validation_share: 0.34, seed: 2}}
+stages:
+  - name: fit
+    experiments: [train]
+    validation: [held]
+    free_initial_states: [psi, r]
+    continuation: [10]
+    parameters:
+      T: {start: 3.0, lower: 0.1, upper: 20}
+      K: {start: -0.1, lower: -1, upper: -0.001}
+)";
+  RunConfig config;
+  RunResult result;
+  ASSERT_TRUE(LoadRunConfig((dir_ / "run.yaml").string(), "", DefaultRegistry(), &config, &error));
+  ASSERT_TRUE(RunIdentification(config, &result, &error)) << error;
+  const std::vector<std::string>& notes = result.stages[0].summary.notes;
+  ASSERT_FALSE(notes.empty());
+  EXPECT_EQ(notes[0].rfind("continuation: 10 s segments (8 pieces)", 0), 0u) << notes[0];
+  EXPECT_NEAR(Find(result.stages[0], "T").value, 2.0, 0.05);
+  ASSERT_EQ(result.stages[0].validation.size(), 1u);
+  EXPECT_FALSE(result.stages[0].validation[0].diverged);
+}
+
 }  // namespace
 }  // namespace vesselid
