@@ -382,5 +382,52 @@ stages:
   EXPECT_FALSE(result.stages[0].validation[0].diverged);
 }
 
+// A model that is stable on the small manoeuvres it was fitted to and diverges on a larger
+// held-out one (Norrbin with a destabilising cubic term): the held-out run is recorded as
+// diverged, with where, and the run goes on.
+TEST_F(PipelineTest, HeldOutRunThatDivergesIsRecordedAndTheRunGoesOn) {
+  auto model = nomoto::MakeFirstOrderHandle();
+  for (const auto& [name, amplitude] : {std::pair{"calm", 0.02}, std::pair{"hard", 0.6}}) {
+    nomoto::ClosedLoopOptions loop;
+    loop.duration = 120.0;
+    loop.sample_time = 0.05;
+    loop.controller_gain = 0.7;
+    loop.excitation.amplitude = amplitude;
+    loop.excitation.periods = {20.0};
+    Trajectory data;
+    std::string error;
+    ASSERT_TRUE(nomoto::SimulateClosedLoop(*model, {2.0, -0.17, 0.0}, loop, &data, &error));
+    ASSERT_TRUE(WriteTrajectoryCsv((dir_ / (std::string(name) + ".csv")).string(), data, &error));
+  }
+  std::ofstream(dir_ / "run.yaml") << R"(model: {family: nomoto, type: norrbin}
+experiments:
+  - {name: calm, file: calm.csv, inputs: {delta: delta}, outputs: {psi: psi}}
+  - {name: hard, file: hard.csv, inputs: {delta: delta}, outputs: {psi: psi}}
+stages:
+  - name: fit
+    experiments: [calm]
+    validation: [hard]
+    parameters:
+      T: {start: 3.0, lower: 0.1, upper: 20}
+      K: {start: -0.1, lower: -1, upper: -0.001}
+      alpha: {start: -400, role: fixed}
+final_validation: {experiments: [hard]}
+)";
+  RunConfig config;
+  RunResult result;
+  std::string error;
+  ASSERT_TRUE(LoadRunConfig((dir_ / "run.yaml").string(), "", DefaultRegistry(), &config, &error));
+  ASSERT_TRUE(RunIdentification(config, &result, &error)) << error;
+  ASSERT_EQ(result.stages[0].validation.size(), 1u);
+  const ExperimentFit& held = result.stages[0].validation[0];
+  EXPECT_TRUE(held.diverged);
+  EXPECT_NE(held.message.find("experiment 'hard' diverges after t = "), std::string::npos)
+      << held.message;
+  ASSERT_EQ(result.final_validation.size(), 1u);
+  EXPECT_TRUE(result.final_validation[0].diverged);
+  EXPECT_TRUE(HasWarning(result, "stage 'fit': validation: simulation of experiment 'hard'"));
+  EXPECT_TRUE(HasWarning(result, "final validation: simulation of experiment 'hard'"));
+}
+
 }  // namespace
 }  // namespace vesselid
