@@ -6,7 +6,8 @@
 //
 //   build/tests/benchmarks/benchmark_spirals [starts]        (default 11 starts, +-30 %)
 //
-// A start succeeds when every estimate is within 5 % (+ 0.01 absolute) of the truth.
+// A start succeeds when its final cost is within 1 % of the cost the same tool reaches from
+// the true values (run first, not counted).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -42,15 +43,7 @@ double Timed(const std::string& command) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-bool Success(const std::map<std::string, double>& estimate) {
-  for (const auto& [name, truth] : kTruth) {
-    auto found = estimate.find(name);
-    if (found == estimate.end() || !(std::abs(found->second - truth) <= 0.05 * std::abs(truth) + 0.01)) {
-      return false;
-    }
-  }
-  return true;
-}
+bool Success(double cost, double reference) { return cost <= 1.01 * reference; }
 
 std::string Config(const std::map<std::string, double>& start, bool wrap) {
   std::string text = "model: {family: erunsal6dof, active_dofs: [surge, sway, yaw]}\nexperiments:\n";
@@ -84,11 +77,12 @@ int main(int argc, char** argv) {
   }
   std::mt19937 random(11);
   std::uniform_real_distribution<double> factor(0.7, 1.3);
-  std::vector<std::map<std::string, double>> starts(count);
+  // Start 0 is the truth: the reference cost of each tool.
+  std::vector<std::map<std::string, double>> starts(count + 1);
   json starts_json = json::array();
-  for (auto& start : starts) {
-    for (const auto& [name, truth] : kTruth) start[name] = truth * factor(random);
-    starts_json.push_back(start);
+  for (size_t i = 0; i < starts.size(); ++i) {
+    for (const auto& [name, truth] : kTruth) starts[i][name] = truth * (i == 0 ? 1.0 : factor(random));
+    starts_json.push_back(starts[i]);
   }
   std::ofstream(dir / "starts.json") << starts_json.dump();
 
@@ -97,20 +91,22 @@ int main(int argc, char** argv) {
   std::printf("  %-34s %10s %12s\n", "", "successes", "time/start");
   for (bool wrap : {false, true}) {
     int successes = 0;
-    double seconds = 0.0;
-    for (int i = 0; i < count; ++i) {
+    double seconds = 0.0, reference = 0.0;
+    for (int i = 0; i <= count; ++i) {
       const fs::path config = dir / ("start" + std::to_string(i) + ".yaml");
       const fs::path out = dir / ("out" + std::to_string(i));
       std::ofstream(config) << Config(starts[i], wrap);
       const double t = Timed(std::string(VESSELID_BINARY) + " run " + config.string() + " --out " +
                              out.string() + " --quiet > /dev/null 2>&1");
-      seconds += std::max(0.0, t);
       std::ifstream in(out / "results.json");
       const json results = json::parse(in, nullptr, false);
-      if (results.is_discarded()) continue;
-      std::map<std::string, double> estimate;
-      for (const json& p : results["parameters"]) estimate[p["name"]] = p["value"].get<double>();
-      successes += Success(estimate);
+      const double cost = results.is_discarded() ? INFINITY : results["stages"][0]["cost"].get<double>();
+      if (i == 0) {
+        reference = cost;
+        continue;
+      }
+      seconds += std::max(0.0, t);
+      successes += Success(cost, reference);
     }
     std::printf("  %-34s %7d/%-2d %10.1f s\n",
                 wrap ? "vesselid, heading wrapped (wrap:)" : "vesselid, heading unwrapped", successes,
@@ -126,13 +122,18 @@ int main(int argc, char** argv) {
     return 1;
   }
   int successes = 0;
-  for (const json& r : reference["results"]) {
-    std::map<std::string, double> estimate;
-    for (const auto& [name, value] : r["estimate"].items()) estimate[name] = value.get<double>();
-    successes += Success(estimate);
+  double truth_cost = 0.0, fit_seconds = 0.0;
+  for (size_t i = 0; i < reference["results"].size(); ++i) {
+    const json& r = reference["results"][i];
+    if (i == 0) {
+      truth_cost = r["cost"].get<double>();
+      continue;
+    }
+    fit_seconds += r["seconds"].get<double>();
+    successes += Success(r["cost"].get<double>(), truth_cost);
   }
-  std::printf("  %-34s %7d/%-2d %10.1f s\n", "SciPy least_squares (trf)", successes, count,
-              scipy_time / count);
+  std::printf("  %-34s %7d/%-2d %10.1f s  (%.0f s of Python in all)\n",
+              "SciPy least_squares (trf)", successes, count, fit_seconds / count, scipy_time);
   fs::remove_all(dir);
   return 0;
 }
