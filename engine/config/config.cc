@@ -87,8 +87,9 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
     for (size_t i = 0; i < spec.wrapped_outputs.size(); ++i) {
       const int o = info.OutputIndex(spec.wrapped_outputs[i]);
       if (o >= static_cast<int>(info.angle_outputs.size()) || !info.angle_outputs[o]) {
-        reader.Fail(n[i], Child(key, i), "output '" + spec.wrapped_outputs[i] +
-                                             "' is not an angle; only angles can be wrapped");
+        reader.Fail(
+            n[i], Child(key, i),
+            "output '" + spec.wrapped_outputs[i] + "' is not an angle; only angles can be wrapped");
       }
     }
   }
@@ -296,12 +297,11 @@ std::shared_ptr<const ModelHandle> OverrideModel(const YamlReader& reader,
 StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                       const RunConfig& config, const ModelFamily& family,
                       const YAML::Node& model_node, size_t index) {
-  reader.CheckMap(node, path,
-                  {"name", "type", "least_squares", "step_regression", "model", "experiments",
-                   "validation",
-                   "outputs", "parameters", "free_initial_states", "loss", "integration",
-                   "normalize_by_length", "continuation", "global", "local", "uncertainty",
-                   "initial_state_prior", "outliers"});
+  reader.CheckMap(
+      node, path,
+      {"name", "type", "least_squares", "step_regression", "model", "experiments", "validation",
+       "outputs", "parameters", "free_initial_states", "loss", "integration", "normalize_by_length",
+       "continuation", "global", "local", "uncertainty", "initial_state_prior", "outliers"});
   StageConfig stage;
   if (node["model"]) {
     stage.model = OverrideModel(reader, family, model_node, node["model"], Child(path, "model"));
@@ -365,10 +365,14 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
     InitialStatePrior& prior = stage.problem.prior;
     auto read_apply = [&](const YAML::Node& value, const std::string& where) {
       const std::string text = reader.String(value, where);
-      if (text == "segments") prior.apply = InitialStatePrior::Apply::kSegments;
-      else if (text == "all") prior.apply = InitialStatePrior::Apply::kAll;
-      else if (text == "off") prior.apply = InitialStatePrior::Apply::kOff;
-      else reader.Fail(value, where, "expected segments, all or off");
+      if (text == "segments")
+        prior.apply = InitialStatePrior::Apply::kSegments;
+      else if (text == "all")
+        prior.apply = InitialStatePrior::Apply::kAll;
+      else if (text == "off")
+        prior.apply = InitialStatePrior::Apply::kOff;
+      else
+        reader.Fail(value, where, "expected segments, all or off");
     };
     if (n.IsScalar()) {
       read_apply(n, key);
@@ -387,10 +391,14 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
     reader.CheckMap(n, key, {"action", "threshold"});
     if (n["action"]) {
       const std::string action = reader.String(n["action"], Child(key, "action"));
-      if (action == "note") stage.outliers.action = OutlierOptions::Action::kNote;
-      else if (action == "downweight") stage.outliers.action = OutlierOptions::Action::kDownweight;
-      else if (action == "drop") stage.outliers.action = OutlierOptions::Action::kDrop;
-      else reader.Fail(n["action"], Child(key, "action"), "expected note, downweight or drop");
+      if (action == "note")
+        stage.outliers.action = OutlierOptions::Action::kNote;
+      else if (action == "downweight")
+        stage.outliers.action = OutlierOptions::Action::kDownweight;
+      else if (action == "drop")
+        stage.outliers.action = OutlierOptions::Action::kDrop;
+      else
+        reader.Fail(n["action"], Child(key, "action"), "expected note, downweight or drop");
     }
     reader.Read(n, key, "threshold", &stage.outliers.threshold);
     if (!(stage.outliers.threshold > 0.0)) {
@@ -445,9 +453,9 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
   if (stage.kind == StageConfig::Kind::kStepRegression) {
     ReadStepRegression(reader, node["step_regression"], Child(path, "step_regression"), model,
                        &stage);
-    for (const char* key : {"loss", "continuation", "global", "least_squares",
-                            "free_initial_states", "normalize_by_length", "integration",
-                            "initial_state_prior", "outliers"}) {
+    for (const char* key :
+         {"loss", "continuation", "global", "least_squares", "free_initial_states",
+          "normalize_by_length", "integration", "initial_state_prior", "outliers"}) {
       if (node[key]) reader.Fail(node[key], Child(path, key), "not used by a step-regression stage");
     }
   }
@@ -471,8 +479,9 @@ bool LoadConfigFile(const std::string& path, const std::string& data_dir,
   YamlReader reader(path);
   try {
     const YAML::Node root = reader.Load();
-    reader.CheckMap(root, "", {"description", "model", "simulation", "experiments", "stages",
-                               "fusion", "final", "final_validation", "surfaces", "study"});
+    reader.CheckMap(root, "",
+                    {"description", "model", "simulation", "experiments", "stages", "fusion",
+                     "final", "final_validation", "surfaces", "study"});
     ConfigFile file;
     RunConfig& result = file.run;
     result.path = path;

@@ -285,7 +285,8 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
   }
   if (counted > 0) {
     e.prior_weight = std::sqrt(noise2 / counted);
-    if (options.normalize_by_length) e.prior_weight /= std::sqrt(static_cast<double>(e.num_samples()));
+    if (options.normalize_by_length)
+      e.prior_weight /= std::sqrt(static_cast<double>(e.num_samples()));
   }
   *experiment = std::move(e);
   return true;

@@ -7,11 +7,11 @@
 #include "engine/base/atomic_file.h"
 #include "engine/base/elapsed.h"
 #include "engine/output/base64.h"
-#include "engine/run/held_out.h"
-#include "engine/run/run_warnings.h"
 #include "engine/output/report_figures.h"
 #include "engine/output/report_plots.h"
 #include "engine/output/report_tables.h"
+#include "engine/run/held_out.h"
+#include "engine/run/run_warnings.h"
 
 namespace vesselid {
 namespace {
@@ -199,8 +199,7 @@ void StageSection(const RunConfig& config, const StageResult& stage, size_t numb
   for (const std::string& d : s.uncertainty.undetermined) notes.push_back("undetermined: " + d);
   for (const std::string& a : stage.admissibility) notes.push_back("not admissible: " + a);
   if (stage.held_out.done) {
-    notes.push_back("held-out check against the stage's start: " +
-                    DescribeHeldOut(stage.held_out) +
+    notes.push_back("held-out check against the stage's start: " + DescribeHeldOut(stage.held_out) +
                     (stage.held_out.worse ? " (worse)" : " (not worse)"));
   }
   if (!stage.rejected.empty()) notes.insert(notes.begin(), "set aside: " + stage.rejected);

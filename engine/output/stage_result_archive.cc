@@ -42,8 +42,8 @@ namespace vesselid {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Trajectory, source, t, names, columns)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ChannelMetrics, experiment, output, samples, rmse, mae, r2,
                                    fit_percent, hold_mae, noise)
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ExperimentFit, experiment, diverged, message, rms_cost,
-                                   channels, trace)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ExperimentFit, experiment, diverged, message, rms_cost, channels,
+                                   trace)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(HeldOutCheck, done, outputs, start_mae, stage_mae,
                                    start_diverged, stage_diverged, worse)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(GlobalStartSummary, run, variables, evaluations,

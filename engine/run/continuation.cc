@@ -87,8 +87,8 @@ bool RunContinuation(const RunConfig& config, const StageConfig& stage, const Mo
     std::snprintf(text, sizeof(text),
                   "continuation: %s segments (%zu pieces), cost %.6e -> %.6e after %d "
                   "iterations, %.3f s",
-                  FormatSeconds(length).c_str(), problem->experiments().size(),
-                  local.initial_cost, local.final_cost, local.iterations, summary.time_seconds);
+                  FormatSeconds(length).c_str(), problem->experiments().size(), local.initial_cost,
+                  local.final_cost, local.iterations, summary.time_seconds);
     notes->push_back(text);
     CarryForward(*problem, specs, states);
   }

@@ -127,7 +127,9 @@ std::string DescribeHeldOut(const HeldOutCheck& check) {
     char item[128];
     std::snprintf(item, sizeof(item), "%s %.4g -> %.4g", check.outputs[i].c_str(),
                   check.start_mae[i], check.stage_mae[i]);
-    text += (text.empty() ? "held-out MAE " : i == 0 ? "; held-out MAE " : ", ") +
+    text += (text.empty() ? "held-out MAE "
+             : i == 0     ? "; held-out MAE "
+                          : ", ") +
             std::string(item);
   }
   return text;

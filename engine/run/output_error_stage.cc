@@ -4,8 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <limits>
+#include <map>
 #include <memory>
 
 #include "engine/run/continuation.h"
@@ -101,37 +101,36 @@ std::unique_ptr<OutputErrorProblem> RefineFrom(const OutputErrorProblem& solved,
 // While the estimate's dynamics are faster than the integration step can follow
 // (step_stability.h), prepares the experiments with a step that can and refines again from
 // the estimate; the step used goes to result->integration_step (0: the configured one).
-bool FollowTheDynamics(const RunConfig& config, const StageConfig& stage,
-                       const ModelHandle& model, const StageOptions& options,
-                       TrajectoryCache* cache, std::unique_ptr<OutputErrorProblem>* problem,
-                       StageSummary* summary, StageResult* result, std::string* error) {
+bool FollowTheDynamics(const RunConfig& config, const StageConfig& stage, const ModelHandle& model,
+                       const StageOptions& options, TrajectoryCache* cache,
+                       std::unique_ptr<OutputErrorProblem>* problem, StageSummary* summary,
+                       StageResult* result, std::string* error) {
   ExperimentOptions finer = stage.experiment;
   for (int reduction = 0;; ++reduction) {
     const StepStability stability = CheckStepStability(**problem);
     if (stability.worst <= kStepStabilityLimit) return true;
     if (reduction == kMaxStepReductions) {
       summary->notes.push_back("integration step too long for the estimate's dynamics after " +
-                               std::to_string(kMaxStepReductions) + " reductions: " +
-                               stability.Describe() +
+                               std::to_string(kMaxStepReductions) +
+                               " reductions: " + stability.Describe() +
                                "; the estimate may fit the integrator, not the vessel");
       return true;
     }
     finer.max_step = stability.SafeStep();
     char text[128];
-    std::snprintf(text, sizeof(text),
-                  "integration step reduced to %.3g s and the stage refined again: ",
-                  finer.max_step);
+    std::snprintf(
+        text, sizeof(text),
+        "integration step reduced to %.3g s and the stage refined again: ", finer.max_step);
     summary->notes.push_back(text + stability.Describe());
     std::vector<Experiment> experiments;
-    if (!PrepareExperiments(config, stage.experiments, model, finer, cache, &experiments,
-                            error)) {
+    if (!PrepareExperiments(config, stage.experiments, model, finer, cache, &experiments, error)) {
       return false;
     }
     std::unique_ptr<OutputErrorProblem> refined =
         RefineFrom(**problem, std::move(experiments), stage, options, summary, error);
     if (refined == nullptr) {
-      *error = "refinement with the integration step reduced to " +
-               std::to_string(finer.max_step) + " s: " + *error;
+      *error = "refinement with the integration step reduced to " + std::to_string(finer.max_step) +
+               " s: " + *error;
       return false;
     }
     *problem = std::move(refined);
@@ -144,8 +143,7 @@ double Median(std::vector<double> values) {
   return values.empty() ? 0.0 : values[values.size() / 2];
 }
 
-std::string Format(const char* format, double a, double b = 0.0, double c = 0.0,
-                   double d = 0.0) {
+std::string Format(const char* format, double a, double b = 0.0, double c = 0.0, double d = 0.0) {
   char text[160];
   std::snprintf(text, sizeof(text), format, a, b, c, d);
   return text;
@@ -191,16 +189,16 @@ bool HandleOutliers(const StageConfig& stage, const StageOptions& options,
   auto list = [](std::vector<std::pair<double, std::string>> items) {
     std::sort(items.rbegin(), items.rend());
     std::string text;
-    for (size_t i = 0; i < items.size() && i < 6; ++i) text += (i > 0 ? ", " : "") + items[i].second;
+    for (size_t i = 0; i < items.size() && i < 6; ++i)
+      text += (i > 0 ? ", " : "") + items[i].second;
     return text + (items.size() > 6 ? ", ..." : "");
   };
   if (!costly.empty()) {
     for (auto& [cost, name] : costly) name += Format(" (%.3g)", cost);
-    summary->notes.push_back("outliers: " + std::to_string(costly.size()) + " of " +
-                             std::to_string(count) +
-                             " experiments fit far worse than the rest (RMS cost above " +
-                             Format("%.3g", limit) + " = median + " +
-                             Format("%g", stage.outliers.threshold) + " x MAD): " + list(costly));
+    summary->notes.push_back(
+        "outliers: " + std::to_string(costly.size()) + " of " + std::to_string(count) +
+        " experiments fit far worse than the rest (RMS cost above " + Format("%.3g", limit) +
+        " = median + " + Format("%g", stage.outliers.threshold) + " x MAD): " + list(costly));
   }
   if (!far.empty()) {
     summary->notes.push_back("outliers: " + std::to_string(far.size()) + " of " +
@@ -283,8 +281,7 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& stage,
     *error = summary.message;
     return false;
   }
-  if (!FollowTheDynamics(config, stage, model, options, cache, &problem, &summary, result,
-                         error) ||
+  if (!FollowTheDynamics(config, stage, model, options, cache, &problem, &summary, result, error) ||
       !HandleOutliers(stage, options, &problem, &summary, error)) {
     return false;
   }

@@ -35,12 +35,10 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
   std::vector<ExperimentFit> at_start;
   ExperimentOptions options = stage.experiment;
   if (result->integration_step > 0.0) options.max_step = result->integration_step;
-  if (!SimulateHeldOut(config, model, stage.validation, options,
-                       stage.problem.free_initial_states, stage.options.local, values, cache,
-                       &result->validation, error) ||
-      !SimulateHeldOut(config, model, stage.validation, options,
-                       stage.problem.free_initial_states, stage.options.local, start_values,
-                       cache, &at_start, error)) {
+  if (!SimulateHeldOut(config, model, stage.validation, options, stage.problem.free_initial_states,
+                       stage.options.local, values, cache, &result->validation, error) ||
+      !SimulateHeldOut(config, model, stage.validation, options, stage.problem.free_initial_states,
+                       stage.options.local, start_values, cache, &at_start, error)) {
     *error = "validation: " + *error;
     return false;
   }
@@ -206,7 +204,8 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     // The shortest step a stage needed for its estimate's dynamics serves the final values.
     ExperimentOptions options = v.experiment;
     for (const StageResult& s : accepted) {
-      if (s.integration_step > 0.0 && (options.max_step <= 0.0 || s.integration_step < options.max_step)) {
+      if (s.integration_step > 0.0 &&
+          (options.max_step <= 0.0 || s.integration_step < options.max_step)) {
         options.max_step = s.integration_step;
       }
     }

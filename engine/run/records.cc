@@ -11,8 +11,8 @@ namespace {
 // Consecutive pieces of `length` of [begin, end] of `spec` named "<prefix><k>", k from 1; a
 // remainder shorter than half the length is left out. A given initial state is the record's:
 // pieces after the first start from the data.
-void SplitByLength(const ExperimentSpec& spec, const std::string& prefix, double begin,
-                   double end, double length, std::vector<ExperimentSpec>* specs) {
+void SplitByLength(const ExperimentSpec& spec, const std::string& prefix, double begin, double end,
+                   double length, std::vector<ExperimentSpec>* specs) {
   int k = 1;
   for (double t0 = begin; t0 + 0.5 * length < end; t0 += length) {
     ExperimentSpec piece = spec;
@@ -43,8 +43,8 @@ bool WholeRecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double
       segment.t_end = std::min(spec.t_end, range.t_end);
       if (!(segment.t_end > segment.t_begin)) continue;
       if (segment_length > 0.0) {
-        SplitByLength(segment, segment.name + ".", segment.t_begin, segment.t_end,
-                      segment_length, specs);
+        SplitByLength(segment, segment.name + ".", segment.t_begin, segment.t_end, segment_length,
+                      specs);
       } else {
         specs->push_back(segment);
       }

@@ -8,8 +8,8 @@ namespace vesselid {
 namespace {
 
 bool FailedChannel(const ChannelMetrics& m) {
-  return m.r2 < 0.0 || (std::isfinite(m.noise) && m.noise > 0.0 &&
-                        m.rmse > kFailedFitNoiseRatio * m.noise);
+  return m.r2 < 0.0 ||
+         (std::isfinite(m.noise) && m.noise > 0.0 && m.rmse > kFailedFitNoiseRatio * m.noise);
 }
 
 // Per output, the experiments whose fit failed there.
@@ -81,8 +81,7 @@ void AddRunWarnings(const RunConfig& config, RunResult* run) {
   std::vector<std::string>& w = run->warnings;
   if (!run->stopped_stage.empty()) {
     w.push_back("the run stopped in stage '" + run->stopped_stage + "' after " +
-                std::to_string(run->stages.size()) + " of " +
-                std::to_string(config.stages.size()) +
+                std::to_string(run->stages.size()) + " of " + std::to_string(config.stages.size()) +
                 " stage(s); the results are those of the finished stages: " + run->stop_message);
   }
   for (const StageResult& stage : run->stages) {

@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/run/run_config.h"
 #include "engine/run/held_out.h"
+#include "engine/run/run_config.h"
 #include "engine/run/run_result.h"
 
 namespace vesselid {

@@ -4,10 +4,10 @@
 
 namespace vesselid {
 
-bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model,
-                    const std::vector<double>& p, const TrajectoryCache& cache,
-                    std::vector<RegressionRecord>* records, std::vector<ChannelMetrics>* metrics,
-                    std::vector<std::string>* diverged, std::string* error) {
+bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model, const std::vector<double>& p,
+                    const TrajectoryCache& cache, std::vector<RegressionRecord>* records,
+                    std::vector<ChannelMetrics>* metrics, std::vector<std::string>* diverged,
+                    std::string* error) {
   const ModelInfo& info = model.info();
   const RegressionForm& form = *model.regression_form();
   const int ny = static_cast<int>(info.outputs.size());
@@ -58,17 +58,16 @@ bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model,
 }
 
 bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
-                        const std::vector<std::string>& names,
-                        const RegressionDataOptions& data, const std::vector<double>& p,
-                        TrajectoryCache* cache, std::vector<ChannelMetrics>* metrics,
-                        std::vector<std::string>* diverged, std::string* error) {
+                        const std::vector<std::string>& names, const RegressionDataOptions& data,
+                        const std::vector<double>& p, TrajectoryCache* cache,
+                        std::vector<ChannelMetrics>* metrics, std::vector<std::string>* diverged,
+                        std::string* error) {
   metrics->clear();
   for (const std::string& name : names) {
     std::vector<RegressionRecord> records;
     std::vector<ChannelMetrics> one_step, free_run;
     if (!PrepareRegressionRecords(config, {name}, model, data, cache, &records, error) ||
-        !OneStepMetrics(model, p, LeastSquaresOptions(), &records, "one-step", &one_step,
-                        error) ||
+        !OneStepMetrics(model, p, LeastSquaresOptions(), &records, "one-step", &one_step, error) ||
         !FreeRunMetrics(config, model, p, *cache, &records, &free_run, diverged, error)) {
       return false;
     }

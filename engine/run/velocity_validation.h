@@ -27,9 +27,9 @@ bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
                         std::string* error);
 
 // Free-run part on prepared records (which get the model's internal states at p).
-bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model,
-                    const std::vector<double>& p, const TrajectoryCache& cache,
-                    std::vector<RegressionRecord>* records, std::vector<ChannelMetrics>* metrics,
-                    std::vector<std::string>* diverged, std::string* error);
+bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model, const std::vector<double>& p,
+                    const TrajectoryCache& cache, std::vector<RegressionRecord>* records,
+                    std::vector<ChannelMetrics>* metrics, std::vector<std::string>* diverged,
+                    std::string* error);
 
 }  // namespace vesselid

@@ -69,7 +69,8 @@ namespace {
 std::string InEngineWords(const ceres::Solver::Summary& summary) {
   if (summary.message.find("max_num_consecutive_invalid_steps") != std::string::npos) {
     return "from this start every step the solver tried made a simulation diverge or the "
-           "cost non-finite; no step could be taken (Ceres: " + summary.message + ")";
+           "cost non-finite; no step could be taken (Ceres: " +
+           summary.message + ")";
   }
   return summary.message;
 }

@@ -113,7 +113,8 @@ bool EvaluateFit(const OutputErrorProblem& problem, std::vector<ExperimentFit>* 
     for (int c = 0; c < ny; ++c) {
       total_sse += channels[c].sse();
       if (channels[c].samples() == 0) continue;
-      if (!fit.diverged) fit.channels.push_back(channels[c].Finish(experiment.name, info.outputs[c]));
+      if (!fit.diverged)
+        fit.channels.push_back(channels[c].Finish(experiment.name, info.outputs[c]));
     }
     fit.rms_cost = fit.diverged ? std::numeric_limits<double>::quiet_NaN()
                                 : std::sqrt(total_sse / std::max(1, experiment.num_samples()));

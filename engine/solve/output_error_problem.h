@@ -74,9 +74,7 @@ class OutputErrorProblem {
   const std::vector<Experiment>& experiments() const { return experiments_; }
   int num_residuals() const;  // data samples (initial-state priors not counted)
   // The residual blocks of the experiments, in experiment order (without the priors).
-  const std::vector<ceres::ResidualBlockId>& data_residual_blocks() const {
-    return data_blocks_;
-  }
+  const std::vector<ceres::ResidualBlockId>& data_residual_blocks() const { return data_blocks_; }
   int num_free() const;
 
   // Model parameters and initial state as experiment e sees them (physical units).

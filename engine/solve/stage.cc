@@ -67,7 +67,9 @@ void NoteActiveBounds(const OutputErrorProblem& problem, std::vector<std::string
 constexpr double kRidgeSplits[] = {1.5, 4.0, 12.0};
 constexpr double kRidgeGain = 1e-9;  // relative cost decrease that counts as leaving it
 
-bool OnRidge(double a, double b) { return std::abs(a - b) <= 1e-3 * std::max(std::abs(a), std::abs(b)); }
+bool OnRidge(double a, double b) {
+  return std::abs(a - b) <= 1e-3 * std::max(std::abs(a), std::abs(b));
+}
 
 void EscapeExchangeRidge(const LocalSolveOptions& options, OutputErrorProblem* problem,
                          LocalSolveSummary* local, std::vector<std::string>* notes) {

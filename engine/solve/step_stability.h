@@ -17,12 +17,12 @@ inline constexpr double kStepStabilityLimit = 1.0;
 inline constexpr double kStepStabilityTarget = 0.5;
 
 struct StepStability {
-  double worst = 0.0;           // largest h |lambda| met
-  double fastest_rate = 0.0;    // its |lambda|, 1/s
-  double step = 0.0;            // its h, s
-  double time = 0.0;            // where, s
+  double worst = 0.0;         // largest h |lambda| met
+  double fastest_rate = 0.0;  // its |lambda|, 1/s
+  double step = 0.0;          // its h, s
+  double time = 0.0;          // where, s
   std::string experiment;
-  bool diverged = false;        // a simulation stopped (then the check covers what it reached)
+  bool diverged = false;  // a simulation stopped (then the check covers what it reached)
 
   // The step that brings the worst h |lambda| to kStepStabilityTarget.
   double SafeStep() const { return kStepStabilityTarget / fastest_rate; }

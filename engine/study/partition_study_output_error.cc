@@ -52,7 +52,7 @@ bool AddSimulated(const ModelHandle& model, const Experiment& experiment,
       if (part == SplitPart::kUnused) continue;
       const ExperimentSample& s = experiment.samples[i];
       SumsOf(sums, part)[s.output].Add(outputs[static_cast<size_t>(k) * ny + s.output], s.value,
-                                      experiment.Wrapped(s.output));
+                                       experiment.Wrapped(s.output));
     }
   }
   return true;

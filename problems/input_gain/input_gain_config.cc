@@ -55,8 +55,9 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
               const std::string& out_dir, std::string* error) {
   const std::string path = "simulation";
   if (!simulation) reader.Fail(simulation, path, "missing: the config has no simulation section");
-  reader.CheckMap(simulation, path, {"file", "segments", "duration_min", "seed", "noise", "vessel",
-                                     "segment_s", "defects"});
+  reader.CheckMap(
+      simulation, path,
+      {"file", "segments", "duration_min", "seed", "noise", "vessel", "segment_s", "defects"});
   if (!simulation["file"]) reader.Fail(simulation, Child(path, "file"), "missing");
   const std::string file = reader.String(simulation["file"], Child(path, "file"));
   CampaignOptions options;
@@ -104,9 +105,8 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
   }
   Trajectory campaign;
   const bool simulated =
-      vessel == "catamaran"
-          ? SimulateCampaign(CatamaranParameters(), options, &campaign, error)
-          : SimulateCampaign(QuadraticUsvParameters(), options, &campaign, error);
+      vessel == "catamaran" ? SimulateCampaign(CatamaranParameters(), options, &campaign, error)
+                            : SimulateCampaign(QuadraticUsvParameters(), options, &campaign, error);
   if (!simulated) return false;
   return WriteTrajectoryCsv((fs::path(out_dir) / file).string(), campaign, error);
 }

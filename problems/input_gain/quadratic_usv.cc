@@ -41,7 +41,8 @@ bool QuadraticUsvDerivative(const QuadraticUsvParameters& p, const double* x, co
   // C_RB nu + C_A nu (CG at the origin), rows u, v, r.
   const double cu = -p.m * v * r + (p.Yvdot * v + p.Yrdot * r) * r;
   const double cv = p.m * u * r - p.Xudot * u * r;
-  const double cr = -(p.Yvdot * v + p.Yrdot * r) * u + p.Xudot * u * v;  // Munk: (Xudot - Yvdot) u v
+  const double cr =
+      -(p.Yvdot * v + p.Yrdot * r) * u + p.Xudot * u * v;  // Munk: (Xudot - Yvdot) u v
   const double du = -p.Xu * u - p.Xuu * std::abs(u) * u;
   const double dv = -p.Yv * v - p.Yr * r;
   const double dr = -p.Nv * v - p.Nr * r;

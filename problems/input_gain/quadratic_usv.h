@@ -11,8 +11,8 @@
 //     C_A nu carries the full ideal-fluid Munk moment (Xudot - Yvdot) u v;
 //     D nu = -[Xu u + Xuu |u| u; Yv v + Yr r; Nv v + Nr r] (linear in sway and yaw);
 //     d_cf: cross-flow drag of the two hulls by strip theory,
-//       Y_cf = -c  sum_j |v + x_j r| (v + x_j r) dx,  N_cf = -c sum_j x_j |v + x_j r| (v + x_j r) dx
-//       over strips x_j along the hull length, c = 1/2 rho C_d draft x 2 hulls.
+//       Y_cf = -c  sum_j |v + x_j r| (v + x_j r) dx,  N_cf = -c sum_j x_j |v + x_j r| (v + x_j r)
+//       dx over strips x_j along the hull length, c = 1/2 rho C_d draft x 2 hulls.
 //   tau = [T_L + T_R, 0, lever (T_L - T_R)].
 #pragma once
 

@@ -85,7 +85,8 @@ void Report(const std::string& label, const fs::path& dir, double seconds) {
     std::printf(" %s %.3f", m["state"].get<std::string>().c_str(), m["r2"].get<double>());
   }
   std::printf("\n  warnings: %zu\n", r["warnings"].size());
-  for (const json& w : r["warnings"]) std::printf("    %s\n", w.get<std::string>().substr(0, 220).c_str());
+  for (const json& w : r["warnings"])
+    std::printf("    %s\n", w.get<std::string>().substr(0, 220).c_str());
 }
 
 }  // namespace
@@ -102,12 +103,12 @@ int main(int argc, char** argv) {
       const fs::path dir = root / (kind + (defects ? "_defects" : ""));
       fs::create_directories(dir);
       std::ofstream(dir / "config.yaml") << MismatchConfig(kind, defects);
-      if (Timed(binary + " simulate " + (dir / "config.yaml").string() + " --out " +
-                dir.string() + " > /dev/null") < 0) {
+      if (Timed(binary + " simulate " + (dir / "config.yaml").string() + " --out " + dir.string() +
+                " > /dev/null") < 0) {
         return 1;
       }
-      const double seconds = Timed(binary + " run " + (dir / "config.yaml").string() +
-                                   " --data " + dir.string() + " --out " + (dir / "out").string() +
+      const double seconds = Timed(binary + " run " + (dir / "config.yaml").string() + " --data " +
+                                   dir.string() + " --out " + (dir / "out").string() +
                                    " --quiet > /dev/null 2> " + (dir / "stderr").string());
       Report(kind + (defects ? ", with log defects" : ""), dir, seconds);
       if (reference_done || defects) continue;
@@ -118,10 +119,10 @@ int main(int argc, char** argv) {
       const std::string held = Ids(first["validation"]["metrics"], "validation");
       const std::string training = Ids(r["stages"].back()["fit"]["metrics"], "training");
       const fs::path out = dir / "ols.json";
-      const double ols = Timed(std::string(kPython) + " " + VESSELID_SOURCE_DIR +
-                               "/tests/benchmarks/reference_ols_input_gain.py " +
-                               (dir / "campaign.csv").string() + " " + held + " " + training +
-                               " > " + out.string());
+      const double ols =
+          Timed(std::string(kPython) + " " + VESSELID_SOURCE_DIR +
+                "/tests/benchmarks/reference_ols_input_gain.py " + (dir / "campaign.csv").string() +
+                " " + held + " " + training + " > " + out.string());
       std::ifstream ols_in(out);
       const json o = json::parse(ols_in, nullptr, false);
       if (ols < 0 || o.is_discarded()) {
@@ -130,12 +131,12 @@ int main(int argc, char** argv) {
       }
       std::printf("\nOLS on Savitzky-Golay velocities (SciPy), same held-out segments, %.1f s:\n",
                   ols);
-      std::printf("  free-run R2 vs the SG reconstruction: u %.3f v %.3f r %.3f (vs the truth: "
-                  "u %.3f v %.3f r %.3f), %d diverged\n",
-                  o["u"]["r2"].get<double>(), o["v"]["r2"].get<double>(),
-                  o["r"]["r2"].get<double>(), o["u"]["r2_truth"].get<double>(),
-                  o["v"]["r2_truth"].get<double>(), o["r"]["r2_truth"].get<double>(),
-                  o["diverged"].get<int>());
+      std::printf(
+          "  free-run R2 vs the SG reconstruction: u %.3f v %.3f r %.3f (vs the truth: "
+          "u %.3f v %.3f r %.3f), %d diverged\n",
+          o["u"]["r2"].get<double>(), o["v"]["r2"].get<double>(), o["r"]["r2"].get<double>(),
+          o["u"]["r2_truth"].get<double>(), o["v"]["r2_truth"].get<double>(),
+          o["r"]["r2_truth"].get<double>(), o["diverged"].get<int>());
       reference_done = true;
     }
   }

@@ -27,13 +27,13 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 const std::vector<std::pair<std::string, double>> kTruth = {
-    {"Iz", 0.80},   {"Xudot", -1.0946}, {"Yvdot", -1.0536}, {"Yrdot", -1.4353},
-    {"Xu", -5.6128}, {"Yv", -3.5059},   {"Yr", -0.0001},    {"Nv", -1.0005},
-    {"Nr", -0.1039}, {"Xuu", -2.3136},  {"Yvv", -3.9310},   {"Nrr", -0.2605}};
+    {"Iz", 0.80},    {"Xudot", -1.0946}, {"Yvdot", -1.0536}, {"Yrdot", -1.4353},
+    {"Xu", -5.6128}, {"Yv", -3.5059},    {"Yr", -0.0001},    {"Nv", -1.0005},
+    {"Nr", -0.1039}, {"Xuu", -2.3136},   {"Yvv", -3.9310},   {"Nrr", -0.2605}};
 const std::map<std::string, std::pair<double, double>> kBounds = {
-    {"Iz", {0.01, 10}},   {"Xudot", {-10, 5}}, {"Yvdot", {-10, 5}}, {"Yrdot", {-10, 5}},
-    {"Xu", {-60, 0}},     {"Yv", {-40, 0}},    {"Yr", {-1, 1}},     {"Nv", {-10, 0}},
-    {"Nr", {-2, 0}},      {"Xuu", {-30, 0}},   {"Yvv", {-40, 0}},   {"Nrr", {-3, 0}}};
+    {"Iz", {0.01, 10}}, {"Xudot", {-10, 5}}, {"Yvdot", {-10, 5}}, {"Yrdot", {-10, 5}},
+    {"Xu", {-60, 0}},   {"Yv", {-40, 0}},    {"Yr", {-1, 1}},     {"Nv", {-10, 0}},
+    {"Nr", {-2, 0}},    {"Xuu", {-30, 0}},   {"Yvv", {-40, 0}},   {"Nrr", {-3, 0}}};
 constexpr int kRuns = 5;
 const char* kPython = "/usr/bin/python3";  // Debian's, with python3-scipy
 
@@ -46,12 +46,14 @@ double Timed(const std::string& command) {
 bool Success(double cost, double reference) { return cost <= 1.01 * reference; }
 
 std::string Config(const std::map<std::string, double>& start, bool wrap) {
-  std::string text = "model: {family: erunsal6dof, active_dofs: [surge, sway, yaw]}\nexperiments:\n";
+  std::string text =
+      "model: {family: erunsal6dof, active_dofs: [surge, sway, yaw]}\nexperiments:\n";
   for (int k = 0; k < kRuns; ++k) {
     const std::string run = "run" + std::to_string(k);
     text += "  - {name: " + run + ", file: " + run +
             ".csv, inputs: {c_L: c_L, c_R: c_R}, outputs: {x: x, y: y, psi: psi}, "
-            "interpolation: zero_order_hold" + std::string(wrap ? ", wrap: [psi]" : "") + "}\n";
+            "interpolation: zero_order_hold" +
+            std::string(wrap ? ", wrap: [psi]" : "") + "}\n";
   }
   text += "stages:\n  - name: fit\n    integration: {max_step: 0.02}\n    parameters:\n";
   for (const auto& [name, value] : start) {
@@ -69,7 +71,8 @@ int main(int argc, char** argv) {
   const fs::path dir = fs::temp_directory_path() / "vesselid_benchmark_spirals";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const std::string script = std::string(VESSELID_SOURCE_DIR) + "/tests/benchmarks/reference_3dof.py";
+  const std::string script =
+      std::string(VESSELID_SOURCE_DIR) + "/tests/benchmarks/reference_3dof.py";
   if (Timed(std::string(kPython) + " " + script + " simulate " + dir.string() + " 2> " +
             (dir / "simulate.log").string()) < 0) {
     std::fprintf(stderr, "the reference simulation failed (is python3-scipy installed?)\n");
@@ -81,13 +84,15 @@ int main(int argc, char** argv) {
   std::vector<std::map<std::string, double>> starts(count + 1);
   json starts_json = json::array();
   for (size_t i = 0; i < starts.size(); ++i) {
-    for (const auto& [name, truth] : kTruth) starts[i][name] = truth * (i == 0 ? 1.0 : factor(random));
+    for (const auto& [name, truth] : kTruth)
+      starts[i][name] = truth * (i == 0 ? 1.0 : factor(random));
     starts_json.push_back(starts[i]);
   }
   std::ofstream(dir / "starts.json") << starts_json.dump();
 
-  std::printf("surge-sway-yaw fit of %d spiral/zigzag runs, %d starts within +-30 %% of the truth\n",
-              kRuns, count);
+  std::printf(
+      "surge-sway-yaw fit of %d spiral/zigzag runs, %d starts within +-30 %% of the truth\n", kRuns,
+      count);
   std::printf("  %-34s %10s %12s\n", "", "successes", "time/start");
   for (bool wrap : {false, true}) {
     int successes = 0;
@@ -100,7 +105,8 @@ int main(int argc, char** argv) {
                              out.string() + " --quiet > /dev/null 2>&1");
       std::ifstream in(out / "results.json");
       const json results = json::parse(in, nullptr, false);
-      const double cost = results.is_discarded() ? INFINITY : results["stages"][0]["cost"].get<double>();
+      const double cost =
+          results.is_discarded() ? INFINITY : results["stages"][0]["cost"].get<double>();
       if (i == 0) {
         reference = cost;
         continue;
@@ -109,8 +115,8 @@ int main(int argc, char** argv) {
       successes += Success(cost, reference);
     }
     std::printf("  %-34s %7d/%-2d %10.1f s\n",
-                wrap ? "vesselid, heading wrapped (wrap:)" : "vesselid, heading unwrapped", successes,
-                count, seconds / count);
+                wrap ? "vesselid, heading wrapped (wrap:)" : "vesselid, heading unwrapped",
+                successes, count, seconds / count);
   }
   const fs::path fits = dir / "scipy.json";
   const double scipy_time = Timed(std::string(kPython) + " " + script + " fit " + dir.string() +
@@ -132,8 +138,8 @@ int main(int argc, char** argv) {
     fit_seconds += r["seconds"].get<double>();
     successes += Success(r["cost"].get<double>(), truth_cost);
   }
-  std::printf("  %-34s %7d/%-2d %10.1f s  (%.0f s of Python in all)\n",
-              "SciPy least_squares (trf)", successes, count, fit_seconds / count, scipy_time);
+  std::printf("  %-34s %7d/%-2d %10.1f s  (%.0f s of Python in all)\n", "SciPy least_squares (trf)",
+              successes, count, fit_seconds / count, scipy_time);
   fs::remove_all(dir);
   return 0;
 }

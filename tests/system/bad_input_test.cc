@@ -306,8 +306,9 @@ TEST_F(BadInput, SurfacesNeedADampingInertiaForm) {
 TEST_F(BadInput, InitialStateOfASegmentedRecord) {
   EditConfig("    outputs: {psi: psi}\n",
              "    outputs: {psi: psi}\n    segments: {column: t}\n    initial_state: {psi: 0}\n");
-  ExpectRejected("config\\.yaml:8: experiments\\[0\\]\\.initial_state: cannot be combined with "
-                 "'segments'");
+  ExpectRejected(
+      "config\\.yaml:8: experiments\\[0\\]\\.initial_state: cannot be combined with "
+      "'segments'");
 }
 
 TEST_F(BadInput, WrapOfAnOutputThatIsNotAnAngle) {
@@ -357,8 +358,9 @@ TEST_F(BadInput, HeadingJumpTooLargeToUnwrap) {
   }
   in.close();
   std::ofstream(dir_ / "data.csv") << all;
-  ExpectRejected("angle output 'psi' \\(column 'psi'\\) changes by 115 deg between t = .*"
-                 "list 'psi' in the experiment's wrap:");
+  ExpectRejected(
+      "angle output 'psi' \\(column 'psi'\\) changes by 115 deg between t = .*"
+      "list 'psi' in the experiment's wrap:");
 }
 
 }  // namespace

@@ -26,21 +26,49 @@ namespace fs = std::filesystem;
 
 // One side of a case: what goes into the config template.
 struct Variant {
-  std::string a_keys;                 // added to experiment a
-  std::string s_keys;                 // added to the segmented experiment s
+  std::string a_keys;                  // added to experiment a
+  std::string s_keys;                  // added to the segmented experiment s
   std::string experiments = "[a, b]";  // the stage's experiments
   std::string free = "[psi]";          // the stage's free initial states
-  std::string stage;                  // stage keys
-  std::string parameters;             // parameter lines (replacing a listed one by name)
-  std::string top;                    // top-level keys
+  std::string stage;                   // stage keys
+  std::string parameters;              // parameter lines (replacing a listed one by name)
+  std::string top;                     // top-level keys
 
-  Variant A(std::string v) const { Variant c = *this; c.a_keys = std::move(v); return c; }
-  Variant S(std::string v) const { Variant c = *this; c.s_keys = std::move(v); return c; }
-  Variant E(std::string v) const { Variant c = *this; c.experiments = std::move(v); return c; }
-  Variant F(std::string v) const { Variant c = *this; c.free = std::move(v); return c; }
-  Variant K(std::string v) const { Variant c = *this; c.stage = std::move(v); return c; }
-  Variant P(std::string v) const { Variant c = *this; c.parameters = std::move(v); return c; }
-  Variant T(std::string v) const { Variant c = *this; c.top = std::move(v); return c; }
+  Variant A(std::string v) const {
+    Variant c = *this;
+    c.a_keys = std::move(v);
+    return c;
+  }
+  Variant S(std::string v) const {
+    Variant c = *this;
+    c.s_keys = std::move(v);
+    return c;
+  }
+  Variant E(std::string v) const {
+    Variant c = *this;
+    c.experiments = std::move(v);
+    return c;
+  }
+  Variant F(std::string v) const {
+    Variant c = *this;
+    c.free = std::move(v);
+    return c;
+  }
+  Variant K(std::string v) const {
+    Variant c = *this;
+    c.stage = std::move(v);
+    return c;
+  }
+  Variant P(std::string v) const {
+    Variant c = *this;
+    c.parameters = std::move(v);
+    return c;
+  }
+  Variant T(std::string v) const {
+    Variant c = *this;
+    c.top = std::move(v);
+    return c;
+  }
 };
 
 struct KeyCase {
@@ -100,20 +128,21 @@ const KeyCase kCases[] = {
      V.E("[a, b, c, s]").K("    outliers: {action: drop, threshold: 0.01}")},
     {"type_least_squares", V, kLeastSquares},
     {"final_validation", V, V.T("final_validation: {experiments: [c]}")},
-    {"fusion", V.P("      T: {start: 3.0, lower: 0.1, upper: 20, role: shared}")
-                   .T("  - name: again\n    experiments: [c]\n    parameters:\n"
-                      "      T: {role: shared}\n"),
+    {"fusion",
+     V.P("      T: {start: 3.0, lower: 0.1, upper: 20, role: shared}")
+         .T("  - name: again\n    experiments: [c]\n    parameters:\n"
+            "      T: {role: shared}\n"),
      V.P("      T: {start: 3.0, lower: 0.1, upper: 20, role: shared}")
          .T("  - name: again\n    experiments: [c]\n    parameters:\n"
             "      T: {role: shared}\nfusion: mean\n")},
     // Refused combinations.
     {"initial_state_with_segments", V, V.E("[a, s]").S(", initial_state: {r: 0}"),
      "initial_state: cannot be combined with 'segments'"},
-    {"continuation_in_least_squares", V, kLeastSquares.K(kLeastSquares.stage +
-                                                         "\n    continuation: [20]"),
+    {"continuation_in_least_squares", V,
+     kLeastSquares.K(kLeastSquares.stage + "\n    continuation: [20]"),
      "stages[0].continuation: not used by a least-squares stage"},
-    {"outliers_in_least_squares", V, kLeastSquares.K(kLeastSquares.stage +
-                                                     "\n    outliers: {action: drop}"),
+    {"outliers_in_least_squares", V,
+     kLeastSquares.K(kLeastSquares.stage + "\n    outliers: {action: drop}"),
      "stages[0].outliers: not used by a least-squares stage"},
     {"wrap_of_a_rate", V, V.A(", wrap: [r]"), "output 'r' is not an angle"},
     {"unknown_final_choice", V, V.T("final: newest\n"), "final: unknown choice 'newest'"},

@@ -44,8 +44,8 @@ json RunMismatch(const std::string& kind) {
   fs::create_directories(dir);
   std::ofstream(dir / "config.yaml") << config;
   const std::string binary = VESSELID_BINARY;
-  const std::string simulate = binary + " simulate " + (dir / "config.yaml").string() +
-                               " --out " + dir.string() + " > /dev/null";
+  const std::string simulate = binary + " simulate " + (dir / "config.yaml").string() + " --out " +
+                               dir.string() + " > /dev/null";
   EXPECT_EQ(std::system(simulate.c_str()), 0);
   const std::string run = binary + " run " + (dir / "config.yaml").string() + " --data " +
                           dir.string() + " --out " + (dir / "out").string() +

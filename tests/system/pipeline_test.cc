@@ -1,11 +1,12 @@
 // The staged pipeline: carried starts, isolated and shared roles, fusion rules, local and
 // final validation, per-stage model restriction, and undetermined combinations.
+#include "engine/run/pipeline.h"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include "engine/config/config.h"
-#include "engine/run/pipeline.h"
 #include "engine/run/records.h"
 #include "engine/solve/step_stability.h"
 #include "gtest/gtest.h"

@@ -70,8 +70,8 @@ class AngleTest : public ::testing::Test {
       specs[i].role = ParameterRole::kFixed;
     }
     std::string error;
-    auto problem = OutputErrorProblem::Create(model_.get(), {experiment}, specs,
-                                              OutputErrorOptions(), &error);
+    auto problem =
+        OutputErrorProblem::Create(model_.get(), {experiment}, specs, OutputErrorOptions(), &error);
     EXPECT_NE(problem, nullptr) << error;
     std::vector<ExperimentFit> fits;
     EXPECT_TRUE(EvaluateFit(*problem, &fits, &error)) << error;
