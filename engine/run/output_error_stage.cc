@@ -49,7 +49,7 @@ StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>
   return result;
 }
 
-constexpr int kMaxStepReductions = 3;
+constexpr int kMaxStepReductions = 2;
 
 // The stage solved again on `experiments` from the estimate of `solved`: parameters keep their
 // roles, bounds and scales; per-experiment values and initial states carry over by name.
@@ -109,6 +109,16 @@ bool FollowTheDynamics(const RunConfig& config, const StageConfig& stage, const 
   for (int reduction = 0;; ++reduction) {
     const StepStability stability = CheckStepStability(**problem);
     if (stability.worst <= kStepStabilityLimit) return true;
+    bool failed = false;
+    for (const ExperimentFit& fit : summary->fits) {
+      for (const ChannelMetrics& m : fit.channels) failed |= FitFailed(m);
+    }
+    if (failed) {  // a shorter step would refine a fit that missed the data anyway
+      summary->notes.push_back("integration step too long for the estimate's dynamics (" +
+                               stability.Describe() +
+                               "), and the fit failed: not refined again at a shorter step");
+      return true;
+    }
     if (reduction == kMaxStepReductions) {
       summary->notes.push_back("integration step too long for the estimate's dynamics after " +
                                std::to_string(kMaxStepReductions) +

@@ -7,11 +7,6 @@
 namespace vesselid {
 namespace {
 
-bool FailedChannel(const ChannelMetrics& m) {
-  return m.r2 < 0.0 ||
-         (std::isfinite(m.noise) && m.noise > 0.0 && m.rmse > kFailedFitNoiseRatio * m.noise);
-}
-
 // Per output, the experiments whose fit failed there.
 void FailedFits(const std::string& where, const std::vector<ExperimentFit>& fits,
                 std::vector<std::string>* warnings) {
@@ -20,7 +15,7 @@ void FailedFits(const std::string& where, const std::vector<ExperimentFit>& fits
   for (const ExperimentFit& fit : fits) {
     for (const ChannelMetrics& m : fit.channels) {
       ++compared[m.output];
-      if (FailedChannel(m)) failed[m.output].push_back(fit.experiment);
+      if (FitFailed(m)) failed[m.output].push_back(fit.experiment);
     }
   }
   for (const auto& [output, experiments] : failed) {

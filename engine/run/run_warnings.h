@@ -24,8 +24,6 @@
 
 namespace vesselid {
 
-inline constexpr double kFailedFitNoiseRatio = 100.0;
-
 // Whether the final values' held-out simulation diverges or predicts an output worse than
 // holding its first measured value; the reasons appended to `reasons` (may be null).
 bool FinalHeldOutFailed(const RunResult& run, std::vector<std::string>* reasons);

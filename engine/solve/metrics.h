@@ -5,6 +5,7 @@
 //   rms_cost (seed 002) = sqrt(mean e^2) over all compared samples of the experiment.
 #pragma once
 
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -27,6 +28,14 @@ struct ChannelMetrics {
   // many times it has missed the signal, not the noise.
   double noise = std::numeric_limits<double>::quiet_NaN();
 };
+
+// A channel whose fit has missed the signal: R2 < 0, or an RMSE above kFailedFitNoiseRatio
+// times the noise level of its data.
+inline constexpr double kFailedFitNoiseRatio = 100.0;
+inline bool FitFailed(const ChannelMetrics& m) {
+  return m.r2 < 0.0 ||
+         (std::isfinite(m.noise) && m.noise > 0.0 && m.rmse > kFailedFitNoiseRatio * m.noise);
+}
 
 // Metrics of a regression's fit to its samples (no MAE or fit %: only RMS residual and R2).
 inline ChannelMetrics RegressionMetrics(const std::string& experiment, const std::string& output,
