@@ -1,8 +1,8 @@
 // Surge-sway-yaw fits of spirals of several turns from random starts, the engine against a
 // plain SciPy least-squares fit on the same data (reference_3dof.py, an implementation of
 // MODELS.md section 1 written from the spec, also the data's simulator): how many of the
-// fixed starts reach the optimum, and at what time, with headings compared unwrapped (the
-// default) and modulo one turn (`wrap: [psi]`).
+// fixed starts reach the optimum, and at what time: with headings compared unwrapped (the
+// default) and modulo one turn (`wrap: [psi]`), and with the far-start recipe.
 //
 //   build/tests/benchmarks/benchmark_spirals [starts]        (default 11 starts, +-30 %)
 //
@@ -45,7 +45,13 @@ double Timed(const std::string& command) {
 
 bool Success(double cost, double reference) { return cost <= 1.01 * reference; }
 
-std::string Config(const std::map<std::string, double>& start, bool wrap) {
+// How the engine is asked: as the SciPy script fits (whole runs), with the heading wrapped
+// (today's behaviour before unwrapping), and with the far-start recipe (continuation on 10 s,
+// then 30 s pieces, each piece's velocities free).
+enum class Variant { kPlain, kWrapped, kContinuation };
+
+std::string Config(const std::map<std::string, double>& start, Variant variant) {
+  const bool wrap = variant == Variant::kWrapped;
   std::string text =
       "model: {family: erunsal6dof, active_dofs: [surge, sway, yaw]}\nexperiments:\n";
   for (int k = 0; k < kRuns; ++k) {
@@ -55,7 +61,11 @@ std::string Config(const std::map<std::string, double>& start, bool wrap) {
             "interpolation: zero_order_hold" +
             std::string(wrap ? ", wrap: [psi]" : "") + "}\n";
   }
-  text += "stages:\n  - name: fit\n    integration: {max_step: 0.02}\n    parameters:\n";
+  text += "stages:\n  - name: fit\n    integration: {max_step: 0.02}\n";
+  if (variant == Variant::kContinuation) {
+    text += "    continuation: [10, 30]\n    free_initial_states: [u, v, r]\n";
+  }
+  text += "    parameters:\n";
   for (const auto& [name, value] : start) {
     const auto& [lower, upper] = kBounds.at(name);
     text += "      " + name + ": {start: " + std::to_string(value) +
@@ -94,13 +104,17 @@ int main(int argc, char** argv) {
       "surge-sway-yaw fit of %d spiral/zigzag runs, %d starts within +-30 %% of the truth\n", kRuns,
       count);
   std::printf("  %-34s %10s %12s\n", "", "successes", "time/start");
-  for (bool wrap : {false, true}) {
+  const std::pair<Variant, const char*> variants[] = {
+      {Variant::kPlain, "vesselid, heading unwrapped"},
+      {Variant::kWrapped, "vesselid, heading wrapped (wrap:)"},
+      {Variant::kContinuation, "vesselid, unwrapped, continuation"}};
+  for (const auto& [variant, label] : variants) {
     int successes = 0;
     double seconds = 0.0, reference = 0.0;
     for (int i = 0; i <= count; ++i) {
       const fs::path config = dir / ("start" + std::to_string(i) + ".yaml");
       const fs::path out = dir / ("out" + std::to_string(i));
-      std::ofstream(config) << Config(starts[i], wrap);
+      std::ofstream(config) << Config(starts[i], variant);
       const double t = Timed(std::string(VESSELID_BINARY) + " run " + config.string() + " --out " +
                              out.string() + " --quiet > /dev/null 2>&1");
       std::ifstream in(out / "results.json");
@@ -114,9 +128,7 @@ int main(int argc, char** argv) {
       seconds += std::max(0.0, t);
       successes += Success(cost, reference);
     }
-    std::printf("  %-34s %7d/%-2d %10.1f s\n",
-                wrap ? "vesselid, heading wrapped (wrap:)" : "vesselid, heading unwrapped",
-                successes, count, seconds / count);
+    std::printf("  %-34s %7d/%-2d %10.1f s\n", label, successes, count, seconds / count);
   }
   const fs::path fits = dir / "scipy.json";
   const double scipy_time = Timed(std::string(kPython) + " " + script + " fit " + dir.string() +
