@@ -15,30 +15,34 @@ namespace {
 constexpr double kTimeTolerance = 1e-9;
 
 // An output's column as a channel; an angle output not compared modulo one turn is unwrapped,
-// and refused where two samples are too far apart to tell which way it turned.
+// and refused where two samples inside [t0, t_end] are too far apart to tell which way it
+// turned (gaps outside the window, e.g. between the segments of a record, do not matter: the
+// window's start value and samples move by the same whole turns).
 bool OutputChannelOf(const Trajectory& trajectory, int column, const ModelInfo& info, int output,
-                     bool wrapped, Channel* channel, std::string* error) {
+                     bool wrapped, double t0, double t_end, Channel* channel,
+                     std::string* error) {
   *channel = ExtractChannel(trajectory, column);
   const bool angle =
       output < static_cast<int>(info.angle_outputs.size()) && info.angle_outputs[output];
   if (!angle || wrapped) return true;
   const std::vector<double> raw = channel->value;
   if (UnwrapAngles(&channel->value) <= kMaxAngleStep) return true;
+  const std::vector<double>& t = channel->t;
   for (size_t k = 1; k < raw.size(); ++k) {
     const double step = WrapAngle(raw[k] - raw[k - 1]);
-    if (std::abs(step) <= kMaxAngleStep) continue;
+    const bool inside = t[k - 1] >= t0 - kTimeTolerance && t[k] <= t_end + kTimeTolerance;
+    if (!inside || std::abs(step) <= kMaxAngleStep) continue;
     char text[400];
     std::snprintf(text, sizeof(text),
                   "angle output '%s' (column '%s') changes by %.0f deg between t = %g and %g: "
                   "the sampling cannot tell which way it turned, so it cannot be unwrapped; "
                   "list '%s' in the experiment's wrap: to compare it modulo one turn",
                   info.outputs[output].c_str(), trajectory.names[column].c_str(),
-                  std::abs(step) * 180.0 / M_PI, channel->t[k - 1], channel->t[k],
-                  info.outputs[output].c_str());
+                  std::abs(step) * 180.0 / M_PI, t[k - 1], t[k], info.outputs[output].c_str());
     *error = text;
-    break;
+    return false;
   }
-  return false;
+  return true;
 }
 
 double Median(std::vector<double> values) {
@@ -107,7 +111,8 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
     if (column < 0) return fail("no column '" + mapped->second + "' for output '" + output + "'");
     auto weight = spec.output_weights.find(output);
     OutputChannel oc{index, weight == spec.output_weights.end() ? 1.0 : weight->second, {}};
-    if (!OutputChannelOf(trajectory, column, info, index, e.Wrapped(index), &oc.channel, error)) {
+    if (!OutputChannelOf(trajectory, column, info, index, e.Wrapped(index), t0, t_end,
+                         &oc.channel, error)) {
       return fail(*error);
     }
     if (oc.channel.t.empty()) return fail("column '" + mapped->second + "' has no samples");
@@ -212,7 +217,7 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
     const int column = trajectory.Find(column_name);
     if (o < 0 || column < 0) continue;
     Channel channel;
-    if (!OutputChannelOf(trajectory, column, info, o, e.Wrapped(o), &channel, error)) {
+    if (!OutputChannelOf(trajectory, column, info, o, e.Wrapped(o), t0, t_end, &channel, error)) {
       return fail(*error);
     }
     if (channel.t.empty()) continue;

@@ -106,6 +106,26 @@ TEST_F(AngleTest, HeadingTurnsOffIsScoredAsTurnsOff) {
   EXPECT_LE(std::abs(w.samples.back().value), M_PI);  // the samples stay as logged
 }
 
+// A jump between two windows (the unlogged gap between the segments of a record) is not the
+// window's to resolve; inside the window it is refused, naming the times.
+TEST_F(AngleTest, JumpOutsideTheWindowIsNotRefused) {
+  Trajectory data = TurningRecord();
+  for (size_t k = 0; k < data.t.size(); ++k) {
+    if (data.t[k] >= 500.0) data.columns[1][k] = WrapAngle(data.columns[1][k] + 2.6);
+  }
+  ExperimentSpec before = Spec();
+  before.t_end = 499.9;
+  Build(before, data);
+  ExperimentSpec after = Spec();
+  after.t_begin = 500.0;
+  Build(after, data);
+  Experiment e;
+  std::string error;
+  EXPECT_FALSE(BuildExperiment(Spec(), data, model_->info(), ExperimentOptions(), &e, &error));
+  EXPECT_NE(error.find("changes by 149 deg between t = 499.9 and 500"), std::string::npos)
+      << error;
+}
+
 TEST_F(AngleTest, UnwrapAnglesTakesTheShorterWayRound) {
   std::vector<double> angles = {3.0, -3.0, 3.1, -3.1};
   const double largest = UnwrapAngles(&angles);
