@@ -2,17 +2,9 @@
 
 #include <cmath>
 
+#include "problems/input_gain/all_finite.h"
+
 namespace vesselid::input_gain {
-namespace {
-
-bool AllFinite(const double* x, int n) {
-  for (int i = 0; i < n; ++i) {
-    if (!std::isfinite(x[i])) return false;
-  }
-  return true;
-}
-
-}  // namespace
 
 double StaticThrust(const CatamaranParameters& p, double pwm) {
   const double a = p.linear_share;

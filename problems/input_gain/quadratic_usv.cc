@@ -2,17 +2,12 @@
 
 #include <cmath>
 
+#include "problems/input_gain/all_finite.h"
+
 namespace vesselid::input_gain {
 namespace {
 
 constexpr int kStrips = 16;  // cross-flow strips along the hull
-
-bool AllFinite(const double* x, int n) {
-  for (int i = 0; i < n; ++i) {
-    if (!std::isfinite(x[i])) return false;
-  }
-  return true;
-}
 
 }  // namespace
 
