@@ -22,7 +22,6 @@ struct StepStability {
   double step = 0.0;          // its h, s
   double time = 0.0;          // where, s
   std::string experiment;
-  bool diverged = false;  // a simulation stopped (then the check covers what it reached)
 
   // The step that brings the worst h |lambda| to kStepStabilityTarget.
   double SafeStep() const { return kStepStabilityTarget / fastest_rate; }
