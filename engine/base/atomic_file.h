@@ -1,5 +1,6 @@
 // Files written whole or not at all: the content goes to "<path>.tmp", which is renamed onto
-// the path (atomic on POSIX), so a failed or interrupted run never leaves a partial file.
+// the path (atomic on POSIX), so a failed or interrupted run never leaves a partial file;
+// a write that fails (a full disk, a file-size limit) removes the temporary file.
 #pragma once
 
 #include <string>

@@ -6,6 +6,7 @@
 //   vesselid study    <config.yaml> [--data <dir>] --out <dir>  sensitivity studies (the
 //                     [--only part...] [--threads n]             config's `study` section;
 //                                                                also under mpirun -np K)
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -15,6 +16,7 @@
 #include "engine/cli/terminal_progress.h"
 #include "engine/config/config.h"
 #include "engine/output/checkpoint.h"
+#include "engine/output/output_folder.h"
 #include "engine/output/results_text.h"
 #include "engine/output/results_writer.h"
 #include "engine/run/pipeline.h"
@@ -37,11 +39,33 @@ bool Load(const std::string& config_path, const std::string& data_dir,
   return vesselid::LoadConfigFile(config_path, data_dir, registry, config, error);
 }
 
+// The config and every data file it names: what no output may replace.
+std::vector<std::string> InputFiles(const vesselid::RunConfig& config) {
+  std::vector<std::string> inputs{config.path};
+  for (const vesselid::ExperimentSpec& spec : config.experiments) inputs.push_back(spec.file);
+  return inputs;
+}
+
+// Locks --out after checking it, and that nothing written there replaces an input.
+std::unique_ptr<vesselid::OutputFolder> OpenOutput(const std::string& out_dir,
+                                                   const vesselid::PlannedOutputs& planned,
+                                                   const std::vector<std::string>& inputs,
+                                                   std::string* error) {
+  if (!vesselid::CheckInputsSurvive(out_dir, planned, inputs, error)) return nullptr;
+  return vesselid::OutputFolder::Open(out_dir, error);
+}
+
 int Simulate(const std::string& config_path, const std::string& out_dir) {
   vesselid::ConfigFile config;
   std::string error;
-  if (!Load(config_path, out_dir, &config, &error) ||
-      !vesselid::SimulateConfig(config, out_dir, &error)) {
+  if (!Load(config_path, out_dir, &config, &error)) return Fail(error);
+  // The simulated files are the config's experiment files, resolved into out_dir.
+  vesselid::PlannedOutputs planned;
+  for (const vesselid::ExperimentSpec& spec : config.run.experiments) {
+    planned.files.push_back(std::filesystem::path(spec.file).filename().string());
+  }
+  const auto folder = OpenOutput(out_dir, planned, {config_path}, &error);
+  if (folder == nullptr || !vesselid::SimulateConfig(config, out_dir, &error)) {
     return Fail(error);
   }
   std::printf("simulated experiments of %s into %s\n", config_path.c_str(), out_dir.c_str());
@@ -65,6 +89,15 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
     return Fail(error);
   }
   const vesselid::RunConfig& config = file.run;
+  std::vector<std::string> step_tables;
+  for (const vesselid::StageConfig& stage : config.stages) {
+    if (stage.kind == vesselid::StageConfig::Kind::kStepRegression) {
+      step_tables.push_back(stage.options.name + ".");
+    }
+  }
+  const auto folder =
+      OpenOutput(out_dir, vesselid::RunOutputs(step_tables), InputFiles(config), &error);
+  if (folder == nullptr) return Fail(error);
   vesselid::TerminalProgress progress(
       vesselid::TerminalProgress::ChooseMode(stderr, flags.quiet, flags.verbose), stderr,
       config.stages.size());
@@ -125,15 +158,21 @@ int Study(const std::string& config_path, const std::string& data_dir, const std
   auto progress = [report](const std::string& line) {
     if (report) std::fprintf(stderr, "%s\n", line.c_str());
   };
+  // Checked and locked before the study; under mpirun by rank 0 once the study is done
+  // (an early return there would leave the other ranks waiting in the study's collectives).
+  std::unique_ptr<vesselid::OutputFolder> folder;
+  auto open_output = [&] {
+    folder = OpenOutput(out_dir, vesselid::RunOutputs({}), InputFiles(config.run), &error);
+    return folder != nullptr;
+  };
+  if (group.size() == 1 && !open_output()) return Fail(error);
   nlohmann::json result;
   std::string text;
   if (!vesselid::RunStudy(config.run, config.study, only, &result, &text, &error, progress)) {
     return group.root() ? Fail(error) : 1;
   }
   if (!group.root()) return 0;
-  std::error_code ec;
-  std::filesystem::create_directories(out_dir, ec);
-  if (ec) return Fail(out_dir + ": cannot create folder: " + ec.message());
+  if (folder == nullptr && !open_output()) return Fail(error);
   const std::filesystem::path out(out_dir);
   if (!vesselid::WriteFileAtomically((out / "study.txt").string(), text, &error) ||
       !vesselid::WriteFileAtomically((out / "study.json").string(), result.dump(2) + "\n",
@@ -150,6 +189,9 @@ int Study(const std::string& config_path, const std::string& data_dir, const std
 int main(int argc, char** argv) {
   // Ceres reports through glog; vesselid reports solver outcomes itself.
   google::InitGoogleLogging(argv[0]);
+  // A file-size limit (ulimit -f) makes a write fail with EFBIG, reported as a write error
+  // (temporary files removed), instead of killing the process mid-write.
+  std::signal(SIGXFSZ, SIG_IGN);
   FLAGS_minloglevel = google::GLOG_FATAL;
   CLI::App app{"vesselid: output-error identification of vessel motion models"};
   app.require_subcommand(1);

@@ -35,13 +35,22 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
                               const ModelInfo& info) {
   reader.CheckMap(node, path,
                   {"name", "file", "inputs", "outputs", "interpolation", "weights", "initial_state",
-                   "degrees", "window", "segment_length", "segments", "input_range", "wrap"});
+                   "degrees", "window", "segment_length", "segments", "input_range", "wrap",
+                   "separator"});
   ExperimentSpec spec;
   if (!node["name"]) reader.Fail(node, path, "missing key 'name'");
   if (!node["file"]) reader.Fail(node, path, "missing key 'file'");
   spec.name = reader.String(node["name"], Child(path, "name"));
   const std::string file = reader.String(node["file"], Child(path, "file"));
   spec.file = fs::path(file).is_absolute() ? file : (base / file).lexically_normal().string();
+  if (const YAML::Node n = node["separator"]) {
+    const std::string separator = reader.String(n, Child(path, "separator"));
+    if (separator != "," && separator != ";" && separator != "\t") {
+      reader.Fail(n, Child(path, "separator"),
+                  "expected \",\", \";\" or \"\\t\" (tab), got '" + separator + "'");
+    }
+    spec.csv.separator = separator[0];
+  }
   bool inputs_required = false;
   for (size_t i = 0; i < info.inputs.size(); ++i) inputs_required |= !info.InputOptional(static_cast<int>(i));
   if (!node["inputs"] && inputs_required) reader.Fail(node, path, "missing key 'inputs'");
@@ -472,6 +481,28 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
 }
 
 
+//   limits: {file_mb, data_values, integration_steps, study_cases, evaluations}
+WorkLimits ReadLimits(const YamlReader& reader, const YAML::Node& node) {
+  const std::string path = "limits";
+  reader.CheckMap(node, path,
+                  {"file_mb", "data_values", "integration_steps", "study_cases", "evaluations"});
+  WorkLimits limits;
+  auto read = [&](const char* key, double scale, std::uint64_t* value) {
+    if (!node[key]) return;
+    const double number = reader.Double(node[key], Child(path, key));
+    if (!(number >= 1.0 && number * scale <= 1e18)) {
+      reader.Fail(node[key], Child(path, key), "must be between 1 and 1e18");
+    }
+    *value = static_cast<std::uint64_t>(number * scale);
+  };
+  read("file_mb", 1024.0 * 1024.0, &limits.file_bytes);
+  read("data_values", 1.0, &limits.data_values);
+  read("integration_steps", 1.0, &limits.integration_steps);
+  read("study_cases", 1.0, &limits.study_cases);
+  read("evaluations", 1.0, &limits.evaluations);
+  return limits;
+}
+
 }  // namespace
 
 bool LoadConfigFile(const std::string& path, const std::string& data_dir,
@@ -481,10 +512,12 @@ bool LoadConfigFile(const std::string& path, const std::string& data_dir,
     const YAML::Node root = reader.Load();
     reader.CheckMap(root, "",
                     {"description", "model", "simulation", "experiments", "stages", "fusion",
-                     "final", "final_validation", "surfaces", "study"});
+                     "final", "final_validation", "surfaces", "study", "limits"});
     ConfigFile file;
     RunConfig& result = file.run;
     result.path = path;
+    if (const YAML::Node limits = root["limits"]) result.limits = ReadLimits(reader, limits);
+    reader.set_limits(result.limits);
     reader.Read(root, "", "description", &result.description);
     const YAML::Node model = root["model"];
     if (!model) reader.Fail(root, "model", "missing key");
@@ -512,6 +545,8 @@ bool LoadConfigFile(const std::string& path, const std::string& data_dir,
         reader.Fail(experiments[i]["name"], Child(Child("experiments", i), "name"),
                     "duplicate experiment name '" + spec.name + "'");
       }
+      spec.csv.max_bytes = result.limits.file_bytes;
+      spec.csv.max_values = result.limits.data_values;
       result.experiments.push_back(std::move(spec));
     }
     const YAML::Node stages = root["stages"];
@@ -522,6 +557,10 @@ bool LoadConfigFile(const std::string& path, const std::string& data_dir,
       result.stages.push_back(
           ReadStage(reader, stages[i], Child("stages", i), result, *file.family, model, i));
     }
+    for (StageConfig& stage : result.stages) {
+      stage.experiment.max_steps = result.limits.integration_steps;
+    }
+    result.final_validation.experiment.max_steps = result.limits.integration_steps;
     if (const YAML::Node fusion = root["fusion"]) {
       const std::string rule = reader.String(fusion, "fusion");
       if (!StringToFusionRule(rule, &result.fusion)) {

@@ -12,6 +12,8 @@ void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::str
                    "min_separation"});
   reader.Read(node, path, "algorithm", &global->algorithm);
   reader.Read(node, path, "max_evaluations", &global->max_evaluations);
+  reader.CheckLimit(node["max_evaluations"], Child(path, "max_evaluations"),
+                    global->max_evaluations, reader.limits().evaluations, "limits.evaluations");
   reader.Read(node, path, "max_time", &global->max_time_seconds);
   int seed = static_cast<int>(global->seed);
   reader.Read(node, path, "seed", &seed);

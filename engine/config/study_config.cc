@@ -50,10 +50,13 @@ double Confidence(const YamlReader& reader, const YAML::Node& node, const std::s
   return value;
 }
 
+// A count of study cases: at least 1, at most limits.study_cases.
 int Positive(const YamlReader& reader, const YAML::Node& node, const std::string& path,
              const std::string& key, int value) {
   reader.Read(node, path, key, &value);
   if (value < 1) reader.Fail(node[key], Child(path, key), "must be >= 1");
+  reader.CheckLimit(node[key], Child(path, key), value, reader.limits().study_cases,
+                    "limits.study_cases");
   return value;
 }
 

@@ -1,15 +1,55 @@
 #include "engine/config/yaml_reader.h"
 
 #include <cmath>
+#include <cstdio>
+#include <set>
 
+#include "engine/base/input_file.h"
 #include "engine/base/number_text.h"
 #include "yaml-cpp/depthguard.h"
 
 namespace vesselid {
 
+namespace {
+
+// Every map of `node` and below, each visited once (an alias shares its anchor's node, so
+// a file of nested aliases is not walked exponentially often).
+void CheckUniqueKeys(const YamlReader& reader, const YAML::Node& node, const std::string& key,
+                     std::set<std::pair<int, int>>* visited) {
+  if (!node.IsMap() && !node.IsSequence()) return;
+  if (!visited->insert({node.Mark().line, node.Mark().column}).second) return;
+  if (node.IsSequence()) {
+    for (size_t i = 0; i < node.size(); ++i) {
+      CheckUniqueKeys(reader, node[i], Child(key, i), visited);
+    }
+    return;
+  }
+  std::map<std::string, int> lines;  // key -> line (1-based)
+  for (const auto& item : node) {
+    const std::string name = item.first.IsScalar() ? item.first.Scalar() : "";
+    if (!name.empty()) {
+      const auto [seen, fresh] = lines.emplace(name, item.first.Mark().line + 1);
+      if (!fresh) {
+        reader.Fail(item.first, Child(key, name),
+                    "given twice (lines " + std::to_string(seen->second) + " and " +
+                        std::to_string(item.first.Mark().line + 1) +
+                        "); a YAML map holds each key once");
+      }
+    }
+    CheckUniqueKeys(reader, item.second, Child(key, name), visited);
+  }
+}
+
+}  // namespace
+
 YAML::Node YamlReader::Load() const {
+  std::string error;
+  if (!CheckInputFile(file_, "config file", kMaxConfigBytes, "", nullptr, &error)) {
+    throw ConfigError(error);
+  }
+  YAML::Node root;
   try {
-    return YAML::LoadFile(file_);
+    root = YAML::LoadFile(file_);
   } catch (const YAML::BadFile&) {
     throw ConfigError(file_ + ": cannot open file");
   } catch (const YAML::DeepRecursion& e) {
@@ -20,6 +60,18 @@ YAML::Node YamlReader::Load() const {
     throw ConfigError(file_ + ":" + std::to_string(e.mark.line + 1) +
                       ": YAML syntax error: " + e.msg);
   }
+  std::set<std::pair<int, int>> visited;
+  CheckUniqueKeys(*this, root, "", &visited);
+  return root;
+}
+
+void YamlReader::CheckLimit(const YAML::Node& node, const std::string& key, double count,
+                            std::uint64_t limit, const std::string& limit_key) const {
+  if (count <= static_cast<double>(limit)) return;
+  char text[200];
+  std::snprintf(text, sizeof(text), "%.6g is more than the limit of %.6g (%s)", count,
+                static_cast<double>(limit), limit_key.c_str());
+  Fail(node, key, text);
 }
 
 void YamlReader::Fail(const YAML::Node& node, const std::string& key,

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/base/work_limits.h"
 #include "yaml-cpp/yaml.h"
 
 namespace vesselid {
@@ -22,10 +23,19 @@ class YamlReader {
  public:
   explicit YamlReader(std::string file) : file_(std::move(file)) {}
 
-  // Loads the file; throws ConfigError on a missing file or a syntax error.
+  // Loads the file; throws ConfigError on a missing file, one that is not a regular file or
+  // larger than kMaxConfigBytes, a syntax error or a map with a key given twice. A UTF-8
+  // byte-order mark is skipped.
   YAML::Node Load() const;
 
   const std::string& file() const { return file_; }
+
+  // The config's `limits` section (work_limits.h), read before anything it bounds.
+  const WorkLimits& limits() const { return limits_; }
+  void set_limits(const WorkLimits& limits) { limits_ = limits; }
+  // Fails unless count <= limit, naming the count, the limit and its key.
+  void CheckLimit(const YAML::Node& node, const std::string& key, double count,
+                  std::uint64_t limit, const std::string& limit_key) const;
 
   // "file:line: key: what"; "file:line: what" for the top level (key "").
   [[noreturn]] void Fail(const YAML::Node& node, const std::string& key,
@@ -61,6 +71,7 @@ class YamlReader {
 
  private:
   std::string file_;
+  WorkLimits limits_;
 };
 
 // "a.b" or "a[2]" paths for messages.

@@ -2,11 +2,11 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <cstring>
 #include <limits>
 #include <set>
-#include <sstream>
 
+#include "engine/base/input_file.h"
 #include "engine/base/number_text.h"
 
 namespace vesselid {
@@ -19,11 +19,64 @@ std::string Trim(const std::string& s) {
   return s.substr(b, e - b + 1);
 }
 
-std::vector<std::string> SplitFields(const std::string& line) {
+// Lines of a file read in blocks, none longer than kMaxLine (a file without newlines would
+// otherwise be read into one string whole).
+class LineReader {
+ public:
+  static constexpr size_t kMaxLine = size_t{16} << 20;
+
+  explicit LineReader(const std::string& path) : file_(std::fopen(path.c_str(), "rb")) {}
+  ~LineReader() {
+    if (file_ != nullptr) std::fclose(file_);
+  }
+  LineReader(const LineReader&) = delete;
+  LineReader& operator=(const LineReader&) = delete;
+
+  bool open() const { return file_ != nullptr; }
+  bool too_long() const { return too_long_; }
+  bool failed() const { return file_ != nullptr && std::ferror(file_) != 0; }
+
+  // The next line without its '\n'; false at the end, on a read error or a line too long.
+  bool Next(std::string* line) {
+    line->clear();
+    while (true) {
+      if (begin_ == end_) {
+        if (file_ == nullptr) return false;
+        end_ = std::fread(buffer_, 1, sizeof(buffer_), file_);
+        begin_ = 0;
+        if (end_ == 0) return !line->empty();
+      }
+      const char* start = buffer_ + begin_;
+      const void* newline = std::memchr(start, '\n', end_ - begin_);
+      const size_t length =
+          newline ? static_cast<const char*>(newline) - start : end_ - begin_;
+      if (line->size() + length > kMaxLine) {
+        too_long_ = true;
+        return false;
+      }
+      line->append(start, length);
+      begin_ += length;
+      if (newline) {
+        ++begin_;
+        return true;
+      }
+    }
+  }
+
+ private:
+  std::FILE* file_;
+  char buffer_[1 << 16];
+  size_t begin_ = 0, end_ = 0;
+  bool too_long_ = false;
+};
+
+constexpr char kByteOrderMark[] = "\xEF\xBB\xBF";
+
+std::vector<std::string> SplitFields(const std::string& line, char separator) {
   std::vector<std::string> fields;
   size_t start = 0;
   while (true) {
-    size_t comma = line.find(',', start);
+    size_t comma = line.find(separator, start);
     fields.push_back(Trim(line.substr(start, comma - start)));
     if (comma == std::string::npos) break;
     start = comma + 1;
@@ -51,9 +104,13 @@ Channel ExtractChannel(const Trajectory& trajectory, int column) {
   return channel;
 }
 
-bool ReadTrajectoryCsv(const std::string& path, Trajectory* trajectory, std::string* error) {
-  std::ifstream in(path);
-  if (!in) {
+bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
+                       Trajectory* trajectory, std::string* error) {
+  if (!CheckInputFile(path, "data file", options.max_bytes, "limits.file_mb", nullptr, error)) {
+    return false;
+  }
+  LineReader in(path);
+  if (!in.open()) {
     *error = path + ": cannot open file";
     return false;
   }
@@ -67,33 +124,55 @@ bool ReadTrajectoryCsv(const std::string& path, Trajectory* trajectory, std::str
     *error = path + ":" + std::to_string(line_number) + ": " + what;
     return false;
   };
-  while (std::getline(in, line)) {
+  auto next = [&]() {
     ++line_number;
+    return in.Next(&line);
+  };
+  while (next()) {
+    if (line_number == 1 && line.compare(0, 3, kByteOrderMark) == 0) line.erase(0, 3);
     if (Trim(line).empty()) continue;
-    header = SplitFields(line);
+    header = SplitFields(line, options.separator);
     break;
   }
+  if (in.too_long()) return fail("line longer than " + ByteCount(LineReader::kMaxLine));
   if (header.empty()) return fail("empty file, expected a header row");
   std::set<std::string> seen;  // not a pairwise check: that is quadratic in a wide header
+  for (size_t i = 0; i < header.size(); ++i) {
+    if (header[i] == "t") time_column = static_cast<int>(i);
+  }
+  if (time_column < 0) {
+    // A header split by another separator names the separator, not a missing column.
+    for (char other : {',', ';', '\t'}) {
+      if (other == options.separator) continue;
+      for (const std::string& name : SplitFields(line, other)) {
+        if (name != "t") continue;
+        return fail("the header is separated by " + SeparatorName(other) + ", not " +
+                    SeparatorName(options.separator) + ": convert the file to commas or set " +
+                    "the experiment's separator: \"" + (other == '\t' ? "\\t" : std::string(1, other)) +
+                    "\"");
+      }
+    }
+    return fail("header has no time column 't'");
+  }
   for (size_t i = 0; i < header.size(); ++i) {
     if (header[i].empty())
       return fail("empty column name in header (column " + std::to_string(i + 1) + ")");
     if (!seen.insert(header[i]).second) return fail("duplicate column '" + header[i] + "'");
-    if (header[i] == "t") {
-      time_column = static_cast<int>(i);
-    } else {
-      result.names.push_back(header[i]);
-    }
+    if (static_cast<int>(i) != time_column) result.names.push_back(header[i]);
   }
-  if (time_column < 0) return fail("header has no time column 't'");
   result.columns.resize(result.names.size());
 
   const double kMissing = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::string> fields;
-  while (std::getline(in, line)) {
-    ++line_number;
+  std::uint64_t values = 0;
+  while (next()) {
     if (Trim(line).empty()) continue;
-    fields = SplitFields(line);
+    values += header.size();
+    if (values > options.max_values) {
+      return fail("more than " + std::to_string(options.max_values) +
+                  " values (rows x columns) in one data file (limits.data_values)");
+    }
+    fields = SplitFields(line, options.separator);
     if (fields.size() != header.size()) {
       return fail("expected " + std::to_string(header.size()) + " fields, found " +
                   std::to_string(fields.size()));
@@ -103,6 +182,11 @@ bool ReadTrajectoryCsv(const std::string& path, Trajectory* trajectory, std::str
       double value = kMissing;
       if (!fields[i].empty() && !ParseFiniteNumber(fields[i], &value)) {
         return fail("column '" + header[i] + "': '" + fields[i] + "' is not a finite number");
+      }
+      if (std::abs(value) > kMaxDataMagnitude) {
+        return fail("column '" + header[i] + "': " + fields[i] +
+                    " is too large for a measurement (|value| > 1e100; its square would "
+                    "overflow the cost)");
       }
       if (static_cast<int>(i) == time_column) {
         if (fields[i].empty()) return fail("missing time value");
@@ -116,9 +200,15 @@ bool ReadTrajectoryCsv(const std::string& path, Trajectory* trajectory, std::str
       }
     }
   }
+  if (in.too_long()) return fail("line longer than " + ByteCount(LineReader::kMaxLine));
+  if (in.failed()) return fail("read error");
   if (result.t.size() < 2) return fail("fewer than two data rows");
   *trajectory = std::move(result);
   return true;
+}
+
+std::string SeparatorName(char separator) {
+  return separator == '\t' ? "tabs" : "'" + std::string(1, separator) + "'";
 }
 
 bool WriteTrajectoryCsv(const std::string& path, const Trajectory& trajectory, std::string* error) {
@@ -142,7 +232,10 @@ bool WriteTrajectoryCsv(const std::string& path, const Trajectory& trajectory, s
     }
     std::fputc('\n', file);
   }
-  if (std::fclose(file) != 0 || std::rename(temporary.c_str(), path.c_str()) != 0) {
+  const bool written = std::ferror(file) == 0;
+  if (std::fclose(file) != 0 || !written ||
+      std::rename(temporary.c_str(), path.c_str()) != 0) {
+    std::remove(temporary.c_str());
     *error = path + ": write failed";
     return false;
   }

@@ -2,8 +2,11 @@
 // channels; NaN marks a missing sample, so channels may have different rates and gaps.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
+
+#include "engine/base/work_limits.h"
 
 namespace vesselid {
 
@@ -25,13 +28,34 @@ struct Channel {
 
 Channel ExtractChannel(const Trajectory& trajectory, int column);
 
+// No measurement of a vessel is this large in any unit, and the square of a residual of this
+// size overflows a cost summed over millions of samples: such a field is refused.
+constexpr double kMaxDataMagnitude = 1e100;
+
+struct CsvReadOptions {
+  char separator = ',';  // ',', ';' or '\t'
+  std::uint64_t max_bytes = WorkLimits().file_bytes;
+  std::uint64_t max_values = WorkLimits().data_values;  // rows x columns
+};
+
 // Reads a CSV file: header row, a column `t` (seconds, strictly increasing), numeric fields,
-// empty field = missing sample. Text that is not a number, NaN/inf, a wrong field count or a
-// non-increasing time is rejected with "file:line: ..." in `error`.
-bool ReadTrajectoryCsv(const std::string& path, Trajectory* trajectory, std::string* error);
+// empty field = missing sample; a UTF-8 byte-order mark is skipped. Text that is not a number,
+// NaN/inf, a magnitude above kMaxDataMagnitude, a wrong field count, a non-increasing time, a
+// header split by another separator, or a file past the limits is rejected with
+// "file:line: ..." in `error`. Only a regular file is opened (input_file.h).
+bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
+                       Trajectory* trajectory, std::string* error);
+inline bool ReadTrajectoryCsv(const std::string& path, Trajectory* trajectory,
+                              std::string* error) {
+  return ReadTrajectoryCsv(path, CsvReadOptions(), trajectory, error);
+}
+
+// "';'" or "tab", for messages.
+std::string SeparatorName(char separator);
 
 // Writes columns to CSV (header `t,names...`; NaN written as an empty field), through a
-// temporary file renamed at the end so that no reader sees a partial file.
+// temporary file renamed at the end so that no reader sees a partial file (and removed when
+// the write fails).
 bool WriteTrajectoryCsv(const std::string& path, const Trajectory& trajectory, std::string* error);
 
 }  // namespace vesselid

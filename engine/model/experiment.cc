@@ -54,7 +54,7 @@ double Median(std::vector<double> values) {
 }  // namespace
 
 bool LoadExperimentData(const ExperimentSpec& spec, Trajectory* trajectory, std::string* error) {
-  if (!ReadTrajectoryCsv(spec.file, trajectory, error)) return false;
+  if (!ReadTrajectoryCsv(spec.file, spec.csv, trajectory, error)) return false;
   for (const std::string& column : spec.degree_columns) {
     int c = trajectory->Find(column);
     if (c < 0) {
@@ -155,11 +155,39 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
     const double scale = 1.0 / std::sqrt(static_cast<double>(e.num_samples()));
     for (ExperimentSample& s : e.samples) s.weight *= scale;
   }
+  for (const ExperimentSample& s : e.samples) {
+    // A weighted residual this large squares to an overflowing cost.
+    if (std::abs(s.weight * s.value) <= kMaxDataMagnitude && s.weight <= kMaxDataMagnitude) {
+      continue;
+    }
+    const std::string& output = info.outputs[s.output];
+    const auto weight = spec.output_weights.find(output);
+    char text[300];
+    std::snprintf(text, sizeof(text),
+                  "weights.%s = %g makes the cost overflow: weight x measurement (%g) must "
+                  "stay below 1e100",
+                  output.c_str(), weight == spec.output_weights.end() ? 1.0 : weight->second,
+                  s.weight * s.value);
+    return fail(text);
+  }
 
   // Step sizes.
   std::vector<double> intervals;
   for (int k = 0; k + 1 < nodes; ++k) intervals.push_back(e.node_time[k + 1] - e.node_time[k]);
   const double max_step = options.max_step > 0 ? options.max_step : Median(intervals);
+  // Counted before anything is allocated for them (and before a step count overflows int).
+  double total_steps = 0.0;
+  for (double interval : intervals) total_steps += std::max(1.0, std::ceil(interval / max_step));
+  if (!(total_steps <= static_cast<double>(options.max_steps))) {
+    char text[300];
+    std::snprintf(text, sizeof(text),
+                  "%.3g s in steps of at most %.3g s is %.3g integration steps, more than the "
+                  "limit of %.3g (limits.integration_steps; the step is integration.max_step, "
+                  "else the median sample interval)",
+                  e.node_time.back() - e.node_time.front(), max_step, total_steps,
+                  static_cast<double>(options.max_steps));
+    return fail(text);
+  }
   // Per step: start and midpoint (right limits), end (left limit); then the last node.
   std::vector<double> right_times, end_times;
   for (int k = 0; k + 1 < nodes; ++k) {

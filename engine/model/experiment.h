@@ -23,6 +23,7 @@ namespace vesselid {
 struct ExperimentSpec {
   std::string name;
   std::string file;                                    // CSV path as resolved by the config
+  CsvReadOptions csv;                                  // separator and size limits
   std::map<std::string, std::string> inputs;           // model input -> column
   std::map<std::string, std::string> outputs;          // model output -> column
   std::map<std::string, Interpolation> interpolation;  // per model input (default below)
@@ -100,6 +101,8 @@ struct ExperimentOptions {
   bool normalize_by_length = true;   // weights * 1/sqrt(samples): experiments weigh alike
   StateGuess state_guess;            // optional (ModelHandle::GuessState)
   double rate_window = 1.0;          // seconds of data behind each output rate at t0
+  // Integration steps of the experiment's simulation past which it is refused.
+  std::uint64_t max_steps = WorkLimits().integration_steps;
 };
 
 // Largest change of an unwrapped angle output between two samples: beyond it the direction

@@ -7,6 +7,8 @@
 #include <iterator>
 
 #include "engine/base/atomic_file.h"
+#include "engine/base/input_file.h"
+#include "engine/base/work_limits.h"
 #include "engine/output/stage_result_archive.h"
 #include "nlohmann/json.hpp"
 
@@ -33,11 +35,35 @@ bool ReadBytes(const std::string& path, std::string* bytes, std::string* error) 
   return true;
 }
 
-void Fnv1a(const std::string& bytes, uint64_t* hash) {
-  for (unsigned char c : bytes) {
-    *hash ^= c;
+void Fnv1a(const char* bytes, size_t size, uint64_t* hash) {
+  for (size_t i = 0; i < size; ++i) {
+    *hash ^= static_cast<unsigned char>(bytes[i]);
     *hash *= 0x100000001b3ULL;
   }
+}
+void Fnv1a(const std::string& bytes, uint64_t* hash) { Fnv1a(bytes.data(), bytes.size(), hash); }
+
+// Hashes a regular file of at most max_bytes as it reads it, a block at a time.
+bool HashFile(const std::string& path, const std::string& kind, std::uint64_t max_bytes,
+              uint64_t* hash, std::string* error) {
+  if (!CheckInputFile(path, kind, max_bytes, kind == "data file" ? "limits.file_mb" : "",
+                      nullptr, error)) {
+    return false;
+  }
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) {
+    *error = path + ": cannot open";
+    return false;
+  }
+  std::vector<char> block(1 << 16);
+  size_t read;
+  while ((read = std::fread(block.data(), 1, block.size(), file)) > 0) {
+    Fnv1a(block.data(), read, hash);
+  }
+  const bool failed = std::ferror(file) != 0;
+  std::fclose(file);
+  if (failed) *error = path + ": read failed";
+  return !failed;
 }
 
 std::string StageFile(size_t index) {
@@ -68,16 +94,16 @@ bool ReadManifest(const fs::path& folder, json* manifest, std::string* error) {
 
 bool RunFingerprint(const RunConfig& config, std::string* fingerprint, std::string* error) {
   uint64_t hash = 0xcbf29ce484222325ULL;
-  std::string bytes;
-  if (!ReadBytes(config.path, &bytes, error)) return false;
-  Fnv1a(bytes, &hash);
+  if (!HashFile(config.path, "config file", kMaxConfigBytes, &hash, error)) return false;
   for (const ExperimentSpec& spec : config.experiments) {
-    // A file that cannot be read counts as absent: the run itself reports it when it
-    // needs the data.
-    std::string ignored;
-    if (!ReadBytes(spec.file, &bytes, &ignored)) bytes = "absent";
     Fnv1a(spec.name, &hash);
-    Fnv1a(bytes, &hash);
+    // A missing file counts as absent: the run itself reports it when it needs the data.
+    std::error_code ec;
+    if (!fs::exists(spec.file, ec)) {
+      Fnv1a("absent", &hash);
+      continue;
+    }
+    if (!HashFile(spec.file, "data file", spec.csv.max_bytes, &hash, error)) return false;
   }
   char hex[20];
   std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(hash));

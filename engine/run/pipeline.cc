@@ -10,6 +10,7 @@
 #include "engine/run/run_warnings.h"
 #include "engine/run/step_regression_stage.h"
 #include "engine/run/velocity_validation.h"
+#include "engine/run/work_size.h"
 
 namespace vesselid {
 namespace {
@@ -178,6 +179,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     if (finished[i].rejected.empty()) RecordStage(finished[i], &ledger);
     run.stages.push_back(std::move(finished[i]));
   }
+  if (!CheckWorkSize(config, &cache, error)) return false;
   std::string stop;
   if (!RunStages(config, run.stages.size(), config.stages.size(), &cache, &ledger, &run, &stop,
                  observer)) {

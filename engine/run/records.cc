@@ -64,17 +64,6 @@ bool WholeRecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double
   return true;
 }
 
-const Trajectory* LoadCached(const ExperimentSpec& spec, TrajectoryCache* cache,
-                             std::string* error) {
-  auto cached = cache->find(spec.name);
-  if (cached == cache->end()) {
-    Trajectory trajectory;
-    if (!LoadExperimentData(spec, &trajectory, error)) return nullptr;
-    cached = cache->emplace(spec.name, std::move(trajectory)).first;
-  }
-  return &cached->second;
-}
-
 // Calls `build` with every experiment spec the records `names` are cut into, and its data.
 template <class Build>
 bool ForEachRecordSpec(const RunConfig& config, const std::vector<std::string>& names,
@@ -82,7 +71,7 @@ bool ForEachRecordSpec(const RunConfig& config, const std::vector<std::string>& 
                        std::string* error) {
   for (const std::string& name : names) {
     const ExperimentSpec* spec = config.FindExperiment(name);
-    const Trajectory* data = LoadCached(*spec, cache, error);
+    const Trajectory* data = LoadCachedTrajectory(*spec, cache, error);
     std::vector<ExperimentSpec> specs;
     if (data == nullptr || !RecordSpecs(*spec, *data, segment_length, &specs, error)) return false;
     for (const ExperimentSpec& s : specs) {
@@ -93,6 +82,17 @@ bool ForEachRecordSpec(const RunConfig& config, const std::vector<std::string>& 
 }
 
 }  // namespace
+
+const Trajectory* LoadCachedTrajectory(const ExperimentSpec& spec, TrajectoryCache* cache,
+                             std::string* error) {
+  auto cached = cache->find(spec.name);
+  if (cached == cache->end()) {
+    Trajectory trajectory;
+    if (!LoadExperimentData(spec, &trajectory, error)) return nullptr;
+    cached = cache->emplace(spec.name, std::move(trajectory)).first;
+  }
+  return &cached->second;
+}
 
 bool RecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double segment_length,
                  std::vector<ExperimentSpec>* specs, std::string* error) {

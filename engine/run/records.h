@@ -19,6 +19,10 @@ namespace vesselid {
 // Recorded data by experiment, so that stages sharing an experiment read it once.
 using TrajectoryCache = std::map<std::string, Trajectory>;
 
+// The data of `spec` from the cache, read (LoadExperimentData) on first use; null on error.
+const Trajectory* LoadCachedTrajectory(const ExperimentSpec& spec, TrajectoryCache* cache,
+                                       std::string* error);
+
 // Reads and prepares experiments for a model (used by RunIdentification and by tools); the
 // model guesses initial states from the data (ModelHandle::GuessState). segment_length > 0
 // cuts every record into segments no longer than that (continuation phases); 0 keeps each

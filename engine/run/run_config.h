@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/base/work_limits.h"
 #include "engine/model/damping_inertia_form.h"
 #include "engine/model/experiment.h"
 #include "engine/model/model_handle.h"
@@ -95,6 +96,7 @@ struct RunConfig {
   // Damping and inertia surfaces written by `run` for models with a damping-inertia form
   // (`surfaces: {<state>: [lower, upper, points], <state>: [...]}`); empty: none.
   SurfaceGrid surfaces;
+  WorkLimits limits;  // the config's `limits` (also copied into every experiment and stage)
 
   const ExperimentSpec* FindExperiment(const std::string& name) const;
   // The model a stage is solved with: its own restriction, else the run's.

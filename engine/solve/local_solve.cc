@@ -117,13 +117,12 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
     summary->cost_history.push_back(it.cost);
   }
   if (!summary->usable && ceres_summary.initial_cost < 0) {
-    // Name the experiment and time (the values are still the start values).
-    std::vector<ExperimentFit> fits;
-    std::string divergence;
+    // Name the experiment, time, outputs and inputs (the values are still the start values).
+    const std::string failure = StartFailure(*problem);
     summary->message =
-        EvaluateFit(*problem, &fits, &divergence)
+        failure.empty()
             ? "the cost is not finite at the start values (a weight or data value too large?)"
-            : "the simulation diverges at the start values: " + divergence;
+            : "the simulation diverges at the start values: " + failure;
   } else if (summary->usable && !std::isfinite(summary->final_cost)) {
     summary->usable = false;
     summary->termination = "FAILURE";

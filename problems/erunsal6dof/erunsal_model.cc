@@ -1,6 +1,7 @@
 #include "problems/erunsal6dof/erunsal_model.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "Eigen/Dense"
 #include "Eigen/Geometry"
@@ -90,8 +91,20 @@ std::vector<std::string> Model::Admissibility(const double* p) const {
   M(1, 5) = M(5, 1) = -p[kYrdot];
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> mass(M);
   if (mass.eigenvalues().minCoeff() <= 0.0) {
-    problems.push_back("M is not positive definite (smallest eigenvalue " +
-                       std::to_string(mass.eigenvalues().minCoeff()) + ")");
+    std::string text = "M is not positive definite (smallest eigenvalue " +
+                       std::to_string(mass.eigenvalues().minCoeff()) + ")";
+    // The diagonal terms that are not positive by themselves: rigid body minus added mass.
+    const char* rigid[6] = {"m", "m", "m", "Ix", "Iy", "Iz"};
+    const char* added[6] = {"Xudot", "Yvdot", "Zwdot", "Kpdot", "Mqdot", "Nrdot"};
+    const double body[6] = {m, m, m, p[kIx], p[kIy], p[kIz]};
+    for (int i = 0; i < 6; ++i) {
+      if (M(i, i) > 0.0) continue;
+      char term[160];
+      std::snprintf(term, sizeof(term), ": %s - %s = %g - %g <= 0", rigid[i], added[i], body[i],
+                    body[i] - M(i, i));
+      text += term;
+    }
+    problems.push_back(text);
   }
   Eigen::Matrix<double, 6, 6> D = Eigen::Matrix<double, 6, 6>::Zero();
   D.diagonal() << -p[kXu], -p[kYv], -p[kZw], -p[kKp], -p[kMq], -p[kNr];

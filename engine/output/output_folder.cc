@@ -1,0 +1,144 @@
+#include "engine/output/output_folder.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/resource.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+
+#include "engine/base/input_file.h"
+
+namespace vesselid {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr char kLockFile[] = ".vesselid.lock";
+constexpr char kTemporarySuffix[] = ".tmp";
+
+// The pid written into a lock file, or "" when it cannot be read.
+std::string LockHolder(int fd) {
+  char text[32] = {0};
+  const ssize_t n = ::pread(fd, text, sizeof(text) - 1, 0);
+  std::string pid(text, n > 0 ? static_cast<size_t>(n) : 0);
+  pid.erase(std::remove(pid.begin(), pid.end(), '\n'), pid.end());
+  return pid;
+}
+
+bool StartsWith(const std::string& text, const std::string& prefix) {
+  return text.compare(0, prefix.size(), prefix) == 0;
+}
+
+bool EndsWith(const std::string& text, const std::string& suffix) {
+  return text.size() >= suffix.size() &&
+         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+std::unique_ptr<OutputFolder> OutputFolder::Open(const std::string& path, std::string* error) {
+  std::error_code ec;
+  if (fs::exists(path, ec) && !fs::is_directory(path, ec)) {
+    *error = path + ": --out names a file, not a folder";
+    return nullptr;
+  }
+  fs::create_directories(path, ec);
+  if (ec) {
+    *error = path + ": cannot create the output folder: " + ec.message();
+    return nullptr;
+  }
+  const std::string lock_path = (fs::path(path) / kLockFile).string();
+  const int fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    *error = path + ": cannot write into the output folder: " + std::strerror(errno);
+    return nullptr;
+  }
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const std::string pid = LockHolder(fd);
+    ::close(fd);
+    *error = path + ": another vesselid process" + (pid.empty() ? "" : " (pid " + pid + ")") +
+             " is writing into this folder; wait for it or choose another --out";
+    return nullptr;
+  }
+  std::unique_ptr<OutputFolder> folder(new OutputFolder(path, fd));
+  const std::string pid = std::to_string(::getpid()) + "\n";
+  if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, pid.data(), pid.size(), 0) !=
+                                      static_cast<ssize_t>(pid.size())) {
+    *error = path + ": cannot write into the output folder: " + std::strerror(errno);
+    return nullptr;
+  }
+  struct statvfs space;
+  if (::statvfs(path.c_str(), &space) == 0) {
+    const unsigned long long free_bytes =
+        static_cast<unsigned long long>(space.f_bavail) * space.f_frsize;
+    if (free_bytes < kFirstWriteBytes) {
+      *error = path + ": only " + ByteCount(free_bytes) + " free on its file system, less than " +
+               ByteCount(kFirstWriteBytes) + " for the results";
+      return nullptr;
+    }
+  }
+  struct rlimit file_size;
+  if (::getrlimit(RLIMIT_FSIZE, &file_size) == 0 && file_size.rlim_cur != RLIM_INFINITY &&
+      file_size.rlim_cur < kFirstWriteBytes) {
+    *error = path + ": the file size limit (ulimit -f) of " + ByteCount(file_size.rlim_cur) +
+             " is less than " + ByteCount(kFirstWriteBytes) + " for the results";
+    return nullptr;
+  }
+  return folder;
+}
+
+OutputFolder::~OutputFolder() {
+  // Removed while still locked: a process that opens the old file after this gets the lock of
+  // a file no longer in the folder, and the next one creates a fresh lock file.
+  std::error_code ec;
+  fs::remove(fs::path(path_) / kLockFile, ec);
+  ::close(lock_fd_);
+}
+
+PlannedOutputs RunOutputs(const std::vector<std::string>& csv_prefixes) {
+  PlannedOutputs planned;
+  planned.files = {"results.json", "report.txt", "report.html", "study.json", "study.txt",
+                   kLockFile};
+  planned.folders = {"traces", "checkpoint", "surfaces"};
+  planned.csv_prefixes = csv_prefixes;
+  return planned;
+}
+
+bool CheckInputsSurvive(const std::string& out_dir, const PlannedOutputs& planned,
+                        const std::vector<std::string>& inputs, std::string* error) {
+  std::error_code ec;
+  const fs::path out = fs::weakly_canonical(out_dir, ec);
+  if (ec) return true;  // nothing there to overwrite
+  for (const std::string& input : inputs) {
+    const fs::path file = fs::weakly_canonical(input, ec);
+    if (ec) continue;
+    const fs::path relative = file.lexically_relative(out);
+    if (relative.empty() || *relative.begin() == "..") continue;
+    const std::string first = relative.begin()->string();
+    bool written = false;
+    if (std::next(relative.begin()) != relative.end()) {
+      written = std::find(planned.folders.begin(), planned.folders.end(), first) !=
+                planned.folders.end();
+    } else {
+      std::string name = first;
+      if (EndsWith(name, kTemporarySuffix)) name.resize(name.size() - 4);
+      written = std::find(planned.files.begin(), planned.files.end(), name) != planned.files.end();
+      for (const std::string& prefix : planned.csv_prefixes) {
+        written |= StartsWith(name, prefix) && EndsWith(name, ".csv");
+      }
+    }
+    if (written) {
+      *error = input + ": this input is where the output " + (out / relative).string() +
+               " would be written; choose another --out";
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace vesselid

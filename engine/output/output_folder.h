@@ -1,0 +1,51 @@
+// The folder a command writes into (`--out`), checked and locked before any work starts:
+// it must be a folder (created if missing), writable, on a file system with room for the
+// first files and under a file-size limit that admits them; and no other vesselid process may
+// be writing into it. A second run into the same folder is refused with the first one's pid;
+// the lock (an flock on OUT/.vesselid.lock) is released when the process ends, however it
+// ends, so a killed run never blocks the next.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace vesselid {
+
+class OutputFolder {
+ public:
+  // Files of at least this size must fit (free space and `ulimit -f`).
+  static constexpr unsigned long long kFirstWriteBytes = 16ull << 20;
+
+  // Creates (if needed), checks and locks `path`; null with a message naming the folder.
+  static std::unique_ptr<OutputFolder> Open(const std::string& path, std::string* error);
+  ~OutputFolder();  // unlocks and removes the lock file
+  OutputFolder(const OutputFolder&) = delete;
+  OutputFolder& operator=(const OutputFolder&) = delete;
+
+  const std::string& path() const { return path_; }
+
+ private:
+  OutputFolder(std::string path, int lock_fd) : path_(std::move(path)), lock_fd_(lock_fd) {}
+  std::string path_;
+  int lock_fd_;
+};
+
+// What a command writes into its folder: files (relative names), folders it owns whole, and
+// name prefixes of CSV files (e.g. "<stage>." for a step-regression stage's tables).
+struct PlannedOutputs {
+  std::vector<std::string> files;
+  std::vector<std::string> folders;
+  std::vector<std::string> csv_prefixes;
+};
+
+// The files `vesselid run` and `vesselid study` write into their folder; csv_prefixes are the
+// step-regression stages' names followed by '.'.
+PlannedOutputs RunOutputs(const std::vector<std::string>& csv_prefixes);
+
+// False, naming both, when one of `inputs` is a file the command would write (or its
+// temporary) in `out_dir`: an output never replaces an input.
+bool CheckInputsSurvive(const std::string& out_dir, const PlannedOutputs& planned,
+                        const std::vector<std::string>& inputs, std::string* error);
+
+}  // namespace vesselid

@@ -1,0 +1,64 @@
+#include "engine/run/work_size.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace vesselid {
+namespace {
+
+// Steps of one simulation over the samples of `t` in [begin, end] with steps no longer than
+// `max_step` (0: the median interval, as BuildExperiment takes it): at least duration / step.
+double StepsOver(const std::vector<double>& t, double begin, double end, double max_step,
+                 double* step) {
+  const auto first = std::lower_bound(t.begin(), t.end(), begin);
+  const auto last = std::upper_bound(t.begin(), t.end(), end);
+  if (last - first < 2) return 0.0;
+  *step = max_step;
+  if (*step <= 0.0) {
+    std::vector<double> intervals;
+    intervals.reserve(last - first - 1);
+    for (auto k = first + 1; k != last; ++k) intervals.push_back(*k - *(k - 1));
+    std::nth_element(intervals.begin(), intervals.begin() + intervals.size() / 2,
+                     intervals.end());
+    *step = intervals[intervals.size() / 2];
+  }
+  return (*(last - 1) - *first) / *step;
+}
+
+}  // namespace
+
+bool CheckWorkSize(const RunConfig& config, TrajectoryCache* cache, std::string* error) {
+  const double limit = static_cast<double>(config.limits.integration_steps);
+  for (size_t s = 0; s < config.stages.size(); ++s) {
+    const StageConfig& stage = config.stages[s];
+    std::vector<std::string> names = stage.experiments;
+    names.insert(names.end(), stage.validation.begin(), stage.validation.end());
+    for (const std::string& name : names) {
+      const ExperimentSpec* spec = config.FindExperiment(name);
+      if (spec == nullptr) continue;  // the stage itself reports it
+      const Trajectory* data = LoadCachedTrajectory(*spec, cache, error);
+      if (data == nullptr) return false;
+      double step = 0.0;
+      const double steps =
+          StepsOver(data->t, spec->t_begin, spec->t_end, stage.experiment.max_step, &step);
+      if (!(steps > limit)) continue;
+      char text[600];
+      std::snprintf(text, sizeof(text),
+                    "experiment '%s' (%s): stage '%s' integrates %.3g s of it in steps of at "
+                    "most %.3g s (%s): %.3g integration steps, more than the limit of %.3g "
+                    "(limits.integration_steps)",
+                    name.c_str(), spec->file.c_str(), stage.options.name.c_str(),
+                    steps * step, step,
+                    stage.experiment.max_step > 0.0
+                        ? ("stages[" + std::to_string(s) + "].integration.max_step").c_str()
+                        : "the median sample interval; check the file's t column",
+                    steps, limit);
+      *error = text;
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace vesselid
