@@ -104,10 +104,13 @@ std::string StartFailure(const OutputErrorProblem& problem) {
                     bad.c_str(), experiment.node_time[k + 1], experiment.node_time[k]);
       text += part;
       const int nu = experiment.num_inputs;
+      const char* separator = "";
       for (int i = 0; i < nu; ++i) {
-        std::snprintf(part, sizeof(part), "%s %s = %g", i == 0 ? "" : ",",
-                      info.inputs[i].c_str(), experiment.input_cache[3 * step * nu + i]);
+        const double u = experiment.input_cache[3 * step * nu + i];
+        if (std::isnan(u) && info.InputOptional(i)) continue;  // not recorded
+        std::snprintf(part, sizeof(part), "%s %s = %g", separator, info.inputs[i].c_str(), u);
         text += part;
+        separator = ",";
       }
       text += ")";
       break;

@@ -9,97 +9,15 @@
 
 #include "engine/data/trajectory.h"
 #include "gtest/gtest.h"
-#include "problems/nomoto/closed_loop_simulator.h"
-#include "problems/nomoto/handles.h"
+#include "tests/support/bad_input_fixture.h"
 
 namespace vesselid {
 namespace {
 
 namespace fs = std::filesystem;
-
-const char* kGoodConfig = R"(model: {family: nomoto, type: first_order}
-experiments:
-  - name: run
-    file: data.csv
-    inputs: {delta: delta}
-    outputs: {psi: psi}
-stages:
-  - name: fit
-    parameters:
-      T: {start: 3.0, lower: 0.1, upper: 50.0}
-      K: {start: -0.1, lower: -1.0, upper: -0.001}
-    free_initial_states: [psi]
-)";
-
-struct Outcome {
-  int status;
-  std::string output;
-};
-
-class BadInput : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vesselid_bad_input_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    auto model = nomoto::MakeFirstOrderHandle();
-    nomoto::ClosedLoopOptions loop;
-    loop.duration = 60.0;
-    loop.sample_time = 0.1;
-    loop.controller_gain = 0.7;
-    loop.excitation.amplitude = 0.3;
-    loop.excitation.periods = {20.0};
-    Trajectory data;
-    std::string error;
-    ASSERT_TRUE(nomoto::SimulateClosedLoop(*model, {2.0, -0.17, 0.0}, loop, &data, &error));
-    ASSERT_TRUE(WriteTrajectoryCsv((dir_ / "data.csv").string(), data, &error));
-    WriteConfig(kGoodConfig);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  void WriteConfig(const std::string& text) { std::ofstream(dir_ / "config.yaml") << text; }
-
-  // Replaces the first occurrence of `from` in the good config.
-  void EditConfig(const std::string& from, const std::string& to) {
-    std::string text = kGoodConfig;
-    size_t at = text.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    WriteConfig(text.replace(at, from.size(), to));
-  }
-
-  // Rewrites data line `line` (1-based, header is 1) with `text`.
-  void EditDataLine(int line, const std::string& text) {
-    std::ifstream in(dir_ / "data.csv");
-    std::string all, row;
-    for (int n = 1; std::getline(in, row); ++n) all += (n == line ? text : row) + "\n";
-    std::ofstream(dir_ / "data.csv") << all;
-  }
-
-  Outcome Run() {
-    const std::string command = std::string(VESSELID_BINARY) + " run " +
-                                (dir_ / "config.yaml").string() + " --out " +
-                                (dir_ / "out").string() + " 2>&1";
-    Outcome outcome{0, ""};
-    FILE* pipe = popen(command.c_str(), "r");
-    char buffer[512];
-    while (fgets(buffer, sizeof(buffer), pipe) != nullptr) outcome.output += buffer;
-    outcome.status = pclose(pipe);
-    return outcome;
-  }
-
-  // Runs and checks: failure, the message matches `pattern`, no results written.
-  void ExpectRejected(const std::string& pattern) {
-    Outcome outcome = Run();
-    EXPECT_NE(outcome.status, 0) << outcome.output;
-    EXPECT_TRUE(std::regex_search(outcome.output, std::regex(pattern)))
-        << "message: " << outcome.output << "expected pattern: " << pattern;
-    EXPECT_FALSE(fs::exists(dir_ / "out" / "results.json"));
-  }
-
-  fs::path dir_;
-};
+using testing::BadInput;
+using testing::kGoodConfig;
+using testing::Outcome;
 
 TEST_F(BadInput, GoodConfigRuns) {
   Outcome outcome = Run();
@@ -319,12 +237,6 @@ TEST_F(BadInput, WrapOfAnOutputThatIsNotAnAngle) {
 TEST_F(BadInput, UnknownFinalChoice) {
   WriteConfig(std::string(kGoodConfig) + "final: best\n");
   ExpectRejected("config\\.yaml:13: final: unknown choice 'best' \\(best_validation, last\\)");
-}
-
-// Weights so large that the cost overflows: a failure, never a converged result.
-TEST_F(BadInput, WeightThatOverflowsTheCost) {
-  EditConfig("    outputs: {psi: psi}\n", "    outputs: {psi: psi}\n    weights: {psi: 1.0e300}\n");
-  ExpectRejected("stage 'fit'.*cost is not finite");
 }
 
 // A heading that jumps by more than the sampling can resolve cannot be unwrapped.

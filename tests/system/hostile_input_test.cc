@@ -1,0 +1,354 @@
+// Hostile input through the command line, as a careless script or a damaged disk produces it:
+// every case ends with exit status 1, a message naming the file and line, the key, or the
+// experiment and time, nothing partial and no temporary file in --out, and no signal, hang
+// or unbounded memory on the way.
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <fstream>
+#include <sstream>
+
+#include "engine/base/atomic_file.h"
+#include "tests/support/bad_input_fixture.h"
+
+namespace vesselid {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::BadInput;
+using testing::kGoodConfig;
+using testing::Outcome;
+
+class HostileInput : public BadInput {
+ protected:
+  std::string ReadData() {
+    std::ifstream in(dir_ / "data.csv");
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+  void WriteData(const std::string& text) { std::ofstream(dir_ / "data.csv") << text; }
+  // 1e308 in `column` on line 20: refused with the file, line and column.
+  void ExpectHugeValueRefused(const std::string& column) {
+    std::stringstream text(ReadData());
+    std::string header, line, edited;
+    std::getline(text, header);
+    edited = header + "\n";
+    std::vector<std::string> names;
+    std::stringstream split(header);
+    for (std::string name; std::getline(split, name, ',');) names.push_back(name);
+    for (int n = 2; std::getline(text, line); ++n) {
+      if (n == 20) {
+        std::stringstream fields(line);
+        line.clear();
+        std::string field;
+        for (size_t i = 0; std::getline(fields, field, ','); ++i) {
+          line += (i ? "," : "") + (names[i] == column ? std::string("1e308") : field);
+        }
+      }
+      edited += line + "\n";
+    }
+    WriteData(edited);
+    ExpectRejected("data\\.csv:20: column '" + column + "': 1e308 is too large for a measurement");
+  }
+  // The data's last line (1-based).
+  int LastLine() {
+    const std::string text = ReadData();
+    return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+  }
+};
+
+// --- Reads: regular files only, within limits -------------------------------------------
+
+TEST_F(HostileInput, DataFileIsAFolder) {
+  fs::remove(dir_ / "data.csv");
+  fs::create_directory(dir_ / "data.csv");
+  ExpectRejected("data\\.csv: is a folder, not a data file");
+}
+
+TEST_F(HostileInput, ConfigFileIsAFolder) {
+  fs::remove(dir_ / "config.yaml");
+  fs::create_directory(dir_ / "config.yaml");
+  ExpectRejected("config\\.yaml: is a folder, not a config file");
+}
+
+TEST_F(HostileInput, DataFileIsADevice) {
+  fs::remove(dir_ / "data.csv");
+  fs::create_symlink("/dev/zero", dir_ / "data.csv");
+  ExpectRejected("data\\.csv: is a character device, not a data file");
+}
+
+TEST_F(HostileInput, DataFileIsANamedPipeWithNoWriter) {
+  fs::remove(dir_ / "data.csv");
+  ASSERT_EQ(::mkfifo((dir_ / "data.csv").c_str(), 0600), 0);
+  // A hang would end in timeout's status 124 and no message.
+  const Outcome outcome = ExpectRejected("data\\.csv: is a named pipe, not a data file",
+                                         "timeout 60 ");
+  EXPECT_NE(outcome.status >> 8, 124);
+}
+
+TEST_F(HostileInput, SparseFileLargerThanTheLimitIsNotRead) {
+  std::ofstream(dir_ / "data.csv", std::ios::app).flush();
+  fs::resize_file(dir_ / "data.csv", std::uintmax_t{2} << 30);  // sparse: no disk used
+  ExpectRejected("data\\.csv: the data file is 2\\.0 GiB, more than the limit of 1\\.0 GiB "
+                 "\\(limits\\.file_mb\\)");
+}
+
+TEST_F(HostileInput, ValidHeadOfAFileLargerThanTheLimit) {
+  std::string text = ReadData();
+  const std::string row = text.substr(text.rfind('\n', text.size() - 2) + 1);
+  double t = 1000.0;
+  while (text.size() < (3u << 19)) {  // 1.5 MiB of valid rows
+    text += std::to_string(t) + row.substr(row.find(','));
+    t += 0.1;
+  }
+  WriteData(text);
+  WriteConfig(std::string(kGoodConfig) + "limits: {file_mb: 1}\n");
+  ExpectRejected("data\\.csv: the data file is 1\\.5 MiB, more than the limit of 1\\.0 MiB "
+                 "\\(limits\\.file_mb\\)");
+}
+
+TEST_F(HostileInput, MoreValuesThanTheLimit) {
+  WriteConfig(std::string(kGoodConfig) + "limits: {data_values: 100}\n");
+  ExpectRejected("data\\.csv:[0-9]+: more than 100 values \\(rows x columns\\) in one data "
+                 "file \\(limits\\.data_values\\)");
+}
+
+// --- Work size: refused before the first stage, with the number and the key -------------
+
+TEST_F(HostileInput, IntegrationStepTooSmall) {
+  EditConfig("    free_initial_states: [psi]\n",
+             "    free_initial_states: [psi]\n    integration: {max_step: 1.0e-7}\n");
+  ExpectRejected("experiment 'run' .*data\\.csv.*stage 'fit' integrates 60 s of it in steps "
+                 "of at most 1e-07 s \\(stages\\[0\\]\\.integration\\.max_step\\): 6e\\+08 "
+                 "integration steps, more than the limit of 2e\\+07 "
+                 "\\(limits\\.integration_steps\\)");
+}
+
+TEST_F(HostileInput, AbsurdLastTimeIsRefusedBeforeTheRun) {
+  const std::string text = ReadData();
+  const std::string row = text.substr(text.rfind('\n', text.size() - 2) + 1);
+  WriteData(text + "1e50" + row.substr(row.find(',')));
+  ExpectRejected("1e\\+50 s of it in steps of at most 0\\.1 s \\(the median sample interval; "
+                 "check the file's t column\\).*limits\\.integration_steps");
+}
+
+TEST_F(HostileInput, StudyRunsPastTheLimit) {
+  WriteConfig(std::string(kGoodConfig) +
+              "study:\n  monte_carlo: {stage: fit, runs: 1000000000, noise: {psi: 0.01}}\n");
+  ExpectRejected("config\\.yaml:14: study\\.monte_carlo\\.runs: 1e\\+09 is more than the limit "
+                 "of 100000 \\(limits\\.study_cases\\)");
+}
+
+TEST_F(HostileInput, GlobalEvaluationsPastTheLimit) {
+  EditConfig("    free_initial_states: [psi]\n",
+             "    free_initial_states: [psi]\n    global: {max_evaluations: 2000000000}\n");
+  ExpectRejected("config\\.yaml:13: stages\\[0\\]\\.global\\.max_evaluations: 2e\\+09 is more "
+                 "than the limit of 1e\\+07 \\(limits\\.evaluations\\)");
+}
+
+// --- Overflow: refused at read time with file, line and column --------------------------
+
+TEST_F(HostileInput, WeightsThatOverflowTheCost) {
+  EditConfig("    outputs: {psi: psi}\n", "    outputs: {psi: psi}\n    weights: {psi: 1.0e300}\n");
+  ExpectRejected("experiment 'run' .*weights\\.psi = 1e\\+300 makes the cost overflow");
+}
+
+TEST_F(HostileInput, HugeOutputValue) { ExpectHugeValueRefused("psi"); }
+
+TEST_F(HostileInput, HugeInputValue) { ExpectHugeValueRefused("delta"); }
+
+TEST_F(HostileInput, HugeTime) {
+  const std::string text = ReadData();
+  const std::string row = text.substr(text.rfind('\n', text.size() - 2) + 1);
+  WriteData(text + "1e308" + row.substr(row.find(',')));
+  ExpectRejected("data\\.csv:" + std::to_string(LastLine()) +
+                 ": column 't': 1e308 is too large for a measurement");
+}
+
+// A start whose mass matrix is indefinite (m - Xudot < 0) names the experiment, the time, the
+// inputs there and the broken condition.
+TEST_F(HostileInput, IndefiniteMassMatrixAtTheStartIsNamed) {
+  WriteConfig(R"(model: {family: erunsal6dof}
+simulation:
+  sample_time: 0.05
+  substeps: 2
+  experiments:
+    - {file: zigzag.csv, type: zigzag, duration: 20, mean_command: 0.6, differential: 0.4, zigzag_heading_deg: 20, seed: 61, active_dofs: [surge, sway, yaw]}
+experiments:
+  - {name: zigzag, file: zigzag.csv, inputs: {c_L: c_L, c_R: c_R}, outputs: {x: x, y: y, psi: psi}}
+stages:
+  - name: manoeuvre
+    model: {active_dofs: [surge, sway, yaw]}
+    experiments: [zigzag]
+    free_initial_states: [u, v, r]
+    parameters:
+      Xudot: {start: 20.0, lower: -10.0, upper: 30.0}
+)");
+  const std::string simulate = std::string(VESSELID_BINARY) + " simulate " +
+                               (dir_ / "config.yaml").string() + " --out " + dir_.string() +
+                               " > /dev/null";
+  ASSERT_EQ(std::system(simulate.c_str()), 0);
+  ExpectRejected("stage 'manoeuvre': .*simulation of experiment 'zigzag' diverges after t = 0 "
+                 "s; .*u.* not finite at t = 0\\.05 s \\(inputs at t = 0 s: c_L = .*, c_R = "
+                 "[^,]*\\); at these values M is not positive definite .*: m - Xudot = 11 - 20 "
+                 "<= 0");
+}
+
+// --- YAML and CSV dialects ----------------------------------------------------------------
+
+TEST_F(HostileInput, DuplicateYamlKeyNamesBothLines) {
+  WriteConfig(std::string(kGoodConfig) + "model: {family: nomoto, type: second_order}\n");
+  ExpectRejected("config\\.yaml:13: model: given twice \\(lines 1 and 13\\)");
+}
+
+TEST_F(HostileInput, DuplicateNestedKey) {
+  EditConfig("      K: {start", "      T: {start: 4.0}\n      K: {start");
+  ExpectRejected("config\\.yaml:11: stages\\[0\\]\\.parameters\\.T: given twice \\(lines 10 "
+                 "and 11\\)");
+}
+
+TEST_F(HostileInput, ByteOrderMarksAreAccepted) {
+  WriteConfig("\xEF\xBB\xBF" + std::string(kGoodConfig));
+  WriteData("\xEF\xBB\xBF" + ReadData());
+  const Outcome outcome = Run();
+  EXPECT_EQ(outcome.status, 0) << outcome.output;
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "results.json"));
+}
+
+TEST_F(HostileInput, SemicolonSeparatorIsNamed) {
+  std::string text = ReadData();
+  std::replace(text.begin(), text.end(), ',', ';');
+  WriteData(text);
+  ExpectRejected("data\\.csv:1: the header is separated by ';', not ',': convert the file to "
+                 "commas or set the experiment's separator: \";\"");
+  EditConfig("    file: data.csv\n", "    file: data.csv\n    separator: \";\"\n");
+  const Outcome outcome = Run();
+  EXPECT_EQ(outcome.status, 0) << outcome.output;
+}
+
+TEST_F(HostileInput, TabSeparatorIsNamed) {
+  std::string text = ReadData();
+  std::replace(text.begin(), text.end(), ',', '\t');
+  WriteData(text);
+  ExpectRejected("data\\.csv:1: the header is separated by tabs, not ','");
+  EditConfig("    file: data.csv\n", "    file: data.csv\n    separator: \"\\t\"\n");
+  const Outcome outcome = Run();
+  EXPECT_EQ(outcome.status, 0) << outcome.output;
+}
+
+// --- The output folder ----------------------------------------------------------------------
+
+TEST_F(HostileInput, OutIsAFile) {
+  std::ofstream(dir_ / "out") << "not a folder\n";
+  ExpectRejected("out: --out names a file, not a folder", "", dir_ / "out");
+}
+
+TEST_F(HostileInput, OutCannotBeCreated) {
+  ExpectRejected("/proc/vesselid_out: cannot create the output folder", "",
+                 "/proc/vesselid_out");
+}
+
+TEST_F(HostileInput, OutIsReadOnly) {
+  if (::geteuid() == 0) GTEST_SKIP() << "root writes into read-only folders";
+  fs::create_directory(dir_ / "out");
+  fs::permissions(dir_ / "out", fs::perms::owner_read | fs::perms::owner_exec);
+  ExpectRejected("out: cannot write into the output folder: Permission denied");
+  fs::permissions(dir_ / "out", fs::perms::owner_all);
+}
+
+TEST_F(HostileInput, OutputNeverReplacesAnInput) {
+  fs::rename(dir_ / "data.csv", dir_ / "results.json");
+  EditConfig("file: data.csv", "file: results.json");
+  const std::string before = [&] {
+    std::ifstream in(dir_ / "results.json");
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }();
+  const Outcome outcome = Run("", dir_);
+  EXPECT_NE(outcome.status, 0);
+  EXPECT_TRUE(std::regex_search(
+      outcome.output, std::regex("results\\.json: this input is where the output .*results\\.json "
+                                 "would be written; choose another --out")))
+      << outcome.output;
+  std::ifstream in(dir_ / "results.json");
+  std::stringstream after;
+  after << in.rdbuf();
+  EXPECT_EQ(after.str(), before);
+}
+
+TEST_F(HostileInput, SecondRunIntoALockedFolderNamesTheFirst) {
+  fs::create_directory(dir_ / "out");
+  const int fd = ::open((dir_ / "out" / ".vesselid.lock").c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+  ASSERT_EQ(::write(fd, "4242\n", 5), 5);
+  ExpectRejected("out: another vesselid process \\(pid 4242\\) is writing into this folder");
+  ::close(fd);
+  // Released (as when the first process ends, however it ends): the next run goes ahead.
+  const Outcome outcome = Run();
+  EXPECT_EQ(outcome.status, 0) << outcome.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out" / ".vesselid.lock"));
+}
+
+TEST_F(HostileInput, TwoRunsAtOnceIntoOneFolder) {
+  // Both started together: exactly one writes the results, the other is refused cleanly
+  // (or, if the first finished before the second began, both succeed).
+  const std::string command = std::string(VESSELID_BINARY) + " run " +
+                              (dir_ / "config.yaml").string() + " --out " +
+                              (dir_ / "out").string() + " --quiet > /dev/null 2>&1";
+  const std::string both = "(" + command + "; echo $? > " + (dir_ / "a").string() + ") & (" +
+                           command + "; echo $? > " + (dir_ / "b").string() + "); wait";
+  ASSERT_EQ(std::system(both.c_str()), 0);
+  auto status = [&](const char* name) {
+    int value = -1;
+    std::ifstream(dir_ / name) >> value;
+    return value;
+  };
+  EXPECT_TRUE(status("a") == 0 || status("b") == 0);
+  EXPECT_TRUE(status("a") <= 1 && status("b") <= 1);
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "results.json"));
+}
+
+TEST_F(HostileInput, FileSizeLimitIsFoundBeforeTheRun) {
+  ExpectRejected("out: the file size limit \\(ulimit -f\\) of .* is less than 16 MiB",
+                 "ulimit -f 1024; ");
+}
+
+// A write that fails part-way (here a file-size limit, as a full disk would) reports it and
+// leaves neither the file nor its temporary.
+TEST_F(HostileInput, FailedWriteLeavesNoTemporaryFile) {
+  struct rlimit old_limit;
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old_limit), 0);
+  auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
+  struct rlimit small = old_limit;
+  small.rlim_cur = 4096;
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+  std::string error;
+  const bool written = WriteFileAtomically((dir_ / "big.json").string(),
+                                           std::string(1 << 20, 'x'), &error);
+  Trajectory data;
+  data.t.assign(20000, 0.0);
+  for (size_t k = 0; k < data.t.size(); ++k) data.t[k] = 0.1 * k;
+  data.names = {"a"};
+  data.columns = {data.t};
+  std::string csv_error;
+  const bool csv_written = WriteTrajectoryCsv((dir_ / "big.csv").string(), data, &csv_error);
+  ::setrlimit(RLIMIT_FSIZE, &old_limit);
+  std::signal(SIGXFSZ, old_handler);
+  EXPECT_FALSE(written);
+  EXPECT_NE(error.find("big.json: write failed"), std::string::npos) << error;
+  EXPECT_FALSE(csv_written);
+  EXPECT_NE(csv_error.find("big.csv: write failed"), std::string::npos) << csv_error;
+  for (const char* name : {"big.json", "big.json.tmp", "big.csv", "big.csv.tmp"}) {
+    EXPECT_FALSE(fs::exists(dir_ / name)) << name;
+  }
+}
+
+}  // namespace
+}  // namespace vesselid
