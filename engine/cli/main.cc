@@ -58,7 +58,11 @@ std::unique_ptr<vesselid::OutputFolder> OpenOutput(const std::string& out_dir,
 int Simulate(const std::string& config_path, const std::string& out_dir) {
   vesselid::ConfigFile config;
   std::string error;
-  if (!Load(config_path, out_dir, &config, &error)) return Fail(error);
+  // The simulation section is checked whole before --out is touched.
+  if (!Load(config_path, out_dir, &config, &error) ||
+      !vesselid::SimulateConfig(config, out_dir, &error, /*check_only=*/true)) {
+    return Fail(error);
+  }
   // The simulated files are the config's experiment files, resolved into out_dir.
   vesselid::PlannedOutputs planned;
   for (const vesselid::ExperimentSpec& spec : config.run.experiments) {

@@ -623,10 +623,13 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
   return true;
 }
 
-bool SimulateConfig(const ConfigFile& config, const std::string& out_dir, std::string* error) {
+bool SimulateConfig(const ConfigFile& config, const std::string& out_dir, std::string* error,
+                    bool check_only) {
   try {
-    return config.family->simulate(YamlReader(config.run.path), config.simulation,
-                                   *config.run.model, out_dir, error);
+    YamlReader reader(config.run.path);
+    reader.set_limits(config.run.limits);
+    return config.family->simulate(reader, config.simulation, *config.run.model, out_dir,
+                                   check_only, error);
   } catch (const ConfigError& e) {
     *error = e.what();
     return false;

@@ -48,7 +48,9 @@ bool LoadRunConfig(const std::string& path, const std::string& data_dir,
                    const ModelRegistry& registry, RunConfig* config, std::string* error);
 
 // Writes the config's synthetic experiments (its `simulation` map) into out_dir through its
-// family; a config error names the file, line and key.
-bool SimulateConfig(const ConfigFile& config, const std::string& out_dir, std::string* error);
+// family (with check_only: reads and checks the map, writes nothing); a config error names
+// the file, line and key.
+bool SimulateConfig(const ConfigFile& config, const std::string& out_dir, std::string* error,
+                    bool check_only = false);
 
 }  // namespace vesselid

@@ -19,10 +19,12 @@ struct ModelFamily {
   std::function<std::unique_ptr<ModelHandle>(const YamlReader& reader, const YAML::Node& model,
                                              const std::string& path)>
       make_model;
-  // Writes the experiments described by the `simulation` map as CSV files into out_dir.
-  // Config errors are thrown as ConfigError; I/O errors are returned.
+  // Writes the experiments described by the `simulation` map as CSV files into out_dir, or
+  // with `check_only` reads and checks the map (its work against reader.limits() included)
+  // and writes nothing. Config errors are thrown as ConfigError; I/O errors are returned.
   std::function<bool(const YamlReader& reader, const YAML::Node& simulation,
-                     const ModelHandle& model, const std::string& out_dir, std::string* error)>
+                     const ModelHandle& model, const std::string& out_dir, bool check_only,
+                     std::string* error)>
       simulate;
 };
 

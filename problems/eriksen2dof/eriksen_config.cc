@@ -53,7 +53,7 @@ void ReadDegrees(const YamlReader& reader, const YAML::Node& map, const std::str
 //                              wind_direction_deg, gust_sd, gust_time_constant},
 //                noise: {position, course_deg, sog, rot_deg}}
 bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const ModelHandle&,
-              const std::string& out_dir, std::string* error) {
+              const std::string& out_dir, bool check_only, std::string* error) {
   const std::string path = "simulation";
   if (!simulation) reader.Fail(simulation, path, "missing: the config has no simulation section");
   reader.CheckMap(simulation, path,
@@ -115,6 +115,17 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
   }
   std::string invalid;
   if (!o.IsValid(&invalid)) reader.Fail(simulation, path, invalid);
+  // At most: every level of every step run held for its longest settling and steady phases,
+  // each run's warm-up, and the validation runs.
+  const double levels = (2.0 / o.throttle_step + 1.0) * o.rudder_settings.size() +
+                        (2.0 / o.rudder_step + 1.0) * o.throttle_settings.size();
+  const double runs = o.rudder_settings.size() + o.throttle_settings.size();
+  const double seconds = levels * (o.max_settle + o.max_steady) +
+                         runs * (o.warm_up + o.run_gap) +
+                         o.validation_runs * (o.validation_duration + o.warm_up);
+  reader.CheckLimit(simulation, path, seconds / o.step, reader.limits().integration_steps,
+                    "limits.integration_steps; the campaign's longest duration over its step");
+  if (check_only) return true;
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) {

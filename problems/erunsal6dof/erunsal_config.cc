@@ -95,7 +95,7 @@ CampaignRun ReadRun(const YamlReader& reader, const YAML::Node& node, const std:
 }
 
 bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const ModelHandle& model,
-              const std::string& out_dir, std::string* error) {
+              const std::string& out_dir, bool check_only, std::string* error) {
   const std::string path = "simulation";
   if (!simulation) reader.Fail(simulation, path, "missing: the config has no simulation section");
   reader.CheckMap(simulation, path,
@@ -136,8 +136,13 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
   reader.CheckSequence(experiments, Child(path, "experiments"));
   std::vector<CampaignRun> runs;
   for (size_t i = 0; i < experiments.size(); ++i) {
-    runs.push_back(ReadRun(reader, experiments[i], Child(Child(path, "experiments"), i), info));
+    const std::string key = Child(Child(path, "experiments"), i);
+    runs.push_back(ReadRun(reader, experiments[i], key, info));
+    reader.CheckLimit(experiments[i]["duration"], Child(key, "duration"),
+                      runs.back().duration / options.sample_time * options.substeps,
+                      reader.limits().integration_steps, "limits.integration_steps");
   }
+  if (check_only) return true;
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) {

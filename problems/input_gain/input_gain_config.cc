@@ -52,7 +52,7 @@ std::unique_ptr<ModelHandle> MakeModel(const YamlReader& reader, const YAML::Nod
 //                vessel: catamaran | quadratic_usv, segment_s: [min, max],
 //                defects: {abrupt_start_segment, glitch_segment}}
 bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const ModelHandle&,
-              const std::string& out_dir, std::string* error) {
+              const std::string& out_dir, bool check_only, std::string* error) {
   const std::string path = "simulation";
   if (!simulation) reader.Fail(simulation, path, "missing: the config has no simulation section");
   reader.CheckMap(
@@ -97,6 +97,10 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
   }
   std::string invalid;
   if (!options.IsValid(&invalid)) reader.Fail(simulation, path, invalid);
+  reader.CheckLimit(simulation["duration_min"], Child(path, "duration_min"),
+                    options.total_duration / options.step, reader.limits().integration_steps,
+                    "limits.integration_steps");
+  if (check_only) return true;
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) {

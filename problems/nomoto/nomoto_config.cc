@@ -53,7 +53,7 @@ Excitation ReadExcitation(const YamlReader& reader, const YAML::Node& node,
 }
 
 bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const ModelHandle& model,
-              const std::string& out_dir, std::string* error) {
+              const std::string& out_dir, bool check_only, std::string* error) {
   const std::string path = "simulation";
   if (!simulation) reader.Fail(simulation, path, "missing: the config has no simulation section");
   reader.CheckMap(simulation, path,
@@ -107,8 +107,12 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
     options.seed = static_cast<unsigned>(seed);
     std::string problem;
     if (!options.IsValid(&problem)) reader.Fail(node, key, problem);
+    reader.CheckLimit(node["duration"], Child(key, "duration"),
+                      options.duration / options.sample_time * options.substeps,
+                      reader.limits().integration_steps, "limits.integration_steps");
     runs.emplace_back(reader.String(node["file"], Child(key, "file")), options);
   }
+  if (check_only) return true;
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) {
