@@ -74,7 +74,8 @@ struct Variant {
 struct KeyCase {
   std::string name;
   Variant base, with;
-  std::string refusal;  // non-empty: `with` must be refused with this in the message
+  std::string refusal;  // non-empty: `with` must be refused (by the reader or before the first
+                        // stage) with this in the message
 };
 
 void PrintTo(const KeyCase& c, std::ostream* os) { *os << c.name; }
@@ -146,6 +147,12 @@ const KeyCase kCases[] = {
      "stages[0].outliers: not used by a least-squares stage"},
     {"wrap_of_a_rate", V, V.A(", wrap: [r]"), "output 'r' is not an angle"},
     {"unknown_final_choice", V, V.T("final: newest\n"), "final: unknown choice 'newest'"},
+    {"separator_the_file_does_not_use", V, V.A(", separator: \";\""),
+     "the header is separated by ',', not ';'"},
+    {"limits", V, V.T("limits: {integration_steps: 100}\n"), "(limits.integration_steps)"},
+    {"limits_of_a_study", V,
+     V.T("limits: {study_cases: 5}\nstudy: {monte_carlo: {runs: 6, noise: {psi: 0.01}}}\n"),
+     "study.monte_carlo.runs: 6 is more than the limit of 5 (limits.study_cases)"},
 };
 
 class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
@@ -246,9 +253,14 @@ fs::path* ConfigKeys::dir_ = nullptr;
 TEST_P(ConfigKeys, HasAnEffectOrIsRefused) {
   const KeyCase& c = GetParam();
   if (!c.refusal.empty()) {
+    // By the reader, or by the run before its first stage (what needs the data).
     RunConfig config;
+    RunResult result;
     std::string error;
-    EXPECT_FALSE(Load(Text(c.with), &config, &error)) << Text(c.with);
+    EXPECT_FALSE(Load(Text(c.with), &config, &error) &&
+                 RunIdentification(config, &result, &error))
+        << Text(c.with);
+    EXPECT_TRUE(result.stages.empty());
     EXPECT_NE(error.find(c.refusal), std::string::npos) << error;
     return;
   }
