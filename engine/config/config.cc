@@ -33,10 +33,10 @@ Interpolation ReadInterpolation(const YamlReader& reader, const YAML::Node& node
 ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
                               const std::string& path, const fs::path& base,
                               const ModelInfo& info) {
-  reader.CheckMap(node, path,
-                  {"name", "file", "inputs", "outputs", "interpolation", "weights", "initial_state",
-                   "degrees", "window", "segment_length", "segments", "input_range", "wrap",
-                   "separator"});
+  reader.CheckMap(
+      node, path,
+      {"name", "file", "inputs", "outputs", "interpolation", "weights", "initial_state", "degrees",
+       "window", "segment_length", "segments", "input_range", "wrap", "separator"});
   ExperimentSpec spec;
   if (!node["name"]) reader.Fail(node, path, "missing key 'name'");
   if (!node["file"]) reader.Fail(node, path, "missing key 'file'");
@@ -479,7 +479,6 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
   }
   return stage;
 }
-
 
 //   limits: {file_mb, data_values, integration_steps, study_cases, evaluations}
 WorkLimits ReadLimits(const YamlReader& reader, const YAML::Node& node) {

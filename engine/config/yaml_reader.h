@@ -34,8 +34,8 @@ class YamlReader {
   const WorkLimits& limits() const { return limits_; }
   void set_limits(const WorkLimits& limits) { limits_ = limits; }
   // Fails unless count <= limit, naming the count, the limit and its key.
-  void CheckLimit(const YAML::Node& node, const std::string& key, double count,
-                  std::uint64_t limit, const std::string& limit_key) const;
+  void CheckLimit(const YAML::Node& node, const std::string& key, double count, std::uint64_t limit,
+                  const std::string& limit_key) const;
 
   // "file:line: key: what"; "file:line: what" for the top level (key "").
   [[noreturn]] void Fail(const YAML::Node& node, const std::string& key,

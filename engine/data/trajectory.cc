@@ -48,8 +48,7 @@ class LineReader {
       }
       const char* start = buffer_ + begin_;
       const void* newline = std::memchr(start, '\n', end_ - begin_);
-      const size_t length =
-          newline ? static_cast<const char*>(newline) - start : end_ - begin_;
+      const size_t length = newline ? static_cast<const char*>(newline) - start : end_ - begin_;
       if (line->size() + length > kMaxLine) {
         too_long_ = true;
         return false;
@@ -148,8 +147,8 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
         if (name != "t") continue;
         return fail("the header is separated by " + SeparatorName(other) + ", not " +
                     SeparatorName(options.separator) + ": convert the file to commas or set " +
-                    "the experiment's separator: \"" + (other == '\t' ? "\\t" : std::string(1, other)) +
-                    "\"");
+                    "the experiment's separator: \"" +
+                    (other == '\t' ? "\\t" : std::string(1, other)) + "\"");
       }
     }
     return fail("header has no time column 't'");
@@ -233,8 +232,7 @@ bool WriteTrajectoryCsv(const std::string& path, const Trajectory& trajectory, s
     std::fputc('\n', file);
   }
   const bool written = std::ferror(file) == 0;
-  if (std::fclose(file) != 0 || !written ||
-      std::rename(temporary.c_str(), path.c_str()) != 0) {
+  if (std::fclose(file) != 0 || !written || std::rename(temporary.c_str(), path.c_str()) != 0) {
     std::remove(temporary.c_str());
     *error = path + ": write failed";
     return false;

@@ -45,8 +45,7 @@ struct CsvReadOptions {
 // "file:line: ..." in `error`. Only a regular file is opened (input_file.h).
 bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
                        Trajectory* trajectory, std::string* error);
-inline bool ReadTrajectoryCsv(const std::string& path, Trajectory* trajectory,
-                              std::string* error) {
+inline bool ReadTrajectoryCsv(const std::string& path, Trajectory* trajectory, std::string* error) {
   return ReadTrajectoryCsv(path, CsvReadOptions(), trajectory, error);
 }
 

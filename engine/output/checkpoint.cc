@@ -46,8 +46,8 @@ void Fnv1a(const std::string& bytes, uint64_t* hash) { Fnv1a(bytes.data(), bytes
 // Hashes a regular file of at most max_bytes as it reads it, a block at a time.
 bool HashFile(const std::string& path, const std::string& kind, std::uint64_t max_bytes,
               uint64_t* hash, std::string* error) {
-  if (!CheckInputFile(path, kind, max_bytes, kind == "data file" ? "limits.file_mb" : "",
-                      nullptr, error)) {
+  if (!CheckInputFile(path, kind, max_bytes, kind == "data file" ? "limits.file_mb" : "", nullptr,
+                      error)) {
     return false;
   }
   std::FILE* file = std::fopen(path.c_str(), "rb");

@@ -67,8 +67,8 @@ std::unique_ptr<OutputFolder> OutputFolder::Open(const std::string& path, std::s
   }
   std::unique_ptr<OutputFolder> folder(new OutputFolder(path, fd));
   const std::string pid = std::to_string(::getpid()) + "\n";
-  if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, pid.data(), pid.size(), 0) !=
-                                      static_cast<ssize_t>(pid.size())) {
+  if (::ftruncate(fd, 0) != 0 ||
+      ::pwrite(fd, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size())) {
     *error = path + ": cannot write into the output folder: " + std::strerror(errno);
     return nullptr;
   }
@@ -102,8 +102,8 @@ OutputFolder::~OutputFolder() {
 
 PlannedOutputs RunOutputs(const std::vector<std::string>& csv_prefixes) {
   PlannedOutputs planned;
-  planned.files = {"results.json", "report.txt", "report.html", "study.json", "study.txt",
-                   kLockFile};
+  planned.files = {"results.json", "report.txt", "report.html",
+                   "study.json",   "study.txt",  kLockFile};
   planned.folders = {"traces", "checkpoint", "surfaces"};
   planned.csv_prefixes = csv_prefixes;
   return planned;
@@ -122,8 +122,8 @@ bool CheckInputsSurvive(const std::string& out_dir, const PlannedOutputs& planne
     const std::string first = relative.begin()->string();
     bool written = false;
     if (std::next(relative.begin()) != relative.end()) {
-      written = std::find(planned.folders.begin(), planned.folders.end(), first) !=
-                planned.folders.end();
+      written =
+          std::find(planned.folders.begin(), planned.folders.end(), first) != planned.folders.end();
     } else {
       std::string name = first;
       if (EndsWith(name, kTemporarySuffix)) name.resize(name.size() - 4);

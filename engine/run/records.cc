@@ -84,7 +84,7 @@ bool ForEachRecordSpec(const RunConfig& config, const std::vector<std::string>& 
 }  // namespace
 
 const Trajectory* LoadCachedTrajectory(const ExperimentSpec& spec, TrajectoryCache* cache,
-                             std::string* error) {
+                                       std::string* error) {
   auto cached = cache->find(spec.name);
   if (cached == cache->end()) {
     Trajectory trajectory;

@@ -19,8 +19,7 @@ double StepsOver(const std::vector<double>& t, double begin, double end, double 
     std::vector<double> intervals;
     intervals.reserve(last - first - 1);
     for (auto k = first + 1; k != last; ++k) intervals.push_back(*k - *(k - 1));
-    std::nth_element(intervals.begin(), intervals.begin() + intervals.size() / 2,
-                     intervals.end());
+    std::nth_element(intervals.begin(), intervals.begin() + intervals.size() / 2, intervals.end());
     *step = intervals[intervals.size() / 2];
   }
   return (*(last - 1) - *first) / *step;
@@ -48,8 +47,8 @@ bool CheckWorkSize(const RunConfig& config, TrajectoryCache* cache, std::string*
                     "experiment '%s' (%s): stage '%s' integrates %.3g s of it in steps of at "
                     "most %.3g s (%s): %.3g integration steps, more than the limit of %.3g "
                     "(limits.integration_steps)",
-                    name.c_str(), spec->file.c_str(), stage.options.name.c_str(),
-                    steps * step, step,
+                    name.c_str(), spec->file.c_str(), stage.options.name.c_str(), steps * step,
+                    step,
                     stage.experiment.max_step > 0.0
                         ? ("stages[" + std::to_string(s) + "].integration.max_step").c_str()
                         : "the median sample interval; check the file's t column",

@@ -100,8 +100,9 @@ std::string StartFailure(const OutputErrorProblem& problem) {
         step += experiment.node_substeps[k];
         continue;
       }
-      std::snprintf(part, sizeof(part), "; %s not finite at t = %g s (inputs at t = %g s:",
-                    bad.c_str(), experiment.node_time[k + 1], experiment.node_time[k]);
+      std::snprintf(part, sizeof(part),
+                    "; %s not finite at t = %g s (inputs at t = %g s:", bad.c_str(),
+                    experiment.node_time[k + 1], experiment.node_time[k]);
       text += part;
       const int nu = experiment.num_inputs;
       const char* separator = "";

@@ -120,8 +120,7 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
   const double levels = (2.0 / o.throttle_step + 1.0) * o.rudder_settings.size() +
                         (2.0 / o.rudder_step + 1.0) * o.throttle_settings.size();
   const double runs = o.rudder_settings.size() + o.throttle_settings.size();
-  const double seconds = levels * (o.max_settle + o.max_steady) +
-                         runs * (o.warm_up + o.run_gap) +
+  const double seconds = levels * (o.max_settle + o.max_steady) + runs * (o.warm_up + o.run_gap) +
                          o.validation_runs * (o.validation_duration + o.warm_up);
   reader.CheckLimit(simulation, path, seconds / o.step, reader.limits().integration_steps,
                     "limits.integration_steps; the campaign's longest duration over its step");

@@ -257,8 +257,7 @@ TEST_P(ConfigKeys, HasAnEffectOrIsRefused) {
     RunConfig config;
     RunResult result;
     std::string error;
-    EXPECT_FALSE(Load(Text(c.with), &config, &error) &&
-                 RunIdentification(config, &result, &error))
+    EXPECT_FALSE(Load(Text(c.with), &config, &error) && RunIdentification(config, &result, &error))
         << Text(c.with);
     EXPECT_TRUE(result.stages.empty());
     EXPECT_NE(error.find(c.refusal), std::string::npos) << error;

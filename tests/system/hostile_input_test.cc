@@ -86,16 +86,17 @@ TEST_F(HostileInput, DataFileIsANamedPipeWithNoWriter) {
   fs::remove(dir_ / "data.csv");
   ASSERT_EQ(::mkfifo((dir_ / "data.csv").c_str(), 0600), 0);
   // A hang would end in timeout's status 124 and no message.
-  const Outcome outcome = ExpectRejected("data\\.csv: is a named pipe, not a data file",
-                                         "timeout 60 ");
+  const Outcome outcome =
+      ExpectRejected("data\\.csv: is a named pipe, not a data file", "timeout 60 ");
   EXPECT_NE(outcome.status >> 8, 124);
 }
 
 TEST_F(HostileInput, SparseFileLargerThanTheLimitIsNotRead) {
   std::ofstream(dir_ / "data.csv", std::ios::app).flush();
   fs::resize_file(dir_ / "data.csv", std::uintmax_t{2} << 30);  // sparse: no disk used
-  ExpectRejected("data\\.csv: the data file is 2\\.0 GiB, more than the limit of 1\\.0 GiB "
-                 "\\(limits\\.file_mb\\)");
+  ExpectRejected(
+      "data\\.csv: the data file is 2\\.0 GiB, more than the limit of 1\\.0 GiB "
+      "\\(limits\\.file_mb\\)");
 }
 
 TEST_F(HostileInput, ValidHeadOfAFileLargerThanTheLimit) {
@@ -108,14 +109,16 @@ TEST_F(HostileInput, ValidHeadOfAFileLargerThanTheLimit) {
   }
   WriteData(text);
   WriteConfig(std::string(kGoodConfig) + "limits: {file_mb: 1}\n");
-  ExpectRejected("data\\.csv: the data file is 1\\.5 MiB, more than the limit of 1\\.0 MiB "
-                 "\\(limits\\.file_mb\\)");
+  ExpectRejected(
+      "data\\.csv: the data file is 1\\.5 MiB, more than the limit of 1\\.0 MiB "
+      "\\(limits\\.file_mb\\)");
 }
 
 TEST_F(HostileInput, MoreValuesThanTheLimit) {
   WriteConfig(std::string(kGoodConfig) + "limits: {data_values: 100}\n");
-  ExpectRejected("data\\.csv:[0-9]+: more than 100 values \\(rows x columns\\) in one data "
-                 "file \\(limits\\.data_values\\)");
+  ExpectRejected(
+      "data\\.csv:[0-9]+: more than 100 values \\(rows x columns\\) in one data "
+      "file \\(limits\\.data_values\\)");
 }
 
 // --- Work size: refused before the first stage, with the number and the key -------------
@@ -123,32 +126,36 @@ TEST_F(HostileInput, MoreValuesThanTheLimit) {
 TEST_F(HostileInput, IntegrationStepTooSmall) {
   EditConfig("    free_initial_states: [psi]\n",
              "    free_initial_states: [psi]\n    integration: {max_step: 1.0e-7}\n");
-  ExpectRejected("experiment 'run' .*data\\.csv.*stage 'fit' integrates 60 s of it in steps "
-                 "of at most 1e-07 s \\(stages\\[0\\]\\.integration\\.max_step\\): 6e\\+08 "
-                 "integration steps, more than the limit of 2e\\+07 "
-                 "\\(limits\\.integration_steps\\)");
+  ExpectRejected(
+      "experiment 'run' .*data\\.csv.*stage 'fit' integrates 60 s of it in steps "
+      "of at most 1e-07 s \\(stages\\[0\\]\\.integration\\.max_step\\): 6e\\+08 "
+      "integration steps, more than the limit of 2e\\+07 "
+      "\\(limits\\.integration_steps\\)");
 }
 
 TEST_F(HostileInput, AbsurdLastTimeIsRefusedBeforeTheRun) {
   const std::string text = ReadData();
   const std::string row = text.substr(text.rfind('\n', text.size() - 2) + 1);
   WriteData(text + "1e50" + row.substr(row.find(',')));
-  ExpectRejected("1e\\+50 s of it in steps of at most 0\\.1 s \\(the median sample interval; "
-                 "check the file's t column\\).*limits\\.integration_steps");
+  ExpectRejected(
+      "1e\\+50 s of it in steps of at most 0\\.1 s \\(the median sample interval; "
+      "check the file's t column\\).*limits\\.integration_steps");
 }
 
 TEST_F(HostileInput, StudyRunsPastTheLimit) {
   WriteConfig(std::string(kGoodConfig) +
               "study:\n  monte_carlo: {stage: fit, runs: 1000000000, noise: {psi: 0.01}}\n");
-  ExpectRejected("config\\.yaml:14: study\\.monte_carlo\\.runs: 1e\\+09 is more than the limit "
-                 "of 100000 \\(limits\\.study_cases\\)");
+  ExpectRejected(
+      "config\\.yaml:14: study\\.monte_carlo\\.runs: 1e\\+09 is more than the limit "
+      "of 100000 \\(limits\\.study_cases\\)");
 }
 
 TEST_F(HostileInput, GlobalEvaluationsPastTheLimit) {
   EditConfig("    free_initial_states: [psi]\n",
              "    free_initial_states: [psi]\n    global: {max_evaluations: 2000000000}\n");
-  ExpectRejected("config\\.yaml:13: stages\\[0\\]\\.global\\.max_evaluations: 2e\\+09 is more "
-                 "than the limit of 1e\\+07 \\(limits\\.evaluations\\)");
+  ExpectRejected(
+      "config\\.yaml:13: stages\\[0\\]\\.global\\.max_evaluations: 2e\\+09 is more "
+      "than the limit of 1e\\+07 \\(limits\\.evaluations\\)");
 }
 
 // --- Overflow: refused at read time with file, line and column --------------------------
@@ -193,10 +200,11 @@ stages:
                                (dir_ / "config.yaml").string() + " --out " + dir_.string() +
                                " > /dev/null";
   ASSERT_EQ(std::system(simulate.c_str()), 0);
-  ExpectRejected("stage 'manoeuvre': .*simulation of experiment 'zigzag' diverges after t = 0 "
-                 "s; .*u.* not finite at t = 0\\.05 s \\(inputs at t = 0 s: c_L = .*, c_R = "
-                 "[^,]*\\); at these values M is not positive definite .*: m - Xudot = 11 - 20 "
-                 "<= 0");
+  ExpectRejected(
+      "stage 'manoeuvre': .*simulation of experiment 'zigzag' diverges after t = 0 "
+      "s; .*u.* not finite at t = 0\\.05 s \\(inputs at t = 0 s: c_L = .*, c_R = "
+      "[^,]*\\); at these values M is not positive definite .*: m - Xudot = 11 - 20 "
+      "<= 0");
 }
 
 // --- YAML and CSV dialects ----------------------------------------------------------------
@@ -208,8 +216,9 @@ TEST_F(HostileInput, DuplicateYamlKeyNamesBothLines) {
 
 TEST_F(HostileInput, DuplicateNestedKey) {
   EditConfig("      K: {start", "      T: {start: 4.0}\n      K: {start");
-  ExpectRejected("config\\.yaml:11: stages\\[0\\]\\.parameters\\.T: given twice \\(lines 10 "
-                 "and 11\\)");
+  ExpectRejected(
+      "config\\.yaml:11: stages\\[0\\]\\.parameters\\.T: given twice \\(lines 10 "
+      "and 11\\)");
 }
 
 TEST_F(HostileInput, ByteOrderMarksAreAccepted) {
@@ -224,8 +233,9 @@ TEST_F(HostileInput, SemicolonSeparatorIsNamed) {
   std::string text = ReadData();
   std::replace(text.begin(), text.end(), ',', ';');
   WriteData(text);
-  ExpectRejected("data\\.csv:1: the header is separated by ';', not ',': convert the file to "
-                 "commas or set the experiment's separator: \";\"");
+  ExpectRejected(
+      "data\\.csv:1: the header is separated by ';', not ',': convert the file to "
+      "commas or set the experiment's separator: \";\"");
   EditConfig("    file: data.csv\n", "    file: data.csv\n    separator: \";\"\n");
   const Outcome outcome = Run();
   EXPECT_EQ(outcome.status, 0) << outcome.output;
@@ -249,8 +259,7 @@ TEST_F(HostileInput, OutIsAFile) {
 }
 
 TEST_F(HostileInput, OutCannotBeCreated) {
-  ExpectRejected("/proc/vesselid_out: cannot create the output folder", "",
-                 "/proc/vesselid_out");
+  ExpectRejected("/proc/vesselid_out: cannot create the output folder", "", "/proc/vesselid_out");
 }
 
 TEST_F(HostileInput, OutIsReadOnly) {
@@ -330,8 +339,8 @@ TEST_F(HostileInput, FailedWriteLeavesNoTemporaryFile) {
   small.rlim_cur = 4096;
   ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
   std::string error;
-  const bool written = WriteFileAtomically((dir_ / "big.json").string(),
-                                           std::string(1 << 20, 'x'), &error);
+  const bool written =
+      WriteFileAtomically((dir_ / "big.json").string(), std::string(1 << 20, 'x'), &error);
   Trajectory data;
   data.t.assign(20000, 0.0);
   for (size_t k = 0; k < data.t.size(); ++k) data.t[k] = 0.1 * k;
