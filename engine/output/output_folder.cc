@@ -43,7 +43,8 @@ bool EndsWith(const std::string& text, const std::string& suffix) {
 
 std::unique_ptr<OutputFolder> OutputFolder::Open(const std::string& path, std::string* error) {
   std::error_code ec;
-  if (fs::exists(path, ec) && !fs::is_directory(path, ec)) {
+  const bool existed = fs::exists(path, ec);
+  if (existed && !fs::is_directory(path, ec)) {
     *error = path + ": --out names a file, not a folder";
     return nullptr;
   }
@@ -52,42 +53,44 @@ std::unique_ptr<OutputFolder> OutputFolder::Open(const std::string& path, std::s
     *error = path + ": cannot create the output folder: " + ec.message();
     return nullptr;
   }
-  const std::string lock_path = (fs::path(path) / kLockFile).string();
-  const int fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd < 0) {
-    *error = path + ": cannot write into the output folder: " + std::strerror(errno);
+  // A refused run leaves no folder it made (an empty folder only: fs::remove).
+  auto refuse = [&](const std::string& what) {
+    *error = path + ": " + what;
+    std::error_code ignored;
+    if (!existed) fs::remove(path, ignored);
     return nullptr;
-  }
-  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-    const std::string pid = LockHolder(fd);
-    ::close(fd);
-    *error = path + ": another vesselid process" + (pid.empty() ? "" : " (pid " + pid + ")") +
-             " is writing into this folder; wait for it or choose another --out";
-    return nullptr;
-  }
-  std::unique_ptr<OutputFolder> folder(new OutputFolder(path, fd));
-  const std::string pid = std::to_string(::getpid()) + "\n";
-  if (::ftruncate(fd, 0) != 0 ||
-      ::pwrite(fd, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size())) {
-    *error = path + ": cannot write into the output folder: " + std::strerror(errno);
-    return nullptr;
-  }
+  };
   struct statvfs space;
   if (::statvfs(path.c_str(), &space) == 0) {
     const unsigned long long free_bytes =
         static_cast<unsigned long long>(space.f_bavail) * space.f_frsize;
     if (free_bytes < kFirstWriteBytes) {
-      *error = path + ": only " + ByteCount(free_bytes) + " free on its file system, less than " +
-               ByteCount(kFirstWriteBytes) + " for the results";
-      return nullptr;
+      return refuse("only " + ByteCount(free_bytes) + " free on its file system, less than " +
+                    ByteCount(kFirstWriteBytes) + " for the results");
     }
   }
   struct rlimit file_size;
   if (::getrlimit(RLIMIT_FSIZE, &file_size) == 0 && file_size.rlim_cur != RLIM_INFINITY &&
       file_size.rlim_cur < kFirstWriteBytes) {
-    *error = path + ": the file size limit (ulimit -f) of " + ByteCount(file_size.rlim_cur) +
-             " is less than " + ByteCount(kFirstWriteBytes) + " for the results";
-    return nullptr;
+    return refuse("the file size limit (ulimit -f) of " + ByteCount(file_size.rlim_cur) +
+                  " is less than " + ByteCount(kFirstWriteBytes) + " for the results");
+  }
+  const std::string lock_path = (fs::path(path) / kLockFile).string();
+  const int fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) return refuse("cannot write into the output folder: " + std::string(std::strerror(errno)));
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const std::string pid = LockHolder(fd);
+    ::close(fd);
+    return refuse("another vesselid process" + (pid.empty() ? "" : " (pid " + pid + ")") +
+                  " is writing into this folder; wait for it or choose another --out");
+  }
+  auto folder = std::unique_ptr<OutputFolder>(new OutputFolder(path, fd));
+  const std::string pid = std::to_string(::getpid()) + "\n";
+  if (::ftruncate(fd, 0) != 0 ||
+      ::pwrite(fd, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size())) {
+    const std::string reason = std::strerror(errno);
+    folder.reset();  // unlocks and removes the lock file
+    return refuse("cannot write into the output folder: " + reason);
   }
   return folder;
 }

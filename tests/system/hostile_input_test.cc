@@ -324,6 +324,18 @@ TEST_F(HostileInput, TwoRunsAtOnceIntoOneFolder) {
   EXPECT_TRUE(fs::exists(dir_ / "out" / "results.json"));
 }
 
+TEST_F(HostileInput, FullDiskIsFoundBeforeTheRun) {
+  // A 64 KiB file system, where the machine lets the test mount one (root with the right).
+  const fs::path tiny = dir_ / "tiny";
+  fs::create_directory(tiny);
+  const std::string mount = "mount -t tmpfs -o size=64k tmpfs " + tiny.string() + " 2>/dev/null";
+  if (std::system(mount.c_str()) != 0) GTEST_SKIP() << "cannot mount a small tmpfs here";
+  ExpectRejected("out: only [0-9.]+ KiB free on its file system, less than 16 MiB for the results",
+                 "", tiny / "out");
+  EXPECT_FALSE(fs::exists(tiny / "out"));  // the refused run leaves no folder it made
+  EXPECT_EQ(std::system(("umount " + tiny.string()).c_str()), 0);
+}
+
 TEST_F(HostileInput, FileSizeLimitIsFoundBeforeTheRun) {
   ExpectRejected("out: the file size limit \\(ulimit -f\\) of .* is less than 16 MiB",
                  "ulimit -f 1024; ");
