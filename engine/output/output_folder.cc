@@ -77,7 +77,8 @@ std::unique_ptr<OutputFolder> OutputFolder::Open(const std::string& path, std::s
   }
   const std::string lock_path = (fs::path(path) / kLockFile).string();
   const int fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd < 0) return refuse("cannot write into the output folder: " + std::string(std::strerror(errno)));
+  if (fd < 0)
+    return refuse("cannot write into the output folder: " + std::string(std::strerror(errno)));
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
     const std::string pid = LockHolder(fd);
     ::close(fd);
