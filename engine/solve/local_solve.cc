@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "engine/solve/metrics.h"
+#include "engine/solve/start_failure.h"
 
 namespace vesselid {
 namespace {
@@ -118,11 +119,11 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   }
   if (!summary->usable && ceres_summary.initial_cost < 0) {
     // Name the experiment, time, outputs and inputs (the values are still the start values).
-    const std::string failure = StartFailure(*problem);
+    const std::string failure = StartFailure(problem);
     summary->message =
         failure.empty()
             ? "the cost is not finite at the start values (a weight or data value too large?)"
-            : "the simulation diverges at the start values: " + failure;
+            : failure;
   } else if (summary->usable && !std::isfinite(summary->final_cost)) {
     summary->usable = false;
     summary->termination = "FAILURE";

@@ -70,59 +70,6 @@ std::string DivergenceMessage(const Experiment& experiment, const std::vector<do
   return "simulation of experiment '" + experiment.name + "' diverges " + text;
 }
 
-std::string StartFailure(const OutputErrorProblem& problem) {
-  const ModelInfo& info = problem.model().info();
-  const int ny = static_cast<int>(info.outputs.size());
-  for (size_t e = 0; e < problem.experiments().size(); ++e) {
-    const Experiment& experiment = problem.experiments()[e];
-    const std::vector<double> p = problem.ParametersOf(static_cast<int>(e));
-    const std::vector<double> x0 = problem.InitialStateOf(static_cast<int>(e));
-    std::vector<double> outputs;
-    if (problem.model().SimulateOutputs(experiment, p.data(), x0.data(), &outputs)) continue;
-    std::string text = DivergenceMessage(experiment, outputs, ny);
-    char part[200];
-    for (size_t s = 0; s < x0.size(); ++s) {
-      if (std::isfinite(x0[s])) continue;
-      std::snprintf(part, sizeof(part), "; its initial state %s is %g", info.states[s].c_str(),
-                    x0[s]);
-      text += part;
-    }
-    // The first node with a non-finite output, and the step into it.
-    size_t step = 0;
-    for (int k = 0; k + 1 < experiment.num_nodes(); ++k) {
-      const size_t next = static_cast<size_t>(k + 1) * ny;
-      if (next + ny > outputs.size()) break;
-      std::string bad;
-      for (int c = 0; c < ny; ++c) {
-        if (!std::isfinite(outputs[next + c])) bad += (bad.empty() ? "" : ", ") + info.outputs[c];
-      }
-      if (bad.empty()) {
-        step += experiment.node_substeps[k];
-        continue;
-      }
-      std::snprintf(part, sizeof(part),
-                    "; %s not finite at t = %g s (inputs at t = %g s:", bad.c_str(),
-                    experiment.node_time[k + 1], experiment.node_time[k]);
-      text += part;
-      const int nu = experiment.num_inputs;
-      const char* separator = "";
-      for (int i = 0; i < nu; ++i) {
-        const double u = experiment.input_cache[3 * step * nu + i];
-        if (std::isnan(u) && info.InputOptional(i)) continue;  // not recorded
-        std::snprintf(part, sizeof(part), "%s %s = %g", separator, info.inputs[i].c_str(), u);
-        text += part;
-        separator = ",";
-      }
-      text += ")";
-      break;
-    }
-    const std::vector<std::string> broken = problem.model().Admissibility(p.data());
-    for (const std::string& condition : broken) text += "; at these values " + condition;
-    return text;
-  }
-  return "";
-}
-
 bool EvaluateFit(const OutputErrorProblem& problem, std::vector<ExperimentFit>* fits,
                  std::string* error) {
   fits->clear();

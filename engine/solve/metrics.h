@@ -78,13 +78,6 @@ double DivergenceTime(const Experiment& experiment, const std::vector<double>& o
 std::string DivergenceMessage(const Experiment& experiment, const std::vector<double>& outputs,
                               int num_outputs);
 
-// Why the problem's current values (its start values) cannot be evaluated, for the message of
-// a stage that cannot begin: the first experiment whose simulation fails, the outputs that
-// become non-finite and when, the inputs over the step that breaks, non-finite initial
-// states, and the physical conditions of the model (ModelHandle::Admissibility) the values
-// break, e.g. "M is not positive definite". "" when every simulation runs.
-std::string StartFailure(const OutputErrorProblem& problem);
-
 // Simulates every experiment at the problem's current values; one that diverges is recorded
 // as such (ExperimentFit::diverged). False (with `error` naming it) if any diverged.
 bool EvaluateFit(const OutputErrorProblem& problem, std::vector<ExperimentFit>* fits,
