@@ -11,7 +11,8 @@ namespace vesselid {
 struct WorkLimits {
   std::uint64_t file_bytes = std::uint64_t{1} << 30;  // one data file (limits.file_mb)
   std::uint64_t data_values = 50'000'000;             // rows x columns of one data file
-  // Integration steps of one experiment's simulation (a record, a segment or a simulated run).
+  // Integration steps of one record's simulation, all the pieces it is cut into together
+  // (checked before the run; BuildExperiment checks each piece again), or of a simulated run.
   std::uint64_t integration_steps = 20'000'000;
   std::uint64_t study_cases = 100'000;     // solves of a study part (runs x stages, points)
   std::uint64_t evaluations = 10'000'000;  // global-start evaluations of one stage

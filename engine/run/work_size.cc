@@ -38,9 +38,14 @@ bool CheckWorkSize(const RunConfig& config, TrajectoryCache* cache, std::string*
       if (spec == nullptr) continue;  // the stage itself reports it
       const Trajectory* data = LoadCachedTrajectory(*spec, cache, error);
       if (data == nullptr) return false;
-      double step = 0.0;
-      const double steps =
-          StepsOver(data->t, spec->t_begin, spec->t_end, stage.experiment.max_step, &step);
+      // The pieces the record is identified as (segments, input ranges): gaps between them
+      // are not integrated.
+      std::vector<ExperimentSpec> pieces;
+      if (!RecordSpecs(*spec, *data, 0.0, &pieces, error)) return false;
+      double step = 0.0, steps = 0.0;
+      for (const ExperimentSpec& piece : pieces) {
+        steps += StepsOver(data->t, piece.t_begin, piece.t_end, stage.experiment.max_step, &step);
+      }
       if (!(steps > limit)) continue;
       char text[600];
       std::snprintf(text, sizeof(text),
