@@ -23,7 +23,7 @@ std::string ByteCount(std::uint64_t bytes) {
 }
 
 bool CheckInputFile(const std::string& path, const std::string& kind, std::uint64_t max_bytes,
-                    const std::string& limit_key, std::uint64_t* size, std::string* error) {
+                    const std::string& limit_key, std::string* error) {
   struct stat info;
   if (::stat(path.c_str(), &info) != 0) {
     *error = path + ": cannot open file: " + std::strerror(errno);
@@ -46,7 +46,6 @@ bool CheckInputFile(const std::string& path, const std::string& kind, std::uint6
              ByteCount(max_bytes) + (limit_key.empty() ? "" : " (" + limit_key + ")");
     return false;
   }
-  if (size != nullptr) *size = bytes;
   return true;
 }
 

@@ -10,9 +10,9 @@
 namespace vesselid {
 
 // "<path>: <what is wrong>" in *error when `path` cannot be read as a `kind` (e.g. "data
-// file") of at most `max_bytes`; the file's size in *size otherwise (size may be null).
+// file") of at most `max_bytes`; `limit_key` names the config key of that limit, if any.
 bool CheckInputFile(const std::string& path, const std::string& kind, std::uint64_t max_bytes,
-                    const std::string& limit_key, std::uint64_t* size, std::string* error);
+                    const std::string& limit_key, std::string* error);
 
 // "1.5 GiB", "512 KiB", "17 bytes".
 std::string ByteCount(std::uint64_t bytes);

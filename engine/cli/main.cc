@@ -93,14 +93,8 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
     return Fail(error);
   }
   const vesselid::RunConfig& config = file.run;
-  std::vector<std::string> step_tables;
-  for (const vesselid::StageConfig& stage : config.stages) {
-    if (stage.kind == vesselid::StageConfig::Kind::kStepRegression) {
-      step_tables.push_back(stage.options.name + ".");
-    }
-  }
   const auto folder =
-      OpenOutput(out_dir, vesselid::RunOutputs(step_tables), InputFiles(config), &error);
+      OpenOutput(out_dir, vesselid::RunOutputs(config), InputFiles(config), &error);
   if (folder == nullptr) return Fail(error);
   vesselid::TerminalProgress progress(
       vesselid::TerminalProgress::ChooseMode(stderr, flags.quiet, flags.verbose), stderr,
@@ -166,7 +160,7 @@ int Study(const std::string& config_path, const std::string& data_dir, const std
   // (an early return there would leave the other ranks waiting in the study's collectives).
   std::unique_ptr<vesselid::OutputFolder> folder;
   auto open_output = [&] {
-    folder = OpenOutput(out_dir, vesselid::RunOutputs({}), InputFiles(config.run), &error);
+    folder = OpenOutput(out_dir, vesselid::RunOutputs(config.run), InputFiles(config.run), &error);
     return folder != nullptr;
   };
   if (group.size() == 1 && !open_output()) return Fail(error);

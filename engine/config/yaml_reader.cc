@@ -44,7 +44,7 @@ void CheckUniqueKeys(const YamlReader& reader, const YAML::Node& node, const std
 
 YAML::Node YamlReader::Load() const {
   std::string error;
-  if (!CheckInputFile(file_, "config file", kMaxConfigBytes, "", nullptr, &error)) {
+  if (!CheckInputFile(file_, "config file", kMaxConfigBytes, "", &error)) {
     throw ConfigError(error);
   }
   YAML::Node root;

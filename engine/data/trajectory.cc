@@ -105,7 +105,7 @@ Channel ExtractChannel(const Trajectory& trajectory, int column) {
 
 bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
                        Trajectory* trajectory, std::string* error) {
-  if (!CheckInputFile(path, "data file", options.max_bytes, "limits.file_mb", nullptr, error)) {
+  if (!CheckInputFile(path, "data file", options.max_bytes, "limits.file_mb", error)) {
     return false;
   }
   LineReader in(path);

@@ -49,7 +49,7 @@ inline bool ReadTrajectoryCsv(const std::string& path, Trajectory* trajectory, s
   return ReadTrajectoryCsv(path, CsvReadOptions(), trajectory, error);
 }
 
-// "';'" or "tab", for messages.
+// "';'" or "tabs", for messages.
 std::string SeparatorName(char separator);
 
 // Writes columns to CSV (header `t,names...`; NaN written as an empty field), through a

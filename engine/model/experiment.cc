@@ -175,9 +175,14 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
   std::vector<double> intervals;
   for (int k = 0; k + 1 < nodes; ++k) intervals.push_back(e.node_time[k + 1] - e.node_time[k]);
   const double max_step = options.max_step > 0 ? options.max_step : Median(intervals);
-  // Counted before anything is allocated for them (and before a step count overflows int).
+  // Equal steps of at most max_step per interval (in double: counted before anything is
+  // allocated for them, and before a count overflows int).
+  std::vector<double> substeps;
   double total_steps = 0.0;
-  for (double interval : intervals) total_steps += std::max(1.0, std::ceil(interval / max_step));
+  for (double interval : intervals) {
+    substeps.push_back(std::max(1.0, std::ceil(interval / max_step - 1e-6)));
+    total_steps += substeps.back();
+  }
   if (!(total_steps <= static_cast<double>(options.max_steps))) {
     char text[300];
     std::snprintf(text, sizeof(text),
@@ -191,7 +196,7 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
   // Per step: start and midpoint (right limits), end (left limit); then the last node.
   std::vector<double> right_times, end_times;
   for (int k = 0; k + 1 < nodes; ++k) {
-    int m = std::max(1, static_cast<int>(std::ceil(intervals[k] / max_step - 1e-6)));
+    const int m = static_cast<int>(substeps[k]);
     double h = intervals[k] / m;
     e.node_substeps.push_back(m);
     e.node_step.push_back(h);

@@ -45,11 +45,8 @@ void Fnv1a(const std::string& bytes, uint64_t* hash) { Fnv1a(bytes.data(), bytes
 
 // Hashes a regular file of at most max_bytes as it reads it, a block at a time.
 bool HashFile(const std::string& path, const std::string& kind, std::uint64_t max_bytes,
-              uint64_t* hash, std::string* error) {
-  if (!CheckInputFile(path, kind, max_bytes, kind == "data file" ? "limits.file_mb" : "", nullptr,
-                      error)) {
-    return false;
-  }
+              const std::string& limit_key, uint64_t* hash, std::string* error) {
+  if (!CheckInputFile(path, kind, max_bytes, limit_key, error)) return false;
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr) {
     *error = path + ": cannot open";
@@ -94,7 +91,7 @@ bool ReadManifest(const fs::path& folder, json* manifest, std::string* error) {
 
 bool RunFingerprint(const RunConfig& config, std::string* fingerprint, std::string* error) {
   uint64_t hash = 0xcbf29ce484222325ULL;
-  if (!HashFile(config.path, "config file", kMaxConfigBytes, &hash, error)) return false;
+  if (!HashFile(config.path, "config file", kMaxConfigBytes, "", &hash, error)) return false;
   for (const ExperimentSpec& spec : config.experiments) {
     Fnv1a(spec.name, &hash);
     // A missing file counts as absent: the run itself reports it when it needs the data.
@@ -103,7 +100,7 @@ bool RunFingerprint(const RunConfig& config, std::string* fingerprint, std::stri
       Fnv1a("absent", &hash);
       continue;
     }
-    if (!HashFile(spec.file, "data file", spec.csv.max_bytes, &hash, error)) return false;
+    if (!HashFile(spec.file, "data file", spec.csv.max_bytes, "limits.file_mb", &hash, error)) return false;
   }
   char hex[20];
   std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(hash));

@@ -104,12 +104,16 @@ OutputFolder::~OutputFolder() {
   ::close(lock_fd_);
 }
 
-PlannedOutputs RunOutputs(const std::vector<std::string>& csv_prefixes) {
+PlannedOutputs RunOutputs(const RunConfig& config) {
   PlannedOutputs planned;
-  planned.files = {"results.json", "report.txt", "report.html",
-                   "study.json",   "study.txt",  kLockFile};
+  planned.files = {"results.json", "report.txt", "report.html", "study.json", "study.txt",
+                   kLockFile};
   planned.folders = {"traces", "checkpoint", "surfaces"};
-  planned.csv_prefixes = csv_prefixes;
+  for (const StageConfig& stage : config.stages) {
+    if (stage.kind == StageConfig::Kind::kStepRegression) {
+      planned.csv_prefixes.push_back(stage.options.name + ".");
+    }
+  }
   return planned;
 }
 
@@ -130,7 +134,7 @@ bool CheckInputsSurvive(const std::string& out_dir, const PlannedOutputs& planne
           std::find(planned.folders.begin(), planned.folders.end(), first) != planned.folders.end();
     } else {
       std::string name = first;
-      if (EndsWith(name, kTemporarySuffix)) name.resize(name.size() - 4);
+      if (EndsWith(name, kTemporarySuffix)) name.resize(name.size() - (sizeof(kTemporarySuffix) - 1));
       written = std::find(planned.files.begin(), planned.files.end(), name) != planned.files.end();
       for (const std::string& prefix : planned.csv_prefixes) {
         written |= StartsWith(name, prefix) && EndsWith(name, ".csv");

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/run/run_config.h"
+
 namespace vesselid {
 
 class OutputFolder {
@@ -39,9 +41,9 @@ struct PlannedOutputs {
   std::vector<std::string> csv_prefixes;
 };
 
-// The files `vesselid run` and `vesselid study` write into their folder; csv_prefixes are the
-// step-regression stages' names followed by '.'.
-PlannedOutputs RunOutputs(const std::vector<std::string>& csv_prefixes);
+// The files `vesselid run` and `vesselid study` write into their folder for `config` (its
+// step-regression stages add tables "<stage>.*.csv").
+PlannedOutputs RunOutputs(const RunConfig& config);
 
 // False, naming both, when one of `inputs` is a file the command would write (or its
 // temporary) in `out_dir`: an output never replaces an input.
