@@ -25,12 +25,13 @@ using testing::Outcome;
 
 class HostileInput : public BadInput {
  protected:
-  std::string ReadData() {
-    std::ifstream in(dir_ / "data.csv");
+  static std::string ReadFile(const fs::path& path) {
+    std::ifstream in(path);
     std::stringstream text;
     text << in.rdbuf();
     return text.str();
   }
+  std::string ReadData() { return ReadFile(dir_ / "data.csv"); }
   void WriteData(const std::string& text) { std::ofstream(dir_ / "data.csv") << text; }
   // 1e308 in `column` on line 20: refused with the file, line and column.
   void ExpectHugeValueRefused(const std::string& column) {
@@ -280,22 +281,14 @@ TEST_F(HostileInput, OutIsReadOnly) {
 TEST_F(HostileInput, OutputNeverReplacesAnInput) {
   fs::rename(dir_ / "data.csv", dir_ / "results.json");
   EditConfig("file: data.csv", "file: results.json");
-  const std::string before = [&] {
-    std::ifstream in(dir_ / "results.json");
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-  }();
+  const std::string before = ReadFile(dir_ / "results.json");
   const Outcome outcome = Run("", dir_);
   EXPECT_NE(outcome.status, 0);
   EXPECT_TRUE(std::regex_search(
       outcome.output, std::regex("results\\.json: this input is where the output .*results\\.json "
                                  "would be written; choose another --out")))
       << outcome.output;
-  std::ifstream in(dir_ / "results.json");
-  std::stringstream after;
-  after << in.rdbuf();
-  EXPECT_EQ(after.str(), before);
+  EXPECT_EQ(ReadFile(dir_ / "results.json"), before);
 }
 
 TEST_F(HostileInput, SecondRunIntoALockedFolderNamesTheFirst) {
