@@ -6,6 +6,7 @@
 
 #include "ceres/types.h"
 #include "engine/config/config_sections.h"
+#include "engine/config/experiment_templates.h"
 
 namespace vesselid {
 
@@ -33,10 +34,7 @@ Interpolation ReadInterpolation(const YamlReader& reader, const YAML::Node& node
 ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
                               const std::string& path, const fs::path& base,
                               const ModelInfo& info) {
-  reader.CheckMap(
-      node, path,
-      {"name", "file", "inputs", "outputs", "interpolation", "weights", "initial_state", "degrees",
-       "window", "segment_length", "segments", "input_range", "wrap", "separator"});
+  reader.CheckMap(node, path, ExperimentKeys());
   ExperimentSpec spec;
   if (!node["name"]) reader.Fail(node, path, "missing key 'name'");
   if (!node["file"]) reader.Fail(node, path, "missing key 'file'");
@@ -510,8 +508,9 @@ bool LoadConfigFile(const std::string& path, const std::string& data_dir,
   try {
     const YAML::Node root = reader.Load();
     reader.CheckMap(root, "",
-                    {"description", "model", "simulation", "experiments", "stages", "fusion",
-                     "final", "final_validation", "surfaces", "study", "limits"});
+                    {"description", "model", "simulation", "experiment_defaults", "experiments",
+                     "sets", "stages", "fusion", "final", "final_validation", "surfaces", "study",
+                     "limits"});
     ConfigFile file;
     RunConfig& result = file.run;
     result.path = path;
@@ -534,20 +533,17 @@ bool LoadConfigFile(const std::string& path, const std::string& data_dir,
     if (root["simulation"]) file.simulation = root["simulation"];
 
     const fs::path base = data_dir.empty() ? fs::path(path).parent_path() : fs::path(data_dir);
-    const YAML::Node experiments = root["experiments"];
-    if (!experiments) reader.Fail(root, "experiments", "missing key");
-    reader.CheckSequence(experiments, "experiments");
-    for (size_t i = 0; i < experiments.size(); ++i) {
-      ExperimentSpec spec =
-          ReadExperiment(reader, experiments[i], Child("experiments", i), base, info);
+    for (const ExperimentEntry& entry : ExpandExperiments(&reader, root, base.string())) {
+      ExperimentSpec spec = ReadExperiment(reader, entry.node, entry.path, base, info);
       if (result.FindExperiment(spec.name) != nullptr) {
-        reader.Fail(experiments[i]["name"], Child(Child("experiments", i), "name"),
+        reader.Fail(entry.node["name"], Child(entry.path, "name"),
                     "duplicate experiment name '" + spec.name + "'");
       }
       spec.csv.max_bytes = result.limits.file_bytes;
       spec.csv.max_values = result.limits.data_values;
       result.experiments.push_back(std::move(spec));
     }
+    if (const YAML::Node sets = root["sets"]) ReadExperimentSets(reader, sets, &result);
     const YAML::Node stages = root["stages"];
     if (!stages) reader.Fail(root, "stages", "missing key");
     reader.CheckSequence(stages, "stages");

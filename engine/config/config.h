@@ -3,8 +3,10 @@
 //
 //   model:       {family: nomoto, type: second_order, ...family keys}
 //   simulation:  family-specific description of synthetic experiments (`vesselid simulate`)
-//   experiments: [{name, file, inputs, outputs, interpolation, weights, initial_state,
+//   experiment_defaults: keys merged into every experiment (experiment_templates.h)
+//   experiments: [{name, file | files, inputs, outputs, interpolation, weights, initial_state,
 //                  degrees, window}]
+//   sets:        {<name>: [experiments]}, usable as any list of experiments (experiment_sets.h)
 //   stages:      [{name, type, least_squares, model, experiments, validation, outputs,
 //                  parameters,
 //                  free_initial_states, loss, integration, normalize_by_length, continuation,
@@ -18,8 +20,9 @@
 // parameter without `start` starts from its latest estimate in an earlier stage (else the
 // model default); parameters a stage does not list are held at that value.
 //
-// Every key is checked; an unknown key, a name the model does not have, inverted bounds or a
-// start outside them is an error naming file, line and key.
+// YAML merge keys (`<<: *anchor`) are resolved first (yaml_merge.h). Every key is checked;
+// an unknown key, a name the model does not have, inverted bounds or a start outside them is
+// an error naming file, line and key.
 #pragma once
 
 #include <string>

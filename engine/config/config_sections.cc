@@ -25,17 +25,6 @@ void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::str
   if (!global->IsValid(&error)) reader.Fail(node, path, error);
 }
 
-std::vector<std::string> ExperimentNames(const YamlReader& reader, const YAML::Node& node,
-                                         const std::string& key, const RunConfig& config) {
-  std::vector<std::string> names = reader.Strings(node, key);
-  for (size_t i = 0; i < names.size(); ++i) {
-    if (config.FindExperiment(names[i]) == nullptr) {
-      reader.Fail(node[i], Child(key, i), "no experiment named '" + names[i] + "'");
-    }
-  }
-  return names;
-}
-
 void CheckNames(const YamlReader& reader, const YAML::Node& node, const std::string& key,
                 const std::vector<std::string>& names, const std::vector<std::string>& known,
                 const std::string& kind, const ModelInfo& info) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/config/experiment_sets.h"
 #include "engine/config/yaml_reader.h"
 #include "engine/run/run_config.h"
 #include "engine/study/study_options.h"
@@ -16,10 +17,6 @@ namespace vesselid {
 // min_separation}` over the values already in `global`.
 void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                 GlobalStartOptions* global);
-
-// A list of experiment names, each configured.
-std::vector<std::string> ExperimentNames(const YamlReader& reader, const YAML::Node& node,
-                                         const std::string& key, const RunConfig& config);
 
 // Fails unless every name is in `known` (a model's `kind` names, e.g. outputs).
 void CheckNames(const YamlReader& reader, const YAML::Node& node, const std::string& key,

@@ -6,6 +6,7 @@
 
 #include "engine/base/input_file.h"
 #include "engine/base/number_text.h"
+#include "engine/config/yaml_merge.h"
 #include "yaml-cpp/depthguard.h"
 
 namespace vesselid {
@@ -33,7 +34,8 @@ void CheckUniqueKeys(const YamlReader& reader, const YAML::Node& node, const std
         reader.Fail(item.first, Child(key, name),
                     "given twice (lines " + std::to_string(seen->second) + " and " +
                         std::to_string(item.first.Mark().line + 1) +
-                        "); a YAML map holds each key once");
+                        "); a YAML map holds each key once" +
+                        (name == "<<" ? " (merge several maps with <<: [*a, *b])" : ""));
       }
     }
     CheckUniqueKeys(reader, item.second, Child(key, name), visited);
@@ -62,7 +64,12 @@ YAML::Node YamlReader::Load() const {
   }
   std::set<std::pair<int, int>> visited;
   CheckUniqueKeys(*this, root, "", &visited);
+  ResolveMergeKeys(*this, root);
   return root;
+}
+
+void YamlReader::Place(const YAML::Node& built, const YAML::Node& written) {
+  placed_.emplace_back(built, written.Mark());
 }
 
 void YamlReader::CheckLimit(const YAML::Node& node, const std::string& key, double count,
@@ -77,8 +84,11 @@ void YamlReader::CheckLimit(const YAML::Node& node, const std::string& key, doub
 void YamlReader::Fail(const YAML::Node& node, const std::string& key,
                       const std::string& what) const {
   std::string where = file_;
-  if (node.IsDefined() && node.Mark().line >= 0)
-    where += ":" + std::to_string(node.Mark().line + 1);
+  YAML::Mark mark = node.IsDefined() ? node.Mark() : YAML::Mark::null_mark();
+  for (const auto& [built, written] : placed_) {
+    if (mark.is_null() && node.IsDefined() && built.is(node)) mark = written;
+  }
+  if (mark.line >= 0) where += ":" + std::to_string(mark.line + 1);
   // An empty key is the top level of the file.
   throw ConfigError(where + ": " + (key.empty() ? "" : key + ": ") + what);
 }

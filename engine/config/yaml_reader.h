@@ -25,8 +25,12 @@ class YamlReader {
 
   // Loads the file; throws ConfigError on a missing file, one that is not a regular file or
   // larger than kMaxConfigBytes, a syntax error or a map with a key given twice. A UTF-8
-  // byte-order mark is skipped.
+  // byte-order mark is skipped. Merge keys (`<<: *defaults`) are resolved (yaml_merge.h).
   YAML::Node Load() const;
+
+  // Messages about `built`, a node the config templates made (experiment_templates.h), name
+  // the line of `written`, what it was made from.
+  void Place(const YAML::Node& built, const YAML::Node& written);
 
   const std::string& file() const { return file_; }
 
@@ -72,6 +76,7 @@ class YamlReader {
  private:
   std::string file_;
   WorkLimits limits_;
+  std::vector<std::pair<YAML::Node, YAML::Mark>> placed_;  // built node -> where written
 };
 
 // "a.b" or "a[2]" paths for messages.

@@ -8,6 +8,7 @@
 // that value.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -97,6 +98,9 @@ struct RunConfig {
   // (`surfaces: {<state>: [lower, upper, points], <state>: [...]}`); empty: none.
   SurfaceGrid surfaces;
   WorkLimits limits;  // the config's `limits` (also copied into every experiment and stage)
+  // Named lists of experiments (`sets:`, config/experiment_sets.h); the stages' and final
+  // validation's lists above are already expanded.
+  std::map<std::string, std::vector<std::string>> experiment_sets;
 
   const ExperimentSpec* FindExperiment(const std::string& name) const;
   // The model a stage is solved with: its own restriction, else the run's.

@@ -36,6 +36,12 @@ TEST_F(BadInput, MissingColumn) {
   ExpectRejected("experiment 'run'.*no column 'heading' for output 'psi'");
 }
 
+TEST_F(BadInput, FilePatternWithoutMatch) {
+  EditConfig("file: data.csv", "files: \"zz_*.csv\"");
+  ExpectRejected(
+      "config\\.yaml:4: experiments\\[0\\]\\.files: no file matches 'zz_\\*\\.csv' in ");
+}
+
 TEST_F(BadInput, UnknownParameter) {
   EditConfig("      K: {", "      K9: {");
   ExpectRejected(

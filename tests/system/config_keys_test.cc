@@ -33,6 +33,7 @@ struct Variant {
   std::string stage;                   // stage keys
   std::string parameters;              // parameter lines (replacing a listed one by name)
   std::string top;                     // top-level keys
+  std::string extra;                   // experiments added after s
 
   Variant A(std::string v) const {
     Variant c = *this;
@@ -69,6 +70,11 @@ struct Variant {
     c.top = std::move(v);
     return c;
   }
+  Variant X(std::string v) const {
+    Variant c = *this;
+    c.extra = std::move(v);
+    return c;
+  }
 };
 
 struct KeyCase {
@@ -87,6 +93,7 @@ experiments:
   - {name: c, file: run2.csv, inputs: {delta: delta}, outputs: {psi: psi, r: r}}
   - {name: s, file: segmented.csv, inputs: {delta: delta}, outputs: {psi: psi, r: r},
      segments: {column: segment}S_KEYS}
+EXTRA_EXPERIMENTS
 stages:
   - name: fit
     experiments: EXPERIMENTS
@@ -136,6 +143,45 @@ const KeyCase kCases[] = {
      V.P("      T: {start: 3.0, lower: 0.1, upper: 20, role: shared}")
          .T("  - name: again\n    experiments: [c]\n    parameters:\n"
             "      T: {role: shared}\nfusion: mean\n")},
+    // Templates (README "Templates"): experiment_defaults, merge keys, files, sets.
+    {"experiment_defaults", V, V.T("experiment_defaults: {weights: {psi: 3.0}}\n")},
+    {"merge_key", V, V.K("    <<: {loss: {type: cauchy, scale: 0.001}}")},
+    {"merge_key_own_key_wins", V.K("    uncertainty: false"),
+     V.K("    <<: {uncertainty: false}\n    uncertainty: true")},
+    {"files", V,
+     V.X("  - {files: \"run[12].csv\", name: \"g{stem}\", inputs: {delta: delta},\n"
+         "     outputs: {psi: psi, r: r}}")
+         .E("[a, grun2]")},
+    {"sets_as_validation", V, V.T("sets: {held_out: [c]}\n").K("    validation: held_out")},
+    {"sets_in_a_list", V, V.T("sets: {pair: [a, b]}\n").E("[pair, c]")},
+    // Refused templates, with the line.
+    {"unknown_set", V, V.T("sets: {held_out: [c]}\n").K("    validation: [held_ot]"),
+     "config.yaml:12: stages[0].validation[0]: no experiment or set named 'held_ot'"},
+    {"set_without_sets", V, V.K("    validation: held_out"),
+     "config.yaml:12: stages[0].validation: expected a list of experiment names"},
+    {"experiment_listed_twice", V, V.T("sets: {pair: [a, b]}\n").E("[pair, a]"),
+     "config.yaml:10: stages[0].experiments[1]: experiment 'a' is listed twice (in set 'pair' "
+     "and by name)"},
+    {"set_named_like_an_experiment", V, V.T("sets: {c: [a]}\n"),
+     "sets.c: a set cannot have the name of an experiment"},
+    {"files_without_match", V,
+     V.X("  - {files: \"zz_*.csv\", inputs: {delta: delta}, outputs: {psi: psi}}"),
+     "config.yaml:8: experiments[4].files: no file matches 'zz_*.csv' in "},
+    {"files_beside_file", V,
+     V.X("  - {files: \"run*.csv\", file: run0.csv, inputs: {delta: delta}, outputs: {psi: psi}}"),
+     "experiments[4].files: file and files cannot be combined"},
+    {"files_name_without_stem", V,
+     V.X("  - {files: \"run*.csv\", name: run, inputs: {delta: delta}, outputs: {psi: psi}}"),
+     "experiments[4].name: with files, the name holds {stem}"},
+    {"defaults_with_a_name", V, V.T("experiment_defaults: {name: x}\n"),
+     "experiment_defaults.name: every experiment gives its own"},
+    {"merge_of_a_non_map", V, V.K("    <<: [5]"),
+     "config.yaml:12: stages[0].<<[0]: a merge key's list holds maps"},
+    {"merge_of_a_scalar", V, V.K("    <<: fast"),
+     "config.yaml:12: stages[0].<<: a merge key takes a map or a list of maps"},
+    {"duplicate_key_next_to_a_merge_key", V,
+     V.K("    <<: {uncertainty: false}\n    loss: {type: cauchy}\n    loss: {type: huber}"),
+     "config.yaml:14: stages[0].loss: given twice (lines 13 and 14)"},
     // Refused combinations.
     {"initial_state_with_segments", V, V.E("[a, s]").S(", initial_state: {r: 0}"),
      "initial_state: cannot be combined with 'segments'"},
@@ -201,6 +247,7 @@ class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
     put("FREE", v.free);
     put("STAGE_KEYS\n", v.stage.empty() ? "" : v.stage + "\n");
     put("TOP_KEYS", v.top);
+    put("EXTRA_EXPERIMENTS\n", v.extra.empty() ? "" : v.extra + "\n");
     if (!v.parameters.empty()) {  // replaces the listed line of the same parameter
       const std::string head = v.parameters.substr(0, v.parameters.find(':') + 1);
       const size_t at = text.find(head);
