@@ -36,13 +36,13 @@ class MergeResolver {
     if (node.IsSequence()) {
       for (size_t i = 0; i < node.size(); ++i) Resolve(node[i], Child(key, i));
     } else {
-      YAML::Node merged;
+      std::vector<std::pair<YAML::Node, YAML::Node>> merge;  // the `<<` item (keys are unique)
       for (const auto& item : node) {
         const std::string name = item.first.IsScalar() ? item.first.Scalar() : "";
-        if (IsMergeKey(item.first)) merged = item.second;
+        if (IsMergeKey(item.first)) merge.emplace_back(item.first, item.second);
         Resolve(item.second, Child(key, name));
       }
-      if (merged.IsDefined()) Merge(node, merged, Child(key, "<<"));
+      if (!merge.empty()) Merge(node, merge[0].first, merge[0].second, Child(key, "<<"));
     }
     open_.erase(at);
     done_.insert(at);
@@ -51,7 +51,8 @@ class MergeResolver {
  private:
   // Rewrites `map` in place (it keeps its line and every alias of it sees the result): its
   // own keys, with the merged maps' other keys where the `<<` line was.
-  void Merge(YAML::Node map, const YAML::Node& value, const std::string& key) {
+  void Merge(YAML::Node map, const YAML::Node& merge_key, const YAML::Node& value,
+             const std::string& key) {
     std::vector<YAML::Node> sources;
     if (value.IsMap()) {
       sources.push_back(value);
@@ -72,7 +73,7 @@ class MergeResolver {
     }
     for (const YAML::Node& source : sources) {
       if (open_.count(At(source)) != 0) {
-        reader_.Fail(value, key, "merges a map that contains this one");
+        reader_.Fail(merge_key, key, "merges a map that contains this one");
       }
     }
     std::set<std::string> present;

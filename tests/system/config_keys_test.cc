@@ -93,7 +93,7 @@ experiments:
   - {name: c, file: run2.csv, inputs: {delta: delta}, outputs: {psi: psi, r: r}}
   - {name: s, file: segmented.csv, inputs: {delta: delta}, outputs: {psi: psi, r: r},
      segments: {column: segment}S_KEYS}
-EXTRA_EXPERIMENTS
+MORE_ENTRIES
 stages:
   - name: fit
     experiments: EXPERIMENTS
@@ -247,7 +247,7 @@ class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
     put("FREE", v.free);
     put("STAGE_KEYS\n", v.stage.empty() ? "" : v.stage + "\n");
     put("TOP_KEYS", v.top);
-    put("EXTRA_EXPERIMENTS\n", v.extra.empty() ? "" : v.extra + "\n");
+    put("MORE_ENTRIES\n", v.extra.empty() ? "" : v.extra + "\n");
     if (!v.parameters.empty()) {  // replaces the listed line of the same parameter
       const std::string head = v.parameters.substr(0, v.parameters.find(':') + 1);
       const size_t at = text.find(head);

@@ -68,6 +68,7 @@ std::string Describe(const RunConfig& config) {
   }
   list("final", config.final_validation.experiments);
   list("final free", config.final_validation.free_initial_states);
+  list("final outputs", config.final_validation.experiment.outputs);
   return s;
 }
 
