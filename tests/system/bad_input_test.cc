@@ -37,9 +37,9 @@ TEST_F(BadInput, MissingColumn) {
 }
 
 TEST_F(BadInput, FilePatternWithoutMatch) {
-  EditConfig("file: data.csv", "files: \"zz_*.csv\"");
+  EditConfig("name: run\n    file: data.csv", "files: \"zz_*.csv\"");
   ExpectRejected(
-      "config\\.yaml:4: experiments\\[0\\]\\.files: no file matches 'zz_\\*\\.csv' in ");
+      "config\\.yaml:3: experiments\\[0\\]\\.files: no file matches 'zz_\\*\\.csv' in ");
 }
 
 TEST_F(BadInput, UnknownParameter) {
