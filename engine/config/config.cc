@@ -37,7 +37,7 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
   reader.CheckMap(node, path, ExperimentKeys());
   ExperimentSpec spec;
   if (!node["name"]) reader.Fail(node, path, "missing key 'name'");
-  if (!node["file"]) reader.Fail(node, path, "missing key 'file'");
+  if (!node["file"]) reader.Fail(node, path, "missing key 'file' (or 'files', a pattern)");
   spec.name = reader.String(node["name"], Child(path, "name"));
   const std::string file = reader.String(node["file"], Child(path, "file"));
   spec.file = fs::path(file).is_absolute() ? file : (base / file).lexically_normal().string();

@@ -85,8 +85,8 @@ void YamlReader::Fail(const YAML::Node& node, const std::string& key,
                       const std::string& what) const {
   std::string where = file_;
   YAML::Mark mark = node.IsDefined() ? node.Mark() : YAML::Mark::null_mark();
-  for (const auto& [built, written] : placed_) {
-    if (mark.is_null() && node.IsDefined() && built.is(node)) mark = written;
+  for (size_t i = 0; mark.is_null() && node.IsDefined() && i < placed_.size(); ++i) {
+    if (placed_[i].first.is(node)) mark = placed_[i].second;
   }
   if (mark.line >= 0) where += ":" + std::to_string(mark.line + 1);
   // An empty key is the top level of the file.
