@@ -7,6 +7,7 @@
 #include "engine/base/atomic_file.h"
 #include "engine/base/elapsed.h"
 #include "engine/output/base64.h"
+#include "engine/output/held_out_parameters_report.h"
 #include "engine/output/report_figures.h"
 #include "engine/output/report_plots.h"
 #include "engine/output/report_tables.h"
@@ -241,6 +242,7 @@ void StageSection(const RunConfig& config, const StageResult& stage, size_t numb
     html << "<h3 id=\"" << id << "-validation\">Validation on held-out experiments</h3>\n";
     FitFigures(key + ".validation", "held out, stage " + stage.name, stage.validation, angles,
                page);
+    html << HeldOutParametersHtml(stage.held_out_parameters, stage.validation);
     if (!stage.velocity_validation.empty()) {
       html << "<h4>Velocities (data: Savitzky-Golay reconstruction)</h4>\n"
            << VelocityTable(stage.velocity_validation);
@@ -291,6 +293,7 @@ void FinalSection(const RunConfig& config, const RunResult& result, ReportPage* 
     html << "<h3 id=\"final-validation\">Final validation</h3>\n";
     FitFigures("final.validation", "final values", result.final_validation, AngleOutputs(config),
                page);
+    html << HeldOutParametersHtml(result.final_held_out_parameters, result.final_validation);
     if (!result.final_velocity_validation.empty()) {
       html << "<h4>Velocities</h4>\n" << VelocityTable(result.final_velocity_validation);
     }
