@@ -11,6 +11,7 @@
 #include "engine/output/report_figures.h"
 #include "engine/output/report_plots.h"
 #include "engine/output/report_tables.h"
+#include "engine/output/zigzag_report.h"
 #include "engine/run/held_out.h"
 #include "engine/run/run_warnings.h"
 
@@ -319,6 +320,7 @@ void Contents(const RunResult& result, std::ostringstream* html) {
   if (!result.final_validation.empty() || !result.final_velocity_validation.empty()) {
     *html << " <span class=\"sub\"><a href=\"#final-validation\">validation</a></span>";
   }
+  if (!result.zigzags.empty()) *html << "</li>\n<li><a href=\"#zigzag\">Zigzag figures</a>";
   *html << "</li>\n<li><a href=\"#papers\">Paper-style tables</a> <span class=\"sub\">"
            "<a href=\"#paper-parameters\">parameters by stage</a><a href=\"#paper-cost\">cost "
            "per test</a><a href=\"#paper-validation\">validation fit %</a></span></li>\n"
@@ -360,6 +362,7 @@ std::string RunReportHtml(const RunConfig& config, const RunResult& result) {
     StageSection(config, result.stages[k], k + 1, &page);
   }
   FinalSection(config, result, &page);
+  html << ZigzagRunsHtml(result.zigzags);
   html << "<section id=\"papers\">\n<h2>Paper-style tables</h2>\n"
        << PaperTables(config, result) << "</section>\n";
   html << "<p class=\"muted\">Report written in <!--seconds--> s (plots <!--plot-seconds--> s)."

@@ -3,6 +3,7 @@
 #include "engine/base/json_number.h"
 #include "engine/output/held_out_parameters_report.h"
 #include "engine/output/step_regression_writer.h"
+#include "engine/output/zigzag_report.h"
 
 namespace vesselid {
 namespace {
@@ -248,6 +249,7 @@ json RunResultToJson(const RunConfig& config, const RunResult& result) {
   if (!result.final_velocity_validation.empty()) {
     j["final_velocity_validation"] = VelocityToJson(result.final_velocity_validation);
   }
+  if (!result.zigzags.empty()) j["zigzags"] = ZigzagRunsToJson(result.zigzags);
   return j;
 }
 

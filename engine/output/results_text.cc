@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "engine/output/held_out_parameters_report.h"
+#include "engine/output/zigzag_report.h"
 #include "engine/run/held_out.h"
 
 namespace vesselid {
@@ -235,6 +236,7 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
     out << "final validation of the velocities\n"
         << VelocityTable(result.final_velocity_validation);
   }
+  out << ZigzagRunsText(result.zigzags);
   return out.str();
 }
 

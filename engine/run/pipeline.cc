@@ -11,6 +11,7 @@
 #include "engine/run/step_regression_stage.h"
 #include "engine/run/velocity_validation.h"
 #include "engine/run/work_size.h"
+#include "engine/run/zigzag_runs.h"
 
 namespace vesselid {
 namespace {
@@ -245,6 +246,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
       for (const std::string& d : diverged) run.warnings.push_back("final validation: " + d);
     }
   }
+  run.zigzags = FindZigzagRuns(config, run, &cache);
   AddRunWarnings(config, &run);
   run.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();

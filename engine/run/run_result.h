@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "Eigen/Dense"
+#include "engine/data/zigzag_figures.h"
 #include "engine/model/model.h"
 #include "engine/solve/parameter.h"
 #include "engine/solve/stage.h"
@@ -113,6 +114,16 @@ struct FinalParameter {
   double runs_max = std::numeric_limits<double>::quiet_NaN();
 };
 
+// A zigzag among the run's simulated records (zigzag_runs.h): the test as the record flies
+// it and its figures, measured and simulated.
+struct ZigzagRun {
+  std::string stage;  // the stage whose fit it is, or "final" (final validation)
+  std::string experiment;
+  bool held_out = false;
+  ZigzagTest test;
+  ZigzagFigures measured, simulated;
+};
+
 struct RunResult {
   std::vector<StageResult> stages;  // the finished ones
   // Everything doubtful about the result, each naming the stage, parameter or experiment:
@@ -125,6 +136,7 @@ struct RunResult {
   std::vector<ExperimentFit> final_validation;
   HeldOutParameters final_held_out_parameters;  // per-experiment parameters of final_validation
   std::vector<ChannelMetrics> final_velocity_validation;
+  std::vector<ZigzagRun> zigzags;  // every zigzag fit of the stages and the final validation
   double time_seconds = 0.0;
 };
 
