@@ -60,7 +60,8 @@ class HeldOutParametersTest : public ::testing::Test {
     delete dir_;
   }
 
-  static bool Run(const std::string& extra, RunConfig* config, RunResult* result) {
+  static bool Run(const std::string& extra, RunConfig* config, RunResult* result,
+                  const std::string& bias_bounds = "lower: -0.1, upper: 0.1") {
     std::string text = "model: {family: nomoto, type: first_order}\nexperiments:\n";
     for (int i = 0; i < 6; ++i) {
       const std::string name = "z" + std::to_string(i);
@@ -75,8 +76,9 @@ class HeldOutParametersTest : public ::testing::Test {
     parameters:
       T: {start: 20, lower: 1, upper: 200}
       K: {start: 0.05, lower: 0.001, upper: 1}
-      delta_0: {start: 0.0, lower: -0.1, upper: 0.1, role: per_experiment}
+      delta_0: {start: 0.0, BOUNDS, role: per_experiment}
 )" + extra;
+    text.replace(text.find("BOUNDS"), 6, bias_bounds);
     std::ofstream(*dir_ / "run.yaml") << text;
     static const ModelRegistry registry = DefaultRegistry();
     std::string error;
@@ -221,6 +223,25 @@ TEST_F(HeldOutParametersTest, HoldKeepsThemAtTheirStart) {
   EXPECT_FALSE(held.stages[0].rejected.empty());
   EXPECT_NE(RunResultToText(config, held).find("held at their start on the held-out runs"),
             std::string::npos);
+}
+
+// A held-out bias the bounds stop is a warning naming the run, in the stage and the final
+// validation.
+TEST_F(HeldOutParametersTest, HeldOutEstimateAtABoundIsAWarning) {
+  RunConfig config;
+  RunResult result;
+  ASSERT_TRUE(Run("final_validation: {experiments: [z4, z5]}\n", &config, &result,
+                  "lower: -0.04, upper: 0.1"));
+  auto warned = [&](const std::string& text) {
+    for (const std::string& w : result.warnings) {
+      if (w.find(text) != std::string::npos) return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(warned("stage 'biased': validation: delta_0[z5] of held-out run 'z5' is at its "
+                     "lower bound -0.04"));
+  EXPECT_TRUE(warned("final validation: delta_0[z5] of held-out run 'z5' is at its lower bound"));
+  EXPECT_FALSE(warned("run 'z4'"));
 }
 
 }  // namespace
