@@ -301,13 +301,24 @@ std::shared_ptr<const ModelHandle> OverrideModel(const YamlReader& reader,
 
 // A list of experiment names at `key`, each one the config defines.
 
+//   per_experiment: fit | hold (final_validation), validation_per_experiment (a stage)
+HeldOutPerExperiment ReadHeldOutPerExperiment(const YamlReader& reader, const YAML::Node& node,
+                                              const std::string& key) {
+  const std::string text = reader.String(node, key);
+  HeldOutPerExperiment mode = HeldOutPerExperiment::kFit;
+  if (!StringToHeldOutPerExperiment(text, &mode)) {
+    reader.Fail(node, key, "unknown choice '" + text + "' (fit, hold)");
+  }
+  return mode;
+}
+
 StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                       const RunConfig& config, const ModelFamily& family,
                       const YAML::Node& model_node, size_t index) {
   reader.CheckMap(
       node, path,
       {"name", "type", "least_squares", "step_regression", "model", "experiments", "validation",
-       "outputs", "parameters", "free_initial_states", "loss", "integration", "normalize_by_length",
+       "validation_per_experiment", "outputs", "parameters", "free_initial_states", "loss", "integration", "normalize_by_length",
        "continuation", "global", "local", "uncertainty", "initial_state_prior", "outliers"});
   StageConfig stage;
   if (node["model"]) {
@@ -326,6 +337,10 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
   if (node["validation"]) {
     stage.validation =
         ExperimentNames(reader, node["validation"], Child(path, "validation"), config);
+  }
+  if (const YAML::Node mode = node["validation_per_experiment"]) {
+    stage.validation_per_experiment =
+        ReadHeldOutPerExperiment(reader, mode, Child(path, "validation_per_experiment"));
   }
   if (node["outputs"]) {
     stage.experiment.outputs = reader.Strings(node["outputs"], Child(path, "outputs"));
@@ -571,7 +586,7 @@ bool LoadConfigFile(const std::string& path, const std::string& data_dir,
     }
     if (const YAML::Node final = root["final_validation"]) {
       reader.CheckMap(final, "final_validation",
-                      {"experiments", "outputs", "model", "free_initial_states"});
+                      {"experiments", "outputs", "model", "free_initial_states", "per_experiment"});
       FinalValidationConfig& v = result.final_validation;
       result.has_final_validation = true;
       if (final["model"]) {
@@ -585,6 +600,10 @@ bool LoadConfigFile(const std::string& path, const std::string& data_dir,
         v.experiment.outputs = reader.Strings(final["outputs"], "final_validation.outputs");
         CheckNames(reader, final["outputs"], "final_validation.outputs", v.experiment.outputs,
                    final_info.outputs, "output", final_info);
+      }
+      if (final["per_experiment"]) {
+        v.per_experiment = ReadHeldOutPerExperiment(reader, final["per_experiment"],
+                                                    "final_validation.per_experiment");
       }
       if (final["free_initial_states"]) {
         const std::string key = "final_validation.free_initial_states";

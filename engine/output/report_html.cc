@@ -7,9 +7,11 @@
 #include "engine/base/atomic_file.h"
 #include "engine/base/elapsed.h"
 #include "engine/output/base64.h"
+#include "engine/output/held_out_parameters_report.h"
 #include "engine/output/report_figures.h"
 #include "engine/output/report_plots.h"
 #include "engine/output/report_tables.h"
+#include "engine/output/zigzag_report.h"
 #include "engine/run/held_out.h"
 #include "engine/run/run_warnings.h"
 
@@ -241,6 +243,7 @@ void StageSection(const RunConfig& config, const StageResult& stage, size_t numb
     html << "<h3 id=\"" << id << "-validation\">Validation on held-out experiments</h3>\n";
     FitFigures(key + ".validation", "held out, stage " + stage.name, stage.validation, angles,
                page);
+    html << HeldOutParametersHtml(stage.held_out_parameters, stage.validation);
     if (!stage.velocity_validation.empty()) {
       html << "<h4>Velocities (data: Savitzky-Golay reconstruction)</h4>\n"
            << VelocityTable(stage.velocity_validation);
@@ -291,6 +294,7 @@ void FinalSection(const RunConfig& config, const RunResult& result, ReportPage* 
     html << "<h3 id=\"final-validation\">Final validation</h3>\n";
     FitFigures("final.validation", "final values", result.final_validation, AngleOutputs(config),
                page);
+    html << HeldOutParametersHtml(result.final_held_out_parameters, result.final_validation);
     if (!result.final_velocity_validation.empty()) {
       html << "<h4>Velocities</h4>\n" << VelocityTable(result.final_velocity_validation);
     }
@@ -316,6 +320,7 @@ void Contents(const RunResult& result, std::ostringstream* html) {
   if (!result.final_validation.empty() || !result.final_velocity_validation.empty()) {
     *html << " <span class=\"sub\"><a href=\"#final-validation\">validation</a></span>";
   }
+  if (!result.zigzags.empty()) *html << "</li>\n<li><a href=\"#zigzag\">Zigzag figures</a>";
   *html << "</li>\n<li><a href=\"#papers\">Paper-style tables</a> <span class=\"sub\">"
            "<a href=\"#paper-parameters\">parameters by stage</a><a href=\"#paper-cost\">cost "
            "per test</a><a href=\"#paper-validation\">validation fit %</a></span></li>\n"
@@ -357,6 +362,7 @@ std::string RunReportHtml(const RunConfig& config, const RunResult& result) {
     StageSection(config, result.stages[k], k + 1, &page);
   }
   FinalSection(config, result, &page);
+  html << ZigzagRunsHtml(result.zigzags);
   html << "<section id=\"papers\">\n<h2>Paper-style tables</h2>\n"
        << PaperTables(config, result) << "</section>\n";
   html << "<p class=\"muted\">Report written in <!--seconds--> s (plots <!--plot-seconds--> s)."

@@ -55,6 +55,31 @@ struct SparseTable {
   }
 };
 
+// "per run (12): -0.05 to 0.04": a per-experiment parameter's values in a stage, or the
+// final ones.
+std::string PerRunRange(const StageResult& stage, const std::string& name,
+                        const FinalParameter* final_value = nullptr) {
+  int runs = 0;
+  double low = 0.0, high = 0.0;
+  if (final_value != nullptr) {
+    runs = final_value->runs;
+    low = final_value->runs_min;
+    high = final_value->runs_max;
+  } else {
+    for (const Estimate& e : stage.estimates) {
+      if (e.experiment.empty() || e.kind != EstimateKind::kParameter ||
+          e.name.substr(0, e.name.find('[')) != name) {
+        continue;
+      }
+      low = runs == 0 ? e.value : std::min(low, e.value);
+      high = runs == 0 ? e.value : std::max(high, e.value);
+      ++runs;
+    }
+  }
+  return "per run (" + std::to_string(runs) + "): " + HtmlNumber(low, "%.4g") + " to " +
+         HtmlNumber(high, "%.4g");
+}
+
 std::string ParametersByStage(const RunConfig& config, const RunResult& result) {
   // Per stage with estimates: the shared estimates by name, and per-experiment parameters.
   std::vector<const StageResult*> stages;
@@ -68,7 +93,7 @@ std::string ParametersByStage(const RunConfig& config, const RunResult& result) 
       if (e.experiment.empty()) {
         own[e.name] = &e;
       } else {
-        each.insert(e.name);
+        each.insert(e.name.substr(0, e.name.find('[')));  // "delta_0[run2]" is delta_0's
       }
     }
     if (own.empty() && each.empty()) continue;
@@ -94,7 +119,7 @@ std::string ParametersByStage(const RunConfig& config, const RunResult& result) 
         row += Num(ValueWithError(e.value, e.std_error, e.undetermined));
         estimated = true;
       } else if (per_experiment[s].count(name) > 0) {
-        row += Td("per experiment");
+        row += Td(PerRunRange(*stages[s], name));
         estimated = true;
       } else {
         row += "<td></td>";
@@ -106,7 +131,9 @@ std::string ParametersByStage(const RunConfig& config, const RunResult& result) 
       ++never_count;
       continue;
     }
-    if (f != final_values.end()) {
+    if (f != final_values.end() && f->second->runs > 0) {
+      row += Td(PerRunRange(*stages.back(), name, f->second)) + Td(f->second->rule);
+    } else if (f != final_values.end()) {
       const FinalParameter& p = *f->second;
       row += Num(ValueWithError(p.value, p.std_error, p.undetermined && p.role != ParameterRole::kFixed)) +
              Td(p.rule);

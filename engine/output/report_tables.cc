@@ -161,6 +161,14 @@ std::string FinalParametersTable(const std::vector<FinalParameter>& parameters) 
     std::string stages;
     for (const std::string& s : f.stages) stages += (stages.empty() ? "" : ", ") + s;
     const bool fixed = f.role == ParameterRole::kFixed;
+    if (f.runs > 0) {  // per_experiment: one value per run
+      rows += "<tr>" + Td(f.name) +
+              Td("per run: " + std::to_string(f.runs) + " runs, " +
+                 HtmlNumber(f.runs_min, "%.6g") + " to " + HtmlNumber(f.runs_max, "%.6g")) +
+              Num("—") + Num("—") + Td(ParameterRoleToString(f.role)) + Td(stages) + Td(f.rule) +
+              "</tr>\n";
+      continue;
+    }
     rows += "<tr" + std::string(fixed ? " class=\"fixed\"" : "") + ">" + Td(f.name) +
             Num(HtmlNumber(f.value, "%.8g")) + Num(HtmlNumber(f.std_error, "%.4g")) +
             Num(fixed ? "—" : Interval(f.value, f.std_error, f.undetermined)) +

@@ -1,7 +1,9 @@
 #include "engine/output/results_json.h"
 
 #include "engine/base/json_number.h"
+#include "engine/output/held_out_parameters_report.h"
 #include "engine/output/step_regression_writer.h"
+#include "engine/output/zigzag_report.h"
 
 namespace vesselid {
 namespace {
@@ -192,6 +194,10 @@ json StageToJson(const StageResult& stage) {
   j["admissibility"] = stage.admissibility;
   if (!stage.validation.empty()) j["validation"] = FitsToJson(stage.validation);
   if (stage.held_out.done) j["held_out_check"] = HeldOutToJson(stage.held_out);
+  if (stage.held_out_parameters.active()) {
+    j["held_out_parameters"] =
+        HeldOutParametersToJson(stage.held_out_parameters, stage.validation);
+  }
   if (!stage.rejected.empty()) j["rejected"] = stage.rejected;
   if (stage.integration_step > 0.0) j["integration_step"] = stage.integration_step;
   if (!stage.velocity_validation.empty()) {
@@ -227,13 +233,23 @@ json RunResultToJson(const RunConfig& config, const RunResult& result) {
                           {"stages", f.stages},
                           {"rule", f.rule},
                           {"undetermined", f.undetermined}});
+    if (f.runs > 0) {  // per_experiment: one value per run
+      parameters.back()["runs"] = {{"count", f.runs},
+                                   {"min", JsonNumber(f.runs_min)},
+                                   {"max", JsonNumber(f.runs_max)}};
+    }
   }
   j["parameters"] = parameters;
   j["admissibility"] = result.admissibility;
   if (config.has_final_validation) j["final_validation"] = FitsToJson(result.final_validation);
+  if (result.final_held_out_parameters.active()) {
+    j["final_held_out_parameters"] =
+        HeldOutParametersToJson(result.final_held_out_parameters, result.final_validation);
+  }
   if (!result.final_velocity_validation.empty()) {
     j["final_velocity_validation"] = VelocityToJson(result.final_velocity_validation);
   }
+  if (!result.zigzags.empty()) j["zigzags"] = ZigzagRunsToJson(result.zigzags);
   return j;
 }
 

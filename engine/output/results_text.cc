@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "engine/output/held_out_parameters_report.h"
+#include "engine/output/zigzag_report.h"
 #include "engine/run/held_out.h"
 
 namespace vesselid {
@@ -177,6 +179,7 @@ std::string StageText(const StageResult& stage) {
   if (s.analysis.available) out << LocalAnalysisText(s.analysis);
   out << MetricsTable(s.fits);
   if (!stage.validation.empty()) out << "  local validation:\n" << MetricsTable(stage.validation);
+  out << HeldOutParametersText(stage.held_out_parameters, stage.validation, "  ");
   if (stage.held_out.done) {
     out << "  held-out check against the stage's start: " << DescribeHeldOut(stage.held_out)
         << (stage.held_out.worse ? " (worse)" : " (not worse)") << "\n";
@@ -212,17 +215,28 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
     for (const std::string& stage : f.stages) from += (from.empty() ? "" : ", ") + stage;
     if (f.rule != "stage" && f.rule != "fixed") from += " (" + f.rule + ")";
     const bool fixed = f.role == ParameterRole::kFixed;
+    if (f.runs > 0) {  // per_experiment: its values per run, not one value
+      char runs[320];
+      std::snprintf(runs, sizeof(runs),
+                    "  %-24s %-15s %16s %12s %10s  %d runs from %.6g to %.6g (start %.6g), %s\n",
+                    f.name.c_str(), ParameterRoleToString(f.role), "per run", "-", "-", f.runs,
+                    f.runs_min, f.runs_max, f.value, from.c_str());
+      out << runs;
+      continue;
+    }
     out << EstimateLine(f.name, ParameterRoleToString(f.role), f.value, f.std_error,
                         f.undetermined && !fixed, from);
   }
   for (const std::string& a : result.admissibility) out << "  not admissible: " << a << "\n";
   if (config.has_final_validation) {
-    out << "\nfinal validation\n" << MetricsTable(result.final_validation);
+    out << "\nfinal validation\n" << MetricsTable(result.final_validation)
+        << HeldOutParametersText(result.final_held_out_parameters, result.final_validation, "  ");
   }
   if (!result.final_velocity_validation.empty()) {
     out << "final validation of the velocities\n"
         << VelocityTable(result.final_velocity_validation);
   }
+  out << ZigzagRunsText(result.zigzags);
   return out.str();
 }
 

@@ -79,6 +79,7 @@ void from_json(const nlohmann::json& j, ParameterRole& role) {
 }
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Estimate, name, kind, role, experiment, value, start,
                                    std_error, lower, upper, undetermined)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(HeldOutParameters, fitted, parameters, estimates, without)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(DampingSample, record, t, duration, x, sigma, turns, weight,
                                    group, mirrored)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(InertiaSample, record, term, t, x, inertia, gain,
@@ -109,6 +110,7 @@ nlohmann::json StageResultToArchive(const StageResult& stage) {
                       {"admissibility", stage.admissibility},
                       {"validation", stage.validation},
                       {"held_out", stage.held_out},
+                      {"held_out_parameters", stage.held_out_parameters},
                       {"rejected", stage.rejected},
                       {"integration_step", stage.integration_step},
                       {"velocity_validation", stage.velocity_validation}};
@@ -133,6 +135,8 @@ bool StageResultFromArchive(const nlohmann::json& j, StageResult* stage, std::st
     j.at("admissibility").get_to(s.admissibility);
     j.at("validation").get_to(s.validation);
     j.at("held_out").get_to(s.held_out);
+    // Absent from archives written before held-out runs had per-experiment parameters.
+    if (j.contains("held_out_parameters")) j.at("held_out_parameters").get_to(s.held_out_parameters);
     j.at("rejected").get_to(s.rejected);
     j.at("integration_step").get_to(s.integration_step);
     j.at("velocity_validation").get_to(s.velocity_validation);

@@ -1,22 +1,28 @@
 #include "engine/run/held_out.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 
+#include "engine/solve/covariance.h"
+
 namespace vesselid {
 
-std::unique_ptr<OutputErrorProblem> HeldOutProblem(const ModelHandle& model,
-                                                   std::vector<Experiment> experiments,
-                                                   const std::vector<std::string>& free_states,
-                                                   const LocalSolveOptions& local,
-                                                   const std::vector<double>& values,
-                                                   std::string* error) {
+std::unique_ptr<OutputErrorProblem> HeldOutProblem(
+    const ModelHandle& model, std::vector<Experiment> experiments,
+    const std::vector<std::string>& free_states, const LocalSolveOptions& local,
+    const std::vector<double>& values, std::string* error,
+    const std::vector<ParameterSpec>& per_experiment) {
   std::vector<ParameterSpec> fixed;
   for (size_t i = 0; i < values.size(); ++i) {
     ParameterSpec spec;
     spec.name = model.info().parameters[i];
     spec.start = values[i];
     spec.role = ParameterRole::kFixed;
+    for (const ParameterSpec& own : per_experiment) {
+      if (own.name == spec.name) spec = own;
+    }
     fixed.push_back(spec);
   }
   OutputErrorOptions problem_options;
@@ -27,44 +33,169 @@ std::unique_ptr<OutputErrorProblem> HeldOutProblem(const ModelHandle& model,
   if (problem->num_free() > 0) {
     LocalSolveSummary summary;
     if (!RunLocalSolve(local, problem.get(), &summary)) {
-      *error = "initial-state estimate: " + summary.message;
+      *error = (per_experiment.empty() ? "initial-state estimate: "
+                                       : "estimate of the per-experiment parameters: ") +
+               summary.message;
       return nullptr;
     }
   }
   return problem;
 }
 
+HeldOutPerRun PerRunFromStage(const StageResult& stage, const ModelInfo& model,
+                              HeldOutPerExperiment mode) {
+  HeldOutPerRun per_run;
+  per_run.mode = mode;
+  std::vector<int> runs;
+  for (const Estimate& e : stage.estimates) {
+    if (e.kind != EstimateKind::kParameter || e.role != ParameterRole::kPerExperiment ||
+        e.experiment.empty()) {
+      continue;
+    }
+    const std::string name = e.name.substr(0, e.name.find('['));
+    if (model.ParameterIndex(name) < 0) continue;
+    size_t k = 0;
+    while (k < per_run.parameters.size() && per_run.parameters[k].name != name) ++k;
+    if (k == per_run.parameters.size()) {
+      ParameterSpec spec;
+      spec.name = name;
+      spec.role = ParameterRole::kPerExperiment;
+      spec.start = e.start;
+      spec.lower = e.lower;
+      spec.upper = e.upper;
+      per_run.parameters.push_back(spec);
+      per_run.fit_start.push_back(0.0);
+      runs.push_back(0);
+    }
+    per_run.fit_start[k] += e.value;
+    ++runs[k];
+  }
+  for (size_t k = 0; k < runs.size(); ++k) {
+    const ParameterSpec& spec = per_run.parameters[k];
+    per_run.fit_start[k] = std::clamp(per_run.fit_start[k] / runs[k], spec.lower, spec.upper);
+  }
+  return per_run;
+}
+
+namespace {
+
+// The run's per-experiment estimates (value, standard error) from its solved problem; the
+// start reported is the value held without them.
+void CollectEstimates(OutputErrorProblem* problem, const HeldOutPerRun& per_run,
+                      std::vector<Estimate>* estimates) {
+  double cost = 0.0;
+  Uncertainty u;
+  const bool known = problem->Cost(&cost) && ComputeUncertainty(problem, cost, &u);
+  const std::vector<Variable>& variables = problem->variables();
+  for (size_t i = 0; i < variables.size(); ++i) {
+    const Variable& v = variables[i];
+    if (v.kind != Variable::Kind::kParameter || v.role != ParameterRole::kPerExperiment) continue;
+    Estimate e;
+    e.name = v.name;
+    e.role = ParameterRole::kPerExperiment;
+    e.experiment = problem->experiments()[v.experiment].name;
+    e.value = v.value();
+    e.std_error = known ? u.StdError(static_cast<int>(i)) : std::nan("");
+    for (const ParameterSpec& spec : per_run.parameters) {
+      if (spec.name == problem->model().info().parameters[v.index]) e.start = spec.start;
+    }
+    e.lower = v.lower;
+    e.upper = v.upper;
+    for (int index : u.undetermined_variables) e.undetermined |= index == static_cast<int>(i);
+    estimates->push_back(e);
+  }
+}
+
+// One held-out run fitted at `values`, estimating its per-experiment parameters if given.
+ExperimentFit FitOne(const ModelHandle& model, Experiment experiment,
+                     const std::vector<std::string>& free_states, const LocalSolveOptions& local,
+                     const std::vector<double>& values, const HeldOutPerRun* per_run,
+                     std::vector<Estimate>* estimates) {
+  ExperimentFit fit;
+  fit.experiment = experiment.name;
+  std::vector<ParameterSpec> own;
+  if (per_run != nullptr) {
+    own = per_run->parameters;
+    for (size_t k = 0; k < own.size(); ++k) own[k].start = per_run->fit_start[k];
+  }
+  std::vector<Experiment> one;
+  one.push_back(std::move(experiment));
+  std::string why;
+  const std::unique_ptr<OutputErrorProblem> problem =
+      HeldOutProblem(model, std::move(one), free_states, local, values, &why, own);
+  if (problem == nullptr) {
+    fit.diverged = true;
+    fit.message = why;
+    return fit;
+  }
+  std::vector<ExperimentFit> evaluated;
+  EvaluateFit(*problem, &evaluated, &why);  // a divergence is recorded in the fit
+  if (per_run != nullptr) CollectEstimates(problem.get(), *per_run, estimates);
+  return std::move(evaluated.front());
+}
+
+}  // namespace
+
 bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
                      const std::vector<std::string>& names, const ExperimentOptions& options,
                      const std::vector<std::string>& free_states, const LocalSolveOptions& local,
                      const std::vector<double>& values, TrajectoryCache* cache,
-                     std::vector<ExperimentFit>* fits, std::string* error) {
+                     std::vector<ExperimentFit>* fits, std::string* error,
+                     const HeldOutPerRun& per_run, HeldOutParameters* parameters) {
   std::vector<Experiment> experiments;
   if (!PrepareExperiments(config, names, model, options, cache, &experiments, error)) {
     return false;
   }
-  // One problem per experiment (they share nothing with the parameters fixed), so that one
-  // that diverges is recorded and the others are still measured.
+  // Held values: the per-experiment parameters at their start.
+  std::vector<double> held = values;
+  for (const ParameterSpec& spec : per_run.parameters) {
+    const int index = model.info().ParameterIndex(spec.name);
+    if (index >= 0) held[index] = spec.start;
+  }
+  const bool fit_own = !per_run.parameters.empty() && per_run.mode == HeldOutPerExperiment::kFit;
+  if (parameters != nullptr) {
+    *parameters = HeldOutParameters();
+    for (const ParameterSpec& spec : per_run.parameters) parameters->parameters.push_back(spec.name);
+    parameters->fitted = fit_own;
+  }
+  // One problem per experiment (they share nothing with the shared parameters fixed), so that
+  // one that diverges is recorded and the others are still measured.
   fits->clear();
   for (Experiment& experiment : experiments) {
-    ExperimentFit fit;
-    fit.experiment = experiment.name;
-    std::vector<Experiment> one;
-    one.push_back(std::move(experiment));
-    std::string why;
-    const std::unique_ptr<OutputErrorProblem> problem =
-        HeldOutProblem(model, std::move(one), free_states, local, values, &why);
-    std::vector<ExperimentFit> evaluated;
-    if (problem == nullptr) {
-      fit.diverged = true;
-      fit.message = why;
-    } else {
-      EvaluateFit(*problem, &evaluated, &why);  // a divergence is recorded in the fit
-      fit = std::move(evaluated.front());
+    if (!fit_own) {
+      fits->push_back(
+          FitOne(model, std::move(experiment), free_states, local, held, nullptr, nullptr));
+      continue;
     }
-    fits->push_back(std::move(fit));
+    std::vector<Estimate> estimates;
+    fits->push_back(FitOne(model, experiment, free_states, local, values, &per_run, &estimates));
+    ExperimentFit without =
+        FitOne(model, std::move(experiment), free_states, local, held, nullptr, nullptr);
+    without.trace = Trajectory();
+    if (parameters != nullptr) {
+      parameters->without.push_back(std::move(without));
+      for (Estimate& e : estimates) parameters->estimates.push_back(std::move(e));
+    }
   }
   return true;
+}
+
+std::vector<std::string> HeldOutBoundNotes(const HeldOutParameters& parameters) {
+  std::vector<std::string> notes;
+  for (const Estimate& e : parameters.estimates) {
+    if (!std::isfinite(e.lower) || !std::isfinite(e.upper)) continue;
+    const double tolerance = 1e-6 * (e.upper - e.lower);
+    const bool at_lower = e.value - e.lower <= tolerance, at_upper = e.upper - e.value <= tolerance;
+    if (!at_lower && !at_upper) continue;
+    char text[256];
+    std::snprintf(text, sizeof(text),
+                  "validation: %s of held-out run '%s' is at its %s bound %g: the run's data "
+                  "pull it further",
+                  e.name.c_str(), e.experiment.c_str(), at_lower ? "lower" : "upper",
+                  at_lower ? e.lower : e.upper);
+    notes.push_back(text);
+  }
+  return notes;
 }
 
 namespace {

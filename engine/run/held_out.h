@@ -1,7 +1,13 @@
-// Held-out experiments simulated with every parameter fixed: a stage's validation and the
+// Held-out experiments simulated with the parameters fixed: a stage's validation and the
 // run's final validation. Initial states come from the data, except `free_states`, which are
 // estimated first with the parameters held (a decay test's unmeasured initial yaw rate, a
 // segment's velocities), as a validation of the parameters, not of a guessed start.
+//
+// Per-experiment parameters (a rudder bias per run) have no value for a held-out run. With
+// HeldOutPerExperiment::kFit each run estimates its own, with its free states, the shared
+// parameters held (min over b_e, x0_e of the run's cost at the shared values); the run is also
+// simulated with them held at their start (the fit "without"), so that the report shows what
+// they buy. With kHold they are held at their start.
 #pragma once
 
 #include <memory>
@@ -19,24 +25,44 @@
 
 namespace vesselid {
 
-// The problem of `experiments` with every parameter fixed at `values` (model order), at its
-// estimated free states; null with `error`.
-std::unique_ptr<OutputErrorProblem> HeldOutProblem(const ModelHandle& model,
-                                                   std::vector<Experiment> experiments,
-                                                   const std::vector<std::string>& free_states,
-                                                   const LocalSolveOptions& local,
-                                                   const std::vector<double>& values,
-                                                   std::string* error);
+// The problem of `experiments` with every parameter fixed at `values` (model order) except
+// `per_experiment` (role per_experiment, start and bounds as given), at its estimated free
+// states and per-experiment values; null with `error`.
+std::unique_ptr<OutputErrorProblem> HeldOutProblem(
+    const ModelHandle& model, std::vector<Experiment> experiments,
+    const std::vector<std::string>& free_states, const LocalSolveOptions& local,
+    const std::vector<double>& values, std::string* error,
+    const std::vector<ParameterSpec>& per_experiment = {});
 
-// Prepares the records `names` and fits them as HeldOutProblem does, into `fits`. A record
-// whose free run diverges, or whose initial states cannot be estimated, is recorded as
-// diverged with the reason (ExperimentFit::diverged); false only when the records cannot be
-// prepared.
+// What held-out runs do with the per-experiment parameters of the stage (or of the last stage
+// that had them): `parameters` with their start (the value held, and the fit "without") and
+// bounds; `fit_start` (same order) where each run's estimate starts, e.g. the stage's mean.
+struct HeldOutPerRun {
+  HeldOutPerExperiment mode = HeldOutPerExperiment::kFit;
+  std::vector<ParameterSpec> parameters;
+  std::vector<double> fit_start;
+};
+
+// The per-experiment parameters of the estimates of `stage` that `model` has: start and
+// bounds as the stage had them, the fit starting from the stage's mean.
+HeldOutPerRun PerRunFromStage(const StageResult& stage, const ModelInfo& model,
+                              HeldOutPerExperiment mode);
+
+// Prepares the records `names` and fits them as HeldOutProblem does, into `fits` (and, with
+// per-experiment parameters, their estimates and the fits without them into `parameters`;
+// may be null when there are none). A record whose free run diverges, or whose initial states
+// cannot be estimated, is recorded as diverged with the reason (ExperimentFit::diverged);
+// false only when the records cannot be prepared.
 bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
                      const std::vector<std::string>& names, const ExperimentOptions& options,
                      const std::vector<std::string>& free_states, const LocalSolveOptions& local,
                      const std::vector<double>& values, TrajectoryCache* cache,
-                     std::vector<ExperimentFit>* fits, std::string* error);
+                     std::vector<ExperimentFit>* fits, std::string* error,
+                     const HeldOutPerRun& per_run = {}, HeldOutParameters* parameters = nullptr);
+
+// Notes on held-out per-experiment estimates at a bound ("validation: delta_0[zz3] is at its
+// upper bound 0.05 ..."), as the stage notes active bounds.
+std::vector<std::string> HeldOutBoundNotes(const HeldOutParameters& parameters);
 
 // The held-out check of a stage from its fits and those of its start values (HeldOutCheck).
 HeldOutCheck CompareHeldOut(const std::vector<ExperimentFit>& start,

@@ -66,6 +66,33 @@ bool FuseSharedJointly(const ParameterLedger& ledger, const std::vector<StageRes
   return true;
 }
 
+// A parameter estimated per experiment: its values in the last stage that estimated it
+// (count and range) and the start it had there, which a run without its own value takes.
+void PerExperimentFinal(const std::vector<StageResult>& stages, FinalParameter* f) {
+  for (const StageResult& stage : stages) {
+    int runs = 0;
+    double low = 0.0, high = 0.0, start = 0.0;
+    for (const Estimate& e : stage.estimates) {
+      if (e.kind != EstimateKind::kParameter || e.role != ParameterRole::kPerExperiment ||
+          e.experiment.empty() || e.name.substr(0, e.name.find('[')) != f->name) {
+        continue;
+      }
+      low = runs == 0 ? e.value : std::min(low, e.value);
+      high = runs == 0 ? e.value : std::max(high, e.value);
+      start = e.start;
+      ++runs;
+    }
+    if (runs == 0) continue;
+    f->role = ParameterRole::kPerExperiment;
+    f->rule = "per_experiment";
+    f->stages = {stage.name};
+    f->value = start;
+    f->runs = runs;
+    f->runs_min = low;
+    f->runs_max = high;
+  }
+}
+
 }  // namespace
 
 bool ResolveParameters(const StageConfig& stage, const ModelInfo& info,
@@ -144,6 +171,7 @@ std::vector<FinalParameter> FinalParameters(const ModelInfo& info, const Paramet
       f.std_error = kUnknown;
       f.role = ParameterRole::kFixed;
       f.rule = "fixed";
+      PerExperimentFinal(stages, &f);
       parameters.push_back(f);
       continue;
     }

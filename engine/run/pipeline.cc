@@ -11,6 +11,7 @@
 #include "engine/run/step_regression_stage.h"
 #include "engine/run/velocity_validation.h"
 #include "engine/run/work_size.h"
+#include "engine/run/zigzag_runs.h"
 
 namespace vesselid {
 namespace {
@@ -36,15 +37,23 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
   std::vector<ExperimentFit> at_start;
   ExperimentOptions options = stage.experiment;
   if (result->integration_step > 0.0) options.max_step = result->integration_step;
+  // The stage and its start are validated alike: held-out runs estimate their own
+  // per-experiment parameters in both (or hold them in both).
+  const HeldOutPerRun per_run =
+      PerRunFromStage(*result, model.info(), stage.validation_per_experiment);
   if (!SimulateHeldOut(config, model, stage.validation, options, stage.problem.free_initial_states,
-                       stage.options.local, values, cache, &result->validation, error) ||
+                       stage.options.local, values, cache, &result->validation, error, per_run,
+                       &result->held_out_parameters) ||
       !SimulateHeldOut(config, model, stage.validation, options, stage.problem.free_initial_states,
-                       stage.options.local, start_values, cache, &at_start, error)) {
+                       stage.options.local, start_values, cache, &at_start, error, per_run)) {
     *error = "validation: " + *error;
     return false;
   }
   for (const ExperimentFit& fit : result->validation) {
     if (fit.diverged) result->summary.notes.push_back("validation: " + fit.message);
+  }
+  for (std::string& note : HeldOutBoundNotes(result->held_out_parameters)) {
+    result->summary.notes.push_back(std::move(note));
   }
   result->held_out = CompareHeldOut(at_start, result->validation);
   if (result->held_out.worse && config.final_choice == FinalChoice::kBestValidation) {
@@ -211,10 +220,20 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
         options.max_step = s.integration_step;
       }
     }
+    // Per-experiment parameters come from the last accepted stage that estimated them.
+    HeldOutPerRun per_run;
+    for (const StageResult& s : accepted) {
+      HeldOutPerRun own = PerRunFromStage(s, model.info(), v.per_experiment);
+      if (!own.parameters.empty()) per_run = std::move(own);
+    }
     if (!SimulateHeldOut(config, model, v.experiments, options, v.free_initial_states, {},
-                         final_values, &cache, &run.final_validation, error)) {
+                         final_values, &cache, &run.final_validation, error, per_run,
+                         &run.final_held_out_parameters)) {
       *error = "final validation: " + *error;
       return false;
+    }
+    for (const std::string& note : HeldOutBoundNotes(run.final_held_out_parameters)) {
+      run.warnings.push_back("final " + note);
     }
     if (model.regression_form() != nullptr) {
       const RegressionDataOptions velocity_data = VelocityData(config, config.stages.size());
@@ -227,6 +246,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
       for (const std::string& d : diverged) run.warnings.push_back("final validation: " + d);
     }
   }
+  run.zigzags = FindZigzagRuns(config, run, &cache);
   AddRunWarnings(config, &run);
   run.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();

@@ -39,6 +39,20 @@ bool StringToFinalChoice(const std::string& text, FinalChoice* choice) {
   return false;
 }
 
+const char* HeldOutPerExperimentToString(HeldOutPerExperiment mode) {
+  return mode == HeldOutPerExperiment::kHold ? "hold" : "fit";
+}
+
+bool StringToHeldOutPerExperiment(const std::string& text, HeldOutPerExperiment* mode) {
+  for (HeldOutPerExperiment m : {HeldOutPerExperiment::kFit, HeldOutPerExperiment::kHold}) {
+    if (text == HeldOutPerExperimentToString(m)) {
+      *mode = m;
+      return true;
+    }
+  }
+  return false;
+}
+
 const ExperimentSpec* RunConfig::FindExperiment(const std::string& name) const {
   for (const ExperimentSpec& e : experiments) {
     if (e.name == name) return &e;

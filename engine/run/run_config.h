@@ -37,6 +37,14 @@ struct OutlierOptions {
   double threshold = 5.0;
 };
 
+// What held-out runs do with the per-experiment parameters (a rudder bias per run) that have
+// no value for them (`per_experiment:`): estimate their own with the other parameters held
+// (fit), or take the parameter's start (hold).
+enum class HeldOutPerExperiment { kFit, kHold };
+
+const char* HeldOutPerExperimentToString(HeldOutPerExperiment mode);  // "fit", "hold"
+bool StringToHeldOutPerExperiment(const std::string& text, HeldOutPerExperiment* mode);
+
 struct StageConfig {
   // output_error: simulate and compare (the default); least_squares: equation-error regression
   // of the model's derivative form (least_squares.h), its estimate starting the next stage;
@@ -55,6 +63,7 @@ struct StageConfig {
   std::vector<std::string> experiments;  // names from RunConfig::experiments
   // Held-out experiments simulated after the stage (its free initial states estimated first).
   std::vector<std::string> validation;
+  HeldOutPerExperiment validation_per_experiment = HeldOutPerExperiment::kFit;
   std::vector<ParameterSpec> parameters;
   OutputErrorOptions problem;
   ExperimentOptions experiment;  // compared outputs, step bound, length normalisation
@@ -74,6 +83,8 @@ struct FinalValidationConfig {
   std::vector<std::string> free_initial_states;  // estimated with the final parameters held
   std::shared_ptr<const ModelHandle> model;      // null: the run's model
   ExperimentOptions experiment;
+  // Per-experiment parameters of the last stage that estimated them.
+  HeldOutPerExperiment per_experiment = HeldOutPerExperiment::kFit;
 };
 
 // Which estimate a stage that is worse on its held-out data than its start leaves to the

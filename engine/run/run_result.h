@@ -3,11 +3,13 @@
 // report.txt, report.html) and archived by checkpoints; names become text only there.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "Eigen/Dense"
+#include "engine/data/zigzag_figures.h"
 #include "engine/model/model.h"
 #include "engine/solve/parameter.h"
 #include "engine/solve/stage.h"
@@ -48,6 +50,19 @@ struct HeldOutCheck {
 
 inline constexpr double kHeldOutTolerance = 1.01;
 
+// Per-experiment parameters (a rudder bias per run) on held-out runs (held_out.h). With
+// `fitted` (per_experiment: fit) each held-out run estimates its own values together with its
+// free initial states, the other parameters held; `estimates` holds them per run (name
+// "delta_0[zz3]", experiment set), and `without` the same runs simulated with them held at
+// their start, so that the report shows what they buy. Empty when the model run has none.
+struct HeldOutParameters {
+  bool fitted = false;
+  std::vector<std::string> parameters;  // model names, e.g. delta_0
+  std::vector<Estimate> estimates;
+  std::vector<ExperimentFit> without;  // no traces
+  bool active() const { return !parameters.empty(); }
+};
+
 struct StageResult {
   std::string name;
   std::string model;  // the stage's model (restriction) name
@@ -58,6 +73,7 @@ struct StageResult {
   std::vector<std::string> admissibility;  // empty: M SPD, damping PSD (as the model checks)
   std::vector<ExperimentFit> validation;   // held-out experiments of the stage
   HeldOutCheck held_out;                   // validation against the stage's start values
+  HeldOutParameters held_out_parameters;   // per-experiment parameters of `validation`
   // > 0: the integration step the stage was solved with, shorter than the configured one
   // because its estimate's dynamics were too fast for that (step_stability.h).
   double integration_step = 0.0;
@@ -88,8 +104,24 @@ struct FinalParameter {
   // Role in the last stage that estimated it; kFixed if none did.
   ParameterRole role = ParameterRole::kFixed;
   std::vector<std::string> stages;  // stages whose estimates make the value
-  std::string rule;  // how: "stage", "inverse_variance", "mean" or "fixed" (fusion.h)
+  std::string rule;  // how: "stage", "inverse_variance", "mean", "fixed" (fusion.h) or
+                     // "per_experiment"
   bool undetermined = false;
+  // Role per_experiment: one value per run in the last stage that estimated it; `value` is
+  // then its start there, what a run without a value of its own is simulated with.
+  int runs = 0;
+  double runs_min = std::numeric_limits<double>::quiet_NaN();
+  double runs_max = std::numeric_limits<double>::quiet_NaN();
+};
+
+// A zigzag among the run's simulated records (zigzag_runs.h): the test as the record flies
+// it and its figures, measured and simulated.
+struct ZigzagRun {
+  std::string stage;  // the stage whose fit it is, or "final" (final validation)
+  std::string experiment;
+  bool held_out = false;
+  ZigzagTest test;
+  ZigzagFigures measured, simulated;
 };
 
 struct RunResult {
@@ -102,7 +134,9 @@ struct RunResult {
   std::vector<FinalParameter> parameters;  // model parameter order
   std::vector<std::string> admissibility;  // of the final values
   std::vector<ExperimentFit> final_validation;
+  HeldOutParameters final_held_out_parameters;  // per-experiment parameters of final_validation
   std::vector<ChannelMetrics> final_velocity_validation;
+  std::vector<ZigzagRun> zigzags;  // every zigzag fit of the stages and the final validation
   double time_seconds = 0.0;
 };
 

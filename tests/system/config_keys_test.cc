@@ -107,6 +107,7 @@ TOP_KEYS)";
 
 const Variant V;
 const Variant kLeastSquares = V.K("    type: least_squares\n    least_squares: {grid: psi}");
+const Variant kPerRun = V.P("      delta_0: {start: 0.0, lower: -0.1, upper: 0.1, role: per_experiment}");
 
 const KeyCase kCases[] = {
     {"interpolation", V, V.A(", interpolation: {delta: zero_order_hold}")},
@@ -136,6 +137,10 @@ const KeyCase kCases[] = {
      V.E("[a, b, c, s]").K("    outliers: {action: drop, threshold: 0.01}")},
     {"type_least_squares", V, kLeastSquares},
     {"final_validation", V, V.T("final_validation: {experiments: [c]}")},
+    {"validation_per_experiment", kPerRun.K("    validation: [c]"),
+     kPerRun.K("    validation: [c]\n    validation_per_experiment: hold")},
+    {"final_validation_per_experiment", kPerRun.T("final_validation: {experiments: [c]}"),
+     kPerRun.T("final_validation: {experiments: [c], per_experiment: hold}")},
     {"fusion",
      V.P("      T: {start: 3.0, lower: 0.1, upper: 20, role: shared}")
          .T("  - name: again\n    experiments: [c]\n    parameters:\n"
@@ -193,6 +198,9 @@ const KeyCase kCases[] = {
      "stages[0].outliers: not used by a least-squares stage"},
     {"wrap_of_a_rate", V, V.A(", wrap: [r]"), "output 'r' is not an angle"},
     {"unknown_final_choice", V, V.T("final: newest\n"), "final: unknown choice 'newest'"},
+    {"unknown_per_experiment_choice", V,
+     V.T("final_validation: {experiments: [c], per_experiment: always}\n"),
+     "final_validation.per_experiment: unknown choice 'always' (fit, hold)"},
     {"separator_the_file_does_not_use", V, V.A(", separator: \";\""),
      "the header is separated by ',', not ';'"},
     {"limits", V, V.T("limits: {integration_steps: 100}\n"), "(limits.integration_steps)"},
@@ -269,6 +277,14 @@ class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
            std::to_string(stage.summary.refinements.size()) + " refinements, " +
            std::to_string(stage.validation.size()) + " validation;";
       for (const std::string& note : stage.summary.notes) s += note + ";";
+      for (const ExperimentFit& fit : stage.validation) {
+        std::snprintf(line, sizeof(line), "%s:%.12g;", fit.experiment.c_str(), fit.rms_cost);
+        s += line;
+      }
+    }
+    for (const ExperimentFit& fit : r.final_validation) {
+      std::snprintf(line, sizeof(line), "final %s:%.12g;", fit.experiment.c_str(), fit.rms_cost);
+      s += line;
     }
     for (const FinalParameter& f : r.parameters) {
       std::snprintf(line, sizeof(line), "%s=%.12g;", f.name.c_str(), f.value);

@@ -284,8 +284,8 @@ TEST_F(PipelineTest, CarriedParameterKeepsItsEarlierBounds) {
   EXPECT_EQ(Find(result.stages[1], "K").upper, -0.001);
 }
 
-// A per-experiment rudder bias with a validation run: the held-out run is simulated with the
-// mean bias (and, under the sanitizers, without reading past the stage's values).
+// A per-experiment rudder bias with a validation run: the held-out run estimates its own bias
+// (and, under the sanitizers, without reading past the stage's values).
 TEST_F(PipelineTest, PerExperimentParameterWithValidation) {
   RunResult result = Run(R"(stages:
   - name: biased

@@ -1,0 +1,229 @@
+#include "engine/output/held_out_parameters_report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+
+#include "engine/base/json_number.h"
+#include "engine/output/report_table_cells.h"
+
+namespace vesselid {
+namespace {
+
+constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+
+// One held-out run: its estimates and, per output, fit % and MAE with and without them
+// (NaN where that simulation diverged).
+struct RunRow {
+  std::string experiment;
+  std::vector<const Estimate*> estimates;
+  std::string diverged_with, diverged_without;
+  std::map<std::string, std::pair<double, double>> fit, mae;  // output: (with, without)
+};
+
+struct Table {
+  std::vector<std::string> outputs;  // order of first appearance
+  std::vector<RunRow> rows;
+  // Per output the mean fit % over the runs where both simulations ran, and their count.
+  std::map<std::string, std::pair<double, double>> mean_fit;
+  std::map<std::string, int> counted;
+};
+
+const ExperimentFit* FindFit(const std::vector<ExperimentFit>& fits, const std::string& name) {
+  for (const ExperimentFit& fit : fits) {
+    if (fit.experiment == name) return &fit;
+  }
+  return nullptr;
+}
+
+Table MakeTable(const HeldOutParameters& parameters, const std::vector<ExperimentFit>& with) {
+  Table table;
+  for (const ExperimentFit& fit : with) {
+    RunRow row;
+    row.experiment = fit.experiment;
+    for (const Estimate& e : parameters.estimates) {
+      if (e.experiment == fit.experiment) row.estimates.push_back(&e);
+    }
+    if (fit.diverged) row.diverged_with = fit.message;
+    const ExperimentFit* without = FindFit(parameters.without, fit.experiment);
+    if (without != nullptr && without->diverged) row.diverged_without = without->message;
+    for (const ChannelMetrics& m : fit.channels) {
+      bool known = false;
+      for (const std::string& o : table.outputs) known |= o == m.output;
+      if (!known) table.outputs.push_back(m.output);
+      row.fit[m.output] = {m.fit_percent, kUnknown};
+      row.mae[m.output] = {m.mae, kUnknown};
+    }
+    if (without != nullptr) {
+      for (const ChannelMetrics& m : without->channels) {
+        row.fit.try_emplace(m.output, kUnknown, kUnknown).first->second.second = m.fit_percent;
+        row.mae.try_emplace(m.output, kUnknown, kUnknown).first->second.second = m.mae;
+      }
+    }
+    for (const auto& [output, pair] : row.fit) {
+      if (!std::isfinite(pair.first) || !std::isfinite(pair.second)) continue;
+      table.mean_fit[output].first += pair.first;
+      table.mean_fit[output].second += pair.second;
+      ++table.counted[output];
+    }
+    table.rows.push_back(std::move(row));
+  }
+  for (auto& [output, sums] : table.mean_fit) {
+    sums.first /= table.counted[output];
+    sums.second /= table.counted[output];
+  }
+  return table;
+}
+
+std::string Names(const HeldOutParameters& parameters) {
+  std::string names;
+  for (const std::string& p : parameters.parameters) names += (names.empty() ? "" : ", ") + p;
+  return names;
+}
+
+std::string Format(const char* format, double value) {
+  if (!std::isfinite(value)) return "-";
+  char text[64];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
+}
+
+// "psi fit 15.5 % without delta_0, 94.8 % with"
+std::string FitPhrase(const std::string& output, double with, double without,
+                      const std::string& names) {
+  return output + " fit " + Format("%.1f", without) + " % without " + names + ", " +
+         Format("%.1f", with) + " % with";
+}
+
+}  // namespace
+
+nlohmann::json HeldOutParametersToJson(const HeldOutParameters& parameters,
+                                       const std::vector<ExperimentFit>& with) {
+  using nlohmann::json;
+  json j = {{"per_experiment", parameters.fitted ? "fit" : "hold"},
+            {"parameters", parameters.parameters}};
+  if (!parameters.fitted) return j;
+  const Table table = MakeTable(parameters, with);
+  json runs = json::array();
+  auto pairs = [](const std::map<std::string, std::pair<double, double>>& values) {
+    json out = json::object();
+    for (const auto& [output, pair] : values) {
+      out[output] = {{"with", JsonNumber(pair.first)}, {"without", JsonNumber(pair.second)}};
+    }
+    return out;
+  };
+  for (const RunRow& row : table.rows) {
+    json estimates = json::object();
+    for (const Estimate* e : row.estimates) {
+      estimates[e->name.substr(0, e->name.find('['))] = {
+          {"value", e->value},         {"std_error", JsonNumber(e->std_error)},
+          {"start", e->start},         {"lower", JsonNumber(e->lower)},
+          {"upper", JsonNumber(e->upper)}, {"undetermined", e->undetermined}};
+    }
+    json run = {{"experiment", row.experiment},
+                {"estimates", estimates},
+                {"fit_percent", pairs(row.fit)},
+                {"mae", pairs(row.mae)}};
+    if (!row.diverged_with.empty()) run["diverged_with"] = row.diverged_with;
+    if (!row.diverged_without.empty()) run["diverged_without"] = row.diverged_without;
+    runs.push_back(run);
+  }
+  j["runs"] = runs;
+  j["mean_fit_percent"] = pairs(table.mean_fit);
+  return j;
+}
+
+std::string HeldOutParametersText(const HeldOutParameters& parameters,
+                                  const std::vector<ExperimentFit>& with,
+                                  const std::string& indent) {
+  if (!parameters.active()) return "";
+  const std::string names = Names(parameters);
+  if (!parameters.fitted) {
+    return indent + "per-experiment parameters (" + names +
+           ") held at their start on the held-out runs (per_experiment: hold)\n";
+  }
+  const Table table = MakeTable(parameters, with);
+  std::string out = indent + "held-out runs with their own " + names +
+                    " (estimated per run, the other parameters held; per_experiment: fit):\n";
+  for (const RunRow& row : table.rows) {
+    std::string line = indent + "  " + row.experiment + ":";
+    for (const Estimate* e : row.estimates) {
+      line += " " + e->name.substr(0, e->name.find('[')) + " = " + Format("%.6g", e->value) +
+              (e->undetermined ? " (undetermined)" : " ± " + Format("%.2g", e->std_error)) + ";";
+    }
+    for (const std::string& output : table.outputs) {
+      const auto at = row.fit.find(output);
+      if (at == row.fit.end()) continue;
+      line += " " + FitPhrase(output, at->second.first, at->second.second, names) + ";";
+    }
+    if (!row.diverged_with.empty()) line += " with: " + row.diverged_with + ";";
+    if (!row.diverged_without.empty()) line += " without: " + row.diverged_without + ";";
+    line.pop_back();
+    out += line + "\n";
+  }
+  for (const std::string& output : table.outputs) {
+    const auto at = table.mean_fit.find(output);
+    if (at == table.mean_fit.end()) continue;
+    out += indent + "  mean over " + std::to_string(table.counted.at(output)) +
+           " held-out run(s): " + FitPhrase(output, at->second.first, at->second.second, names) +
+           "\n";
+  }
+  return out;
+}
+
+std::string HeldOutParametersHtml(const HeldOutParameters& parameters,
+                                  const std::vector<ExperimentFit>& with) {
+  if (!parameters.active()) return "";
+  const std::string names = Names(parameters);
+  if (!parameters.fitted) {
+    return "<p>Per-experiment parameters (" + HtmlEscape(names) +
+           ") held at their start on the held-out runs (per_experiment: hold).</p>\n";
+  }
+  const Table table = MakeTable(parameters, with);
+  std::string header = "<tr>" + Th("held-out run");
+  for (const std::string& p : parameters.parameters) header += Th(p) + Th("std. error");
+  for (const std::string& output : table.outputs) {
+    header += Th(output + " fit % without") + Th(output + " fit % with");
+  }
+  std::string rows;
+  for (const RunRow& row : table.rows) {
+    rows += "<tr>" + Td(row.experiment);
+    for (const std::string& p : parameters.parameters) {
+      const Estimate* found = nullptr;
+      for (const Estimate* e : row.estimates) {
+        if (e->name.substr(0, e->name.find('[')) == p) found = e;
+      }
+      rows += found == nullptr ? "<td></td><td></td>"
+                               : Num(HtmlNumber(found->value, "%.6g")) +
+                                     Num(found->undetermined ? "undetermined"
+                                                             : HtmlNumber(found->std_error, "%.2g"));
+    }
+    for (const std::string& output : table.outputs) {
+      const auto at = row.fit.find(output);
+      const bool known = at != row.fit.end();
+      rows += Num(known ? HtmlNumber(at->second.second, "%.2f") : "") +
+              Num(known ? HtmlNumber(at->second.first, "%.2f") : "");
+    }
+    rows += "</tr>\n";
+  }
+  rows += "<tr>" + Td("mean");
+  for (size_t k = 0; k < parameters.parameters.size(); ++k) rows += "<td></td><td></td>";
+  for (const std::string& output : table.outputs) {
+    const auto at = table.mean_fit.find(output);
+    const bool known = at != table.mean_fit.end();
+    rows += Num(known ? HtmlNumber(at->second.second, "%.2f") : "") +
+            Num(known ? HtmlNumber(at->second.first, "%.2f") : "");
+  }
+  rows += "</tr>\n";
+  return "<h4>Per-experiment parameters of the held-out runs</h4>\n<p>Each held-out run "
+         "estimates its own " +
+         HtmlEscape(names) +
+         " with the other parameters held; fit % without them (held at their start) and "
+         "with them.</p>\n" +
+         Fold("<table class=\"held-out-parameters\">\n" + header + "</tr>\n" + rows +
+                  "</table>\n",
+              table.rows.size(), std::to_string(table.rows.size()) + " held-out runs", 24);
+}
+
+}  // namespace vesselid

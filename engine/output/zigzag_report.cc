@@ -1,0 +1,110 @@
+#include "engine/output/zigzag_report.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "engine/base/json_number.h"
+#include "engine/output/report_table_cells.h"
+
+namespace vesselid {
+namespace {
+
+constexpr double kToDegrees = 180.0 / M_PI;
+
+constexpr char kDefinitions[] =
+    "IMO MSC.137(76): overshoot = largest heading change beyond psi_z after a rudder reversal "
+    "(first: after the first reversal, second: after the second); time to the first check = "
+    "first rudder execute to the heading change reaching psi_z; period = mean time between "
+    "executes of the same sign. Simulated: the simulated heading under the recorded rudder, "
+    "its executes where it reaches +-psi_z.";
+
+nlohmann::json FiguresToJson(const ZigzagFigures& f) {
+  return {{"first_overshoot_deg", JsonNumber(f.first_overshoot * kToDegrees)},
+          {"second_overshoot_deg", JsonNumber(f.second_overshoot * kToDegrees)},
+          {"time_to_first_check_s", JsonNumber(f.time_to_first_check)},
+          {"period_s", JsonNumber(f.period)},
+          {"executes_s", f.executes}};
+}
+
+std::string Number(double value, const char* format) {
+  if (!std::isfinite(value)) return "-";
+  char text[32];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
+}
+
+std::string Test(const ZigzagRun& run) {
+  return Number(run.test.rudder * kToDegrees, "%.1f") + "/" +
+         Number(run.test.heading * kToDegrees, "%.1f");
+}
+
+}  // namespace
+
+nlohmann::json ZigzagRunsToJson(const std::vector<ZigzagRun>& runs) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const ZigzagRun& run : runs) {
+    j.push_back({{"stage", run.stage},
+                 {"experiment", run.experiment},
+                 {"held_out", run.held_out},
+                 {"rudder_deg", run.test.rudder * kToDegrees},
+                 {"heading_deg", run.test.heading * kToDegrees},
+                 {"measured", FiguresToJson(run.measured)},
+                 {"simulated", FiguresToJson(run.simulated)}});
+  }
+  return j;
+}
+
+std::string ZigzagRunsText(const std::vector<ZigzagRun>& runs) {
+  if (runs.empty()) return "";
+  std::string out = "\nzigzag figures, measured / simulated (" + std::string(kDefinitions) + ")\n";
+  char line[320];
+  std::snprintf(line, sizeof(line), "  %-12s %-20s %-9s %-11s %17s %17s %17s %17s\n", "stage",
+                "experiment", "data", "test [deg]", "1st overshoot deg", "2nd overshoot deg",
+                "to 1st check s", "period s");
+  out += line;
+  for (const ZigzagRun& run : runs) {
+    auto pair = [](double measured, double simulated, double scale, const char* format) {
+      return Number(measured * scale, format) + " / " + Number(simulated * scale, format);
+    };
+    std::snprintf(
+        line, sizeof(line), "  %-12s %-20s %-9s %-11s %17s %17s %17s %17s\n", run.stage.c_str(),
+        run.experiment.c_str(), run.held_out ? "held out" : "training", Test(run).c_str(),
+        pair(run.measured.first_overshoot, run.simulated.first_overshoot, kToDegrees, "%.2f")
+            .c_str(),
+        pair(run.measured.second_overshoot, run.simulated.second_overshoot, kToDegrees, "%.2f")
+            .c_str(),
+        pair(run.measured.time_to_first_check, run.simulated.time_to_first_check, 1.0, "%.1f")
+            .c_str(),
+        pair(run.measured.period, run.simulated.period, 1.0, "%.1f").c_str());
+    out += line;
+  }
+  return out;
+}
+
+std::string ZigzagRunsHtml(const std::vector<ZigzagRun>& runs) {
+  if (runs.empty()) return "";
+  std::string rows;
+  for (const ZigzagRun& run : runs) {
+    rows += "<tr>" + Td(run.stage) + Td(run.experiment) + Td(run.held_out ? "held out" : "training") +
+            Td(Test(run)) + Num(HtmlNumber(run.measured.first_overshoot * kToDegrees, "%.2f")) +
+            Num(HtmlNumber(run.simulated.first_overshoot * kToDegrees, "%.2f")) +
+            Num(HtmlNumber(run.measured.second_overshoot * kToDegrees, "%.2f")) +
+            Num(HtmlNumber(run.simulated.second_overshoot * kToDegrees, "%.2f")) +
+            Num(HtmlNumber(run.measured.time_to_first_check, "%.1f")) +
+            Num(HtmlNumber(run.simulated.time_to_first_check, "%.1f")) +
+            Num(HtmlNumber(run.measured.period, "%.1f")) +
+            Num(HtmlNumber(run.simulated.period, "%.1f")) + "</tr>\n";
+  }
+  const std::string table =
+      "<div class=\"scroll\"><table class=\"zigzag\">\n<tr>" + Th("stage") + Th("experiment") +
+      Th("data") + Th("δz/ψz [deg]") + Th("1st overshoot measured [deg]") +
+      Th("1st overshoot simulated [deg]") + Th("2nd overshoot measured [deg]") +
+      Th("2nd overshoot simulated [deg]") + Th("time to 1st check measured [s]") +
+      Th("time to 1st check simulated [s]") + Th("period measured [s]") +
+      Th("period simulated [s]") + "</tr>\n" + rows + "</table></div>\n";
+  return "<section id=\"zigzag\">\n<h2>Zigzag figures</h2>\n<p>" + HtmlEscape(kDefinitions) +
+         "</p>\n" + Fold(table, runs.size(), std::to_string(runs.size()) + " zigzag fits", 24) +
+         "</section>\n";
+}
+
+}  // namespace vesselid

@@ -1,0 +1,26 @@
+// Zigzag figures of a run (RunResult::zigzags, zigzag_figures.h) as results.json, report.txt
+// and report.html show them: per zigzag record the test (delta_z/psi_z), and measured against
+// simulated the first and second overshoot angles (deg), the time to the first heading check
+// and the period (s), IMO MSC.137(76) definitions.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/run/run_result.h"
+#include "nlohmann/json.hpp"
+
+namespace vesselid {
+
+// [{"stage", "experiment", "held_out", "rudder_deg", "heading_deg", "measured": {...},
+//   "simulated": {"first_overshoot_deg", "second_overshoot_deg", "time_to_first_check_s",
+//   "period_s", "executes_s"}}]; unknown figures are null.
+nlohmann::json ZigzagRunsToJson(const std::vector<ZigzagRun>& runs);
+
+// A report.txt section; empty without zigzags.
+std::string ZigzagRunsText(const std::vector<ZigzagRun>& runs);
+
+// A report.html section with its table; empty without zigzags.
+std::string ZigzagRunsHtml(const std::vector<ZigzagRun>& runs);
+
+}  // namespace vesselid
