@@ -6,6 +6,7 @@
 
 #include "ceres/types.h"
 #include "engine/config/config_sections.h"
+#include "engine/config/experiment_data_config.h"
 
 namespace vesselid {
 
@@ -36,7 +37,8 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
   reader.CheckMap(
       node, path,
       {"name", "file", "inputs", "outputs", "interpolation", "weights", "initial_state", "degrees",
-       "window", "segment_length", "segments", "input_range", "wrap", "separator"});
+       "window", "segment_length", "segments", "input_range", "wrap", "separator", "time",
+       "position", "screen", "resample"});
   ExperimentSpec spec;
   if (!node["name"]) reader.Fail(node, path, "missing key 'name'");
   if (!node["file"]) reader.Fail(node, path, "missing key 'file'");
@@ -170,6 +172,7 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
                       "stage's free_initial_states");
     }
   }
+  ReadExperimentData(reader, node, path, info, &spec);  // time, position, screen, resample
   return spec;
 }
 
@@ -245,7 +248,7 @@ void ReadLocal(const YamlReader& reader, const YAML::Node& node, const std::stri
 void ReadLeastSquares(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                       const ModelHandle& model, StageConfig* stage) {
   reader.CheckMap(node, path, {"penalty", "lambda", "folds", "robust", "regions", "grid",
-                               "smoothing", "max_profile_evaluations"});
+                               "smoothing", "max_gap", "max_profile_evaluations"});
   const RegressionForm* form = model.regression_form();
   const ModelInfo& info = model.info();
   if (form == nullptr) reader.Fail(node, path, "model " + info.name + " has no equation-error form");

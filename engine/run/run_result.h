@@ -3,6 +3,7 @@
 // report.txt, report.html) and archived by checkpoints; names become text only there.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -92,6 +93,15 @@ struct FinalParameter {
   bool undetermined = false;
 };
 
+// Where a record's relative times and local positions start (record_notes.h).
+struct RecordOrigin {
+  std::string experiment;
+  bool epoch = false;              // t = 0 at the Unix time time_origin_ns
+  std::int64_t time_origin_ns = 0;
+  bool position = false;           // north/east from GNSS fixes, 0 at lat, lon (degrees)
+  double lat = 0.0, lon = 0.0;
+};
+
 struct RunResult {
   std::vector<StageResult> stages;  // the finished ones
   // Everything doubtful about the result, each naming the stage, parameter or experiment:
@@ -103,6 +113,7 @@ struct RunResult {
   std::vector<std::string> admissibility;  // of the final values
   std::vector<ExperimentFit> final_validation;
   std::vector<ChannelMetrics> final_velocity_validation;
+  std::vector<RecordOrigin> record_origins;
   double time_seconds = 0.0;
 };
 
