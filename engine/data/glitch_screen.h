@@ -16,6 +16,7 @@
 
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/data/trajectory.h"
@@ -40,6 +41,8 @@ struct GlitchScreenOptions {
 
 // What the screen removed: per kind and channel, the count and the first times.
 struct GlitchFinding {
+  GlitchFinding(std::string kind_, std::string channel_)
+      : kind(std::move(kind_)), channel(std::move(channel_)) {}
   std::string kind;     // "zero fix", "stale repeat", "jump", "re-anchored"
   std::string channel;  // "north/east" or the column
   int count = 0;
