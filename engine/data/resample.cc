@@ -38,6 +38,19 @@ bool Resample(const ResampleOptions& options, std::uint64_t max_rows, Trajectory
   ResampleReport result;
   result.rows_before = data->t.size();
   result.rows_after = n;
+  // Grid points in a gap of the log itself (no row for longer than max_gap median row
+  // intervals: the logger was off, e.g. between segments) stay empty in every column.
+  std::vector<bool> inside(n, false);
+  {
+    const double longest = options.max_gap * MedianInterval(data->t) * (1.0 + 1e-9);
+    size_t j = 0;
+    for (size_t k = 0; k < n; ++k) {
+      while (j < data->t.size() && data->t[j] <= grid[k]) ++j;
+      inside[k] = (j > 0 && data->t[j - 1] == grid[k]) ||
+                  (j > 0 && j < data->t.size() && data->t[j] - data->t[j - 1] <= longest);
+      if (!inside[k]) ++result.outside;
+    }
+  }
   std::vector<std::vector<double>> columns(data->columns.size(), std::vector<double>(n, kNaN));
   for (size_t c = 0; c < data->columns.size(); ++c) {
     Channel channel = ExtractChannel(*data, static_cast<int>(c));
@@ -49,7 +62,7 @@ bool Resample(const ResampleOptions& options, std::uint64_t max_rows, Trajectory
       size_t j = 0;
       for (size_t k = 0; k < n; ++k) {
         while (j < channel.t.size() && channel.t[j] <= grid[k]) ++j;
-        if (j > 0) out[k] = channel.value[j - 1];
+        if (j > 0 && inside[k]) out[k] = channel.value[j - 1];
       }
       continue;
     }
@@ -65,6 +78,7 @@ bool Resample(const ResampleOptions& options, std::uint64_t max_rows, Trajectory
     size_t j = 0;  // channel.t[j] is the first sample after grid[k]
     for (size_t k = 0; k < n; ++k) {
       while (j < channel.t.size() && channel.t[j] <= grid[k]) ++j;
+      if (!inside[k]) continue;
       if (j > 0 && channel.t[j - 1] == grid[k]) {
         out[k] = channel.value[j - 1];
         continue;

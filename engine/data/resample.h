@@ -5,7 +5,9 @@
 //     only where those are at most max_gap of the channel's median sample intervals apart
 //     (a longer gap stays a gap: NaN), angles unwrapped by their period first;
 //   * every other column (inputs, segment ids) holds its last sample (zero-order hold, a
-//     command stays applied until the next one).
+//     command stays applied until the next one);
+//   * a grid point in a gap of the log itself (no row for longer than max_gap median row
+//     intervals: the logger was off, e.g. between segments) is empty in every column.
 #pragma once
 
 #include <cstdint>
@@ -26,6 +28,7 @@ struct ResampleOptions {
 
 struct ResampleReport {
   size_t rows_before = 0, rows_after = 0;
+  int outside = 0;  // grid points in gaps of the log, empty in every column
   std::map<std::string, int> left_empty;  // interpolated column: grid points in long gaps
 };
 

@@ -111,9 +111,13 @@ bool ResampleRecord(const ExperimentSpec& spec, Trajectory* data, std::string* e
                 options.rate, report.rows_after, report.rows_before, outputs.c_str(),
                 options.max_gap);
   std::string note = "experiment '" + spec.name + text;
+  if (report.outside > 0) {
+    note += "; " + std::to_string(report.outside) +
+            " grid point(s) in gaps of the log itself left empty";
+  }
   for (const auto& [column, count] : report.left_empty) {
     note += "; " + std::to_string(count) + " grid point(s) of " + column +
-            " left empty in longer gaps";
+            " left empty in its longer gaps";
   }
   data->notes.push_back(note);
   return true;

@@ -119,15 +119,19 @@ void NoteSkipped(TrajectoryCache* cache, const std::string& record, const Experi
 // A piece of a record (segment, length or input range) that `too_short` finds too short for
 // the stage (a reason, or empty) is skipped with a note; a record left without pieces is an
 // error.
-template <class TooShort, class Build>
+// `split` may cut each piece further (into the specs it appends, or an error).
+template <class Split, class TooShort, class Build>
 bool ForEachRecordSpec(const RunConfig& config, const std::vector<std::string>& names,
-                       double segment_length, TrajectoryCache* cache, const TooShort& too_short,
-                       const Build& build, std::string* error) {
+                       double segment_length, TrajectoryCache* cache, const Split& split,
+                       const TooShort& too_short, const Build& build, std::string* error) {
   for (const std::string& name : names) {
     const ExperimentSpec* spec = config.FindExperiment(name);
     const Trajectory* data = LoadCachedTrajectory(*spec, cache, error);
-    std::vector<ExperimentSpec> specs;
-    if (data == nullptr || !RecordSpecs(*spec, *data, segment_length, &specs, error)) return false;
+    std::vector<ExperimentSpec> pieces, specs;
+    if (data == nullptr || !RecordSpecs(*spec, *data, segment_length, &pieces, error)) return false;
+    for (const ExperimentSpec& piece : pieces) {
+      if (!split(name, piece, *data, &specs, error)) return false;
+    }
     int built = 0;
     std::string last_reason;
     for (const ExperimentSpec& s : specs) {
@@ -196,8 +200,13 @@ bool PrepareExperiments(const RunConfig& config, const std::vector<std::string>&
     return std::to_string(times) + " sample time(s) of its outputs, fewer than the " +
            std::to_string(std::max<size_t>(2, info.states.size())) + " the model's states need";
   };
+  const auto whole = [](const std::string&, const ExperimentSpec& s, const Trajectory&,
+                        std::vector<ExperimentSpec>* specs, std::string*) {
+    specs->push_back(s);
+    return true;
+  };
   return ForEachRecordSpec(
-      config, names, segment_length, cache, too_short,
+      config, names, segment_length, cache, whole, too_short,
       [&](const std::string& name, const ExperimentSpec& s, const Trajectory& data) {
         Experiment experiment;
         if (!BuildExperiment(s, data, info, options, &experiment, error)) return false;
@@ -214,18 +223,83 @@ bool PrepareRegressionRecords(const RunConfig& config, const std::vector<std::st
                               TrajectoryCache* cache, std::vector<RegressionRecord>* records,
                               std::string* error) {
   records->clear();
-  // The Savitzky-Golay window must fit in the samples of the grid output.
-  const auto too_short = [&](const ExperimentSpec& s, const Trajectory& data) {
+  // The grid output of a piece: the given one, else the sparsest mapped output.
+  const auto grid_of = [&](const ExperimentSpec& s, const Trajectory& data, std::string* output) {
     int fewest = -1;
-    std::string grid;
-    for (const auto& [output, column] : s.outputs) {
-      if (!options.grid_output.empty() && output != options.grid_output) continue;
+    for (const auto& [name, column] : s.outputs) {
+      if (!options.grid_output.empty() && name != options.grid_output) continue;
       const int count = SamplesInWindow(data, s, column);
       if (count >= 0 && (fewest < 0 || count < fewest)) {
         fewest = count;
-        grid = output;
+        *output = name;
       }
     }
+    return fewest;
+  };
+  // A gap of missing grid samples (a step over max_gap and over two median steps) cuts a piece
+  // in two, "<piece>~<k>", with a note; a step only irregular (row jitter, up to two median
+  // steps) stays BuildRegressionRecord's error unless max_gap admits it.
+  const auto split = [&](const std::string& record, const ExperimentSpec& s,
+                         const Trajectory& data, std::vector<ExperimentSpec>* specs,
+                         std::string*) {
+    std::string output;
+    if (grid_of(s, data, &output) < 3) {
+      specs->push_back(s);
+      return true;
+    }
+    const int column = data.Find(s.outputs.at(output));
+    std::vector<double> t;
+    for (size_t k = 0; k < data.t.size(); ++k) {
+      if (data.t[k] >= s.t_begin - 1e-9 && data.t[k] <= s.t_end + 1e-9 &&
+          !std::isnan(data.columns[column][k])) {
+        t.push_back(data.t[k]);
+      }
+    }
+    std::vector<double> steps;
+    for (size_t k = 1; k < t.size(); ++k) steps.push_back(t[k] - t[k - 1]);
+    std::vector<double> sorted = steps;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double limit = std::max(options.max_gap, 2.0) * sorted[sorted.size() / 2];
+    std::vector<size_t> cuts;
+    for (size_t k = 0; k < steps.size(); ++k) {
+      if (steps[k] > limit) cuts.push_back(k);
+    }
+    if (cuts.empty()) {
+      specs->push_back(s);
+      return true;
+    }
+    std::string where;
+    double begin = t.front();
+    cuts.push_back(steps.size());
+    for (size_t i = 0; i < cuts.size(); ++i) {
+      ExperimentSpec part = s;
+      part.name = s.name + "~" + std::to_string(i + 1);
+      part.t_begin = begin;
+      part.t_end = t[cuts[i]];
+      if (i > 0) part.initial_state.clear();
+      specs->push_back(part);
+      if (cuts[i] < steps.size()) {
+        char text[96];
+        std::snprintf(text, sizeof(text), "%s%.3g s at t = %g s", where.empty() ? "" : ", ",
+                      steps[cuts[i]], t[cuts[i]]);
+        where += text;
+        begin = t[cuts[i] + 1];
+      }
+    }
+    char text[200];
+    std::snprintf(text, sizeof(text),
+                  "' cut into %zu pieces at gaps of its output %s longer than %g median steps "
+                  "(equation-error grid; max_gap): ",
+                  cuts.size(), output.c_str(), limit / sorted[sorted.size() / 2]);
+    const std::string note = "experiment '" + record + "': '" + s.name + text + where;
+    std::vector<std::string>& notes = (*cache)[record].notes;
+    if (std::find(notes.begin(), notes.end(), note) == notes.end()) notes.push_back(note);
+    return true;
+  };
+  // The Savitzky-Golay window must fit in the samples of the grid output.
+  const auto too_short = [&](const ExperimentSpec& s, const Trajectory& data) {
+    std::string grid;
+    const int fewest = grid_of(s, data, &grid);
     const int window = 2 * options.smoothing.half_width + 1;
     if (fewest < 0 || fewest >= window) return std::string();
     return "Savitzky-Golay window of " + std::to_string(window) +
@@ -233,7 +307,7 @@ bool PrepareRegressionRecords(const RunConfig& config, const std::vector<std::st
            grid + " (the stage's smoothing.half_width)";
   };
   return ForEachRecordSpec(
-      config, names, 0.0, cache, too_short,
+      config, names, 0.0, cache, split, too_short,
       [&](const std::string& name, const ExperimentSpec& s, const Trajectory& data) {
         RegressionRecord record;
         if (!BuildRegressionRecord(s, data, model, options, &record, error)) return false;

@@ -15,6 +15,7 @@
 
 #include "GeographicLib/LocalCartesian.hpp"
 #include "engine/data/interpolation.h"
+#include "engine/data/time_base.h"
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
 #include "problems/input_gain/campaign.h"
@@ -102,6 +103,8 @@ constexpr char kParameters[] = R"(    parameters:
       k_r2: 0.0
 )";
 
+// An output-error stage from plausible starts, then a least-squares stage (whose
+// Savitzky-Golay window of 15 samples is longer than the 2-second segment).
 std::string Config(const std::string& experiment_keys, const std::string& least_squares_keys) {
   return std::string(R"(model: {family: input_gain, type: static}
 experiments:
@@ -115,28 +118,28 @@ experiments:
     interpolation: zero_order_hold
     segments: {column: segment}
 )") + experiment_keys + R"(stages:
+  - name: output_error
+    outputs: [n, e, psi]
+    free_initial_states: [n, e, psi, u, v, r]
+    local: {max_iterations: 10}
+    parameters: {u.u: -0.5, v.v: -0.5, r.r: -0.5, b_u: 0.5, k_f: 0.5, b_r: 1.0, k_r1: 1.0}
   - name: least_squares
     type: least_squares
     outputs: [n, e, psi]
     least_squares: {grid: n, smoothing: {half_width: 7, order: 4}, robust: true)" +
-         least_squares_keys + "}\n" + kParameters + R"(  - name: refinement
-    outputs: [n, e, psi]
-    free_initial_states: [n, e, psi, u, v, r]
-    local: {max_iterations: 10}
-    parameters: {u.u: {}, b_u: {}, k_f: {}, r.r: {}, b_r: {}}
-)";
+         least_squares_keys + "}\n" + kParameters;
 }
 
-struct Run {
+struct RunOutcome {
   int status = 0;
   std::string output;  // stdout and stderr
 };
 
-Run VesselidRun(const fs::path& dir) {
+RunOutcome VesselidRun(const fs::path& dir) {
   const std::string command = std::string(VESSELID_BINARY) + " run " +
                               (dir / "config.yaml").string() + " --out " +
                               (dir / "out").string() + " 2>&1";
-  Run run;
+  RunOutcome run;
   FILE* pipe = popen(command.c_str(), "r");
   char buffer[512];
   while (fgets(buffer, sizeof(buffer), pipe) != nullptr) run.output += buffer;
@@ -153,7 +156,9 @@ class RealLog : public ::testing::Test {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
-  void TearDown() override { fs::remove_all(dir_); }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
   void WriteConfig(const std::string& text) { std::ofstream(dir_ / "config.yaml") << text; }
   fs::path dir_;
 };
@@ -163,7 +168,7 @@ TEST_F(RealLog, FinishesWithEveryDefectNamed) {
   WriteConfig(Config("    screen: {max_speed: 10, max_rate: {psi: 120}, stale: 3}\n"
                      "    resample: {rate: 5}\n",
                      ""));
-  const Run run = VesselidRun(dir_);
+  const RunOutcome run = VesselidRun(dir_);
   ASSERT_EQ(run.status, 0) << run.output;
   std::ifstream in(dir_ / "out" / "results.json");
   const nlohmann::json results = nlohmann::json::parse(in);
@@ -172,41 +177,51 @@ TEST_F(RealLog, FinishesWithEveryDefectNamed) {
   std::ostringstream text;
   text << std::ifstream(dir_ / "out" / "report.txt").rdbuf();
   const std::vector<std::string> expected = {
-      "experiment 'log': times are Unix epoch seconds; t = 0 is 1700000123.",
+      "experiment 'log': times are Unix epoch seconds; t = 0 is 17000001",
       "experiment 'log': removed 1 zero fix(es) (0/0) of lat/lon (t = ",
       "6 stale repeat(s) of north/east (t = ",
       "experiment 'log': resampled to a uniform 5 Hz grid",
       "experiment 'log': segment 'log@5' (t = ",
-      "skipped: Savitzky-Golay window of 15 samples is longer than the 10 samples of its "
-      "output n"};
+      "skipped: Savitzky-Golay window of 15 samples is longer than the "};
   for (const std::string& e : expected) {
     EXPECT_NE(warnings.find(e), std::string::npos) << e << "\n" << warnings;
     EXPECT_NE(run.output.find(e), std::string::npos) << e;
     EXPECT_NE(text.str().find(e), std::string::npos) << e;
   }
   // The origins, exactly: the first row's time text and fix.
+  std::ifstream log(dir_ / "usv_log.csv");
+  std::string row;
+  std::getline(log, row);
+  std::getline(log, row);
+  std::int64_t first = 0, origin_ns = 0;
+  ASSERT_TRUE(ParseNanoseconds(row.substr(0, row.find(',')), &first));
   const nlohmann::json& origin = results["record_origins"]["log"];
-  EXPECT_EQ(origin["time_origin_unix"].get<std::string>().substr(0, 11), "1700000123.");
+  ASSERT_TRUE(ParseNanoseconds(origin["time_origin_unix"].get<std::string>(), &origin_ns));
+  EXPECT_EQ(origin_ns, first);
+  EXPECT_EQ(origin["time_origin_utc"].get<std::string>().substr(0, 17), "2023-11-14T22:15:");
   EXPECT_NEAR(origin["position_origin"]["lat"].get<double>(), 63.43, 1e-3);
   EXPECT_NEAR(origin["position_origin"]["lon"].get<double>(), 10.39, 1e-3);
   // Both stages ran, the short segment only left out where it is too short.
   ASSERT_EQ(results["stages"].size(), 2u);
   std::set<std::string> fitted;
-  for (const auto& fit : results["stages"][1]["fit"]) fitted.insert(fit["experiment"]);
-  EXPECT_EQ(fitted.size(), 6u) << results["stages"][1]["fit"].dump();
+  for (const auto& m : results["stages"][0]["fit"]["metrics"]) fitted.insert(m["experiment"]);
+  EXPECT_EQ(fitted.size(), 6u) << results["stages"][0]["fit"].dump();
   EXPECT_EQ(fitted.count("log@5"), 1u);
 }
 
 TEST_F(RealLog, RowJitterPassesTheRegressionGridWithMaxGap) {
   WriteUsvLog(dir_ / "usv_log.csv", {false});
   WriteConfig(Config("", ""));
-  Run run = VesselidRun(dir_);
+  RunOutcome run = VesselidRun(dir_);
   EXPECT_NE(run.status, 0);
   EXPECT_TRUE(std::regex_search(run.output,
                                 std::regex("experiment 'log@\\d' .*gap of 0\\.1[3-6]\\d* s at t = .* "
                                            "at most max_gap = 1\\.5 median steps")))
       << run.output;
-  EXPECT_FALSE(fs::exists(dir_ / "out" / "results.json"));
+  // The output-error stage before it is a result; the run says where and why it stopped.
+  std::ifstream in(dir_ / "out" / "results.json");
+  const nlohmann::json stopped = nlohmann::json::parse(in);
+  EXPECT_EQ(stopped["stopped"]["stage"], "least_squares");
   WriteConfig(Config("", ", max_gap: 2"));
   run = VesselidRun(dir_);
   EXPECT_EQ(run.status, 0) << run.output;

@@ -74,6 +74,36 @@ TEST(Resample, LongGapsStayGaps) {
   EXPECT_EQ(empty, report.left_empty.at("y"));
 }
 
+TEST(Resample, GapsOfTheLogAreEmptyInEveryColumn) {
+  Trajectory data = Log();
+  Trajectory cut;  // the logger off from t = 10 to 13 s
+  cut.names = data.names;
+  cut.columns.assign(3, {});
+  for (size_t k = 0; k < data.t.size(); ++k) {
+    if (data.t[k] > 10.0 && data.t[k] < 13.0) continue;
+    cut.t.push_back(data.t[k]);
+    for (int c = 0; c < 3; ++c) cut.columns[c].push_back(data.columns[c][k]);
+  }
+  ResampleOptions options;
+  options.rate = 10.0;
+  options.interpolated = {{"y", 0.0}};
+  ResampleReport report;
+  std::string error;
+  ASSERT_TRUE(Resample(options, 1000000, &cut, &report, &error)) << error;
+  EXPECT_GE(report.outside, 28);
+  EXPECT_LE(report.outside, 31);
+  EXPECT_TRUE(report.left_empty.empty());  // the log's gap is not the channel's
+  for (size_t k = 0; k < cut.t.size(); ++k) {
+    const bool off = cut.t[k] > 10.03 && cut.t[k] < 12.97;
+    if (off) {
+      EXPECT_TRUE(std::isnan(cut.columns[0][k]) && std::isnan(cut.columns[2][k])) << cut.t[k];
+    }
+    if (cut.t[k] < 9.9 || (cut.t[k] > 13.1 && cut.t[k] < 29.8)) {
+      EXPECT_FALSE(std::isnan(cut.columns[2][k])) << cut.t[k];  // the held command
+    }
+  }
+}
+
 TEST(Resample, RefusesAGridPastTheLimit) {
   Trajectory data = Log();
   ResampleOptions options;
