@@ -128,7 +128,7 @@ const KeyCase kCases[] = {
     {"outliers", V.E("[a, b, c, s]"),
      V.E("[a, b, c, s]").K("    outliers: {action: drop, threshold: 0.01}")},
     {"type_least_squares", V, kLeastSquares},
-    {"screen", V, V.A(", screen: {max_rate: {psi: 0.05}}")},
+    {"screen", V, V.A(", screen: {max_rate: {r: 0.001}}")},
     {"resample", V, V.A(", resample: {rate: 4, max_gap: 2}")},
     {"final_validation", V, V.T("final_validation: {experiments: [c]}")},
     {"fusion",
