@@ -6,6 +6,7 @@
 
 #include "ceres/types.h"
 #include "engine/config/config_sections.h"
+#include "engine/config/experiment_data_config.h"
 #include "engine/config/experiment_templates.h"
 
 namespace vesselid {
@@ -168,6 +169,7 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
                       "stage's free_initial_states");
     }
   }
+  ReadExperimentData(reader, node, path, info, &spec);  // time, position, screen, resample
   return spec;
 }
 
@@ -243,7 +245,7 @@ void ReadLocal(const YamlReader& reader, const YAML::Node& node, const std::stri
 void ReadLeastSquares(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                       const ModelHandle& model, StageConfig* stage) {
   reader.CheckMap(node, path, {"penalty", "lambda", "folds", "robust", "regions", "grid",
-                               "smoothing", "max_profile_evaluations"});
+                               "smoothing", "max_gap", "max_profile_evaluations"});
   const RegressionForm* form = model.regression_form();
   const ModelInfo& info = model.info();
   if (form == nullptr) reader.Fail(node, path, "model " + info.name + " has no equation-error form");

@@ -41,6 +41,10 @@ void CheckNames(const YamlReader& reader, const YAML::Node& node, const std::str
 
 void ReadRegressionData(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                         const ModelInfo& info, RegressionDataOptions* data) {
+  reader.Read(node, path, "max_gap", &data->max_gap);
+  if (!(data->max_gap >= 1.0)) {
+    reader.Fail(node["max_gap"], Child(path, "max_gap"), "must be >= 1 (median grid intervals)");
+  }
   if (node["grid"]) {
     data->grid_output = reader.String(node["grid"], Child(path, "grid"));
     CheckNames(reader, node["grid"], Child(path, "grid"),

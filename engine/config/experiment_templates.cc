@@ -120,7 +120,8 @@ const std::vector<std::string>& ExperimentKeys() {
   static const std::vector<std::string> keys{
       "name",     "file",           "files",    "inputs",      "outputs",
       "interpolation", "weights",   "initial_state", "degrees", "window",
-      "segment_length", "segments", "input_range",   "wrap",    "separator"};
+      "segment_length", "segments", "input_range",   "wrap",    "separator",
+      "time",     "position",       "screen",   "resample"};
   return keys;
 }
 

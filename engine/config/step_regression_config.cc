@@ -55,7 +55,7 @@ void ReadStepRegression(const YamlReader& reader, const YAML::Node& node,
   stage->regression_data.smoothing = {2, 2, 0};
   if (!node) return;
   reader.CheckMap(node, path,
-                  {"grid", "smoothing", "steady", "inputs", "min_change", "step_fit",
+                  {"grid", "smoothing", "max_gap", "steady", "inputs", "min_change", "step_fit",
                    "zero_straight", "mirror", "turn_weights", "lasso", "asymptote"});
   ReadRegressionData(reader, node, path, info, &stage->regression_data);
   if (const YAML::Node steady = node["steady"]) {

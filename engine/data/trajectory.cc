@@ -8,6 +8,7 @@
 
 #include "engine/base/input_file.h"
 #include "engine/base/number_text.h"
+#include "engine/data/time_base.h"
 
 namespace vesselid {
 namespace {
@@ -136,22 +137,23 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
   if (in.too_long()) return fail("line longer than " + ByteCount(LineReader::kMaxLine));
   if (header.empty()) return fail("empty file, expected a header row");
   std::set<std::string> seen;  // not a pairwise check: that is quadratic in a wide header
+  const std::string& time_name = options.time_column;
   for (size_t i = 0; i < header.size(); ++i) {
-    if (header[i] == "t") time_column = static_cast<int>(i);
+    if (header[i] == time_name) time_column = static_cast<int>(i);
   }
   if (time_column < 0) {
     // A header split by another separator names the separator, not a missing column.
     for (char other : {',', ';', '\t'}) {
       if (other == options.separator) continue;
       for (const std::string& name : SplitFields(line, other)) {
-        if (name != "t") continue;
+        if (name != time_name) continue;
         return fail("the header is separated by " + SeparatorName(other) + ", not " +
                     SeparatorName(options.separator) + ": convert the file to commas or set " +
                     "the experiment's separator: \"" +
                     (other == '\t' ? "\\t" : std::string(1, other)) + "\"");
       }
     }
-    return fail("header has no time column 't'");
+    return fail("header has no time column '" + time_name + "'");
   }
   for (size_t i = 0; i < header.size(); ++i) {
     if (header[i].empty())
@@ -164,6 +166,7 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
   const double kMissing = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::string> fields;
   std::uint64_t values = 0;
+  std::vector<std::int64_t> time_ns;  // epoch logs: every time exactly, in nanoseconds
   while (next()) {
     if (Trim(line).empty()) continue;
     values += header.size();
@@ -189,11 +192,24 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
       }
       if (static_cast<int>(i) == time_column) {
         if (fields[i].empty()) return fail("missing time value");
-        if (!result.t.empty() && !(value > result.t.back())) {
+        if (result.t.empty()) result.epoch = std::abs(value) >= kEpochThreshold;
+        if (result.epoch) {
+          std::int64_t ns = 0;
+          if (!ParseNanoseconds(fields[i], &ns)) {
+            return fail("time " + fields[i] + " cannot be read to the nanosecond (an epoch " +
+                        "time needs at most 19 digits and |t| < 9.2e9 s)");
+          }
+          if (!time_ns.empty() && !(ns > time_ns.back())) {
+            return fail("time " + fields[i] + " is not after the previous time " +
+                        FormatNanoseconds(time_ns.back()) + " (t must be strictly increasing)");
+          }
+          time_ns.push_back(ns);
+        } else if (!result.t.empty() && !(value > result.t.back())) {
           return fail("time " + fields[i] + " is not after the previous time " +
                       std::to_string(result.t.back()) + " (t must be strictly increasing)");
         }
         result.t.push_back(value);
+        result.line.push_back(line_number);
       } else {
         result.columns[channel++].push_back(value);
       }
@@ -202,6 +218,13 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
   if (in.too_long()) return fail("line longer than " + ByteCount(LineReader::kMaxLine));
   if (in.failed()) return fail("read error");
   if (result.t.size() < 2) return fail("fewer than two data rows");
+  if (result.epoch) {
+    // Relative times from exact integer differences (time_base.h).
+    result.time_origin_ns = time_ns.front();
+    for (size_t k = 0; k < time_ns.size(); ++k) {
+      result.t[k] = NanosecondsToSeconds(time_ns[k] - time_ns.front());
+    }
+  }
   *trajectory = std::move(result);
   return true;
 }

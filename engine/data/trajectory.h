@@ -13,6 +13,16 @@ namespace vesselid {
 struct Trajectory {
   std::string source;  // file it was read from, for messages
   std::vector<double> t;
+  std::vector<int> line;  // the file line of each row, for messages (empty: not from a file)
+  // An epoch log (time_base.h): t is relative to this Unix time, in nanoseconds.
+  bool epoch = false;
+  std::int64_t time_origin_ns = 0;
+  // Local positions from GNSS fixes (gnss_position.h): their origin in degrees.
+  bool position_origin = false;
+  double origin_lat = 0.0, origin_lon = 0.0;
+  // What preparing the data did to it (epoch origin, removed samples, resampling), one line
+  // per concern naming the experiment: reported with the run's warnings.
+  std::vector<std::string> notes;
   std::vector<std::string> names;            // channel names, header order (without t)
   std::vector<std::vector<double>> columns;  // columns[c][k], NaN where missing
 
@@ -34,11 +44,14 @@ constexpr double kMaxDataMagnitude = 1e100;
 
 struct CsvReadOptions {
   char separator = ',';  // ',', ';' or '\t'
+  std::string time_column = "t";
   std::uint64_t max_bytes = WorkLimits().file_bytes;
   std::uint64_t max_values = WorkLimits().data_values;  // rows x columns
 };
 
-// Reads a CSV file: header row, a column `t` (seconds, strictly increasing), numeric fields,
+// Reads a CSV file: header row, a time column (`t` unless named otherwise; seconds, strictly
+// increasing; an epoch time is made relative to the first one without loss, time_base.h),
+// numeric fields,
 // empty field = missing sample; a UTF-8 byte-order mark is skipped. Text that is not a number,
 // NaN/inf, a magnitude above kMaxDataMagnitude, a wrong field count, a non-increasing time, a
 // header split by another separator, or a file past the limits is rejected with

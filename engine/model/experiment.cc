@@ -53,20 +53,6 @@ double Median(std::vector<double> values) {
 
 }  // namespace
 
-bool LoadExperimentData(const ExperimentSpec& spec, Trajectory* trajectory, std::string* error) {
-  if (!ReadTrajectoryCsv(spec.file, spec.csv, trajectory, error)) return false;
-  for (const std::string& column : spec.degree_columns) {
-    int c = trajectory->Find(column);
-    if (c < 0) {
-      *error = spec.file + ": no column '" + column + "' (listed in experiment '" + spec.name +
-               "' degrees)";
-      return false;
-    }
-    for (double& v : trajectory->columns[c]) v *= M_PI / 180.0;
-  }
-  return true;
-}
-
 bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
                      const ModelInfo& info, const ExperimentOptions& options,
                      Experiment* experiment, std::string* error) {

@@ -15,6 +15,7 @@
 #include "engine/data/interpolation.h"
 #include "engine/data/segments.h"
 #include "engine/data/trajectory.h"
+#include "engine/model/experiment_data.h"
 #include "engine/model/model.h"
 
 namespace vesselid {
@@ -50,6 +51,8 @@ struct ExperimentSpec {
   // s dropped at the start of a stretch that follows one outside the ranges: the state is
   // still leaving the region the model is not identified in.
   double input_range_skip = 0.0;
+  // time, position, screen and resample keys: preparation of the raw columns.
+  ExperimentDataSpec data;
 };
 
 struct ExperimentSample {
@@ -118,7 +121,9 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
                      const ModelInfo& info, const ExperimentOptions& options,
                      Experiment* experiment, std::string* error);
 
-// Reads the CSV named by spec.file and converts degree columns to radians.
+// Reads the CSV named by spec.file and prepares it as spec.data says (experiment_data.h;
+// experiment_data.cc), converting degree columns to radians. Errors name the experiment, the
+// file and line or the config key.
 bool LoadExperimentData(const ExperimentSpec& spec, Trajectory* trajectory, std::string* error);
 
 }  // namespace vesselid

@@ -2,6 +2,7 @@
 
 #include "engine/base/json_number.h"
 #include "engine/output/held_out_parameters_report.h"
+#include "engine/data/time_base.h"
 #include "engine/output/step_regression_writer.h"
 #include "engine/output/zigzag_report.h"
 
@@ -216,6 +217,15 @@ json RunResultToJson(const RunConfig& config, const RunResult& result) {
   j["model"] = {{"family", config.family}, {"name", config.model->info().name}};
   j["time_seconds"] = result.time_seconds;
   j["warnings"] = result.warnings;
+  // Where relative times (epoch logs) and local positions (GNSS) start, per experiment.
+  for (const RecordOrigin& o : result.record_origins) {
+    json& origin = j["record_origins"][o.experiment];
+    if (o.epoch) {
+      origin["time_origin_unix"] = FormatNanoseconds(o.time_origin_ns);  // exact decimal text
+      origin["time_origin_utc"] = FormatUtc(o.time_origin_ns);
+    }
+    if (o.position) origin["position_origin"] = {{"lat", o.lat}, {"lon", o.lon}};
+  }
   if (!result.stopped_stage.empty()) {
     j["stopped"] = {{"stage", result.stopped_stage}, {"message", result.stop_message}};
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace vesselid {
@@ -83,9 +84,13 @@ bool BuildRegressionRecord(const ExperimentSpec& spec, const Trajectory& data,
   r.dt = sorted[sorted.size() / 2];
   for (int k = 0; k + 1 < n; ++k) {
     if (steps[k] > options.max_gap * r.dt) {
+      char limit[64];
+      std::snprintf(limit, sizeof(limit), "%g", options.max_gap);
       return fail("gap of " + std::to_string(steps[k]) + " s at t = " + std::to_string(r.t[k]) +
                   " in output '" + info.outputs[grid] +
-                  "' (regression data need a uniform grid; cut the record into segments)");
+                  "' (regression data need a uniform grid: a step may be at most max_gap = " +
+                  limit + " median steps; raise the stage's max_gap for row jitter, give the " +
+                  "experiment a resample rate, or cut the record into segments)");
     }
   }
 

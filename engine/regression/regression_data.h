@@ -23,7 +23,10 @@ namespace vesselid {
 struct RegressionDataOptions {
   std::string grid_output;  // output whose sample times are the grid; empty: the sparsest
   SavitzkyGolayOptions smoothing = {4, 2, 0};  // window and degree (derivative is set inside)
-  double max_gap = 1.5;  // grid intervals longer than this many median intervals are an error
+  // Grid intervals longer than this many median intervals are an error (`max_gap` of a
+  // least-squares or step-regression stage); a logger's row jitter of +-30 % of the interval
+  // needs 1.6 or more, a dropped row 2.
+  double max_gap = 1.5;
 };
 
 // Builds the record of `spec` (its window) from `data`. Errors name the experiment.

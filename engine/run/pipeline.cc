@@ -6,6 +6,7 @@
 #include "engine/run/least_squares_stage.h"
 #include "engine/run/output_error_stage.h"
 #include "engine/run/parameter_ledger.h"
+#include "engine/run/record_notes.h"
 #include "engine/run/records.h"
 #include "engine/run/run_warnings.h"
 #include "engine/run/step_regression_stage.h"
@@ -248,6 +249,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
   }
   run.zigzags = FindZigzagRuns(config, run, &cache);
   AddRunWarnings(config, &run);
+  AddRecordNotes(config, cache, &run);
   run.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   *result = std::move(run);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <limits>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -124,6 +125,15 @@ struct ZigzagRun {
   ZigzagFigures measured, simulated;
 };
 
+// Where a record's relative times and local positions start (record_notes.h).
+struct RecordOrigin {
+  std::string experiment;
+  bool epoch = false;              // t = 0 at the Unix time time_origin_ns
+  std::int64_t time_origin_ns = 0;
+  bool position = false;           // north/east from GNSS fixes, 0 at lat, lon (degrees)
+  double lat = 0.0, lon = 0.0;
+};
+
 struct RunResult {
   std::vector<StageResult> stages;  // the finished ones
   // Everything doubtful about the result, each naming the stage, parameter or experiment:
@@ -137,6 +147,7 @@ struct RunResult {
   HeldOutParameters final_held_out_parameters;  // per-experiment parameters of final_validation
   std::vector<ChannelMetrics> final_velocity_validation;
   std::vector<ZigzagRun> zigzags;  // every zigzag fit of the stages and the final validation
+  std::vector<RecordOrigin> record_origins;
   double time_seconds = 0.0;
 };
 

@@ -136,6 +136,8 @@ const KeyCase kCases[] = {
     {"outliers", V.E("[a, b, c, s]"),
      V.E("[a, b, c, s]").K("    outliers: {action: drop, threshold: 0.01}")},
     {"type_least_squares", V, kLeastSquares},
+    {"screen", V, V.A(", screen: {max_rate: {r: 0.001}}")},
+    {"resample", V, V.A(", resample: {rate: 4, max_gap: 2}")},
     {"final_validation", V, V.T("final_validation: {experiments: [c]}")},
     {"validation_per_experiment", kPerRun.K("    validation: [c]"),
      kPerRun.K("    validation: [c]\n    validation_per_experiment: hold")},
@@ -204,6 +206,15 @@ const KeyCase kCases[] = {
     {"separator_the_file_does_not_use", V, V.A(", separator: \";\""),
      "the header is separated by ',', not ';'"},
     {"limits", V, V.T("limits: {integration_steps: 100}\n"), "(limits.integration_steps)"},
+    // Keys for data this template does not have (epoch times, GNSS fixes, positions, row
+    // jitter): real_log_test.cc and time_base_test.cc show their effect.
+    {"time", V, V.A(", time: {column: r}"), "is not after the previous time"},
+    {"position", V, V.A(", position: {lat: lat, lon: lon}"),
+     "no column 'lat' (experiments[0].position.lat)"},
+    {"screen_max_speed_without_positions", V, V.A(", screen: {max_speed: 5}"),
+     "screen.max_speed needs positions"},
+    {"max_gap", V, V.K("    type: least_squares\n    least_squares: {grid: psi, max_gap: 0.5}"),
+     "stages[0].least_squares.max_gap: must be >= 1"},
     {"limits_of_a_study", V,
      V.T("limits: {study_cases: 5}\nstudy: {monte_carlo: {runs: 6, noise: {psi: 0.01}}}\n"),
      "study.monte_carlo.runs: 6 is more than the limit of 5 (limits.study_cases)"},
@@ -290,6 +301,7 @@ class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
       std::snprintf(line, sizeof(line), "%s=%.12g;", f.name.c_str(), f.value);
       s += line;
     }
+    for (const std::string& w : r.warnings) s += w + ";";
     return s + std::to_string(r.final_validation.size());
   }
 

@@ -1,0 +1,166 @@
+// LoadExperimentData: the preparation steps of experiment_data.h in order. Zero fixes go
+// first (before an origin is chosen), the screen works in the columns' own units (its
+// max_rate is in them), degrees become radians after it, and resampling comes last.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "engine/data/glitch_screen.h"
+#include "engine/data/resample.h"
+#include "engine/data/time_base.h"
+#include "engine/model/experiment.h"
+
+namespace vesselid {
+namespace {
+
+bool IsDegreeColumn(const ExperimentSpec& spec, const std::string& column) {
+  return std::find(spec.degree_columns.begin(), spec.degree_columns.end(), column) !=
+         spec.degree_columns.end();
+}
+
+bool IsAngleOutput(const ExperimentSpec& spec, const std::string& output) {
+  const std::vector<std::string>& angles = spec.data.angle_outputs;
+  return std::find(angles.begin(), angles.end(), output) != angles.end();
+}
+
+// The position pair the screen's max_speed and zero fixes apply to: the channels `position`
+// adds, else the columns of outputs x/y or n/e (the models' north and east).
+bool PositionPair(const ExperimentSpec& spec, std::string* north, std::string* east) {
+  if (spec.data.position) {
+    *north = spec.data.gnss.north_column;
+    *east = spec.data.gnss.east_column;
+    return true;
+  }
+  for (const auto& [n, e] : {std::pair{"x", "y"}, std::pair{"n", "e"}}) {
+    const auto a = spec.outputs.find(n), b = spec.outputs.find(e);
+    if (a == spec.outputs.end() || b == spec.outputs.end()) continue;
+    *north = a->second;
+    *east = b->second;
+    return true;
+  }
+  return false;
+}
+
+bool Screen(const ExperimentSpec& spec, const GnssPositionReport& gnss, Trajectory* data,
+            std::string* error) {
+  const ExperimentDataSpec& d = spec.data;
+  std::vector<GlitchFinding> findings;
+  if (!gnss.zero_fix_times.empty()) {
+    GlitchFinding zero{"zero fix", d.gnss.lat_column + "/" + d.gnss.lon_column};
+    for (double t : gnss.zero_fix_times) zero.Add(t);
+    findings.push_back(zero);
+  }
+  if (d.screen) {
+    GlitchScreenOptions options;
+    std::string north, east;
+    const bool pair = PositionPair(spec, &north, &east);
+    if (!pair && d.max_speed > 0.0) {
+      *error = "screen.max_speed needs positions: a `position` map or outputs x, y (or n, e)";
+      return false;
+    }
+    if (pair) {
+      options.north_column = north;
+      options.east_column = east;
+      options.max_speed = d.max_speed;
+      options.zero_fix = d.zero_fix && !d.position;  // `position` took them out already
+    }
+    options.stale = d.stale;
+    for (const auto& [output, column] : spec.outputs) {
+      if (pair && (column == north || column == east)) continue;
+      const auto rate = d.max_rate.find(output);
+      double period = 0.0;
+      if (IsAngleOutput(spec, output)) period = IsDegreeColumn(spec, column) ? 360.0 : 2.0 * M_PI;
+      options.channels.push_back({column, rate == d.max_rate.end() ? 0.0 : rate->second, period});
+    }
+    std::vector<std::string> columns{options.north_column, options.east_column};
+    for (const auto& c : options.channels) columns.push_back(c.column);
+    for (const std::string& column : columns) {
+      if (!column.empty() && data->Find(column) < 0) {
+        *error = data->source + ": no column '" + column + "' (mapped as an output)";
+        return false;
+      }
+    }
+    const std::vector<GlitchFinding> more = ScreenGlitches(options, data);
+    findings.insert(findings.end(), more.begin(), more.end());
+  }
+  if (findings.empty()) return true;
+  data->notes.push_back("experiment '" + spec.name + "': removed " + DescribeGlitches(findings) +
+                        (d.screen ? " (" + d.screen_key + ")" : ""));
+  return true;
+}
+
+bool ResampleRecord(const ExperimentSpec& spec, Trajectory* data, std::string* error) {
+  ResampleOptions options;
+  options.rate = spec.data.resample_rate;
+  options.max_gap = spec.data.resample_max_gap;
+  std::string outputs;
+  for (const auto& [output, column] : spec.outputs) {
+    if (options.interpolated.count(column) > 0) continue;
+    options.interpolated[column] = IsAngleOutput(spec, output) ? 2.0 * M_PI : 0.0;
+    outputs += (outputs.empty() ? "" : ", ") + column;
+  }
+  ResampleReport report;
+  if (!Resample(options, spec.csv.max_values / std::max<size_t>(1, data->names.size() + 1), data,
+                &report, error)) {
+    return false;
+  }
+  char text[300];
+  std::snprintf(text, sizeof(text),
+                "': resampled to a uniform %g Hz grid (%zu rows from %zu; outputs %s "
+                "interpolated linearly across gaps of up to %g samples, other columns held)",
+                options.rate, report.rows_after, report.rows_before, outputs.c_str(),
+                options.max_gap);
+  std::string note = "experiment '" + spec.name + text;
+  if (report.outside > 0) {
+    note += "; " + std::to_string(report.outside) +
+            " grid point(s) in gaps of the log itself left empty";
+  }
+  for (const auto& [column, count] : report.left_empty) {
+    note += "; " + std::to_string(count) + " grid point(s) of " + column +
+            " left empty in its longer gaps";
+  }
+  data->notes.push_back(note);
+  return true;
+}
+
+}  // namespace
+
+bool LoadExperimentData(const ExperimentSpec& spec, Trajectory* trajectory, std::string* error) {
+  if (!ReadTrajectoryCsv(spec.file, spec.csv, trajectory, error)) return false;
+  auto fail = [&](const std::string& what) {
+    *error = "experiment '" + spec.name + "': " + what;
+    return false;
+  };
+  if (trajectory->epoch) {
+    trajectory->notes.push_back(
+        "experiment '" + spec.name + "': times are Unix epoch seconds; t = 0 is " +
+        FormatNanoseconds(trajectory->time_origin_ns) + " (" +
+        FormatUtc(trajectory->time_origin_ns) +
+        "), and windows, segments and reported times count from there");
+  }
+  GnssPositionReport gnss;
+  if (spec.data.position && !AddLocalPositions(spec.data.gnss, trajectory, &gnss, error)) {
+    return fail(*error);
+  }
+  if (spec.data.position) {
+    trajectory->position_origin = true;
+    trajectory->origin_lat = gnss.origin_lat;
+    trajectory->origin_lon = gnss.origin_lon;
+  }
+  if (!Screen(spec, gnss, trajectory, error)) return fail(*error);
+  for (const std::string& column : spec.degree_columns) {
+    int c = trajectory->Find(column);
+    if (c < 0) {
+      *error = spec.file + ": no column '" + column + "' (listed in experiment '" + spec.name +
+               "' degrees)";
+      return false;
+    }
+    for (double& v : trajectory->columns[c]) v *= M_PI / 180.0;
+  }
+  if (spec.data.resample_rate > 0.0 && !ResampleRecord(spec, trajectory, error)) {
+    return fail(*error);
+  }
+  return true;
+}
+
+}  // namespace vesselid
