@@ -9,6 +9,7 @@
 #include "engine/run/records.h"
 #include "engine/run/run_warnings.h"
 #include "engine/run/step_regression_stage.h"
+#include "engine/run/unit_warnings.h"
 #include "engine/run/velocity_validation.h"
 #include "engine/run/work_size.h"
 
@@ -53,7 +54,7 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
                        "): its estimates are set aside and later stages and the final values "
                        "take its start values (final: last would keep them)";
   }
-  if (model.regression_form() != nullptr) {
+  if (stage.velocity_validation && model.regression_form() != nullptr) {
     std::vector<std::string> diverged;
     if (!ValidateVelocities(config, model, stage.validation, velocity_data, values, cache,
                             &result->velocity_validation, &diverged, error)) {
@@ -216,7 +217,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
       *error = "final validation: " + *error;
       return false;
     }
-    if (model.regression_form() != nullptr) {
+    if (config.velocity_validation && model.regression_form() != nullptr) {
       const RegressionDataOptions velocity_data = VelocityData(config, config.stages.size());
       std::vector<std::string> diverged;
       if (!ValidateVelocities(config, model, v.experiments, velocity_data, final_values, &cache,
@@ -227,7 +228,10 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
       for (const std::string& d : diverged) run.warnings.push_back("final validation: " + d);
     }
   }
+  std::vector<std::string> unit_warnings;
+  AddUnitWarnings(config, &cache, &unit_warnings);
   AddRunWarnings(config, &run);
+  run.warnings.insert(run.warnings.begin(), unit_warnings.begin(), unit_warnings.end());
   run.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   *result = std::move(run);

@@ -129,6 +129,10 @@ const KeyCase kCases[] = {
      V.E("[a, b, c, s]").K("    outliers: {action: drop, threshold: 0.01}")},
     {"type_least_squares", V, kLeastSquares},
     {"final_validation", V, V.T("final_validation: {experiments: [c]}")},
+    {"velocity_validation_of_a_stage", V.K("    validation: [c]"),
+     V.K("    validation: [c]\n    velocity_validation: false")},
+    {"velocity_validation", V.T("final_validation: {experiments: [c]}\n"),
+     V.T("final_validation: {experiments: [c]}\nvelocity_validation: false\n")},
     {"fusion",
      V.P("      T: {start: 3.0, lower: 0.1, upper: 20, role: shared}")
          .T("  - name: again\n    experiments: [c]\n    parameters:\n"
@@ -220,14 +224,16 @@ class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
       }
       s += std::to_string(stage.summary.fits.size()) + " fits, " +
            std::to_string(stage.summary.refinements.size()) + " refinements, " +
-           std::to_string(stage.validation.size()) + " validation;";
+           std::to_string(stage.validation.size()) + " validation, " +
+           std::to_string(stage.velocity_validation.size()) + " velocity metrics;";
       for (const std::string& note : stage.summary.notes) s += note + ";";
     }
     for (const FinalParameter& f : r.parameters) {
       std::snprintf(line, sizeof(line), "%s=%.12g;", f.name.c_str(), f.value);
       s += line;
     }
-    return s + std::to_string(r.final_validation.size());
+    return s + std::to_string(r.final_validation.size()) + " final validation, " +
+           std::to_string(r.final_velocity_validation.size()) + " velocity metrics";
   }
 
   static bool Load(const std::string& text, RunConfig* config, std::string* error) {
