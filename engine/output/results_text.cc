@@ -11,14 +11,6 @@
 namespace vesselid {
 namespace {
 
-std::string MetricsRow(const ChannelMetrics& m, double rms_cost) {
-  char line[256];
-  std::snprintf(line, sizeof(line), "  %-20s %-8s %8d %12.4e %12.4e %10.6f %8.3f %10.4e\n",
-                m.experiment.c_str(), m.output.c_str(), m.samples, m.rmse, m.mae, m.r2,
-                m.fit_percent, rms_cost);
-  return line;
-}
-
 // One row per run, its segments folded in, with mean / median / worst (run_fit_table.h).
 std::string MetricsTable(const RunConfig& config, const std::vector<ExperimentFit>& fits) {
   return RunFitTableText(PerRunFits(config, fits));

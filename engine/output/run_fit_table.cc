@@ -48,7 +48,8 @@ RunFitTable PerRunFits(const RunConfig& config, const std::vector<ExperimentFit>
     const std::string run = RunOf(fit.experiment);
     const auto [at, added] = row_of.emplace(run, table.rows.size());
     if (added) {
-      table.rows.push_back(RunFitRow{run});
+      table.rows.emplace_back();
+      table.rows.back().run = run;
       sums.emplace_back();
       cost2.push_back(0.0);
       cost_samples.push_back(0.0);
@@ -130,7 +131,10 @@ RunFitTable PerRunFits(const RunConfig& config, const std::vector<ExperimentFit>
                      [&](const RunFitRow& a, const RunFitRow& b) { return key(a) < key(b); });
   }
   if (table.rows.size() >= 2) {
-    RunFitSummary mean{"mean"}, median{"median"}, worst{"worst"};
+    RunFitSummary mean, median, worst;
+    mean.label = "mean";
+    median.label = "median";
+    worst.label = "worst";
     for (size_t o = 0; o < table.outputs.size(); ++o) {
       std::vector<double> fit, rmse;
       const RunFitRow* worst_row = nullptr;

@@ -77,6 +77,14 @@ stages:
       s.name = name;
       s.model = config_.model->info().name;
       s.summary.name = name;
+      LocalSolveSummary solve;
+      solve.run = solve.usable = true;
+      solve.iterations = 3;
+      solve.cost_history = {1.0, 0.1, 0.01};
+      solve.final_cost = 0.01;
+      solve.termination = "CONVERGENCE";
+      s.summary.refinements = {solve};
+      s.summary.chosen = 0;
       s.summary.fits = {Fit("train@1", 95.0), Fit("train@2", 93.0, 14000.0)};
       s.estimates = {{"T", kParameter, kShared, "", t, 3.0, 0.2, 0.1, 50.0, false},
                      {"K", kParameter, kShared, "", k, -0.1, 0.002, -1.0, -0.001, false},
