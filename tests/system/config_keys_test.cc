@@ -150,6 +150,8 @@ const KeyCase kCases[] = {
      kLeastSquares.K(kLeastSquares.stage + "\n    outliers: {action: drop}"),
      "stages[0].outliers: not used by a least-squares stage"},
     {"wrap_of_a_rate", V, V.A(", wrap: [r]"), "output 'r' is not an angle"},
+    {"velocity_validation_not_a_yes_or_no", V, V.K("    velocity_validation: sometimes"),
+     "config.yaml:12: stages[0].velocity_validation: expected true or false"},
     {"unknown_final_choice", V, V.T("final: newest\n"), "final: unknown choice 'newest'"},
     {"separator_the_file_does_not_use", V, V.A(", separator: \";\""),
      "the header is separated by ',', not ';'"},

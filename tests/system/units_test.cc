@@ -163,6 +163,10 @@ TEST_F(UnitsTest, HeadingInDegreesReadAsRadiansIsNamed) {
   // Compared modulo one turn, the wrapped residual stays below pi; the fit must not hide it.
   const RunResult wrapped = Run("degrees: [r, delta], wrap: [psi]", "wrapped");
   EXPECT_TRUE(WarnsOfDegrees(wrapped));
+  ASSERT_FALSE(wrapped.stages.empty());
+  for (const ChannelMetrics& m : wrapped.stages[0].summary.fits[0].channels) {
+    if (m.output == "psi") EXPECT_LT(m.fit_percent, 50.0);
+  }
 }
 
 }  // namespace
