@@ -320,8 +320,9 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
   reader.CheckMap(
       node, path,
       {"name", "type", "least_squares", "step_regression", "model", "experiments", "validation",
-       "validation_per_experiment", "outputs", "parameters", "free_initial_states", "loss", "integration", "normalize_by_length",
-       "continuation", "global", "local", "uncertainty", "initial_state_prior", "outliers"});
+       "validation_per_experiment", "outputs", "parameters", "free_initial_states", "loss",
+       "integration", "normalize_by_length", "continuation", "global", "local", "uncertainty",
+       "initial_state_prior", "outliers", "velocity_validation"});
   StageConfig stage;
   if (node["model"]) {
     stage.model = OverrideModel(reader, family, model_node, node["model"], Child(path, "model"));
@@ -329,6 +330,8 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
   const ModelInfo& info = stage.model ? stage.model->info() : config.model->info();
   stage.options.name = "stage" + std::to_string(index + 1);
   reader.Read(node, path, "name", &stage.options.name);
+  stage.velocity_validation = config.velocity_validation;
+  reader.Read(node, path, "velocity_validation", &stage.velocity_validation);
   if (node["experiments"]) {
     stage.experiments =
         ExperimentNames(reader, node["experiments"], Child(path, "experiments"), config);
@@ -527,13 +530,14 @@ bool LoadConfigFile(const std::string& path, const std::string& data_dir,
     reader.CheckMap(root, "",
                     {"description", "model", "simulation", "experiment_defaults", "experiments",
                      "sets", "stages", "fusion", "final", "final_validation", "surfaces", "study",
-                     "limits"});
+                     "limits", "velocity_validation"});
     ConfigFile file;
     RunConfig& result = file.run;
     result.path = path;
     if (const YAML::Node limits = root["limits"]) result.limits = ReadLimits(reader, limits);
     reader.set_limits(result.limits);
     reader.Read(root, "", "description", &result.description);
+    reader.Read(root, "", "velocity_validation", &result.velocity_validation);
     const YAML::Node model = root["model"];
     if (!model) reader.Fail(root, "model", "missing key");
     if (!model.IsMap() || !model["family"])

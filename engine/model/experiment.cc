@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "engine/base/angle.h"
+#include "engine/data/angle_units.h"
 #include "engine/data/noise_level.h"
 #include "engine/data/record_start.h"
 
@@ -40,6 +41,8 @@ bool OutputChannelOf(const Trajectory& trajectory, int column, const ModelInfo& 
                   info.outputs[output].c_str(), trajectory.names[column].c_str(),
                   std::abs(step) * 180.0 / M_PI, t[k - 1], t[k], info.outputs[output].c_str());
     *error = text;
+    const AngleUnitCheck unit = CheckAngleUnit(raw);
+    if (unit.looks_like_degrees) *error += "; " + DescribeDegreesLook(trajectory.names[column], unit);
     return false;
   }
   return true;

@@ -17,6 +17,36 @@ int ModelInfo::StateIndex(const std::string& name) const { return IndexOf(states
 int ModelInfo::InputIndex(const std::string& name) const { return IndexOf(inputs, name); }
 int ModelInfo::OutputIndex(const std::string& name) const { return IndexOf(outputs, name); }
 
+namespace {
+std::string UnitAt(const std::vector<std::string>& units, int index) {
+  return index >= 0 && index < static_cast<int>(units.size()) ? units[index] : std::string();
+}
+}  // namespace
+
+std::string ModelInfo::OutputUnit(int index) const {
+  const std::string unit = UnitAt(output_units, index);
+  if (!unit.empty()) return unit;
+  const bool angle = index >= 0 && index < static_cast<int>(angle_outputs.size()) &&
+                     angle_outputs[index];
+  return angle ? "rad" : "";
+}
+
+std::string ModelInfo::StateUnit(int index) const {
+  const std::string unit = UnitAt(state_units, index);
+  if (!unit.empty() || index < 0 || index >= static_cast<int>(states.size())) return unit;
+  return OutputUnit(OutputIndex(states[index]));
+}
+
+std::string ModelInfo::InputUnit(int index) const { return UnitAt(input_units, index); }
+
+std::pair<int, int> ModelInfo::TrackOutputs() const {
+  std::vector<int> metres;
+  for (int i = 0; i < static_cast<int>(outputs.size()) && metres.size() < 2; ++i) {
+    if (OutputUnit(i) == "m") metres.push_back(i);
+  }
+  return metres.size() == 2 ? std::pair{metres[0], metres[1]} : std::pair{-1, -1};
+}
+
 std::string JoinNames(const std::vector<std::string>& names) {
   std::string joined;
   for (const std::string& name : names) {

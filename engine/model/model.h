@@ -44,6 +44,18 @@ struct ModelInfo {
   // Inputs an experiment may leave unmapped; the model then sees NaN and decides what that
   // means (e.g. motors off, still air). Empty: every input is required.
   std::vector<bool> optional_inputs;
+  // Units of the outputs, states and inputs as labels show them ("m", "m/s", "rad", "rad/s",
+  // "N"; empty: not stated). An angle read in degrees is shown in degrees ("rad" -> "deg").
+  std::vector<std::string> output_units, state_units, input_units;
+
+  // output_units, else "rad" for an angle output, else "".
+  std::string OutputUnit(int index) const;
+  // state_units, else the unit of the same-named output.
+  std::string StateUnit(int index) const;
+  std::string InputUnit(int index) const;
+  // The horizontal position outputs (north, east): the first two outputs in metres; -1 when
+  // the model has none (no x-y track in the report).
+  std::pair<int, int> TrackOutputs() const;
 
   bool InputOptional(int index) const {
     return index < static_cast<int>(optional_inputs.size()) && optional_inputs[index];

@@ -8,8 +8,11 @@
 #include "engine/base/elapsed.h"
 #include "engine/output/base64.h"
 #include "engine/output/held_out_parameters_report.h"
+#include "engine/output/display_units.h"
+#include "engine/output/parameter_summary.h"
 #include "engine/output/report_figures.h"
 #include "engine/output/report_plots.h"
+#include "engine/output/report_summary.h"
 #include "engine/output/report_tables.h"
 #include "engine/output/zigzag_report.h"
 #include "engine/run/held_out.h"
@@ -32,6 +35,9 @@ th { background: #edf1f5; font-weight: 600; }
 td.num { text-align: right; white-space: nowrap; font-variant-numeric: tabular-nums; }
 tr:nth-child(even) td { background: #fafbfc; }
 tr.fixed td { color: #777; }
+tr.flagged td { color: #8a1c1c; }
+table.sortable thead th { cursor: pointer; }
+table.sortable tfoot th, table.sortable tfoot td { background: #edf1f5; }
 .scroll { overflow-x: auto; max-width: 100%; }
 table.paper { font-size: 12.5px; }
 img.plot { display: block; max-width: 100%; height: auto; margin: 8px 0; }
@@ -146,10 +152,14 @@ std::vector<std::string> AngleOutputs(const RunConfig& config) {
   return angles;
 }
 
-// A figure and metrics table per record of `fits`; regression fits get their table only.
-void FitFigures(const std::string& key, const std::string& what,
+// A figure and metrics table per record of `fits`, in the units the user reads
+// (display_units.h), and its x-y track where the model has horizontal positions; regression
+// fits get their table only.
+void FitFigures(const RunConfig& config, const std::string& key, const std::string& what,
                 const std::vector<ExperimentFit>& fits, const std::vector<std::string>& angles,
                 ReportPage* page) {
+  const ModelInfo& info = config.model->info();
+  const std::pair<int, int> track = info.TrackOutputs();
   for (const std::vector<const ExperimentFit*>& group : GroupByRecord(fits)) {
     const std::string record = RecordName(group.front()->experiment);
     page->html << "<h4>" << HtmlEscape(record);
@@ -157,12 +167,21 @@ void FitFigures(const std::string& key, const std::string& what,
       page->html << " <span class=\"muted\">(" << group.size() << " segments)</span>";
     }
     page->html << "</h4>\n";
+    std::map<std::string, DisplayUnit> units;
+    for (const std::string& output : info.outputs) {
+      units[output] = OutputDisplayUnit(config, record, output);
+    }
     Figure figure;
     if (IsSimulationFit(*group.front()) &&
-        TraceFigure(key + "." + record, group, angles, &figure)) {
+        TraceFigure(key + "." + record, group, angles, units, &figure)) {
       page->AddFigure(std::move(figure), record + ": measured and simulated outputs, " + what);
     }
-    page->html << MetricsTable(group);
+    if (track.first >= 0 && IsSimulationFit(*group.front()) &&
+        TrackFigure(key + "." + record + ".track", group, info.outputs[track.first],
+                    info.outputs[track.second], &figure)) {
+      page->AddFigure(std::move(figure), record + ": x-y track, measured and simulated, " + what);
+    }
+    page->html << MetricsTable(group, &config);
   }
 }
 
@@ -192,7 +211,8 @@ void StageSection(const RunConfig& config, const StageResult& stage, size_t numb
        << (solved ? std::to_string(s.local().iterations) : "—") << "</td><td>"
        << (solved ? HtmlEscape(s.local().termination) : "—") << "</td><td class=\"num\">"
        << s.refinements.size() << "</td><td class=\"num\">" << HtmlNumber(s.time_seconds, "%.3f")
-       << "</td></tr>\n</table>\n";
+       << "</td></tr>\n</table>\n<p>" << HtmlEscape(DescribeCounts(CountUnknowns(stage.estimates)))
+       << ".</p>\n";
   if (s.global.run) html << "<p>" << HtmlEscape(s.global.BriefReport()) << "</p>\n";
   std::vector<std::string> notes = s.notes;
   if (!s.uncertainty.available && !s.uncertainty.message.empty()) {
@@ -212,7 +232,8 @@ void StageSection(const RunConfig& config, const StageResult& stage, size_t numb
   }
   const std::vector<std::string> angles = AngleOutputs(config);
   html << "<h3 id=\"" << id << "-fit\">Fit: measured vs simulated</h3>\n";
-  FitFigures(key + ".fit", "stage " + stage.name, s.fits, angles, page);
+  if (s.fits.size() > 1) html << RunFitTableHtml(PerRunFits(config, s.fits));
+  FitFigures(config, key + ".fit", "stage " + stage.name, s.fits, angles, page);
 
   html << "<h3 id=\"" << id << "-parameters\">Estimates</h3>\n" << EstimatesTables(stage.estimates);
 
@@ -241,8 +262,9 @@ void StageSection(const RunConfig& config, const StageResult& stage, size_t numb
   }
   if (!stage.validation.empty() || !stage.velocity_validation.empty()) {
     html << "<h3 id=\"" << id << "-validation\">Validation on held-out experiments</h3>\n";
-    FitFigures(key + ".validation", "held out, stage " + stage.name, stage.validation, angles,
-               page);
+    if (stage.validation.size() > 1) html << RunFitTableHtml(PerRunFits(config, stage.validation));
+    FitFigures(config, key + ".validation", "held out, stage " + stage.name, stage.validation,
+               angles, page);
     html << HeldOutParametersHtml(stage.held_out_parameters, stage.validation);
     if (!stage.velocity_validation.empty()) {
       html << "<h4>Velocities (data: Savitzky-Golay reconstruction)</h4>\n"
@@ -277,8 +299,8 @@ void FinalSection(const RunConfig& config, const RunResult& result, ReportPage* 
   html << "<section id=\"final\">\n<h2>Final parameters</h2>\n<p>Shared parameters fused over "
           "their stages by the <strong>"
        << HtmlEscape(FusionRuleToString(config.fusion))
-       << "</strong> rule; isolated and free ones from the last stage that estimated them.</p>\n"
-       << FinalParametersTable(result.parameters);
+       << "</strong> rule; isolated and free ones from the last stage that estimated them. Their "
+          "values and intervals are in the <a href=\"#summary-parameters\">summary</a>.</p>\n";
   std::vector<std::string> doubts;
   for (const std::string& a : result.admissibility) doubts.push_back("not admissible: " + a);
   FinalHeldOutFailed(result, &doubts);
@@ -292,8 +314,11 @@ void FinalSection(const RunConfig& config, const RunResult& result, ReportPage* 
   }
   if (!result.final_validation.empty() || !result.final_velocity_validation.empty()) {
     html << "<h3 id=\"final-validation\">Final validation</h3>\n";
-    FitFigures("final.validation", "final values", result.final_validation, AngleOutputs(config),
-               page);
+    if (result.final_validation.size() > 1) {
+      html << RunFitTableHtml(PerRunFits(config, result.final_validation));
+    }
+    FitFigures(config, "final.validation", "final values", result.final_validation,
+               AngleOutputs(config), page);
     html << HeldOutParametersHtml(result.final_held_out_parameters, result.final_validation);
     if (!result.final_velocity_validation.empty()) {
       html << "<h4>Velocities</h4>\n" << VelocityTable(result.final_velocity_validation);
@@ -303,7 +328,9 @@ void FinalSection(const RunConfig& config, const RunResult& result, ReportPage* 
 }
 
 void Contents(const RunResult& result, std::ostringstream* html) {
-  *html << "<nav><h3>Contents</h3>\n<ol>\n";
+  *html << "<nav><h3>Contents</h3>\n<ol>\n<li><a href=\"#summary\">Summary</a> <span "
+           "class=\"sub\"><a href=\"#summary-parameters\">final parameters</a><a "
+           "href=\"#summary-fit\">fit per run</a><a href=\"#warnings\">warnings</a></span></li>\n";
   for (size_t k = 0; k < result.stages.size(); ++k) {
     const StageResult& stage = result.stages[k];
     const std::string id = "stage-" + std::to_string(k + 1);
@@ -351,13 +378,8 @@ std::string RunReportHtml(const RunConfig& config, const RunResult& result) {
          << HtmlEscape(result.stopped_stage) << "'</strong>: " << HtmlEscape(result.stop_message)
          << "</p>\n";
   }
-  if (!result.warnings.empty()) {
-    html << "<section id=\"warnings\">\n<h2>Warnings (" << result.warnings.size()
-         << ")</h2>\n<ul class=\"warnings\">\n";
-    for (const std::string& w : result.warnings) html << "<li>" << HtmlEscape(w) << "</li>\n";
-    html << "</ul>\n</section>\n";
-  }
   Contents(result, &html);
+  html << SummarySectionHtml(config, result);
   for (size_t k = 0; k < result.stages.size(); ++k) {
     StageSection(config, result.stages[k], k + 1, &page);
   }
@@ -367,7 +389,7 @@ std::string RunReportHtml(const RunConfig& config, const RunResult& result) {
        << PaperTables(config, result) << "</section>\n";
   html << "<p class=\"muted\">Report written in <!--seconds--> s (plots <!--plot-seconds--> s)."
           "</p>\n"
-       << kScript << "</body>\n</html>\n";
+       << kScript << kSortScript << "</body>\n</html>\n";
   double plot_seconds = 0.0;
   std::string out = page.Finish(&plot_seconds);
   auto fill = [&out](const std::string& mark, double value) {

@@ -1,12 +1,17 @@
 // The run report, report.html: one self-contained page (no network: styles and script inline,
 // plots embedded as data: URIs of SVGs drawn by gnuplot, report_figures.h).
 //
+//   summary     final parameters (clipped intervals, bounds flagged, counts, fusion notes),
+//               fit per run (sortable, worst first when long, mean / median / worst), every
+//               warning (report_summary.h)
 //   per stage   summary (cost, iterations, termination, time, notes); measured vs simulated
-//               outputs and residuals, a figure per record of the stage's fit (its segments
-//               together) with metrics; the estimates; the correlation heat map of the shared
-//               parameters (per-experiment unknowns left out); the cost history; validation
+//               outputs and residuals in the data's units, a figure per record of the stage's
+//               fit (its segments end to end, each on its own time axis) with metrics, and its
+//               x-y track where the model has horizontal positions; the counts of unknowns;
+//               the estimates; the correlation heat map of the shared parameters
+//               (per-experiment unknowns left out); the cost history; validation
 //               figures of held-out records; step-regression tables, lasso CV paths and samples
-//   final       parameter table, admissibility, final validation figures and metrics
+//   final       admissibility, final validation figures and metrics
 //   papers      parameters by stage, cost per test, validation fit %
 //
 // Every plot is `<img class="plot" data-plot="<key>">`; once the page has loaded, a script

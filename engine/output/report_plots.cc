@@ -99,11 +99,31 @@ SeriesPiece PositiveHistory(const std::vector<double>& history) {
 }  // namespace
 
 bool TraceFigure(const std::string& name, const std::vector<const ExperimentFit*>& fits,
-                 const std::vector<std::string>& angle_outputs, Figure* figure) {
+                 const std::vector<std::string>& angle_outputs,
+                 const std::map<std::string, DisplayUnit>& units, Figure* figure) {
   const std::string kMeasured = "_measured", kSimulated = "_simulated";
   std::vector<ChannelSeries> channels;
   double t_min = std::numeric_limits<double>::infinity(), t_max = -t_min;
-  for (const ExperimentFit* fit : fits) {
+  // Segments end to end: segment i drawn at offset[i] + (t - its first time), a gap between.
+  const bool segments = fits.size() > 1;
+  std::vector<double> offset(fits.size(), 0.0), starts;
+  if (segments) {
+    double span = 0.0;
+    for (const ExperimentFit* fit : fits) {
+      if (!fit->trace.t.empty()) span += fit->trace.t.back() - fit->trace.t.front();
+    }
+    const double gap = 0.01 * span;
+    double at = 0.0;
+    for (size_t i = 0; i < fits.size(); ++i) {
+      const std::vector<double>& t = fits[i]->trace.t;
+      if (t.empty()) continue;
+      offset[i] = at - t.front();
+      starts.push_back(at);
+      at += t.back() - t.front() + gap;
+    }
+  }
+  for (size_t f = 0; f < fits.size(); ++f) {
+    const ExperimentFit* fit = fits[f];
     const Trajectory& trace = fit->trace;
     for (size_t c = 0; c < trace.names.size(); ++c) {
       if (!EndsWith(trace.names[c], kMeasured)) continue;
@@ -113,7 +133,7 @@ bool TraceFigure(const std::string& name, const std::vector<const ExperimentFit*
           std::find(angle_outputs.begin(), angle_outputs.end(), output) != angle_outputs.end();
       SeriesPiece measured, simulated, residual;
       for (size_t k = 0; k < trace.t.size(); ++k) {
-        const double t = trace.t[k], y = trace.columns[c][k];
+        const double t = trace.t[k] + offset[f], y = trace.columns[c][k];
         const double y_sim = s >= 0 ? trace.columns[s][k] : std::nan("");
         if (std::isfinite(y)) {
           measured.x.push_back(t);
@@ -149,6 +169,15 @@ bool TraceFigure(const std::string& name, const std::vector<const ExperimentFit*
                                 [](const ChannelSeries& c) { return !c.any_measured; }),
                  channels.end());
   if (channels.empty()) return false;
+  for (ChannelSeries& c : channels) {  // computed in radians (wrapping), shown in its unit
+    const auto unit = units.find(c.output);
+    if (unit == units.end() || unit->second.scale == 1.0) continue;
+    for (std::vector<SeriesPiece>* pieces : {&c.measured, &c.simulated, &c.residual}) {
+      for (SeriesPiece& p : *pieces) {
+        for (double& y : p.y) y *= unit->second.scale;
+      }
+    }
+  }
   if (!(t_max > t_min)) {  // a single time: gnuplot needs a non-empty range
     t_min -= 0.5;
     t_max += 0.5;
@@ -170,16 +199,27 @@ bool TraceFigure(const std::string& name, const std::vector<const ExperimentFit*
     return -1;
   };
   std::ostringstream s;
-  s << kPlotStyle << "set multiplot\n"
+  s << kPlotStyle;
+  for (size_t i = 1; i < starts.size(); ++i) {  // where each segment after the first begins
+    s << "set arrow from " << GnuplotNumber(starts[i]) << ", graph 0 to "
+      << GnuplotNumber(starts[i]) << ", graph 1 nohead dt 2 lc rgb '#9a9a9a'\n";
+  }
+  s << "set multiplot\n"
     << "set xrange [" << GnuplotNumber(t_min) << ":" << GnuplotNumber(t_max) << "]\n"
     << "set format y '%g'\nset format x '%g'\nset tics font ',10'\n";
+  const std::string time_label =
+      segments ? "'t [s], " + std::to_string(starts.size()) +
+                     " segments end to end, each from its own start (dashed)'"
+               : "'t [s]'";
   for (int r = 0; r < rows; ++r) {
     const ChannelSeries& c = channels[r];
+    const auto shown = units.find(c.output);
+    const std::string unit = shown == units.end() ? "" : shown->second.unit;
     const int m = add(c.measured, kSignalPoints), sim = add(c.simulated, kSignalPoints),
               e = add(c.residual, kResidualPoints);
     const double top = kKeyBand + r * kRowHeight + 6, bottom = kKeyBand + (r + 1) * kRowHeight - 26;
     const bool last = r + 1 == rows;
-    s << "set xlabel " << (last ? "'t [s]' offset 0,0.6" : "''") << "\n";
+    s << "set xlabel " << (last ? time_label + " offset 0,0.6" : "''") << "\n";
     // Signal panel.
     const double inf = std::numeric_limits<double>::infinity();
     double low = inf, high = -inf, e_low = inf, e_high = -inf;
@@ -188,7 +228,7 @@ bool TraceFigure(const std::string& name, const std::vector<const ExperimentFit*
     Extend(c.residual, &e_low, &e_high);
     s << frame.Area(kSignalLeft, kSignalRight, top, bottom) << "unset xzeroaxis\n"
       << TicStep("y", low, high, 4) << TicStep("x", t_min, t_max, 8) << "set ylabel "
-      << GnuplotString(c.output) << "\n";
+      << GnuplotString(WithUnit(c.output, unit)) << "\n";
     if (r == 0) {
       s << "set key horizontal right top samplen 2 at screen " << frame.X(kSignalRight)
         << ", screen " << frame.Y(2) << "\n";
@@ -201,7 +241,8 @@ bool TraceFigure(const std::string& name, const std::vector<const ExperimentFit*
     if (e < 0) continue;
     // Residual panel.
     s << frame.Area(kResidualLeft, kResidualRight, top, bottom)
-      << "set xzeroaxis lt 1 lw 1 lc rgb '#999999'\nset ylabel 'residual'\n"
+      << "set xzeroaxis lt 1 lw 1 lc rgb '#999999'\nset ylabel "
+      << GnuplotString(WithUnit("residual", unit)) << "\n"
       << TicStep("y", std::min(e_low, -e_high), std::max(e_high, -e_low), 4)
       << TicStep("x", t_min, t_max, 4);
     if (r == 0) {
@@ -327,6 +368,55 @@ bool CostHistoryFigure(const std::string& name, const StageSummary& summary, Fig
     for (size_t k = 0; k < refinements.size(); ++k) s << (k ? ", " : "") << refinements[k];
     s << "\n";
   }
+  figure->script = s.str();
+  return true;
+}
+
+bool TrackFigure(const std::string& name, const std::vector<const ExperimentFit*>& fits,
+                 const std::string& north, const std::string& east, Figure* figure) {
+  std::vector<SeriesPiece> measured, simulated;
+  for (const ExperimentFit* fit : fits) {
+    const Trajectory& trace = fit->trace;
+    const int n_m = trace.Find(north + "_measured"), e_m = trace.Find(east + "_measured");
+    const int n_s = trace.Find(north + "_simulated"), e_s = trace.Find(east + "_simulated");
+    if (n_m < 0 || e_m < 0 || n_s < 0 || e_s < 0) continue;
+    SeriesPiece m, sim;
+    for (size_t k = 0; k < trace.t.size(); ++k) {
+      const double nm = trace.columns[n_m][k], em = trace.columns[e_m][k];
+      const double ns = trace.columns[n_s][k], es = trace.columns[e_s][k];
+      if (std::isfinite(nm) && std::isfinite(em)) {
+        m.x.push_back(em);
+        m.y.push_back(nm);
+      }
+      if (std::isfinite(ns) && std::isfinite(es)) {
+        sim.x.push_back(es);
+        sim.y.push_back(ns);
+      }
+    }
+    if (m.y.empty()) continue;
+    measured.push_back(std::move(m));
+    if (!sim.y.empty()) simulated.push_back(std::move(sim));
+  }
+  if (measured.empty()) return false;
+  *figure = Figure();
+  figure->name = name;
+  figure->width = 620;
+  figure->height = 560;
+  // Decimated along the path (by north, which keeps the turns' extremes in one coordinate).
+  figure->data.push_back(SeriesData(measured, 2 * kSignalPoints));
+  int sim = -1;
+  if (!simulated.empty()) {
+    figure->data.push_back(SeriesData(simulated, 2 * kSignalPoints));
+    sim = 1;
+  }
+  std::ostringstream s;
+  s << kPlotStyle << "set size ratio -1\nset format x '%g'\nset format y '%g'\n"
+    << "set tics font ',10'\nset key top right font ',10' samplen 2\n"
+    << "set xlabel " << GnuplotString(WithUnit(east, "m")) << "\nset ylabel "
+    << GnuplotString(WithUnit(north, "m")) << "\nset title 'track: north against east' font ',11'\n"
+    << PlotList({{0, "with lines lw 3 lc rgb '#8ec1e6' title 'measured'"},
+                 {sim, "with lines lw 1.3 lc rgb '#c41e1e' title 'simulated'"}})
+    << "\n";
   figure->script = s.str();
   return true;
 }

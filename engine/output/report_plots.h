@@ -1,10 +1,14 @@
 // The figure types of the HTML report (report_html.h) as gnuplot figures (report_figures.h):
 //
-//   trace        measured vs simulated outputs of one record, a row per output channel: the
+//   trace        measured vs simulated outputs of one record, a row per output channel, in
+//                the units the user reads (display_units.h, labels "psi [deg]"): the
 //                signals, and the residual e = measured - simulated (angles wrapped to
 //                (-pi, pi], and a simulated angle drawn on the measured one's branch,
 //                y + wrap(y_sim - y)); each series min/max-decimated to about two points per
-//                pixel column of its panel (kSignalPoints, kResidualPoints)
+//                pixel column of its panel (kSignalPoints, kResidualPoints); the segments of
+//                a record end to end, each on its own time axis (t - its start), so that a
+//                few minutes of segments in a long log are not slivers on its absolute axis
+//   track        the x-y track: north against east, measured and simulated, equal scales
 //   correlation  heat map of a correlation matrix, palette -1 (blue) .. 1 (red), values printed
 //                in the cells of matrices up to 12 x 12
 //   cost         cost per Ceres iteration of every refinement of a stage (log y), the chosen
@@ -18,7 +22,10 @@
 #include <string>
 #include <vector>
 
+#include <map>
+
 #include "Eigen/Dense"
+#include "engine/output/display_units.h"
 #include "engine/output/report_figures.h"
 #include "engine/solve/metrics.h"
 #include "engine/solve/stage.h"
@@ -32,9 +39,16 @@ constexpr size_t kSignalPoints = 1300;
 constexpr size_t kResidualPoints = 650;
 
 // The fits of one record: itself, or its segments in order (fit.trace: t, <output>_measured,
-// <output>_simulated). False (no figure) when none of them has a measured sample.
+// <output>_simulated), each output shown in units[output] (absent: as computed, no unit).
+// False (no figure) when none of them has a measured sample.
 bool TraceFigure(const std::string& name, const std::vector<const ExperimentFit*>& fits,
-                 const std::vector<std::string>& angle_outputs, Figure* figure);
+                 const std::vector<std::string>& angle_outputs,
+                 const std::map<std::string, DisplayUnit>& units, Figure* figure);
+
+// North against east of one record's fits (outputs `north`, `east`, both in metres). False
+// when no segment has both measured.
+bool TrackFigure(const std::string& name, const std::vector<const ExperimentFit*>& fits,
+                 const std::string& north, const std::string& east, Figure* figure);
 
 // False when there are fewer than two names or no finite correlation.
 bool CorrelationFigure(const std::string& name, const std::vector<std::string>& labels,

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <map>
 
+#include "engine/output/display_units.h"
 #include "engine/output/report_table_cells.h"
 
 namespace vesselid {
@@ -96,13 +97,16 @@ bool IsSimulationFit(const ExperimentFit& fit) {
   return false;
 }
 
-std::string MetricsTable(const std::vector<const ExperimentFit*>& fits) {
+std::string MetricsTable(const std::vector<const ExperimentFit*>& fits, const RunConfig* config) {
   std::string rows;
   size_t count = 0;
   for (const ExperimentFit* fit : fits) {
     for (const ChannelMetrics& m : fit->channels) {
-      rows += "<tr>" + Td(m.experiment) + Td(m.output) + Num(std::to_string(m.samples)) +
-              Num(HtmlNumber(m.rmse, "%.4g")) + Num(HtmlNumber(m.mae, "%.4g")) +
+      const DisplayUnit unit =
+          config ? OutputDisplayUnit(*config, m.experiment, m.output) : DisplayUnit{};
+      rows += "<tr>" + Td(m.experiment) + Td(m.output) + (config ? Td(unit.unit) : "") +
+              Num(std::to_string(m.samples)) + Num(HtmlNumber(unit.scale * m.rmse, "%.4g")) +
+              Num(HtmlNumber(unit.scale * m.mae, "%.4g")) +
               Num(HtmlNumber(m.r2, "%.5f")) + Num(HtmlNumber(m.fit_percent, "%.2f")) +
               Num(HtmlNumber(fit->rms_cost, "%.4g")) + "</tr>\n";
       ++count;
@@ -110,7 +114,7 @@ std::string MetricsTable(const std::vector<const ExperimentFit*>& fits) {
   }
   if (count == 0) return "";
   const std::string table = "<table class=\"metrics\">\n<tr>" + Th("experiment") + Th("output") +
-                            Th("samples") + Th("RMSE") + Th("MAE") + Th("R²") + Th("fit %") +
+                            (config ? Th("unit") : "") + Th("samples") + Th("RMSE") + Th("MAE") + Th("R²") + Th("fit %") +
                             Th("√(mean e²)") + "</tr>\n" + rows + "</table>\n";
   return Fold(table, count, "metrics of " + std::to_string(count) + " channels", kOpenRows);
 }

@@ -31,8 +31,10 @@ std::vector<std::vector<const ExperimentFit*>> GroupByRecord(
 bool IsSimulationFit(const ExperimentFit& fit);
 
 // Per experiment and channel: samples, RMSE, MAE, R2, fit %, and the experiment's
-// sqrt(mean e^2).
-std::string MetricsTable(const std::vector<const ExperimentFit*>& fits);
+// sqrt(mean e^2); with a config, RMSE and MAE in the unit the user reads, named in a column
+// (display_units.h).
+std::string MetricsTable(const std::vector<const ExperimentFit*>& fits,
+                         const RunConfig* config = nullptr);
 
 // A stage's estimates: the estimated shared ones, per-experiment ones (parameters and initial
 // states) and the ones held fixed, each with value, standard error, 95 % interval, start and

@@ -3,6 +3,9 @@
 #include "engine/base/json_number.h"
 #include "engine/output/held_out_parameters_report.h"
 #include "engine/data/time_base.h"
+#include "engine/output/display_units.h"
+#include "engine/output/parameter_summary.h"
+#include "engine/output/run_fit_table.h"
 #include "engine/output/step_regression_writer.h"
 #include "engine/output/zigzag_report.h"
 
@@ -24,22 +27,71 @@ json VelocityToJson(const std::vector<ChannelMetrics>& metrics) {
   return j;
 }
 
-json MetricsToJson(const std::vector<ExperimentFit>& fits) {
+// RMSE, MAE, hold MAE and noise in `unit` (display_units.h: degrees where the data were).
+json MetricsToJson(const RunConfig& config, const std::vector<ExperimentFit>& fits) {
   json metrics = json::array();
   for (const ExperimentFit& fit : fits) {
     for (const ChannelMetrics& m : fit.channels) {
+      const DisplayUnit unit = OutputDisplayUnit(config, m.experiment, m.output);
       metrics.push_back({{"experiment", m.experiment},
                          {"output", m.output},
+                         {"unit", unit.unit},
                          {"samples", m.samples},
-                         {"rmse", JsonNumber(m.rmse)},
-                         {"mae", JsonNumber(m.mae)},
+                         {"rmse", JsonNumber(unit.scale * m.rmse)},
+                         {"mae", JsonNumber(unit.scale * m.mae)},
                          {"r2", JsonNumber(m.r2)},
                          {"fit_percent", JsonNumber(m.fit_percent)},
-                         {"hold_mae", JsonNumber(m.hold_mae)},
-                         {"noise", JsonNumber(m.noise)}});
+                         {"hold_mae", JsonNumber(unit.scale * m.hold_mae)},
+                         {"noise", JsonNumber(unit.scale * m.noise)}});
     }
   }
   return metrics;
+}
+
+// One row per run with its segments folded in, and the mean / median / worst (run_fit_table.h).
+json RunsToJson(const RunConfig& config, const std::vector<ExperimentFit>& fits) {
+  const RunFitTable table = PerRunFits(config, fits);
+  json runs = json::array();
+  for (const RunFitRow& row : table.rows) {
+    json outputs = json::object();
+    for (size_t o = 0; o < table.outputs.size(); ++o) {
+      const ChannelMetrics& m = row.channels[o];
+      if (m.samples == 0) continue;
+      outputs[m.output] = {{"samples", m.samples},
+                           {"rmse", JsonNumber(m.rmse)},
+                           {"mae", JsonNumber(m.mae)},
+                           {"r2", JsonNumber(m.r2)},
+                           {"fit_percent", JsonNumber(m.fit_percent)}};
+    }
+    json item = {{"run", row.run},
+                 {"segments", row.segments},
+                 {"diverged", row.diverged},
+                 {"rms_cost", JsonNumber(row.rms_cost)},
+                 {"outputs", outputs}};
+    runs.push_back(item);
+  }
+  json summary = json::object();
+  for (const RunFitSummary& s : table.summary) {
+    json outputs = json::object();
+    for (size_t o = 0; o < table.outputs.size(); ++o) {
+      outputs[table.outputs[o]] = {{"fit_percent", JsonNumber(s.fit_percent[o])},
+                                   {"rmse", JsonNumber(s.rmse[o])}};
+      if (!s.run[o].empty()) outputs[table.outputs[o]]["run"] = s.run[o];
+    }
+    summary[s.label] = outputs;
+  }
+  json units = json::object();
+  for (size_t o = 0; o < table.outputs.size(); ++o) units[table.outputs[o]] = table.units[o];
+  return {{"rows", runs}, {"summary", summary}, {"units", units},
+          {"worst_first", table.worst_first}};
+}
+
+json CountsToJson(const UnknownCounts& c) {
+  return {{"shared_parameters", c.shared},
+          {"per_experiment_parameters", c.per_experiment},
+          {"per_experiment_values", c.per_experiment_values},
+          {"fixed_parameters", c.fixed},
+          {"initial_states", c.initial_states}};
 }
 
 // Experiments whose simulation diverged, with the reason.
@@ -71,8 +123,10 @@ json RmsCostToJson(const std::vector<ExperimentFit>& fits) {
   return rms;
 }
 
-json FitsToJson(const std::vector<ExperimentFit>& fits) {
-  json j = {{"metrics", MetricsToJson(fits)}, {"rms_cost", RmsCostToJson(fits)}};
+json FitsToJson(const RunConfig& config, const std::vector<ExperimentFit>& fits) {
+  json j = {{"metrics", MetricsToJson(config, fits)},
+            {"rms_cost", RmsCostToJson(fits)},
+            {"runs", RunsToJson(config, fits)}};
   const json diverged = DivergedToJson(fits);
   if (!diverged.empty()) j["diverged"] = diverged;
   return j;
@@ -128,7 +182,7 @@ json LocalAnalysisToJson(const LocalAnalysis& a) {
   return j;
 }
 
-json StageToJson(const StageResult& stage) {
+json StageToJson(const RunConfig& config, const StageResult& stage) {
   const StageSummary& s = stage.summary;
   json j;
   j["name"] = stage.name;
@@ -157,6 +211,7 @@ json StageToJson(const StageResult& stage) {
   j["cost"] = s.local().final_cost;
   j["iterations"] = s.local().iterations;
   j["notes"] = s.notes;
+  j["counts"] = CountsToJson(CountUnknowns(stage.estimates));
   json estimates = json::array();
   for (const Estimate& e : stage.estimates) {
     json item = {{"name", e.name},
@@ -191,9 +246,9 @@ json StageToJson(const StageResult& stage) {
   if (s.analysis.available || !s.analysis.message.empty()) {
     j["local_analysis"] = LocalAnalysisToJson(s.analysis);
   }
-  j["fit"] = FitsToJson(s.fits);
+  j["fit"] = FitsToJson(config, s.fits);
   j["admissibility"] = stage.admissibility;
-  if (!stage.validation.empty()) j["validation"] = FitsToJson(stage.validation);
+  if (!stage.validation.empty()) j["validation"] = FitsToJson(config, stage.validation);
   if (stage.held_out.done) j["held_out_check"] = HeldOutToJson(stage.held_out);
   if (stage.held_out_parameters.active()) {
     j["held_out_parameters"] =
@@ -231,27 +286,36 @@ json RunResultToJson(const RunConfig& config, const RunResult& result) {
   }
   j["final"] = FinalChoiceToString(config.final_choice);
   json stages = json::array();
-  for (const StageResult& stage : result.stages) stages.push_back(StageToJson(stage));
+  for (const StageResult& stage : result.stages) stages.push_back(StageToJson(config, stage));
   j["stages"] = stages;
   j["fusion"] = FusionRuleToString(config.fusion);
   json parameters = json::array();
-  for (const FinalParameter& f : result.parameters) {
-    parameters.push_back({{"name", f.name},
-                          {"value", f.value},
-                          {"std_error", JsonNumber(f.std_error)},
-                          {"role", ParameterRoleToString(f.role)},
-                          {"stages", f.stages},
-                          {"rule", f.rule},
-                          {"undetermined", f.undetermined}});
+  const std::vector<ParameterReport> reports = ReportParameters(result);
+  for (size_t i = 0; i < result.parameters.size(); ++i) {
+    const FinalParameter& f = result.parameters[i];
+    const ParameterReport& r = reports[i];
+    json item = {{"name", f.name},
+                 {"value", f.value},
+                 {"std_error", JsonNumber(f.std_error)},
+                 {"role", ParameterRoleToString(f.role)},
+                 {"stages", f.stages},
+                 {"rule", f.rule},
+                 {"undetermined", f.undetermined},
+                 {"interval", {JsonNumber(r.interval_low), JsonNumber(r.interval_high)}},
+                 {"interval_clipped", r.clipped}};
+    if (r.bound != 0) item["at_bound"] = r.bound < 0 ? "lower" : "upper";
+    if (!r.fusion_note.empty()) item["fusion_note"] = r.fusion_note;
     if (f.runs > 0) {  // per_experiment: one value per run
-      parameters.back()["runs"] = {{"count", f.runs},
-                                   {"min", JsonNumber(f.runs_min)},
-                                   {"max", JsonNumber(f.runs_max)}};
+      item["runs"] = {{"count", f.runs}, {"min", JsonNumber(f.runs_min)}, {"max", JsonNumber(f.runs_max)}};
     }
+    parameters.push_back(item);
   }
   j["parameters"] = parameters;
+  j["counts"] = CountsToJson(CountUnknowns(result));
   j["admissibility"] = result.admissibility;
-  if (config.has_final_validation) j["final_validation"] = FitsToJson(result.final_validation);
+  if (config.has_final_validation) {
+    j["final_validation"] = FitsToJson(config, result.final_validation);
+  }
   if (result.final_held_out_parameters.active()) {
     j["final_held_out_parameters"] =
         HeldOutParametersToJson(result.final_held_out_parameters, result.final_validation);

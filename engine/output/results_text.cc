@@ -6,74 +6,16 @@
 
 #include "engine/output/held_out_parameters_report.h"
 #include "engine/output/zigzag_report.h"
+#include "engine/output/parameter_summary.h"
+#include "engine/output/run_fit_table.h"
 #include "engine/run/held_out.h"
 
 namespace vesselid {
 namespace {
 
-std::string MetricsRow(const ChannelMetrics& m, double rms_cost) {
-  char line[256];
-  std::snprintf(line, sizeof(line), "  %-20s %-8s %8d %12.4e %12.4e %10.6f %8.3f %10.4e\n",
-                m.experiment.c_str(), m.output.c_str(), m.samples, m.rmse, m.mae, m.r2,
-                m.fit_percent, rms_cost);
-  return line;
-}
-
-// Per experiment and channel; beyond kMaxRows experiments (a campaign of segments) pooled
-// per channel: RMSE and MAE over all samples, R2 and fit % as the median over experiments.
-std::string MetricsTable(const std::vector<ExperimentFit>& fits) {
-  constexpr size_t kMaxRows = 12;
-  std::string out;
-  char line[256];
-  std::snprintf(line, sizeof(line), "  %-20s %-8s %8s %12s %12s %10s %8s %10s\n", "experiment",
-                "output", "samples", "RMSE", "MAE", fits.size() > kMaxRows ? "median R2" : "R2",
-                "fit %", "rms cost");
-  out += line;
-  for (const ExperimentFit& fit : fits) {
-    if (fit.diverged) out += "  " + fit.experiment + ": " + fit.message + "\n";
-  }
-  if (fits.size() <= kMaxRows) {
-    for (const ExperimentFit& fit : fits) {
-      for (const ChannelMetrics& m : fit.channels) out += MetricsRow(m, fit.rms_cost);
-    }
-    return out;
-  }
-  std::map<std::string, std::vector<const ChannelMetrics*>> by_output;
-  std::vector<std::string> order;
-  double cost2 = 0.0;
-  int measured = 0;
-  for (const ExperimentFit& fit : fits) {
-    if (fit.diverged) continue;
-    ++measured;
-    cost2 += fit.rms_cost * fit.rms_cost;
-    for (const ChannelMetrics& m : fit.channels) {
-      if (by_output[m.output].empty()) order.push_back(m.output);
-      by_output[m.output].push_back(&m);
-    }
-  }
-  for (const std::string& output : order) {
-    const std::vector<const ChannelMetrics*>& list = by_output[output];
-    ChannelMetrics pooled;
-    pooled.experiment = "all " + std::to_string(fits.size());
-    pooled.output = output;
-    double sse = 0.0, sae = 0.0;
-    std::vector<double> r2, fit;
-    for (const ChannelMetrics* m : list) {
-      pooled.samples += m->samples;
-      sse += m->rmse * m->rmse * m->samples;
-      sae += m->mae * m->samples;
-      r2.push_back(m->r2);
-      fit.push_back(m->fit_percent);
-    }
-    pooled.rmse = std::sqrt(sse / std::max(1, pooled.samples));
-    pooled.mae = sae / std::max(1, pooled.samples);
-    std::sort(r2.begin(), r2.end());
-    std::sort(fit.begin(), fit.end());
-    pooled.r2 = r2[r2.size() / 2];
-    pooled.fit_percent = fit[fit.size() / 2];
-    out += MetricsRow(pooled, std::sqrt(cost2 / std::max(1, measured)));
-  }
-  return out;
+// One row per run, its segments folded in, with mean / median / worst (run_fit_table.h).
+std::string MetricsTable(const RunConfig& config, const std::vector<ExperimentFit>& fits) {
+  return RunFitTableText(PerRunFits(config, fits));
 }
 
 // One-step and free-run metrics of the regressed states.
@@ -145,11 +87,12 @@ std::string LocalAnalysisText(const LocalAnalysis& a) {
   return out.str();
 }
 
-std::string StageText(const StageResult& stage) {
+std::string StageText(const RunConfig& config, const StageResult& stage) {
   const StageSummary& s = stage.summary;
   std::ostringstream out;
   char line[512];
   out << "\n" << s.BriefReport() << " [" << stage.model << "]\n";
+  out << "  " << DescribeCounts(CountUnknowns(stage.estimates)) << "\n";
   if (s.global.run) out << "  " << s.global.BriefReport() << "\n";
   std::snprintf(line, sizeof(line), "  %-24s %-15s %16s %12s %10s\n", "name", "role", "value",
                 "std error", "rel. %");
@@ -177,8 +120,10 @@ std::string StageText(const StageResult& stage) {
     out << (shown == 0 ? " none above 0.9\n" : "\n");
   }
   if (s.analysis.available) out << LocalAnalysisText(s.analysis);
-  out << MetricsTable(s.fits);
-  if (!stage.validation.empty()) out << "  local validation:\n" << MetricsTable(stage.validation);
+  out << MetricsTable(config, s.fits);
+  if (!stage.validation.empty()) {
+    out << "  local validation:\n" << MetricsTable(config, stage.validation);
+  }
   out << HeldOutParametersText(stage.held_out_parameters, stage.validation, "  ");
   if (stage.held_out.done) {
     out << "  held-out check against the stage's start: " << DescribeHeldOut(stage.held_out)
@@ -192,6 +137,64 @@ std::string StageText(const StageResult& stage) {
   return out.str();
 }
 
+// The final parameters with their 95 % intervals (clipped to the bounds and flagged), the
+// stages behind each, the counts and the fusion notes.
+std::string FinalParametersText(const RunConfig& config, const RunResult& result) {
+  std::ostringstream out;
+  out << "  final parameters (shared: " << FusionRuleToString(config.fusion) << " fusion): "
+      << DescribeCounts(CountUnknowns(result)) << "\n";
+  char line[512];
+  std::snprintf(line, sizeof(line), "  %-24s %-15s %16s %12s %27s  %s\n", "name", "role", "value",
+                "std error", "95 % interval", "from");
+  out << line;
+  const std::vector<ParameterReport> reports = ReportParameters(result);
+  for (size_t i = 0; i < result.parameters.size(); ++i) {
+    const FinalParameter& f = result.parameters[i];
+    const ParameterReport& r = reports[i];
+    std::string from;
+    for (const std::string& stage : f.stages) from += (from.empty() ? "" : ", ") + stage;
+    if (f.rule != "stage" && f.rule != "fixed") from += " (" + f.rule + ")";
+    const std::string flags = ParameterFlags(r);
+    if (!flags.empty()) from += "  ** " + flags;
+    const bool fixed = f.role == ParameterRole::kFixed;
+    std::string value = "-", error = "-", interval = fixed ? "-" : "undetermined";
+    char cell[96];
+    std::snprintf(cell, sizeof(cell), "%.8g", f.value);
+    value = cell;
+    if (std::isfinite(f.std_error) && !(f.undetermined && !fixed)) {
+      std::snprintf(cell, sizeof(cell), "%.4g", f.std_error);
+      error = cell;
+    }
+    if (f.undetermined && !fixed) value = "undetermined";
+    if (f.runs > 0) {  // per_experiment: its values per run, not one value
+      std::snprintf(cell, sizeof(cell), "%d runs: %.6g to %.6g", f.runs, f.runs_min, f.runs_max);
+      value = "per run";
+      error = "-";
+      interval = cell;
+    } else if (std::isfinite(r.interval_low)) {
+      std::snprintf(cell, sizeof(cell), "[%.6g, %.6g]", r.interval_low, r.interval_high);
+      interval = cell;
+    }
+    std::snprintf(line, sizeof(line), "  %-24s %-15s %16s %12s %27s  %s\n", f.name.c_str(),
+                  ParameterRoleToString(f.role), value.c_str(), error.c_str(), interval.c_str(),
+                  from.c_str());
+    out << line;
+  }
+  for (const ParameterReport& r : reports) {
+    if (!r.fusion_note.empty()) out << "  note: " << r.fusion_note << "\n";
+  }
+  for (const std::string& a : result.admissibility) out << "  not admissible: " << a << "\n";
+  return out.str();
+}
+
+// The last stage whose estimates were kept (its fit is the training fit of the summary).
+const StageResult* LastAcceptedStage(const RunResult& result) {
+  for (auto it = result.stages.rbegin(); it != result.stages.rend(); ++it) {
+    if (it->rejected.empty()) return &*it;
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 std::string RunResultToText(const RunConfig& config, const RunResult& result) {
@@ -200,36 +203,26 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
   if (!result.stopped_stage.empty()) {
     out << "STOPPED in stage '" << result.stopped_stage << "': " << result.stop_message << "\n";
   }
-  if (!result.warnings.empty()) {
+  // Summary first: what a reader needs to judge the result, then the details by stage.
+  out << "\nsummary\n" << FinalParametersText(config, result);
+  if (const StageResult* last = LastAcceptedStage(result)) {
+    out << "\n  fit per run, stage '" << last->name << "' (identification data):\n"
+        << MetricsTable(config, last->summary.fits);
+  }
+  if (config.has_final_validation && !result.final_validation.empty()) {
+    out << "\n  fit per run, final values on held-out data:\n"
+        << MetricsTable(config, result.final_validation);
+  }
+  if (result.warnings.empty()) {
+    out << "\n  no warnings\n";
+  } else {
     out << "\nwarnings (" << result.warnings.size() << ")\n";
     for (const std::string& w : result.warnings) out << "  warning: " << w << "\n";
   }
-  for (const StageResult& stage : result.stages) out << StageText(stage);
-  out << "\nfinal parameters (shared: " << FusionRuleToString(config.fusion) << " fusion)\n";
-  char line[256];
-  std::snprintf(line, sizeof(line), "  %-24s %-15s %16s %12s %10s  %s\n", "name", "role", "value",
-                "std error", "rel. %", "from");
-  out << line;
-  for (const FinalParameter& f : result.parameters) {
-    std::string from;
-    for (const std::string& stage : f.stages) from += (from.empty() ? "" : ", ") + stage;
-    if (f.rule != "stage" && f.rule != "fixed") from += " (" + f.rule + ")";
-    const bool fixed = f.role == ParameterRole::kFixed;
-    if (f.runs > 0) {  // per_experiment: its values per run, not one value
-      char runs[320];
-      std::snprintf(runs, sizeof(runs),
-                    "  %-24s %-15s %16s %12s %10s  %d runs from %.6g to %.6g (start %.6g), %s\n",
-                    f.name.c_str(), ParameterRoleToString(f.role), "per run", "-", "-", f.runs,
-                    f.runs_min, f.runs_max, f.value, from.c_str());
-      out << runs;
-      continue;
-    }
-    out << EstimateLine(f.name, ParameterRoleToString(f.role), f.value, f.std_error,
-                        f.undetermined && !fixed, from);
-  }
-  for (const std::string& a : result.admissibility) out << "  not admissible: " << a << "\n";
+  out << "\nstages\n";
+  for (const StageResult& stage : result.stages) out << StageText(config, stage);
   if (config.has_final_validation) {
-    out << "\nfinal validation\n" << MetricsTable(result.final_validation)
+    out << "\nfinal validation\n" << MetricsTable(config, result.final_validation)
         << HeldOutParametersText(result.final_held_out_parameters, result.final_validation, "  ");
   }
   if (!result.final_velocity_validation.empty()) {

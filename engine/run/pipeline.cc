@@ -10,6 +10,7 @@
 #include "engine/run/records.h"
 #include "engine/run/run_warnings.h"
 #include "engine/run/step_regression_stage.h"
+#include "engine/run/unit_warnings.h"
 #include "engine/run/velocity_validation.h"
 #include "engine/run/work_size.h"
 #include "engine/run/zigzag_runs.h"
@@ -63,7 +64,7 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
                        "): its estimates are set aside and later stages and the final values "
                        "take its start values (final: last would keep them)";
   }
-  if (model.regression_form() != nullptr) {
+  if (stage.velocity_validation && model.regression_form() != nullptr) {
     std::vector<std::string> diverged;
     if (!ValidateVelocities(config, model, stage.validation, velocity_data, values, cache,
                             &result->velocity_validation, &diverged, error)) {
@@ -236,7 +237,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     for (const std::string& note : HeldOutBoundNotes(run.final_held_out_parameters)) {
       run.warnings.push_back("final " + note);
     }
-    if (model.regression_form() != nullptr) {
+    if (config.velocity_validation && model.regression_form() != nullptr) {
       const RegressionDataOptions velocity_data = VelocityData(config, config.stages.size());
       std::vector<std::string> diverged;
       if (!ValidateVelocities(config, model, v.experiments, velocity_data, final_values, &cache,
@@ -248,8 +249,11 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     }
   }
   run.zigzags = FindZigzagRuns(config, run, &cache);
+  std::vector<std::string> unit_warnings;
+  AddUnitWarnings(config, &cache, &unit_warnings);
   AddRunWarnings(config, &run);
   AddRecordNotes(config, cache, &run);
+  run.warnings.insert(run.warnings.begin(), unit_warnings.begin(), unit_warnings.end());
   run.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   *result = std::move(run);

@@ -71,6 +71,9 @@ struct StageConfig {
   // next; empty: the stage is solved once on its experiments as configured.
   std::vector<double> continuation;
   OutlierOptions outliers;
+  // One-step-ahead and free-run velocity metrics of the held-out runs (velocity_validation.h)
+  // for a model with an equation-error form; `velocity_validation: false` leaves them out.
+  bool velocity_validation = true;
 };
 
 // "output_error", "least_squares", "step_regression" (a config's stage `type`).
@@ -105,6 +108,8 @@ struct RunConfig {
   FinalChoice final_choice = FinalChoice::kBestValidation;
   bool has_final_validation = false;
   FinalValidationConfig final_validation;
+  // The final validation's velocity metrics, and every stage's default (StageConfig).
+  bool velocity_validation = true;
   // Damping and inertia surfaces written by `run` for models with a damping-inertia form
   // (`surfaces: {<state>: [lower, upper, points], <state>: [...]}`); empty: none.
   SurfaceGrid surfaces;

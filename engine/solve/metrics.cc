@@ -13,6 +13,7 @@ void MetricAccumulator::Add(double simulated, double measured, bool angle) {
   double residual = simulated - measured;
   if (angle) residual = WrapAngle(residual);
   if (n_ == 0) first_ = measured;
+  if (angle) angles_.push_back(measured);
   if (angle) {
     noise_.Add(measured, [](double d) { return WrapAngle(d); });
   } else {
@@ -38,7 +39,17 @@ ChannelMetrics MetricAccumulator::Finish(const std::string& experiment,
   m.mae = sae_ / n_;
   m.hold_mae = hold_sae_ / n_;
   m.noise = noise_.Sigma();
-  const double sst = std::max(0.0, sum2_ - sum_ * sum_ / n_);
+  double sst = std::max(0.0, sum2_ - sum_ * sum_ / n_);
+  if (!angles_.empty()) {
+    double sin_sum = 0.0, cos_sum = 0.0;
+    for (double a : angles_) {
+      sin_sum += std::sin(a);
+      cos_sum += std::cos(a);
+    }
+    const double mean = std::atan2(sin_sum, cos_sum);
+    sst = 0.0;
+    for (double a : angles_) sst += WrapAngle(a - mean) * WrapAngle(a - mean);
+  }
   m.r2 = sst > 0 ? 1.0 - sse_ / sst : kNaN;
   m.fit_percent = sst > 0 ? 100.0 * (1.0 - std::sqrt(sse_ / sst)) : kNaN;
   return m;

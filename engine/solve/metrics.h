@@ -2,6 +2,9 @@
 // angle is compared unwrapped unless the experiment wraps it, Experiment::Wrapped):
 //   RMSE = sqrt(mean e^2), MAE = mean |e|, R^2 = 1 - SSE/SST,
 //   fit % (NRMSE) = 100 (1 - ||e|| / ||y - mean y||),
+//   for a wrapped angle both taken modulo one turn: e wrapped to (-pi, pi] and y - mean y
+//   as wrap(y - circular mean of y), so that a spread of many turns (degrees read as
+//   radians) cannot make a wrapped residual look small,
 //   rms_cost (seed 002) = sqrt(mean e^2) over all compared samples of the experiment.
 #pragma once
 
@@ -55,6 +58,7 @@ class MetricAccumulator {
  private:
   int n_ = 0;
   double sse_ = 0.0, sae_ = 0.0, sum_ = 0.0, sum2_ = 0.0, hold_sae_ = 0.0, first_ = 0.0;
+  std::vector<double> angles_;  // measured values of a wrapped angle (its spread, see above)
   NoiseLevel noise_;
 };
 

@@ -9,6 +9,7 @@ ModelInfo Model::Info() const {
   info.inputs = {"tau_m", "tau_delta"};
   info.outputs = info.states;
   info.angle_outputs = {false, false, true, false, false};
+  info.output_units = {"m", "m", "rad", "m/s", "rad/s"};
   const std::vector<std::string> monomials = MonomialNames(kDegree, "U", "r");
   // Defaults: a plausible planing craft in the scaled states (sigma_U ~ U, sigma_r ~ r,
   // inertias ~ 0.2), so that a run without a regression stage still simulates.

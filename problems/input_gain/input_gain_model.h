@@ -98,6 +98,7 @@ class InputGainModel {
       info.parameter_defaults.push_back(0.3);
     }
     info.angle_outputs = {false, false, true, false, false, false};
+    info.output_units = {"m", "m", "rad", "m/s", "m/s", "rad/s"};
     return info;
   }
 

@@ -55,7 +55,8 @@ struct FirstOrder {
 
   ModelInfo Info() const {
     return {"nomoto_first_order",  {"psi", "r"},     {"delta"},     {"psi", "r"},
-            {"T", "K", "delta_0"}, {10.0, 0.1, 0.0}, {true, false}, {}, {}};
+            {"T", "K", "delta_0"}, {10.0, 0.1, 0.0}, {true, false}, {}, {},
+            {"rad", "rad/s"},      {"rad", "rad/s"}, {"rad"}};
   }
 
   template <class T>
@@ -103,7 +104,9 @@ struct Norrbin {
             {"T", "K", "alpha", "delta_0"},
             {10.0, 0.1, 0.0, 0.0},
             {true, false},
-            {},                       {}};
+            {},                       {},
+            {"rad", "rad/s"},         {"rad", "rad/s"},
+            {"rad"}};
   }
 
   template <class T>
@@ -154,7 +157,10 @@ struct SecondOrder {
             {20.0, 5.0, 5.0, 0.1, 0.0},
             {true, false},
             {{0, 1}},
-            {}};
+            {},
+            {"rad", "rad/s"},
+            {"rad", "rad", "rad/s"},  // xi1, xi2 carry the rudder angle's unit
+            {"rad"}};
   }
 
   template <class T>

@@ -143,6 +143,10 @@ const KeyCase kCases[] = {
      kPerRun.K("    validation: [c]\n    validation_per_experiment: hold")},
     {"final_validation_per_experiment", kPerRun.T("final_validation: {experiments: [c]}"),
      kPerRun.T("final_validation: {experiments: [c], per_experiment: hold}")},
+    {"velocity_validation_of_a_stage", V.K("    validation: [c]"),
+     V.K("    validation: [c]\n    velocity_validation: false")},
+    {"velocity_validation", V.T("final_validation: {experiments: [c]}\n"),
+     V.T("final_validation: {experiments: [c]}\nvelocity_validation: false\n")},
     {"fusion",
      V.P("      T: {start: 3.0, lower: 0.1, upper: 20, role: shared}")
          .T("  - name: again\n    experiments: [c]\n    parameters:\n"
@@ -199,6 +203,8 @@ const KeyCase kCases[] = {
      kLeastSquares.K(kLeastSquares.stage + "\n    outliers: {action: drop}"),
      "stages[0].outliers: not used by a least-squares stage"},
     {"wrap_of_a_rate", V, V.A(", wrap: [r]"), "output 'r' is not an angle"},
+    {"velocity_validation_not_a_yes_or_no", V, V.K("    velocity_validation: sometimes"),
+     "config.yaml:12: stages[0].velocity_validation: expected true or false"},
     {"unknown_final_choice", V, V.T("final: newest\n"), "final: unknown choice 'newest'"},
     {"unknown_per_experiment_choice", V,
      V.T("final_validation: {experiments: [c], per_experiment: always}\n"),
@@ -286,7 +292,8 @@ class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
       }
       s += std::to_string(stage.summary.fits.size()) + " fits, " +
            std::to_string(stage.summary.refinements.size()) + " refinements, " +
-           std::to_string(stage.validation.size()) + " validation;";
+           std::to_string(stage.validation.size()) + " validation, " +
+           std::to_string(stage.velocity_validation.size()) + " velocity metrics;";
       for (const std::string& note : stage.summary.notes) s += note + ";";
       for (const ExperimentFit& fit : stage.validation) {
         std::snprintf(line, sizeof(line), "%s:%.12g;", fit.experiment.c_str(), fit.rms_cost);
@@ -302,7 +309,8 @@ class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
       s += line;
     }
     for (const std::string& w : r.warnings) s += w + ";";
-    return s + std::to_string(r.final_validation.size());
+    return s + std::to_string(r.final_validation.size()) + " final validation, " +
+           std::to_string(r.final_velocity_validation.size()) + " velocity metrics";
   }
 
   static bool Load(const std::string& text, RunConfig* config, std::string* error) {

@@ -208,19 +208,25 @@ TEST_F(HandMadeReportTest, WithoutGnuplotKeepsTablesAndSaysWhy) {
   EXPECT_NE(html.find("[1.804, 2.196]"), std::string::npos);  // T +- 1.96 SE
 }
 
-// Records of a fit list in results.json that get a figure: simulated ones (MAE known).
+// Figures of a fit list in results.json: a trace per simulated record (MAE known), and an x-y
+// track per record with both horizontal positions (the Erunsal model's x, y) measured.
 size_t Records(const nlohmann::json& fit) {
-  std::set<std::string> records;
+  std::set<std::string> records, with_x, with_y;
   for (const nlohmann::json& m : fit.at("metrics")) {
     if (!m.at("mae").is_number() || m.at("samples").get<int>() == 0) continue;
     const std::string name = m.at("experiment").get<std::string>();
-    records.insert(name.substr(0, name.find_first_of("@#")));
+    const std::string record = name.substr(0, name.find_first_of("@#"));
+    records.insert(record);
+    if (m.at("output") == "x") with_x.insert(record);
+    if (m.at("output") == "y") with_y.insert(record);
   }
-  return records.size();
+  size_t tracks = 0;
+  for (const std::string& record : with_x) tracks += with_y.count(record);
+  return records.size() + tracks;
 }
 
 // The plots report.html has for a results.json (report_html.h): per stage a trace figure per
-// record of its fit and of its validation, a correlation heat map over two or more shared
+// record of its fit and of its validation (and its x-y track), a correlation heat map over two or more shared
 // parameters, a cost history when a refinement iterated or a global start evaluated twice,
 // lasso paths and samples for step regression; a trace figure per final validation record.
 size_t ExpectedPlots(const nlohmann::json& results) {

@@ -1,0 +1,41 @@
+#include "engine/run/unit_warnings.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/data/angle_units.h"
+
+namespace vesselid {
+
+void AddUnitWarnings(const RunConfig& config, TrajectoryCache* cache,
+                     std::vector<std::string>* warnings) {
+  const ModelInfo& info = config.model->info();
+  for (const ExperimentSpec& spec : config.experiments) {
+    for (const auto& [output, column] : spec.outputs) {
+      const int o = info.OutputIndex(output);
+      if (o < 0 || o >= static_cast<int>(info.angle_outputs.size()) || !info.angle_outputs[o]) {
+        continue;
+      }
+      const std::vector<std::string>& degrees = spec.degree_columns;
+      if (std::find(degrees.begin(), degrees.end(), column) != degrees.end()) continue;
+      std::string error;
+      const Trajectory* data = LoadCachedTrajectory(spec, cache, &error);
+      if (data == nullptr) continue;
+      const int c = data->Find(column);
+      if (c < 0) continue;
+      std::vector<double> values;
+      for (size_t k = 0; k < data->t.size(); ++k) {
+        if (data->t[k] >= spec.t_begin && data->t[k] <= spec.t_end) {
+          values.push_back(data->columns[c][k]);
+        }
+      }
+      const AngleUnitCheck check = CheckAngleUnit(values);
+      if (check.looks_like_degrees) {
+        warnings->push_back("experiment '" + spec.name + "', output " + output + ": " +
+                            DescribeDegreesLook(column, check));
+      }
+    }
+  }
+}
+
+}  // namespace vesselid

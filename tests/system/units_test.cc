@@ -1,0 +1,173 @@
+// Units end to end: a course-keeping ship that is not the model's (Norrbin, cubic yaw damping,
+// a 1.5 deg rudder bias, rudder and heading noise) flies a 20/20 zigzag logged in degrees, and
+// the first-order Nomoto model is identified from it. With `degrees: [psi, r, delta]` every
+// trace, table and plot label says deg (deg/s for r) and shows degrees; with psi forgotten in
+// `degrees:` the run warns, naming the experiment and the column, in results, report.txt and
+// report.html; the correct config gets no such warning.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "engine/config/config.h"
+#include "engine/output/results_writer.h"
+#include "engine/run/pipeline.h"
+#include "gtest/gtest.h"
+#include "nlohmann/json.hpp"
+#include "problems/nomoto/closed_loop_simulator.h"
+#include "problems/nomoto/handles.h"
+#include "problems/registry.h"
+
+namespace vesselid {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kDeg = 180.0 / M_PI;
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+constexpr char kConfig[] = R"(model: {family: nomoto, type: first_order}
+experiments:
+  - {name: zz, file: zz.csv, inputs: {delta: delta}, outputs: {psi: psi, r: r}, DEGREES}
+stages:
+  - name: fit
+    parameters:
+      T: {start: 6, lower: 0.1, upper: 200}
+      K: {start: 0.05, lower: 0.001, upper: 5}
+      delta_0: {start: 0, lower: -0.5, upper: 0.5}
+    free_initial_states: [psi, r]
+)";
+
+class UnitsTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(fs::temp_directory_path() / "vesselid_units_test");
+    fs::remove_all(*dir_);
+    fs::create_directories(*dir_);
+    auto ship = nomoto::MakeNorrbinHandle();
+    nomoto::ClosedLoopOptions loop;
+    loop.duration = 240.0;
+    loop.sample_time = 0.1;
+    loop.excitation.type = nomoto::Excitation::Type::kZigzag;
+    loop.excitation.zigzag_rudder = 20.0 / kDeg;
+    loop.excitation.zigzag_heading = 20.0 / kDeg;
+    loop.rudder_noise = 0.2 / kDeg;
+    loop.heading_noise = 0.1 / kDeg;
+    loop.seed = 5;
+    Trajectory data;
+    std::string error;
+    // T 8 s, K 0.08 1/s, cubic damping 20 s^2, rudder bias 1.5 deg.
+    ASSERT_TRUE(nomoto::SimulateClosedLoop(*ship, {8.0, 0.08, 20.0, 1.5 / kDeg}, loop, &data,
+                                           &error))
+        << error;
+    Trajectory logged;  // the logger's columns, in degrees
+    logged.t = data.t;
+    for (const char* name : {"delta", "psi", "r"}) {
+      logged.names.push_back(name);
+      logged.columns.push_back(data.columns[data.Find(name)]);
+      for (double& v : logged.columns.back()) v *= kDeg;
+    }
+    ASSERT_TRUE(WriteTrajectoryCsv((*dir_ / "zz.csv").string(), logged, &error)) << error;
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+  }
+
+  // Runs the config with `degrees` into <dir>/<out>; the run's result.
+  static RunResult Run(const std::string& degrees, const std::string& out) {
+    std::string text = kConfig;
+    text.replace(text.find("DEGREES"), 7, degrees);
+    std::ofstream(*dir_ / (out + ".yaml")) << text;
+    RunConfig config;
+    RunResult result;
+    std::string error;
+    EXPECT_TRUE(LoadRunConfig((*dir_ / (out + ".yaml")).string(), "", DefaultRegistry(), &config,
+                              &error))
+        << error;
+    RunIdentification(config, &result, &error);
+    EXPECT_FALSE(result.stages.empty()) << error;
+    fs::create_directories(*dir_ / out);
+    EXPECT_TRUE(WriteRunResults(config, result, (*dir_ / out).string(), &error)) << error;
+    return result;
+  }
+
+  static bool WarnsOfDegrees(const RunResult& result) {
+    for (const std::string& w : result.warnings) {
+      if (w.find("experiment 'zz', output psi: column 'psi' looks like degrees") !=
+          std::string::npos) {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  static fs::path* dir_;
+};
+
+fs::path* UnitsTest::dir_ = nullptr;
+
+TEST_F(UnitsTest, DegreesAreShownInDegrees) {
+  const RunResult result = Run("degrees: [psi, r, delta]", "deg");
+  EXPECT_FALSE(WarnsOfDegrees(result));
+  ASSERT_FALSE(result.stages.empty());
+  // The trace in the data's unit, the unit in its header.
+  const fs::path trace = *dir_ / "deg" / "traces" / "fit.zz.csv";
+  Trajectory shown, logged;
+  std::string error;
+  ASSERT_TRUE(ReadTrajectoryCsv(trace.string(), {}, &shown, &error)) << error;
+  ASSERT_TRUE(ReadTrajectoryCsv((*dir_ / "zz.csv").string(), {}, &logged, &error)) << error;
+  const int psi = shown.Find("psi_measured [deg]"), r = shown.Find("r_simulated [deg/s]");
+  ASSERT_GE(psi, 0) << ReadText(trace).substr(0, 200);
+  ASSERT_GE(r, 0) << ReadText(trace).substr(0, 200);
+  const std::vector<double>& logged_psi = logged.columns[logged.Find("psi")];
+  double largest = 0.0, logged_largest = 0.0;
+  for (double v : shown.columns[psi]) largest = std::max(largest, std::isnan(v) ? 0.0 : std::abs(v));
+  for (double v : logged_psi) logged_largest = std::max(logged_largest, std::abs(v));
+  EXPECT_NEAR(largest, logged_largest, 1e-6 * logged_largest);
+  EXPECT_GT(largest, 20.0);  // degrees, not radians
+  // report.txt and results.json: RMSE in degrees, named.
+  const std::string text = ReadText(*dir_ / "deg" / "report.txt");
+  EXPECT_NE(text.find("RMSE psi [deg]"), std::string::npos) << text;
+  EXPECT_NE(text.find("RMSE r [deg/s]"), std::string::npos) << text;
+  const nlohmann::json results = nlohmann::json::parse(ReadText(*dir_ / "deg" / "results.json"));
+  const nlohmann::json& metrics = results.at("stages")[0].at("fit").at("metrics");
+  bool psi_in_degrees = false;
+  for (const nlohmann::json& m : metrics) {
+    if (m.at("output") != "psi") continue;
+    psi_in_degrees = m.at("unit") == "deg";
+    // The fit is within a degree or two; in radians that RMSE would be below 0.05.
+    const double rmse = m.at("rmse").get<double>();
+    EXPECT_GT(rmse, 0.05);
+    EXPECT_NEAR(rmse, result.stages[0].summary.fits[0].channels[0].rmse * kDeg, 1e-9 * rmse);
+  }
+  EXPECT_TRUE(psi_in_degrees);
+  const std::string html = ReadText(*dir_ / "deg" / "report.html");
+  EXPECT_NE(html.find("<th>RMSE psi [deg]</th>"), std::string::npos);
+  EXPECT_NE(html.find("<td>deg/s</td>"), std::string::npos);
+}
+
+TEST_F(UnitsTest, HeadingInDegreesReadAsRadiansIsNamed) {
+  const RunResult wrong = Run("degrees: [r, delta]", "rad");
+  EXPECT_TRUE(WarnsOfDegrees(wrong));
+  for (const char* file : {"report.txt", "report.html", "results.json"}) {
+    const std::string text = ReadText(*dir_ / "rad" / file);
+    const bool named = text.find("column 'psi' looks like degrees") != std::string::npos ||
+                       text.find("column &#39;psi&#39; looks like degrees") != std::string::npos;
+    EXPECT_TRUE(named) << file;
+  }
+  // Compared modulo one turn, the wrapped residual stays below pi; the fit must not hide it.
+  const RunResult wrapped = Run("degrees: [r, delta], wrap: [psi]", "wrapped");
+  EXPECT_TRUE(WarnsOfDegrees(wrapped));
+  ASSERT_FALSE(wrapped.stages.empty());
+  for (const ChannelMetrics& m : wrapped.stages[0].summary.fits[0].channels) {
+    if (m.output == "psi") EXPECT_LT(m.fit_percent, 50.0);
+  }
+}
+
+}  // namespace
+}  // namespace vesselid
