@@ -12,6 +12,7 @@
 #include "engine/output/report_html.h"
 #include "engine/output/results_json.h"
 #include "engine/output/results_text.h"
+#include "engine/output/stage_result_archive.h"
 #include "engine/run/pipeline.h"
 #include "gtest/gtest.h"
 #include "problems/nomoto/closed_loop_simulator.h"
@@ -98,6 +99,13 @@ class HeldOutParametersTest : public ::testing::Test {
 
 fs::path* HeldOutParametersTest::dir_ = nullptr;
 
+// A run result holding only `stage` (to compare what results.json says of it).
+RunResult Single(const StageResult& stage) {
+  RunResult run;
+  run.stages = {stage};
+  return run;
+}
+
 double FitPercent(const ExperimentFit& fit) {
   return fit.channels.empty() ? std::nan("") : fit.channels[0].fit_percent;
 }
@@ -134,6 +142,16 @@ TEST_F(HeldOutParametersTest, HeldOutRunsEstimateTheirOwnBiasAndShowWhatItBuys) 
   // the identified stage is better than its start.
   EXPECT_TRUE(result.stages[0].held_out.done);
   EXPECT_FALSE(result.stages[0].held_out.worse);
+
+  // A checkpoint keeps them (a resumed run reports the same).
+  StageResult restored;
+  std::string error;
+  ASSERT_TRUE(StageResultFromArchive(
+      nlohmann::json::from_cbor(nlohmann::json::to_cbor(StageResultToArchive(result.stages[0]))),
+      &restored, &error))
+      << error;
+  EXPECT_EQ(restored.held_out_parameters.estimates.size(), 2u);
+  EXPECT_EQ(RunResultToJson(config, Single(restored))["stages"][0]["held_out_parameters"], RunResultToJson(config, Single(result.stages[0]))["stages"][0]["held_out_parameters"]);
 
   // The final table shows the bias as one value per run, not as held fixed.
   const FinalParameter* bias = nullptr;
