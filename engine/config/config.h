@@ -4,7 +4,8 @@
 //   model:       {family: nomoto, type: second_order, ...family keys}
 //   simulation:  family-specific description of synthetic experiments (`vesselid simulate`)
 //   experiments: [{name, file, inputs, outputs, interpolation, weights, initial_state,
-//                  degrees, window}]
+//                  degrees, window, time, position, screen, resample}]
+//                  (the last four: experiment_data_config.h)
 //   stages:      [{name, type, least_squares, model, experiments, validation, outputs,
 //                  parameters,
 //                  free_initial_states, loss, integration, normalize_by_length, continuation,
