@@ -1,7 +1,8 @@
 // A field log with the defects of real ones, through `vesselid run`: the seed 000 catamaran
 // (a physical 3-DOF simulator, not the identified input-gain model) logged by a 10 Hz logger
 // with +-30 ms row jitter, Unix-epoch times, GNSS latitude/longitude, heading in degrees, one
-// 0/0 fix, a GNSS fix repeated while the heading turns, and a segment cut to 2 s. The run
+// 0/0 fix, a GNSS fix repeated while the heading turns, a fix 33 m off, a heading spike, and
+// a segment cut to 2 s. The run
 // must finish and name every defect in its warnings (stderr, report.txt, results.json); the
 // bad-input cases of the new keys stop it with the file, line and key.
 #include <cmath>
@@ -76,8 +77,11 @@ void WriteUsvLog(const fs::path& path, const LogOptions& log) {
       if (log.defects && s == 1 && j == 40) lat = lon = 0.0;  // no solution
       if (log.defects && s == 2 && j == 50) frozen_lat = lat, frozen_lon = lon;
       if (log.defects && s == 2 && j > 50 && j <= 56) lat = frozen_lat, lon = frozen_lon;
+      if (log.defects && s == 3 && j == 30) lat += 0.0003;  // a fix 33 m north of the track
       double heading = std::fmod(at(psi_unwrapped, Interpolation::kLinear) * 180.0 / M_PI, 360.0);
+      if (log.defects && s == 0 && j == 60) heading += 90.0;  // a heading spike
       if (heading < 0) heading += 360.0;
+      if (heading >= 360.0) heading -= 360.0;
       char row[300];
       std::snprintf(row, sizeof(row), "%.3f,%zu,%.9f,%.9f,%.3f,%.4f,%.4f\n", 1.7e9 + 123.0 + t,
                     s + 1, lat, lon, heading, at(pwm_l, Interpolation::kZeroOrderHold),
@@ -180,6 +184,8 @@ TEST_F(RealLog, FinishesWithEveryDefectNamed) {
       "experiment 'log': times are Unix epoch seconds; t = 0 is 17000001",
       "experiment 'log': removed 1 zero fix(es) (0/0) of lat/lon (t = ",
       "6 stale repeat(s) of north/east (t = ",
+      "1 jump(s) faster than the screen's bound in north/east (t = ",
+      "1 jump(s) faster than the screen's bound in hdg_deg (t = ",
       "experiment 'log': resampled to a uniform 5 Hz grid",
       "experiment 'log': segment 'log@5' (t = ",
       "skipped: Savitzky-Golay window of 15 samples is longer than the "};
@@ -187,6 +193,12 @@ TEST_F(RealLog, FinishesWithEveryDefectNamed) {
     EXPECT_NE(warnings.find(e), std::string::npos) << e << "\n" << warnings;
     EXPECT_NE(run.output.find(e), std::string::npos) << e;
     EXPECT_NE(text.str().find(e), std::string::npos) << e;
+  }
+  std::ostringstream html;
+  html << std::ifstream(dir_ / "out" / "report.html").rdbuf();
+  for (const char* e : {"6 stale repeat(s) of north/east", "resampled to a uniform 5 Hz grid",
+                        "skipped: Savitzky-Golay window of 15 samples"}) {
+    EXPECT_NE(html.str().find(e), std::string::npos) << e;
   }
   // The origins, exactly: the first row's time text and fix.
   std::ifstream log(dir_ / "usv_log.csv");
