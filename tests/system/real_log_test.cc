@@ -41,8 +41,8 @@ void WriteUsvLog(const fs::path& path, const LogOptions& log) {
   options.seed = 4;
   Trajectory campaign;
   std::string error;
-  ASSERT_TRUE(input_gain::SimulateCampaign(input_gain::CatamaranParameters(), options, &campaign,
-                                           &error))
+  ASSERT_TRUE(
+      input_gain::SimulateCampaign(input_gain::CatamaranParameters(), options, &campaign, &error))
       << error;
   auto channel = [&](const char* name) { return ExtractChannel(campaign, campaign.Find(name)); };
   const Channel n = channel("n"), e = channel("e"), psi = channel("heading"),
@@ -74,8 +74,7 @@ void WriteUsvLog(const fs::path& path, const LogOptions& log) {
       if (t > end - 0.05) break;
       auto at = [&](const Channel& c, Interpolation how) { return InterpolateAt(c, how, {t})[0]; };
       double lat = 0.0, lon = 0.0, h = 0.0;
-      plane.Reverse(at(e, Interpolation::kLinear), at(n, Interpolation::kLinear), 0.0, lat, lon,
-                    h);
+      plane.Reverse(at(e, Interpolation::kLinear), at(n, Interpolation::kLinear), 0.0, lat, lon, h);
       if (log.defects && s == 1 && j == 40) lat = lon = 0.0;  // no solution
       if (log.defects && s == 2 && j == 50) frozen_lat = lat, frozen_lon = lon;
       if (log.defects && s == 2 && j > 50 && j <= 56) lat = frozen_lat, lon = frozen_lon;
@@ -124,7 +123,8 @@ experiments:
     degrees: [hdg_deg]
     interpolation: zero_order_hold
     segments: {column: segment}
-)") + experiment_keys + R"(stages:
+)") + experiment_keys +
+         R"(stages:
   - name: output_error
     outputs: [n, e, psi]
     free_initial_states: [n, e, psi, u, v, r]
@@ -144,8 +144,8 @@ struct RunOutcome {
 
 RunOutcome VesselidRun(const fs::path& dir) {
   const std::string command = std::string(VESSELID_BINARY) + " run " +
-                              (dir / "config.yaml").string() + " --out " +
-                              (dir / "out").string() + " 2>&1";
+                              (dir / "config.yaml").string() + " --out " + (dir / "out").string() +
+                              " 2>&1";
   RunOutcome run;
   FILE* pipe = popen(command.c_str(), "r");
   char buffer[512];
@@ -172,9 +172,10 @@ class RealLog : public ::testing::Test {
 
 TEST_F(RealLog, FinishesWithEveryDefectNamed) {
   WriteUsvLog(dir_ / "usv_log.csv", {});
-  WriteConfig(Config("    screen: {max_speed: 10, max_rate: {psi: 120}, stale: 3}\n"
-                     "    resample: {rate: 5}\n",
-                     ""));
+  WriteConfig(
+      Config("    screen: {max_speed: 10, max_rate: {psi: 120}, stale: 3}\n"
+             "    resample: {rate: 5}\n",
+             ""));
   const RunOutcome run = VesselidRun(dir_);
   ASSERT_EQ(run.status, 0) << run.output;
   std::ifstream in(dir_ / "out" / "results.json");
@@ -232,9 +233,9 @@ TEST_F(RealLog, RowJitterPassesTheRegressionGridWithMaxGap) {
   WriteConfig(Config("", ""));
   RunOutcome run = VesselidRun(dir_);
   EXPECT_NE(run.status, 0);
-  EXPECT_TRUE(std::regex_search(run.output,
-                                std::regex("experiment 'log@\\d' .*gap of 0\\.1[3-6]\\d* s at t = .* "
-                                           "at most max_gap = 1\\.5 median steps")))
+  EXPECT_TRUE(std::regex_search(
+      run.output, std::regex("experiment 'log@\\d' .*gap of 0\\.1[3-6]\\d* s at t = .* "
+                             "at most max_gap = 1\\.5 median steps")))
       << run.output;
   // The output-error stage before it is a result; the run says where and why it stopped.
   std::ifstream in(dir_ / "out" / "results.json");
@@ -276,14 +277,16 @@ std::string FixConfig(const std::string& lat, const std::string& rate) {
 TEST_F(BadInput, PositionWithoutItsLatitudeColumn) {
   std::ofstream(dir_ / "data.csv") << kFixes;
   WriteConfig(FixConfig("latitude", "5"));
-  ExpectRejected("experiment 'run': .*data\\.csv: no column 'latitude' "
-                 "\\(experiments\\[0\\]\\.position\\.lat\\)");
+  ExpectRejected(
+      "experiment 'run': .*data\\.csv: no column 'latitude' "
+      "\\(experiments\\[0\\]\\.position\\.lat\\)");
 }
 
 TEST_F(BadInput, LatitudeOutsideItsRange) {
   std::ofstream(dir_ / "data.csv") << kFixes;
   WriteConfig(FixConfig("lat", "5"));
-  ExpectRejected("data\\.csv:4: column 'lat': 95\\.1 is not a latitude \\(outside \\[-90, 90\\]\\)");
+  ExpectRejected(
+      "data\\.csv:4: column 'lat': 95\\.1 is not a latitude \\(outside \\[-90, 90\\]\\)");
 }
 
 TEST_F(BadInput, ResampleRateNotPositive) {
@@ -299,8 +302,9 @@ TEST_F(BadInput, OriginOutsideTheGlobe) {
   std::string text = FixConfig("lat", "5");
   text.replace(text.find("lon: lon}"), 9, "lon: lon, origin: [91, 10]}");
   WriteConfig(text);
-  ExpectRejected("config\\.yaml:7: experiments\\[0\\]\\.position\\.origin\\[0\\]: latitude must be "
-                 "in \\[-90, 90\\]");
+  ExpectRejected(
+      "config\\.yaml:7: experiments\\[0\\]\\.position\\.origin\\[0\\]: latitude must be "
+      "in \\[-90, 90\\]");
 }
 
 }  // namespace
