@@ -77,6 +77,17 @@ TEST(TimeBase, EpochTimesMustIncreaseAtNanosecondResolution) {
       << error;
 }
 
+TEST(TimeBase, EpochMillisecondsAreRefusedWithTheLine) {
+  const std::string path = WriteTemp("vesselid_epoch_ms.csv", "t,a\n1700000000000,1\n");
+  Trajectory data;
+  std::string error;
+  EXPECT_FALSE(ReadTrajectoryCsv(path, &data, &error));
+  EXPECT_NE(error.find("vesselid_epoch_ms.csv:2: time 1700000000000 cannot be read to the "
+                       "nanosecond"),
+            std::string::npos)
+      << error;
+}
+
 TEST(TimeBase, NamedTimeColumnAndRelativeTimesUnchanged) {
   CsvReadOptions options;
   options.time_column = "stamp";
