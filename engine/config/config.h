@@ -5,7 +5,8 @@
 //   simulation:  family-specific description of synthetic experiments (`vesselid simulate`)
 //   experiment_defaults: keys merged into every experiment (experiment_templates.h)
 //   experiments: [{name, file | files, inputs, outputs, interpolation, weights, initial_state,
-//                  degrees, window}]
+//                  degrees, window, time, position, screen, resample}]
+//                  (the last four: experiment_data_config.h)
 //   sets:        {<name>: [experiments]}, usable as any list of experiments (experiment_sets.h)
 //   stages:      [{name, type, least_squares, model, experiments, validation, outputs,
 //                  parameters,

@@ -10,7 +10,7 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kNoiseAllowance = 7.0;  // sigmas of noise a step may carry beyond the rate
-constexpr int kRelock = 5;  // consistent rejected samples in a row that are the track
+constexpr int kRelock = 5;               // consistent rejected samples in a row that are the track
 
 // One screened channel: one column, or the position pair (distance in the plane).
 struct Series {
@@ -83,8 +83,10 @@ void ScreenStale(const std::vector<Series>& all, size_t index, int stale, const 
       size_t first = b + 1;
       for (size_t k = a; k <= b; ++k) {
         if (!all[j].Present(k)) continue;
-        if (first > b) first = k;
-        else if (!all[j].Same(first, k)) return true;
+        if (first > b)
+          first = k;
+        else if (!all[j].Same(first, k))
+          return true;
       }
     }
     return false;
@@ -103,8 +105,7 @@ void ScreenStale(const std::vector<Series>& all, size_t index, int stale, const 
   }
 }
 
-void ScreenJumps(Series s, const Trajectory& data, GlitchFinding* jumps,
-                 GlitchFinding* anchors) {
+void ScreenJumps(Series s, const Trajectory& data, GlitchFinding* jumps, GlitchFinding* anchors) {
   const std::vector<size_t> rows = PresentRows(s, data.t.size());
   if (rows.size() < 2) return;
   const double allowance = kNoiseAllowance * RobustNoise(s, rows);

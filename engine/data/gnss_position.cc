@@ -29,15 +29,15 @@ bool AddLocalPositions(const GnssPositionOptions& options, Trajectory* data,
   const std::vector<double>& lambda = data->columns[lon];
   const size_t rows = data->t.size();
   for (size_t k = 0; k < rows; ++k) {
-    for (const auto& [value, limit, column] : {std::tuple{phi[k], 90.0, lat},
-                                               std::tuple{lambda[k], 360.0, lon}}) {
+    for (const auto& [value, limit, column] :
+         {std::tuple{phi[k], 90.0, lat}, std::tuple{lambda[k], 360.0, lon}}) {
       const double lower = column == lat ? -90.0 : -180.0;
       if (std::isnan(value) || (value >= lower && value <= limit)) continue;
       char text[200];
       std::snprintf(text, sizeof(text), ":%d: column '%s': %.10g is not a %s (outside [%g, %g])",
                     k < data->line.size() ? data->line[k] : static_cast<int>(k) + 2,
-                    data->names[column].c_str(), value,
-                    column == lat ? "latitude" : "longitude", lower, limit);
+                    data->names[column].c_str(), value, column == lat ? "latitude" : "longitude",
+                    lower, limit);
       *error = data->source + text;
       return false;
     }

@@ -28,7 +28,7 @@ struct ResampleOptions {
 
 struct ResampleReport {
   size_t rows_before = 0, rows_after = 0;
-  int outside = 0;  // grid points in gaps of the log, empty in every column
+  int outside = 0;                        // grid points in gaps of the log, empty in every column
   std::map<std::string, int> left_empty;  // interpolated column: grid points in long gaps
 };
 

@@ -197,7 +197,7 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
           std::int64_t ns = 0;
           if (!ParseNanoseconds(fields[i], &ns)) {
             return fail("time " + fields[i] + " cannot be read to the nanosecond (an epoch " +
-                        "time needs at most 19 digits and |t| < 9.2e9 s)");
+                        "time needs |t| < 9.2e9 s: give it in seconds, not milliseconds)");
           }
           if (!time_ns.empty() && !(ns > time_ns.back())) {
             return fail("time " + fields[i] + " is not after the previous time " +

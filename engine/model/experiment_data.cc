@@ -132,11 +132,11 @@ bool LoadExperimentData(const ExperimentSpec& spec, Trajectory* trajectory, std:
     return false;
   };
   if (trajectory->epoch) {
-    trajectory->notes.push_back(
-        "experiment '" + spec.name + "': times are Unix epoch seconds; t = 0 is " +
-        FormatNanoseconds(trajectory->time_origin_ns) + " (" +
-        FormatUtc(trajectory->time_origin_ns) +
-        "), and windows, segments and reported times count from there");
+    trajectory->notes.push_back("experiment '" + spec.name +
+                                "': times are Unix epoch seconds; t = 0 is " +
+                                FormatNanoseconds(trajectory->time_origin_ns) + " (" +
+                                FormatUtc(trajectory->time_origin_ns) +
+                                "), and windows, segments and reported times count from there");
   }
   GnssPositionReport gnss;
   if (spec.data.position && !AddLocalPositions(spec.data.gnss, trajectory, &gnss, error)) {

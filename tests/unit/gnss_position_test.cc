@@ -32,8 +32,8 @@ GnssPositionOptions Options() {
 
 TEST(GnssPosition, KnownDistancesAt63North) {
   const double kNaN = std::nan("");
-  Trajectory data = Fixes({63.43, 63.431, 63.43, 63.4305, kNaN},
-                          {10.39, 10.39, 10.391, 10.3905, 10.39});
+  Trajectory data =
+      Fixes({63.43, 63.431, 63.43, 63.4305, kNaN}, {10.39, 10.39, 10.391, 10.3905, 10.39});
   GnssPositionReport report;
   std::string error;
   ASSERT_TRUE(AddLocalPositions(Options(), &data, &report, &error)) << error;

@@ -57,7 +57,7 @@ TEST(Resample, UniformGridInterpolatesOutputsAndHoldsInputs) {
 TEST(Resample, LongGapsStayGaps) {
   Trajectory data = Log();
   for (int k = 100; k < 110; ++k) data.columns[0][k] = std::nan("");  // 1 s without y
-  data.columns[0][200] = std::nan("");                                 // one sample lost
+  data.columns[0][200] = std::nan("");                                // one sample lost
   ResampleOptions options;
   options.rate = 10.0;
   options.max_gap = 3.0;

@@ -46,9 +46,9 @@ TEST(TimeBase, ParsesDecimalTextExactlyInNanoseconds) {
 TEST(TimeBase, EpochTimesOneMillisecondApartStayExactlyOneMillisecondApart) {
   // As doubles, 1700000000.001 - 1700000000.000 is 0.00100016594 (spacing 2.4e-7 s there).
   ASSERT_NE(1700000000.001 - 1700000000.000, 0.001);
-  const std::string path = WriteTemp(
-      "vesselid_epoch.csv",
-      "t,a\n1700000000.000,1\n1700000000.001,2\n1700000000.002,3\n1700000123.457,4\n");
+  const std::string path =
+      WriteTemp("vesselid_epoch.csv",
+                "t,a\n1700000000.000,1\n1700000000.001,2\n1700000000.002,3\n1700000123.457,4\n");
   Trajectory data;
   std::string error;
   ASSERT_TRUE(ReadTrajectoryCsv(path, &data, &error)) << error;
@@ -63,16 +63,27 @@ TEST(TimeBase, EpochTimesOneMillisecondApartStayExactlyOneMillisecondApart) {
 
 TEST(TimeBase, EpochTimesMustIncreaseAtNanosecondResolution) {
   // Equal as doubles (both round to the same value), distinct as text: accepted in order.
-  const std::string ok = WriteTemp("vesselid_epoch_close.csv",
-                                   "t,a\n1700000000.0000001,1\n1700000000.0000002,2\n");
+  const std::string ok =
+      WriteTemp("vesselid_epoch_close.csv", "t,a\n1700000000.0000001,1\n1700000000.0000002,2\n");
   Trajectory data;
   std::string error;
   ASSERT_TRUE(ReadTrajectoryCsv(ok, &data, &error)) << error;
   EXPECT_EQ(data.t[1], 1e-7);
-  const std::string back = WriteTemp("vesselid_epoch_back.csv",
-                                     "t,a\n1700000000.002,1\n1700000000.001,2\n");
+  const std::string back =
+      WriteTemp("vesselid_epoch_back.csv", "t,a\n1700000000.002,1\n1700000000.001,2\n");
   EXPECT_FALSE(ReadTrajectoryCsv(back, &data, &error));
   EXPECT_NE(error.find(":3: time 1700000000.001 is not after the previous time 1700000000.002"),
+            std::string::npos)
+      << error;
+}
+
+TEST(TimeBase, EpochMillisecondsAreRefusedWithTheLine) {
+  const std::string path = WriteTemp("vesselid_epoch_ms.csv", "t,a\n1700000000000,1\n");
+  Trajectory data;
+  std::string error;
+  EXPECT_FALSE(ReadTrajectoryCsv(path, &data, &error));
+  EXPECT_NE(error.find("vesselid_epoch_ms.csv:2: time 1700000000000 cannot be read to the "
+                       "nanosecond"),
             std::string::npos)
       << error;
 }
