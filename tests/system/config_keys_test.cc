@@ -33,6 +33,7 @@ struct Variant {
   std::string stage;                   // stage keys
   std::string parameters;              // parameter lines (replacing a listed one by name)
   std::string top;                     // top-level keys
+  std::string model;                   // added to the model map
 
   Variant A(std::string v) const {
     Variant c = *this;
@@ -69,6 +70,11 @@ struct Variant {
     c.top = std::move(v);
     return c;
   }
+  Variant M(std::string v) const {
+    Variant c = *this;
+    c.model = std::move(v);
+    return c;
+  }
 };
 
 struct KeyCase {
@@ -80,7 +86,7 @@ struct KeyCase {
 
 void PrintTo(const KeyCase& c, std::ostream* os) { *os << c.name; }
 
-constexpr char kTemplate[] = R"(model: {family: nomoto, type: first_order}
+constexpr char kTemplate[] = R"(model: {family: nomoto, type: first_orderMODEL_KEYS}
 experiments:
   - {name: a, file: run0.csv, inputs: {delta: delta}, outputs: {psi: psi, r: r}A_KEYS}
   - {name: b, file: run1.csv, inputs: {delta: delta}, outputs: {psi: psi, r: r}, window: [0, 60]}
@@ -146,6 +152,8 @@ const KeyCase kCases[] = {
      kLeastSquares.K(kLeastSquares.stage + "\n    outliers: {action: drop}"),
      "stages[0].outliers: not used by a least-squares stage"},
     {"wrap_of_a_rate", V, V.A(", wrap: [r]"), "output 'r' is not an angle"},
+    {"model_length_without_n1_form", V, V.M(", length: 320"),
+     "model.length: only the n1-form models (first_order_n1, norrbin_n1) take a ship length"},
     {"unknown_final_choice", V, V.T("final: newest\n"), "final: unknown choice 'newest'"},
     {"separator_the_file_does_not_use", V, V.A(", separator: \";\""),
      "the header is separated by ',', not ';'"},
@@ -201,6 +209,7 @@ class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
     put("FREE", v.free);
     put("STAGE_KEYS\n", v.stage.empty() ? "" : v.stage + "\n");
     put("TOP_KEYS", v.top);
+    put("MODEL_KEYS", v.model);
     if (!v.parameters.empty()) {  // replaces the listed line of the same parameter
       const std::string head = v.parameters.substr(0, v.parameters.find(':') + 1);
       const size_t at = text.find(head);
