@@ -65,15 +65,16 @@ Rk4Case Rk4(const ModelHandle& model) {
   return MakeRk4Case(model.info(), spec, data, 0.8 / 512, {0.1, 0.05, 0.025}, 0.35);
 }
 
-// Zigzags 10/10 and 30/5 (at 4 and 6 m/s where the model takes a speed), 400 s each, 0.1 deg
-// heading noise, from +-30 %; T held at the truth where the model has one.
+// Zigzags 10/10 and 30/5 (at 4 and 6 m/s where the model takes a speed), 150 s each (the
+// linear unstable craft's zigzag grows without bound after some 200 s), 0.1 deg heading
+// noise, from +-30 %; T held at the truth where the model has one.
 RecoveryCase Recovery(const ModelHandle& model, const std::vector<double>& truth) {
   RecoveryCase c;
   c.experiments.push_back(
-      MakeExperiment(model, truth, Zigzag(model, 400.0, 10.0, 10.0, 4.0, 0.1, 11),
+      MakeExperiment(model, truth, Zigzag(model, 150.0, 10.0, 10.0, 4.0, 0.1, 11),
                      Interpolation::kCubic, "zz10"));
   c.experiments.push_back(
-      MakeExperiment(model, truth, Zigzag(model, 400.0, 30.0, 5.0, 6.0, 0.1, 12),
+      MakeExperiment(model, truth, Zigzag(model, 150.0, 30.0, 5.0, 6.0, 0.1, 12),
                      Interpolation::kCubic, "zz30"));
   const ModelInfo& info = model.info();
   c.free_parameters = 0;
@@ -100,6 +101,14 @@ RecoveryCase Recovery(const ModelHandle& model, const std::vector<double>& truth
   return c;
 }
 
+// Zigzags determine the second-order coefficients less well (SE 25-30 % of a1, a0, T3, as
+// a single sine leaves seed 003's T2, T3): recovery within 3 SE, each SE below 40 %.
+RecoveryCase SecondOrderRecovery(const ModelHandle& model, const std::vector<double>& truth) {
+  RecoveryCase c = Recovery(model, truth);
+  c.max_relative_std_error = 0.4;
+  return c;
+}
+
 ModelVariant Variant(const std::string& name, std::function<std::unique_ptr<ModelHandle>()> make,
                      std::vector<double> truth) {
   return {name, std::move(make), std::move(truth), Jacobian, Rk4, Recovery};
@@ -108,9 +117,11 @@ ModelVariant Variant(const std::string& name, std::function<std::unique_ptr<Mode
 }  // namespace
 
 void AddNomotoUnstableVariants(std::vector<ModelVariant>* variants) {
-  // T 2 s, K -0.17 1/s (the patrol craft's sign), n1 -0.2: the yaw pole +0.1 1/s.
+  // T 2 s, K -0.17 1/s (the patrol craft's sign), n1 -0.05: the yaw pole +0.025 1/s (linear:
+  // a stronger instability outruns the rudder, whose yaw moment is bounded); with Norrbin's
+  // n3 the rate is bounded, and n1 -0.2 puts the pole at +0.1 1/s.
   variants->push_back(Variant("NomotoFirstOrderN1", [] { return nomoto::MakeN1FormHandle(false); },
-                              {2.0, -0.17, -0.2, 0.01}));
+                              {2.0, -0.17, -0.05, 0.01}));
   variants->push_back(Variant("NomotoNorrbinN1", [] { return nomoto::MakeN1FormHandle(true); },
                               {2.0, -0.17, -0.2, 40.0, 0.01}));
   // The same craft non-dimensional on L = 20 m: at 5 m/s T_nd = T U/L = 0.5,
@@ -118,11 +129,13 @@ void AddNomotoUnstableVariants(std::vector<ModelVariant>* variants) {
   variants->push_back(Variant("NomotoNorrbinN1Speed",
                               [] { return nomoto::MakeN1FormHandle(true, kLength); },
                               {0.5, -0.68, -0.2, 2.5, 0.01}));
-  // Patrol-like second order with T1 = -10 s (course-unstable), T2 0.3179 s, T3 0.183 s:
+  // Patrol-like second order with T1 = -40 s (course-unstable), T2 0.3179 s, T3 0.183 s:
   // a1 = 1/T1 + 1/T2, a0 = 1/(T1 T2) < 0, b = -0.1724 / (2.0875 * 0.3179).
-  variants->push_back(Variant("NomotoSecondOrderRates", nomoto::MakeSecondOrderRatesHandle,
-                              {-0.1 + 1 / 0.3179, 1 / (-10 * 0.3179), -0.1724 / (2.0875 * 0.3179),
-                               0.183, 0.01}));
+  ModelVariant rates = Variant("NomotoSecondOrderRates", nomoto::MakeSecondOrderRatesHandle,
+                               {-0.025 + 1 / 0.3179, 1 / (-40 * 0.3179),
+                                -0.1724 / (2.0875 * 0.3179), 0.183, 0.01});
+  rates.recovery = SecondOrderRecovery;
+  variants->push_back(std::move(rates));
 }
 
 }  // namespace vesselid::testing
