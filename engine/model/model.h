@@ -44,9 +44,15 @@ struct ModelInfo {
   // Inputs an experiment may leave unmapped; the model then sees NaN and decides what that
   // means (e.g. motors off, still air). Empty: every input is required.
   std::vector<bool> optional_inputs;
+  // Inputs whose every sample must be > 0 (a speed a model divides by); a record with one that
+  // is not is refused, naming the column and time.
+  std::vector<bool> positive_inputs;
 
   bool InputOptional(int index) const {
     return index < static_cast<int>(optional_inputs.size()) && optional_inputs[index];
+  }
+  bool InputPositive(int index) const {
+    return index < static_cast<int>(positive_inputs.size()) && positive_inputs[index];
   }
   int ParameterIndex(const std::string& name) const;
   int StateIndex(const std::string& name) const;

@@ -16,8 +16,8 @@
 // With a length L > 0 the parameters are non-dimensional and the speed is an input:
 //   T = T_nd L/U,  K = K_nd U/L,  n3 = n3_nd (L/U)^2   (n1 is non-dimensional already), so
 //   r' = s^2 K_nd/T_nd (delta + delta_0) - s n1/T_nd r - n3_nd/(s T_nd) r^3,   s = U/L,
-// one set of parameters for runs at different speeds. U <= 0 is not a speed for this form:
-// the right-hand side fails there.
+// one set of parameters for runs at different speeds. U must be > 0: a record with a sample
+// that is not is refused.
 //
 // Equation-error form (least-squares stage), theta = [K/T, K delta_0/T, -n1/T (, -n3/T)]
 // on the regressors [s^2 delta, s^2, s r (, r^3/s)] (s = 1 without a length).
@@ -51,7 +51,10 @@ struct N1Form {
                 (speed() ? "_speed" : "");
     info.states = {"psi", "r"};
     info.inputs = {"delta"};
-    if (speed()) info.inputs.push_back("U");
+    if (speed()) {
+      info.inputs.push_back("U");
+      info.positive_inputs = {false, true};
+    }
     info.outputs = {"psi", "r"};
     const std::string nd = speed() ? "_nd" : "";
     info.parameters = {"T" + nd, "K" + nd, "n1"};
