@@ -219,19 +219,19 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
   std::vector<int> regressed, searched;
   for (int i = 0; i < np; ++i) {
     if (!estimated[i]) continue;
-    if (depends.col(i).sum() == 0) {
-      return fail("parameter '" + info.parameters[i] +
-                  "' does not enter the equation-error form of " + info.name + "; hold it");
-    }
     if (profiled[i] && specs[i].role == ParameterRole::kPerExperiment) {
       return fail("parameter '" + info.parameters[i] + "' enters the regressors and cannot be "
                   "per_experiment in a least-squares stage");
     }
     if (profiled[i]) {
       searched.push_back(i);
-    } else if (specs[i].role != ParameterRole::kPerExperiment) {
-      regressed.push_back(i);
+      continue;
     }
+    if (depends.col(i).sum() == 0) {
+      return fail("parameter '" + info.parameters[i] +
+                  "' does not enter the equation-error form of " + info.name + "; hold it");
+    }
+    if (specs[i].role != ParameterRole::kPerExperiment) regressed.push_back(i);
   }
   if (regressed.empty() && per_experiment.empty()) return fail("no parameter to regress");
 
