@@ -3,6 +3,8 @@
 // heading and rudder logged in degrees, with a rudder rate limit, a slow yaw disturbance and
 // a quantised compass the identified model does not have. Least squares with one bias per
 // run, then output error in the n1-form with the speed input; five runs held out.
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -24,13 +26,21 @@ namespace fs = std::filesystem;
 
 constexpr double kDegree = M_PI / 180.0;
 
+// The campaign is simulated and run once per process (ctest runs each case in its own, in
+// parallel: the folder carries the process id); a failure there fails every case.
 class NomotoTanker : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    const fs::path out = fs::temp_directory_path() / "vesselid_nomoto_tanker";
+  void SetUp() override {
+    if (results_ == nullptr) Load();
+    ASSERT_NE(results_, nullptr) << "the campaign did not run";
+  }
+  static void Load() {
+    const fs::path out =
+        fs::temp_directory_path() / ("vesselid_nomoto_tanker_" + std::to_string(::getpid()));
     testing::SimulateAndRunInto("nomoto_tanker", out);  // both commands exit 0
+    if (::testing::Test::HasFatalFailure()) return;
     std::ifstream in(out / "results.json");
-    results_ = new json(json::parse(in));
+    json results = json::parse(in);
     fs::remove_all(out);
     const YAML::Node config =
         YAML::LoadFile(std::string(VESSELID_SOURCE_DIR) + "/configs/nomoto_tanker.yaml");
@@ -50,12 +60,7 @@ class NomotoTanker : public ::testing::Test {
       held_T_ = stage["parameters"]["T_nd"] ? stage["parameters"]["T_nd"]["start"].as<double>()
                                             : 2.5;  // the model's default, held
     }
-  }
-  static void TearDownTestSuite() {
-    delete results_;
-    delete truth_;
-    delete biases_;
-    delete held_out_;
+    results_ = new json(std::move(results));
   }
 
   // A stage's estimates by name.
