@@ -45,7 +45,9 @@ class EquationData {
       : model_(model), form_(*model.regression_form()), options_(options) {
     for (const auto& coefficients : form_.coefficients) {
       design_.emplace_back();
-      for (int j = 0; j < static_cast<int>(coefficients.size()); ++j) design_.back().push_back({j, -1});
+      for (int j = 0; j < static_cast<int>(coefficients.size()); ++j) {
+        design_.back().push_back({j, -1});
+      }
     }
   }
 
@@ -133,9 +135,9 @@ class EquationData {
 // for every group (experiment); a coefficient of group g is evaluated with group g's values.
 struct MinimumDistance {
   const ModelHandle* model;
-  std::vector<double> base;        // every parameter
-  std::vector<int> free;           // shared: indices into base, in the block's order
-  std::vector<int> per_experiment; // indices into base, after `free` in the block, by group
+  std::vector<double> base;         // every parameter
+  std::vector<int> free;            // shared: indices into base, in the block's order
+  std::vector<int> per_experiment;  // indices into base, after `free` in the block, by group
   int groups = 0;
   std::vector<int> coefficient;  // identified coefficient indices (into theta)
   std::vector<int> group;        // their group, -1: every record
@@ -143,9 +145,7 @@ struct MinimumDistance {
   Eigen::MatrixXd whitening;     // L^-1 (block diagonal over equations)
   int num_coefficients = 0;
 
-  int size() const {
-    return static_cast<int>(free.size() + per_experiment.size() * groups);
-  }
+  int size() const { return static_cast<int>(free.size() + per_experiment.size() * groups); }
 
   bool operator()(double const* const* parameters, double* residuals) const {
     std::vector<double> p = base;
@@ -364,7 +364,8 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
     for (int j = 0; j < m; ++j) {
       const DesignColumn& d = data.design(i)[j];
       e.coefficients.push_back(column_name(i, d));
-      if (!coefficient_free[offset[i] + d.coefficient]) e.theta(j) = theta_now[offset[i] + d.coefficient];
+      const int c = offset[i] + d.coefficient;
+      if (!coefficient_free[c]) e.theta(j) = theta_now[c];
     }
     for (size_t j = 0; j < columns[i].size(); ++j) {
       e.theta(columns[i][j]) = fits[i].theta(j);
@@ -528,7 +529,8 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
     v.value = block[k];
     const auto at = std::find(determined.begin(), determined.end(), k);
     v.undetermined = at == determined.end();
-    v.std_error = v.undetermined ? kNaN : std::sqrt(covariance(at - determined.begin(), at - determined.begin()));
+    const int row = static_cast<int>(at - determined.begin());
+    v.std_error = v.undetermined ? kNaN : std::sqrt(covariance(row, row));
     result->per_experiment.push_back(v);
   }
   for (int i : searched) {

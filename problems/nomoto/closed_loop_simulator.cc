@@ -108,8 +108,9 @@ bool SimulateClosedLoop(const ModelHandle& model, const std::vector<double>& par
     return y[psi_out];
   };
   auto delta_set = [&](const std::vector<double>& z, double t) {
-    double set = zigzag ? zigzag_command
-                        : sign_k * options.controller_gain * (HeadingSetpoint(e, t) - heading(z, t));
+    double set = zigzag
+                     ? zigzag_command
+                     : sign_k * options.controller_gain * (HeadingSetpoint(e, t) - heading(z, t));
     return std::clamp(set, -options.rudder_limit, options.rudder_limit);
   };
   auto rhs = [&](const std::vector<double>& z, double t, std::vector<double>* zdot) {

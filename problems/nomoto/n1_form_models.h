@@ -59,8 +59,8 @@ struct N1Form {
     const std::string nd = speed() ? "_nd" : "";
     info.parameters = {"T" + nd, "K" + nd, "n1"};
     // Typical values: a ship of T 100 s, K 0.05 1/s at n1 = 1 (non-dimensional 2.5 and 2).
-    info.parameter_defaults = speed() ? std::vector<double>{2.5, 2.0, 1.0}
-                                      : std::vector<double>{100.0, 0.05, 1.0};
+    info.parameter_defaults =
+        speed() ? std::vector<double>{2.5, 2.0, 1.0} : std::vector<double>{100.0, 0.05, 1.0};
     if (cubic) {
       info.parameters.push_back("n3" + nd);
       info.parameter_defaults.push_back(0.0);

@@ -17,7 +17,9 @@ constexpr char kTypes[] =
 std::unique_ptr<ModelHandle> MakeModel(const YamlReader& reader, const YAML::Node& model,
                                        const std::string& path) {
   reader.CheckMap(model, path, {"family", "type", "length"});
-  if (!model["type"]) reader.Fail(model, Child(path, "type"), std::string("missing (") + kTypes + ")");
+  if (!model["type"]) {
+    reader.Fail(model, Child(path, "type"), std::string("missing (") + kTypes + ")");
+  }
   const std::string type = reader.String(model["type"], Child(path, "type"));
   const bool n1_form = type == "first_order_n1" || type == "norrbin_n1";
   double length = 0.0;
@@ -143,8 +145,9 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
     const bool takes_speed = info.InputIndex("U") >= 0;
     if (takes_speed != (options.speed > 0)) {
       reader.Fail(node, Child(key, "speed"),
-                  takes_speed ? "model " + info.name + " takes a speed input: give a speed > 0 [m/s]"
-                              : "model " + info.name + " takes no speed input");
+                  takes_speed
+                      ? "model " + info.name + " takes a speed input: give a speed > 0 [m/s]"
+                      : "model " + info.name + " takes no speed input");
     }
     if (const YAML::Node disturbance = node["disturbance"]) {
       const std::string dkey = Child(key, "disturbance");

@@ -65,8 +65,8 @@ struct SecondOrderRates {
   std::vector<std::string> Admissibility(const double* p) const {
     if (p[0] > 0.0 || p[1] <= 0.0) return {};
     char text[160];
-    std::snprintf(text, sizeof(text),
-                  "a1 = %.4g <= 0 with a0 = %.4g > 0: both yaw poles unstable", p[0], p[1]);
+    std::snprintf(text, sizeof(text), "a1 = %.4g <= 0 with a0 = %.4g > 0: both yaw poles unstable",
+                  p[0], p[1]);
     return {text};
   }
 };

@@ -70,12 +70,10 @@ Rk4Case Rk4(const ModelHandle& model) {
 // noise, from +-30 %; T held at the truth where the model has one.
 RecoveryCase Recovery(const ModelHandle& model, const std::vector<double>& truth) {
   RecoveryCase c;
-  c.experiments.push_back(
-      MakeExperiment(model, truth, Zigzag(model, 150.0, 10.0, 10.0, 4.0, 0.1, 11),
-                     Interpolation::kCubic, "zz10"));
-  c.experiments.push_back(
-      MakeExperiment(model, truth, Zigzag(model, 150.0, 30.0, 5.0, 6.0, 0.1, 12),
-                     Interpolation::kCubic, "zz30"));
+  c.experiments.push_back(MakeExperiment(
+      model, truth, Zigzag(model, 150.0, 10.0, 10.0, 4.0, 0.1, 11), Interpolation::kCubic, "zz10"));
+  c.experiments.push_back(MakeExperiment(
+      model, truth, Zigzag(model, 150.0, 30.0, 5.0, 6.0, 0.1, 12), Interpolation::kCubic, "zz30"));
   const ModelInfo& info = model.info();
   c.free_parameters = 0;
   for (size_t i = 0; i < truth.size(); ++i) {
@@ -131,9 +129,9 @@ void AddNomotoUnstableVariants(std::vector<ModelVariant>* variants) {
                               {0.5, -0.68, -0.2, 2.5, 0.01}));
   // Patrol-like second order with T1 = -40 s (course-unstable), T2 0.3179 s, T3 0.183 s:
   // a1 = 1/T1 + 1/T2, a0 = 1/(T1 T2) < 0, b = -0.1724 / (2.0875 * 0.3179).
-  ModelVariant rates = Variant("NomotoSecondOrderRates", nomoto::MakeSecondOrderRatesHandle,
-                               {-0.025 + 1 / 0.3179, 1 / (-40 * 0.3179),
-                                -0.1724 / (2.0875 * 0.3179), 0.183, 0.01});
+  ModelVariant rates =
+      Variant("NomotoSecondOrderRates", nomoto::MakeSecondOrderRatesHandle,
+              {-0.025 + 1 / 0.3179, 1 / (-40 * 0.3179), -0.1724 / (2.0875 * 0.3179), 0.183, 0.01});
   rates.recovery = SecondOrderRecovery;
   variants->push_back(std::move(rates));
 }

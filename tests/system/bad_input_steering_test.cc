@@ -28,7 +28,8 @@ class BadSpeedInput : public BadInput {
 experiments:
   - name: run
     file: data.csv
-    inputs: )" + inputs + R"(
+    inputs: )" +
+           inputs + R"(
     outputs: {psi: psi}
 stages:
   - name: fit
@@ -57,12 +58,14 @@ TEST_F(BadSpeedInput, SpeedNotMapped) {
 TEST_F(BadSpeedInput, ZeroSpeedInTheData) {
   AddSpeed(42, "0");
   WriteConfig(Config("{family: nomoto, type: first_order_n1, length: 20}", "{delta: delta, U: U}"));
-  ExpectRejected("experiment 'run' \\(.*data\\.csv\\): input 'U' \\(column 'U'\\) is 0 at "
-                 "t = 4 s: the model needs it > 0");
+  ExpectRejected(
+      "experiment 'run' \\(.*data\\.csv\\): input 'U' \\(column 'U'\\) is 0 at "
+      "t = 4 s: the model needs it > 0");
 }
 
 TEST_F(BadSpeedInput, LengthNotPositive) {
-  WriteConfig(Config("{family: nomoto, type: first_order_n1, length: -20}", "{delta: delta, U: U}"));
+  WriteConfig(
+      Config("{family: nomoto, type: first_order_n1, length: -20}", "{delta: delta, U: U}"));
   ExpectRejected("config\\.yaml:1: model\\.length: must be > 0");
 }
 

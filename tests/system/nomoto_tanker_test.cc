@@ -98,7 +98,8 @@ TEST_F(NomotoTanker, OutputErrorFindsTheShipCourseUnstable) {
   const double se = estimates["n1"]["std_error"].get<double>();
   EXPECT_LT(n1, 0.0);
   EXPECT_LT(n1 + 3 * se, 0.0) << "the sign of n1 is determined";
-  EXPECT_LT(std::abs(n1 - Scaled("n1")), 3 * se) << n1 << " +- " << se << ", truth " << Scaled("n1");
+  EXPECT_LT(std::abs(n1 - Scaled("n1")), 3 * se)
+      << n1 << " +- " << se << ", truth " << Scaled("n1");
   // K and n3 absorb a little of what the model lacks (rate limit, disturbance, compass
   // steps: 0.6 % here, tens of their standard errors): sane, not within 3 SE.
   for (const char* name : {"K_nd", "n3_nd"}) {

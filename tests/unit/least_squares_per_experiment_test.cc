@@ -17,7 +17,7 @@ constexpr double kT = 80.0, kK = 0.04, kN1 = -0.25, kN3 = 900.0;
 // r' = (K (delta + bias) - n1 r - n3 r^3) / T along a rudder sweep (Euler steps of 0.05 s,
 // sampled each second), with Gaussian noise on r' of `noise`.
 RegressionRecord MakeRun(const std::string& name, double bias, double phase, double noise,
-                     unsigned seed) {
+                         unsigned seed) {
   RegressionRecord record;
   record.name = record.record = name;
   const int n = 600;
@@ -101,7 +101,8 @@ TEST(LeastSquaresPerExperiment, OneBiasPerRunAndTheSharedParameters) {
   EXPECT_TRUE(unused.undetermined);
   EXPECT_TRUE(std::isnan(unused.std_error));
   bool noted = false;
-  for (const std::string& note : summary.notes) noted |= note.find("delta_0[unused]") != std::string::npos;
+  for (const std::string& note : summary.notes)
+    noted |= note.find("delta_0[unused]") != std::string::npos;
   EXPECT_TRUE(noted);
   // The intercept K delta_0/T has one column per run.
   ASSERT_EQ(summary.equations.size(), 1u);
@@ -113,7 +114,8 @@ TEST(LeastSquaresPerExperiment, OneBiasPerRunAndTheSharedParameters) {
 // parameter.
 TEST(LeastSquaresPerExperiment, SameBiasInEveryRunMatchesTheSharedFit) {
   auto model = nomoto::MakeN1FormHandle(false);
-  std::vector<RegressionRecord> records = {MakeRun("a", 0.02, 0, 1e-6, 1), MakeRun("b", 0.02, 1, 1e-6, 2)};
+  std::vector<RegressionRecord> records = {MakeRun("a", 0.02, 0, 1e-6, 1),
+                                           MakeRun("b", 0.02, 1, 1e-6, 2)};
   std::vector<ParameterSpec> specs = Specs();
   specs.erase(specs.begin() + 3);  // first order: T K n1 delta_0
   LeastSquaresResult per_run, shared;
