@@ -215,6 +215,13 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
     if (column < 0) return fail("no column '" + mapped->second + "' for input '" + input + "'");
     Channel channel = ExtractChannel(trajectory, column);
     if (channel.t.empty()) return fail("input column '" + mapped->second + "' has no samples");
+    for (size_t k = 0; k < channel.t.size() && info.InputPositive(i); ++k) {
+      if (channel.value[k] > 0.0) continue;
+      char text[64];
+      std::snprintf(text, sizeof(text), "%g at t = %g s", channel.value[k], channel.t[k]);
+      return fail("input '" + input + "' (column '" + mapped->second + "') is " + text +
+                  ": the model needs it > 0");
+    }
     auto method = spec.interpolation.find(input);
     Interpolation interpolation =
         method == spec.interpolation.end() ? spec.default_interpolation : method->second;

@@ -56,9 +56,15 @@ struct ModelInfo {
   // The horizontal position outputs (north, east): the first two outputs in metres; -1 when
   // the model has none (no x-y track in the report).
   std::pair<int, int> TrackOutputs() const;
+  // Inputs whose every sample must be > 0 (a speed a model divides by); a record with one that
+  // is not is refused, naming the column and time.
+  std::vector<bool> positive_inputs;
 
   bool InputOptional(int index) const {
     return index < static_cast<int>(optional_inputs.size()) && optional_inputs[index];
+  }
+  bool InputPositive(int index) const {
+    return index < static_cast<int>(positive_inputs.size()) && positive_inputs[index];
   }
   int ParameterIndex(const std::string& name) const;
   int StateIndex(const std::string& name) const;

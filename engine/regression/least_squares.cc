@@ -1,5 +1,6 @@
 #include "engine/regression/least_squares.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -29,13 +30,46 @@ Eigen::MatrixXi Dependence(const ModelHandle& model, int num_parameters, int num
   return depends;
 }
 
+// A design column of an equation: coefficient j of the equation, on the samples of every
+// record (group -1) or only of the records of one experiment (a per-experiment parameter's
+// coefficient: one column per experiment, e.g. the intercept K delta_0/T of each run).
+struct DesignColumn {
+  int coefficient;
+  int group;
+};
+
 // The regression problem of every equation at parameters p.
 class EquationData {
  public:
   EquationData(const ModelHandle& model, const LeastSquaresOptions& options)
-      : model_(model), form_(*model.regression_form()), options_(options) {}
+      : model_(model), form_(*model.regression_form()), options_(options) {
+    for (const auto& coefficients : form_.coefficients) {
+      design_.emplace_back();
+      for (int j = 0; j < static_cast<int>(coefficients.size()); ++j) {
+        design_.back().push_back({j, -1});
+      }
+    }
+  }
 
-  // Stacks the selected samples of each equation: X (all coefficient columns) and y = x'.
+  // Coefficients with expanded[i][j] get one column per group; group_of[r] is record r's.
+  void SetGroups(const std::vector<std::vector<bool>>& expanded, int groups,
+                 std::vector<int> group_of) {
+    group_of_ = std::move(group_of);
+    for (size_t i = 0; i < design_.size(); ++i) {
+      design_[i].clear();
+      for (int j = 0; j < static_cast<int>(expanded[i].size()); ++j) {
+        if (!expanded[i][j]) {
+          design_[i].push_back({j, -1});
+          continue;
+        }
+        for (int g = 0; g < groups; ++g) design_[i].push_back({j, g});
+      }
+    }
+  }
+
+  const std::vector<DesignColumn>& design(int i) const { return design_[i]; }
+
+  // Stacks the selected samples of each equation: X (the design columns) and y = x'.
   void Build(const std::vector<double>& p, std::vector<RegressionRecord>* records) {
     const int equations = static_cast<int>(form_.states.size());
     x_.assign(equations, Eigen::MatrixXd());
@@ -47,14 +81,18 @@ class EquationData {
       for (int i = 0; i < equations; ++i) rows[i] += Count((*records)[r], phis[r][i], i);
     }
     for (int i = 0; i < equations; ++i) {
-      x_[i].resize(rows[i], form_.coefficients[i].size());
+      x_[i] = Eigen::MatrixXd::Zero(rows[i], design_[i].size());
       y_[i].resize(rows[i]);
       int row = 0;
       for (size_t r = 0; r < records->size(); ++r) {
         const RegressionRecord& record = (*records)[r];
+        const int group = group_of_.empty() ? -1 : group_of_[r];
         for (int k = 0; k < record.size(); ++k) {
           if (!Selected(record, phis[r][i], i, k)) continue;
-          x_[i].row(row) = phis[r][i].row(k);
+          for (size_t d = 0; d < design_[i].size(); ++d) {
+            const DesignColumn& c = design_[i][d];
+            if (c.group < 0 || c.group == group) x_[i](row, d) = phis[r][i](k, c.coefficient);
+          }
           y_[i](row++) = record.xdot(k, form_.states[i]);
         }
       }
@@ -86,27 +124,45 @@ class EquationData {
   const ModelHandle& model_;
   const RegressionForm& form_;
   const LeastSquaresOptions& options_;
+  std::vector<std::vector<DesignColumn>> design_;
+  std::vector<int> group_of_;  // per record; empty: no per-experiment parameters
   std::vector<Eigen::MatrixXd> x_;
   std::vector<Eigen::VectorXd> y_;
 };
 
 // Minimum-distance residuals L_i^-1 (theta_i(p) - theta_i^) over the identified coefficients.
+// The block holds the shared regressed parameters, then each per-experiment parameter's value
+// for every group (experiment); a coefficient of group g is evaluated with group g's values.
 struct MinimumDistance {
   const ModelHandle* model;
-  std::vector<double> base;      // every parameter
-  std::vector<int> free;         // indices into base, in the parameter block's order
+  std::vector<double> base;         // every parameter
+  std::vector<int> free;            // shared: indices into base, in the block's order
+  std::vector<int> per_experiment;  // indices into base, after `free` in the block, by group
+  int groups = 0;
   std::vector<int> coefficient;  // identified coefficient indices (into theta)
+  std::vector<int> group;        // their group, -1: every record
   Eigen::VectorXd target;        // their estimates
   Eigen::MatrixXd whitening;     // L^-1 (block diagonal over equations)
   int num_coefficients = 0;
 
+  int size() const { return static_cast<int>(free.size() + per_experiment.size() * groups); }
+
   bool operator()(double const* const* parameters, double* residuals) const {
     std::vector<double> p = base;
     for (size_t i = 0; i < free.size(); ++i) p[free[i]] = parameters[0][i];
-    std::vector<double> theta(num_coefficients);
-    model->Coefficients(p.data(), theta.data());
+    std::vector<std::vector<double>> theta(groups + 1, std::vector<double>(num_coefficients));
+    model->Coefficients(p.data(), theta[0].data());
+    for (int g = 0; g < groups; ++g) {
+      std::vector<double> q = p;
+      for (size_t m = 0; m < per_experiment.size(); ++m) {
+        q[per_experiment[m]] = parameters[0][free.size() + m * groups + g];
+      }
+      model->Coefficients(q.data(), theta[g + 1].data());
+    }
     Eigen::VectorXd difference(coefficient.size());
-    for (size_t j = 0; j < coefficient.size(); ++j) difference(j) = theta[coefficient[j]] - target(j);
+    for (size_t j = 0; j < coefficient.size(); ++j) {
+      difference(j) = theta[group[j] + 1][coefficient[j]] - target(j);
+    }
     Eigen::Map<Eigen::VectorXd>(residuals, coefficient.size()) = whitening * difference;
     return true;
   }
@@ -148,13 +204,11 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
   // Roles: profiled (searched), regressed (from the coefficients), held.
   std::vector<double> p(np);
   std::vector<bool> estimated(np, false), profiled(np, false);
+  std::vector<int> per_experiment;
   for (int i = 0; i < np; ++i) {
     p[i] = specs[i].start;
-    if (specs[i].role == ParameterRole::kPerExperiment) {
-      return fail("parameter '" + specs[i].name + "': per_experiment is not supported by the "
-                  "least-squares stage");
-    }
     estimated[i] = specs[i].role != ParameterRole::kFixed;
+    if (specs[i].role == ParameterRole::kPerExperiment) per_experiment.push_back(i);
   }
   for (int i : form->profiled) profiled[i] = estimated[i];
   const Eigen::MatrixXi depends = Dependence(model, np, nc);
@@ -165,6 +219,10 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
   std::vector<int> regressed, searched;
   for (int i = 0; i < np; ++i) {
     if (!estimated[i]) continue;
+    if (profiled[i] && specs[i].role == ParameterRole::kPerExperiment) {
+      return fail("parameter '" + info.parameters[i] + "' enters the regressors and cannot be "
+                  "per_experiment in a least-squares stage");
+    }
     if (profiled[i]) {
       searched.push_back(i);
       continue;
@@ -173,12 +231,36 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
       return fail("parameter '" + info.parameters[i] +
                   "' does not enter the equation-error form of " + info.name + "; hold it");
     }
-    regressed.push_back(i);
+    if (specs[i].role != ParameterRole::kPerExperiment) regressed.push_back(i);
   }
-  if (regressed.empty()) return fail("no parameter to regress");
+  if (regressed.empty() && per_experiment.empty()) return fail("no parameter to regress");
+
+  // Per-experiment parameters: their coefficients get one column per experiment (group).
+  std::vector<std::string> groups;
+  std::vector<int> group_of;
+  EquationData data(model, options);
+  if (!per_experiment.empty()) {
+    for (const RegressionRecord& record : *records) {
+      const auto found = std::find(groups.begin(), groups.end(), record.name);
+      group_of.push_back(static_cast<int>(found - groups.begin()));
+      if (found == groups.end()) groups.push_back(record.name);
+    }
+    std::vector<std::vector<bool>> expanded;
+    for (int i = 0, c = 0; i < equations; ++i) {
+      expanded.emplace_back();
+      for (size_t j = 0; j < form->coefficients[i].size(); ++j, ++c) {
+        bool by_experiment = false;
+        for (int m : per_experiment) by_experiment |= depends(c, m) != 0;
+        expanded.back().push_back(by_experiment);
+      }
+    }
+    data.SetGroups(expanded, static_cast<int>(groups.size()), group_of);
+  }
+  auto column_name = [&](int i, const DesignColumn& c) {
+    return form->coefficients[i][c.coefficient] + (c.group < 0 ? "" : "[" + groups[c.group] + "]");
+  };
 
   // Each equation's regression at p; returns sum_i n_i log(RSS_i / n_i).
-  EquationData data(model, options);
   std::vector<int> offset(equations + 1, 0);
   for (int i = 0; i < equations; ++i) {
     offset[i + 1] = offset[i] + static_cast<int>(form->coefficients[i].size());
@@ -196,10 +278,11 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
       const Eigen::MatrixXd& x = data.x(i);
       Eigen::VectorXd y = data.y(i);
       columns[i].clear();
-      const double largest = x.rows() > 0 ? x.colwise().norm().maxCoeff() : 0.0;
+      const double largest = x.rows() > 0 && x.cols() > 0 ? x.colwise().norm().maxCoeff() : 0.0;
       for (int j = 0; j < x.cols(); ++j) {
-        if (!coefficient_free[offset[i] + j]) {
-          y -= x.col(j) * theta[offset[i] + j];  // held: to the left-hand side
+        const int c = offset[i] + data.design(i)[j].coefficient;
+        if (!coefficient_free[c]) {
+          y -= x.col(j) * theta[c];  // held: to the left-hand side
         } else if (x.col(j).norm() > 1e-9 * largest) {
           columns[i].push_back(j);
         }
@@ -275,12 +358,14 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
   for (int i = 0; i < equations; ++i) {
     EquationSummary e;
     e.state = info.states[form->states[i]];
-    e.coefficients = form->coefficients[i];
-    const int m = static_cast<int>(e.coefficients.size());
+    const int m = static_cast<int>(data.design(i).size());
     e.theta = Eigen::VectorXd::Constant(m, kNaN);
     e.std_errors = Eigen::VectorXd::Constant(m, kNaN);
     for (int j = 0; j < m; ++j) {
-      if (!coefficient_free[offset[i] + j]) e.theta(j) = theta_now[offset[i] + j];
+      const DesignColumn& d = data.design(i)[j];
+      e.coefficients.push_back(column_name(i, d));
+      const int c = offset[i] + d.coefficient;
+      if (!coefficient_free[c]) e.theta(j) = theta_now[c];
     }
     for (size_t j = 0; j < columns[i].size(); ++j) {
       e.theta(columns[i][j]) = fits[i].theta(j);
@@ -299,6 +384,8 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
   distance->model = &model;
   distance->base = p;
   distance->free = regressed;
+  distance->per_experiment = per_experiment;
+  distance->groups = static_cast<int>(groups.size());
   distance->num_coefficients = nc;
   std::vector<Eigen::MatrixXd> blocks;
   int identified = 0;
@@ -314,7 +401,11 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
       w = Eigen::MatrixXd::Identity(m, m) / std::max(fits[i].residual_rms, 1e-12);
     }
     blocks.push_back(w);
-    for (int j = 0; j < m; ++j) distance->coefficient.push_back(offset[i] + columns[i][j]);
+    for (int j = 0; j < m; ++j) {
+      const DesignColumn& d = data.design(i)[columns[i][j]];
+      distance->coefficient.push_back(offset[i] + d.coefficient);
+      distance->group.push_back(d.group);
+    }
     identified += m;
   }
   distance->target.resize(identified);
@@ -329,9 +420,32 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
       row += m;
     }
   }
-  const int nr = static_cast<int>(regressed.size());
+  // The block: shared regressed parameters, then per-experiment ones group by group, each
+  // started from its experiment's carried value (ParameterSpec::experiment_starts).
+  const int nr = distance->size();
+  const int shared = static_cast<int>(regressed.size());
+  const int num_groups = static_cast<int>(groups.size());
+  std::vector<int> block_parameter(nr);  // model parameter of each block entry
   std::vector<double> block(nr);
-  for (int k = 0; k < nr; ++k) block[k] = p[regressed[k]];
+  for (int k = 0; k < shared; ++k) {
+    block_parameter[k] = regressed[k];
+    block[k] = p[regressed[k]];
+  }
+  for (size_t m = 0; m < per_experiment.size(); ++m) {
+    const ParameterSpec& spec = specs[per_experiment[m]];
+    for (int g = 0; g < num_groups; ++g) {
+      const int k = shared + static_cast<int>(m) * num_groups + g;
+      block_parameter[k] = per_experiment[m];
+      const auto carried = spec.experiment_starts.find(groups[g]);
+      block[k] = carried != spec.experiment_starts.end()
+                     ? std::clamp(carried->second, spec.lower, spec.upper)
+                     : spec.start;
+    }
+  }
+  auto block_name = [&](int k) {
+    const std::string& name = info.parameters[block_parameter[k]];
+    return k < shared ? name : name + "[" + groups[(k - shared) % num_groups] + "]";
+  };
   auto* cost = new ceres::DynamicNumericDiffCostFunction<MinimumDistance, ceres::CENTRAL>(
       distance, ceres::TAKE_OWNERSHIP);
   cost->AddParameterBlock(nr);
@@ -339,7 +453,7 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
   ceres::Problem problem;
   problem.AddResidualBlock(cost, nullptr, block.data());
   for (int k = 0; k < nr; ++k) {
-    const ParameterSpec& s = specs[regressed[k]];
+    const ParameterSpec& s = specs[block_parameter[k]];
     if (std::isfinite(s.lower)) problem.SetParameterLowerBound(block.data(), k, s.lower);
     if (std::isfinite(s.upper)) problem.SetParameterUpperBound(block.data(), k, s.upper);
   }
@@ -351,7 +465,12 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
   ceres::Solver::Summary solved;
   ceres::Solve(solver, &problem, &solved);
   if (!solved.IsSolutionUsable()) return fail("minimum distance: " + solved.message);
-  for (int k = 0; k < nr; ++k) p[regressed[k]] = block[k];
+  for (int k = 0; k < shared; ++k) p[regressed[k]] = block[k];
+  for (size_t m = 0; m < per_experiment.size(); ++m) {  // the mean serves the regressors
+    double sum = 0.0;
+    for (int g = 0; g < num_groups; ++g) sum += block[shared + m * num_groups + g];
+    if (num_groups > 0) p[per_experiment[m]] = sum / num_groups;
+  }
 
   // Covariance of the regressed parameters: (J^T J)^-1 over the determined ones.
   double cost_value;
@@ -368,13 +487,14 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
   result->std_errors.assign(np, kNaN);
   result->undetermined.assign(np, false);
   result->free.clear();
+  result->per_experiment.clear();
   std::vector<int> determined;
   for (int k = 0; k < nr; ++k) {
     if (j.col(k).norm() > 1e-12) {
       determined.push_back(k);
     } else {
-      result->undetermined[regressed[k]] = true;
-      summary->notes.push_back("'" + info.parameters[regressed[k]] +
+      if (k < shared) result->undetermined[regressed[k]] = true;
+      summary->notes.push_back("'" + block_name(k) +
                                "' enters no identified coefficient (no data in its regions); "
                                "held at its start");
     }
@@ -383,18 +503,35 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
   for (size_t k = 0; k < determined.size(); ++k) jd.col(k) = j.col(determined[k]);
   const Eigen::MatrixXd information = jd.transpose() * jd;
   Eigen::FullPivLU<Eigen::MatrixXd> lu(information);
+  Eigen::MatrixXd covariance;
   if (lu.rank() < information.rows()) {
     summary->notes.push_back("the coefficients do not determine every parameter (rank " +
                              std::to_string(lu.rank()) + " of " +
                              std::to_string(information.rows()) + ")");
-    result->covariance = Eigen::MatrixXd::Constant(information.rows(), information.rows(), kNaN);
+    covariance = Eigen::MatrixXd::Constant(information.rows(), information.rows(), kNaN);
   } else {
-    result->covariance = information.inverse();
+    covariance = information.inverse();
   }
+  int determined_shared = 0;
   for (size_t k = 0; k < determined.size(); ++k) {
+    if (determined[k] >= shared) continue;
+    ++determined_shared;
     const int i = regressed[determined[k]];
     result->free.push_back(i);
-    result->std_errors[i] = std::sqrt(result->covariance(k, k));
+    result->std_errors[i] = std::sqrt(covariance(k, k));
+  }
+  // Determined shared entries come first in `determined`: their block is the covariance.
+  result->covariance = covariance.topLeftCorner(determined_shared, determined_shared);
+  for (int k = shared; k < nr; ++k) {
+    ExperimentValue v;
+    v.parameter = block_parameter[k];
+    v.experiment = groups[(k - shared) % num_groups];
+    v.value = block[k];
+    const auto at = std::find(determined.begin(), determined.end(), k);
+    v.undetermined = at == determined.end();
+    const int row = static_cast<int>(at - determined.begin());
+    v.std_error = v.undetermined ? kNaN : std::sqrt(covariance(row, row));
+    result->per_experiment.push_back(v);
   }
   for (int i : searched) {
     result->free.push_back(i);  // searched: no standard error from the regression

@@ -59,17 +59,31 @@ struct LeastSquaresSummary {
   std::string BriefReport() const;
 };
 
+// A per-experiment parameter's value for one experiment (regression record name).
+struct ExperimentValue {
+  int parameter = 0;  // model parameter index
+  std::string experiment;
+  double value = 0.0;
+  double std_error = 0.0;  // NaN when undetermined
+  bool undetermined = false;
+};
+
 struct LeastSquaresResult {
-  std::vector<double> values;      // every model parameter (held ones at their start)
+  // Every model parameter (held ones at their start; a per-experiment one at its mean).
+  std::vector<double> values;
   std::vector<double> std_errors;  // NaN for held and undetermined parameters
   std::vector<bool> undetermined;
   std::vector<int> free;           // indices of the estimated parameters
   Eigen::MatrixXd covariance;      // of `free`
+  std::vector<ExperimentValue> per_experiment;  // parameter by parameter, experiment order
 };
 
 // `specs` holds every model parameter in model order (ParameterRole kFixed: held; kFree,
-// kIsolated, kShared: estimated; kPerExperiment is not supported). Records keep the internal
-// states the model fills in (e.g. propeller thrusts) at the final values.
+// kIsolated, kShared: estimated; kPerExperiment: estimated for each experiment, i.e. each
+// distinct record name: the coefficients it enters get one column per experiment, such as a
+// rudder bias's intercept K delta_0/T, and the minimum distance finds one value per
+// experiment). Records keep the internal states the model fills in (e.g. propeller thrusts)
+// at the final values.
 bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>& specs,
                      const LeastSquaresOptions& options, std::vector<RegressionRecord>* records,
                      LeastSquaresResult* result, LeastSquaresSummary* summary);

@@ -102,6 +102,12 @@ bool BuildRegressionRecord(const ExperimentSpec& spec, const Trajectory& data,
     if (column < 0) return fail("input '" + info.inputs[i] + "' is not mapped to a column");
     const Channel c = ExtractChannel(data, column);
     if (c.t.empty()) return fail("input '" + info.inputs[i] + "' has no samples");
+    for (size_t k = 0; k < c.t.size() && info.InputPositive(i); ++k) {
+      if (!(c.value[k] > 0.0)) {
+        return fail("input '" + info.inputs[i] + "' is " + std::to_string(c.value[k]) +
+                    " at t = " + std::to_string(c.t[k]) + " s: the model needs it > 0");
+      }
+    }
     for (int k = 0; k < n; ++k) {
       const int j = LastAtOrBefore(c.t, r.t[k]);
       r.u(k, i) = c.value[std::max(j, 0)];

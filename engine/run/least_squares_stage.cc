@@ -27,6 +27,19 @@ bool RunLeastSquaresStage(const RunConfig& config, const StageConfig& stage,
   r.name = stage.options.name;
   r.model = info.name;
   for (size_t i = 0; i < specs.size(); ++i) {
+    if (specs[i].role == ParameterRole::kPerExperiment) {  // named as output error names them
+      for (const ExperimentValue& v : ls.per_experiment) {
+        if (v.parameter != static_cast<int>(i)) continue;
+        Estimate e = ParameterEstimate(specs[i], v.value, v.std_error);
+        e.name = specs[i].name + "[" + v.experiment + "]";
+        e.experiment = v.experiment;
+        const auto carried = specs[i].experiment_starts.find(v.experiment);
+        if (carried != specs[i].experiment_starts.end()) e.start = carried->second;
+        e.undetermined = v.undetermined;
+        r.estimates.push_back(e);
+      }
+      continue;
+    }
     Estimate e = ParameterEstimate(specs[i], ls.values[i], ls.std_errors[i]);
     e.undetermined = ls.undetermined[i];
     r.estimates.push_back(e);

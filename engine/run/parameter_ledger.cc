@@ -122,6 +122,11 @@ bool ResolveParameters(const StageConfig& stage, const ModelInfo& info,
       if (!std::isfinite(spec.lower)) spec.lower = bounds->second.first;
       if (!std::isfinite(spec.upper)) spec.upper = bounds->second.second;
     }
+    auto per_experiment = ledger.per_experiment.find(name);
+    if (listed && spec.start_from_previous && spec.role == ParameterRole::kPerExperiment &&
+        per_experiment != ledger.per_experiment.end()) {
+      spec.experiment_starts = per_experiment->second;
+    }
     if (listed && spec.start_from_previous) {
       spec.start = carried;
       spec.start_from_previous = false;
@@ -139,6 +144,10 @@ bool ResolveParameters(const StageConfig& stage, const ModelInfo& info,
 
 void RecordStage(const StageResult& stage, ParameterLedger* ledger) {
   for (const Estimate& e : stage.estimates) {
+    if (e.kind == EstimateKind::kParameter && e.role == ParameterRole::kPerExperiment &&
+        !e.experiment.empty()) {
+      ledger->per_experiment[e.name.substr(0, e.name.find('['))][e.experiment] = e.value;
+    }
     if (e.kind != EstimateKind::kParameter || !e.experiment.empty()) continue;
     if (!IsEstimatedOnce(e.role)) continue;
     ledger->latest[e.name] = e.value;

@@ -29,6 +29,9 @@ struct ParameterLedger {
   // keeps that bound (a refinement must not lose what kept an earlier stage physical).
   std::map<std::string, std::pair<double, double>> bounds;
   std::map<std::string, std::vector<Entry>> estimates;
+  // Latest per-experiment estimates: parameter -> experiment -> value. A later stage listing
+  // the parameter as per_experiment without a start starts each experiment from its own.
+  std::map<std::string, std::map<std::string, double>> per_experiment;
 };
 
 // Full parameter list of a stage: starts resolved from the ledger, unlisted ones fixed there,
@@ -38,7 +41,8 @@ bool ResolveParameters(const StageConfig& stage, const ModelInfo& info,
                        const ParameterLedger& ledger, std::vector<ParameterSpec>* specs,
                        std::string* error);
 
-// Enters a finished stage's estimates of parameters estimated once (free, isolated, shared).
+// Enters a finished stage's estimates of parameters estimated once (free, isolated, shared),
+// and its per-experiment estimates as the latest of their experiments.
 void RecordStage(const StageResult& stage, ParameterLedger* ledger);
 
 // Every model parameter's final value under `rule` (information: the shared parameters

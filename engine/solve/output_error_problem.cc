@@ -187,7 +187,12 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
       v.scale = specs[i].EffectiveScale();
       v.lower = specs[i].lower;
       v.upper = specs[i].upper;
-      p->block_of_[e].push_back(add_variable(v, specs[i].start));
+      double start = specs[i].start;
+      const std::map<std::string, double>& carried = specs[i].experiment_starts;
+      auto found = carried.find(experiment.name);
+      if (found == carried.end()) found = carried.find(experiment.record);
+      if (found != carried.end()) start = std::clamp(found->second, v.lower, v.upper);
+      p->block_of_[e].push_back(add_variable(v, start));
     }
     for (size_t s = 0; s < info.states.size(); ++s) {
       Variable v;

@@ -38,6 +38,10 @@ struct ParameterSpec {
   // The start is the latest estimate of an earlier stage (or the model default) rather than
   // `start`; resolved by the pipeline before the problem is built.
   bool start_from_previous = false;
+  // kPerExperiment: starts of particular experiments (by name, or by the record a segment or
+  // piece comes from), e.g. an earlier stage's per-experiment estimates; others start at
+  // `start`.
+  std::map<std::string, double> experiment_starts;
 
   double EffectiveScale() const;
   // Bounds ordered, start finite and inside them, scale positive. `where` prefixes messages.

@@ -20,8 +20,16 @@ bool ClosedLoopOptions::IsValid(std::string* error) const {
     *error = "substeps must be >= 1";
   else if (!(duration > sample_time))
     *error = "duration must exceed sample_time";
-  else if (!(rudder_noise >= 0) || !(heading_noise >= 0))
+  else if (!(rudder_noise >= 0) || !(heading_noise >= 0) || !(heading_resolution >= 0))
     *error = "noise levels must be >= 0";
+  else if (!(rudder_rate >= 0))
+    *error = "rudder rate limit must be >= 0";
+  else if (!std::isfinite(rudder_bias) || !std::isfinite(disturbance_amplitude))
+    *error = "rudder bias and disturbance must be finite";
+  else if (disturbance_amplitude != 0 && !(disturbance_period > 0))
+    *error = "a disturbance needs a period > 0";
+  else if (!(speed >= 0) || !std::isfinite(speed))
+    *error = "speed must be >= 0";
   else if (e.type != Excitation::Type::kZigzag && e.periods.empty())
     *error = "excitation needs a period";
   else if (e.type == Excitation::Type::kSine && e.periods.size() != 1)
@@ -59,31 +67,57 @@ bool SimulateClosedLoop(const ModelHandle& model, const std::vector<double>& par
   const ModelInfo& info = model.info();
   const int n = static_cast<int>(info.states.size());
   const int psi_out = info.OutputIndex("psi"), r_out = info.OutputIndex("r");
-  if (info.inputs.size() != 1 || psi_out < 0 || r_out < 0) {
-    *error = "model " + info.name + " is not a steering model (input delta, outputs psi, r)";
+  int gain = -1;
+  for (const char* name : {"K", "K_nd", "b"}) {
+    if (gain < 0) gain = info.ParameterIndex(name);
+  }
+  const int speed_input = info.InputIndex("U");
+  if (info.inputs.size() != (speed_input < 0 ? 1u : 2u) || info.InputIndex("delta") != 0 ||
+      psi_out < 0 || r_out < 0 || gain < 0) {
+    *error = "model " + info.name +
+             " is not a steering model (inputs delta and optionally U, outputs psi, r, a gain)";
     return false;
   }
-  const double sign_k = parameters[info.ParameterIndex("K")] < 0 ? -1.0 : 1.0;
+  if ((speed_input >= 0) != (options.speed > 0)) {
+    *error = speed_input >= 0 ? "model " + info.name + " takes a speed: the run needs a speed > 0"
+                              : "model " + info.name + " takes no speed input";
+    return false;
+  }
+  const double sign_k = parameters[gain] < 0 ? -1.0 : 1.0;
   const Excitation& e = options.excitation;
   const bool zigzag = e.type == Excitation::Type::kZigzag;
-  double zigzag_command = sign_k * e.zigzag_rudder;
+  double zigzag_command = sign_k * e.zigzag_first * e.zigzag_rudder;
+  std::mt19937_64 random(options.seed);
+  std::mt19937_64 phase_random(options.seed + 7919);  // keeps the noise of older configs
+  const double disturbance_phase =
+      std::uniform_real_distribution<double>(0, 2 * M_PI)(phase_random);
 
-  // Closed-loop state z = [model states, delta].
-  std::vector<double> y(info.outputs.size());
-  auto heading = [&](const std::vector<double>& z) {
-    double u = z[n];
-    model.Output(z.data(), &u, parameters.data(), y.data());
+  // Closed-loop state z = [model states, delta]. The model steers on
+  // u = [delta + bias + disturbance(t) (, U)].
+  std::vector<double> y(info.outputs.size()), u(info.inputs.size(), options.speed);
+  auto inputs = [&](const std::vector<double>& z, double t) {
+    u[0] = z[n] + options.rudder_bias;
+    if (options.disturbance_amplitude != 0) {
+      u[0] += options.disturbance_amplitude *
+              std::sin(2 * M_PI * t / options.disturbance_period + disturbance_phase);
+    }
+    return u.data();
+  };
+  auto heading = [&](const std::vector<double>& z, double t) {
+    model.Output(z.data(), inputs(z, t), parameters.data(), y.data());
     return y[psi_out];
   };
   auto delta_set = [&](const std::vector<double>& z, double t) {
-    double set = zigzag ? zigzag_command
-                        : sign_k * options.controller_gain * (HeadingSetpoint(e, t) - heading(z));
+    double set = zigzag
+                     ? zigzag_command
+                     : sign_k * options.controller_gain * (HeadingSetpoint(e, t) - heading(z, t));
     return std::clamp(set, -options.rudder_limit, options.rudder_limit);
   };
   auto rhs = [&](const std::vector<double>& z, double t, std::vector<double>* zdot) {
-    double u = z[n];
-    if (!model.Derivative(z.data(), &u, parameters.data(), zdot->data())) return false;
-    (*zdot)[n] = (delta_set(z, t) - z[n]) / options.steering_time_constant;
+    if (!model.Derivative(z.data(), inputs(z, t), parameters.data(), zdot->data())) return false;
+    double rate = (delta_set(z, t) - z[n]) / options.steering_time_constant;
+    if (options.rudder_rate > 0) rate = std::clamp(rate, -options.rudder_rate, options.rudder_rate);
+    (*zdot)[n] = rate;
     return true;
   };
 
@@ -91,10 +125,10 @@ bool SimulateClosedLoop(const ModelHandle& model, const std::vector<double>& par
       static_cast<long>(std::floor(options.duration / options.sample_time + 1e-9)) + 1;
   Trajectory out;
   out.names = {"psi_set", "delta_set", "delta", "psi", "r", "delta_true", "psi_true"};
+  if (speed_input >= 0) out.names.push_back("U");
   out.columns.assign(out.names.size(), {});
   for (auto& column : out.columns) column.reserve(samples);
   out.t.reserve(samples);
-  std::mt19937_64 random(options.seed);
   std::normal_distribution<double> rudder_noise(0.0, options.rudder_noise);
   std::normal_distribution<double> heading_noise(0.0, options.heading_noise);
 
@@ -102,7 +136,7 @@ bool SimulateClosedLoop(const ModelHandle& model, const std::vector<double>& par
   const double h = options.sample_time / options.substeps;
   for (long k = 0; k < samples; ++k) {
     const double t = k * options.sample_time;
-    const double psi = heading(z);
+    const double psi = heading(z, t);
     if (zigzag) {
       if (sign_k * psi >= e.zigzag_heading && sign_k * zigzag_command > 0)
         zigzag_command = -zigzag_command;
@@ -113,10 +147,15 @@ bool SimulateClosedLoop(const ModelHandle& model, const std::vector<double>& par
     out.columns[0].push_back(zigzag ? std::nan("") : HeadingSetpoint(e, t));
     out.columns[1].push_back(delta_set(z, t));
     out.columns[2].push_back(z[n] + (options.rudder_noise > 0 ? rudder_noise(random) : 0.0));
-    out.columns[3].push_back(psi + (options.heading_noise > 0 ? heading_noise(random) : 0.0));
+    double logged = psi + (options.heading_noise > 0 ? heading_noise(random) : 0.0);
+    if (options.heading_resolution > 0) {
+      logged = options.heading_resolution * std::round(logged / options.heading_resolution);
+    }
+    out.columns[3].push_back(logged);
     out.columns[4].push_back(y[r_out]);
     out.columns[5].push_back(z[n]);
     out.columns[6].push_back(psi);
+    if (speed_input >= 0) out.columns[7].push_back(options.speed);
     if (k + 1 == samples) break;
     for (int s = 0; s < options.substeps; ++s) {
       const double ts = t + s * h;

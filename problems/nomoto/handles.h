@@ -12,5 +12,9 @@ namespace vesselid::nomoto {
 std::unique_ptr<ModelHandle> MakeFirstOrderHandle();
 std::unique_ptr<ModelHandle> MakeSecondOrderHandle();
 std::unique_ptr<ModelHandle> MakeNorrbinHandle();
+// Norrbin's n1-form (n1_form_models.h): first order, or with the cubic n3 term; length > 0
+// makes the parameters non-dimensional and adds the speed input U.
+std::unique_ptr<ModelHandle> MakeN1FormHandle(bool cubic, double length = 0.0);
+std::unique_ptr<ModelHandle> MakeSecondOrderRatesHandle();
 
 }  // namespace vesselid::nomoto

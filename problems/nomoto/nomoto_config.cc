@@ -11,23 +11,40 @@ namespace {
 namespace fs = std::filesystem;
 constexpr double kDegree = M_PI / 180.0;
 
+constexpr char kTypes[] =
+    "first_order, second_order, norrbin, first_order_n1, norrbin_n1, second_order_rates";
+
 std::unique_ptr<ModelHandle> MakeModel(const YamlReader& reader, const YAML::Node& model,
                                        const std::string& path) {
-  reader.CheckMap(model, path, {"family", "type"});
-  if (!model["type"])
-    reader.Fail(model, Child(path, "type"), "missing (first_order, second_order, norrbin)");
+  reader.CheckMap(model, path, {"family", "type", "length"});
+  if (!model["type"]) {
+    reader.Fail(model, Child(path, "type"), std::string("missing (") + kTypes + ")");
+  }
   const std::string type = reader.String(model["type"], Child(path, "type"));
+  const bool n1_form = type == "first_order_n1" || type == "norrbin_n1";
+  double length = 0.0;
+  if (model["length"]) {
+    if (!n1_form) {
+      reader.Fail(model["length"], Child(path, "length"),
+                  "only the n1-form models (first_order_n1, norrbin_n1) take a ship length "
+                  "and a speed input");
+    }
+    length = reader.Double(model["length"], Child(path, "length"));
+    if (!(length > 0.0)) reader.Fail(model["length"], Child(path, "length"), "must be > 0 [m]");
+  }
   if (type == "first_order") return MakeFirstOrderHandle();
   if (type == "second_order") return MakeSecondOrderHandle();
   if (type == "norrbin") return MakeNorrbinHandle();
+  if (n1_form) return MakeN1FormHandle(type == "norrbin_n1", length);
+  if (type == "second_order_rates") return MakeSecondOrderRatesHandle();
   reader.Fail(model["type"], Child(path, "type"),
-              "unknown Nomoto model '" + type + "' (first_order, second_order, norrbin)");
+              "unknown Nomoto model '" + type + "' (" + kTypes + ")");
 }
 
 Excitation ReadExcitation(const YamlReader& reader, const YAML::Node& node,
                           const std::string& path) {
-  reader.CheckMap(node, path,
-                  {"type", "amplitude_deg", "period", "periods", "rudder_deg", "heading_deg"});
+  reader.CheckMap(node, path, {"type", "amplitude_deg", "period", "periods", "rudder_deg",
+                               "heading_deg", "first"});
   Excitation e;
   const std::string type = node["type"] ? reader.String(node["type"], Child(path, "type")) : "sine";
   if (type == "sine") {
@@ -47,6 +64,16 @@ Excitation ReadExcitation(const YamlReader& reader, const YAML::Node& node,
   e.amplitude = amplitude * kDegree;
   e.zigzag_rudder = rudder * kDegree;
   e.zigzag_heading = heading * kDegree;
+  if (node["first"]) {
+    if (e.type != Excitation::Type::kZigzag) {
+      reader.Fail(node["first"], Child(path, "first"), "only a zigzag has a first side");
+    }
+    const std::string first = reader.String(node["first"], Child(path, "first"));
+    if (first != "port" && first != "starboard") {
+      reader.Fail(node["first"], Child(path, "first"), "'" + first + "': port or starboard");
+    }
+    e.zigzag_first = first == "port" ? -1.0 : 1.0;
+  }
   if (node["period"]) e.periods = {reader.Double(node["period"], Child(path, "period"))};
   if (node["periods"]) e.periods = reader.Doubles(node["periods"], Child(path, "periods"));
   return e;
@@ -56,8 +83,8 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
               const std::string& out_dir, bool check_only, std::string* error) {
   const std::string path = "simulation";
   if (!simulation) reader.Fail(simulation, path, "missing: the config has no simulation section");
-  reader.CheckMap(simulation, path,
-                  {"truth", "steering_gear", "sample_time", "substeps", "experiments"});
+  reader.CheckMap(simulation, path, {"truth", "steering_gear", "sample_time", "substeps",
+                                     "experiments", "degrees"});
   const ModelInfo& info = model.info();
   std::vector<double> truth = info.parameter_defaults;
   if (!simulation["truth"]) reader.Fail(simulation, Child(path, "truth"), "missing");
@@ -70,13 +97,18 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
   ClosedLoopOptions base;
   if (const YAML::Node gear = simulation["steering_gear"]) {
     const std::string key = Child(path, "steering_gear");
-    reader.CheckMap(gear, key, {"Tm", "kp", "rudder_limit_deg"});
+    reader.CheckMap(gear, key, {"Tm", "kp", "rudder_limit_deg", "rate_limit_deg_s"});
     reader.Read(gear, key, "Tm", &base.steering_time_constant);
     reader.Read(gear, key, "kp", &base.controller_gain);
     double limit = base.rudder_limit / kDegree;
     reader.Read(gear, key, "rudder_limit_deg", &limit);
     base.rudder_limit = limit * kDegree;
+    double rate = 0.0;
+    reader.Read(gear, key, "rate_limit_deg_s", &rate);
+    base.rudder_rate = rate * kDegree;
   }
+  bool degrees = false;
+  reader.Read(simulation, path, "degrees", &degrees);
   reader.Read(simulation, path, "sample_time", &base.sample_time);
   reader.Read(simulation, path, "substeps", &base.substeps);
   const YAML::Node experiments = simulation["experiments"];
@@ -88,19 +120,42 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
   for (size_t i = 0; i < experiments.size(); ++i) {
     const YAML::Node node = experiments[i];
     const std::string key = Child(Child(path, "experiments"), i);
-    reader.CheckMap(node, key, {"file", "duration", "excitation", "noise", "seed"});
+    reader.CheckMap(node, key, {"file", "duration", "excitation", "noise", "seed", "speed",
+                                "rudder_bias_deg", "disturbance"});
     if (!node["file"]) reader.Fail(node, key, "missing key 'file'");
     ClosedLoopOptions options = base;
     reader.Read(node, key, "duration", &options.duration);
     if (!node["excitation"]) reader.Fail(node, key, "missing key 'excitation'");
     options.excitation = ReadExcitation(reader, node["excitation"], Child(key, "excitation"));
     if (const YAML::Node noise = node["noise"]) {
-      reader.CheckMap(noise, Child(key, "noise"), {"rudder_deg", "heading_deg"});
-      double rudder = 0.0, heading = 0.0;
+      reader.CheckMap(noise, Child(key, "noise"),
+                      {"rudder_deg", "heading_deg", "heading_resolution_deg"});
+      double rudder = 0.0, heading = 0.0, resolution = 0.0;
       reader.Read(noise, Child(key, "noise"), "rudder_deg", &rudder);
       reader.Read(noise, Child(key, "noise"), "heading_deg", &heading);
+      reader.Read(noise, Child(key, "noise"), "heading_resolution_deg", &resolution);
       options.rudder_noise = rudder * kDegree;
       options.heading_noise = heading * kDegree;
+      options.heading_resolution = resolution * kDegree;
+    }
+    double bias = 0.0;
+    reader.Read(node, key, "rudder_bias_deg", &bias);
+    options.rudder_bias = bias * kDegree;
+    reader.Read(node, key, "speed", &options.speed);
+    const bool takes_speed = info.InputIndex("U") >= 0;
+    if (takes_speed != (options.speed > 0)) {
+      reader.Fail(node, Child(key, "speed"),
+                  takes_speed
+                      ? "model " + info.name + " takes a speed input: give a speed > 0 [m/s]"
+                      : "model " + info.name + " takes no speed input");
+    }
+    if (const YAML::Node disturbance = node["disturbance"]) {
+      const std::string dkey = Child(key, "disturbance");
+      reader.CheckMap(disturbance, dkey, {"rudder_deg", "period"});
+      double amplitude = 0.0;
+      reader.Read(disturbance, dkey, "rudder_deg", &amplitude);
+      options.disturbance_amplitude = amplitude * kDegree;
+      reader.Read(disturbance, dkey, "period", &options.disturbance_period);
     }
     int seed = static_cast<int>(i + 1);
     reader.Read(node, key, "seed", &seed);
@@ -122,6 +177,12 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
   for (const auto& [file, options] : runs) {
     Trajectory trajectory;
     if (!SimulateClosedLoop(model, truth, options, &trajectory, error)) return false;
+    if (degrees) {  // every angle and the yaw rate in degrees (deg/s), as many logs have them
+      for (size_t c = 0; c < trajectory.names.size(); ++c) {
+        if (trajectory.names[c] == "U") continue;
+        for (double& value : trajectory.columns[c]) value /= kDegree;
+      }
+    }
     const std::string target = (fs::path(out_dir) / file).string();
     if (!WriteTrajectoryCsv(target, trajectory, error)) return false;
   }
@@ -131,7 +192,10 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
 }  // namespace
 
 ModelFamily NomotoFamily() {
-  return {"nomoto", "Nomoto steering models (first order, second order, Norrbin)", MakeModel,
+  return {"nomoto",
+          "Nomoto steering models (first order, second order, Norrbin; n1-forms and the "
+          "second-order rates form for course-unstable ships)",
+          MakeModel,
           Simulate};
 }
 

@@ -8,6 +8,7 @@ const std::vector<ModelVariant>& ModelVariants() {
   static const std::vector<ModelVariant> variants = [] {
     std::vector<ModelVariant> v;
     AddNomotoVariants(&v);
+    AddNomotoUnstableVariants(&v);
     AddInputGainVariants(&v);
     AddEriksenVariants(&v);
     AddErunsalVariants(&v);

@@ -71,12 +71,14 @@ struct ModelVariant {
 // gtest prints a variant by its name.
 inline void PrintTo(const ModelVariant& variant, std::ostream* out) { *out << variant.name; }
 
-// Every variant: Nomoto (first order, second order, Norrbin), input gain (static, dynamic),
+// Every variant: Nomoto (first order, second order, Norrbin; course-unstable n1-forms, with
+// and without the speed input, and the second-order rates form), input gain (static, dynamic),
 // Eriksen-Breivik 2-DOF, Erunsal 6-DOF under its DOF restrictions.
 const std::vector<ModelVariant>& ModelVariants();
 
 // Each family's variants (variants_<family>.cc).
 void AddNomotoVariants(std::vector<ModelVariant>* variants);
+void AddNomotoUnstableVariants(std::vector<ModelVariant>* variants);
 void AddInputGainVariants(std::vector<ModelVariant>* variants);
 void AddEriksenVariants(std::vector<ModelVariant>* variants);
 void AddErunsalVariants(std::vector<ModelVariant>* variants);

@@ -71,6 +71,7 @@ inline Experiment MakeExperiment(const ModelHandle& model, const std::vector<dou
   ExperimentSpec spec;
   spec.name = name;
   spec.inputs = {{"delta", "delta"}};
+  if (model.info().InputIndex("U") >= 0) spec.inputs["U"] = "U";
   spec.outputs = {{"psi", "psi"}};
   spec.default_interpolation = interpolation;
   Experiment experiment;

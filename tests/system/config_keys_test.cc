@@ -34,6 +34,7 @@ struct Variant {
   std::string parameters;              // parameter lines (replacing a listed one by name)
   std::string top;                     // top-level keys
   std::string extra;                   // experiments added after s
+  std::string model;                   // added to the model map
 
   Variant A(std::string v) const {
     Variant c = *this;
@@ -75,6 +76,11 @@ struct Variant {
     c.extra = std::move(v);
     return c;
   }
+  Variant M(std::string v) const {
+    Variant c = *this;
+    c.model = std::move(v);
+    return c;
+  }
 };
 
 struct KeyCase {
@@ -86,7 +92,7 @@ struct KeyCase {
 
 void PrintTo(const KeyCase& c, std::ostream* os) { *os << c.name; }
 
-constexpr char kTemplate[] = R"(model: {family: nomoto, type: first_order}
+constexpr char kTemplate[] = R"(model: {family: nomoto, type: first_orderMODEL_KEYS}
 experiments:
   - {name: a, file: run0.csv, inputs: {delta: delta}, outputs: {psi: psi, r: r}A_KEYS}
   - {name: b, file: run1.csv, inputs: {delta: delta}, outputs: {psi: psi, r: r}, window: [0, 60]}
@@ -205,6 +211,8 @@ const KeyCase kCases[] = {
     {"wrap_of_a_rate", V, V.A(", wrap: [r]"), "output 'r' is not an angle"},
     {"velocity_validation_not_a_yes_or_no", V, V.K("    velocity_validation: sometimes"),
      "config.yaml:12: stages[0].velocity_validation: expected true or false"},
+    {"model_length_without_n1_form", V, V.M(", length: 320"),
+     "model.length: only the n1-form models (first_order_n1, norrbin_n1) take a ship length"},
     {"unknown_final_choice", V, V.T("final: newest\n"), "final: unknown choice 'newest'"},
     {"unknown_per_experiment_choice", V,
      V.T("final_validation: {experiments: [c], per_experiment: always}\n"),
@@ -273,6 +281,7 @@ class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
     put("STAGE_KEYS\n", v.stage.empty() ? "" : v.stage + "\n");
     put("TOP_KEYS", v.top);
     put("MORE_ENTRIES\n", v.extra.empty() ? "" : v.extra + "\n");
+    put("MODEL_KEYS", v.model);
     if (!v.parameters.empty()) {  // replaces the listed line of the same parameter
       const std::string head = v.parameters.substr(0, v.parameters.find(':') + 1);
       const size_t at = text.find(head);
