@@ -169,23 +169,6 @@ std::string EstimatesTables(const std::vector<Estimate>& estimates) {
   return out;
 }
 
-std::string FinalParametersTable(const std::vector<FinalParameter>& parameters) {
-  std::string rows;
-  for (const FinalParameter& f : parameters) {
-    std::string stages;
-    for (const std::string& s : f.stages) stages += (stages.empty() ? "" : ", ") + s;
-    const bool fixed = f.role == ParameterRole::kFixed;
-    rows += "<tr" + std::string(fixed ? " class=\"fixed\"" : "") + ">" + Td(f.name) +
-            Num(HtmlNumber(f.value, "%.8g")) + Num(HtmlNumber(f.std_error, "%.4g")) +
-            Num(fixed ? "—" : Interval(f.value, f.std_error, f.undetermined)) +
-            Td(ParameterRoleToString(f.role)) +
-            Td(stages) + Td(f.rule) + "</tr>\n";
-  }
-  return "<table class=\"estimates\">\n<tr>" + Th("parameter") + Th("value") + Th("std. error") +
-         Th("95 % interval") + Th("role") + Th("stages") + Th("rule") + "</tr>\n" + rows +
-         "</table>\n";
-}
-
 std::string VelocityTable(const std::vector<ChannelMetrics>& metrics) {
   std::string rows;
   for (const ChannelMetrics& m : metrics) {
