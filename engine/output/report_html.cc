@@ -232,7 +232,9 @@ void StageSection(const RunConfig& config, const StageResult& stage, size_t numb
   }
   const std::vector<std::string> angles = AngleOutputs(config);
   html << "<h3 id=\"" << id << "-fit\">Fit: measured vs simulated</h3>\n";
-  if (s.fits.size() > 1) html << RunFitTableHtml(PerRunFits(config, s.fits));
+  if (s.fits.size() > 1 && IsSimulationFit(s.fits.front())) {
+    html << RunFitTableHtml(PerRunFits(config, s.fits));
+  }
   FitFigures(config, key + ".fit", "stage " + stage.name, s.fits, angles, page);
 
   html << "<h3 id=\"" << id << "-parameters\">Estimates</h3>\n" << EstimatesTables(stage.estimates);

@@ -112,7 +112,7 @@ bool TraceFigure(const std::string& name, const std::vector<const ExperimentFit*
     for (const ExperimentFit* fit : fits) {
       if (!fit->trace.t.empty()) span += fit->trace.t.back() - fit->trace.t.front();
     }
-    const double gap = 0.01 * span;
+    const double gap = 0.05 * span / static_cast<double>(fits.size() - 1);  // 5 % in all
     double at = 0.0;
     for (size_t i = 0; i < fits.size(); ++i) {
       const std::vector<double>& t = fits[i]->trace.t;

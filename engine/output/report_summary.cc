@@ -17,9 +17,13 @@ std::string Bounds(double lower, double upper) {
   return "[" + end(lower) + ", " + end(upper) + "]";
 }
 
+// The last stage whose estimates were kept and that simulated its runs.
 const StageResult* LastAcceptedStage(const RunResult& result) {
   for (auto it = result.stages.rbegin(); it != result.stages.rend(); ++it) {
-    if (it->rejected.empty()) return &*it;
+    if (!it->rejected.empty()) continue;
+    for (const ExperimentFit& fit : it->summary.fits) {
+      if (IsSimulationFit(fit)) return &*it;
+    }
   }
   return nullptr;
 }

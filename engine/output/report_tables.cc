@@ -1,10 +1,12 @@
 #include "engine/output/report_tables.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
 
 #include "engine/output/display_units.h"
+#include "engine/output/parameter_summary.h"
 #include "engine/output/report_table_cells.h"
 
 namespace vesselid {
@@ -20,22 +22,30 @@ std::string Bounds(double lower, double upper) {
   return "[" + end(lower) + ", " + end(upper) + "]";
 }
 
-// value ± 1.96 SE, or "undetermined".
-std::string Interval(double value, double std_error, bool undetermined) {
+// value ± 1.96 SE within [lower, upper], or "undetermined".
+std::string Interval(double value, double std_error, bool undetermined,
+                     double lower = -INFINITY, double upper = INFINITY) {
   if (undetermined || !std::isfinite(std_error)) return "undetermined";
-  return "[" + HtmlNumber(value - 1.96 * std_error, "%.6g") + ", " +
-         HtmlNumber(value + 1.96 * std_error, "%.6g") + "]";
+  return "[" + HtmlNumber(std::max(lower, value - 1.96 * std_error), "%.6g") + ", " +
+         HtmlNumber(std::min(upper, value + 1.96 * std_error), "%.6g") + "]";
 }
 
+// An estimate on its bound, its interval clipped to the bounds (parameter_summary.h).
 std::string EstimateRow(const Estimate& e, bool with_experiment) {
-  std::string row = "<tr>" + Td(e.name);
+  const int bound = BoundSide(e.value, e.lower, e.upper);
+  const bool clipped = std::isfinite(e.std_error) && !e.undetermined &&
+                       (e.value - 1.96 * e.std_error < e.lower ||
+                        e.value + 1.96 * e.std_error > e.upper);
+  std::string flag = bound == 0 ? "" : bound < 0 ? "on its lower bound" : "on its upper bound";
+  if (clipped) flag += (flag.empty() ? "" : "; ") + std::string("interval clipped");
+  std::string row = std::string(flag.empty() ? "<tr>" : "<tr class=\"flagged\">") + Td(e.name);
   if (with_experiment) {
     row += Td(e.experiment) + Td(e.kind == EstimateKind::kInitialState ? "initial state" : "parameter");
   }
   return row + Td(ParameterRoleToString(e.role)) + Num(HtmlNumber(e.value, "%.8g")) +
          Num(HtmlNumber(e.std_error, "%.4g")) +
-         Num(Interval(e.value, e.std_error, e.undetermined)) + Num(HtmlNumber(e.start, "%.6g")) +
-         Num(Bounds(e.lower, e.upper)) + "</tr>\n";
+         Num(Interval(e.value, e.std_error, e.undetermined, e.lower, e.upper)) +
+         Num(HtmlNumber(e.start, "%.6g")) + Num(Bounds(e.lower, e.upper)) + Td(flag) + "</tr>\n";
 }
 
 }  // namespace
@@ -121,7 +131,7 @@ std::string MetricsTable(const std::vector<const ExperimentFit*>& fits, const Ru
 
 std::string EstimatesTables(const std::vector<Estimate>& estimates) {
   const std::string header = Th("role") + Th("value") + Th("std. error") + Th("95 % interval") +
-                             Th("start") + Th("bounds") + "</tr>\n";
+                             Th("start") + Th("bounds") + Th("flag") + "</tr>\n";
   std::string shared, per_experiment, fixed;
   size_t shared_count = 0, per_experiment_count = 0, fixed_count = 0;
   for (const Estimate& e : estimates) {
@@ -157,31 +167,6 @@ std::string EstimatesTables(const std::vector<Estimate>& estimates) {
                 fixed_count, std::to_string(fixed_count) + " held fixed", 0);
   }
   return out;
-}
-
-std::string FinalParametersTable(const std::vector<FinalParameter>& parameters) {
-  std::string rows;
-  for (const FinalParameter& f : parameters) {
-    std::string stages;
-    for (const std::string& s : f.stages) stages += (stages.empty() ? "" : ", ") + s;
-    const bool fixed = f.role == ParameterRole::kFixed;
-    if (f.runs > 0) {  // per_experiment: one value per run
-      rows += "<tr>" + Td(f.name) +
-              Td("per run: " + std::to_string(f.runs) + " runs, " +
-                 HtmlNumber(f.runs_min, "%.6g") + " to " + HtmlNumber(f.runs_max, "%.6g")) +
-              Num("—") + Num("—") + Td(ParameterRoleToString(f.role)) + Td(stages) + Td(f.rule) +
-              "</tr>\n";
-      continue;
-    }
-    rows += "<tr" + std::string(fixed ? " class=\"fixed\"" : "") + ">" + Td(f.name) +
-            Num(HtmlNumber(f.value, "%.8g")) + Num(HtmlNumber(f.std_error, "%.4g")) +
-            Num(fixed ? "—" : Interval(f.value, f.std_error, f.undetermined)) +
-            Td(ParameterRoleToString(f.role)) +
-            Td(stages) + Td(f.rule) + "</tr>\n";
-  }
-  return "<table class=\"estimates\">\n<tr>" + Th("parameter") + Th("value") + Th("std. error") +
-         Th("95 % interval") + Th("role") + Th("stages") + Th("rule") + "</tr>\n" + rows +
-         "</table>\n";
 }
 
 std::string VelocityTable(const std::vector<ChannelMetrics>& metrics) {

@@ -1,5 +1,6 @@
-// HTML tables of the run report (report_html.h): metrics, estimates, final parameters,
-// velocity validation, step regression, and the tables the identification papers print.
+// HTML tables of the run report (report_html.h): metrics, estimates, velocity validation,
+// step regression, and the tables the identification papers print (the final parameters:
+// report_summary.h).
 // Every name is HTML-escaped; unknown numbers (NaN) print as a dash.
 #pragma once
 
@@ -40,8 +41,6 @@ std::string MetricsTable(const std::vector<const ExperimentFit*>& fits,
 // states) and the ones held fixed, each with value, standard error, 95 % interval, start and
 // bounds.
 std::string EstimatesTables(const std::vector<Estimate>& estimates);
-
-std::string FinalParametersTable(const std::vector<FinalParameter>& parameters);
 
 // One-step and free-run metrics of the regressed states (velocity_validation.h).
 std::string VelocityTable(const std::vector<ChannelMetrics>& metrics);

@@ -13,9 +13,38 @@
 namespace vesselid {
 namespace {
 
-// One row per run, its segments folded in, with mean / median / worst (run_fit_table.h).
+// Whether a fit is a simulation's (a regression's reports RMS and R2 only, no MAE).
+bool Simulated(const ExperimentFit& fit) {
+  for (const ChannelMetrics& m : fit.channels) {
+    if (m.samples > 0 && std::isfinite(m.mae)) return true;
+  }
+  return fit.diverged;
+}
+
+// An equation-error fit: per regressed equation its samples, RMS residual and R2.
+std::string RegressionTable(const std::vector<ExperimentFit>& fits) {
+  std::string out;
+  char line[256];
+  std::snprintf(line, sizeof(line), "  %-20s %-8s %8s %12s %10s\n", "fit", "equation", "samples",
+                "RMS", "R2");
+  out += line;
+  for (const ExperimentFit& fit : fits) {
+    for (const ChannelMetrics& m : fit.channels) {
+      std::snprintf(line, sizeof(line), "  %-20s %-8s %8d %12.4e %10.6f\n", m.experiment.c_str(),
+                    m.output.c_str(), m.samples, m.rmse, m.r2);
+      out += line;
+    }
+  }
+  return out;
+}
+
+// One row per run, its segments folded in, with mean / median / worst (run_fit_table.h); an
+// equation-error fit as its regression table.
 std::string MetricsTable(const RunConfig& config, const std::vector<ExperimentFit>& fits) {
-  return RunFitTableText(PerRunFits(config, fits));
+  for (const ExperimentFit& fit : fits) {
+    if (Simulated(fit)) return RunFitTableText(PerRunFits(config, fits));
+  }
+  return fits.empty() ? "" : RegressionTable(fits);
 }
 
 // One-step and free-run metrics of the regressed states.
@@ -187,10 +216,14 @@ std::string FinalParametersText(const RunConfig& config, const RunResult& result
   return out.str();
 }
 
-// The last stage whose estimates were kept (its fit is the training fit of the summary).
+// The last stage whose estimates were kept and that simulated its runs (its fit is the
+// training fit of the summary).
 const StageResult* LastAcceptedStage(const RunResult& result) {
   for (auto it = result.stages.rbegin(); it != result.stages.rend(); ++it) {
-    if (it->rejected.empty()) return &*it;
+    if (!it->rejected.empty()) continue;
+    for (const ExperimentFit& fit : it->summary.fits) {
+      if (Simulated(fit)) return &*it;
+    }
   }
   return nullptr;
 }

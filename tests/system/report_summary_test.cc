@@ -172,6 +172,9 @@ TEST_F(ReportSummaryTest, HtmlSummaryIsSortableAndNamed) {
             std::string::npos);
   EXPECT_NE(head.find("lies outside every stage&#39;s estimate"), std::string::npos);
   EXPECT_NE(html.find("table.sortable"), std::string::npos);  // the sorting script
+  // A stage's estimate on its bound is flagged in the stage's table too.
+  EXPECT_NE(html.find("<tr class=\"flagged\"><td>K</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td>on its upper bound; interval clipped</td>"), std::string::npos);
 }
 
 TEST_F(ReportSummaryTest, JsonHasRunsCountsAndFlags) {

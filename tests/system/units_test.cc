@@ -4,6 +4,8 @@
 // trace, table and plot label says deg (deg/s for r) and shows degrees; with psi forgotten in
 // `degrees:` the run warns, naming the experiment and the column, in results, report.txt and
 // report.html; the correct config gets no such warning.
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -45,7 +47,8 @@ stages:
 class UnitsTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(fs::temp_directory_path() / "vesselid_units_test");
+    dir_ = new fs::path(fs::temp_directory_path() /
+                        ("vesselid_units_test_" + std::to_string(::getpid())));
     fs::remove_all(*dir_);
     fs::create_directories(*dir_);
     auto ship = nomoto::MakeNorrbinHandle();
@@ -86,9 +89,11 @@ class UnitsTest : public ::testing::Test {
     RunConfig config;
     RunResult result;
     std::string error;
-    EXPECT_TRUE(LoadRunConfig((*dir_ / (out + ".yaml")).string(), "", DefaultRegistry(), &config,
-                              &error))
-        << error;
+    if (!LoadRunConfig((*dir_ / (out + ".yaml")).string(), "", DefaultRegistry(), &config,
+                       &error)) {
+      ADD_FAILURE() << error;
+      return result;
+    }
     RunIdentification(config, &result, &error);
     EXPECT_FALSE(result.stages.empty()) << error;
     fs::create_directories(*dir_ / out);
