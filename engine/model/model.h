@@ -20,6 +20,7 @@
 #pragma once
 
 #include <cmath>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,6 +45,9 @@ struct ModelInfo {
   // Inputs an experiment may leave unmapped; the model then sees NaN and decides what that
   // means (e.g. motors off, still air). Empty: every input is required.
   std::vector<bool> optional_inputs;
+  // Per parameter name, what to change in the model's structure when its estimate compensates
+  // another (|correlation| > 0.999) or ends at a bound: appended to those warnings.
+  std::map<std::string, std::string> compensation_hints;
 
   bool InputOptional(int index) const {
     return index < static_cast<int>(optional_inputs.size()) && optional_inputs[index];
