@@ -47,7 +47,7 @@ struct ModelInfo {
   std::vector<bool> optional_inputs;
   // Per parameter name, what to change in the model's structure when its estimate compensates
   // another (|correlation| > 0.999) or ends at a bound: appended to those warnings.
-  std::map<std::string, std::string> compensation_hints;
+  std::map<std::string, std::string> compensation_hints = {};
 
   bool InputOptional(int index) const {
     return index < static_cast<int>(optional_inputs.size()) && optional_inputs[index];

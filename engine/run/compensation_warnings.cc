@@ -29,14 +29,6 @@ std::string Percent(double relative) {
   return text;
 }
 
-std::string Hint(const ModelInfo& info, const std::string& a, const std::string& b) {
-  for (const std::string* name : {&a, &b}) {
-    const auto it = info.compensation_hints.find(*name);
-    if (it != info.compensation_hints.end()) return it->second;
-  }
-  return "";
-}
-
 }  // namespace
 
 void AddCompensationWarnings(const ModelInfo& info, const StageResult& stage,
@@ -44,33 +36,80 @@ void AddCompensationWarnings(const ModelInfo& info, const StageResult& stage,
   const Eigen::MatrixXd& c = stage.correlation;
   const int n = static_cast<int>(stage.correlation_names.size());
   if (c.rows() != n || c.cols() != n) return;
-  int found = 0;
+  std::vector<const Estimate*> estimate(n);
+  for (int i = 0; i < n; ++i) estimate[i] = ParameterEstimateNamed(stage, stage.correlation_names[i]);
+  // Groups of estimates linked by compensating pairs (union-find), each reported once.
+  std::vector<int> group(n);
+  for (int i = 0; i < n; ++i) group[i] = i;
+  auto root = [&](int i) {
+    while (group[i] != i) i = group[i] = group[group[i]];
+    return i;
+  };
+  std::vector<std::pair<int, int>> pairs;
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j < n; ++j) {
+      if (estimate[i] == nullptr || estimate[j] == nullptr) continue;
       if (!(std::abs(c(i, j)) > kCompensationCorrelation)) continue;
-      const Estimate* a = ParameterEstimateNamed(stage, stage.correlation_names[i]);
-      const Estimate* b = ParameterEstimateNamed(stage, stage.correlation_names[j]);
-      if (a == nullptr || b == nullptr) continue;
-      if (++found > kMaxCompensationWarnings) continue;
-      const double ra = RelativeError(*a), rb = RelativeError(*b);
-      const Estimate* drop = ra >= rb ? a : b;
-      const Estimate* keep = drop == a ? b : a;
-      char text[160];
-      std::snprintf(text, sizeof(text), "%s and %s compensate each other (correlation %+.4f)",
-                    a->name.c_str(), b->name.c_str(), c(i, j));
-      std::string line = where + text +
-                         ": the data determine only their combination; drop or fix " +
-                         drop->name + " (" + Percent(RelativeError(*drop)) + "; " +
-                         keep->name + ": " + Percent(RelativeError(*keep)) + ")";
-      const std::string hint = Hint(info, a->name, b->name);
-      if (!hint.empty()) line += "; " + hint;
-      warnings->push_back(line);
+      pairs.emplace_back(i, j);
+      group[root(j)] = root(i);
     }
   }
-  if (found > kMaxCompensationWarnings) {
-    warnings->push_back(where + std::to_string(found - kMaxCompensationWarnings) +
-                        " more pair(s) of estimates compensate each other (|correlation| > "
-                        "0.999): see the correlation matrix");
+  for (int g = 0; g < n; ++g) {
+    if (root(g) != g) continue;
+    std::vector<int> members;
+    std::pair<int, int> strongest(-1, -1);
+    int count = 0;
+    for (const auto& [i, j] : pairs) {
+      if (root(i) != g) continue;
+      ++count;
+      if (strongest.first < 0 ||
+          std::abs(c(i, j)) > std::abs(c(strongest.first, strongest.second))) {
+        strongest = {i, j};
+      }
+    }
+    if (count == 0) continue;
+    for (int i = 0; i < n; ++i) {
+      if (root(i) == g && estimate[i] != nullptr) members.push_back(i);
+    }
+    // The one to drop: the largest relative standard error (the first on ties).
+    int drop = members[0];
+    for (int i : members) {
+      if (RelativeError(*estimate[i]) > RelativeError(*estimate[drop])) drop = i;
+    }
+    std::string names;
+    for (size_t k = 0; k < members.size(); ++k) {
+      names += (k == 0 ? "" : k + 1 == members.size() ? " and " : ", ") +
+               estimate[members[k]]->name;
+    }
+    const auto [a, b] = strongest;
+    char text[200];
+    if (members.size() == 2) {
+      std::snprintf(text, sizeof(text), " compensate each other (correlation %+.4f)", c(a, b));
+    } else {
+      std::snprintf(text, sizeof(text),
+                    " compensate each other (%d pairs above |correlation| 0.999, strongest "
+                    "%s/%s %+.4f)",
+                    count, estimate[a]->name.c_str(), estimate[b]->name.c_str(), c(a, b));
+    }
+    std::string line = where + names + text + ": the data determine only " +
+                       (members.size() == 2 ? "their combination" : "combinations of them") +
+                       "; drop or fix " + estimate[drop]->name + " (" +
+                       Percent(RelativeError(*estimate[drop])) + ")";
+    if (members.size() == 2) {
+      const int keep = drop == members[0] ? members[1] : members[0];
+      line.pop_back();
+      line += "; " + estimate[keep]->name + ": " + Percent(RelativeError(*estimate[keep])) + ")";
+    }
+    std::string hint;
+    for (int i : members) {
+      const auto it = info.compensation_hints.find(estimate[i]->name);
+      if (it != info.compensation_hints.end()) {
+        hint = it->second;
+        break;
+      }
+    }
+    if (!hint.empty()) line += "; " + hint;
+    warnings->push_back(line);
   }
 }
 

@@ -4,11 +4,15 @@
 // the forward conversion geodetic -> ECEF -> local tangent plane, written here independently),
 // and the defects where they were asked for.
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <map>
 
+#include "engine/config/config.h"
 #include "gtest/gtest.h"
 #include "problems/input_gain/campaign.h"
 #include "problems/input_gain/field_log.h"
+#include "problems/registry.h"
 
 namespace vesselid {
 namespace {
@@ -91,7 +95,9 @@ TEST(FieldLog, JitterDegreesGeodeticFixesAndDefects) {
   int repeat = 0;
   for (size_t k = 0; k < log.t.size(); ++k) {
     const int segment = static_cast<int>(log.columns[0][k]);
-    if (k > 0) ASSERT_GT(log.t[k], log.t[k - 1]);
+    if (k > 0) {
+      ASSERT_GT(log.t[k], log.t[k - 1]);
+    }
     if (!first_t.count(segment)) first_t[segment] = log.t[k];
     last_t[segment] = log.t[k];
     // Nominal ticks 0.1 s apart from the segment's first command: the offset is the jitter.
@@ -149,6 +155,46 @@ TEST(FieldLog, OptionsAreChecked) {
   options = FieldLogOptions();
   options.origin_lat = 91.0;
   EXPECT_FALSE(options.IsValid(&error));
+}
+
+// The simulation section's `field_log` map: a bad value names the file, line and key.
+TEST(FieldLog, ConfigRefusalsNameFileLineAndKey) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "vesselid_field_log_config";
+  fs::create_directories(dir);
+  const ModelRegistry registry = DefaultRegistry();
+  std::ofstream data(dir / "data.csv");
+  data << "t,n,e,heading,pwm_L,pwm_R\n";
+  for (int k = 0; k < 20; ++k) data << 0.1 * k << "," << 0.1 * k << ",0,0,0.5,0.5\n";
+  data.close();
+  auto refusal = [&](const std::string& field_log) {
+    std::ofstream(dir / "config.yaml")
+        << "model: {family: input_gain}\nsimulation:\n  file: log.csv\n  segments: 4\n"
+        << "  duration_min: 2\n  segment_s: [20, 40]\n  field_log: " << field_log << "\n"
+        << "experiments:\n  - {name: log, file: data.csv, inputs: {u_L: pwm_L, u_R: pwm_R},\n"
+        << "     outputs: {n: n, e: e, psi: heading}}\n"
+        << "stages:\n  - {name: fit, parameters: {b_u: 0.3}}\n";
+    ConfigFile config;
+    std::string error;
+    if (!LoadConfigFile((dir / "config.yaml").string(), "", registry, &config, &error)) {
+      return error;
+    }
+    return SimulateConfig(config, dir.string(), &error, true) ? std::string() : error;
+  };
+  EXPECT_NE(refusal("{jitter_ms: 80}").find("config.yaml:7: simulation.field_log: field log: "
+                                             "jitter must be"),
+            std::string::npos)
+      << refusal("{jitter_ms: 80}");
+  EXPECT_NE(refusal("{short_segment: 4}").find("simulation.field_log.short_segment: segment 4 "
+                                                "of 4"),
+            std::string::npos)
+      << refusal("{short_segment: 4}");
+  EXPECT_NE(refusal("{origin: [63.4]}").find("simulation.field_log.origin: expected [lat, lon]"),
+            std::string::npos);
+  EXPECT_NE(refusal("{jiter_ms: 3}").find("config.yaml:7"), std::string::npos)
+      << refusal("{jiter_ms: 3}");
+  EXPECT_EQ(refusal("{rate: 10, jitter_ms: 30, zero_fix_segment: 1}"), "");
+  fs::remove_all(dir);
 }
 
 }  // namespace
