@@ -3,7 +3,8 @@
 // Munk moment) from positions in metres and heading in radians: with the craft's law
 // (`thrust: ["n|n|"]`, no dead zone) no estimates compensate each other; with the seed's
 // default law the linear term has nothing to fit and the run warns that b_u and k_f (or the
-// other gains and k_f) compensate each other, suggesting the quadratic law.
+// other gains and k_f) compensate each other, suggesting the quadratic law; the dynamic
+// default law's least squares puts a dead zone on its bound, and the run names it.
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -125,6 +126,26 @@ TEST_F(ThrustLawFit, DefaultLawWarnsThatTheGainsAndKfCompensate) {
   bool named = false;
   for (const std::string& w : found) {
     named |= w.find("k_f") != std::string::npos && w.find("n|n|") != std::string::npos;
+  }
+  EXPECT_TRUE(named) << results["warnings"].dump(1);
+}
+
+TEST_F(ThrustLawFit, DeadZoneAtItsBoundIsNamed) {
+  std::string config = Config("", "k_f: 0.5, k_r1: 1.0, k_r2: 0.0, "
+                              "d_f: {start: 0.0, lower: 0.0, upper: 0.15}, "
+                              "d_r: {start: 0.0, lower: -0.15, upper: 0.0}, "
+                              "tau_T: {start: 0.3, lower: 0.02, upper: 2.0}",
+                              "");
+  config.replace(config.find("type: static"), 12, "type: dynamic");
+  config.erase(config.find("  - name: refinement"));
+  const json results = Run("dead_zone", config);
+  ASSERT_FALSE(results.is_discarded());
+  bool named = false;
+  for (const json& w : results["warnings"]) {
+    const std::string text = w.get<std::string>();
+    named |= text.find("stage 'least_squares': d_f is at its upper bound 0.15") == 0 &&
+             text.find("a dead zone at its bound stands in for a thrust law the model lacks") !=
+                 std::string::npos;
   }
   EXPECT_TRUE(named) << results["warnings"].dump(1);
 }
