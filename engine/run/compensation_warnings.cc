@@ -37,7 +37,9 @@ void AddCompensationWarnings(const ModelInfo& info, const StageResult& stage,
   const int n = static_cast<int>(stage.correlation_names.size());
   if (c.rows() != n || c.cols() != n) return;
   std::vector<const Estimate*> estimate(n);
-  for (int i = 0; i < n; ++i) estimate[i] = ParameterEstimateNamed(stage, stage.correlation_names[i]);
+  for (int i = 0; i < n; ++i) {
+    estimate[i] = ParameterEstimateNamed(stage, stage.correlation_names[i]);
+  }
   // Groups of estimates linked by compensating pairs (union-find), each reported once.
   std::vector<int> group(n);
   for (int i = 0; i < n; ++i) group[i] = i;

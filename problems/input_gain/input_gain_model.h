@@ -22,8 +22,9 @@
 // thrust nonlinearly (d_f, d_r, tau_T: profiled), each velocity equation is linear in
 //   theta_u = [c_u..., b_u, b_u k_f, b_u k_r1, -b_u k_r2]
 // with regressors [phi(nu)..., S1, S2, S3, S4], S_j the sum (surge) or difference (sway, yaw)
-// over the propellers of s+, s+^2, s-, s-^2 (those of the configured terms), filtered like the thrust in the dynamic variant
-// (T(k+1) = a T(k) + (1 - a) T_s(u(k)), a = exp(-dt / tau_T), seed 000 eq. 21).
+// over the propellers of s+, s+^2, s-, s-^2 (those of the configured terms), filtered like the
+// thrust in the dynamic variant (T(k+1) = a T(k) + (1 - a) T_s(u(k)), a = exp(-dt / tau_T),
+// seed 000 eq. 21).
 #pragma once
 
 #include <array>
@@ -108,10 +109,10 @@ class InputGainModel {
     add(thrust_.d_f, "d_f", 0.0);
     add(thrust_.d_r, "d_r", 0.0);
     add(thrust_.tau_T, "tau_T", 0.3);
-    // A sole forward term carries the scale with b_u: a quadratic fit of a purely quadratic
-    // thruster drives k_f up and b_u down together.
+    // The linear term carries the scale with the gains: fitted to a purely quadratic
+    // thruster, k_f grows and b_u, b_v, b_r shrink together.
     if (thrust_.k_f >= 0) {
-      info.compensation_hints["k_f"] = info.compensation_hints["b_u"] =
+      info.compensation_hints["k_f"] =
           "the thrust may have no linear term: try thrust: [\"n|n|\"] (or fix k_f)";
     }
     if (law_.dead_zone) {

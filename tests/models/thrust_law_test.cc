@@ -41,8 +41,8 @@ TEST(ThrustLaw, DefaultKeepsTheSeedParameters) {
 }
 
 // Surge acceleration with every basis coefficient 0 and b_u = 1: T_L + T_R.
-double SumOfThrusts(const ModelHandle& model, const std::vector<std::pair<std::string, double>>& set,
-                    double pwm) {
+double SumOfThrusts(const ModelHandle& model,
+                    const std::vector<std::pair<std::string, double>>& set, double pwm) {
   const ModelInfo& info = model.info();
   std::vector<double> p(info.parameters.size(), 0.0);
   p[info.ParameterIndex("b_u")] = 1.0;
