@@ -1,5 +1,6 @@
 #include "engine/run/compensation_warnings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -52,6 +53,12 @@ void AddCompensationWarnings(const ModelInfo& info, const StageResult& stage,
     for (int j = i + 1; j < n; ++j) {
       if (estimate[i] == nullptr || estimate[j] == nullptr) continue;
       if (!(std::abs(c(i, j)) > kCompensationCorrelation)) continue;
+      // Both determined to within kCompensationRelativeError despite the correlation: the
+      // data separate them (a noise-free record), nothing is doubtful.
+      if (std::max(RelativeError(*estimate[i]), RelativeError(*estimate[j])) <
+          kCompensationRelativeError) {
+        continue;
+      }
       pairs.emplace_back(i, j);
       group[root(j)] = root(i);
     }

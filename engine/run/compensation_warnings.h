@@ -16,6 +16,9 @@
 namespace vesselid {
 
 inline constexpr double kCompensationCorrelation = 0.999;
+// A pair whose relative standard errors are both below this is determined despite its
+// correlation (noise-free data) and not reported.
+inline constexpr double kCompensationRelativeError = 0.01;
 
 // Appends "<where>b_u and k_f compensate each other ..." lines for `stage` to `warnings`;
 // initial states and per-experiment values are left to the correlation matrix.

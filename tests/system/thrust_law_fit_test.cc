@@ -5,6 +5,8 @@
 // default law the linear term has nothing to fit and the run warns that b_u and k_f (or the
 // other gains and k_f) compensate each other, suggesting the quadratic law; the dynamic
 // default law's least squares puts a dead zone on its bound, and the run names it.
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -70,7 +72,8 @@ std::string Config(const std::string& model_keys, const std::string& thrust,
 class ThrustLawFit : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(fs::temp_directory_path() / "vesselid_thrust_law_fit");
+    dir_ = new fs::path(fs::temp_directory_path() /
+                        ("vesselid_thrust_law_fit_" + std::to_string(::getpid())));
     fs::remove_all(*dir_);
     fs::create_directories(*dir_);
     std::ofstream(*dir_ / "simulate.yaml") << Config("", "k_f: 0.5", "k_f: {}");

@@ -6,6 +6,8 @@
 // (`thrust: ["n|n|"]`) while the default law (`[n, "n|n|"]`) gets one naming k_f.
 #include <algorithm>
 #include <cctype>
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -49,7 +51,8 @@ std::string DefaultLawConfig() {
 class UsvLog : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(fs::temp_directory_path() / "vesselid_usv_log");
+    dir_ = new fs::path(fs::temp_directory_path() /
+                        ("vesselid_usv_log_" + std::to_string(::getpid())));
     fs::remove_all(*dir_);
     fs::create_directories(*dir_);
     const std::string simulate = std::string(VESSELID_BINARY) + " simulate " +

@@ -1,7 +1,7 @@
 // Compensating estimates (compensation_warnings.h) and structure hints through the run's
 // warnings (run_warnings.h): a pair above |correlation| 0.999 is named with its correlation,
 // the one to drop (larger relative standard error) and the model's hint; pairs below it,
-// initial states and undetermined pairs are not; a dead zone at its bound says what it means.
+// pairs determined to 1 % each, initial states and undetermined pairs are not; a dead zone at its bound says what it means.
 #include <cmath>
 
 #include "engine/run/compensation_warnings.h"
@@ -56,6 +56,12 @@ TEST(CompensationWarnings, NamesThePairTheOneToDropAndTheModelsHint) {
   AddCompensationWarnings(info, ThrustStage(-0.998), "", &warnings);
   EXPECT_TRUE(warnings.empty());
   AddCompensationWarnings(info, ThrustStage(std::nan("")), "", &warnings);
+  EXPECT_TRUE(warnings.empty());
+  // Determined to better than 1 % each despite the correlation (noise-free data): no warning.
+  StageResult determined = ThrustStage(-0.99996);
+  determined.estimates[1].std_error = 1e-5;
+  determined.estimates[2].std_error = 0.5;
+  AddCompensationWarnings(info, determined, "", &warnings);
   EXPECT_TRUE(warnings.empty());
 }
 
