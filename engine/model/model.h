@@ -20,6 +20,7 @@
 #pragma once
 
 #include <cmath>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -59,6 +60,9 @@ struct ModelInfo {
   // Inputs whose every sample must be > 0 (a speed a model divides by); a record with one that
   // is not is refused, naming the column and time.
   std::vector<bool> positive_inputs;
+  // Per parameter name, what to change in the model's structure when its estimate compensates
+  // another (|correlation| > 0.999) or ends at a bound: appended to those warnings.
+  std::map<std::string, std::string> compensation_hints = {};
 
   bool InputOptional(int index) const {
     return index < static_cast<int>(optional_inputs.size()) && optional_inputs[index];

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <map>
 
+#include "engine/run/compensation_warnings.h"
+
 namespace vesselid {
 namespace {
 
@@ -100,8 +102,9 @@ void AddRunWarnings(const RunConfig& config, RunResult* run) {
       }
     }
     for (const std::string& note : stage.summary.notes) {
-      if (WarningNote(note)) w.push_back(where + note);
+      if (WarningNote(note)) w.push_back(where + note + StructureHint(config.model->info(), note));
     }
+    AddCompensationWarnings(config.model->info(), stage, where, &w);
     for (const std::string& a : stage.admissibility) w.push_back(where + "not admissible: " + a);
     if (stage.summary.usable && stage.summary.chosen >= 0 &&
         stage.summary.local().termination == "NO_CONVERGENCE") {

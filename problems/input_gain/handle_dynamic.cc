@@ -2,8 +2,8 @@
 
 namespace vesselid::input_gain {
 
-std::unique_ptr<ModelHandle> MakeDynamicHandle(const Bases& bases) {
-  return MakeModelHandle(InputGainModel<true>(bases));
+std::unique_ptr<ModelHandle> MakeDynamicHandle(const Bases& bases, const ThrustLaw& law) {
+  return MakeModelHandle(InputGainModel<true>(bases, law));
 }
 
 }  // namespace vesselid::input_gain

@@ -2,8 +2,8 @@
 
 namespace vesselid::input_gain {
 
-std::unique_ptr<ModelHandle> MakeStaticHandle(const Bases& bases) {
-  return MakeModelHandle(InputGainModel<false>(bases));
+std::unique_ptr<ModelHandle> MakeStaticHandle(const Bases& bases, const ThrustLaw& law) {
+  return MakeModelHandle(InputGainModel<false>(bases, law));
 }
 
 }  // namespace vesselid::input_gain

@@ -9,7 +9,9 @@
 
 namespace vesselid::input_gain {
 
-std::unique_ptr<ModelHandle> MakeStaticHandle(const Bases& bases);
-std::unique_ptr<ModelHandle> MakeDynamicHandle(const Bases& bases);
+std::unique_ptr<ModelHandle> MakeStaticHandle(const Bases& bases,
+                                              const ThrustLaw& law = ThrustLaw());
+std::unique_ptr<ModelHandle> MakeDynamicHandle(const Bases& bases,
+                                               const ThrustLaw& law = ThrustLaw());
 
 }  // namespace vesselid::input_gain

@@ -1,8 +1,10 @@
 #include "problems/input_gain/input_gain_config.h"
 
 #include <filesystem>
+#include <utility>
 
 #include "problems/input_gain/campaign.h"
+#include "problems/input_gain/field_log.h"
 #include "problems/input_gain/handles.h"
 
 namespace vesselid::input_gain {
@@ -10,11 +12,35 @@ namespace {
 
 namespace fs = std::filesystem;
 
+//   thrust: [n, "n|n|"], dead_zone: true   (thrust_law.h; default: both terms, dead zone)
+ThrustLaw ReadThrustLaw(const YamlReader& reader, const YAML::Node& model,
+                        const std::string& path) {
+  ThrustLaw law;
+  if (const YAML::Node list = model["thrust"]) {
+    const std::string key = Child(path, "thrust");
+    const std::vector<std::string> names = reader.Strings(list, key);
+    if (names.empty()) reader.Fail(list, key, "lists no term (n, n|n|)");
+    law.linear = law.quadratic = false;
+    for (size_t j = 0; j < names.size(); ++j) {
+      ThrustLaw before = law;
+      if (!StringToThrustTerm(names[j], &law)) {
+        reader.Fail(list[j], Child(key, j), "unknown thrust term '" + names[j] + "' (n, n|n|)");
+      }
+      if (before.linear == law.linear && before.quadratic == law.quadratic) {
+        reader.Fail(list[j], Child(key, j), "term listed twice");
+      }
+    }
+  }
+  reader.Read(model, path, "dead_zone", &law.dead_zone);
+  return law;
+}
+
 //   model: {family: input_gain, type: static | dynamic,
-//           bases: {u: [1, u, "|u|u", vr, rr], v: [...], r: [...]}}
+//           bases: {u: [1, u, "|u|u", vr, rr], v: [...], r: [...]},
+//           thrust: [n, "n|n|"], dead_zone: true}
 std::unique_ptr<ModelHandle> MakeModel(const YamlReader& reader, const YAML::Node& model,
                                        const std::string& path) {
-  reader.CheckMap(model, path, {"family", "type", "bases"});
+  reader.CheckMap(model, path, {"family", "type", "bases", "thrust", "dead_zone"});
   Bases bases;
   if (const YAML::Node node = model["bases"]) {
     const std::string key = Child(path, "bases");
@@ -42,22 +68,60 @@ std::unique_ptr<ModelHandle> MakeModel(const YamlReader& reader, const YAML::Nod
   }
   const std::string type =
       model["type"] ? reader.String(model["type"], Child(path, "type")) : "static";
-  if (type == "static") return MakeStaticHandle(bases);
-  if (type == "dynamic") return MakeDynamicHandle(bases);
+  const ThrustLaw law = ReadThrustLaw(reader, model, path);
+  if (type == "static") return MakeStaticHandle(bases, law);
+  if (type == "dynamic") return MakeDynamicHandle(bases, law);
   reader.Fail(model["type"], Child(path, "type"),
               "unknown input-gain variant '" + type + "' (static, dynamic)");
 }
 
+//   field_log: {origin: [lat, lon], rate: 10, jitter_ms: 30, zero_fix_segment, stale_segment,
+//               stale_fixes: 4, short_segment, short_s: 2}   (field_log.h)
+bool ReadFieldLog(const YamlReader& reader, const YAML::Node& node, const std::string& key,
+                  int segments, FieldLogOptions* options) {
+  if (!node) return false;
+  reader.CheckMap(node, key,
+                  {"origin", "rate", "jitter_ms", "zero_fix_segment", "stale_segment",
+                   "stale_fixes", "short_segment", "short_s"});
+  if (const YAML::Node origin = node["origin"]) {
+    const std::vector<double> values = reader.Doubles(origin, Child(key, "origin"));
+    if (values.size() != 2) reader.Fail(origin, Child(key, "origin"), "expected [lat, lon]");
+    options->origin_lat = values[0];
+    options->origin_lon = values[1];
+  }
+  reader.Read(node, key, "rate", &options->rate);
+  double jitter_ms = options->jitter * 1e3;
+  reader.Read(node, key, "jitter_ms", &jitter_ms);
+  options->jitter = jitter_ms * 1e-3;
+  for (const auto& [name, index] : {std::pair<const char*, int*>{"zero_fix_segment",
+                                                                 &options->zero_fix_segment},
+                                    {"stale_segment", &options->stale_segment},
+                                    {"short_segment", &options->short_segment}}) {
+    reader.Read(node, key, name, index);
+    if (*index >= segments) {
+      reader.Fail(node[name], Child(key, name),
+                  "segment " + std::to_string(*index) + " of " + std::to_string(segments) +
+                      " (indices from 0)");
+    }
+  }
+  reader.Read(node, key, "stale_fixes", &options->stale_fixes);
+  reader.Read(node, key, "short_s", &options->short_s);
+  std::string invalid;
+  if (!options->IsValid(&invalid)) reader.Fail(node, key, invalid);
+  return true;
+}
+
 //   simulation: {file, segments, duration_min, seed, noise: {position, heading_deg},
 //                vessel: catamaran | quadratic_usv, segment_s: [min, max],
-//                defects: {abrupt_start_segment, glitch_segment}}
+//                defects: {abrupt_start_segment, glitch_segment}, field_log: {...}}
 bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const ModelHandle&,
               const std::string& out_dir, bool check_only, std::string* error) {
   const std::string path = "simulation";
   if (!simulation) reader.Fail(simulation, path, "missing: the config has no simulation section");
   reader.CheckMap(
       simulation, path,
-      {"file", "segments", "duration_min", "seed", "noise", "vessel", "segment_s", "defects"});
+      {"file", "segments", "duration_min", "seed", "noise", "vessel", "segment_s", "defects",
+       "field_log"});
   if (!simulation["file"]) reader.Fail(simulation, Child(path, "file"), "missing");
   const std::string file = reader.String(simulation["file"], Child(path, "file"));
   CampaignOptions options;
@@ -95,6 +159,16 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
     reader.Fail(simulation["vessel"], Child(path, "vessel"),
                 "unknown vessel '" + vessel + "' (catamaran, quadratic_usv)");
   }
+  // A field log samples the campaign every step and writes what a logger would (field_log.h).
+  FieldLogOptions log;
+  const bool field_log = ReadFieldLog(reader, simulation["field_log"], Child(path, "field_log"),
+                                      options.segments, &log);
+  if (field_log) {
+    options.step = kFieldLogCampaignStep;
+    options.gnss_period = options.ahrs_period = options.step;
+    options.gnss_offset = 0.0;
+    options.truth_columns = false;
+  }
   std::string invalid;
   if (!options.IsValid(&invalid)) reader.Fail(simulation, path, invalid);
   reader.CheckLimit(simulation["duration_min"], Child(path, "duration_min"),
@@ -112,6 +186,7 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
       vessel == "catamaran" ? SimulateCampaign(CatamaranParameters(), options, &campaign, error)
                             : SimulateCampaign(QuadraticUsvParameters(), options, &campaign, error);
   if (!simulated) return false;
+  if (field_log && !MakeFieldLog(campaign, log, options.seed, &campaign, error)) return false;
   return WriteTrajectoryCsv((fs::path(out_dir) / file).string(), campaign, error);
 }
 

@@ -6,22 +6,25 @@
 //   r' = f_r(nu) + b_r (T_L - T_R)
 //
 // f_i(nu) = sum_k c_ik phi_k(nu) over a configured basis (basis.h). Propeller thrust from
-// normalised PWM x (both propellers alike), with the dead zone [d_r, d_f] (0 by default):
+// normalised PWM x (both propellers alike) by the configured thrust law (thrust_law.h); by
+// default, with the dead zone [d_r, d_f]:
 //   T_s(x) = s + k_f s^2,        s = x - d_f,   x > d_f
 //   T_s(x) = k_r1 s - k_r2 s^2,  s = x - d_r,   x < d_r,   else 0
 // (the forward linear coefficient is 1: the scale lives in the gains). Static variant:
 // T_i = T_s(u_i). Dynamic variant: states T_L, T_R with T_i' = (T_s(u_i) - T_i) / tau_T.
 //
 // Parameters, in order: the coefficients "u.<term>", "v.<term>", "r.<term>" of the three
-// bases, then b_u, b_v, b_r, k_f, k_r1, k_r2, d_f, d_r and (dynamic) tau_T.
+// bases, then b_u, b_v, b_r, those of the thrust law (k_f, k_r1, k_r2, d_f, d_r by default)
+// and (dynamic) tau_T.
 // Outputs n, e, psi (measured) and u, v, r (for velocity metrics; normally not measured).
 //
 // Equation-error form (regression_form.h): given the propeller parameters that enter the
 // thrust nonlinearly (d_f, d_r, tau_T: profiled), each velocity equation is linear in
 //   theta_u = [c_u..., b_u, b_u k_f, b_u k_r1, -b_u k_r2]
 // with regressors [phi(nu)..., S1, S2, S3, S4], S_j the sum (surge) or difference (sway, yaw)
-// over the propellers of s+, s+^2, s-, s-^2, filtered like the thrust in the dynamic variant
-// (T(k+1) = a T(k) + (1 - a) T_s(u(k)), a = exp(-dt / tau_T), seed 000 eq. 21).
+// over the propellers of s+, s+^2, s-, s-^2 (those of the configured terms), filtered like the
+// thrust in the dynamic variant (T(k+1) = a T(k) + (1 - a) T_s(u(k)), a = exp(-dt / tau_T),
+// seed 000 eq. 21).
 #pragma once
 
 #include <array>
@@ -34,6 +37,7 @@
 #include "engine/model/model.h"
 #include "engine/model/regression_form.h"
 #include "problems/input_gain/basis.h"
+#include "problems/input_gain/thrust_law.h"
 
 namespace vesselid::input_gain {
 
@@ -48,8 +52,8 @@ struct Bases {
 // Operating regions of seed 000 eq. 20 by the sign of the PWM of (left, right).
 enum Region { kForwardForward, kForwardReverse, kReverseForward, kReverseReverse };
 
-// Regressor columns of the propellers for one equation: sums or differences of
-// s+, s+^2, s-, s-^2 over the two propellers.
+// Propeller signals of one equation's regressors: sums or differences of s+, s+^2, s-, s-^2
+// over the two propellers (those of the thrust law's terms become columns).
 constexpr int kPropellerColumns = 4;
 
 template <bool kDynamic>
@@ -59,7 +63,8 @@ class InputGainModel {
   static constexpr int kNumInputs = 2;   // u_L, u_R
   static constexpr int kNumOutputs = 6;  // n, e, psi, u, v, r
 
-  explicit InputGainModel(Bases bases = Bases()) : bases_(std::move(bases)) {
+  explicit InputGainModel(Bases bases = Bases(), ThrustLaw law = ThrustLaw())
+      : bases_(std::move(bases)), law_(law), thrust_(law, kDynamic) {
     int offset = 0;
     for (int i = 0; i < 3; ++i) {
       first_[i] = offset;
@@ -69,8 +74,10 @@ class InputGainModel {
   }
 
   const Bases& bases() const { return bases_; }
+  const ThrustLaw& thrust_law() const { return law_; }
+  const ThrustOffsets& thrust_offsets() const { return thrust_; }  // from PropellerIndex()
   int GainIndex() const { return gains_; }          // b_u, b_v, b_r
-  int PropellerIndex() const { return gains_ + 3; }  // k_f, k_r1, k_r2, d_f, d_r, tau_T
+  int PropellerIndex() const { return gains_ + 3; }  // the thrust law's, then tau_T
 
   ModelInfo Info() const {
     ModelInfo info;
@@ -89,35 +96,56 @@ class InputGainModel {
         info.parameter_defaults.push_back(damping ? -0.5 : 0.0);
       }
     }
-    info.parameters.insert(info.parameters.end(),
-                           {"b_u", "b_v", "b_r", "k_f", "k_r1", "k_r2", "d_f", "d_r"});
-    info.parameter_defaults.insert(info.parameter_defaults.end(),
-                                   {0.5, 0.0, 1.0, 0.5, 1.0, 0.0, 0.0, 0.0});
-    if (kDynamic) {
-      info.parameters.push_back("tau_T");
-      info.parameter_defaults.push_back(0.3);
+    info.parameters.insert(info.parameters.end(), {"b_u", "b_v", "b_r"});
+    info.parameter_defaults.insert(info.parameter_defaults.end(), {0.5, 0.0, 1.0});
+    auto add = [&](int offset, const char* name, double value) {
+      if (offset < 0) return;
+      info.parameters.push_back(name);
+      info.parameter_defaults.push_back(value);
+    };
+    add(thrust_.k_f, "k_f", 0.5);
+    add(thrust_.k_r1, "k_r1", 1.0);
+    add(thrust_.k_r2, "k_r2", law_.linear ? 0.0 : 0.5);  // alone: astern thrust at the start
+    add(thrust_.d_f, "d_f", 0.0);
+    add(thrust_.d_r, "d_r", 0.0);
+    add(thrust_.tau_T, "tau_T", 0.3);
+    // The linear term carries the scale with the gains: fitted to a purely quadratic
+    // thruster, k_f grows and b_u, b_v, b_r shrink together.
+    if (thrust_.k_f >= 0) {
+      info.compensation_hints["k_f"] =
+          "the thrust may have no linear term: try thrust: [\"n|n|\"] (or fix k_f)";
+    }
+    if (law_.dead_zone) {
+      info.compensation_hints["d_f"] = info.compensation_hints["d_r"] =
+          "a dead zone at its bound stands in for a thrust law the model lacks: try thrust: "
+          "[\"n|n|\"] or dead_zone: false";
     }
     info.angle_outputs = {false, false, true, false, false, false};
     info.output_units = {"m", "m", "rad", "m/s", "m/s", "rad/s"};
     return info;
   }
 
+  // T_s(x) of the configured law (thrust_law.h); p: all parameters.
   template <class T>
-  static T StaticThrust(double x, const T* prop) {
-    const T& k_f = prop[0];
-    const T& k_r1 = prop[1];
-    const T& k_r2 = prop[2];
-    const T& d_f = prop[3];
-    const T& d_r = prop[4];
+  T StaticThrust(double x, const T* p) const {
+    const T* prop = p + PropellerIndex();
+    const T zero(0.0);
+    const T d_f = law_.dead_zone ? prop[thrust_.d_f] : zero;
+    const T d_r = law_.dead_zone ? prop[thrust_.d_r] : zero;
     if (x > d_f) {
       const T s = x - d_f;
-      return s + k_f * s * s;
+      if (!law_.quadratic) return s;
+      if (!law_.linear) return s * s;
+      return s + prop[thrust_.k_f] * s * s;
     }
     if (x < d_r) {
       const T s = x - d_r;
-      return k_r1 * s - k_r2 * s * s;
+      T thrust = zero;
+      if (law_.linear) thrust += prop[thrust_.k_r1] * s;
+      if (law_.quadratic) thrust -= prop[thrust_.k_r2] * s * s;
+      return thrust;
     }
-    return T(0.0);
+    return zero;
   }
 
   template <class T>
@@ -128,18 +156,17 @@ class InputGainModel {
     const T& u = x[3];
     const T& v = x[4];
     const T& r = x[5];
-    const T* prop = p + PropellerIndex();
     T thrust_left, thrust_right;
     if constexpr (kDynamic) {
-      const T& tau = prop[5];
+      const T& tau = p[PropellerIndex() + thrust_.tau_T];
       if (!(tau > 0.0)) return false;
       thrust_left = x[6];
       thrust_right = x[7];
-      xdot[6] = (StaticThrust(in[0], prop) - thrust_left) / tau;
-      xdot[7] = (StaticThrust(in[1], prop) - thrust_right) / tau;
+      xdot[6] = (StaticThrust(in[0], p) - thrust_left) / tau;
+      xdot[7] = (StaticThrust(in[1], p) - thrust_right) / tau;
     } else {
-      thrust_left = StaticThrust(in[0], prop);
-      thrust_right = StaticThrust(in[1], prop);
+      thrust_left = StaticThrust(in[0], p);
+      thrust_right = StaticThrust(in[1], p);
     }
     const T c = cos(psi), s = sin(psi);
     xdot[0] = u * c - v * s;
@@ -175,8 +202,10 @@ class InputGainModel {
   std::vector<std::string> Admissibility(const double* p) const {
     std::vector<std::string> problems;
     const double* prop = p + PropellerIndex();
-    if (prop[4] > prop[3]) problems.push_back("dead zone d_r > d_f");
-    if (kDynamic && !(prop[5] > 0)) problems.push_back("tau_T must be > 0");
+    if (law_.dead_zone && prop[thrust_.d_r] > prop[thrust_.d_f]) {
+      problems.push_back("dead zone d_r > d_f");
+    }
+    if (kDynamic && !(prop[thrust_.tau_T] > 0)) problems.push_back("tau_T must be > 0");
     // Passive damping: each velocity's own linear and quadratic terms must not feed it.
     const char* equation[3] = {"u", "v", "r"};
     const int own[3][2] = {{kTermU, kTermAbsUU}, {kTermV, kTermAbsVV}, {kTermR, kTermAbsRR}};
@@ -227,6 +256,8 @@ class InputGainModel {
   }
 
   Bases bases_;
+  ThrustLaw law_;
+  ThrustOffsets thrust_;
   std::array<int, 3> first_{};
   int gains_ = 0;
 };

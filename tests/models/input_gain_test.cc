@@ -23,21 +23,33 @@ using testing::SimulateLumped;
 
 struct StaticCase {
   static constexpr bool kDynamic = false;
-  static std::unique_ptr<ModelHandle> Make() { return input_gain::MakeStaticHandle({}); }
+  static input_gain::ThrustLaw Law() { return {}; }
 };
 struct DynamicCase {
   static constexpr bool kDynamic = true;
-  static std::unique_ptr<ModelHandle> Make() { return input_gain::MakeDynamicHandle({}); }
+  static input_gain::ThrustLaw Law() { return {}; }
+};
+// Configured thrust laws (thrust_law.h): the regression columns follow the terms.
+struct StaticQuadraticCase {
+  static constexpr bool kDynamic = false;
+  static input_gain::ThrustLaw Law() { return {false, true, false}; }
+};
+struct DynamicLinearCase {
+  static constexpr bool kDynamic = true;
+  static input_gain::ThrustLaw Law() { return {true, false, true}; }
 };
 
 template <class Case>
 class InputGainExactData : public ::testing::Test {
  protected:
-  std::unique_ptr<ModelHandle> model_ = Case::Make();
-  std::vector<double> truth_ = LumpedTruth(Case::kDynamic);
+  std::unique_ptr<ModelHandle> model_ =
+      Case::kDynamic ? input_gain::MakeDynamicHandle({}, Case::Law())
+                     : input_gain::MakeStaticHandle({}, Case::Law());
+  std::vector<double> truth_ = LumpedTruth(Case::kDynamic, Case::Law());
 };
 
-using Cases = ::testing::Types<StaticCase, DynamicCase>;
+using Cases =
+    ::testing::Types<StaticCase, DynamicCase, StaticQuadraticCase, DynamicLinearCase>;
 TYPED_TEST_SUITE(InputGainExactData, Cases);
 
 // Every parameter estimated from the model's default, except `held` (kept at its default).

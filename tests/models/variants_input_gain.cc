@@ -1,4 +1,4 @@
-// Input-gain variants (static and dynamic propellers) on the lumped catamaran's own data:
+// Input-gain variants (static and dynamic propellers, default and configured thrust laws) on the lumped catamaran's own data:
 // PWM commands held 2-6 s, GNSS positions at 5 Hz and AHRS heading at 50 Hz.
 #include <cmath>
 
@@ -60,7 +60,8 @@ RecoveryCase Recovery(const ModelHandle& model, const std::vector<double>& truth
   }
   c.specs = LumpedSpecs(model.info(), truth, 0.2);
   c.options.free_initial_states = model.info().states;
-  c.free_parameters = static_cast<int>(truth.size()) - 2;  // the dead zone held
+  c.free_parameters = static_cast<int>(truth.size());
+  for (const ParameterSpec& s : c.specs) c.free_parameters -= s.role == ParameterRole::kFixed;
   c.sigmas = 3.5;
   return c;
 }
@@ -72,6 +73,18 @@ void AddInputGainVariants(std::vector<ModelVariant>* variants) {
                        LumpedTruth(false), Jacobian, Rk4, Recovery});
   variants->push_back({"InputGainDynamic", [] { return input_gain::MakeDynamicHandle({}); },
                        LumpedTruth(true), Jacobian, Rk4, Recovery});
+  // Configured thrust laws: a purely quadratic thruster without dead zone, and a linear one
+  // with first-order lag and dead zone.
+  input_gain::ThrustLaw quadratic;
+  quadratic.linear = quadratic.dead_zone = false;
+  variants->push_back({"InputGainStaticQuadratic",
+                       [quadratic] { return input_gain::MakeStaticHandle({}, quadratic); },
+                       LumpedTruth(false, quadratic), Jacobian, Rk4, Recovery});
+  input_gain::ThrustLaw linear;
+  linear.quadratic = false;
+  variants->push_back({"InputGainDynamicLinear",
+                       [linear] { return input_gain::MakeDynamicHandle({}, linear); },
+                       LumpedTruth(true, linear), Jacobian, Rk4, Recovery});
 }
 
 }  // namespace vesselid::testing

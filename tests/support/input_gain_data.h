@@ -51,10 +51,14 @@ inline Trajectory SimulateLumped(const ModelHandle& model, const std::vector<dou
   const double h = 0.01;
   double u_m = mean(random), u_d = difference(random), next_change = hold(random);
   double pwm[2] = {std::clamp(u_m + u_d, -1.0, 1.0), std::clamp(u_m - u_d, -1.0, 1.0)};
-  if (nx == 8 && run.x0.empty()) {  // dynamic propellers start at steady state
-    const double* prop = p.data() + p.size() - 6;  // k_f k_r1 k_r2 d_f d_r tau_T
-    x[6] = input_gain::InputGainModel<true>::StaticThrust(pwm[0], prop);
-    x[7] = input_gain::InputGainModel<true>::StaticThrust(pwm[1], prop);
+  if (nx == 8 && run.x0.empty()) {
+    // Dynamic propellers start at steady state: T_i' = (T_s - T_i) / tau_T is affine in T_i,
+    // so two evaluations give its root whatever the thrust law.
+    std::vector<double> at0 = x, at1 = x, d0(nx), d1(nx);
+    at1[6] = at1[7] = 1.0;
+    model.Derivative(at0.data(), pwm, p.data(), d0.data());
+    model.Derivative(at1.data(), pwm, p.data(), d1.data());
+    for (int i = 6; i < 8; ++i) x[i] = d0[i] / (d0[i] - d1[i]);
   }
   const int steps = static_cast<int>(std::lround(run.duration / h));
   std::vector<double> k1(nx), k2(nx), k3(nx), k4(nx), xs(nx);
@@ -104,6 +108,21 @@ inline std::vector<double> LumpedTruth(bool dynamic) {
                            0.33, 0.06, 0.45,                        // b_u b_v b_r
                            1.2, 0.6, 0.5, 0.0, 0.0};                // k_f k_r1 k_r2 d_f d_r
   if (dynamic) p.push_back(0.25);
+  return p;
+}
+
+// The same craft with another thrust law: the law's parameters of LumpedTruth's, in the
+// model's order (thrust_law.h).
+inline std::vector<double> LumpedTruth(bool dynamic, const input_gain::ThrustLaw& law) {
+  std::vector<double> p = LumpedTruth(dynamic);
+  p.resize(20);  // the bases and the gains
+  const input_gain::ThrustOffsets offsets(law, dynamic);
+  const double values[] = {1.2, 0.6, 0.5, 0.0, 0.0, 0.25};
+  const int at[] = {offsets.k_f, offsets.k_r1, offsets.k_r2, offsets.d_f, offsets.d_r,
+                    offsets.tau_T};
+  for (int k = 0; k < 6; ++k) {
+    if (at[k] >= 0) p.push_back(values[k]);
+  }
   return p;
 }
 

@@ -1,0 +1,132 @@
+#include "engine/run/compensation_warnings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace vesselid {
+namespace {
+
+// The stage's reported estimate of a shared parameter, or null (initial states,
+// per-experiment values).
+const Estimate* ParameterEstimateNamed(const StageResult& stage, const std::string& name) {
+  for (const Estimate& e : stage.estimates) {
+    if (e.kind == EstimateKind::kParameter && e.experiment.empty() && e.name == name) return &e;
+  }
+  return nullptr;
+}
+
+// Standard error relative to the value; infinite when either is missing or the value is 0.
+double RelativeError(const Estimate& e) {
+  const double relative = e.std_error / std::abs(e.value);
+  return std::isfinite(relative) ? relative : std::numeric_limits<double>::infinity();
+}
+
+std::string Percent(double relative) {
+  if (!std::isfinite(relative)) return "no standard error";
+  char text[48];
+  std::snprintf(text, sizeof(text), "relative standard error %.3g %%", 100.0 * relative);
+  return text;
+}
+
+}  // namespace
+
+void AddCompensationWarnings(const ModelInfo& info, const StageResult& stage,
+                             const std::string& where, std::vector<std::string>* warnings) {
+  const Eigen::MatrixXd& c = stage.correlation;
+  const int n = static_cast<int>(stage.correlation_names.size());
+  if (c.rows() != n || c.cols() != n) return;
+  std::vector<const Estimate*> estimate(n);
+  for (int i = 0; i < n; ++i) {
+    estimate[i] = ParameterEstimateNamed(stage, stage.correlation_names[i]);
+  }
+  // Groups of estimates linked by compensating pairs (union-find), each reported once.
+  std::vector<int> group(n);
+  for (int i = 0; i < n; ++i) group[i] = i;
+  auto root = [&](int i) {
+    while (group[i] != i) i = group[i] = group[group[i]];
+    return i;
+  };
+  std::vector<std::pair<int, int>> pairs;
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      if (estimate[i] == nullptr || estimate[j] == nullptr) continue;
+      if (!(std::abs(c(i, j)) > kCompensationCorrelation)) continue;
+      // Both determined to within kCompensationRelativeError despite the correlation: the
+      // data separate them (a noise-free record), nothing is doubtful.
+      if (std::max(RelativeError(*estimate[i]), RelativeError(*estimate[j])) <
+          kCompensationRelativeError) {
+        continue;
+      }
+      pairs.emplace_back(i, j);
+      group[root(j)] = root(i);
+    }
+  }
+  for (int g = 0; g < n; ++g) {
+    if (root(g) != g) continue;
+    std::vector<int> members;
+    std::pair<int, int> strongest(-1, -1);
+    int count = 0;
+    for (const auto& [i, j] : pairs) {
+      if (root(i) != g) continue;
+      ++count;
+      if (strongest.first < 0 ||
+          std::abs(c(i, j)) > std::abs(c(strongest.first, strongest.second))) {
+        strongest = {i, j};
+      }
+    }
+    if (count == 0) continue;
+    for (int i = 0; i < n; ++i) {
+      if (root(i) == g && estimate[i] != nullptr) members.push_back(i);
+    }
+    // The one to drop: the largest relative standard error (the first on ties).
+    int drop = members[0];
+    for (int i : members) {
+      if (RelativeError(*estimate[i]) > RelativeError(*estimate[drop])) drop = i;
+    }
+    std::string names;
+    for (size_t k = 0; k < members.size(); ++k) {
+      names += (k == 0 ? "" : k + 1 == members.size() ? " and " : ", ") +
+               estimate[members[k]]->name;
+    }
+    const auto [a, b] = strongest;
+    char text[200];
+    if (members.size() == 2) {
+      std::snprintf(text, sizeof(text), " compensate each other (correlation %+.4f)", c(a, b));
+    } else {
+      std::snprintf(text, sizeof(text),
+                    " compensate each other (%d pairs above |correlation| 0.999, strongest "
+                    "%s/%s %+.4f)",
+                    count, estimate[a]->name.c_str(), estimate[b]->name.c_str(), c(a, b));
+    }
+    std::string line = where + names + text + ": the data determine only " +
+                       (members.size() == 2 ? "their combination" : "combinations of them") +
+                       "; drop or fix " + estimate[drop]->name + " (" +
+                       Percent(RelativeError(*estimate[drop])) + ")";
+    if (members.size() == 2) {
+      const int keep = drop == members[0] ? members[1] : members[0];
+      line.pop_back();
+      line += "; " + estimate[keep]->name + ": " + Percent(RelativeError(*estimate[keep])) + ")";
+    }
+    std::string hint;
+    for (int i : members) {
+      const auto it = info.compensation_hints.find(estimate[i]->name);
+      if (it != info.compensation_hints.end()) {
+        hint = it->second;
+        break;
+      }
+    }
+    if (!hint.empty()) line += "; " + hint;
+    warnings->push_back(line);
+  }
+}
+
+std::string StructureHint(const ModelInfo& info, const std::string& note) {
+  const size_t end = note.find(' ');
+  if (end == std::string::npos) return "";
+  const auto it = info.compensation_hints.find(note.substr(0, end));
+  return it == info.compensation_hints.end() ? "" : " (" + it->second + ")";
+}
+
+}  // namespace vesselid

@@ -1,0 +1,123 @@
+// The shipped twin-thruster field log (configs/input_gain_usv_log.yaml) end to end, as a user
+// runs it: `vesselid simulate` writes the log (lat/lon, compass degrees, +-30 ms row jitter, a
+// 0/0 fix, a GNSS repeating its last fix, a 2 s segment among 20-40 s ones), `vesselid run`
+// identifies the quadratic thrust law on it. The run must finish (exit 0, nothing aborted),
+// name every defect in results.json, and raise no compensation warning with the craft's law
+// (`thrust: ["n|n|"]`) while the default law (`[n, "n|n|"]`) gets one naming k_f.
+#include <algorithm>
+#include <cctype>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "gtest/gtest.h"
+#include "nlohmann/json.hpp"
+
+namespace vesselid {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string ShippedConfig() {
+  std::ifstream in(std::string(VESSELID_SOURCE_DIR) + "/configs/input_gain_usv_log.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void Replace(std::string* text, const std::string& from, const std::string& to) {
+  size_t at = 0;
+  while ((at = text->find(from, at)) != std::string::npos) {
+    text->replace(at, from.size(), to);
+    at += to.size();
+  }
+}
+
+// The shipped config with the seed's default thrust law (linear and quadratic terms, dead
+// zone held at 0).
+std::string DefaultLawConfig() {
+  std::string config = ShippedConfig();
+  Replace(&config, "thrust: [\"n|n|\"], dead_zone: false", "thrust: [n, \"n|n|\"]");
+  Replace(&config, "      k_r2: 0.5\n", "      k_f: 0.5\n      k_r1: 1.0\n      k_r2: 0.0\n");
+  Replace(&config, "      k_r2: {}\n", "      k_f: {}\n      k_r1: {}\n      k_r2: {}\n");
+  return config;
+}
+
+class UsvLog : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(fs::temp_directory_path() /
+                        ("vesselid_usv_log_" + std::to_string(::getpid())));
+    fs::remove_all(*dir_);
+    fs::create_directories(*dir_);
+    const std::string simulate = std::string(VESSELID_BINARY) + " simulate " +
+                                 VESSELID_SOURCE_DIR + "/configs/input_gain_usv_log.yaml --out " +
+                                 dir_->string() + " > /dev/null";
+    ASSERT_EQ(std::system(simulate.c_str()), 0) << simulate;
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+  }
+
+  // Runs `config` on the log; results.json (discarded when missing).
+  static json Run(const std::string& name, const std::string& config) {
+    const fs::path file = *dir_ / (name + ".yaml");
+    std::ofstream(file) << config;
+    const fs::path out = *dir_ / name;
+    const std::string run = std::string(VESSELID_BINARY) + " run " + file.string() +
+                            " --data " + dir_->string() + " --out " + out.string() +
+                            " --quiet > /dev/null 2>&1";
+    EXPECT_EQ(std::system(run.c_str()), 0) << run;
+    std::ifstream in(out / "results.json");
+    return json::parse(in, nullptr, false);
+  }
+
+  static fs::path* dir_;
+};
+
+fs::path* UsvLog::dir_ = nullptr;
+
+std::string Lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+int CompensationWarnings(const json& results, const std::string& naming) {
+  int count = 0;
+  for (const json& w : results["warnings"]) {
+    const std::string text = w.get<std::string>();
+    count += text.find("compensate each other") != std::string::npos &&
+             text.find(naming) != std::string::npos;
+  }
+  return count;
+}
+
+TEST_F(UsvLog, EveryDefectNamedAndTheQuadraticLawFitsWithoutCompensation) {
+  const json results = Run("quadratic", ShippedConfig());
+  ASSERT_FALSE(results.is_discarded());
+  EXPECT_FALSE(results.contains("stopped"));
+  ASSERT_EQ(results["stages"].size(), 2u);
+  const std::string text = Lower(results.dump());
+  EXPECT_NE(text.find("zero"), std::string::npos) << "the 0/0 fix is not named";
+  EXPECT_NE(text.find("stale"), std::string::npos) << "the stale fixes are not named";
+  EXPECT_NE(text.find("resampl"), std::string::npos) << "the jittered rows' grid is not named";
+  EXPECT_NE(text.find("log1@9"), std::string::npos) << "the 2 s segment is not named";
+  EXPECT_NE(text.find("skip"), std::string::npos) << "no skipped segment is named";
+  EXPECT_EQ(CompensationWarnings(results, ""), 0) << results["warnings"].dump(1);
+}
+
+TEST_F(UsvLog, DefaultThrustLawGetsACompensationWarning) {
+  const json results = Run("default_law", DefaultLawConfig());
+  ASSERT_FALSE(results.is_discarded());
+  EXPECT_GE(CompensationWarnings(results, "k_f"), 1) << results["warnings"].dump(1);
+}
+
+}  // namespace
+}  // namespace vesselid
