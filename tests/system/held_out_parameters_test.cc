@@ -187,7 +187,7 @@ TEST_F(HeldOutParametersTest, HeldOutRunsEstimateTheirOwnBiasAndShowWhatItBuys) 
   EXPECT_NE(text.find("held-out runs with their own delta_0"), std::string::npos) << text;
   EXPECT_NE(text.find("  z5: delta_0 = "), std::string::npos) << text;
   EXPECT_NE(text.find(" % without delta_0, "), std::string::npos) << text;
-  EXPECT_NE(text.find("4 runs from "), std::string::npos) << text;
+  EXPECT_NE(text.find("4 runs: "), std::string::npos) << text;
 
   // Every run is a zigzag: its figures, measured and simulated, for the four training runs,
   // the stage's two held-out runs and the final validation's two.
