@@ -13,6 +13,20 @@
 
 namespace vesselid::testing {
 
+// Writes `config` as <dir>/<name>.yaml and runs it on the data in `dir` into <dir>/<name>;
+// expects exit 0 and returns results.json (discarded when missing).
+inline nlohmann::json RunConfigOn(const std::filesystem::path& dir, const std::string& name,
+                                  const std::string& config) {
+  const std::filesystem::path file = dir / (name + ".yaml");
+  std::ofstream(file) << config;
+  const std::filesystem::path out = dir / name;
+  const std::string run = std::string(VESSELID_BINARY) + " run " + file.string() + " --data " +
+                          dir.string() + " --out " + out.string() + " --quiet > /dev/null 2>&1";
+  EXPECT_EQ(std::system(run.c_str()), 0) << run;
+  std::ifstream in(out / "results.json");
+  return nlohmann::json::parse(in, nullptr, false);
+}
+
 struct ShippedRun {
   nlohmann::json results;  // results.json
   std::string report;      // report.txt

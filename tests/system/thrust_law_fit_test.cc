@@ -14,6 +14,7 @@
 
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
+#include "tests/support/shipped_config.h"
 
 namespace vesselid {
 namespace {
@@ -88,15 +89,7 @@ class ThrustLawFit : public ::testing::Test {
   }
 
   static json Run(const std::string& name, const std::string& config) {
-    const fs::path file = *dir_ / (name + ".yaml");
-    std::ofstream(file) << config;
-    const fs::path out = *dir_ / name;
-    const std::string run = std::string(VESSELID_BINARY) + " run " + file.string() +
-                            " --data " + dir_->string() + " --out " + out.string() +
-                            " --quiet > /dev/null 2>&1";
-    EXPECT_EQ(std::system(run.c_str()), 0) << run;
-    std::ifstream in(out / "results.json");
-    return json::parse(in, nullptr, false);
+    return testing::RunConfigOn(*dir_, name, config);
   }
 
   static fs::path* dir_;
