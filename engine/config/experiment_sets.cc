@@ -42,8 +42,8 @@ std::vector<std::string> ExperimentNames(const YamlReader& reader, const YAML::N
     reader.Fail(node, key,
                 sets.empty() ? "expected a list of experiment names, e.g. [a, b] (the config "
                                "has no sets)"
-                             : "no set named '" + node.Scalar() + "' (sets: " +
-                                   SetNames(config) + "; a list of experiments is [a, b])");
+                             : "no set named '" + node.Scalar() + "' (sets: " + SetNames(config) +
+                                   "; a list of experiments is [a, b])");
   }
   const std::vector<std::string> items = reader.Strings(node, key);
   std::vector<std::string> names;
@@ -65,8 +65,8 @@ std::vector<std::string> ExperimentNames(const YamlReader& reader, const YAML::N
       const auto [seen, fresh] = listed.emplace(name, from);
       if (!fresh) {
         reader.Fail(node[i], Child(key, i),
-                    "experiment '" + name + "' is listed twice (" + Origin(seen->second) +
-                        " and " + Origin(from) + ")");
+                    "experiment '" + name + "' is listed twice (" + Origin(seen->second) + " and " +
+                        Origin(from) + ")");
       }
       names.push_back(name);
     }

@@ -69,7 +69,8 @@ std::vector<std::string> MatchingFiles(const YamlReader& reader, const YAML::Nod
   if (status == GLOB_NOMATCH || (status == 0 && files.empty())) {
     reader.Fail(node, key, "no file matches '" + pattern + "'" + where);
   }
-  if (status != 0) reader.Fail(node, key, "cannot list the files matching '" + pattern + "'" + where);
+  if (status != 0)
+    reader.Fail(node, key, "cannot list the files matching '" + pattern + "'" + where);
   std::sort(files.begin(), files.end());
   return files;
 }
@@ -80,8 +81,9 @@ void ExpandFiles(YamlReader* reader, const YAML::Node& node, const std::string& 
   const YAML::Node files = node["files"];
   const std::string key = Child(path, "files");
   if (node["file"].IsDefined()) {
-    reader->Fail(files, key, "file and files cannot be combined (files makes one experiment "
-                             "per file it matches)");
+    reader->Fail(files, key,
+                 "file and files cannot be combined (files makes one experiment "
+                 "per file it matches)");
   }
   const std::string pattern = reader->String(files, key);
   std::string name = "{stem}";
@@ -118,10 +120,10 @@ void ExpandFiles(YamlReader* reader, const YAML::Node& node, const std::string& 
 
 const std::vector<std::string>& ExperimentKeys() {
   static const std::vector<std::string> keys{
-      "name",     "file",           "files",    "inputs",      "outputs",
-      "interpolation", "weights",   "initial_state", "degrees", "window",
+      "name",           "file",     "files",         "inputs",  "outputs",
+      "interpolation",  "weights",  "initial_state", "degrees", "window",
       "segment_length", "segments", "input_range",   "wrap",    "separator",
-      "time",     "position",       "screen",   "resample"};
+      "time",           "position", "screen",        "resample"};
   return keys;
 }
 
@@ -151,8 +153,9 @@ std::vector<ExperimentEntry> ExpandExperiments(YamlReader* reader, const YAML::N
   for (size_t i = 0; i < experiments.size(); ++i) {
     const std::string path = Child("experiments", i);
     if (!experiments[i].IsMap()) reader->Fail(experiments[i], path, "expected a map");
-    const YAML::Node node =
-        defaults.IsDefined() ? WithDefaults(reader, experiments[i], defaults, true) : experiments[i];
+    const YAML::Node node = defaults.IsDefined()
+                                ? WithDefaults(reader, experiments[i], defaults, true)
+                                : experiments[i];
     if (node["files"].IsDefined()) {
       ExpandFiles(reader, node, path, data_folder, &entries);
     } else {

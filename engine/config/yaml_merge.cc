@@ -59,9 +59,9 @@ class MergeResolver {
     } else if (value.IsSequence() && value.size() > 0) {
       for (size_t i = 0; i < value.size(); ++i) {
         if (!value[i].IsMap()) {
-          reader_.Fail(value[i], Child(key, i),
-                       "a merge key's list holds maps (e.g. <<: [*a, *b]), not " +
-                           KindOf(value[i]));
+          reader_.Fail(
+              value[i], Child(key, i),
+              "a merge key's list holds maps (e.g. <<: [*a, *b]), not " + KindOf(value[i]));
         }
         sources.push_back(value[i]);
       }

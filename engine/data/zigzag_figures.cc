@@ -8,7 +8,7 @@ namespace {
 
 constexpr double kPlateauShare = 0.5;     // |delta| above this share of its largest: a plateau
 constexpr double kLeaveShare = 0.1;       // the rudder has left a plateau by this share of delta_z
-constexpr double kHeldShare = 0.8;       // 80 % of the plateau samples above this x delta_z
+constexpr double kHeldShare = 0.8;        // 80 % of the plateau samples above this x delta_z
 constexpr double kCheckTolerance = 0.25;  // heading changes at the reversals within 25 %
 constexpr double kSmallestCheck = 0.5 * M_PI / 180.0;
 

@@ -29,17 +29,17 @@ namespace vesselid {
 
 // What DetectZigzag finds in a record (angles in radians).
 struct ZigzagTest {
-  double rudder = 0.0;    // delta_z
-  double heading = 0.0;   // psi_z
+  double rudder = 0.0;         // delta_z
+  double heading = 0.0;        // psi_z
   double first_execute = 0.0;  // t_0
-  double sign = 1.0;      // s: +1 when the heading first increases
-  int reversals = 0;      // rudder reversals after t_0
+  double sign = 1.0;           // s: +1 when the heading first increases
+  int reversals = 0;           // rudder reversals after t_0
 };
 
 struct ZigzagFigures {
   static constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
-  double first_overshoot = kUnknown;   // rad
-  double second_overshoot = kUnknown;  // rad
+  double first_overshoot = kUnknown;      // rad
+  double second_overshoot = kUnknown;     // rad
   double time_to_first_check = kUnknown;  // s
   double period = kUnknown;               // s
   std::vector<double> executes;           // t_0, t_1, ...

@@ -42,7 +42,8 @@ bool OutputChannelOf(const Trajectory& trajectory, int column, const ModelInfo& 
                   std::abs(step) * 180.0 / M_PI, t[k - 1], t[k], info.outputs[output].c_str());
     *error = text;
     const AngleUnitCheck unit = CheckAngleUnit(raw);
-    if (unit.looks_like_degrees) *error += "; " + DescribeDegreesLook(trajectory.names[column], unit);
+    if (unit.looks_like_degrees)
+      *error += "; " + DescribeDegreesLook(trajectory.names[column], unit);
     return false;
   }
   return true;

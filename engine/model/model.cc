@@ -26,8 +26,8 @@ std::string UnitAt(const std::vector<std::string>& units, int index) {
 std::string ModelInfo::OutputUnit(int index) const {
   const std::string unit = UnitAt(output_units, index);
   if (!unit.empty()) return unit;
-  const bool angle = index >= 0 && index < static_cast<int>(angle_outputs.size()) &&
-                     angle_outputs[index];
+  const bool angle =
+      index >= 0 && index < static_cast<int>(angle_outputs.size()) && angle_outputs[index];
   return angle ? "rad" : "";
 }
 

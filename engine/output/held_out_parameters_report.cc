@@ -116,10 +116,12 @@ nlohmann::json HeldOutParametersToJson(const HeldOutParameters& parameters,
   for (const RunRow& row : table.rows) {
     json estimates = json::object();
     for (const Estimate* e : row.estimates) {
-      estimates[e->name.substr(0, e->name.find('['))] = {
-          {"value", e->value},         {"std_error", JsonNumber(e->std_error)},
-          {"start", e->start},         {"lower", JsonNumber(e->lower)},
-          {"upper", JsonNumber(e->upper)}, {"undetermined", e->undetermined}};
+      estimates[e->name.substr(0, e->name.find('['))] = {{"value", e->value},
+                                                         {"std_error", JsonNumber(e->std_error)},
+                                                         {"start", e->start},
+                                                         {"lower", JsonNumber(e->lower)},
+                                                         {"upper", JsonNumber(e->upper)},
+                                                         {"undetermined", e->undetermined}};
     }
     json run = {{"experiment", row.experiment},
                 {"estimates", estimates},
@@ -194,10 +196,11 @@ std::string HeldOutParametersHtml(const HeldOutParameters& parameters,
       for (const Estimate* e : row.estimates) {
         if (e->name.substr(0, e->name.find('[')) == p) found = e;
       }
-      rows += found == nullptr ? "<td></td><td></td>"
-                               : Num(HtmlNumber(found->value, "%.6g")) +
-                                     Num(found->undetermined ? "undetermined"
-                                                             : HtmlNumber(found->std_error, "%.2g"));
+      rows += found == nullptr
+                  ? "<td></td><td></td>"
+                  : Num(HtmlNumber(found->value, "%.6g")) +
+                        Num(found->undetermined ? "undetermined"
+                                                : HtmlNumber(found->std_error, "%.2g"));
     }
     for (const std::string& output : table.outputs) {
       const auto at = row.fit.find(output);
@@ -221,8 +224,7 @@ std::string HeldOutParametersHtml(const HeldOutParameters& parameters,
          HtmlEscape(names) +
          " with the other parameters held; fit % without them (held at their start) and "
          "with them.</p>\n" +
-         Fold("<table class=\"held-out-parameters\">\n" + header + "</tr>\n" + rows +
-                  "</table>\n",
+         Fold("<table class=\"held-out-parameters\">\n" + header + "</tr>\n" + rows + "</table>\n",
               table.rows.size(), std::to_string(table.rows.size()) + " held-out runs", 24);
 }
 

@@ -67,8 +67,8 @@ std::vector<ParameterReport> ReportParameters(const RunResult& result) {
         for (size_t k = 0; k < estimates.size(); ++k) {
           list += (k ? ", " : "") + Number(estimates[k]->value) + " in " + stage_names[k];
         }
-        r.fusion_note = f.name + " = " + Number(f.value) + " lies outside every stage's estimate (" +
-                        list + "): " + f.rule +
+        r.fusion_note = f.name + " = " + Number(f.value) +
+                        " lies outside every stage's estimate (" + list + "): " + f.rule +
                         " fusion solves for all shared parameters at once with each stage's "
                         "covariance, so it moves with the parameters it is correlated with";
       }
@@ -84,7 +84,8 @@ std::string ParameterFlags(const ParameterReport& report) {
     flags = std::string("on its ") + (report.bound < 0 ? "lower" : "upper") + " bound " +
             Number(report.bound < 0 ? report.lower : report.upper);
   }
-  if (report.clipped) flags += (flags.empty() ? "" : "; ") + std::string("interval clipped to the bounds");
+  if (report.clipped)
+    flags += (flags.empty() ? "" : "; ") + std::string("interval clipped to the bounds");
   return flags;
 }
 

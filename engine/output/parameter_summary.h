@@ -43,8 +43,8 @@ std::string ParameterFlags(const ParameterReport& report);
 
 // Counts of unknowns: parameters by role, and initial states apart.
 struct UnknownCounts {
-  int shared = 0;          // one value for every experiment (free, shared, isolated)
-  int per_experiment = 0;  // parameters with one value per experiment ...
+  int shared = 0;                 // one value for every experiment (free, shared, isolated)
+  int per_experiment = 0;         // parameters with one value per experiment ...
   int per_experiment_values = 0;  // ... and their values
   int fixed = 0;
   int initial_states = 0;  // estimated initial states (values)

@@ -207,10 +207,10 @@ bool TraceFigure(const std::string& name, const std::vector<const ExperimentFit*
   s << "set multiplot\n"
     << "set xrange [" << GnuplotNumber(t_min) << ":" << GnuplotNumber(t_max) << "]\n"
     << "set format y '%g'\nset format x '%g'\nset tics font ',10'\n";
-  const std::string time_label =
-      segments ? "'t [s], " + std::to_string(starts.size()) +
-                     " segments end to end, each from its own start (dashed)'"
-               : "'t [s]'";
+  const std::string time_label = segments
+                                     ? "'t [s], " + std::to_string(starts.size()) +
+                                           " segments end to end, each from its own start (dashed)'"
+                                     : "'t [s]'";
   for (int r = 0; r < rows; ++r) {
     const ChannelSeries& c = channels[r];
     const auto shown = units.find(c.output);

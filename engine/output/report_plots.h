@@ -19,10 +19,9 @@
 //                asymptote's state x_s (mirrored copies as open circles)
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
-
-#include <map>
 
 #include "Eigen/Dense"
 #include "engine/output/display_units.h"

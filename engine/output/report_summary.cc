@@ -72,9 +72,8 @@ std::string RunFitTableHtml(const RunFitTable& table) {
   body += "</tbody>\n";
   std::string foot;
   for (const RunFitSummary& s : table.summary) {
-    foot += "<tr class=\"summary\">" + Th(s.label + " of " + std::to_string(table.rows.size()) +
-                                           " runs") +
-            "<td></td>";
+    foot += "<tr class=\"summary\">" +
+            Th(s.label + " of " + std::to_string(table.rows.size()) + " runs") + "<td></td>";
     for (size_t o = 0; o < table.outputs.size(); ++o) {
       std::string fit = HtmlNumber(s.fit_percent[o], "%.2f");
       if (!s.run[o].empty()) fit += " (" + s.run[o] + ")";
@@ -83,8 +82,8 @@ std::string RunFitTableHtml(const RunFitTable& table) {
     foot += "<td></td></tr>\n";
   }
   if (!foot.empty()) foot = "<tfoot>\n" + foot + "</tfoot>\n";
-  std::string out = "<div class=\"scroll\"><table class=\"sortable runs\">\n" + head + body +
-                    foot + "</table></div>\n";
+  std::string out = "<div class=\"scroll\"><table class=\"sortable runs\">\n" + head + body + foot +
+                    "</table></div>\n";
   if (table.worst_first) {
     out += "<p class=\"muted\">" + std::to_string(table.rows.size()) +
            " runs, worst first (lowest fit % of any output); click a heading to sort.</p>\n";
@@ -117,7 +116,7 @@ std::string FinalParametersSummaryHtml(const RunResult& result) {
     const std::string flags = ParameterFlags(r);
     const std::string css = fixed ? " class=\"fixed\"" : !flags.empty() ? " class=\"flagged\"" : "";
     rows += "<tr" + css + ">" + Td(f.name) +
-            Num(f.runs > 0                  ? "per run"
+            Num(f.runs > 0                 ? "per run"
                 : f.undetermined && !fixed ? "undetermined"
                                            : HtmlNumber(f.value, "%.8g")) +
             Num(HtmlNumber(f.std_error, "%.4g")) + Num(interval) +
@@ -139,12 +138,14 @@ std::string FinalParametersSummaryHtml(const RunResult& result) {
 std::string SummarySectionHtml(const RunConfig& config, const RunResult& result) {
   std::string out = "<section id=\"summary\">\n<h2>Summary</h2>\n";
   out += "<h3 id=\"summary-parameters\">Final parameters</h3>\n<p>" +
-         HtmlEscape(DescribeCounts(CountUnknowns(result))) + "; shared parameters fused by the <strong>" +
+         HtmlEscape(DescribeCounts(CountUnknowns(result))) +
+         "; shared parameters fused by the <strong>" +
          HtmlEscape(FusionRuleToString(config.fusion)) + "</strong> rule.</p>\n" +
          FinalParametersSummaryHtml(result);
   if (const StageResult* last = LastAcceptedStage(result)) {
     out += "<h3 id=\"summary-fit\">Fit per run: stage " + HtmlEscape(last->name) +
-           " (identification data)</h3>\n" + RunFitTableHtml(PerRunFits(config, last->summary.fits));
+           " (identification data)</h3>\n" +
+           RunFitTableHtml(PerRunFits(config, last->summary.fits));
   }
   if (!result.final_validation.empty()) {
     out += "<h3 id=\"summary-validation\">Fit per run: final values on held-out data</h3>\n" +

@@ -23,8 +23,8 @@ std::string Bounds(double lower, double upper) {
 }
 
 // value ± 1.96 SE within [lower, upper], or "undetermined".
-std::string Interval(double value, double std_error, bool undetermined,
-                     double lower = -INFINITY, double upper = INFINITY) {
+std::string Interval(double value, double std_error, bool undetermined, double lower = -INFINITY,
+                     double upper = INFINITY) {
   if (undetermined || !std::isfinite(std_error)) return "undetermined";
   return "[" + HtmlNumber(std::max(lower, value - 1.96 * std_error), "%.6g") + ", " +
          HtmlNumber(std::min(upper, value + 1.96 * std_error), "%.6g") + "]";
@@ -33,9 +33,9 @@ std::string Interval(double value, double std_error, bool undetermined,
 // An estimate on its bound, its interval clipped to the bounds (parameter_summary.h).
 std::string EstimateRow(const Estimate& e, bool with_experiment) {
   const int bound = BoundSide(e.value, e.lower, e.upper);
-  const bool clipped = std::isfinite(e.std_error) && !e.undetermined &&
-                       (e.value - 1.96 * e.std_error < e.lower ||
-                        e.value + 1.96 * e.std_error > e.upper);
+  const bool clipped =
+      std::isfinite(e.std_error) && !e.undetermined &&
+      (e.value - 1.96 * e.std_error < e.lower || e.value + 1.96 * e.std_error > e.upper);
   std::string flag = bound == 0 ? "" : bound < 0 ? "on its lower bound" : "on its upper bound";
   if (clipped) flag += (flag.empty() ? "" : "; ") + std::string("interval clipped");
   std::string row = std::string(flag.empty() ? "<tr>" : "<tr class=\"flagged\">") + Td(e.name);
@@ -116,16 +116,17 @@ std::string MetricsTable(const std::vector<const ExperimentFit*>& fits, const Ru
           config ? OutputDisplayUnit(*config, m.experiment, m.output) : DisplayUnit{};
       rows += "<tr>" + Td(m.experiment) + Td(m.output) + (config ? Td(unit.unit) : "") +
               Num(std::to_string(m.samples)) + Num(HtmlNumber(unit.scale * m.rmse, "%.4g")) +
-              Num(HtmlNumber(unit.scale * m.mae, "%.4g")) +
-              Num(HtmlNumber(m.r2, "%.5f")) + Num(HtmlNumber(m.fit_percent, "%.2f")) +
-              Num(HtmlNumber(fit->rms_cost, "%.4g")) + "</tr>\n";
+              Num(HtmlNumber(unit.scale * m.mae, "%.4g")) + Num(HtmlNumber(m.r2, "%.5f")) +
+              Num(HtmlNumber(m.fit_percent, "%.2f")) + Num(HtmlNumber(fit->rms_cost, "%.4g")) +
+              "</tr>\n";
       ++count;
     }
   }
   if (count == 0) return "";
   const std::string table = "<table class=\"metrics\">\n<tr>" + Th("experiment") + Th("output") +
-                            (config ? Th("unit") : "") + Th("samples") + Th("RMSE") + Th("MAE") + Th("R²") + Th("fit %") +
-                            Th("√(mean e²)") + "</tr>\n" + rows + "</table>\n";
+                            (config ? Th("unit") : "") + Th("samples") + Th("RMSE") + Th("MAE") +
+                            Th("R²") + Th("fit %") + Th("√(mean e²)") + "</tr>\n" + rows +
+                            "</table>\n";
   return Fold(table, count, "metrics of " + std::to_string(count) + " channels", kOpenRows);
 }
 

@@ -1,9 +1,9 @@
 #include "engine/output/results_json.h"
 
 #include "engine/base/json_number.h"
-#include "engine/output/held_out_parameters_report.h"
 #include "engine/data/time_base.h"
 #include "engine/output/display_units.h"
+#include "engine/output/held_out_parameters_report.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/output/run_fit_table.h"
 #include "engine/output/step_regression_writer.h"
@@ -82,8 +82,8 @@ json RunsToJson(const RunConfig& config, const std::vector<ExperimentFit>& fits)
   }
   json units = json::object();
   for (size_t o = 0; o < table.outputs.size(); ++o) units[table.outputs[o]] = table.units[o];
-  return {{"rows", runs}, {"summary", summary}, {"units", units},
-          {"worst_first", table.worst_first}};
+  return {
+      {"rows", runs}, {"summary", summary}, {"units", units}, {"worst_first", table.worst_first}};
 }
 
 json CountsToJson(const UnknownCounts& c) {
@@ -251,8 +251,7 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
   if (!stage.validation.empty()) j["validation"] = FitsToJson(config, stage.validation);
   if (stage.held_out.done) j["held_out_check"] = HeldOutToJson(stage.held_out);
   if (stage.held_out_parameters.active()) {
-    j["held_out_parameters"] =
-        HeldOutParametersToJson(stage.held_out_parameters, stage.validation);
+    j["held_out_parameters"] = HeldOutParametersToJson(stage.held_out_parameters, stage.validation);
   }
   if (!stage.rejected.empty()) j["rejected"] = stage.rejected;
   if (stage.integration_step > 0.0) j["integration_step"] = stage.integration_step;
@@ -306,7 +305,8 @@ json RunResultToJson(const RunConfig& config, const RunResult& result) {
     if (r.bound != 0) item["at_bound"] = r.bound < 0 ? "lower" : "upper";
     if (!r.fusion_note.empty()) item["fusion_note"] = r.fusion_note;
     if (f.runs > 0) {  // per_experiment: one value per run
-      item["runs"] = {{"count", f.runs}, {"min", JsonNumber(f.runs_min)}, {"max", JsonNumber(f.runs_max)}};
+      item["runs"] = {
+          {"count", f.runs}, {"min", JsonNumber(f.runs_min)}, {"max", JsonNumber(f.runs_max)}};
     }
     parameters.push_back(item);
   }

@@ -5,9 +5,9 @@
 #include <sstream>
 
 #include "engine/output/held_out_parameters_report.h"
-#include "engine/output/zigzag_report.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/output/run_fit_table.h"
+#include "engine/output/zigzag_report.h"
 #include "engine/run/held_out.h"
 
 namespace vesselid {
@@ -170,8 +170,8 @@ std::string StageText(const RunConfig& config, const StageResult& stage) {
 // stages behind each, the counts and the fusion notes.
 std::string FinalParametersText(const RunConfig& config, const RunResult& result) {
   std::ostringstream out;
-  out << "  final parameters (shared: " << FusionRuleToString(config.fusion) << " fusion): "
-      << DescribeCounts(CountUnknowns(result)) << "\n";
+  out << "  final parameters (shared: " << FusionRuleToString(config.fusion)
+      << " fusion): " << DescribeCounts(CountUnknowns(result)) << "\n";
   char line[512];
   std::snprintf(line, sizeof(line), "  %-24s %-15s %16s %12s %27s  %s\n", "name", "role", "value",
                 "std error", "95 % interval", "from");
@@ -255,7 +255,8 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
   out << "\nstages\n";
   for (const StageResult& stage : result.stages) out << StageText(config, stage);
   if (config.has_final_validation) {
-    out << "\nfinal validation\n" << MetricsTable(config, result.final_validation)
+    out << "\nfinal validation\n"
+        << MetricsTable(config, result.final_validation)
         << HeldOutParametersText(result.final_held_out_parameters, result.final_validation, "  ");
   }
   if (!result.final_velocity_validation.empty()) {

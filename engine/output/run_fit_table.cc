@@ -110,7 +110,8 @@ RunFitTable PerRunFits(const RunConfig& config, const std::vector<ExperimentFit>
         m.mae = scale * s.sae / s.samples;
         m.hold_mae = scale * s.hold_sae / s.samples;
         m.r2 = s.spread_known && s.sst > 0 ? 1.0 - s.sse / s.sst : kNaN;
-        m.fit_percent = s.spread_known && s.sst > 0 ? 100.0 * (1.0 - std::sqrt(s.sse / s.sst)) : kNaN;
+        m.fit_percent =
+            s.spread_known && s.sst > 0 ? 100.0 * (1.0 - std::sqrt(s.sse / s.sst)) : kNaN;
         if (std::isfinite(m.fit_percent) &&
             !(row.worst_fit <= m.fit_percent)) {  // NaN start: the first one
           row.worst_fit = m.fit_percent;
@@ -172,9 +173,10 @@ std::string RunFitTableText(const RunFitTable& table) {
   std::snprintf(cell, sizeof(cell), "  %-24s %8s", "run", "segments");
   out += cell;
   for (size_t o = 0; o < table.outputs.size(); ++o) {
-    std::snprintf(cell, sizeof(cell), " %10s %14s", ("fit % " + table.outputs[o]).c_str(),
-                  ("RMSE " + table.outputs[o] + (table.units[o].empty() ? "" : " [" + table.units[o] + "]"))
-                      .c_str());
+    std::snprintf(
+        cell, sizeof(cell), " %10s %14s", ("fit % " + table.outputs[o]).c_str(),
+        ("RMSE " + table.outputs[o] + (table.units[o].empty() ? "" : " [" + table.units[o] + "]"))
+            .c_str());
     out += cell;
   }
   std::snprintf(cell, sizeof(cell), " %12s\n", "rms cost");

@@ -28,7 +28,7 @@ struct RunFitRow {
   std::string diverged_message;  // of the first diverged segment
   // Per output of the table (RunFitTable::outputs); samples 0 where the run has none.
   std::vector<ChannelMetrics> channels;
-  double rms_cost = std::numeric_limits<double>::quiet_NaN();  // over all its samples
+  double rms_cost = std::numeric_limits<double>::quiet_NaN();   // over all its samples
   double worst_fit = std::numeric_limits<double>::quiet_NaN();  // lowest fit % of its outputs
 };
 

@@ -136,7 +136,8 @@ bool StageResultFromArchive(const nlohmann::json& j, StageResult* stage, std::st
     j.at("validation").get_to(s.validation);
     j.at("held_out").get_to(s.held_out);
     // Absent from archives written before held-out runs had per-experiment parameters.
-    if (j.contains("held_out_parameters")) j.at("held_out_parameters").get_to(s.held_out_parameters);
+    if (j.contains("held_out_parameters"))
+      j.at("held_out_parameters").get_to(s.held_out_parameters);
     j.at("rejected").get_to(s.rejected);
     j.at("integration_step").get_to(s.integration_step);
     j.at("velocity_validation").get_to(s.velocity_validation);

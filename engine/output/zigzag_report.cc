@@ -85,8 +85,9 @@ std::string ZigzagRunsHtml(const std::vector<ZigzagRun>& runs) {
   if (runs.empty()) return "";
   std::string rows;
   for (const ZigzagRun& run : runs) {
-    rows += "<tr>" + Td(run.stage) + Td(run.experiment) + Td(run.held_out ? "held out" : "training") +
-            Td(Test(run)) + Num(HtmlNumber(run.measured.first_overshoot * kToDegrees, "%.2f")) +
+    rows += "<tr>" + Td(run.stage) + Td(run.experiment) +
+            Td(run.held_out ? "held out" : "training") + Td(Test(run)) +
+            Num(HtmlNumber(run.measured.first_overshoot * kToDegrees, "%.2f")) +
             Num(HtmlNumber(run.simulated.first_overshoot * kToDegrees, "%.2f")) +
             Num(HtmlNumber(run.measured.second_overshoot * kToDegrees, "%.2f")) +
             Num(HtmlNumber(run.simulated.second_overshoot * kToDegrees, "%.2f")) +

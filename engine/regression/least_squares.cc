@@ -220,7 +220,8 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
   for (int i = 0; i < np; ++i) {
     if (!estimated[i]) continue;
     if (profiled[i] && specs[i].role == ParameterRole::kPerExperiment) {
-      return fail("parameter '" + info.parameters[i] + "' enters the regressors and cannot be "
+      return fail("parameter '" + info.parameters[i] +
+                  "' enters the regressors and cannot be "
                   "per_experiment in a least-squares stage");
     }
     if (profiled[i]) {

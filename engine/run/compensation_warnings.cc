@@ -87,7 +87,9 @@ void AddCompensationWarnings(const ModelInfo& info, const StageResult& stage,
     }
     std::string names;
     for (size_t k = 0; k < members.size(); ++k) {
-      names += (k == 0 ? "" : k + 1 == members.size() ? " and " : ", ") +
+      names += (k == 0                    ? ""
+                : k + 1 == members.size() ? " and "
+                                          : ", ") +
                estimate[members[k]]->name;
     }
     const auto [a, b] = strongest;

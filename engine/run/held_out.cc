@@ -155,7 +155,8 @@ bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
   const bool fit_own = !per_run.parameters.empty() && per_run.mode == HeldOutPerExperiment::kFit;
   if (parameters != nullptr) {
     *parameters = HeldOutParameters();
-    for (const ParameterSpec& spec : per_run.parameters) parameters->parameters.push_back(spec.name);
+    for (const ParameterSpec& spec : per_run.parameters)
+      parameters->parameters.push_back(spec.name);
     parameters->fitted = fit_own;
   }
   // One problem per experiment (they share nothing with the shared parameters fixed), so that

@@ -239,9 +239,8 @@ bool PrepareRegressionRecords(const RunConfig& config, const std::vector<std::st
   // A gap of missing grid samples (a step over max_gap and over two median steps) cuts a piece
   // in two, "<piece>~<k>", with a note; a step only irregular (row jitter, up to two median
   // steps) stays BuildRegressionRecord's error unless max_gap admits it.
-  const auto split = [&](const std::string& record, const ExperimentSpec& s,
-                         const Trajectory& data, std::vector<ExperimentSpec>* specs,
-                         std::string*) {
+  const auto split = [&](const std::string& record, const ExperimentSpec& s, const Trajectory& data,
+                         std::vector<ExperimentSpec>* specs, std::string*) {
     std::string output;
     if (grid_of(s, data, &output) < 3) {
       specs->push_back(s);
@@ -302,9 +301,9 @@ bool PrepareRegressionRecords(const RunConfig& config, const std::vector<std::st
     const int fewest = grid_of(s, data, &grid);
     const int window = 2 * options.smoothing.half_width + 1;
     if (fewest < 0 || fewest >= window) return std::string();
-    return "Savitzky-Golay window of " + std::to_string(window) +
-           " samples is longer than the " + std::to_string(fewest) + " samples of its output " +
-           grid + " (the stage's smoothing.half_width)";
+    return "Savitzky-Golay window of " + std::to_string(window) + " samples is longer than the " +
+           std::to_string(fewest) + " samples of its output " + grid +
+           " (the stage's smoothing.half_width)";
   };
   return ForEachRecordSpec(
       config, names, 0.0, cache, split, too_short,

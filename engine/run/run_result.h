@@ -3,8 +3,8 @@
 // report.txt, report.html) and archived by checkpoints; names become text only there.
 #pragma once
 
-#include <limits>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -128,9 +128,9 @@ struct ZigzagRun {
 // Where a record's relative times and local positions start (record_notes.h).
 struct RecordOrigin {
   std::string experiment;
-  bool epoch = false;              // t = 0 at the Unix time time_origin_ns
+  bool epoch = false;  // t = 0 at the Unix time time_origin_ns
   std::int64_t time_origin_ns = 0;
-  bool position = false;           // north/east from GNSS fixes, 0 at lat, lon (degrees)
+  bool position = false;  // north/east from GNSS fixes, 0 at lat, lon (degrees)
   double lat = 0.0, lon = 0.0;
 };
 

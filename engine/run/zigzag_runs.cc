@@ -29,7 +29,8 @@ void Examine(const RunConfig& config, const std::string& stage, bool held_out,
     const ExperimentSpec* spec = SpecOf(config, fit.experiment);
     if (spec == nullptr || spec->outputs.count("psi") == 0) continue;
     const std::string rudder = RudderColumn(*spec);
-    const int measured = fit.trace.Find("psi_measured"), simulated = fit.trace.Find("psi_simulated");
+    const int measured = fit.trace.Find("psi_measured"),
+              simulated = fit.trace.Find("psi_simulated");
     if (rudder.empty() || measured < 0 || simulated < 0) continue;
     std::string error;
     const Trajectory* data = LoadCachedTrajectory(*spec, cache, &error);

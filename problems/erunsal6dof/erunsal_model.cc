@@ -78,7 +78,7 @@ ModelInfo Model::Info() const {
   info.parameter_defaults = ReferenceParameters();
   info.angle_outputs.assign(info.outputs.size(), false);
   info.angle_outputs[3] = info.angle_outputs[4] = info.angle_outputs[5] = true;
-  info.output_units = {"m",   "m",   "m",     "rad",   "rad", "rad", "m/s",
+  info.output_units = {"m",   "m",   "m",     "rad",   "rad",   "rad", "m/s",
                        "m/s", "m/s", "rad/s", "rad/s", "rad/s", "N",   "N"};
   info.input_units = {"", "", "m/s", "rad"};
   return info;

@@ -10,7 +10,7 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kDegree = M_PI / 180.0;
-constexpr int kZeroFix = 10;   // the zero fix is a segment's 11th (2 s in at 5 Hz)
+constexpr int kZeroFix = 10;    // the zero fix is a segment's 11th (2 s in at 5 Hz)
 constexpr int kStaleFrom = 20;  // the stale fixes follow a segment's 20th (4 s in)
 
 enum Column { kSegment, kNorth, kEast, kHeading, kPwmL, kPwmR };
@@ -34,8 +34,7 @@ bool FieldLogOptions::IsValid(std::string* error) const {
   }
   if (!(stale_fixes >= 1 && stale_fixes <= 50)) return fail("stale_fixes must be in [1, 50]");
   if (!(short_s > 0.0)) return fail("short_s must be positive");
-  if (short_segment >= 0 &&
-      (short_segment == zero_fix_segment || short_segment == stale_segment)) {
+  if (short_segment >= 0 && (short_segment == zero_fix_segment || short_segment == stale_segment)) {
     return fail("the short segment must not also hold the zero fix or the stale fixes");
   }
   return true;

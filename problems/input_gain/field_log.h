@@ -45,7 +45,6 @@ bool MakeFieldLog(const Trajectory& campaign, const FieldLogOptions& options, un
 
 // The geodetic latitude and longitude (deg) of local north/east (m) on the WGS84 tangent plane
 // at (lat0, lon0) (height 0 there).
-void LocalToGeodetic(double lat0, double lon0, double north, double east, double* lat,
-                     double* lon);
+void LocalToGeodetic(double lat0, double lon0, double north, double east, double* lat, double* lon);
 
 }  // namespace vesselid::input_gain

@@ -93,10 +93,10 @@ bool ReadFieldLog(const YamlReader& reader, const YAML::Node& node, const std::s
   double jitter_ms = options->jitter * 1e3;
   reader.Read(node, key, "jitter_ms", &jitter_ms);
   options->jitter = jitter_ms * 1e-3;
-  for (const auto& [name, index] : {std::pair<const char*, int*>{"zero_fix_segment",
-                                                                 &options->zero_fix_segment},
-                                    {"stale_segment", &options->stale_segment},
-                                    {"short_segment", &options->short_segment}}) {
+  for (const auto& [name, index] :
+       {std::pair<const char*, int*>{"zero_fix_segment", &options->zero_fix_segment},
+        {"stale_segment", &options->stale_segment},
+        {"short_segment", &options->short_segment}}) {
     reader.Read(node, key, name, index);
     if (*index >= segments) {
       reader.Fail(node[name], Child(key, name),
@@ -118,10 +118,9 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
               const std::string& out_dir, bool check_only, std::string* error) {
   const std::string path = "simulation";
   if (!simulation) reader.Fail(simulation, path, "missing: the config has no simulation section");
-  reader.CheckMap(
-      simulation, path,
-      {"file", "segments", "duration_min", "seed", "noise", "vessel", "segment_s", "defects",
-       "field_log"});
+  reader.CheckMap(simulation, path,
+                  {"file", "segments", "duration_min", "seed", "noise", "vessel", "segment_s",
+                   "defects", "field_log"});
   if (!simulation["file"]) reader.Fail(simulation, Child(path, "file"), "missing");
   const std::string file = reader.String(simulation["file"], Child(path, "file"));
   CampaignOptions options;

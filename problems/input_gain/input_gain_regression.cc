@@ -37,8 +37,8 @@ RegressionForm InputGainModel<kDynamic>::Regression() const {
     for (int term : bases_.terms[i]) names.push_back(std::string(kEquation[i]) + "." + TermNames()[term]);
     const std::string b = gain[i];
     // The ahead term that carries the scale has coefficient b itself (thrust_law.h).
-    const std::string names_of[kPropellerColumns] = {
-        b, law_.linear ? b + "*k_f" : b, b + "*k_r1", "-" + b + "*k_r2"};
+    const std::string names_of[kPropellerColumns] = {b, law_.linear ? b + "*k_f" : b, b + "*k_r1",
+                                                     "-" + b + "*k_r2"};
     for (int column : PropellerColumns(law_)) names.push_back(names_of[column]);
     form.coefficients.push_back(names);
   }
@@ -113,10 +113,18 @@ void InputGainModel<kDynamic>::Coefficients(const double* p, double* theta) cons
     for (size_t j = 0; j < bases_.terms[i].size(); ++j) theta[out++] = p[first_[i] + j];
     for (int column : columns) {
       switch (column) {
-        case 0: theta[out++] = gain[i]; break;
-        case 1: theta[out++] = law_.linear ? gain[i] * prop[thrust_.k_f] : gain[i]; break;
-        case 2: theta[out++] = gain[i] * prop[thrust_.k_r1]; break;
-        default: theta[out++] = -gain[i] * prop[thrust_.k_r2]; break;
+        case 0:
+          theta[out++] = gain[i];
+          break;
+        case 1:
+          theta[out++] = law_.linear ? gain[i] * prop[thrust_.k_f] : gain[i];
+          break;
+        case 2:
+          theta[out++] = gain[i] * prop[thrust_.k_r1];
+          break;
+        default:
+          theta[out++] = -gain[i] * prop[thrust_.k_r2];
+          break;
       }
     }
   }

@@ -42,12 +42,12 @@ struct ClosedLoopOptions {
   Excitation excitation;
   double rudder_noise = 0.0;   // std [rad]
   double heading_noise = 0.0;  // std [rad]
-  double heading_resolution = 0.0;  // > 0: the logged heading is rounded to it [rad]
-  double rudder_rate = 0.0;    // > 0: steering gear rate limit [rad/s]
-  double rudder_bias = 0.0;    // [rad], not in the logged rudder angle
+  double heading_resolution = 0.0;     // > 0: the logged heading is rounded to it [rad]
+  double rudder_rate = 0.0;            // > 0: steering gear rate limit [rad/s]
+  double rudder_bias = 0.0;            // [rad], not in the logged rudder angle
   double disturbance_amplitude = 0.0;  // [rad] of rudder
   double disturbance_period = 0.0;     // [s]
-  double speed = 0.0;          // U [m/s] for a model with a speed input
+  double speed = 0.0;                  // U [m/s] for a model with a speed input
   unsigned seed = 1;
 
   bool IsValid(std::string* error) const;

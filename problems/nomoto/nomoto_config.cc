@@ -43,8 +43,9 @@ std::unique_ptr<ModelHandle> MakeModel(const YamlReader& reader, const YAML::Nod
 
 Excitation ReadExcitation(const YamlReader& reader, const YAML::Node& node,
                           const std::string& path) {
-  reader.CheckMap(node, path, {"type", "amplitude_deg", "period", "periods", "rudder_deg",
-                               "heading_deg", "first"});
+  reader.CheckMap(
+      node, path,
+      {"type", "amplitude_deg", "period", "periods", "rudder_deg", "heading_deg", "first"});
   Excitation e;
   const std::string type = node["type"] ? reader.String(node["type"], Child(path, "type")) : "sine";
   if (type == "sine") {
@@ -83,8 +84,8 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
               const std::string& out_dir, bool check_only, std::string* error) {
   const std::string path = "simulation";
   if (!simulation) reader.Fail(simulation, path, "missing: the config has no simulation section");
-  reader.CheckMap(simulation, path, {"truth", "steering_gear", "sample_time", "substeps",
-                                     "experiments", "degrees"});
+  reader.CheckMap(simulation, path,
+                  {"truth", "steering_gear", "sample_time", "substeps", "experiments", "degrees"});
   const ModelInfo& info = model.info();
   std::vector<double> truth = info.parameter_defaults;
   if (!simulation["truth"]) reader.Fail(simulation, Child(path, "truth"), "missing");
@@ -120,8 +121,9 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
   for (size_t i = 0; i < experiments.size(); ++i) {
     const YAML::Node node = experiments[i];
     const std::string key = Child(Child(path, "experiments"), i);
-    reader.CheckMap(node, key, {"file", "duration", "excitation", "noise", "seed", "speed",
-                                "rudder_bias_deg", "disturbance"});
+    reader.CheckMap(node, key,
+                    {"file", "duration", "excitation", "noise", "seed", "speed", "rudder_bias_deg",
+                     "disturbance"});
     if (!node["file"]) reader.Fail(node, key, "missing key 'file'");
     ClosedLoopOptions options = base;
     reader.Read(node, key, "duration", &options.duration);
@@ -195,8 +197,7 @@ ModelFamily NomotoFamily() {
   return {"nomoto",
           "Nomoto steering models (first order, second order, Norrbin; n1-forms and the "
           "second-order rates form for course-unstable ships)",
-          MakeModel,
-          Simulate};
+          MakeModel, Simulate};
 }
 
 }  // namespace vesselid::nomoto

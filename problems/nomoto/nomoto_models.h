@@ -54,9 +54,9 @@ struct FirstOrder {
   static constexpr int kNumOutputs = 2;  // psi, r
 
   ModelInfo Info() const {
-    return {"nomoto_first_order",  {"psi", "r"},     {"delta"},     {"psi", "r"},
-            {"T", "K", "delta_0"}, {10.0, 0.1, 0.0}, {true, false}, {}, {},
-            {"rad", "rad/s"},      {"rad", "rad/s"}, {"rad"}};
+    return {"nomoto_first_order", {"psi", "r"},  {"delta"}, {"psi", "r"}, {"T", "K", "delta_0"},
+            {10.0, 0.1, 0.0},     {true, false}, {},        {},           {"rad", "rad/s"},
+            {"rad", "rad/s"},     {"rad"}};
   }
 
   template <class T>
@@ -104,8 +104,10 @@ struct Norrbin {
             {"T", "K", "alpha", "delta_0"},
             {10.0, 0.1, 0.0, 0.0},
             {true, false},
-            {},                       {},
-            {"rad", "rad/s"},         {"rad", "rad/s"},
+            {},
+            {},
+            {"rad", "rad/s"},
+            {"rad", "rad/s"},
             {"rad"}};
   }
 

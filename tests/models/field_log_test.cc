@@ -3,6 +3,8 @@
 // row rate whose latitude and longitude map back onto the campaign's north/east (checked by
 // the forward conversion geodetic -> ECEF -> local tangent plane, written here independently),
 // and the defects where they were asked for.
+#include "problems/input_gain/field_log.h"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -11,7 +13,6 @@
 #include "engine/config/config.h"
 #include "gtest/gtest.h"
 #include "problems/input_gain/campaign.h"
-#include "problems/input_gain/field_log.h"
 #include "problems/registry.h"
 
 namespace vesselid {
@@ -76,8 +77,8 @@ TEST(FieldLog, JitterDegreesGeodeticFixesAndDefects) {
   options.stale_fixes = 4;
   options.short_segment = 3;
   ASSERT_TRUE(MakeFieldLog(dense, options, 7, &log, &error)) << error;
-  ASSERT_EQ(log.names, (std::vector<std::string>{"segment", "lat", "lon", "heading", "pwm_L",
-                                                  "pwm_R"}));
+  ASSERT_EQ(log.names,
+            (std::vector<std::string>{"segment", "lat", "lon", "heading", "pwm_L", "pwm_R"}));
   std::map<double, size_t> dense_row;
   for (size_t i = 0; i < dense.t.size(); ++i) dense_row[dense.t[i]] = i;
   const int n = dense.Find("n"), e = dense.Find("e"), heading = dense.Find("heading");
@@ -181,12 +182,14 @@ TEST(FieldLog, ConfigRefusalsNameFileLineAndKey) {
     }
     return SimulateConfig(config, dir.string(), &error, true) ? std::string() : error;
   };
-  EXPECT_NE(refusal("{jitter_ms: 80}").find("config.yaml:7: simulation.field_log: field log: "
-                                             "jitter must be"),
+  EXPECT_NE(refusal("{jitter_ms: 80}")
+                .find("config.yaml:7: simulation.field_log: field log: "
+                      "jitter must be"),
             std::string::npos)
       << refusal("{jitter_ms: 80}");
-  EXPECT_NE(refusal("{short_segment: 4}").find("simulation.field_log.short_segment: segment 4 "
-                                                "of 4"),
+  EXPECT_NE(refusal("{short_segment: 4}")
+                .find("simulation.field_log.short_segment: segment 4 "
+                      "of 4"),
             std::string::npos)
       << refusal("{short_segment: 4}");
   EXPECT_NE(refusal("{origin: [63.4]}").find("simulation.field_log.origin: expected [lat, lon]"),

@@ -42,14 +42,13 @@ struct DynamicLinearCase {
 template <class Case>
 class InputGainExactData : public ::testing::Test {
  protected:
-  std::unique_ptr<ModelHandle> model_ =
-      Case::kDynamic ? input_gain::MakeDynamicHandle({}, Case::Law())
-                     : input_gain::MakeStaticHandle({}, Case::Law());
+  std::unique_ptr<ModelHandle> model_ = Case::kDynamic
+                                            ? input_gain::MakeDynamicHandle({}, Case::Law())
+                                            : input_gain::MakeStaticHandle({}, Case::Law());
   std::vector<double> truth_ = LumpedTruth(Case::kDynamic, Case::Law());
 };
 
-using Cases =
-    ::testing::Types<StaticCase, DynamicCase, StaticQuadraticCase, DynamicLinearCase>;
+using Cases = ::testing::Types<StaticCase, DynamicCase, StaticQuadraticCase, DynamicLinearCase>;
 TYPED_TEST_SUITE(InputGainExactData, Cases);
 
 // Every parameter estimated from the model's default, except `held` (kept at its default).

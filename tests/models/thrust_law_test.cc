@@ -118,8 +118,7 @@ class ThrustConfig : public ::testing::Test {
 TEST_F(ThrustConfig, TermsAndDeadZoneSelectTheParameters) {
   RunConfig config;
   std::string error;
-  ASSERT_TRUE(Load(", thrust: [\"n|n|\"], dead_zone: false", "      k_r2: 0.5\n", &config,
-                   &error))
+  ASSERT_TRUE(Load(", thrust: [\"n|n|\"], dead_zone: false", "      k_r2: 0.5\n", &config, &error))
       << error;
   EXPECT_EQ(PropellerParameters(*config.model), std::vector<std::string>{"k_r2"});
   ASSERT_TRUE(Load(", thrust: [n|n|, n]", "      k_f: 1.0\n", &config, &error)) << error;

@@ -1,5 +1,6 @@
-// Input-gain variants (static and dynamic propellers, default and configured thrust laws) on the lumped catamaran's own data:
-// PWM commands held 2-6 s, GNSS positions at 5 Hz and AHRS heading at 50 Hz.
+// Input-gain variants (static and dynamic propellers, default and configured thrust laws) on the
+// lumped catamaran's own data: PWM commands held 2-6 s, GNSS positions at 5 Hz and AHRS heading at
+// 50 Hz.
 #include <cmath>
 
 #include "problems/input_gain/handles.h"

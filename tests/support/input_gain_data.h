@@ -118,8 +118,8 @@ inline std::vector<double> LumpedTruth(bool dynamic, const input_gain::ThrustLaw
   p.resize(20);  // the bases and the gains
   const input_gain::ThrustOffsets offsets(law, dynamic);
   const double values[] = {1.2, 0.6, 0.5, 0.0, 0.0, 0.25};
-  const int at[] = {offsets.k_f, offsets.k_r1, offsets.k_r2, offsets.d_f, offsets.d_r,
-                    offsets.tau_T};
+  const int at[] = {offsets.k_f, offsets.k_r1, offsets.k_r2,
+                    offsets.d_f, offsets.d_r,  offsets.tau_T};
   for (int k = 0; k < 6; ++k) {
     if (at[k] >= 0) p.push_back(values[k]);
   }

@@ -38,8 +38,7 @@ TEST_F(BadInput, MissingColumn) {
 
 TEST_F(BadInput, FilePatternWithoutMatch) {
   EditConfig("name: run\n    file: data.csv", "files: \"zz_*.csv\"");
-  ExpectRejected(
-      "config\\.yaml:3: experiments\\[0\\]\\.files: no file matches 'zz_\\*\\.csv' in ");
+  ExpectRejected("config\\.yaml:3: experiments\\[0\\]\\.files: no file matches 'zz_\\*\\.csv' in ");
 }
 
 TEST_F(BadInput, UnknownParameter) {

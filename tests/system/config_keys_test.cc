@@ -113,7 +113,8 @@ TOP_KEYS)";
 
 const Variant V;
 const Variant kLeastSquares = V.K("    type: least_squares\n    least_squares: {grid: psi}");
-const Variant kPerRun = V.P("      delta_0: {start: 0.0, lower: -0.1, upper: 0.1, role: per_experiment}");
+const Variant kPerRun =
+    V.P("      delta_0: {start: 0.0, lower: -0.1, upper: 0.1, role: per_experiment}");
 
 const KeyCase kCases[] = {
     {"interpolation", V, V.A(", interpolation: {delta: zero_order_hold}")},

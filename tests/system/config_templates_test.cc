@@ -30,7 +30,8 @@ std::string Describe(const RunConfig& config) {
     s += "experiment " + e.name + " " + fs::path(e.file).lexically_normal().string() + "\n ";
     for (const auto& [k, v] : e.inputs) s += "in " + k + "=" + v + " ";
     for (const auto& [k, v] : e.outputs) s += "out " + k + "=" + v + " ";
-    for (const auto& [k, v] : e.interpolation) s += "interp " + k + "=" + InterpolationToString(v) + " ";
+    for (const auto& [k, v] : e.interpolation)
+      s += "interp " + k + "=" + InterpolationToString(v) + " ";
     s += std::string("default ") + InterpolationToString(e.default_interpolation) + " ";
     for (const auto& [k, v] : e.output_weights) s += "w " + k + "=", add(v);
     for (const auto& [k, v] : e.initial_state) s += "x0 " + k + "=", add(v);
@@ -38,9 +39,8 @@ std::string Describe(const RunConfig& config) {
     for (const std::string& w : e.wrapped_outputs) s += "wrap " + w + " ";
     s += "window ", add(e.t_begin), add(e.t_end);
     s += "segment_length ", add(e.segment_length);
-    s += "segments " + e.segments.column + " " +
-         std::to_string(static_cast<int>(e.segments.take)) + " " +
-         std::to_string(e.segments.seed) + " ";
+    s += "segments " + e.segments.column + " " + std::to_string(static_cast<int>(e.segments.take)) +
+         " " + std::to_string(e.segments.seed) + " ";
     add(e.segments.validation_share);
     for (const auto& [k, v] : e.input_range) s += "range " + k + " ", add(v.first), add(v.second);
     s += std::string("sep ") + e.csv.separator + "\n";
@@ -174,10 +174,9 @@ TEST_F(ConfigTemplates, ShortFormLoadsToTheLongForm) {
   ASSERT_TRUE(Load(kShortForm, &short_form, &error)) << error;
   EXPECT_EQ(Describe(short_form), Describe(long_form));
   ASSERT_EQ(short_form.experiments.size(), 4u);
-  EXPECT_EQ(short_form.experiments[0].name, "zz_1");  // sorted file names
+  EXPECT_EQ(short_form.experiments[0].name, "zz_1");              // sorted file names
   EXPECT_EQ(short_form.stages[1].parameters[0].name, "delta_0");  // merged keys at the << line
-  EXPECT_EQ(short_form.experiment_sets.at("held_out"),
-            (std::vector<std::string>{"zz_3", "turn"}));
+  EXPECT_EQ(short_form.experiment_sets.at("held_out"), (std::vector<std::string>{"zz_3", "turn"}));
 }
 
 TEST_F(ConfigTemplates, FilePatternFollowsTheDataFolder) {
@@ -214,8 +213,9 @@ TEST_F(ConfigTemplates, ErrorsNameTheLineWhereTheTextIs) {
   // A merged key where it is not allowed: the anchor's line.
   EXPECT_EQ(Refusal(replace(kShortForm, "final_validation: {experiments: held_out,",
                             "final_validation: {<<: *first, experiments: held_out,")),
-            file + ":18: final_validation.name: unknown key (allowed: experiments, outputs, "
-                   "model, free_initial_states, per_experiment)");
+            file +
+                ":18: final_validation.name: unknown key (allowed: experiments, outputs, "
+                "model, free_initial_states, per_experiment)");
   // Two experiments of one name, one from a pattern: the pattern's line.
   EXPECT_EQ(Refusal(replace(kShortForm, "name: zz_3,", "name: zz_1,")),
             file + ":11: experiments[1].name: duplicate experiment name 'zz_1'");
@@ -223,8 +223,9 @@ TEST_F(ConfigTemplates, ErrorsNameTheLineWhereTheTextIs) {
                             "{name: zz_3, file: data/zz_3.csv}\n  - {files: \"data/zz_[3].csv\"}")),
             file + ":11: experiments[1](zz_3).name: duplicate experiment name 'zz_3'");
   // A map merging itself.
-  EXPECT_EQ(Refusal(replace(kShortForm, "parameters: &bounds", "parameters: &bounds\n      <<: *bounds")),
-            file + ":24: stages[0].parameters.<<: merges a map that contains this one");
+  EXPECT_EQ(
+      Refusal(replace(kShortForm, "parameters: &bounds", "parameters: &bounds\n      <<: *bounds")),
+      file + ":24: stages[0].parameters.<<: merges a map that contains this one");
   // Two merge keys in one map.
   EXPECT_NE(Refusal(replace(kShortForm, "    name: second", "    <<: *first\n    name: second"))
                 .find(file + ":27: stages[1].<<: given twice (lines 26 and 27); a YAML map holds "

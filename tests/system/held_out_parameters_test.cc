@@ -52,8 +52,8 @@ class HeldOutParametersTest : public ::testing::Test {
       ASSERT_TRUE(nomoto::SimulateClosedLoop(*ship, {25.0, 3.0, 6.0, 0.08, kBias[i] * kDegree},
                                              loop, &data, &error))
           << error;
-      ASSERT_TRUE(WriteTrajectoryCsv((*dir_ / ("z" + std::to_string(i) + ".csv")).string(), data,
-                                     &error));
+      ASSERT_TRUE(
+          WriteTrajectoryCsv((*dir_ / ("z" + std::to_string(i) + ".csv")).string(), data, &error));
     }
   }
   static void TearDownTestSuite() {
@@ -117,9 +117,9 @@ TEST_F(HeldOutParametersTest, HeldOutRunsEstimateTheirOwnBiasAndShowWhatItBuys) 
   ASSERT_EQ(result.stages.size(), 1u);
   for (const HeldOutParameters* held :
        {&result.stages[0].held_out_parameters, &result.final_held_out_parameters}) {
-    const std::vector<ExperimentFit>& with =
-        held == &result.final_held_out_parameters ? result.final_validation
-                                                  : result.stages[0].validation;
+    const std::vector<ExperimentFit>& with = held == &result.final_held_out_parameters
+                                                 ? result.final_validation
+                                                 : result.stages[0].validation;
     ASSERT_TRUE(held->fitted);
     ASSERT_EQ(held->parameters, std::vector<std::string>{"delta_0"});
     ASSERT_EQ(held->estimates.size(), 2u);
@@ -151,7 +151,8 @@ TEST_F(HeldOutParametersTest, HeldOutRunsEstimateTheirOwnBiasAndShowWhatItBuys) 
       &restored, &error))
       << error;
   EXPECT_EQ(restored.held_out_parameters.estimates.size(), 2u);
-  EXPECT_EQ(RunResultToJson(config, Single(restored))["stages"][0]["held_out_parameters"], RunResultToJson(config, Single(result.stages[0]))["stages"][0]["held_out_parameters"]);
+  EXPECT_EQ(RunResultToJson(config, Single(restored))["stages"][0]["held_out_parameters"],
+            RunResultToJson(config, Single(result.stages[0]))["stages"][0]["held_out_parameters"]);
 
   // The final table shows the bias as one value per run, not as held fixed.
   const FinalParameter* bias = nullptr;
@@ -193,8 +194,8 @@ TEST_F(HeldOutParametersTest, HeldOutRunsEstimateTheirOwnBiasAndShowWhatItBuys) 
   // the stage's two held-out runs and the final validation's two.
   ASSERT_EQ(result.zigzags.size(), 8u);
   for (const ZigzagRun& z : result.zigzags) {
-    const double size = z.experiment == "z0" || z.experiment == "z2" || z.experiment == "z4"
-                            ? 10.0 : 20.0;
+    const double size =
+        z.experiment == "z0" || z.experiment == "z2" || z.experiment == "z4" ? 10.0 : 20.0;
     EXPECT_NEAR(z.test.rudder / kDegree, size, 0.2) << z.experiment;
     EXPECT_NEAR(z.test.heading / kDegree, size, 0.5) << z.experiment;
     EXPECT_GT(z.measured.first_overshoot, 0.0);
@@ -223,9 +224,10 @@ TEST_F(HeldOutParametersTest, HoldKeepsThemAtTheirStart) {
   RunConfig config;
   RunResult fitted, held;
   ASSERT_TRUE(Run("final_validation: {experiments: [z4, z5]}\n", &config, &fitted));
-  ASSERT_TRUE(Run("    validation_per_experiment: hold\n"
-                  "final_validation: {experiments: [z4, z5], per_experiment: hold}\n",
-                  &config, &held));
+  ASSERT_TRUE(
+      Run("    validation_per_experiment: hold\n"
+          "final_validation: {experiments: [z4, z5], per_experiment: hold}\n",
+          &config, &held));
   for (const HeldOutParameters* p :
        {&held.stages[0].held_out_parameters, &held.final_held_out_parameters}) {
     EXPECT_FALSE(p->fitted);
@@ -256,8 +258,9 @@ TEST_F(HeldOutParametersTest, HeldOutEstimateAtABoundIsAWarning) {
     }
     return false;
   };
-  EXPECT_TRUE(warned("stage 'biased': validation: delta_0[z5] of held-out run 'z5' is at its "
-                     "lower bound -0.04"));
+  EXPECT_TRUE(
+      warned("stage 'biased': validation: delta_0[z5] of held-out run 'z5' is at its "
+             "lower bound -0.04"));
   EXPECT_TRUE(warned("final validation: delta_0[z5] of held-out run 'z5' is at its lower bound"));
   EXPECT_FALSE(warned("run 'z4'"));
 }

@@ -226,9 +226,9 @@ size_t Records(const nlohmann::json& fit) {
 }
 
 // The plots report.html has for a results.json (report_html.h): per stage a trace figure per
-// record of its fit and of its validation (and its x-y track), a correlation heat map over two or more shared
-// parameters, a cost history when a refinement iterated or a global start evaluated twice,
-// lasso paths and samples for step regression; a trace figure per final validation record.
+// record of its fit and of its validation (and its x-y track), a correlation heat map over two or
+// more shared parameters, a cost history when a refinement iterated or a global start evaluated
+// twice, lasso paths and samples for step regression; a trace figure per final validation record.
 size_t ExpectedPlots(const nlohmann::json& results) {
   size_t plots = 0;
   for (const nlohmann::json& stage : results.at("stages")) {

@@ -35,8 +35,8 @@ ExperimentFit Fit(const std::string& experiment, double fit, double t0 = 0.0) {
   ExperimentFit f;
   f.experiment = experiment;
   const double rmse = 0.01 * (100.0 - fit) / 10.0, spread = rmse / (1.0 - fit / 100.0);
-  ChannelMetrics m{experiment, "psi", 100, rmse, 0.8 * rmse, 1.0 - (rmse * rmse) / (spread * spread),
-                   fit};
+  ChannelMetrics m{
+      experiment, "psi", 100, rmse, 0.8 * rmse, 1.0 - (rmse * rmse) / (spread * spread), fit};
   f.channels = {m};
   f.rms_cost = rmse;
   for (int k = 0; k <= 10; ++k) f.trace.t.push_back(t0 + k);
@@ -66,8 +66,8 @@ stages:
       K: {start: -0.1, lower: -1, upper: -0.001}
 )";
     std::string error;
-    ASSERT_TRUE(LoadRunConfig((dir_ / "run.yaml").string(), "", DefaultRegistry(), &config_,
-                              &error))
+    ASSERT_TRUE(
+        LoadRunConfig((dir_ / "run.yaml").string(), "", DefaultRegistry(), &config_, &error))
         << error;
     const EstimateKind kParameter = EstimateKind::kParameter;
     const ParameterRole kShared = ParameterRole::kShared;
@@ -86,14 +86,14 @@ stages:
       s.summary.refinements = {solve};
       s.summary.chosen = 0;
       s.summary.fits = {Fit("train@1", 95.0), Fit("train@2", 93.0, 14000.0)};
-      s.estimates = {{"T", kParameter, kShared, "", t, 3.0, 0.2, 0.1, 50.0, false},
-                     {"K", kParameter, kShared, "", k, -0.1, 0.002, -1.0, -0.001, false},
-                     {"delta_0", kParameter, ParameterRole::kFixed, "", 0.0, 0.0, nan, 0.0,
-                      0.0, false},
-                     {"psi", EstimateKind::kInitialState, ParameterRole::kPerExperiment,
-                      "train@1", 0.01, 0.0, 0.001, -1.0, 1.0, false},
-                     {"psi", EstimateKind::kInitialState, ParameterRole::kPerExperiment,
-                      "train@2", 0.02, 0.0, 0.001, -1.0, 1.0, false}};
+      s.estimates = {
+          {"T", kParameter, kShared, "", t, 3.0, 0.2, 0.1, 50.0, false},
+          {"K", kParameter, kShared, "", k, -0.1, 0.002, -1.0, -0.001, false},
+          {"delta_0", kParameter, ParameterRole::kFixed, "", 0.0, 0.0, nan, 0.0, 0.0, false},
+          {"psi", EstimateKind::kInitialState, ParameterRole::kPerExperiment, "train@1", 0.01, 0.0,
+           0.001, -1.0, 1.0, false},
+          {"psi", EstimateKind::kInitialState, ParameterRole::kPerExperiment, "train@2", 0.02, 0.0,
+           0.001, -1.0, 1.0, false}};
       return s;
     };
     result_.stages = {stage("first", 2.0, -0.001), stage("second", 2.2, -0.0012)};

@@ -79,8 +79,8 @@ class ThrustLawFit : public ::testing::Test {
     fs::create_directories(*dir_);
     std::ofstream(*dir_ / "simulate.yaml") << Config("", "k_f: 0.5", "k_f: {}");
     const std::string simulate = std::string(VESSELID_BINARY) + " simulate " +
-                                 (*dir_ / "simulate.yaml").string() + " --out " +
-                                 dir_->string() + " > /dev/null";
+                                 (*dir_ / "simulate.yaml").string() + " --out " + dir_->string() +
+                                 " > /dev/null";
     ASSERT_EQ(std::system(simulate.c_str()), 0) << simulate;
   }
   static void TearDownTestSuite() {
@@ -115,8 +115,8 @@ TEST_F(ThrustLawFit, QuadraticLawHasNoCompensatingEstimates) {
 }
 
 TEST_F(ThrustLawFit, DefaultLawWarnsThatTheGainsAndKfCompensate) {
-  const json results = Run("default", Config("", "k_f: 0.5, k_r1: 1.0, k_r2: 0.0",
-                                             "k_f: {}, k_r1: {}, k_r2: {}"));
+  const json results =
+      Run("default", Config("", "k_f: 0.5, k_r1: 1.0, k_r2: 0.0", "k_f: {}, k_r1: {}, k_r2: {}"));
   ASSERT_FALSE(results.is_discarded());
   const std::vector<std::string> found = Compensations(results);
   bool named = false;
@@ -127,7 +127,8 @@ TEST_F(ThrustLawFit, DefaultLawWarnsThatTheGainsAndKfCompensate) {
 }
 
 TEST_F(ThrustLawFit, DeadZoneAtItsBoundIsNamed) {
-  std::string config = Config("", "k_f: 0.5, k_r1: 1.0, k_r2: 0.0, "
+  std::string config = Config("",
+                              "k_f: 0.5, k_r1: 1.0, k_r2: 0.0, "
                               "d_f: {start: 0.0, lower: 0.0, upper: 0.15}, "
                               "d_r: {start: 0.0, lower: -0.15, upper: 0.0}, "
                               "tau_T: {start: 0.3, lower: 0.02, upper: 2.0}",

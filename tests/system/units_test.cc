@@ -64,8 +64,8 @@ class UnitsTest : public ::testing::Test {
     Trajectory data;
     std::string error;
     // T 8 s, K 0.08 1/s, cubic damping 20 s^2, rudder bias 1.5 deg.
-    ASSERT_TRUE(nomoto::SimulateClosedLoop(*ship, {8.0, 0.08, 20.0, 1.5 / kDeg}, loop, &data,
-                                           &error))
+    ASSERT_TRUE(
+        nomoto::SimulateClosedLoop(*ship, {8.0, 0.08, 20.0, 1.5 / kDeg}, loop, &data, &error))
         << error;
     Trajectory logged;  // the logger's columns, in degrees
     logged.t = data.t;
@@ -131,7 +131,8 @@ TEST_F(UnitsTest, DegreesAreShownInDegrees) {
   ASSERT_GE(r, 0) << ReadText(trace).substr(0, 200);
   const std::vector<double>& logged_psi = logged.columns[logged.Find("psi")];
   double largest = 0.0, logged_largest = 0.0;
-  for (double v : shown.columns[psi]) largest = std::max(largest, std::isnan(v) ? 0.0 : std::abs(v));
+  for (double v : shown.columns[psi])
+    largest = std::max(largest, std::isnan(v) ? 0.0 : std::abs(v));
   for (double v : logged_psi) logged_largest = std::max(logged_largest, std::abs(v));
   EXPECT_NEAR(largest, logged_largest, 1e-6 * logged_largest);
   EXPECT_GT(largest, 20.0);  // degrees, not radians

@@ -4,10 +4,10 @@
 // identifies the quadratic thrust law on it. The run must finish (exit 0, nothing aborted),
 // name every defect in results.json, and raise no compensation warning with the craft's law
 // (`thrust: ["n|n|"]`) while the default law (`[n, "n|n|"]`) gets one naming k_f.
-#include <algorithm>
-#include <cctype>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -56,9 +56,9 @@ class UsvLog : public ::testing::Test {
                         ("vesselid_usv_log_" + std::to_string(::getpid())));
     fs::remove_all(*dir_);
     fs::create_directories(*dir_);
-    const std::string simulate = std::string(VESSELID_BINARY) + " simulate " +
-                                 VESSELID_SOURCE_DIR + "/configs/input_gain_usv_log.yaml --out " +
-                                 dir_->string() + " > /dev/null";
+    const std::string simulate = std::string(VESSELID_BINARY) + " simulate " + VESSELID_SOURCE_DIR +
+                                 "/configs/input_gain_usv_log.yaml --out " + dir_->string() +
+                                 " > /dev/null";
     ASSERT_EQ(std::system(simulate.c_str()), 0) << simulate;
   }
   static void TearDownTestSuite() {

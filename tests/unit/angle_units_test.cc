@@ -2,12 +2,13 @@
 // on headings logged in degrees by a zigzag and across the 0/360 wrap, and its silence on
 // radian logs that wrap, turn many times one way, or zigzag; the fit % of a wrapped channel
 // measured against its spread modulo one turn.
+#include "engine/data/angle_units.h"
+
 #include <cmath>
 #include <random>
 #include <vector>
 
 #include "engine/base/angle.h"
-#include "engine/data/angle_units.h"
 #include "engine/solve/metrics.h"
 #include "gtest/gtest.h"
 

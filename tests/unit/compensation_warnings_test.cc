@@ -1,10 +1,12 @@
 // Compensating estimates (compensation_warnings.h) and structure hints through the run's
 // warnings (run_warnings.h): a pair above |correlation| 0.999 is named with its correlation,
 // the one to drop (larger relative standard error) and the model's hint; pairs below it,
-// pairs determined to 1 % each, initial states and undetermined pairs are not; a dead zone at its bound says what it means.
+// pairs determined to 1 % each, initial states and undetermined pairs are not; a dead zone at its
+// bound says what it means.
+#include "engine/run/compensation_warnings.h"
+
 #include <cmath>
 
-#include "engine/run/compensation_warnings.h"
 #include "engine/run/run_warnings.h"
 #include "gtest/gtest.h"
 #include "problems/input_gain/handles.h"

@@ -34,9 +34,9 @@ struct Trace {
 };
 
 Trace TenTen(double side = 1.0, double offset = 0.0) {
-  const std::vector<std::pair<double, double>> heading = {
-      {0, 0},    {1, 0},   {11, 10}, {13, 14}, {25, -10}, {28, -16},
-      {41, 10},  {43, 13}, {55, -10}, {57, -15}, {70, 5}};
+  const std::vector<std::pair<double, double>> heading = {{0, 0},    {1, 0},    {11, 10}, {13, 14},
+                                                          {25, -10}, {28, -16}, {41, 10}, {43, 13},
+                                                          {55, -10}, {57, -15}, {70, 5}};
   const double switches[] = {1, 11, 25, 41, 55};
   Trace trace;
   for (int k = 0; k <= 700; ++k) {
@@ -60,7 +60,7 @@ TEST(ZigzagFigures, KnownOvershootsCheckTimeAndPeriod) {
     EXPECT_NEAR(test.rudder / kDegree, 10.0, 1e-9);
     // The median heading change at the last samples before the reversals (9.9, 9.8, 9.8, 9.81).
     EXPECT_NEAR(test.heading / kDegree, 9.804, 1e-3);
-    EXPECT_NEAR(test.first_execute, 0.9, 1e-9);       // the last sample before the rudder moves
+    EXPECT_NEAR(test.first_execute, 0.9, 1e-9);  // the last sample before the rudder moves
     EXPECT_EQ(test.sign, side);
     EXPECT_EQ(test.reversals, 4);
     test.heading = 10.0 * kDegree;  // the nominal check angle
