@@ -27,7 +27,8 @@ json RunMismatch(const std::string& kind) {
   std::stringstream text;
   text << in.rdbuf();
   std::string config = text.str();
-  const size_t begin = config.find("simulation:"), end = config.find("experiments:");
+  // The simulation section ends where the experiments (or their defaults) begin.
+  const size_t begin = config.find("simulation:"), end = config.find("\nexperiment") + 1;
   config = config.substr(0, begin) +
            "simulation:\n  file: campaign.csv\n  vessel: quadratic_usv\n  segments: 24\n"
            "  segment_s: [20, 40]\n  duration_min: 12\n  seed: 3\n"
