@@ -38,7 +38,8 @@ std::string MismatchConfig(const std::string& kind, bool defects) {
   std::stringstream text;
   text << in.rdbuf();
   std::string config = text.str();
-  const size_t begin = config.find("simulation:"), end = config.find("\nexperiment") + 1;  // experiments or their defaults
+  // The simulation section ends where the experiments (or their defaults) begin.
+  const size_t begin = config.find("simulation:"), end = config.find("\nexperiment") + 1;
   std::string simulation =
       "simulation:\n  file: campaign.csv\n  vessel: quadratic_usv\n  segments: 110\n"
       "  segment_s: [20, 40]\n  duration_min: 55\n  seed: 3\n"
