@@ -47,7 +47,7 @@ struct ModelInfo {
   std::vector<bool> optional_inputs;
   // Units of the outputs, states and inputs as labels show them ("m", "m/s", "rad", "rad/s",
   // "N"; empty: not stated). An angle read in degrees is shown in degrees ("rad" -> "deg").
-  std::vector<std::string> output_units, state_units, input_units;
+  std::vector<std::string> output_units = {}, state_units = {}, input_units = {};
 
   // output_units, else "rad" for an angle output, else "".
   std::string OutputUnit(int index) const;
@@ -59,7 +59,7 @@ struct ModelInfo {
   std::pair<int, int> TrackOutputs() const;
   // Inputs whose every sample must be > 0 (a speed a model divides by); a record with one that
   // is not is refused, naming the column and time.
-  std::vector<bool> positive_inputs;
+  std::vector<bool> positive_inputs = {};
   // Per parameter name, what to change in the model's structure when its estimate compensates
   // another (|correlation| > 0.999) or ends at a bound: appended to those warnings.
   std::map<std::string, std::string> compensation_hints = {};

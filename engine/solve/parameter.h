@@ -41,7 +41,7 @@ struct ParameterSpec {
   // kPerExperiment: starts of particular experiments (by name, or by the record a segment or
   // piece comes from), e.g. an earlier stage's per-experiment estimates; others start at
   // `start`.
-  std::map<std::string, double> experiment_starts;
+  std::map<std::string, double> experiment_starts = {};
 
   double EffectiveScale() const;
   // Bounds ordered, start finite and inside them, scale positive. `where` prefixes messages.

@@ -86,7 +86,7 @@ struct Variant {
 struct KeyCase {
   std::string name;
   Variant base, with;
-  std::string refusal;  // non-empty: `with` must be refused (by the reader or before the first
+  std::string refusal = {};  // non-empty: `with` must be refused (by the reader or before the first
                         // stage) with this in the message
 };
 

@@ -171,7 +171,9 @@ TEST_F(UnitsTest, HeadingInDegreesReadAsRadiansIsNamed) {
   EXPECT_TRUE(WarnsOfDegrees(wrapped));
   ASSERT_FALSE(wrapped.stages.empty());
   for (const ChannelMetrics& m : wrapped.stages[0].summary.fits[0].channels) {
-    if (m.output == "psi") EXPECT_LT(m.fit_percent, 50.0);
+    if (m.output == "psi") {
+      EXPECT_LT(m.fit_percent, 50.0);
+    }
   }
 }
 
