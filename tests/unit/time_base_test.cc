@@ -6,17 +6,14 @@
 
 #include "engine/data/trajectory.h"
 #include "gtest/gtest.h"
+#include "tests/support/temp_file.h"
 
 namespace vesselid {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string WriteTemp(const std::string& name, const std::string& text) {
-  const fs::path path = fs::temp_directory_path() / name;
-  std::ofstream(path) << text;
-  return path.string();
-}
+using testing::WriteTemp;
 
 TEST(TimeBase, ParsesDecimalTextExactlyInNanoseconds) {
   std::int64_t ns = 0;

@@ -7,17 +7,14 @@
 
 #include "engine/data/interpolation.h"
 #include "gtest/gtest.h"
+#include "tests/support/temp_file.h"
 
 namespace vesselid {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string WriteTemp(const std::string& name, const std::string& text) {
-  const fs::path path = fs::temp_directory_path() / name;
-  std::ofstream(path) << text;
-  return path.string();
-}
+using testing::WriteTemp;
 
 TEST(Trajectory, ReadsMultiRateChannelsWithMissingSamples) {
   const std::string path = WriteTemp(
