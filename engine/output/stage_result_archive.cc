@@ -62,6 +62,11 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LocalAnalysis, available, message, parameters
                                    information, eigenvalues, condition_number, directions,
                                    std_errors, channels, sensitivity, noise_sensitivity,
                                    time_seconds)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ResidualCrossCorrelation, input, values, band_99, correlated)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ResidualAnalysis, experiment, output, samples, lags,
+                                   autocorrelation, band_99, band_95, ljung_box_q, ljung_box_p,
+                                   lag1, white, cross_correlation, input_correlated,
+                                   interval_spread)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(StageSummary, name, usable, message, global, refinements,
                                    chosen, uncertainty, analysis, fits, notes, time_seconds)
 // Kind and role as the words results.json uses; an unknown word fails the archive.
@@ -113,7 +118,8 @@ nlohmann::json StageResultToArchive(const StageResult& stage) {
                       {"held_out_parameters", stage.held_out_parameters},
                       {"rejected", stage.rejected},
                       {"integration_step", stage.integration_step},
-                      {"velocity_validation", stage.velocity_validation}};
+                      {"velocity_validation", stage.velocity_validation},
+                      {"residuals", stage.residuals}};
   if (stage.step_regression) j["step_regression"] = *stage.step_regression;
   return j;
 }
@@ -141,6 +147,8 @@ bool StageResultFromArchive(const nlohmann::json& j, StageResult* stage, std::st
     j.at("rejected").get_to(s.rejected);
     j.at("integration_step").get_to(s.integration_step);
     j.at("velocity_validation").get_to(s.velocity_validation);
+    // Absent from archives written before stages analysed their residuals.
+    if (j.contains("residuals")) j.at("residuals").get_to(s.residuals);
     if (j.contains("step_regression")) {
       s.step_regression =
           std::make_shared<const StepRegressionReport>(j.at("step_regression").get<StepRegressionReport>());

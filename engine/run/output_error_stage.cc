@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "engine/run/continuation.h"
+#include "engine/run/fit_residuals.h"
 #include "engine/run/records.h"
 #include "engine/solve/step_stability.h"
 
@@ -299,8 +300,11 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& stage,
   summary.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start).count();
   const double integration_step = result->integration_step;
+  std::vector<ResidualAnalysis> residuals =
+      AnalyseFitResiduals(model.info(), problem->experiments(), summary.fits);
   *result = Collect(*problem, starts, std::move(summary));
   result->integration_step = integration_step;
+  result->residuals = std::move(residuals);
   return true;
 }
 

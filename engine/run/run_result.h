@@ -13,6 +13,7 @@
 #include "engine/data/zigzag_figures.h"
 #include "engine/model/model.h"
 #include "engine/solve/parameter.h"
+#include "engine/solve/residual_analysis.h"
 #include "engine/solve/stage.h"
 #include "engine/step_regression/step_regression.h"
 
@@ -84,6 +85,9 @@ struct StageResult {
   // Models with an equation-error form: one-step and free-run metrics of the regressed
   // states on the held-out experiments (velocity_validation.h).
   std::vector<ChannelMetrics> velocity_validation;
+  // Output-error stages: whiteness of the fit's residuals and their correlation with the
+  // inputs, per experiment and compared output (residual_analysis.h).
+  std::vector<ResidualAnalysis> residuals;
   // Step-regression stages: the samples, lasso paths and timings (step_regression.h).
   std::shared_ptr<const StepRegressionReport> step_regression;
 };

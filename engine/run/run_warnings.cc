@@ -5,6 +5,7 @@
 #include <map>
 
 #include "engine/run/compensation_warnings.h"
+#include "engine/run/residual_warnings.h"
 
 namespace vesselid {
 namespace {
@@ -114,6 +115,7 @@ void AddRunWarnings(const RunConfig& config, RunResult* run) {
                   "be an optimum");
     }
     FailedFits(where, stage.summary.fits, &w);
+    AddResidualWarnings(stage, &w);
   }
   for (const std::string& a : run->admissibility) w.push_back("final values not admissible: " + a);
   FinalHeldOutFailed(*run, &w);

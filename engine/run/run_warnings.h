@@ -11,6 +11,7 @@
 //   * a solve that stopped at its iteration limit without converging;
 //   * a failed fit: a channel with negative R^2, or an RMSE above kFailedFitNoiseRatio times
 //     the noise level of its data (ChannelMetrics::noise);
+//   * coloured residuals, or residuals correlated with past inputs (residual_warnings.h);
 //   * final values whose held-out simulation diverges or predicts worse than holding the
 //     first measured value.
 #pragma once

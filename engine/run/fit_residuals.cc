@@ -1,0 +1,86 @@
+#include "engine/run/fit_residuals.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "engine/base/angle.h"
+
+namespace vesselid {
+namespace {
+
+// Row of the input cache at each node: the start of the node's first RK4 step (three rows per
+// step), the last row at the last node.
+std::vector<size_t> NodeInputRows(const Experiment& experiment) {
+  std::vector<size_t> rows(experiment.num_nodes(), 0);
+  size_t steps = 0;
+  for (int k = 0; k < experiment.num_nodes(); ++k) {
+    rows[k] = 3 * steps;
+    if (k < static_cast<int>(experiment.node_substeps.size())) {
+      steps += static_cast<size_t>(experiment.node_substeps[k]);
+    }
+  }
+  return rows;
+}
+
+int Column(const Trajectory& trace, const std::string& name) {
+  for (size_t c = 0; c < trace.names.size(); ++c) {
+    if (trace.names[c] == name) return static_cast<int>(c);
+  }
+  return -1;
+}
+
+}  // namespace
+
+std::vector<ResidualAnalysis> AnalyseFitResiduals(const ModelInfo& info,
+                                                  const std::vector<Experiment>& experiments,
+                                                  const std::vector<ExperimentFit>& fits) {
+  std::map<std::string, const Experiment*> by_name;
+  for (const Experiment& e : experiments) by_name[e.name] = &e;
+  std::vector<ResidualAnalysis> analyses;
+  std::vector<double> t, e;
+  for (const ExperimentFit& fit : fits) {
+    auto found = by_name.find(fit.experiment);
+    if (fit.diverged || found == by_name.end()) continue;
+    const Experiment& experiment = *found->second;
+    const std::vector<size_t> rows = NodeInputRows(experiment);
+    const size_t num_inputs = static_cast<size_t>(experiment.num_inputs);
+    const size_t cache_rows = num_inputs > 0 ? experiment.input_cache.size() / num_inputs : 0;
+    for (size_t o = 0; o < info.outputs.size(); ++o) {
+      const int measured = Column(fit.trace, info.outputs[o] + "_measured");
+      const int simulated = Column(fit.trace, info.outputs[o] + "_simulated");
+      if (measured < 0 || simulated < 0) continue;
+      const bool wrapped = experiment.Wrapped(static_cast<int>(o));
+      t.clear();
+      e.clear();
+      std::vector<std::vector<double>> inputs(num_inputs);
+      const std::vector<double>& y = fit.trace.columns[measured];
+      const std::vector<double>& y_sim = fit.trace.columns[simulated];
+      for (size_t k = 0; k < y.size() && k < fit.trace.t.size(); ++k) {
+        if (!std::isfinite(y[k]) || !std::isfinite(y_sim[k])) continue;
+        const double residual = y_sim[k] - y[k];
+        t.push_back(fit.trace.t[k]);
+        e.push_back(wrapped ? WrapAngle(residual) : residual);
+        const size_t row = k < rows.size() ? std::min(rows[k], cache_rows - 1) : cache_rows - 1;
+        for (size_t i = 0; i < num_inputs && cache_rows > 0; ++i) {
+          inputs[i].push_back(experiment.input_cache[row * num_inputs + i]);
+        }
+      }
+      if (e.empty()) continue;
+      // Inputs the experiment feeds (an unmapped optional input is NaN throughout).
+      std::vector<std::string> names;
+      std::vector<std::vector<double>> fed;
+      for (size_t i = 0; i < inputs.size() && i < info.inputs.size(); ++i) {
+        const bool finite = std::all_of(inputs[i].begin(), inputs[i].end(),
+                                        [](double v) { return std::isfinite(v); });
+        if (!finite || inputs[i].size() != e.size()) continue;
+        names.push_back(info.inputs[i]);
+        fed.push_back(std::move(inputs[i]));
+      }
+      analyses.push_back(AnalyseResiduals(fit.experiment, info.outputs[o], t, e, names, fed));
+    }
+  }
+  return analyses;
+}
+
+}  // namespace vesselid

@@ -1,0 +1,22 @@
+// Residual analysis (residual_analysis.h) of a simulation fit: per experiment and compared
+// output, the residuals e = simulated - measured at the channel's own sample times (an angle
+// wrapped to (-pi, pi] where the experiment compares it so, as the fit does) against each
+// model input as the experiment feeds the simulation (its input cache at the sample nodes).
+#pragma once
+
+#include <vector>
+
+#include "engine/model/experiment.h"
+#include "engine/model/model.h"
+#include "engine/solve/metrics.h"
+#include "engine/solve/residual_analysis.h"
+
+namespace vesselid {
+
+// fits[i] is matched to the experiment of the same name; diverged fits and experiments
+// without a fit are left out.
+std::vector<ResidualAnalysis> AnalyseFitResiduals(const ModelInfo& info,
+                                                  const std::vector<Experiment>& experiments,
+                                                  const std::vector<ExperimentFit>& fits);
+
+}  // namespace vesselid

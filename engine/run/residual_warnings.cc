@@ -1,0 +1,121 @@
+#include "engine/run/residual_warnings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+namespace vesselid {
+namespace {
+
+constexpr size_t kNamed = 6;  // experiments named in a warning at most
+
+std::string PValue(double p) {
+  if (!(p >= 1e-16)) return "p < 1e-16";
+  char text[32];
+  std::snprintf(text, sizeof(text), "p %.2g", p);
+  return text;
+}
+
+// Worst first: largest |lag-1| correlation.
+std::vector<const ResidualAnalysis*> Worst(std::vector<const ResidualAnalysis*> list) {
+  std::stable_sort(list.begin(), list.end(), [](const ResidualAnalysis* a, const ResidualAnalysis* b) {
+    return std::abs(a->lag1) > std::abs(b->lag1);
+  });
+  return list;
+}
+
+std::string Experiments(const std::vector<const ResidualAnalysis*>& list, bool with_inputs) {
+  std::string text;
+  for (size_t i = 0; i < list.size() && i < kNamed; ++i) {
+    char item[64];
+    std::snprintf(item, sizeof(item), " (lag-1 %.2f)", list[i]->lag1);
+    text += (i > 0 ? ", " : "") + list[i]->experiment;
+    if (with_inputs) {
+      std::string inputs;
+      for (const ResidualCrossCorrelation& c : list[i]->cross_correlation) {
+        if (c.correlated) inputs += (inputs.empty() ? "" : ", ") + c.input;
+      }
+      text += " (" + inputs + ")";
+    } else {
+      text += item;
+    }
+  }
+  if (list.size() > kNamed) text += ", ...";
+  return text;
+}
+
+}  // namespace
+
+std::string DescribeResiduals(const ResidualAnalysis& a) {
+  char text[160];
+  if (!a.tested()) {
+    std::snprintf(text, sizeof(text), "not tested (%d samples)", a.samples);
+    return text;
+  }
+  const std::string p = PValue(a.ljung_box_p);
+  if (a.white) {
+    std::snprintf(text, sizeof(text), "white (lag-1 %.2f, %s)", a.lag1, p.c_str());
+  } else {
+    std::snprintf(text, sizeof(text), "coloured (lag-1 %.2f, Ljung-Box %s)", a.lag1, p.c_str());
+  }
+  std::string out = text;
+  std::string inputs;
+  for (const ResidualCrossCorrelation& c : a.cross_correlation) {
+    if (c.correlated) inputs += (inputs.empty() ? "" : ", ") + c.input;
+  }
+  if (!inputs.empty()) out += ", correlated with past " + inputs;
+  if (a.irregular()) {
+    std::snprintf(text, sizeof(text), ", irregular sampling (intervals vary %.0f %%)",
+                  100.0 * a.interval_spread);
+    out += text;
+  }
+  return out;
+}
+
+std::string ColouredResidualWarning(const std::string& stage, const std::string& output,
+                                    const std::vector<const ResidualAnalysis*>& coloured,
+                                    int analysed) {
+  char count[96];
+  std::snprintf(count, sizeof(count), " in %zu of %d experiment(s) (Ljung-Box p < %g): ",
+                coloured.size(), analysed, kWhitenessLevel);
+  return "stage '" + stage + "': the residuals of " + output + " are coloured" + count +
+         Experiments(Worst(coloured), false) +
+         "; the Hessian standard errors assume white residuals and are too narrow";
+}
+
+std::string InputCorrelatedResidualWarning(const std::string& stage, const std::string& output,
+                                           const std::vector<const ResidualAnalysis*>& correlated,
+                                           int analysed) {
+  char count[64];
+  std::snprintf(count, sizeof(count), " in %zu of %d experiment(s): ", correlated.size(),
+                analysed);
+  return "stage '" + stage + "': the residuals of " + output +
+         " are correlated with past inputs (beyond the 99 % band)" + count +
+         Experiments(Worst(correlated), true) +
+         ": dynamics the model leaves out, or noise on the measured input";
+}
+
+void AddResidualWarnings(const StageResult& stage, std::vector<std::string>* warnings) {
+  std::vector<std::string> outputs;  // in order of appearance
+  std::map<std::string, std::vector<const ResidualAnalysis*>> coloured, correlated;
+  std::map<std::string, int> analysed;
+  for (const ResidualAnalysis& a : stage.residuals) {
+    if (!a.tested()) continue;
+    if (analysed[a.output]++ == 0) outputs.push_back(a.output);
+    if (!a.white) coloured[a.output].push_back(&a);
+    if (a.input_correlated) correlated[a.output].push_back(&a);
+  }
+  for (const std::string& output : outputs) {
+    if (!coloured[output].empty()) {
+      warnings->push_back(
+          ColouredResidualWarning(stage.name, output, coloured[output], analysed[output]));
+    }
+    if (!correlated[output].empty()) {
+      warnings->push_back(InputCorrelatedResidualWarning(stage.name, output, correlated[output],
+                                                         analysed[output]));
+    }
+  }
+}
+
+}  // namespace vesselid
