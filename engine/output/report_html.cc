@@ -14,6 +14,7 @@
 #include "engine/output/report_plots.h"
 #include "engine/output/report_summary.h"
 #include "engine/output/report_tables.h"
+#include "engine/output/residual_report.h"
 #include "engine/output/zigzag_report.h"
 #include "engine/run/held_out.h"
 #include "engine/run/run_warnings.h"
@@ -195,6 +196,24 @@ std::vector<std::string> SharedNames(const StageResult& stage, std::vector<int>*
   return names;
 }
 
+// Whiteness and input correlation of the fit's residuals: a table, and MATLAB resid's plots of
+// the few worst channels.
+void ResidualSection(const StageResult& stage, const std::string& id, const std::string& key,
+                     ReportPage* page) {
+  if (stage.residuals.empty()) return;
+  page->html << "<h3 id=\"" << id << "-residuals\">Residual analysis</h3>\n"
+             << ResidualTableHtml(stage.residuals);
+  constexpr size_t kPlotted = 4;
+  Figure figure;
+  for (const ResidualAnalysis* a : ResidualsToPlot(stage.residuals, kPlotted)) {
+    if (ResidualFigure(key + ".residuals." + a->experiment + "." + a->output, *a, &figure)) {
+      page->AddFigure(std::move(figure), "residual autocorrelation and cross-correlation, " +
+                                             a->experiment + " " + a->output + ", stage " +
+                                             stage.name);
+    }
+  }
+}
+
 void StageSection(const RunConfig& config, const StageResult& stage, size_t number,
                   ReportPage* page) {
   const StageSummary& s = stage.summary;
@@ -237,6 +256,7 @@ void StageSection(const RunConfig& config, const StageResult& stage, size_t numb
   }
   FitFigures(config, key + ".fit", "stage " + stage.name, s.fits, angles, page);
 
+  ResidualSection(stage, id, key, page);
   html << "<h3 id=\"" << id << "-parameters\">Estimates</h3>\n" << EstimatesTables(stage.estimates);
 
   std::vector<int> index;
@@ -339,6 +359,7 @@ void Contents(const RunResult& result, std::ostringstream* html) {
     *html << "<li><a href=\"#" << id << "\">Stage " << k + 1 << ": " << HtmlEscape(stage.name)
           << "</a> <span class=\"sub\"><a href=\"#" << id << "-fit\">fit</a><a href=\"#" << id
           << "-parameters\">estimates</a>";
+    if (!stage.residuals.empty()) *html << "<a href=\"#" << id << "-residuals\">residuals</a>";
     if (!stage.validation.empty() || !stage.velocity_validation.empty()) {
       *html << "<a href=\"#" << id << "-validation\">validation</a>";
     }

@@ -5,6 +5,7 @@
 #include "engine/output/display_units.h"
 #include "engine/output/held_out_parameters_report.h"
 #include "engine/output/parameter_summary.h"
+#include "engine/output/residual_report.h"
 #include "engine/output/run_fit_table.h"
 #include "engine/output/step_regression_writer.h"
 #include "engine/output/zigzag_report.h"
@@ -259,6 +260,7 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
     j["velocity_validation"] = VelocityToJson(stage.velocity_validation);
   }
   if (stage.step_regression) j["step_regression"] = StepRegressionToJson(*stage.step_regression);
+  if (!stage.residuals.empty()) j["residual_analysis"] = ResidualAnalysesToJson(stage.residuals);
   return j;
 }
 

@@ -6,6 +6,7 @@
 
 #include "engine/output/held_out_parameters_report.h"
 #include "engine/output/parameter_summary.h"
+#include "engine/output/residual_report.h"
 #include "engine/output/run_fit_table.h"
 #include "engine/output/zigzag_report.h"
 #include "engine/run/held_out.h"
@@ -150,6 +151,7 @@ std::string StageText(const RunConfig& config, const StageResult& stage) {
   }
   if (s.analysis.available) out << LocalAnalysisText(s.analysis);
   out << MetricsTable(config, s.fits);
+  out << ResidualAnalysesText(stage.residuals, "  ");
   if (!stage.validation.empty()) {
     out << "  local validation:\n" << MetricsTable(config, stage.validation);
   }
