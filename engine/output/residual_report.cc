@@ -223,7 +223,7 @@ std::string ResidualTableHtml(const std::vector<ResidualAnalysis>& analyses) {
     html << (flagged ? "<tr class=\"flagged\">" : "<tr>") << Td(a.experiment) << Td(a.output)
          << Num(std::to_string(a.samples)) << Num(std::to_string(a.lags))
          << Num(HtmlNumber(a.lag1, "%.3f")) << Num(HtmlNumber(a.ljung_box_q, "%.4g"))
-         << Num(HtmlNumber(a.ljung_box_p, "%.2g")) << Td(DescribeResiduals(a)) << "</tr>\n";
+         << Num(a.ljung_box_p < 1e-16 ? "< 1e-16" : HtmlNumber(a.ljung_box_p, "%.2g")) << Td(DescribeResiduals(a)) << "</tr>\n";
   }
   html << "</tbody>\n</table></div>\n";
   return html.str();

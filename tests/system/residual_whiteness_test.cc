@@ -1,0 +1,162 @@
+// The whiteness test on the patrol vessel's multi-sine record (configs/nomoto_patrol_noise.yaml,
+// 900 s) as the command line runs it. The simulator's closed loop steers with the true rudder
+// and logs it with 0.1 deg noise; the identification feeds the logged rudder to the model, so
+// that psi' = r integrates the rudder noise into the simulated heading: the residuals are
+// coloured, which the run must flag (results.json, report.txt, report.html, stderr). With
+// heading noise only the residuals are the heading noise, white: no warning.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "gtest/gtest.h"
+#include "nlohmann/json.hpp"
+
+namespace vesselid {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string PatrolConfig(double rudder_noise_deg) {
+  return R"(description: seed 003 patrol vessel, multi-sine with noise
+model: {family: nomoto, type: second_order}
+simulation:
+  truth: {T1: 2.0875, T2: 0.3179, T3: 0.1830, K: -0.1724}
+  steering_gear: {Tm: 1.0, kp: 0.7, rudder_limit_deg: 35}
+  sample_time: 0.02
+  experiments:
+    - file: multisine.csv
+      duration: 900
+      excitation: {type: multisine, amplitude_deg: 20, periods: [60, 30, 15, 7.5, 4, 2]}
+      noise: {rudder_deg: )" +
+         std::to_string(rudder_noise_deg) + R"(, heading_deg: 0.1}
+      seed: 12
+experiments:
+  - name: multisine
+    file: multisine.csv
+    inputs: {delta: delta}
+    outputs: {psi: psi}
+    interpolation: {delta: cubic}
+stages:
+  - name: multisine
+    experiments: [multisine]
+    free_initial_states: [psi]
+    parameters:
+      T1: {start: 3.13125, lower: 0.01, upper: 20.0}
+      T2: {start: 0.21193, lower: 0.01, upper: 20.0}
+      T3: {start: 0.2745, lower: 0.0, upper: 5.0}
+      K: {start: -0.11493, lower: -2.0, upper: -0.001}
+)";
+}
+
+struct PatrolRun {
+  json results;
+  std::string report, html, stderr_text;
+};
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+PatrolRun SimulateAndRun(const std::string& name, double rudder_noise_deg) {
+  const fs::path dir = fs::temp_directory_path() / ("vesselid_residual_whiteness_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path config = dir / "config.yaml";
+  std::ofstream(config) << PatrolConfig(rudder_noise_deg);
+  const std::string binary = VESSELID_BINARY;
+  const std::string simulate =
+      binary + " simulate " + config.string() + " --out " + dir.string() + " > /dev/null";
+  const std::string run = binary + " run " + config.string() + " --data " + dir.string() +
+                          " --out " + (dir / "out").string() + " --quiet > /dev/null 2> " +
+                          (dir / "stderr.txt").string();
+  PatrolRun result;
+  EXPECT_EQ(std::system(simulate.c_str()), 0) << simulate;
+  EXPECT_EQ(std::system(run.c_str()), 0) << run;
+  result.results = json::parse(ReadText(dir / "out" / "results.json"), nullptr, false);
+  result.report = ReadText(dir / "out" / "report.txt");
+  result.html = ReadText(dir / "out" / "report.html");
+  result.stderr_text = ReadText(dir / "stderr.txt");
+  fs::remove_all(dir);
+  return result;
+}
+
+bool AnyWarningHas(const json& results, const std::string& text) {
+  for (const json& w : results["warnings"]) {
+    if (w.get<std::string>().find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+
+// Every key results.json documents for a channel's residual analysis.
+void ExpectResidualKeys(const json& a) {
+  for (const char* key : {"experiment", "output", "samples", "lags", "autocorrelation", "band_99",
+                          "band_95", "ljung_box", "lag1", "white", "cross_correlation",
+                          "input_correlated", "irregular_sampling"}) {
+    EXPECT_TRUE(a.contains(key)) << key;
+  }
+  const int lags = a["lags"].get<int>();
+  EXPECT_EQ(lags, 25);
+  EXPECT_EQ(a["samples"].get<int>(), 45001);
+  EXPECT_EQ(a["autocorrelation"].size(), static_cast<size_t>(lags + 1));
+  EXPECT_EQ(a["ljung_box"]["dof"].get<int>(), lags);
+  EXPECT_NEAR(a["band_99"].get<double>(), 2.5758 / std::sqrt(45001.0), 1e-5);
+  EXPECT_NEAR(a["band_95"].get<double>(), 1.9600 / std::sqrt(45001.0), 1e-5);
+  ASSERT_TRUE(a["cross_correlation"].contains("delta"));
+  const json& delta = a["cross_correlation"]["delta"];
+  EXPECT_EQ(delta["lags"].size(), static_cast<size_t>(2 * lags + 1));
+  EXPECT_EQ(delta["lags"][0].get<int>(), -lags);
+  EXPECT_EQ(delta["values"].size(), static_cast<size_t>(2 * lags + 1));
+  EXPECT_TRUE(delta["values"][lags].is_number());  // the rudder varies: a finite correlation
+  EXPECT_FALSE(a["irregular_sampling"].get<bool>());
+}
+
+TEST(ResidualWhiteness, RudderNoiseColoursTheHeadingResiduals) {
+  const PatrolRun run = SimulateAndRun("rudder", 0.1);
+  ASSERT_TRUE(run.results.is_object());
+  const json& analyses = run.results["stages"][0]["residual_analysis"];
+  ASSERT_EQ(analyses.size(), 1u);
+  const json& a = analyses[0];
+  ExpectResidualKeys(a);
+  EXPECT_EQ(a["experiment"], "multisine");
+  EXPECT_EQ(a["output"], "psi");
+  EXPECT_FALSE(a["white"].get<bool>());
+  EXPECT_LT(a["ljung_box"]["p"].is_number() ? a["ljung_box"]["p"].get<double>() : 0.0, 1e-6);
+  EXPECT_GT(a["lag1"].get<double>(), a["band_99"].get<double>());
+  const std::string warning = "stage 'multisine': the residuals of psi are coloured";
+  EXPECT_TRUE(AnyWarningHas(run.results, warning)) << run.results["warnings"].dump(1);
+  EXPECT_TRUE(AnyWarningHas(run.results, "standard errors assume white residuals"));
+  EXPECT_NE(run.stderr_text.find(warning), std::string::npos) << run.stderr_text;
+  EXPECT_NE(run.report.find("warning: " + warning), std::string::npos);
+  EXPECT_NE(run.report.find("residuals multisine psi: coloured (lag-1 "), std::string::npos)
+      << run.report;
+  EXPECT_NE(run.html.find("id=\"stage-1-residuals\""), std::string::npos);
+  EXPECT_NE(run.html.find("data-plot=\"stage1.residuals.multisine.psi\""), std::string::npos);
+  EXPECT_NE(run.html.find("class=\"flagged\"><td>multisine</td><td>psi</td>"), std::string::npos);
+  EXPECT_EQ(run.html.find("not drawn"), std::string::npos);
+}
+
+TEST(ResidualWhiteness, HeadingNoiseAloneLeavesWhiteResiduals) {
+  const PatrolRun run = SimulateAndRun("heading", 0.0);
+  ASSERT_TRUE(run.results.is_object());
+  const json& analyses = run.results["stages"][0]["residual_analysis"];
+  ASSERT_EQ(analyses.size(), 1u);
+  const json& a = analyses[0];
+  ExpectResidualKeys(a);
+  EXPECT_TRUE(a["white"].get<bool>());
+  EXPECT_GE(a["ljung_box"]["p"].get<double>(), 0.01);
+  EXPECT_LT(std::abs(a["lag1"].get<double>()), a["band_99"].get<double>());
+  EXPECT_FALSE(a["input_correlated"].get<bool>());
+  EXPECT_FALSE(AnyWarningHas(run.results, "residuals of psi"));
+  EXPECT_EQ(run.stderr_text.find("residuals"), std::string::npos) << run.stderr_text;
+  EXPECT_NE(run.report.find("residuals multisine psi: white (lag-1 "), std::string::npos)
+      << run.report;
+  EXPECT_NE(run.html.find("data-plot=\"stage1.residuals.multisine.psi\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vesselid
