@@ -139,7 +139,7 @@ std::vector<const ResidualAnalysis*> ResidualsToPlot(const std::vector<ResidualA
 bool ResidualFigure(const std::string& name, const ResidualAnalysis& a, Figure* figure) {
   if (!a.tested()) return false;
   const int panels = 1 + static_cast<int>(a.cross_correlation.size());
-  constexpr int kPanel = 190, kTop = 10, kGap = 56;
+  constexpr int kPanel = 190, kTop = 16, kGap = 56;
   *figure = Figure();
   figure->name = name;
   figure->width = 760;
@@ -147,7 +147,7 @@ bool ResidualFigure(const std::string& name, const ResidualAnalysis& a, Figure* 
   const PlotFrame frame{figure->width, figure->height};
   char line[96];
   std::string acf;
-  for (int k = 0; k <= a.lags; ++k) {
+  for (int k = 1; k <= a.lags; ++k) {  // r_0 = 1 would flatten the rest
     std::snprintf(line, sizeof(line), "%d %s\n", k, GnuplotNumber(a.autocorrelation[k]).c_str());
     acf += line;
   }
@@ -161,16 +161,23 @@ bool ResidualFigure(const std::string& name, const ResidualAnalysis& a, Figure* 
     }
     figure->data.push_back(data);
   }
-  // A panel: impulses of D<file> over [low, high] lags, the band +-band as dashed lines.
+  // A panel: impulses of D<file> over [low, high] lags, the band +-band as dashed lines; the
+  // y range symmetric around the largest |value| (or twice the band), at most +-1.
   auto panel = [&](int index, int file, int low, int high, double band, const std::string& title,
-                   const std::string& xlabel) {
+                   const std::string& xlabel, const std::vector<double>& values) {
+    double largest = 2.0 * band;
+    for (double v : values) {
+      if (std::isfinite(v)) largest = std::max(largest, 1.15 * std::abs(v));
+    }
+    const double range = std::min(1.05, largest);
     std::ostringstream p;
-    const double top = kTop + index * (kPanel + kGap) + 18;
-    p << frame.Area(70, figure->width - 20, top, top + kPanel - 18)
+    const double top = kTop + index * (kPanel + kGap) + 22;
+    p << frame.Area(70, figure->width - 20, top, top + kPanel - 22)
       << "set title " << GnuplotString(title) << " font ',11'\n"
       << "set xlabel " << GnuplotString(xlabel) << " offset 0,0.6\n"
-      << "set xrange [" << low - 0.5 << ":" << high + 0.5 << "]\nset yrange [-1.05:1.05]\n"
-      << "set ytics 0.5\nset xtics autofreq\n"
+      << "set xrange [" << low - 0.5 << ":" << high + 0.5 << "]\nset yrange ["
+      << GnuplotNumber(-range) << ":" << GnuplotNumber(range) << "]\n"
+      << "set ytics autofreq\nset xtics autofreq\n"
       << "plot D" << file << " using 1:2 with impulses lw 2 lc rgb '#1f77b4' notitle, "
       << GnuplotNumber(band) << " with lines dt 2 lw 1.4 lc rgb '#c0392b' title '99 % band', "
       << GnuplotNumber(-band) << " with lines dt 2 lw 1.4 lc rgb '#c0392b' notitle, "
@@ -180,16 +187,17 @@ bool ResidualFigure(const std::string& name, const ResidualAnalysis& a, Figure* 
   std::ostringstream s;
   s << kPlotStyle << "set key top right font ',10'\nset tics font ',10'\nset multiplot\n"
     << "set samples 2\n";
+  const std::vector<double> r(a.autocorrelation.begin() + 1, a.autocorrelation.end());
   s << panel(0, 0, 0, a.lags, a.band_99,
              "autocorrelation of the residuals of " + a.output + ", " + a.experiment + " (" +
                  DescribeResiduals(a) + ")",
-             "lag [samples]");
+             "lag [samples] (r_0 = 1 not drawn)", r);
   for (size_t i = 0; i < a.cross_correlation.size(); ++i) {
     const ResidualCrossCorrelation& c = a.cross_correlation[i];
     s << panel(static_cast<int>(i) + 1, static_cast<int>(i) + 1, -a.lags, a.lags, c.band_99,
                "cross-correlation of the residuals with " + c.input +
                    (c.correlated ? " (beyond the band at lags >= 0)" : ""),
-               "lag [samples] (> 0: " + c.input + " leads)");
+               "lag [samples] (> 0: " + c.input + " leads)", c.values);
   }
   s << "unset multiplot\n";
   figure->script = s.str();

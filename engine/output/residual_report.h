@@ -31,7 +31,7 @@ std::string ResidualAnalysesText(const std::vector<ResidualAnalysis>& analyses,
 std::vector<const ResidualAnalysis*> ResidualsToPlot(const std::vector<ResidualAnalysis>& analyses,
                                                      size_t count);
 
-// MATLAB resid's figure of one channel: the autocorrelation r_0..r_L with its 99 % band on
+// MATLAB resid's figure of one channel: the autocorrelation r_1..r_L with its 99 % band on
 // top, below it the cross-correlation with each input at lags -L..L with its band. False when
 // the channel was not tested.
 bool ResidualFigure(const std::string& name, const ResidualAnalysis& analysis, Figure* figure);
