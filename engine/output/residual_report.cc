@@ -70,7 +70,8 @@ json ResidualAnalysesToJson(const std::vector<ResidualAnalysis>& analyses) {
                  {"cross_correlation", cross},
                  {"input_correlated", a.input_correlated},
                  {"interval_spread", JsonNumber(a.interval_spread)},
-                 {"irregular_sampling", a.irregular()}});
+                 {"irregular_sampling", a.irregular()},
+                 {"noise_free", a.noise_free}});
   }
   return j;
 }

@@ -66,7 +66,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ResidualCrossCorrelation, input, values, band
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ResidualAnalysis, experiment, output, samples, lags,
                                    autocorrelation, band_99, band_95, ljung_box_q, ljung_box_p,
                                    lag1, white, cross_correlation, input_correlated,
-                                   interval_spread)
+                                   interval_spread, noise_free)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(StageSummary, name, usable, message, global, refinements,
                                    chosen, uncertainty, analysis, fits, notes, time_seconds)
 // Kind and role as the words results.json uses; an unknown word fails the archive.

@@ -78,6 +78,9 @@ std::vector<ResidualAnalysis> AnalyseFitResiduals(const ModelInfo& info,
         fed.push_back(std::move(inputs[i]));
       }
       analyses.push_back(AnalyseResiduals(fit.experiment, info.outputs[o], t, e, names, fed));
+      for (const ChannelMetrics& m : fit.channels) {
+        if (m.output == info.outputs[o]) analyses.back().noise_free = NoiseFree(m.rmse, m.noise, m.r2);
+      }
     }
   }
   return analyses;

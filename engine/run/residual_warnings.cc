@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
 
 namespace vesselid {
 namespace {
@@ -65,6 +66,7 @@ std::string DescribeResiduals(const ResidualAnalysis& a) {
     if (c.correlated) inputs += (inputs.empty() ? "" : ", ") + c.input;
   }
   if (!inputs.empty()) out += ", correlated with past " + inputs;
+  if (a.noise_free) out += ", noise-free data (residuals are integration error): not warned";
   if (a.irregular()) {
     std::snprintf(text, sizeof(text), ", irregular sampling (intervals vary %.0f %%)",
                   100.0 * a.interval_spread);
@@ -97,11 +99,18 @@ std::string InputCorrelatedResidualWarning(const std::string& stage, const std::
 }
 
 void AddResidualWarnings(const StageResult& stage, std::vector<std::string>* warnings) {
+  // A failed fit has its own warning (run_warnings.cc): its residuals are the signal.
+  std::set<std::pair<std::string, std::string>> failed;
+  for (const ExperimentFit& fit : stage.summary.fits) {
+    for (const ChannelMetrics& m : fit.channels) {
+      if (FitFailed(m)) failed.insert({m.experiment, m.output});
+    }
+  }
   std::vector<std::string> outputs;  // in order of appearance
   std::map<std::string, std::vector<const ResidualAnalysis*>> coloured, correlated;
   std::map<std::string, int> analysed;
   for (const ResidualAnalysis& a : stage.residuals) {
-    if (!a.tested()) continue;
+    if (!a.tested() || a.noise_free || failed.count({a.experiment, a.output}) > 0) continue;
     if (analysed[a.output]++ == 0) outputs.push_back(a.output);
     if (!a.white) coloured[a.output].push_back(&a);
     if (a.input_correlated) correlated[a.output].push_back(&a);

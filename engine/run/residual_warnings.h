@@ -28,7 +28,9 @@ std::string InputCorrelatedResidualWarning(const std::string& stage, const std::
                                            const std::vector<const ResidualAnalysis*>& correlated,
                                            int analysed);
 
-// Appends the stage's residual warnings, one per output and kind, to `warnings`.
+// Appends the stage's residual warnings, one per output and kind, to `warnings`; channels of
+// noise-free data (ResidualAnalysis::noise_free) and of failed fits (FitFailed, warned as
+// such) are left out.
 void AddResidualWarnings(const StageResult& stage, std::vector<std::string>* warnings);
 
 }  // namespace vesselid

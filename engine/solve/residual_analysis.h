@@ -56,10 +56,24 @@ struct ResidualAnalysis {
   bool input_correlated = false;
   // Largest |dt - median dt| / median dt of the channel's sample times.
   double interval_spread = 0.0;
+  // The data have no noise to speak of (noise-free synthetic data): the residuals are the
+  // integration's error, smooth and so coloured, and say nothing of measurement noise
+  // (NoiseFree below); reported, not warned.
+  bool noise_free = false;
 
   bool tested() const { return lags > 0; }
   bool irregular() const { return interval_spread > kIrregularSpacing; }
 };
+
+// A fit to noise-free data: RMS residual below kNoiseFreeNoiseRatio times the data's own
+// noise level (second differences, noise_level.h; on noise-free data that is the signal's
+// curvature) and 1 - R^2 below kNoiseFreeUnexplained (numerical precision). Real noise keeps
+// the RMS residual near or above the noise level, so that both never hold for measured data.
+inline constexpr double kNoiseFreeNoiseRatio = 0.1;
+inline constexpr double kNoiseFreeUnexplained = 1e-10;
+inline bool NoiseFree(double rmse, double noise, double r2) {
+  return rmse < kNoiseFreeNoiseRatio * noise && 1.0 - r2 < kNoiseFreeUnexplained;
+}
 
 // L for N samples: min(kResidualMaxLags, N / 5); 0 below kResidualMinSamples.
 int ResidualLags(int samples);
