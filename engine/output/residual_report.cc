@@ -53,25 +53,24 @@ json ResidualAnalysesToJson(const std::vector<ResidualAnalysis>& analyses) {
                         {"band_99", JsonNumber(c.band_99)},
                         {"correlated", c.correlated}};
     }
-    j.push_back({{"experiment", a.experiment},
-                 {"output", a.output},
-                 {"samples", a.samples},
-                 {"lags", a.lags},
-                 {"tested", a.tested()},
-                 {"autocorrelation", Numbers(a.autocorrelation)},
-                 {"band_99", JsonNumber(a.band_99)},
-                 {"band_95", JsonNumber(a.band_95)},
-                 {"ljung_box",
-                  {{"q", JsonNumber(a.ljung_box_q)},
-                   {"dof", a.lags},
-                   {"p", JsonNumber(a.ljung_box_p)}}},
-                 {"lag1", JsonNumber(a.lag1)},
-                 {"white", a.white},
-                 {"cross_correlation", cross},
-                 {"input_correlated", a.input_correlated},
-                 {"interval_spread", JsonNumber(a.interval_spread)},
-                 {"irregular_sampling", a.irregular()},
-                 {"noise_free", a.noise_free}});
+    j.push_back(
+        {{"experiment", a.experiment},
+         {"output", a.output},
+         {"samples", a.samples},
+         {"lags", a.lags},
+         {"tested", a.tested()},
+         {"autocorrelation", Numbers(a.autocorrelation)},
+         {"band_99", JsonNumber(a.band_99)},
+         {"band_95", JsonNumber(a.band_95)},
+         {"ljung_box",
+          {{"q", JsonNumber(a.ljung_box_q)}, {"dof", a.lags}, {"p", JsonNumber(a.ljung_box_p)}}},
+         {"lag1", JsonNumber(a.lag1)},
+         {"white", a.white},
+         {"cross_correlation", cross},
+         {"input_correlated", a.input_correlated},
+         {"interval_spread", JsonNumber(a.interval_spread)},
+         {"irregular_sampling", a.irregular()},
+         {"noise_free", a.noise_free}});
   }
   return j;
 }
@@ -156,8 +155,7 @@ bool ResidualFigure(const std::string& name, const ResidualAnalysis& a, Figure* 
   for (const ResidualCrossCorrelation& c : a.cross_correlation) {
     std::string data;
     for (int k = -a.lags; k <= a.lags; ++k) {
-      std::snprintf(line, sizeof(line), "%d %s\n", k,
-                    GnuplotNumber(c.values[k + a.lags]).c_str());
+      std::snprintf(line, sizeof(line), "%d %s\n", k, GnuplotNumber(c.values[k + a.lags]).c_str());
       data += line;
     }
     figure->data.push_back(data);
@@ -173,8 +171,8 @@ bool ResidualFigure(const std::string& name, const ResidualAnalysis& a, Figure* 
     const double range = std::min(1.05, largest);
     std::ostringstream p;
     const double top = kTop + index * (kPanel + kGap) + 22;
-    p << frame.Area(70, figure->width - 20, top, top + kPanel - 22)
-      << "set title " << GnuplotString(title) << " font ',11'\n"
+    p << frame.Area(70, figure->width - 20, top, top + kPanel - 22) << "set title "
+      << GnuplotString(title) << " font ',11'\n"
       << "set xlabel " << GnuplotString(xlabel) << " offset 0,0.6\n"
       << "set xrange [" << low - 0.5 << ":" << high + 0.5 << "]\nset yrange ["
       << GnuplotNumber(-range) << ":" << GnuplotNumber(range) << "]\n"
@@ -224,15 +222,16 @@ std::string ResidualTableHtml(const std::vector<ResidualAnalysis>& analyses) {
          << " channels.</p>\n";
   }
   html << "<div class=\"scroll\"><table class=\"sortable\">\n<thead><tr>" << Th("experiment")
-       << Th("output") << Th("samples") << Th("lags") << Th("lag-1") << Th("Ljung-Box Q")
-       << Th("p") << Th("verdict") << "</tr></thead>\n<tbody>\n";
+       << Th("output") << Th("samples") << Th("lags") << Th("lag-1") << Th("Ljung-Box Q") << Th("p")
+       << Th("verdict") << "</tr></thead>\n<tbody>\n";
   for (size_t i = 0; i < list.size() && i < kTableRowsMax; ++i) {
     const ResidualAnalysis& a = *list[i];
     const bool flagged = a.tested() && (!a.white || a.input_correlated);
     html << (flagged ? "<tr class=\"flagged\">" : "<tr>") << Td(a.experiment) << Td(a.output)
          << Num(std::to_string(a.samples)) << Num(std::to_string(a.lags))
          << Num(HtmlNumber(a.lag1, "%.3f")) << Num(HtmlNumber(a.ljung_box_q, "%.4g"))
-         << Num(a.ljung_box_p < 1e-16 ? "< 1e-16" : HtmlNumber(a.ljung_box_p, "%.2g")) << Td(DescribeResiduals(a)) << "</tr>\n";
+         << Num(a.ljung_box_p < 1e-16 ? "< 1e-16" : HtmlNumber(a.ljung_box_p, "%.2g"))
+         << Td(DescribeResiduals(a)) << "</tr>\n";
   }
   html << "</tbody>\n</table></div>\n";
   return html.str();

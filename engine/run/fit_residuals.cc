@@ -79,7 +79,8 @@ std::vector<ResidualAnalysis> AnalyseFitResiduals(const ModelInfo& info,
       }
       analyses.push_back(AnalyseResiduals(fit.experiment, info.outputs[o], t, e, names, fed));
       for (const ChannelMetrics& m : fit.channels) {
-        if (m.output == info.outputs[o]) analyses.back().noise_free = NoiseFree(m.rmse, m.noise, m.r2);
+        if (m.output == info.outputs[o])
+          analyses.back().noise_free = NoiseFree(m.rmse, m.noise, m.r2);
       }
     }
   }

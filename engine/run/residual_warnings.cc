@@ -20,27 +20,29 @@ std::string PValue(double p) {
 
 // Worst first: largest |lag-1| correlation.
 std::vector<const ResidualAnalysis*> Worst(std::vector<const ResidualAnalysis*> list) {
-  std::stable_sort(list.begin(), list.end(), [](const ResidualAnalysis* a, const ResidualAnalysis* b) {
-    return std::abs(a->lag1) > std::abs(b->lag1);
-  });
+  std::stable_sort(list.begin(), list.end(),
+                   [](const ResidualAnalysis* a, const ResidualAnalysis* b) {
+                     return std::abs(a->lag1) > std::abs(b->lag1);
+                   });
   return list;
 }
 
-std::string Experiments(const std::vector<const ResidualAnalysis*>& list, bool with_inputs) {
+// "run3 (lag-1 0.93), run1 (lag-1 0.40)", or with `inputs` "run3 (delta)": the correlated
+// inputs; at most kNamed.
+std::string Experiments(const std::vector<const ResidualAnalysis*>& list, bool inputs) {
   std::string text;
   for (size_t i = 0; i < list.size() && i < kNamed; ++i) {
-    char item[64];
-    std::snprintf(item, sizeof(item), " (lag-1 %.2f)", list[i]->lag1);
-    text += (i > 0 ? ", " : "") + list[i]->experiment;
-    if (with_inputs) {
-      std::string inputs;
+    std::string detail;
+    if (inputs) {
       for (const ResidualCrossCorrelation& c : list[i]->cross_correlation) {
-        if (c.correlated) inputs += (inputs.empty() ? "" : ", ") + c.input;
+        if (c.correlated) detail += (detail.empty() ? "" : ", ") + c.input;
       }
-      text += " (" + inputs + ")";
     } else {
-      text += item;
+      char lag1[32];
+      std::snprintf(lag1, sizeof(lag1), "lag-1 %.2f", list[i]->lag1);
+      detail = lag1;
     }
+    text += (i > 0 ? ", " : "") + list[i]->experiment + " (" + detail + ")";
   }
   if (list.size() > kNamed) text += ", ...";
   return text;
@@ -79,8 +81,9 @@ std::string ColouredResidualWarning(const std::string& stage, const std::string&
                                     const std::vector<const ResidualAnalysis*>& coloured,
                                     int analysed) {
   char count[96];
-  std::snprintf(count, sizeof(count), " in %zu of %d experiment(s) (Ljung-Box p < %g): ",
-                coloured.size(), analysed, kWhitenessLevel);
+  std::snprintf(count, sizeof(count),
+                " in %zu of %d experiment(s) (Ljung-Box p < %g): ", coloured.size(), analysed,
+                kWhitenessLevel);
   return "stage '" + stage + "': the residuals of " + output + " are coloured" + count +
          Experiments(Worst(coloured), false) +
          "; the Hessian standard errors assume white residuals and are too narrow";
@@ -90,8 +93,7 @@ std::string InputCorrelatedResidualWarning(const std::string& stage, const std::
                                            const std::vector<const ResidualAnalysis*>& correlated,
                                            int analysed) {
   char count[64];
-  std::snprintf(count, sizeof(count), " in %zu of %d experiment(s): ", correlated.size(),
-                analysed);
+  std::snprintf(count, sizeof(count), " in %zu of %d experiment(s): ", correlated.size(), analysed);
   return "stage '" + stage + "': the residuals of " + output +
          " are correlated with past inputs (beyond the 99 % band)" + count +
          Experiments(Worst(correlated), true) +
@@ -121,8 +123,8 @@ void AddResidualWarnings(const StageResult& stage, std::vector<std::string>* war
           ColouredResidualWarning(stage.name, output, coloured[output], analysed[output]));
     }
     if (!correlated[output].empty()) {
-      warnings->push_back(InputCorrelatedResidualWarning(stage.name, output, correlated[output],
-                                                         analysed[output]));
+      warnings->push_back(
+          InputCorrelatedResidualWarning(stage.name, output, correlated[output], analysed[output]));
     }
   }
 }

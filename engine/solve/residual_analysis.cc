@@ -60,8 +60,8 @@ std::vector<double> CrossCorrelation(const std::vector<double>& e, const std::ve
                                      int max_lag) {
   std::vector<double> r(2 * max_lag + 1, kNaN);
   const double mean_e = Mean(e), mean_u = Mean(u);
-  const double scale = std::sqrt(Covariance(e, mean_e, e, mean_e, 0) *
-                                 Covariance(u, mean_u, u, mean_u, 0));
+  const double scale =
+      std::sqrt(Covariance(e, mean_e, e, mean_e, 0) * Covariance(u, mean_u, u, mean_u, 0));
   if (!(scale > 0.0) || e.size() != u.size()) return r;
   for (int k = -max_lag; k <= max_lag; ++k) {
     r[k + max_lag] = Covariance(e, mean_e, u, mean_u, k) / scale;

@@ -25,7 +25,7 @@
 namespace vesselid {
 
 inline constexpr int kResidualMaxLags = 25;
-inline constexpr double kWhitenessLevel = 0.01;  // Ljung-Box p below it: coloured
+inline constexpr double kWhitenessLevel = 0.01;     // Ljung-Box p below it: coloured
 inline constexpr double kBand99 = 2.5758293035489;  // two-sided normal quantiles
 inline constexpr double kBand95 = 1.9599639845401;
 // Fewer samples than this: no test (too few lags to say anything).
@@ -45,9 +45,9 @@ struct ResidualCrossCorrelation {
 struct ResidualAnalysis {
   std::string experiment, output;
   int samples = 0;
-  int lags = 0;                          // L; 0 when there were too few samples to test
-  std::vector<double> autocorrelation;   // r_0 = 1, ..., r_L
-  double band_99 = 0.0, band_95 = 0.0;   // +-z / sqrt(N)
+  int lags = 0;                         // L; 0 when there were too few samples to test
+  std::vector<double> autocorrelation;  // r_0 = 1, ..., r_L
+  double band_99 = 0.0, band_95 = 0.0;  // +-z / sqrt(N)
   double ljung_box_q = std::numeric_limits<double>::quiet_NaN();
   double ljung_box_p = std::numeric_limits<double>::quiet_NaN();
   double lag1 = std::numeric_limits<double>::quiet_NaN();

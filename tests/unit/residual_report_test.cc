@@ -3,11 +3,12 @@
 // experiment wraps it), inputs read from the experiment's input cache at the sample nodes,
 // the coloured-residual warning (not for noise-free data or failed fits), and report.txt's
 // summary of many segments.
+#include "engine/output/residual_report.h"
+
 #include <cmath>
 #include <random>
 
 #include "engine/base/angle.h"
-#include "engine/output/residual_report.h"
 #include "engine/run/fit_residuals.h"
 #include "engine/run/residual_warnings.h"
 #include "gtest/gtest.h"
