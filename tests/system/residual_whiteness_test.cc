@@ -3,7 +3,9 @@
 // and logs it with 0.1 deg noise; the identification feeds the logged rudder to the model, so
 // that psi' = r integrates the rudder noise into the simulated heading: the residuals are
 // coloured, which the run must flag (results.json, report.txt, report.html, stderr). With
-// heading noise only the residuals are the heading noise, white: no warning.
+// heading noise only the residuals are the heading noise, white: no warning. The stage starts
+// about 20 % off the truth (the shipped config's 50 % reaches the same optimum in 30 instead
+// of 4 iterations).
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -45,10 +47,10 @@ stages:
     experiments: [multisine]
     free_initial_states: [psi]
     parameters:
-      T1: {start: 3.13125, lower: 0.01, upper: 20.0}
-      T2: {start: 0.21193, lower: 0.01, upper: 20.0}
-      T3: {start: 0.2745, lower: 0.0, upper: 5.0}
-      K: {start: -0.11493, lower: -2.0, upper: -0.001}
+      T1: {start: 2.5, lower: 0.01, upper: 20.0}
+      T2: {start: 0.26, lower: 0.01, upper: 20.0}
+      T3: {start: 0.22, lower: 0.0, upper: 5.0}
+      K: {start: -0.2, lower: -2.0, upper: -0.001}
 )";
 }
 
