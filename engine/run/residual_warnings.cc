@@ -18,6 +18,9 @@ std::string PValue(double p) {
   return text;
 }
 
+// r_1 to two decimals, without the sign of a value that rounds to zero.
+double Lag1(double r) { return std::abs(r) < 0.005 ? 0.0 : r; }
+
 // Worst first: largest |lag-1| correlation.
 std::vector<const ResidualAnalysis*> Worst(std::vector<const ResidualAnalysis*> list) {
   std::stable_sort(list.begin(), list.end(),
@@ -39,7 +42,7 @@ std::string Experiments(const std::vector<const ResidualAnalysis*>& list, bool i
       }
     } else {
       char lag1[32];
-      std::snprintf(lag1, sizeof(lag1), "lag-1 %.2f", list[i]->lag1);
+      std::snprintf(lag1, sizeof(lag1), "lag-1 %.2f", Lag1(list[i]->lag1));
       detail = lag1;
     }
     text += (i > 0 ? ", " : "") + list[i]->experiment + " (" + detail + ")";
@@ -58,9 +61,10 @@ std::string DescribeResiduals(const ResidualAnalysis& a) {
   }
   const std::string p = PValue(a.ljung_box_p);
   if (a.white) {
-    std::snprintf(text, sizeof(text), "white (lag-1 %.2f, %s)", a.lag1, p.c_str());
+    std::snprintf(text, sizeof(text), "white (lag-1 %.2f, %s)", Lag1(a.lag1), p.c_str());
   } else {
-    std::snprintf(text, sizeof(text), "coloured (lag-1 %.2f, Ljung-Box %s)", a.lag1, p.c_str());
+    std::snprintf(text, sizeof(text), "coloured (lag-1 %.2f, Ljung-Box %s)", Lag1(a.lag1),
+                  p.c_str());
   }
   std::string out = text;
   std::string inputs;
