@@ -1,6 +1,7 @@
 // A stage's `uncertainty` key: true | false, or
-//   {method: auto | hessian | sandwich_hac, bandwidth: auto | <time nodes>,
-//    kernel: bartlett | quadratic_spectral, prewhiten: true | false}
+//   {method: auto | hessian | sandwich_hac, bandwidth: auto | <blocks>,
+//    aggregation: auto | <time nodes>, kernel: bartlett | quadratic_spectral,
+//    prewhiten: true | false}
 #include "engine/config/config_sections.h"
 
 namespace vesselid {
@@ -11,7 +12,7 @@ void ReadUncertainty(const YamlReader& reader, const YAML::Node& node, const std
     options->compute_uncertainty = reader.Bool(node, path);
     return;
   }
-  reader.CheckMap(node, path, {"method", "bandwidth", "kernel", "prewhiten"});
+  reader.CheckMap(node, path, {"method", "bandwidth", "aggregation", "kernel", "prewhiten"});
   options->compute_uncertainty = true;
   UncertaintyOptions& u = options->uncertainty;
   if (const YAML::Node n = node["method"]) {
@@ -34,7 +35,16 @@ void ReadUncertainty(const YamlReader& reader, const YAML::Node& node, const std
       u.hac.bandwidth = 0.0;
     } else {
       u.hac.bandwidth = reader.Double(n, key);
-      if (!(u.hac.bandwidth >= 1.0)) reader.Fail(n, key, "must be auto or >= 1 (time nodes)");
+      if (!(u.hac.bandwidth >= 1.0)) reader.Fail(n, key, "must be auto or >= 1 (blocks)");
+    }
+  }
+  if (const YAML::Node n = node["aggregation"]) {
+    const std::string key = Child(path, "aggregation");
+    if (n.IsScalar() && n.Scalar() == "auto") {
+      u.hac.aggregation = 0;
+    } else {
+      u.hac.aggregation = reader.Int(n, key);
+      if (u.hac.aggregation < 1) reader.Fail(n, key, "must be auto or >= 1 (time nodes)");
     }
   }
   reader.Read(node, path, "prewhiten", &u.hac.prewhiten);

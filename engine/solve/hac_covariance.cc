@@ -68,11 +68,17 @@ bool StringToHacKernel(const std::string& text, HacOptions::Kernel* kernel) {
 Eigen::MatrixXd LongRunCovariance(const HacOptions& options, const Eigen::MatrixXd& scores,
                                   double* bandwidth) {
   const int n = static_cast<int>(scores.cols());
-  Eigen::MatrixXd g = scores;
+  const int block = options.aggregation > 0
+                        ? options.aggregation
+                        : std::max(1, static_cast<int>(std::lround(std::sqrt(scores.rows()))));
+  const int blocks = static_cast<int>((scores.rows() + block - 1) / block);
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(blocks, n);
+  for (int k = 0; k < scores.rows(); ++k) g.row(k / block) += scores.row(k);
   Eigen::MatrixXd recolour = Eigen::MatrixXd::Identity(n, n);
-  if (options.prewhiten && scores.rows() > 2 * n + 2) {
-    const int t = static_cast<int>(scores.rows());
-    const Eigen::MatrixXd lagged = scores.topRows(t - 1), current = scores.bottomRows(t - 1);
+  if (options.prewhiten && blocks > 2 * n + 2) {
+    const Eigen::MatrixXd sums = g;
+    const int t = blocks;
+    const Eigen::MatrixXd lagged = sums.topRows(t - 1), current = sums.bottomRows(t - 1);
     // g_k = Phi g_{k-1} + e_k by least squares: Phi^T = (L^T L)^+ L^T C.
     const Eigen::MatrixXd sxx = lagged.transpose() * lagged;
     const Eigen::MatrixXd sxy = lagged.transpose() * current;
@@ -85,7 +91,7 @@ Eigen::MatrixXd LongRunCovariance(const HacOptions& options, const Eigen::Matrix
   }
   const int t = static_cast<int>(g.rows());
   const double s = options.bandwidth > 0.0 ? options.bandwidth : PlugInBandwidth(options, g);
-  if (bandwidth != nullptr) *bandwidth = s;
+  if (bandwidth != nullptr) *bandwidth = s * block;
   Eigen::MatrixXd omega = g.transpose() * g;
   const int lags =
       options.kernel == HacOptions::Kernel::kBartlett

@@ -30,8 +30,15 @@ namespace vesselid {
 struct HacOptions {
   enum class Kernel { kBartlett, kQuadraticSpectral };
   Kernel kernel = Kernel::kBartlett;
-  double bandwidth = 0.0;  // in time nodes (lags); 0: automatic (Andrews AR(1) plug-in)
-  bool prewhiten = true;   // VAR(1) prewhitening and recolouring
+  // Scores summed over consecutive blocks of this many time nodes before the kernel (the
+  // long-run covariance of the sums is that of the scores): a slow component under white
+  // noise (a random walk under heading noise) shows at the block lags, where it is hidden
+  // at the node lags the plug-in looks at. 0: automatic, round(sqrt(nodes)); 1: none.
+  int aggregation = 0;
+  // Kernel bandwidth S in blocks (Bartlett: S - 1 lags, weights 1 - l / S); 0: automatic
+  // (Andrews AR(1) plug-in).
+  double bandwidth = 0.0;
+  bool prewhiten = false;  // VAR(1) prewhitening and recolouring
   // Cap on the singular values of the prewhitening VAR(1) matrix (and the plug-in's AR(1)
   // coefficients): (I - Phi)^-1 stays finite for a near unit root.
   double max_ar = 0.97;
@@ -42,7 +49,8 @@ const char* HacKernelToString(HacOptions::Kernel kernel);  // "bartlett", "quadr
 bool StringToHacKernel(const std::string& text, HacOptions::Kernel* kernel);
 
 // Long-run covariance sum_l w(l/S) Gamma_l of a score series (rows: time nodes), as above,
-// with prewhitening if asked; `bandwidth` (may be null) gets the S used.
+// after aggregation and with prewhitening if asked; `bandwidth` (may be null) gets the S used
+// in time nodes (S times the block length).
 Eigen::MatrixXd LongRunCovariance(const HacOptions& options, const Eigen::MatrixXd& scores,
                                   double* bandwidth);
 

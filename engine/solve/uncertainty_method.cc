@@ -131,8 +131,6 @@ bool ComputeStageUncertainty(const UncertaintyOptions& options, OutputErrorProbl
   } else {
     *uncertainty = std::move(hessian);
   }
-  notes->push_back("uncertainty: " + uncertainty->method + " (" + uncertainty->method_reason +
-                   ")");
   return true;
 }
 

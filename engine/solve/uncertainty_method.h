@@ -44,8 +44,8 @@ UncertaintyMethod ChooseUncertaintyMethod(const std::vector<StdErrorRatio>& rati
 
 // The stage's uncertainty by options.method, at the problem's current values (final cost
 // `final_cost`). The method used, the Hessian's standard errors beside another's, and why,
-// go into `uncertainty`; what a reader must know goes into `notes`: the method auto chose, and
-// with `hessian`, a note (a run warning) when the HAC says its intervals are too narrow.
+// go into `uncertainty`; with `hessian`, a note (a run warning) when the HAC says its
+// intervals are too narrow, and one when the HAC could not be computed.
 bool ComputeStageUncertainty(const UncertaintyOptions& options, OutputErrorProblem* problem,
                              double final_cost, Uncertainty* uncertainty,
                              std::vector<std::string>* notes);
