@@ -467,7 +467,9 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
     ReadGlobal(reader, node["global"], Child(path, "global"), &stage.options.global);
   }
   if (node["local"]) ReadLocal(reader, node["local"], Child(path, "local"), &stage.options.local);
-  reader.Read(node, path, "uncertainty", &stage.options.compute_uncertainty);
+  if (const YAML::Node n = node["uncertainty"]) {
+    ReadUncertainty(reader, n, Child(path, "uncertainty"), &stage.options);
+  }
   const ModelHandle& model = config.StageModel(stage);
   if (const YAML::Node ls = node["least_squares"]) {
     ReadLeastSquares(reader, ls, Child(path, "least_squares"), model, &stage);

@@ -18,6 +18,11 @@ namespace vesselid {
 void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                 GlobalStartOptions* global);
 
+// A stage's `uncertainty`: true | false, or {method, bandwidth, kernel, prewhiten}
+// (uncertainty_config.cc) over the values already in `options`.
+void ReadUncertainty(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                     StageOptions* options);
+
 // Fails unless every name is in `known` (a model's `kind` names, e.g. outputs).
 void CheckNames(const YamlReader& reader, const YAML::Node& node, const std::string& key,
                 const std::vector<std::string>& names, const std::vector<std::string>& known,

@@ -237,6 +237,11 @@ void StageSection(const RunConfig& config, const StageResult& stage, size_t numb
   if (!s.uncertainty.available && !s.uncertainty.message.empty()) {
     notes.push_back("uncertainty: " + s.uncertainty.message);
   }
+  if (s.uncertainty.available) {
+    notes.push_back("uncertainty: standard errors by " + s.uncertainty.method +
+                    (s.uncertainty.method_reason.empty() ? ""
+                                                         : " (" + s.uncertainty.method_reason + ")"));
+  }
   for (const std::string& d : s.uncertainty.undetermined) notes.push_back("undetermined: " + d);
   for (const std::string& a : stage.admissibility) notes.push_back("not admissible: " + a);
   if (stage.held_out.done) {

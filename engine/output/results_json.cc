@@ -225,6 +225,11 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
                  {"upper", JsonNumber(e.upper)},
                  {"undetermined", e.undetermined}};
     if (!e.experiment.empty()) item["experiment"] = e.experiment;
+    // Another method than the Hessian reported: the Hessian's standard error beside it.
+    const std::vector<double>& hessian = s.uncertainty.hessian_std_errors;
+    for (size_t i = 0; i < hessian.size() && i < stage.correlation_names.size(); ++i) {
+      if (stage.correlation_names[i] == e.name) item["std_error_hessian"] = JsonNumber(hessian[i]);
+    }
     estimates.push_back(item);
   }
   j["estimates"] = estimates;
@@ -232,7 +237,10 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
   j["uncertainty"] = {{"available", u.available},
                       {"message", u.message},
                       {"residual_variance", u.residual_variance},
-                      {"undetermined", u.undetermined}};
+                      {"undetermined", u.undetermined},
+                      {"method", u.method},
+                      {"method_reason", u.method_reason}};
+  if (u.method == "sandwich_hac") j["uncertainty"]["bandwidth"] = u.hac_bandwidth;
   if (u.available) {
     json matrix = json::array();
     for (int r = 0; r < stage.correlation.rows(); ++r) {

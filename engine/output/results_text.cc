@@ -132,6 +132,11 @@ std::string StageText(const RunConfig& config, const StageResult& stage) {
     out << EstimateLine(e.name, ParameterRoleToString(e.role), e.value, e.std_error, e.undetermined,
                         "");
   }
+  if (s.uncertainty.available) {
+    out << "  uncertainty: " << s.uncertainty.method
+        << (s.uncertainty.method_reason.empty() ? "" : " (" + s.uncertainty.method_reason + ")")
+        << "\n";
+  }
   for (const std::string& note : s.notes) out << "  note: " << note << "\n";
   for (const std::string& d : s.uncertainty.undetermined) out << "  undetermined: " << d << "\n";
   for (const std::string& a : stage.admissibility) out << "  not admissible: " << a << "\n";

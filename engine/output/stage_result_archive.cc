@@ -54,7 +54,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LocalSolveSummary, run, usable, initial_cost,
                                    termination, message, cost_history)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Uncertainty, available, message, variables, covariance,
                                    correlation, std_errors, residual_variance, undetermined,
-                                   undetermined_variables)
+                                   undetermined_variables, method, hessian_std_errors,
+                                   method_reason, hac_bandwidth)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(WeakDirection, combination, coefficients, eigenvalue_ratio,
                                    std_dev, std_dev_normalised, status)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LocalAnalysis, available, message, parameters, names,

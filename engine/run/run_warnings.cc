@@ -39,6 +39,7 @@ void FailedFits(const std::string& where, const std::vector<ExperimentFit>& fits
 // Stage notes that are warnings: active bounds and held-out divergences.
 bool WarningNote(const std::string& note) {
   return note.rfind("integration step", 0) == 0 || note.rfind("outliers:", 0) == 0 ||
+         note.rfind(kNarrowHessianNote, 0) == 0 ||
          note.find(" is at its lower bound") != std::string::npos ||
          note.find(" is at its upper bound") != std::string::npos ||
          note.find("diverges") != std::string::npos;

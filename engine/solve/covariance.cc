@@ -91,6 +91,24 @@ double Uncertainty::StdError(int index) const {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+void SetStdErrorsAndCorrelation(Uncertainty* u) {
+  const int n = static_cast<int>(u->covariance.rows());
+  u->std_errors.resize(n);
+  for (int i = 0; i < n; ++i) u->std_errors[i] = std::sqrt(std::max(0.0, u->covariance(i, i)));
+  for (int index : u->undetermined_variables) {
+    for (int i = 0; i < n; ++i) {
+      if (u->variables[i] == index) u->std_errors[i] = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  u->correlation = Eigen::MatrixXd::Identity(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double d = u->std_errors[i] * u->std_errors[j];
+      if (i != j) u->correlation(i, j) = d > 0 ? u->covariance(i, j) / d : 0.0;
+    }
+  }
+}
+
 bool ComputeUncertainty(OutputErrorProblem* problem, double final_cost, Uncertainty* u) {
   *u = Uncertainty();
   const std::vector<Variable>& variables = problem->variables();
@@ -127,20 +145,7 @@ bool ComputeUncertainty(OutputErrorProblem* problem, double final_cost, Uncertai
   Eigen::VectorXd scales(n);
   for (int i = 0; i < n; ++i) scales[i] = variables[u->variables[i]].scale;
   u->covariance = u->residual_variance * scales.asDiagonal() * c * scales.asDiagonal();
-  u->std_errors.resize(n);
-  for (int i = 0; i < n; ++i) u->std_errors[i] = std::sqrt(std::max(0.0, u->covariance(i, i)));
-  for (int index : u->undetermined_variables) {
-    for (int i = 0; i < n; ++i) {
-      if (u->variables[i] == index) u->std_errors[i] = std::numeric_limits<double>::quiet_NaN();
-    }
-  }
-  u->correlation = Eigen::MatrixXd::Identity(n, n);
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      const double d = u->std_errors[i] * u->std_errors[j];
-      if (i != j) u->correlation(i, j) = d > 0 ? u->covariance(i, j) / d : 0.0;
-    }
-  }
+  SetStdErrorsAndCorrelation(u);
   u->available = true;
   return true;
 }

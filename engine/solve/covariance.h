@@ -27,10 +27,19 @@ struct Uncertainty {
   // the determined subspace.
   std::vector<std::string> undetermined;
   std::vector<int> undetermined_variables;
+  // How the covariance was estimated: "hessian" (above) or another UncertaintyMethod
+  // (uncertainty_method.h); when another, the Hessian's standard errors beside it, and why.
+  std::string method = "hessian";
+  std::vector<double> hessian_std_errors;  // empty when method is "hessian"
+  std::string method_reason;
+  double hac_bandwidth = 0.0;  // sandwich_hac: largest kernel bandwidth S, in time nodes
 
   // Standard error of variable `index`, or NaN if unknown.
   double StdError(int index) const;
 };
+
+// std_errors (NaN for undetermined_variables) and correlation from covariance.
+void SetStdErrorsAndCorrelation(Uncertainty* uncertainty);
 
 bool ComputeUncertainty(OutputErrorProblem* problem, double final_cost, Uncertainty* uncertainty);
 

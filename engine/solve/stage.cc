@@ -214,9 +214,13 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
   OrderExchangeable(problem, &summary->notes);
   NoteActiveBounds(*problem, &summary->notes);
 
-  if (options.compute_uncertainty &&
-      !ComputeUncertainty(problem, best_cost, &summary->uncertainty)) {
-    summary->notes.push_back("uncertainty: " + summary->uncertainty.message);
+  if (options.compute_uncertainty) {
+    UncertaintyOptions uncertainty = options.uncertainty;
+    uncertainty.hac.num_threads = options.local.num_threads;
+    if (!ComputeStageUncertainty(uncertainty, problem, best_cost, &summary->uncertainty,
+                                 &summary->notes)) {
+      summary->notes.push_back("uncertainty: " + summary->uncertainty.message);
+    }
   }
   if (options.compute_uncertainty) {
     LocalAnalysisOptions analysis;

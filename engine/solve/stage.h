@@ -12,6 +12,7 @@
 #include "engine/solve/local_solve.h"
 #include "engine/solve/metrics.h"
 #include "engine/solve/output_error_problem.h"
+#include "engine/solve/uncertainty_method.h"
 
 namespace vesselid {
 
@@ -21,6 +22,7 @@ struct StageOptions {
   GlobalStartOptions global;
   LocalSolveOptions local;
   bool compute_uncertainty = true;  // and the local analysis (local_analysis.h)
+  UncertaintyOptions uncertainty;   // how, when computed
   // Before each refinement, solve for the free initial states alone with the parameters
   // held: a segment started from zero velocities would otherwise drag the parameters away.
   bool initial_states_first = true;

@@ -1,0 +1,56 @@
+// How a stage estimates the covariance of its estimate (`uncertainty: {method: ...}`):
+//   hessian       s^2 (J^T J)^-1 (covariance.h): right for white residuals;
+//   sandwich_hac  A^-1 B A^-1 with the residuals' serial correlation in B (hac_covariance.h);
+//   auto          both, and the HAC when residuals are serially correlated (the rule below).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/solve/covariance.h"
+#include "engine/solve/hac_covariance.h"
+#include "engine/solve/output_error_problem.h"
+
+namespace vesselid {
+
+enum class UncertaintyMethod { kAuto, kHessian, kSandwichHac };
+
+const char* UncertaintyMethodToString(UncertaintyMethod method);  // "auto", "hessian", ...
+bool StringToUncertaintyMethod(const std::string& text, UncertaintyMethod* method);
+
+struct UncertaintyOptions {
+  UncertaintyMethod method = UncertaintyMethod::kAuto;
+  HacOptions hac;
+};
+
+// HAC standard error over the Hessian's above which the residuals count as serially
+// correlated: `auto` reports the HAC, `hessian` warns that its intervals are too narrow.
+inline constexpr double kHacRatioLimit = 1.5;
+
+// One shared free parameter's standard errors by the two methods.
+struct StdErrorRatio {
+  std::string name;
+  double hessian = 0.0, hac = 0.0;
+  double ratio() const { return hac / hessian; }
+};
+
+// Per shared free parameter with finite, positive standard errors by both methods.
+std::vector<StdErrorRatio> StdErrorRatios(const OutputErrorProblem& problem,
+                                          const Uncertainty& hessian, const Uncertainty& hac);
+
+// The rule of `auto`: the HAC when any shared parameter's ratio exceeds kHacRatioLimit (its
+// scores are serially correlated), else the Hessian.
+UncertaintyMethod ChooseUncertaintyMethod(const std::vector<StdErrorRatio>& ratios);
+
+// The stage's uncertainty by options.method, at the problem's current values (final cost
+// `final_cost`). The method used, the Hessian's standard errors beside another's, and why,
+// go into `uncertainty`; with `hessian`, a note (a run warning) when the HAC says its
+// intervals are too narrow, and one when the HAC could not be computed.
+bool ComputeStageUncertainty(const UncertaintyOptions& options, OutputErrorProblem* problem,
+                             double final_cost, Uncertainty* uncertainty,
+                             std::vector<std::string>* notes);
+
+// Prefix of the note that says the Hessian intervals are too narrow (run_warnings.cc).
+inline constexpr char kNarrowHessianNote[] = "uncertainty: the Hessian intervals are too narrow";
+
+}  // namespace vesselid
