@@ -157,6 +157,11 @@ MonteCarloOptions ReadMonteCarlo(const YamlReader& reader, const YAML::Node& nod
   const YAML::Node given = node["truth"];
   mc.truth_estimate = given && given.IsScalar() && given.as<std::string>() == "estimate";
   if (mc.truth_estimate) mc.truth_where = Where(reader, given, Child(path, "truth"));
+  if (given && given.IsScalar() && !mc.truth_estimate) {
+    reader.Fail(given, Child(path, "truth"),
+                "expected {<parameter>: value} or estimate, got '" + given.as<std::string>() +
+                    "'");
+  }
   if (node["noise"]) {
     mc.noise = reader.DoubleMap(node["noise"], Child(path, "noise"));
     CheckMonteCarloNoise(reader, node["noise"], Child(path, "noise"), config, stage, mc.noise);
@@ -164,11 +169,6 @@ MonteCarloOptions ReadMonteCarlo(const YamlReader& reader, const YAML::Node& nod
     reader.Fail(node, path,
                 "missing key 'noise' ({<output or input>: sd}; only truth: estimate takes the "
                 "fit's residual SD)");
-  }
-  if (given && given.IsScalar() && !mc.truth_estimate) {
-    reader.Fail(given, Child(path, "truth"),
-                "expected {<parameter>: value} or estimate, got '" + given.as<std::string>() +
-                    "'");
   }
   // The truth: study's own, else the simulation's (the parameters the data were made with).
   // (Copy-constructed once: YAML::Node's operator= would write through to the node.)
