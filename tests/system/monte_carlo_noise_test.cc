@@ -4,7 +4,8 @@
 // not the one the ship steered on, which the output-error model does not know):
 //  * the same runs with and without 0.3 deg noise on the logged rudder: every coverage number
 //    computed, the input noise applied (every run's estimates change, the output noise being
-//    the same run by run, and spread wider), the too narrow intervals noted;
+//    the same run by run, and spread wider, on any number of threads alike), the too narrow
+//    intervals noted;
 //  * truth: estimate: the truth is the run's own estimate of the stage, the heading noise the
 //    fit's residual SD, the bootstrap SD beside the stage's reported SE, and the report says
 //    it is a parametric bootstrap;
@@ -96,6 +97,11 @@ TEST_F(MonteCarloNoise, InputNoiseWidensTheSpreadAndEveryCoverageIsCounted) {
     EXPECT_EQ(b["runs_with_std_error"], 20) << b["name"];
     EXPECT_GT(b["sd"].get<double>(), 1.5 * a["sd"].get<double>()) << b["name"];
   }
+  // The input noise is a pure function of the run: the same results on one thread.
+  ASSERT_EQ(folder_->Study("inputs.yaml", "inputs_one", &messages, "--threads 1"), 0)
+      << messages;
+  EXPECT_EQ(testing::ComparableStudy(folder_->Load("inputs_one")),
+            testing::ComparableStudy(folder_->Load("inputs")));
   const std::string note = "K: the reported 95 % intervals covered the truth in";
   EXPECT_NE(messages.find("note: study monte_carlo: " + note), std::string::npos) << messages;
   bool noted = false;
