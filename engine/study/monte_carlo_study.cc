@@ -181,6 +181,23 @@ bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& option
   const std::string method = UncertaintyMethod(&cases);
   const json summary = MonteCarloSummary(about, z, cases);
   json notes = json::array();
+  if (options.truth_estimate) {
+    // An estimate at a bound is a truth the runs cannot scatter around: half of them stop there.
+    for (int index : stage.free) {
+      const ParameterSpec& spec = stage.specs[index];
+      const double value = truth[index];
+      const double tolerance = 1e-6 * std::max(1.0, std::abs(value));
+      if (std::abs(value - spec.lower) <= tolerance || std::abs(value - spec.upper) <= tolerance) {
+        char line[256];
+        std::snprintf(line, sizeof(line),
+                      "%s: the stage's estimate %.6g is at its bound, so the bootstrap runs "
+                      "pile up there: their SD and coverage are not those of an interior "
+                      "estimate",
+                      spec.name.c_str(), value);
+        notes.push_back(line);
+      }
+    }
+  }
   for (const std::string& note : MonteCarloNotes(summary, options.confidence,
                                                  options.truth_estimate, cases)) {
     notes.push_back(note);

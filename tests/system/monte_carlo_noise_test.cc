@@ -7,8 +7,8 @@
 //    the same run by run, and spread wider, on any number of threads alike), the too narrow
 //    intervals noted;
 //  * truth: estimate: the truth is the run's own estimate of the stage, the heading noise the
-//    fit's residual SD, the bootstrap SD beside the stage's reported SE, and the report says
-//    it is a parametric bootstrap;
+//    fit's residual SD, the bootstrap SD beside the stage's reported SE, the report says it
+//    is a parametric bootstrap, and an estimate at its bound is noted;
 //  * noise on a name that is neither output nor input, a truth that is neither a map nor
 //    `estimate`, and a bootstrap of a stage that cannot be solved are refused naming file,
 //    line and key, with no study.json.
@@ -52,6 +52,10 @@ class MonteCarloNoise : public ::testing::Test {
       seed: 3
       monte_carlo: {stage: multisine, runs: 12, truth: estimate, start: truth})");
     folder_->Write("bootstrap.yaml", config);
+    YAML::Node bound = YAML::Clone(config);  // T3 (0.12 on these data) held below 0.1
+    bound["stages"][0]["parameters"]["T3"] = YAML::Load("{start: 0.05, lower: 0.0, upper: 0.1}");
+    bound["study"]["monte_carlo"]["runs"] = 4;
+    folder_->Write("bound.yaml", bound);
 
     YAML::Node bad = YAML::Clone(config);
     bad["study"]["monte_carlo"]["noise"] = YAML::Load("{rudder: 0.01}");
@@ -151,6 +155,13 @@ TEST_F(MonteCarloNoise, BootstrapIsAroundTheRunsOwnEstimate) {
       << report;
   EXPECT_NE(report.find("psi 0.00"), std::string::npos) << report;
   EXPECT_NE(report.find("(fit residual SD)"), std::string::npos) << report;
+
+  // An estimate at its bound is a truth the runs cannot scatter around: noted.
+  ASSERT_EQ(folder_->Study("bound.yaml", "bound", &messages), 0) << messages;
+  EXPECT_NE(messages.find("note: study monte_carlo: T3: the stage's estimate 0.1 is at its bound"),
+            std::string::npos)
+      << messages;
+  EXPECT_EQ(folder_->Load("bound")["monte_carlo"]["notes"].size(), 1u);
 }
 
 TEST_F(MonteCarloNoise, BadNoiseAndTruthAreRefusedWithFileAndLine) {
