@@ -9,9 +9,9 @@
 //  * truth: estimate: the truth is the run's own estimate of the stage, the heading noise the
 //    fit's residual SD, the bootstrap SD beside the stage's reported SE, the report says it
 //    is a parametric bootstrap, and an estimate at its bound is noted;
-//  * noise on a name that is neither output nor input, a truth that is neither a map nor
-//    `estimate`, and a bootstrap of a stage that cannot be solved are refused naming file,
-//    line and key, with no study.json.
+//  * noise on a name that is neither output nor input or on an input a record does not log,
+//    a truth that is neither a map nor `estimate`, and a bootstrap of a stage that cannot be
+//    solved are refused naming file, line and key, with no study.json.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -66,6 +66,11 @@ class MonteCarloNoise : public ::testing::Test {
     bad = YAML::Clone(config);
     bad["experiments"][1]["file"] = "no_such_record.csv";
     folder_->Write("bad_stage.yaml", bad);
+    // The Erunsal tugboat's wind inputs are optional: its records do not log them.
+    YAML::Node tug =
+        YAML::LoadFile(std::string(VESSELID_SOURCE_DIR) + "/configs/erunsal_hierarchy.yaml");
+    tug["study"] = YAML::Load("{monte_carlo: {stage: spiral, noise: {wind_speed: 0.1, psi: 0.01}}}");
+    folder_->Write("bad_input.yaml", tug);
     folder_->Simulate("outputs.yaml");
   }
   static void TearDownTestSuite() { delete folder_; }
@@ -172,6 +177,9 @@ TEST_F(MonteCarloNoise, BadNoiseAndTruthAreRefusedWithFileAndLine) {
   };
   for (const Case& c :
        {Case{"bad_name.yaml", "bad_name", "study.monte_carlo.noise.rudder: unknown output or input 'rudder'"},
+        Case{"bad_input.yaml", "bad_input",
+             "study.monte_carlo.noise.wind_speed: input 'wind_speed' is not recorded in "
+             "experiment 'spiral1'"},
         Case{"bad_truth.yaml", "bad_truth", "study.monte_carlo.truth: expected {<parameter>: value} or "
                                "estimate, got 'estimated'"},
         Case{"bad_stage.yaml", "bad_stage", "study.monte_carlo.truth: estimate: the stage cannot be solved"}}) {
