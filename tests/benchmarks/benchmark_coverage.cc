@@ -131,7 +131,7 @@ bool RunCase(const Case& c, const Options& options, const fs::path& dir) {
                             (dir / "study").string() + " --only monte_carlo --quiet" +
                             (options.threads > 0 ? " --threads " + std::to_string(options.threads)
                                                  : std::string()) +
-                            " > /dev/null";
+                            " > /dev/null 2> " + (dir / "study.stderr").string();
   const auto start = std::chrono::steady_clock::now();
   if (std::system(simulate.c_str()) != 0 || std::system(study.c_str()) != 0) {
     std::fprintf(stderr, "failed on %s (see %s)\n", c.config.c_str(), dir.c_str());
