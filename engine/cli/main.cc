@@ -178,6 +178,14 @@ int Study(const std::string& config_path, const std::string& data_dir, const std
     return Fail(error);
   }
   if (!quiet) std::cout << text;
+  // What a part found doubtful reaches stderr too, as a run's warnings do.
+  for (const auto& [part, section] : result.items()) {
+    if (!section.is_object() || !section.contains("notes")) continue;
+    for (const auto& note : section["notes"]) {
+      std::fprintf(stderr, "note: study %s: %s\n", part.c_str(),
+                   note.get<std::string>().c_str());
+    }
+  }
   std::printf("\nstudy written to %s/study.json\n", out_dir.c_str());
   return 0;
 }

@@ -109,8 +109,41 @@ ProfileOptions ReadProfile(const YamlReader& reader, const YAML::Node& node,
   return profile;
 }
 
-//   monte_carlo: {stage, runs, noise: {<output>: sd}, truth: {<parameter>: value},
-//                 start: stage|truth, confidence}
+// "file:line: key" of `node`, for messages of what the study finds later.
+std::string Where(const YamlReader& reader, const YAML::Node& node, const std::string& key) {
+  const YAML::Mark mark = node.Mark();
+  return reader.file() + (mark.line >= 0 ? ":" + std::to_string(mark.line + 1) : "") + ": " + key;
+}
+
+// Monte Carlo noise: per model output, or per model input that every experiment of the stage
+// maps to a recorded column (the logged input is what gets the noise).
+void CheckMonteCarloNoise(const YamlReader& reader, const YAML::Node& node,
+                          const std::string& path, const RunConfig& config,
+                          const StageConfig& stage, const std::map<std::string, double>& noise) {
+  const ModelInfo& info = config.StageModel(stage).info();
+  for (const auto& [name, sd] : noise) {
+    const std::string key = Child(path, name);
+    if (info.OutputIndex(name) < 0 && info.InputIndex(name) < 0) {
+      reader.Fail(node, key,
+                  "unknown output or input '" + name + "' (model " + info.name +
+                      " has outputs " + JoinNames(info.outputs) + "; inputs " +
+                      JoinNames(info.inputs) + ")");
+    }
+    if (!(sd >= 0.0)) reader.Fail(node, key, "must be >= 0");
+    if (info.OutputIndex(name) >= 0) continue;
+    for (const std::string& experiment : stage.experiments) {
+      const ExperimentSpec* spec = config.FindExperiment(experiment);
+      if (spec != nullptr && spec->inputs.count(name) == 0) {
+        reader.Fail(node, key,
+                    "input '" + name + "' is not recorded in experiment '" + experiment +
+                        "' (no column maps it), so it has no logged values to add noise to");
+      }
+    }
+  }
+}
+
+//   monte_carlo: {stage, runs, noise: {<output or input>: sd},
+//                 truth: {<parameter>: value} | estimate, start: stage|truth, confidence}
 MonteCarloOptions ReadMonteCarlo(const YamlReader& reader, const YAML::Node& node,
                                  const RunConfig& config, const YAML::Node& simulation) {
   const std::string path = "study.monte_carlo";
@@ -120,35 +153,41 @@ MonteCarloOptions ReadMonteCarlo(const YamlReader& reader, const YAML::Node& nod
       StudiedStage(reader, node, path, config, StageConfig::Kind::kOutputError, &mc.stage);
   const ModelInfo& info = config.StageModel(stage).info();
   mc.runs = Positive(reader, node, path, "runs", mc.runs);
-  if (!node["noise"]) reader.Fail(node, path, "missing key 'noise' ({<output>: sd})");
-  mc.noise = reader.DoubleMap(node["noise"], Child(path, "noise"));
-  for (const auto& [name, sd] : mc.noise) {
-    if (info.OutputIndex(name) < 0) {
-      reader.Fail(node["noise"], Child(Child(path, "noise"), name),
-                  "unknown output '" + name + "' (model " + info.name + " has " +
-                      JoinNames(info.outputs) + ")");
-    }
-    if (!(sd >= 0.0)) {
-      reader.Fail(node["noise"], Child(Child(path, "noise"), name), "must be >= 0");
-    }
+  // truth: estimate - a parametric bootstrap around the stage's own estimate.
+  const YAML::Node given = node["truth"];
+  mc.truth_estimate = given && given.IsScalar() && given.as<std::string>() == "estimate";
+  if (mc.truth_estimate) mc.truth_where = Where(reader, given, Child(path, "truth"));
+  if (given && given.IsScalar() && !mc.truth_estimate) {
+    reader.Fail(given, Child(path, "truth"),
+                "expected {<parameter>: value} or estimate, got '" + given.as<std::string>() +
+                    "'");
+  }
+  if (node["noise"]) {
+    mc.noise = reader.DoubleMap(node["noise"], Child(path, "noise"));
+    CheckMonteCarloNoise(reader, node["noise"], Child(path, "noise"), config, stage, mc.noise);
+  } else if (!mc.truth_estimate) {
+    reader.Fail(node, path,
+                "missing key 'noise' ({<output or input>: sd}; only truth: estimate takes the "
+                "fit's residual SD)");
   }
   // The truth: study's own, else the simulation's (the parameters the data were made with).
   // (Copy-constructed once: YAML::Node's operator= would write through to the node.)
-  const bool simulated =
-      !node["truth"] && simulation.IsMap() && simulation["truth"];
-  const YAML::Node truth = simulated ? simulation["truth"] : node["truth"];
+  const bool simulated = !given && simulation.IsMap() && simulation["truth"];
+  const YAML::Node truth = simulated ? simulation["truth"] : given;
   const std::string truth_path = simulated ? "simulation.truth" : Child(path, "truth");
   if (!truth) reader.Fail(node, path, "missing key 'truth' (and no simulation.truth)");
-  mc.truth = reader.DoubleMap(truth, truth_path);
-  for (const auto& [name, value] : mc.truth) {
-    if (info.ParameterIndex(name) < 0) {
-      reader.Fail(truth, Child(truth_path, name),
-                  "unknown parameter '" + name + "' (model " + info.name + ")");
+  if (!mc.truth_estimate) {
+    mc.truth = reader.DoubleMap(truth, truth_path);
+    for (const auto& [name, value] : mc.truth) {
+      if (info.ParameterIndex(name) < 0) {
+        reader.Fail(truth, Child(truth_path, name),
+                    "unknown parameter '" + name + "' (model " + info.name + ")");
+      }
     }
-  }
-  for (const ParameterSpec& spec : stage.parameters) {
-    if (IsEstimatedOnce(spec.role) && mc.truth.count(spec.name) == 0) {
-      reader.Fail(truth, truth_path, "no value for free parameter '" + spec.name + "'");
+    for (const ParameterSpec& spec : stage.parameters) {
+      if (IsEstimatedOnce(spec.role) && mc.truth.count(spec.name) == 0) {
+        reader.Fail(truth, truth_path, "no value for free parameter '" + spec.name + "'");
+      }
     }
   }
   if (const YAML::Node n = node["start"]) {

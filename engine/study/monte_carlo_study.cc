@@ -1,11 +1,14 @@
 #include "engine/study/monte_carlo_study.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <random>
 
 #include "engine/base/statistics.h"
+#include "engine/study/monte_carlo_noise.h"
+#include "engine/study/monte_carlo_summary.h"
 #include "engine/study/study_stage.h"
 
 namespace vesselid {
@@ -13,15 +16,28 @@ namespace {
 
 using nlohmann::json;
 
-constexpr int kPart = 1;  // CaseSeed part of this study
+constexpr int kPart = 1;            // CaseSeed part of the output noise
+constexpr int kInputNoisePart = 5;  // and of the input noise (its own stream: adding input
+                                    // noise leaves each run's output noise as it was)
 
-// Truth of every model parameter: the stage's carried values, overridden by `truth`; every
-// free parameter must be given.
+// Truth of every model parameter: the stage's carried values, overridden by `truth`, or by
+// the stage's estimate on the data (truth: estimate); every free parameter must be given.
 bool ResolveTruth(const StudyStage& stage, const MonteCarloOptions& options,
                   std::vector<double>* truth, std::string* error) {
   truth->clear();
   for (const ParameterSpec& spec : stage.specs) truth->push_back(spec.start);
   const std::vector<std::string>& names = stage.model->info().parameters;
+  if (options.truth_estimate) {
+    for (int index : stage.free) {
+      const auto found = stage.run_optimum.find(names[index]);
+      if (found == stage.run_optimum.end()) {
+        *error = "the stage's solve gave no estimate of '" + names[index] + "'";
+        return false;
+      }
+      (*truth)[index] = found->second;
+    }
+    return true;
+  }
   for (const auto& [name, value] : options.truth) {
     bool found = false;
     for (size_t i = 0; i < names.size(); ++i) {
@@ -46,72 +62,18 @@ bool ResolveTruth(const StudyStage& stage, const MonteCarloOptions& options,
   return true;
 }
 
-// Noise SD per model output; every compared output needs one.
-bool ResolveNoise(const StudyStage& stage, const MonteCarloOptions& options,
-                  std::vector<double>* sigma, std::string* error) {
-  const ModelInfo& info = stage.model->info();
-  sigma->assign(info.outputs.size(), NAN);
-  for (const auto& [name, value] : options.noise) {
-    const int c = info.OutputIndex(name);
-    if (c < 0) {
-      *error = "noise names '" + name + "', not an output of model " + info.name;
-      return false;
-    }
-    (*sigma)[c] = value;
+// The uncertainty method of the runs: one name if they all agree, else each one once.
+std::string UncertaintyMethod(std::vector<json>* cases) {
+  std::vector<std::string> methods;
+  for (json& c : *cases) {
+    if (!c.contains("uncertainty_method")) continue;
+    const std::string m = c["uncertainty_method"];
+    if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
+    c.erase("uncertainty_method");
   }
-  for (const Experiment& e : stage.experiments) {
-    for (size_t c = 0; c < info.outputs.size(); ++c) {
-      if (e.output_sample_count[c] > 0 && !std::isfinite((*sigma)[c])) {
-        *error = "no noise for output '" + info.outputs[c] + "' (compared in experiment '" +
-                 e.name + "')";
-        return false;
-      }
-    }
-  }
-  return true;
-}
-
-json Summary(const StudyStage& stage, const std::vector<double>& truth, double z,
-             const std::vector<json>& cases) {
-  json parameters = json::array();
-  int usable = 0;
-  for (const json& c : cases) usable += c.value("usable", false) ? 1 : 0;
-  for (size_t k = 0; k < stage.free.size(); ++k) {
-    const double theta = truth[stage.free[k]];
-    std::vector<double> estimates, errors;
-    int covered = 0, with_error = 0;
-    double squared = 0.0;
-    for (const json& c : cases) {
-      if (!c.value("usable", false)) continue;
-      const double value = NumberOr(c["estimates"][k], NAN);
-      const double se = NumberOr(c["std_errors"][k], NAN);
-      estimates.push_back(value);
-      errors.push_back(se);
-      squared += (value - theta) * (value - theta);
-      if (std::isfinite(se)) {
-        ++with_error;
-        covered += std::abs(value - theta) <= z * se ? 1 : 0;
-      }
-    }
-    const MeanSd e = Summarise(estimates), s = Summarise(errors);
-    const double coverage = with_error > 0 ? static_cast<double>(covered) / with_error : NAN;
-    parameters.push_back(
-        {{"name", stage.free_names[k]},
-         {"truth", theta},
-         {"mean", JsonNumber(e.mean)},
-         {"bias", JsonNumber(e.mean - theta)},
-         {"bias_percent", JsonNumber(theta != 0.0 ? 100.0 * (e.mean - theta) / theta : NAN)},
-         {"bias_std_error", JsonNumber(e.sd / std::sqrt(std::max(1, e.n)))},
-         {"sd", JsonNumber(e.sd)},
-         {"rmse", JsonNumber(e.n > 0 ? std::sqrt(squared / e.n) : NAN)},
-         {"mean_std_error", JsonNumber(s.mean)},
-         {"std_error_over_sd", JsonNumber(s.mean / e.sd)},
-         {"coverage", JsonNumber(coverage)},
-         {"coverage_std_error",
-          JsonNumber(with_error > 0 ? std::sqrt(coverage * (1 - coverage) / with_error) : NAN)},
-         {"runs_with_std_error", with_error}});
-  }
-  return {{"runs", cases.size()}, {"usable_runs", usable}, {"parameters", parameters}};
+  std::string joined;
+  for (const std::string& m : methods) joined += (joined.empty() ? "" : ", ") + m;
+  return joined.empty() ? "none" : joined;
 }
 
 }  // namespace
@@ -121,16 +83,29 @@ bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& option
                         std::string* error, const CaseProgress& progress) {
   const auto start_time = std::chrono::steady_clock::now();
   StudyStage stage;
-  if (!PrepareStudyStage(config, options.stage, &stage, error)) return false;
-  std::vector<double> truth, sigma;
-  if (!ResolveTruth(stage, options, &truth, error) ||
-      !ResolveNoise(stage, options, &sigma, error)) {
+  // A parametric bootstrap first solves the stage on the data, as the run does.
+  if (!PrepareStudyStage(config, options.stage, &stage, error, options.truth_estimate)) {
+    if (options.truth_estimate) {
+      *error = options.truth_where + ": estimate: the stage cannot be solved on the data: " +
+               *error;
+    }
+    return false;
+  }
+  std::vector<double> truth;
+  if (!ResolveTruth(stage, options, &truth, error)) {
     *error = "monte_carlo: " + *error;
     return false;
   }
   std::vector<std::vector<double>> clean;
-  if (!SimulateSamples(stage, truth, &clean, error)) {
+  if (!SimulateSamples(stage, truth, &clean, error,
+                       options.truth_estimate ? &stage.run_optimum : nullptr)) {
     *error = "monte_carlo: truth: " + *error;
+    return false;
+  }
+  MonteCarloNoise noise;
+  if (!ResolveMonteCarloNoise(stage, options, options.truth_estimate ? &clean : nullptr, &noise,
+                              error)) {
+    *error = "monte_carlo: noise: " + *error;
     return false;
   }
   std::vector<ParameterSpec> specs = stage.specs;
@@ -141,13 +116,20 @@ bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& option
   }
   auto run_case = [&](int r) -> json {
     const auto case_start = std::chrono::steady_clock::now();
+    std::vector<Experiment> experiments;
+    std::string message;
+    if (noise.any_input() &&
+        !NoisyInputExperiments(stage, noise.input, CaseSeed(seed, kInputNoisePart, r),
+                               &experiments, &message)) {
+      return {{"run", r}, {"usable", false}, {"message", "input noise: " + message}};
+    }
+    if (!noise.any_input()) experiments = stage.experiments;
     std::mt19937_64 random(CaseSeed(seed, kPart, r));
     std::normal_distribution<double> normal(0.0, 1.0);
-    std::vector<Experiment> experiments = stage.experiments;
     for (size_t e = 0; e < experiments.size(); ++e) {
       for (size_t i = 0; i < experiments[e].samples.size(); ++i) {
         ExperimentSample& s = experiments[e].samples[i];
-        s.value = clean[e][i] + sigma[s.output] * normal(random);
+        s.value = clean[e][i] + noise.output[s.output] * normal(random);
       }
     }
     StudySolve solve = SolveStudyStage(stage, std::move(experiments), specs, stage_options);
@@ -162,6 +144,7 @@ bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& option
       c["std_errors"] = errors;
       c["cost"] = solve.summary.local().final_cost;
       c["iterations"] = solve.summary.local().iterations;
+      c["uncertainty_method"] = solve.summary.uncertainty.method;
     }
     c["time_seconds"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - case_start).count();
@@ -174,16 +157,64 @@ bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& option
     return true;
   }
   const double z = TwoSidedZ(options.confidence);
-  json noise = json::object();
-  for (const auto& [name, value] : options.noise) noise[name] = value;
+  const ModelInfo& info = stage.model->info();
+  json levels = json::object(), of_fit = json::array(), inputs = json::array();
+  for (size_t c = 0; c < info.outputs.size(); ++c) {
+    if (std::isfinite(noise.output[c])) levels[info.outputs[c]] = noise.output[c];
+    if (noise.output_of_fit[c]) of_fit.push_back(info.outputs[c]);
+  }
+  for (size_t u = 0; u < info.inputs.size(); ++u) {
+    if (noise.input[u] > 0.0) {
+      levels[info.inputs[u]] = noise.input[u];
+      inputs.push_back(info.inputs[u]);
+    }
+  }
+  MonteCarloTruth about;
+  about.names = stage.free_names;
+  for (int index : stage.free) about.values.push_back(truth[index]);
+  if (options.truth_estimate) {
+    for (const std::string& name : stage.free_names) {
+      const auto se = stage.run_std_errors.find(name);
+      about.stage_std_errors.push_back(se != stage.run_std_errors.end() ? se->second : NAN);
+    }
+  }
+  const std::string method = UncertaintyMethod(&cases);
+  const json summary = MonteCarloSummary(about, z, cases);
+  json notes = json::array();
+  if (options.truth_estimate) {
+    // An estimate at a bound is a truth the runs cannot scatter around: half of them stop there.
+    for (int index : stage.free) {
+      const ParameterSpec& spec = stage.specs[index];
+      const double value = truth[index];
+      const double tolerance = 1e-6 * std::max(1.0, std::abs(value));
+      if (std::abs(value - spec.lower) <= tolerance || std::abs(value - spec.upper) <= tolerance) {
+        char line[256];
+        std::snprintf(line, sizeof(line),
+                      "%s: the stage's estimate %.6g is at its bound, so the bootstrap runs "
+                      "pile up there: their SD and coverage are not those of an interior "
+                      "estimate",
+                      spec.name.c_str(), value);
+        notes.push_back(line);
+      }
+    }
+  }
+  for (const std::string& note : MonteCarloNotes(summary, options.confidence,
+                                                 options.truth_estimate, cases)) {
+    notes.push_back(note);
+  }
   *result = {{"stage", stage.stage->options.name},
              {"runs", options.runs},
-             {"noise", noise},
+             {"truth", options.truth_estimate ? "estimate" : "given"},
+             {"noise", levels},
+             {"noise_from_fit", of_fit},
+             {"noisy_inputs", inputs},
              {"start", options.start_at_truth ? "truth" : "stage"},
+             {"uncertainty_method", method},
              {"confidence", options.confidence},
              {"z", z},
              {"parameters", stage.free_names},
-             {"summary", Summary(stage, truth, z, cases)},
+             {"summary", summary},
+             {"notes", notes},
              {"cases", cases},
              {"time_seconds", std::chrono::duration<double>(
                                   std::chrono::steady_clock::now() - start_time)
@@ -195,25 +226,55 @@ std::string MonteCarloText(const json& result) {
   std::string text;
   char line[512];
   const json& summary = result["summary"];
+  const bool bootstrap = result.value("truth", "given") == "estimate";
   std::snprintf(line, sizeof(line),
                 "Monte Carlo noise study, stage %s: %d runs (%d usable), start %s, %.0f %% "
-                "intervals (z = %.3f), %.1f s\n",
+                "intervals (z = %.3f, uncertainty method %s), %.1f s\n",
                 result["stage"].get<std::string>().c_str(), summary["runs"].get<int>(),
                 summary["usable_runs"].get<int>(), result["start"].get<std::string>().c_str(),
                 100.0 * result["confidence"].get<double>(), result["z"].get<double>(),
+                result.value("uncertainty_method", "").c_str(),
                 NumberOr(result["time_seconds"], NAN));
   text += line;
-  std::snprintf(line, sizeof(line), "  %-12s %13s %13s %11s %12s %12s %9s %14s\n", "parameter",
-                "truth", "mean", "bias %", "SD", "mean SE", "SE/SD", "coverage %");
+  if (bootstrap) {
+    text += "  parametric bootstrap around the stage's estimate on the data (the truth below is "
+            "the estimate; bias is the method's bias at the estimate)\n";
+  }
+  std::string levels;
+  for (const auto& [name, sd] : result["noise"].items()) {
+    bool fit = false;
+    for (const json& f : result.value("noise_from_fit", json::array())) fit |= f == name;
+    bool input = false;
+    for (const json& f : result.value("noisy_inputs", json::array())) input |= f == name;
+    std::snprintf(line, sizeof(line), "%s%s %.4g%s%s", levels.empty() ? "" : ", ", name.c_str(),
+                  sd.get<double>(), input ? " (input)" : "", fit ? " (fit residual SD)" : "");
+    levels += line;
+  }
+  text += "  noise SD: " + levels + "\n";
+  std::snprintf(line, sizeof(line), "  %-12s %13s %13s %11s %9s %12s %12s %9s %14s%s\n",
+                "parameter", bootstrap ? "estimate" : "truth", "mean", "bias %", "bias/SE", "SD",
+                "mean SE", "SE/SD", "coverage %", bootstrap ? "      stage SE  SD/stage SE" : "");
   text += line;
   for (const json& p : summary["parameters"]) {
-    std::snprintf(line, sizeof(line), "  %-12s %13.6g %13.6g %11.4f %12.4g %12.4g %9.3f %8.1f +- %.1f\n",
+    std::snprintf(line, sizeof(line),
+                  "  %-12s %13.6g %13.6g %11.4f %9.3f %12.4g %12.4g %9.3f %8.1f +- %.1f",
                   p["name"].get<std::string>().c_str(), p["truth"].get<double>(),
                   NumberOr(p["mean"], NAN), NumberOr(p["bias_percent"], NAN),
-                  NumberOr(p["sd"], NAN), NumberOr(p["mean_std_error"], NAN),
-                  NumberOr(p["std_error_over_sd"], NAN), 100.0 * NumberOr(p["coverage"], NAN),
+                  NumberOr(p.value("bias_over_std_error", json()), NAN), NumberOr(p["sd"], NAN),
+                  NumberOr(p["mean_std_error"], NAN), NumberOr(p["std_error_over_sd"], NAN),
+                  100.0 * NumberOr(p["coverage"], NAN),
                   100.0 * NumberOr(p["coverage_std_error"], NAN));
     text += line;
+    if (bootstrap) {
+      std::snprintf(line, sizeof(line), " %13.4g %12.3f",
+                    NumberOr(p.value("stage_std_error", json()), NAN),
+                    NumberOr(p.value("sd_over_stage_std_error", json()), NAN));
+      text += line;
+    }
+    text += "\n";
+  }
+  for (const json& note : result.value("notes", json::array())) {
+    text += "  note: " + note.get<std::string>() + "\n";
   }
   return text;
 }

@@ -2,12 +2,17 @@
 // truth, and are its reported intervals honest?
 //
 // The stage's experiments are simulated once with the truth (inputs and initial states as
-// recorded), then for run r = 0..N-1 Gaussian noise N(0, sigma_c^2) seeded by (seed, r) is
-// added to every sample of output c and the stage is identified as configured. Per free
-// parameter, over the usable runs:
-//   bias = mean(theta^) - theta*,  SD of theta^,  RMSE,  mean reported SE / SD,
-//   coverage = share of runs with |theta^ - theta*| <= z se  (z = 1.96 for 95 %),
-// with the binomial standard error of the coverage sqrt(c (1 - c) / N).
+// recorded), then for run r = 0..N-1 Gaussian noise seeded by (seed, r) is added to every
+// sample of each output and to every logged sample of each noisy input (the experiments then
+// rebuilt as the stage builds them: errors in variables, monte_carlo_noise.h), and the stage
+// is identified as configured (its weights, input treatment and uncertainty method). The
+// summary per free parameter is monte_carlo_summary.h's, with notes on what is doubtful.
+//
+// truth: estimate makes it a parametric bootstrap for data without a known truth: the stage
+// is solved on the data first and its estimate (parameters, per-experiment values, initial
+// states) is the truth; outputs whose noise is not given take the fit's residual SD. The
+// bias is then the method's bias at the estimate, and the bootstrap SD stands beside the
+// stage's reported SE.
 #pragma once
 
 #include <string>

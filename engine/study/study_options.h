@@ -4,7 +4,7 @@
 //     seed: 1          # every case's random numbers derive from it and the case index
 //     threads: 0       # worker threads per process; 0: cores / processes on the machine
 //     profile:     {stage | stages, parameters, points, span, confidence}
-//     monte_carlo: {stage, runs, noise, truth, start, confidence}
+//     monte_carlo: {stage, runs, noise, truth (| estimate), start, confidence}
 //     starts:      {stage, runs, sampling, global, tolerance}
 //     partitions:  {stage, experiments, repetitions, validation_share, training_shares,
 //                   methods}
@@ -39,12 +39,19 @@ struct ProfileOptions {
 };
 
 // Monte Carlo noise study: the stage's experiments simulated with `truth`, Gaussian noise of
-// `noise` (per model output, in its units) added to every sample, identified `runs` times.
+// `noise` (per model output, in its units) added to every sample and (per model input) to
+// every sample of the input's recorded column, identified `runs` times.
 struct MonteCarloOptions {
   std::string stage;
   int runs = 200;
-  std::map<std::string, double> noise;  // output -> standard deviation
+  // Output or input -> standard deviation. An output not named takes the residual SD of the
+  // stage's fit with `truth: estimate`; without it every compared output must be named.
+  std::map<std::string, double> noise;
   std::map<std::string, double> truth;  // parameter -> value (default: simulation.truth)
+  // truth: estimate - a parametric bootstrap: the stage is solved on the data first and its
+  // estimate (parameters, per-experiment values, initial states) is the truth.
+  bool truth_estimate = false;
+  std::string truth_where;  // "file:line: study.monte_carlo.truth", for messages of the solve
   // start: truth - a local solve from the truth (no global start: the noise alone is
   // measured); start: stage (default) - the stage as configured, from its starts.
   bool start_at_truth = false;

@@ -41,9 +41,11 @@ bool PrepareStudyStage(const RunConfig& config, const std::string& name, StudySt
   if (!ResolveStage(config, index, &stage->specs, nullptr, error, solve ? &solved : nullptr)) {
     return false;
   }
-  for (const Estimate& e : solved.estimates) stage->run_optimum[e.name] = e.value;
-  TrajectoryCache cache;
-  if (!PrepareExperiments(config, s.experiments, *stage->model, s.experiment, &cache,
+  for (const Estimate& e : solved.estimates) {
+    stage->run_optimum[e.name] = e.value;
+    stage->run_std_errors[e.name] = e.std_error;
+  }
+  if (!PrepareExperiments(config, s.experiments, *stage->model, s.experiment, &stage->records,
                           &stage->experiments, error)) {
     *error = "stage '" + s.options.name + "': " + *error;
     return false;
@@ -124,17 +126,27 @@ std::map<std::string, double> ValuesByName(const OutputErrorProblem& problem) {
 }
 
 bool SimulateSamples(const StudyStage& stage, const std::vector<double>& parameters,
-                     std::vector<std::vector<double>>* clean, std::string* error) {
+                     std::vector<std::vector<double>>* clean, std::string* error,
+                     const std::map<std::string, double>* values) {
+  // Every parameter at its value; with `values` the roles stay, so that per-experiment values
+  // exist as variables to take theirs.
   std::vector<ParameterSpec> fixed = stage.specs;
   for (size_t i = 0; i < fixed.size(); ++i) {
     fixed[i].start = parameters[i];
-    fixed[i].role = ParameterRole::kFixed;
+    if (values == nullptr) fixed[i].role = ParameterRole::kFixed;
     fixed[i].lower = -std::numeric_limits<double>::infinity();
     fixed[i].upper = std::numeric_limits<double>::infinity();
   }
   auto problem = OutputErrorProblem::Create(stage.model, stage.experiments, fixed,
                                             stage.stage->problem, error);
   if (problem == nullptr) return false;
+  if (values != nullptr) {
+    for (const Variable& v : problem->variables()) {
+      const auto value = values->find(v.name);
+      const bool shared = v.kind == Variable::Kind::kParameter && v.experiment < 0;
+      if (value != values->end() && !shared) v.set_value(value->second);
+    }
+  }
   const int ny = static_cast<int>(stage.model->info().outputs.size());
   clean->assign(stage.experiments.size(), {});
   for (size_t e = 0; e < stage.experiments.size(); ++e) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/base/json_number.h"
+#include "engine/run/records.h"
 #include "engine/run/run_config.h"
 #include "engine/solve/output_error_problem.h"
 #include "engine/solve/stage.h"
@@ -31,6 +32,10 @@ struct StudyStage {
   // With PrepareStudyStage(..., solve = true): every unknown's value (by variable name) as
   // the run's own solve of the stage found it, continuation and global start included.
   std::map<std::string, double> run_optimum;
+  std::map<std::string, double> run_std_errors;  // and its standard errors (NaN: none)
+  // The stage's records as read and prepared once (by configured experiment name), from
+  // which variants of the data rebuild its experiments (PrepareExperiments).
+  TrajectoryCache records;
 
   // Starts of the free parameters, in `free` order.
   std::vector<double> FreeStarts() const;
@@ -65,8 +70,11 @@ std::map<std::string, double> ValuesByName(const OutputErrorProblem& problem);
 
 // Per-sample noise-free outputs of the stage's experiments simulated with `parameters`
 // (model order) from the initial states the stage starts from (estimated ones from their
-// guesses): clean[e][i] belongs to experiments[e].samples[i]. False if one diverges.
+// guesses): clean[e][i] belongs to experiments[e].samples[i]. With `values` (by variable
+// name, e.g. StudyStage::run_optimum) the per-experiment parameters and estimated initial
+// states named there take those values. False if one diverges.
 bool SimulateSamples(const StudyStage& stage, const std::vector<double>& parameters,
-                     std::vector<std::vector<double>>* clean, std::string* error);
+                     std::vector<std::vector<double>>* clean, std::string* error,
+                     const std::map<std::string, double>* values = nullptr);
 
 }  // namespace vesselid

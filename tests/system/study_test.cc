@@ -128,7 +128,7 @@ TEST_F(Study, BadStudyInputIsRejectedWithoutResults) {
   std::string messages;
   EXPECT_NE(Run("bad_noise.yaml", "bad_noise", "", &messages), 0);
   EXPECT_NE(messages.find("study.monte_carlo.noise.heading"), std::string::npos) << messages;
-  EXPECT_NE(messages.find("unknown output 'heading'"), std::string::npos) << messages;
+  EXPECT_NE(messages.find("unknown output or input 'heading'"), std::string::npos) << messages;
   EXPECT_FALSE(fs::exists(folder_->dir() / "bad_noise" / "study.json"));
 
   EXPECT_NE(Run("study.yaml", "bad_part", "--only montecarlo", &messages), 0);
