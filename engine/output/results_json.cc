@@ -3,6 +3,7 @@
 #include "engine/base/json_number.h"
 #include "engine/data/time_base.h"
 #include "engine/output/display_units.h"
+#include "engine/output/bootstrap_report.h"
 #include "engine/output/held_out_parameters_report.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/output/run_fit_table.h"
@@ -259,6 +260,9 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
     j["velocity_validation"] = VelocityToJson(stage.velocity_validation);
   }
   if (stage.step_regression) j["step_regression"] = StepRegressionToJson(*stage.step_regression);
+  if (stage.bootstrap.done() || !stage.bootstrap.message.empty()) {
+    j["bootstrap"] = BootstrapToJson(stage.bootstrap);
+  }
   return j;
 }
 
