@@ -1,8 +1,10 @@
 // The `bootstrap` key of a regression stage (group_bootstrap.h):
 //
 //   bootstrap: 200                     # replicates (0: none)
-//   bootstrap: {runs: 200, lambda: held | selected, seed: 1, threads: 0,
+//   bootstrap: {runs: 200, lambda: held | selected, seed: 1,
 //               blocks: 20}            # blocks: least-squares stages only
+//
+// The replicates use every core; their results do not depend on how many (no key).
 #include "engine/config/config_sections.h"
 
 namespace vesselid {
@@ -12,7 +14,7 @@ void ReadBootstrap(const YamlReader& reader, const YAML::Node& node, const std::
   if (node.IsScalar()) {
     bootstrap->runs = reader.Int(node, path);
   } else {
-    std::vector<std::string> keys = {"runs", "lambda", "seed", "threads"};
+    std::vector<std::string> keys = {"runs", "lambda", "seed"};
     if (blocks) keys.push_back("blocks");
     reader.CheckMap(node, path, keys);
     reader.Read(node, path, "runs", &bootstrap->runs);
@@ -28,7 +30,6 @@ void ReadBootstrap(const YamlReader& reader, const YAML::Node& node, const std::
       if (value < 0) reader.Fail(seed, Child(path, "seed"), "must be >= 0");
       bootstrap->seed = static_cast<unsigned>(value);
     }
-    reader.Read(node, path, "threads", &bootstrap->threads);
     reader.Read(node, path, "blocks", &bootstrap->blocks);
   }
   std::string error;

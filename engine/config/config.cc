@@ -241,8 +241,7 @@ void ReadLocal(const YamlReader& reader, const YAML::Node& node, const std::stri
 
 //   least_squares: {penalty: none|ridge|lasso, lambda, folds, robust,
 //                   regions: {<state>: [<region>...]}, grid, smoothing: {half_width, order},
-//                   max_profile_evaluations, bootstrap: runs | {runs, lambda, seed, threads,
-//                   blocks}}
+//                   max_profile_evaluations, bootstrap: runs | {runs, lambda, seed, blocks}}
 void ReadLeastSquares(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                       const ModelHandle& model, StageConfig* stage) {
   reader.CheckMap(node, path, {"penalty", "lambda", "folds", "robust", "regions", "grid",

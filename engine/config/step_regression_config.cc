@@ -13,7 +13,7 @@
 //     turn_weights: true
 //     lasso: {path_points: 50, path_ratio: 1e-4}
 //     asymptote: {a: [0.25, 0.5, 1, 2, 4], b_points: 13}
-//     bootstrap: 200                   # or {runs, lambda: held|selected, seed, threads}
+//     bootstrap: 200                   # or {runs, lambda: held|selected, seed}
 #include <algorithm>
 #include <cmath>
 #include <limits>

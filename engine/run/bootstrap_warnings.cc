@@ -1,5 +1,7 @@
 #include "engine/run/bootstrap_warnings.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace vesselid {
@@ -16,13 +18,21 @@ void AddBootstrapWarnings(const StageResult& stage, const std::string& where,
                         " bootstrap replicates could not be fitted (too few distinct groups "
                         "drawn, or a failed fit): the bootstrap SEs rest on the rest");
   }
+  // An estimate within rounding of zero (a coefficient the lasso dropped, expanded into the
+  // model's basis) is zero, not a doubtful estimate.
+  std::vector<double> values(b.names.size(), 0.0);
+  double largest = 0.0;
+  for (size_t k = 0; k < b.names.size(); ++k) {
+    for (const Estimate& e : stage.estimates) {
+      if (e.name == b.names[k]) values[k] = e.value;
+    }
+    largest = std::max(largest, std::abs(values[k]));
+  }
   std::string zero;
   for (size_t k = 0; k < b.names.size(); ++k) {
-    double value = 0.0;
-    for (const Estimate& e : stage.estimates) {
-      if (e.name == b.names[k]) value = e.value;
+    if (std::abs(values[k]) > 1e-12 * largest && b.lower[k] <= 0.0 && b.upper[k] >= 0.0) {
+      zero += " " + b.names[k] + ",";
     }
-    if (value != 0.0 && b.lower[k] <= 0.0 && b.upper[k] >= 0.0) zero += " " + b.names[k] + ",";
   }
   if (!zero.empty()) {
     zero.pop_back();

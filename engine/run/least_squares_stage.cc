@@ -100,6 +100,7 @@ bool RunLeastSquaresStage(const RunConfig& config, const StageConfig& stage,
   s.chosen = 0;
   s.fits.push_back(fit);
   s.notes.insert(s.notes.end(), summary.notes.begin(), summary.notes.end());
+  if (r.bootstrap.done()) s.notes.push_back(BootstrapDescription(r.bootstrap));
   s.uncertainty.message = lasso ? "none: lasso regressions have no covariance"
                                  : "from the regression covariances (minimum distance)";
   if (r.bootstrap.done()) {

@@ -99,6 +99,7 @@ bool RunStepRegressionStage(const RunConfig& config, const StageConfig& stage,
     }
     s.notes.push_back(line);
   }
+  if (r.bootstrap.done()) s.notes.push_back(BootstrapDescription(r.bootstrap));
   solve.initial_cost = solve.final_cost = cost;
   solve.time_seconds = report->normalisation_seconds + report->regression_seconds +
                        samples.window_seconds + samples.fit_seconds;
