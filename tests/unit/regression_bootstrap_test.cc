@@ -5,6 +5,8 @@
 #include <cmath>
 #include <random>
 
+#include "engine/output/bootstrap_report.h"
+#include "engine/output/stage_result_archive.h"
 #include "engine/regression/group_bootstrap.h"
 #include "engine/regression/least_squares_bootstrap.h"
 #include "gtest/gtest.h"
@@ -57,6 +59,17 @@ TEST(GroupBootstrap, MeanOfGroupsHasTheTextbookStandardErrorAndIgnoresThreads) {
   EXPECT_EQ(one.lower, four.lower);
   EXPECT_EQ(one.zero_share, four.zero_share);
   EXPECT_EQ(one.groups, groups);
+
+  // A checkpoint keeps it: a resumed run reports the same bootstrap.
+  StageResult stage;
+  stage.bootstrap = one;
+  stage.bootstrap.resampled = "groups";
+  StageResult restored;
+  ASSERT_TRUE(StageResultFromArchive(
+      nlohmann::json::from_cbor(nlohmann::json::to_cbor(StageResultToArchive(stage))), &restored,
+      &error)) << error;
+  EXPECT_EQ(BootstrapToJson(restored.bootstrap), BootstrapToJson(stage.bootstrap));
+  EXPECT_EQ(BootstrapText(restored), BootstrapText(stage));
 }
 
 TEST(GroupBootstrap, StrataAreDrawnSeparatelyAndFailuresCounted) {
