@@ -5,23 +5,23 @@
 namespace vesselid {
 namespace {
 
-// The bootstrapped quantities of a fit, in a fixed order; false if one is undetermined.
-bool Quantities(const std::vector<ParameterSpec>& specs, const LeastSquaresResult& fit,
-                std::vector<std::string>* names, std::vector<double>* values) {
-  bool determined = true;
+// Every estimated quantity of a fit in a fixed order (shared parameters in model order, then
+// the per-experiment values) and whether it is determined.
+void Quantities(const std::vector<ParameterSpec>& specs, const LeastSquaresResult& fit,
+                std::vector<std::string>* names, std::vector<double>* values,
+                std::vector<bool>* determined) {
   for (size_t i = 0; i < specs.size(); ++i) {
     const ParameterRole role = specs[i].role;
     if (role == ParameterRole::kFixed || role == ParameterRole::kPerExperiment) continue;
-    if (names != nullptr) names->push_back(specs[i].name);
+    names->push_back(specs[i].name);
     values->push_back(fit.values[i]);
-    determined = determined && !fit.undetermined[i];
+    determined->push_back(!fit.undetermined[i]);
   }
   for (const ExperimentValue& v : fit.per_experiment) {
-    if (names != nullptr) names->push_back(specs[v.parameter].name + "[" + v.experiment + "]");
+    names->push_back(specs[v.parameter].name + "[" + v.experiment + "]");
     values->push_back(v.value);
-    determined = determined && !v.undetermined;
+    determined->push_back(!v.undetermined);
   }
-  return determined;
 }
 
 void Coefficients(const LeastSquaresSummary& summary, std::vector<std::string>* names,
@@ -43,9 +43,14 @@ bool BootstrapLeastSquares(const ModelHandle& model, const std::vector<Parameter
                            const LeastSquaresResult& fit, const LeastSquaresSummary& summary,
                            BootstrapSummary* bootstrap, std::string* error) {
   const GroupBootstrapOptions& b = options.bootstrap;
-  std::vector<std::string> names, coefficient_names;
+  // The quantities the full fit determines; a replicate must determine them too.
+  std::vector<std::string> all_names, names, coefficient_names;
   std::vector<double> full, full_coefficients;
-  Quantities(specs, fit, &names, &full);
+  std::vector<bool> bootstrapped;
+  Quantities(specs, fit, &all_names, &full, &bootstrapped);
+  for (size_t q = 0; q < all_names.size(); ++q) {
+    if (bootstrapped[q]) names.push_back(all_names[q]);
+  }
   const bool lasso = options.regression.penalty == Penalty::kLasso;
   if (lasso) Coefficients(summary, &coefficient_names, &full_coefficients);
 
@@ -85,7 +90,16 @@ bool BootstrapLeastSquares(const ModelHandle& model, const std::vector<Parameter
     LeastSquaresResult r;
     LeastSquaresSummary s;
     if (!RunLeastSquares(model, specs, o, &copy, &r, &s)) return false;
-    if (!Quantities(specs, r, nullptr, values)) return false;
+    std::vector<std::string> replicate_names;
+    std::vector<double> replicate_values;
+    std::vector<bool> determined;
+    Quantities(specs, r, &replicate_names, &replicate_values, &determined);
+    if (replicate_names != all_names) return false;
+    for (size_t q = 0; q < all_names.size(); ++q) {
+      if (!bootstrapped[q]) continue;
+      if (!determined[q]) return false;
+      values->push_back(replicate_values[q]);
+    }
     if (lasso) {
       Coefficients(s, nullptr, coefficients);
       if (coefficients->size() != coefficient_names.size()) coefficients->clear();

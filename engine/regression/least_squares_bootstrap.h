@@ -8,8 +8,9 @@
 // equation's penalty keeps the lambda the full fit selected, otherwise its cross-validation
 // runs again on the replicate.
 //
-// Bootstrapped: every determined estimated parameter (name as the model's, a per-experiment
-// one as "name[experiment]"); with the lasso, the zero share of every regressed coefficient
+// Bootstrapped: every estimated parameter the full fit determines (name as the model's, a
+// per-experiment one as "name[experiment]"; a parameter searched inside the regressors too,
+// which has no analytic SE); with the lasso, the zero share of every regressed coefficient
 // ("<state>': <coefficient>"). A replicate in which a parameter becomes undetermined (its
 // experiment or region was not drawn) counts as failed.
 #pragma once

@@ -40,9 +40,10 @@ bool RunLeastSquaresStage(const RunConfig& config, const StageConfig& stage,
     r.bootstrap.time_seconds = std::chrono::duration<double>(
         std::chrono::steady_clock::now() - bootstrap_start).count();
   }
-  // The lasso's regressions have no covariance: its standard errors are the bootstrap's.
+  // The lasso's regressions have no covariance: its standard errors are the bootstrap's, as
+  // are those of parameters without an analytic one (searched inside the regressors).
   auto standard_error = [&](const std::string& name, double analytic) {
-    if (!lasso) return analytic;
+    if (!lasso && std::isfinite(analytic)) return analytic;
     const int k = r.bootstrap.Find(name);
     return k < 0 ? std::numeric_limits<double>::quiet_NaN() : r.bootstrap.std_error[k];
   };
