@@ -241,11 +241,11 @@ void ReadLocal(const YamlReader& reader, const YAML::Node& node, const std::stri
 
 //   least_squares: {penalty: none|ridge|lasso, lambda, folds, robust,
 //                   regions: {<state>: [<region>...]}, grid, smoothing: {half_width, order},
-//                   max_profile_evaluations}
+//                   max_profile_evaluations, bootstrap: runs | {runs, lambda, seed, blocks}}
 void ReadLeastSquares(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                       const ModelHandle& model, StageConfig* stage) {
   reader.CheckMap(node, path, {"penalty", "lambda", "folds", "robust", "regions", "grid",
-                               "smoothing", "max_gap", "max_profile_evaluations"});
+                               "smoothing", "max_gap", "max_profile_evaluations", "bootstrap"});
   const RegressionForm* form = model.regression_form();
   const ModelInfo& info = model.info();
   if (form == nullptr) reader.Fail(node, path, "model " + info.name + " has no equation-error form");
@@ -262,6 +262,11 @@ void ReadLeastSquares(const YamlReader& reader, const YAML::Node& node, const st
   if (ls.regression.folds < 2) reader.Fail(node["folds"], Child(path, "folds"), "must be >= 2");
   reader.Read(node, path, "robust", &ls.regression.robust);
   reader.Read(node, path, "max_profile_evaluations", &ls.max_profile_evaluations);
+  // The lasso's estimates have no analytic covariance: bootstrapped unless asked otherwise.
+  if (ls.regression.penalty == Penalty::kLasso) ls.bootstrap.runs = 200;
+  if (const YAML::Node bootstrap = node["bootstrap"]) {
+    ReadBootstrap(reader, bootstrap, Child(path, "bootstrap"), true, &ls.bootstrap);
+  }
   if (const YAML::Node regions = node["regions"]) {
     const std::string key = Child(path, "regions");
     std::vector<std::string> states;

@@ -32,6 +32,11 @@ void CheckNames(const YamlReader& reader, const YAML::Node& node, const std::str
 void ReadRegressionData(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                         const ModelInfo& info, RegressionDataOptions* data);
 
+// The `bootstrap` key of a regression stage, a run count or a map (bootstrap_config.cc);
+// `blocks` is allowed for least-squares stages.
+void ReadBootstrap(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                   bool blocks, GroupBootstrapOptions* bootstrap);
+
 // The `step_regression` map of a step-regression stage (step_regression_config.cc).
 void ReadStepRegression(const YamlReader& reader, const YAML::Node& node,
                         const std::string& path, const ModelHandle& model, StageConfig* stage);

@@ -13,6 +13,7 @@
 //     turn_weights: true
 //     lasso: {path_points: 50, path_ratio: 1e-4}
 //     asymptote: {a: [0.25, 0.5, 1, 2, 4], b_points: 13}
+//     bootstrap: 200                   # or {runs, lambda: held|selected, seed}
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -56,7 +57,8 @@ void ReadStepRegression(const YamlReader& reader, const YAML::Node& node,
   if (!node) return;
   reader.CheckMap(node, path,
                   {"grid", "smoothing", "max_gap", "steady", "inputs", "min_change", "step_fit",
-                   "zero_straight", "mirror", "turn_weights", "lasso", "asymptote"});
+                   "zero_straight", "mirror", "turn_weights", "lasso", "asymptote",
+                   "bootstrap"});
   ReadRegressionData(reader, node, path, info, &stage->regression_data);
   if (const YAML::Node steady = node["steady"]) {
     const std::string key = Child(path, "steady");
@@ -123,6 +125,9 @@ void ReadStepRegression(const YamlReader& reader, const YAML::Node& node,
     reader.CheckMap(asymptote, key, {"a", "b_points"});
     if (asymptote["a"]) o.asymptote_a = reader.Doubles(asymptote["a"], Child(key, "a"));
     reader.Read(asymptote, key, "b_points", &o.asymptote_b_points);
+  }
+  if (const YAML::Node bootstrap = node["bootstrap"]) {
+    ReadBootstrap(reader, bootstrap, Child(path, "bootstrap"), false, &o.bootstrap);
   }
   std::string error;
   if (!o.IsValid(form, &error)) reader.Fail(node, path, error);

@@ -3,6 +3,7 @@
 #include "engine/base/json_number.h"
 #include "engine/data/time_base.h"
 #include "engine/output/display_units.h"
+#include "engine/output/bootstrap_report.h"
 #include "engine/output/held_out_parameters_report.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/output/residual_report.h"
@@ -269,6 +270,9 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
   }
   if (stage.step_regression) j["step_regression"] = StepRegressionToJson(*stage.step_regression);
   if (!stage.residuals.empty()) j["residual_analysis"] = ResidualAnalysesToJson(stage.residuals);
+  if (stage.bootstrap.done() || !stage.bootstrap.message.empty()) {
+    j["bootstrap"] = BootstrapToJson(stage.bootstrap);
+  }
   return j;
 }
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "engine/output/bootstrap_report.h"
 #include "engine/output/held_out_parameters_report.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/output/residual_report.h"
@@ -155,6 +156,7 @@ std::string StageText(const RunConfig& config, const StageResult& stage) {
     out << (shown == 0 ? " none above 0.9\n" : "\n");
   }
   if (s.analysis.available) out << LocalAnalysisText(s.analysis);
+  out << BootstrapText(stage);
   out << MetricsTable(config, s.fits);
   out << ResidualAnalysesText(stage.residuals, "  ");
   if (!stage.validation.empty()) {

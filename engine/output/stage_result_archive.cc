@@ -100,6 +100,9 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(TermRegression, name, samples, groups, mean_x
                                    coefficients, r2, rms, seconds)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(StepRegressionReport, samples, terms, normalisation_seconds,
                                    regression_seconds)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BootstrapSummary, runs, failed, groups, resampled, lambda_held,
+                                   names, std_error, lower, upper, coefficient_names, zero_share,
+                                   message, time_seconds)
 
 namespace {
 constexpr int kArchiveVersion = 2;
@@ -122,6 +125,7 @@ nlohmann::json StageResultToArchive(const StageResult& stage) {
                       {"velocity_validation", stage.velocity_validation},
                       {"residuals", stage.residuals}};
   if (stage.step_regression) j["step_regression"] = *stage.step_regression;
+  if (stage.bootstrap.done() || !stage.bootstrap.message.empty()) j["bootstrap"] = stage.bootstrap;
   return j;
 }
 
@@ -154,6 +158,7 @@ bool StageResultFromArchive(const nlohmann::json& j, StageResult* stage, std::st
       s.step_regression =
           std::make_shared<const StepRegressionReport>(j.at("step_regression").get<StepRegressionReport>());
     }
+    if (j.contains("bootstrap")) j.at("bootstrap").get_to(s.bootstrap);
     *stage = std::move(s);
     return true;
   } catch (const nlohmann::json::exception& e) {

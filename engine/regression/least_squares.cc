@@ -78,7 +78,7 @@ class EquationData {
     std::vector<int> rows(equations, 0);
     for (size_t r = 0; r < records->size(); ++r) {
       model_.Regressors(p.data(), &(*records)[r], &phis[r]);
-      for (int i = 0; i < equations; ++i) rows[i] += Count((*records)[r], phis[r][i], i);
+      for (int i = 0; i < equations; ++i) rows[i] += Count((*records)[r], r, phis[r][i], i);
     }
     for (int i = 0; i < equations; ++i) {
       x_[i] = Eigen::MatrixXd::Zero(rows[i], design_[i].size());
@@ -89,11 +89,13 @@ class EquationData {
         const int group = group_of_.empty() ? -1 : group_of_[r];
         for (int k = 0; k < record.size(); ++k) {
           if (!Selected(record, phis[r][i], i, k)) continue;
-          for (size_t d = 0; d < design_[i].size(); ++d) {
-            const DesignColumn& c = design_[i][d];
-            if (c.group < 0 || c.group == group) x_[i](row, d) = phis[r][i](k, c.coefficient);
+          for (int copy = Multiplicity(r, k); copy > 0; --copy) {
+            for (size_t d = 0; d < design_[i].size(); ++d) {
+              const DesignColumn& c = design_[i][d];
+              if (c.group < 0 || c.group == group) x_[i](row, d) = phis[r][i](k, c.coefficient);
+            }
+            y_[i](row++) = record.xdot(k, form_.states[i]);
           }
-          y_[i](row++) = record.xdot(k, form_.states[i]);
         }
       }
     }
@@ -115,9 +117,17 @@ class EquationData {
   }
 
  private:
-  int Count(const RegressionRecord& record, const Eigen::MatrixXd& phi, int equation) const {
+  // How often sample k of record r enters (a bootstrap replicate's draw count, else once).
+  int Multiplicity(size_t r, int k) const {
+    return options_.sample_counts.empty() ? 1 : options_.sample_counts[r][k];
+  }
+
+  int Count(const RegressionRecord& record, size_t r, const Eigen::MatrixXd& phi,
+            int equation) const {
     int n = 0;
-    for (int k = 0; k < record.size(); ++k) n += Selected(record, phi, equation, k);
+    for (int k = 0; k < record.size(); ++k) {
+      if (Selected(record, phi, equation, k)) n += Multiplicity(r, k);
+    }
     return n;
   }
 
@@ -290,7 +300,12 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
       }
       Eigen::MatrixXd xi(x.rows(), columns[i].size());
       for (size_t j = 0; j < columns[i].size(); ++j) xi.col(j) = x.col(columns[i][j]);
-      if (!SolveRegression(xi, y, regression, &fits[i], &regression_error)) {
+      RegressionOptions equation = regression;
+      if (regression.penalty != Penalty::kNone &&
+          i < static_cast<int>(options.equation_lambda.size())) {
+        equation.lambda = options.equation_lambda[i];  // held by a bootstrap replicate
+      }
+      if (!SolveRegression(xi, y, equation, &fits[i], &regression_error)) {
         regression_error = form->coefficients[i].empty() ? regression_error
                            : "equation " + info.states[form->states[i]] + "': " + regression_error;
         return false;
@@ -368,7 +383,9 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
       const int c = offset[i] + d.coefficient;
       if (!coefficient_free[c]) e.theta(j) = theta_now[c];
     }
+    e.regressed.assign(m, false);
     for (size_t j = 0; j < columns[i].size(); ++j) {
+      e.regressed[columns[i][j]] = true;
       e.theta(columns[i][j]) = fits[i].theta(j);
       e.std_errors(columns[i][j]) = fits[i].std_errors(j);
     }

@@ -21,6 +21,8 @@
 #include "Eigen/Dense"
 #include "engine/model/model_handle.h"
 #include "engine/model/regression_form.h"
+#include "engine/regression/group_bootstrap.h"
+#include "engine/regression/group_bootstrap.h"
 #include "engine/regression/linear_regression.h"
 #include "engine/solve/metrics.h"
 #include "engine/solve/parameter.h"
@@ -33,6 +35,13 @@ struct LeastSquaresOptions {
   // indices) whose samples it is fitted on; empty: every sample.
   std::vector<std::vector<int>> regions;
   int max_profile_evaluations = 150;
+  // Bootstrap of the estimates (least_squares_bootstrap.h); runs 0: none.
+  GroupBootstrapOptions bootstrap;
+  // Set by the bootstrap for one replicate: per record, per sample, how often the sample
+  // enters the regressions (its block's draw count; empty: once each), and per equation the
+  // penalty's lambda held at the full fit's value (empty: `regression.lambda`).
+  std::vector<std::vector<int>> sample_counts;
+  std::vector<double> equation_lambda;
 };
 
 struct EquationSummary {
@@ -45,6 +54,7 @@ struct EquationSummary {
   std::vector<std::string> coefficients;
   Eigen::VectorXd theta;       // NaN where not identified or held
   Eigen::VectorXd std_errors;  // NaN where unknown
+  std::vector<bool> regressed;  // per coefficient: fitted (not held, not dropped)
 };
 
 struct LeastSquaresSummary {

@@ -90,6 +90,8 @@ struct StageResult {
   std::vector<ResidualAnalysis> residuals;
   // Step-regression stages: the samples, lasso paths and timings (step_regression.h).
   std::shared_ptr<const StepRegressionReport> step_regression;
+  // Regression stages: bootstrap over the CV groups (group_bootstrap.h); runs 0: none.
+  BootstrapSummary bootstrap;
 };
 
 // A parameter's estimate as a regression stage reports it: name, role and bounds from its

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <map>
 
+#include "engine/run/bootstrap_warnings.h"
 #include "engine/run/compensation_warnings.h"
 #include "engine/run/residual_warnings.h"
 
@@ -107,6 +108,7 @@ void AddRunWarnings(const RunConfig& config, RunResult* run) {
       if (WarningNote(note)) w.push_back(where + note + StructureHint(config.model->info(), note));
     }
     AddCompensationWarnings(config.model->info(), stage, where, &w);
+    AddBootstrapWarnings(stage, where, &w);
     for (const std::string& a : stage.admissibility) w.push_back(where + "not admissible: " + a);
     if (stage.summary.usable && stage.summary.chosen >= 0 &&
         stage.summary.local().termination == "NO_CONVERGENCE") {

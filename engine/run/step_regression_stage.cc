@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "engine/base/elapsed.h"
+#include "engine/step_regression/step_regression_bootstrap.h"
 
 namespace vesselid {
 
@@ -41,16 +42,29 @@ bool RunStepRegressionStage(const RunConfig& config, const StageConfig& stage,
   StageResult r;
   r.name = stage.options.name;
   r.model = info.name;
-  // The form's parameters are estimated without bounds or standard errors (lasso).
+  if (stage.step_regression.bootstrap.runs > 0) {
+    const auto bootstrap_start = SteadyClock::now();
+    std::string message;
+    if (!BootstrapStepRegression(*form, *report, stage.step_regression, info.parameters,
+                                 &r.bootstrap, &message)) {
+      r.bootstrap = BootstrapSummary();
+      r.bootstrap.message = message;
+    }
+    r.bootstrap.time_seconds = SecondsSince(bootstrap_start);
+  }
+  // The form's parameters are estimated without bounds; their standard errors are the
+  // bootstrap's (the lasso has no covariance), NaN without one.
   for (size_t i = 0; i < specs.size(); ++i) {
     ParameterSpec spec = specs[i];
+    double std_error = std::numeric_limits<double>::quiet_NaN();
     if (estimated[i]) {
       spec.role = ParameterRole::kFree;
       spec.lower = -std::numeric_limits<double>::infinity();
       spec.upper = std::numeric_limits<double>::infinity();
+      const int k = r.bootstrap.Find(spec.name);
+      if (k >= 0) std_error = r.bootstrap.std_error[k];
     }
-    r.estimates.push_back(
-        ParameterEstimate(spec, values[i], std::numeric_limits<double>::quiet_NaN()));
+    r.estimates.push_back(ParameterEstimate(spec, values[i], std_error));
   }
   StageSummary& s = r.summary;
   s.name = stage.options.name;
@@ -85,13 +99,15 @@ bool RunStepRegressionStage(const RunConfig& config, const StageConfig& stage,
     }
     s.notes.push_back(line);
   }
+  if (r.bootstrap.done()) s.notes.push_back(BootstrapDescription(r.bootstrap));
   solve.initial_cost = solve.final_cost = cost;
   solve.time_seconds = report->normalisation_seconds + report->regression_seconds +
                        samples.window_seconds + samples.fit_seconds;
   s.refinements.push_back(solve);
   s.chosen = 0;
   s.fits.push_back(fit);
-  s.uncertainty.message = "none: lasso estimates have no covariance";
+  s.uncertainty.message = r.bootstrap.done() ? BootstrapDescription(r.bootstrap)
+                                             : "none: lasso estimates have no covariance";
   r.step_regression = std::move(report);
   s.time_seconds = SecondsSince(start_time);
   *result = std::move(r);

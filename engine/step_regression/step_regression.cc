@@ -6,16 +6,9 @@
 #include <limits>
 
 #include "engine/base/elapsed.h"
+#include "engine/step_regression/term_regression.h"
 
 namespace vesselid {
-namespace {
-
-// One term's sample set, before normalisation.
-struct SampleSet {
-  std::vector<std::array<double, 2>> x;
-  std::vector<double> y, w;
-  std::vector<int> group;
-};
 
 void Normalise(const SampleSet& set, TermRegression* term) {
   const double n = static_cast<double>(set.y.size());
@@ -132,7 +125,26 @@ bool RegressTerm(const DampingInertiaForm& form, const SampleSet& set, bool iner
   return true;
 }
 
-}  // namespace
+std::array<SampleSet, 4> TermSampleSets(const StepSamples& samples) {
+  std::array<SampleSet, 4> sets;
+  for (const DampingSample& s : samples.damping) {
+    for (int i = 0; i < 2; ++i) {
+      sets[i].x.push_back({s.x[0], s.x[1]});
+      sets[i].y.push_back(s.sigma[i]);
+      sets[i].w.push_back(s.weight);
+      sets[i].group.push_back(s.group);
+    }
+  }
+  for (int i = 0; i < 2; ++i) {
+    for (const InertiaSample& s : samples.inertia[i]) {
+      sets[2 + i].x.push_back({s.x[0], s.x[1]});
+      sets[2 + i].y.push_back(s.inertia);
+      sets[2 + i].w.push_back(s.weight);
+      sets[2 + i].group.push_back(s.group);
+    }
+  }
+  return sets;
+}
 
 bool StepRegressionOptions::IsValid(const DampingInertiaForm& form, std::string* error) const {
   if (!samples.IsValid(form, error)) return false;
@@ -182,23 +194,7 @@ bool RunStepRegression(const DampingInertiaForm& form,
   if (!ExtractStepSamples(form, records, options.samples, &r.samples, error)) return false;
 
   auto start = SteadyClock::now();
-  SampleSet sets[4];
-  for (const DampingSample& s : r.samples.damping) {
-    for (int i = 0; i < 2; ++i) {
-      sets[i].x.push_back({s.x[0], s.x[1]});
-      sets[i].y.push_back(s.sigma[i]);
-      sets[i].w.push_back(s.weight);
-      sets[i].group.push_back(s.group);
-    }
-  }
-  for (int i = 0; i < 2; ++i) {
-    for (const InertiaSample& s : r.samples.inertia[i]) {
-      sets[2 + i].x.push_back({s.x[0], s.x[1]});
-      sets[2 + i].y.push_back(s.inertia);
-      sets[2 + i].w.push_back(s.weight);
-      sets[2 + i].group.push_back(s.group);
-    }
-  }
+  const std::array<SampleSet, 4> sets = TermSampleSets(r.samples);
   r.terms.resize(4);
   for (int t = 0; t < 4; ++t) {
     r.terms[t].name = t < static_cast<int>(form.term_names.size()) ? form.term_names[t]

@@ -17,6 +17,7 @@
 
 #include "Eigen/Dense"
 #include "engine/model/damping_inertia_form.h"
+#include "engine/regression/group_bootstrap.h"
 #include "engine/regression/lasso.h"
 #include "engine/step_regression/step_samples.h"
 
@@ -29,6 +30,8 @@ struct StepRegressionOptions {
   // values spanning the inertia samples' range of x_s.
   std::vector<double> asymptote_a = {0.25, 0.5, 1.0, 2.0, 4.0};
   int asymptote_b_points = 13;
+  // Bootstrap over the CV groups (step_regression_bootstrap.h); runs 0: none.
+  GroupBootstrapOptions bootstrap{200};
 
   bool IsValid(const DampingInertiaForm& form, std::string* error) const;
 };

@@ -112,18 +112,6 @@ bool ProcessGroup::built_with_mpi() {
 #endif
 }
 
-unsigned CaseSeed(unsigned study_seed, int part, int index) {
-  // SplitMix64 finaliser over the three numbers: nearby indices give unrelated seeds.
-  unsigned long long z = (static_cast<unsigned long long>(study_seed) << 32) ^
-                         (static_cast<unsigned long long>(part) << 24) ^
-                         static_cast<unsigned long long>(index);
-  z += 0x9E3779B97F4A7C15ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  z ^= z >> 31;
-  return static_cast<unsigned>(z & 0xFFFFFFFFu);
-}
-
 int CaseThreads(const CaseOptions& options) {
   if (options.threads > 0) return options.threads;
   const int cores = std::max(1u, std::thread::hardware_concurrency());

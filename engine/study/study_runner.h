@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/base/case_seed.h"
 #include "nlohmann/json.hpp"
 
 namespace vesselid {
@@ -44,8 +45,7 @@ class ProcessGroup {
   bool initialised_ = false;
 };
 
-// Seed of case `index` of a study part: independent of how cases are distributed.
-unsigned CaseSeed(unsigned study_seed, int part, int index);
+// CaseSeed (engine/base/case_seed.h): the seed of case `index` of a study part.
 
 struct CaseOptions {
   // Worker threads per process; 0: the machine's cores divided by the processes on it.

@@ -242,6 +242,19 @@ const KeyCase kCases[] = {
      "no column 'lat' (experiments[0].position.lat)"},
     {"screen_max_speed_without_positions", V, V.A(", screen: {max_speed: 5}"),
      "screen.max_speed needs positions"},
+    {"bootstrap_runs", kLeastSquares,
+     V.K("    type: least_squares\n    least_squares: {grid: psi, bootstrap: 20}")},
+    {"bootstrap_blocks", V.K("    type: least_squares\n    least_squares: {grid: psi, bootstrap: 20}"),
+     V.K("    type: least_squares\n    least_squares: {grid: psi, bootstrap: {runs: 20, blocks: 8}}")},
+    {"bootstrap_seed", V.K("    type: least_squares\n    least_squares: {grid: psi, bootstrap: 20}"),
+     V.K("    type: least_squares\n    least_squares: {grid: psi, bootstrap: {runs: 20, seed: 2}}")},
+    {"bootstrap_lambda",
+     V.K("    type: least_squares\n    least_squares: {grid: psi, penalty: lasso, bootstrap: 20}"),
+     V.K("    type: least_squares\n    least_squares: {grid: psi, penalty: lasso,\n"
+         "                    bootstrap: {runs: 20, lambda: selected}}")},
+    {"bootstrap_one_run", V,
+     V.K("    type: least_squares\n    least_squares: {grid: psi, bootstrap: 1}"),
+     "stages[0].least_squares.bootstrap: bootstrap: runs must be 0 (none) or >= 2, not 1"},
     {"max_gap", V, V.K("    type: least_squares\n    least_squares: {grid: psi, max_gap: 0.5}"),
      "stages[0].least_squares.max_gap: must be >= 1"},
     {"limits_of_a_study", V,
@@ -319,6 +332,11 @@ class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
            std::to_string(stage.validation.size()) + " validation, " +
            std::to_string(stage.velocity_validation.size()) + " velocity metrics;";
       for (const std::string& note : stage.summary.notes) s += note + ";";
+      for (size_t k = 0; k < stage.bootstrap.names.size(); ++k) {
+        std::snprintf(line, sizeof(line), "%s SE %.6g;", stage.bootstrap.names[k].c_str(),
+                      stage.bootstrap.std_error[k]);
+        s += line;
+      }
       for (const ExperimentFit& fit : stage.validation) {
         std::snprintf(line, sizeof(line), "%s:%.12g;", fit.experiment.c_str(), fit.rms_cost);
         s += line;
