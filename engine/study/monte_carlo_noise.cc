@@ -16,8 +16,8 @@ bool MonteCarloNoise::any_input() const {
 }
 
 bool ResolveMonteCarloNoise(const StudyStage& stage, const MonteCarloOptions& options,
-                            const std::vector<std::vector<double>>* fit,
-                            MonteCarloNoise* noise, std::string* error) {
+                            const std::vector<std::vector<double>>* fit, MonteCarloNoise* noise,
+                            std::string* error) {
   const ModelInfo& info = stage.model->info();
   noise->output.assign(info.outputs.size(), NAN);
   noise->input.assign(info.inputs.size(), 0.0);
@@ -106,8 +106,8 @@ bool NoisyInputExperiments(const StudyStage& stage, const std::vector<double>& i
       }
     }
   }
-  if (!PrepareExperiments(config, stage.stage->experiments, *stage.model,
-                          stage.stage->experiment, &records, experiments, error)) {
+  if (!PrepareExperiments(config, stage.stage->experiments, *stage.model, stage.stage->experiment,
+                          &records, experiments, error)) {
     return false;
   }
   bool same = experiments->size() == stage.experiments.size();
@@ -116,8 +116,9 @@ bool NoisyInputExperiments(const StudyStage& stage, const std::vector<double>& i
            (*experiments)[e].samples.size() == stage.experiments[e].samples.size();
   }
   if (!same) {
-    *error = "with the noisy input the records are cut into other experiments than the "
-             "stage's (input_range)";
+    *error =
+        "with the noisy input the records are cut into other experiments than the "
+        "stage's (input_range)";
     return false;
   }
   return true;

@@ -28,8 +28,8 @@ struct MonteCarloNoise {
 // the degrees of freedom shared out in proportion to the samples. Without `fit` every
 // compared output must be named.
 bool ResolveMonteCarloNoise(const StudyStage& stage, const MonteCarloOptions& options,
-                            const std::vector<std::vector<double>>* fit,
-                            MonteCarloNoise* noise, std::string* error);
+                            const std::vector<std::vector<double>>* fit, MonteCarloNoise* noise,
+                            std::string* error);
 
 // The stage's experiments rebuilt from its records as the stage builds them (interpolation,
 // segments, weights) after N(0, sigma_u^2) is added, seeded by `seed`, to every present
@@ -37,7 +37,6 @@ bool ResolveMonteCarloNoise(const StudyStage& stage, const MonteCarloOptions& op
 // radians once read). False (with `error`) when the noisy input cuts the records into other
 // experiments than the stage's (input_range), which leaves nothing to compare.
 bool NoisyInputExperiments(const StudyStage& stage, const std::vector<double>& input_sigma,
-                           unsigned seed, std::vector<Experiment>* experiments,
-                           std::string* error);
+                           unsigned seed, std::vector<Experiment>* experiments, std::string* error);
 
 }  // namespace vesselid

@@ -47,8 +47,7 @@ bool ResolveTruth(const StudyStage& stage, const MonteCarloOptions& options,
       }
     }
     if (!found) {
-      *error = "truth names '" + name + "', not a parameter of model " +
-               stage.model->info().name;
+      *error = "truth names '" + name + "', not a parameter of model " + stage.model->info().name;
       return false;
     }
   }
@@ -78,16 +77,16 @@ std::string UncertaintyMethod(std::vector<json>* cases) {
 
 }  // namespace
 
-bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& options,
-                        unsigned seed, const CaseOptions& execution, json* result,
-                        std::string* error, const CaseProgress& progress) {
+bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& options, unsigned seed,
+                        const CaseOptions& execution, json* result, std::string* error,
+                        const CaseProgress& progress) {
   const auto start_time = std::chrono::steady_clock::now();
   StudyStage stage;
   // A parametric bootstrap first solves the stage on the data, as the run does.
   if (!PrepareStudyStage(config, options.stage, &stage, error, options.truth_estimate)) {
     if (options.truth_estimate) {
-      *error = options.truth_where + ": estimate: the stage cannot be solved on the data: " +
-               *error;
+      *error =
+          options.truth_where + ": estimate: the stage cannot be solved on the data: " + *error;
     }
     return false;
   }
@@ -119,8 +118,8 @@ bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& option
     std::vector<Experiment> experiments;
     std::string message;
     if (noise.any_input() &&
-        !NoisyInputExperiments(stage, noise.input, CaseSeed(seed, kInputNoisePart, r),
-                               &experiments, &message)) {
+        !NoisyInputExperiments(stage, noise.input, CaseSeed(seed, kInputNoisePart, r), &experiments,
+                               &message)) {
       return {{"run", r}, {"usable", false}, {"message", "input noise: " + message}};
     }
     if (!noise.any_input()) experiments = stage.experiments;
@@ -198,27 +197,27 @@ bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& option
       }
     }
   }
-  for (const std::string& note : MonteCarloNotes(summary, options.confidence,
-                                                 options.truth_estimate, cases)) {
+  for (const std::string& note :
+       MonteCarloNotes(summary, options.confidence, options.truth_estimate, cases)) {
     notes.push_back(note);
   }
-  *result = {{"stage", stage.stage->options.name},
-             {"runs", options.runs},
-             {"truth", options.truth_estimate ? "estimate" : "given"},
-             {"noise", levels},
-             {"noise_from_fit", of_fit},
-             {"noisy_inputs", inputs},
-             {"start", options.start_at_truth ? "truth" : "stage"},
-             {"uncertainty_method", method},
-             {"confidence", options.confidence},
-             {"z", z},
-             {"parameters", stage.free_names},
-             {"summary", summary},
-             {"notes", notes},
-             {"cases", cases},
-             {"time_seconds", std::chrono::duration<double>(
-                                  std::chrono::steady_clock::now() - start_time)
-                                  .count()}};
+  *result = {
+      {"stage", stage.stage->options.name},
+      {"runs", options.runs},
+      {"truth", options.truth_estimate ? "estimate" : "given"},
+      {"noise", levels},
+      {"noise_from_fit", of_fit},
+      {"noisy_inputs", inputs},
+      {"start", options.start_at_truth ? "truth" : "stage"},
+      {"uncertainty_method", method},
+      {"confidence", options.confidence},
+      {"z", z},
+      {"parameters", stage.free_names},
+      {"summary", summary},
+      {"notes", notes},
+      {"cases", cases},
+      {"time_seconds",
+       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count()}};
   return true;
 }
 
@@ -237,8 +236,9 @@ std::string MonteCarloText(const json& result) {
                 NumberOr(result["time_seconds"], NAN));
   text += line;
   if (bootstrap) {
-    text += "  parametric bootstrap around the stage's estimate on the data (the truth below is "
-            "the estimate; bias is the method's bias at the estimate)\n";
+    text +=
+        "  parametric bootstrap around the stage's estimate on the data (the truth below is "
+        "the estimate; bias is the method's bias at the estimate)\n";
   }
   std::string levels;
   for (const auto& [name, sd] : result["noise"].items()) {
@@ -256,14 +256,13 @@ std::string MonteCarloText(const json& result) {
                 "mean SE", "SE/SD", "coverage %", bootstrap ? "      stage SE  SD/stage SE" : "");
   text += line;
   for (const json& p : summary["parameters"]) {
-    std::snprintf(line, sizeof(line),
-                  "  %-12s %13.6g %13.6g %11.4f %9.3f %12.4g %12.4g %9.3f %8.1f +- %.1f",
-                  p["name"].get<std::string>().c_str(), p["truth"].get<double>(),
-                  NumberOr(p["mean"], NAN), NumberOr(p["bias_percent"], NAN),
-                  NumberOr(p.value("bias_over_std_error", json()), NAN), NumberOr(p["sd"], NAN),
-                  NumberOr(p["mean_std_error"], NAN), NumberOr(p["std_error_over_sd"], NAN),
-                  100.0 * NumberOr(p["coverage"], NAN),
-                  100.0 * NumberOr(p["coverage_std_error"], NAN));
+    std::snprintf(
+        line, sizeof(line), "  %-12s %13.6g %13.6g %11.4f %9.3f %12.4g %12.4g %9.3f %8.1f +- %.1f",
+        p["name"].get<std::string>().c_str(), p["truth"].get<double>(), NumberOr(p["mean"], NAN),
+        NumberOr(p["bias_percent"], NAN), NumberOr(p.value("bias_over_std_error", json()), NAN),
+        NumberOr(p["sd"], NAN), NumberOr(p["mean_std_error"], NAN),
+        NumberOr(p["std_error_over_sd"], NAN), 100.0 * NumberOr(p["coverage"], NAN),
+        100.0 * NumberOr(p["coverage_std_error"], NAN));
     text += line;
     if (bootstrap) {
       std::snprintf(line, sizeof(line), " %13.4g %12.3f",

@@ -29,7 +29,6 @@ nlohmann::json MonteCarloSummary(const MonteCarloTruth& truth, double z,
 // reported intervals off the nominal beyond its binomial noise, a bias significant against
 // its own noise and sizeable against the reported SE, a bootstrap SD far from the stage's SE.
 std::vector<std::string> MonteCarloNotes(const nlohmann::json& summary, double confidence,
-                                         bool bootstrap,
-                                         const std::vector<nlohmann::json>& cases);
+                                         bool bootstrap, const std::vector<nlohmann::json>& cases);
 
 }  // namespace vesselid

@@ -125,13 +125,13 @@ bool RunCase(const Case& c, const Options& options, const fs::path& dir) {
   out << config;
   std::ofstream(dir / "config.yaml") << out.c_str() << "\n";
   const std::string binary = VESSELID_BINARY, file = (dir / "config.yaml").string();
-  const std::string simulate = binary + " simulate " + file + " --out " + dir.string() +
-                               " > /dev/null";
-  const std::string study = binary + " study " + file + " --data " + dir.string() + " --out " +
-                            (dir / "study").string() + " --only monte_carlo --quiet" +
-                            (options.threads > 0 ? " --threads " + std::to_string(options.threads)
-                                                 : std::string()) +
-                            " > /dev/null 2> " + (dir / "study.stderr").string();
+  const std::string simulate =
+      binary + " simulate " + file + " --out " + dir.string() + " > /dev/null";
+  const std::string study =
+      binary + " study " + file + " --data " + dir.string() + " --out " + (dir / "study").string() +
+      " --only monte_carlo --quiet" +
+      (options.threads > 0 ? " --threads " + std::to_string(options.threads) : std::string()) +
+      " > /dev/null 2> " + (dir / "study.stderr").string();
   const auto start = std::chrono::steady_clock::now();
   if (std::system(simulate.c_str()) != 0 || std::system(study.c_str()) != 0) {
     std::fprintf(stderr, "failed on %s (see %s)\n", c.config.c_str(), dir.c_str());
@@ -159,9 +159,8 @@ bool RunCase(const Case& c, const Options& options, const fs::path& dir) {
   for (const json& p : mc["summary"]["parameters"]) {
     const double coverage = 100.0 * Number(p["coverage"]);
     std::printf("  %-10s %12.6g %10.3f %9.2f %8.2f %8.1f +- %4.1f %s\n",
-                p["name"].get<std::string>().c_str(), Number(p["truth"]),
-                Number(p["bias_percent"]), Number(p["bias_over_std_error"]),
-                1.0 / Number(p["std_error_over_sd"]), coverage,
+                p["name"].get<std::string>().c_str(), Number(p["truth"]), Number(p["bias_percent"]),
+                Number(p["bias_over_std_error"]), 1.0 / Number(p["std_error_over_sd"]), coverage,
                 100.0 * Number(p["coverage_std_error"]),
                 coverage >= 90.0 && coverage <= 99.0 ? "yes" : "NO");
   }

@@ -29,7 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-constexpr double kDeg = 0.001745;  // 0.1 deg in rad
+constexpr double kDeg = 0.001745;     // 0.1 deg in rad
 constexpr double kRudder = 3 * kDeg;  // noise on the logged rudder
 
 class MonteCarloNoise : public ::testing::Test {
@@ -69,7 +69,8 @@ class MonteCarloNoise : public ::testing::Test {
     // The Erunsal tugboat's wind inputs are optional: its records do not log them.
     YAML::Node tug =
         YAML::LoadFile(std::string(VESSELID_SOURCE_DIR) + "/configs/erunsal_hierarchy.yaml");
-    tug["study"] = YAML::Load("{monte_carlo: {stage: spiral, noise: {wind_speed: 0.1, psi: 0.01}}}");
+    tug["study"] =
+        YAML::Load("{monte_carlo: {stage: spiral, noise: {wind_speed: 0.1, psi: 0.01}}}");
     folder_->Write("bad_input.yaml", tug);
     folder_->Simulate("outputs.yaml");
   }
@@ -107,8 +108,7 @@ TEST_F(MonteCarloNoise, InputNoiseWidensTheSpreadAndEveryCoverageIsCounted) {
     EXPECT_GT(b["sd"].get<double>(), 1.5 * a["sd"].get<double>()) << b["name"];
   }
   // The input noise is a pure function of the run: the same results on one thread.
-  ASSERT_EQ(folder_->Study("inputs.yaml", "inputs_one", &messages, "--threads 1"), 0)
-      << messages;
+  ASSERT_EQ(folder_->Study("inputs.yaml", "inputs_one", &messages, "--threads 1"), 0) << messages;
   EXPECT_EQ(testing::ComparableStudy(folder_->Load("inputs_one")),
             testing::ComparableStudy(folder_->Load("inputs")));
   const std::string note = "K: the reported 95 % intervals covered the truth in";
@@ -176,13 +176,16 @@ TEST_F(MonteCarloNoise, BadNoiseAndTruthAreRefusedWithFileAndLine) {
     const char* expected;
   };
   for (const Case& c :
-       {Case{"bad_name.yaml", "bad_name", "study.monte_carlo.noise.rudder: unknown output or input 'rudder'"},
+       {Case{"bad_name.yaml", "bad_name",
+             "study.monte_carlo.noise.rudder: unknown output or input 'rudder'"},
         Case{"bad_input.yaml", "bad_input",
              "study.monte_carlo.noise.wind_speed: input 'wind_speed' is not recorded in "
              "experiment 'spiral1'"},
-        Case{"bad_truth.yaml", "bad_truth", "study.monte_carlo.truth: expected {<parameter>: value} or "
-                               "estimate, got 'estimated'"},
-        Case{"bad_stage.yaml", "bad_stage", "study.monte_carlo.truth: estimate: the stage cannot be solved"}}) {
+        Case{"bad_truth.yaml", "bad_truth",
+             "study.monte_carlo.truth: expected {<parameter>: value} or "
+             "estimate, got 'estimated'"},
+        Case{"bad_stage.yaml", "bad_stage",
+             "study.monte_carlo.truth: estimate: the stage cannot be solved"}}) {
     std::string messages;
     EXPECT_NE(folder_->Study(c.config, c.out, &messages), 0) << c.config;
     EXPECT_NE(messages.find(c.expected), std::string::npos) << messages;
