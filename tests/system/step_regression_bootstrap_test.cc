@@ -1,6 +1,8 @@
 // Bootstrap standard errors of a step-regression stage on the shipped craft campaign
 // (configs/eriksen_2dof.yaml: a physical planing craft in current and gusty wind, which the
 // 2-DOF model only approximates), regression stage only, through the command line.
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -19,7 +21,9 @@ namespace fs = std::filesystem;
 class StepRegressionBootstrap : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(fs::temp_directory_path() / "vesselid_step_regression_bootstrap");
+    // Own folder per process: CTest runs the cases of this suite in parallel.
+    dir_ = new fs::path(fs::temp_directory_path() /
+                        ("vesselid_step_regression_bootstrap_" + std::to_string(::getpid())));
     fs::remove_all(*dir_);
     fs::create_directories(*dir_);
     const std::string config = std::string(VESSELID_SOURCE_DIR) + "/configs/eriksen_2dof.yaml";
