@@ -294,6 +294,10 @@ void StageSection(const RunConfig& config, const StageResult& stage, size_t numb
     if (stage.validation.size() > 1) html << RunFitTableHtml(PerRunFits(config, stage.validation));
     FitFigures(config, key + ".validation", "held out, stage " + stage.name, stage.validation,
                angles, page);
+    if (!stage.validation_residuals.empty()) {
+      html << "<h4>Residual analysis of the held-out runs</h4>\n"
+           << ResidualTableHtml(stage.validation_residuals);
+    }
     html << HeldOutParametersHtml(stage.held_out_parameters, stage.validation);
     if (!stage.velocity_validation.empty()) {
       html << "<h4>Velocities (data: Savitzky-Golay reconstruction)</h4>\n"
@@ -348,6 +352,10 @@ void FinalSection(const RunConfig& config, const RunResult& result, ReportPage* 
     }
     FitFigures(config, "final.validation", "final values", result.final_validation,
                AngleOutputs(config), page);
+    if (!result.final_validation_residuals.empty()) {
+      html << "<h4>Residual analysis of the held-out runs</h4>\n"
+           << ResidualTableHtml(result.final_validation_residuals);
+    }
     html << HeldOutParametersHtml(result.final_held_out_parameters, result.final_validation);
     if (!result.final_velocity_validation.empty()) {
       html << "<h4>Velocities</h4>\n" << VelocityTable(result.final_velocity_validation);

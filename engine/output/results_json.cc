@@ -259,6 +259,9 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
   j["fit"] = FitsToJson(config, s.fits);
   j["admissibility"] = stage.admissibility;
   if (!stage.validation.empty()) j["validation"] = FitsToJson(config, stage.validation);
+  if (!stage.validation_residuals.empty()) {
+    j["validation"]["residual_analysis"] = ResidualAnalysesToJson(stage.validation_residuals);
+  }
   if (stage.held_out.done) j["held_out_check"] = HeldOutToJson(stage.held_out);
   if (stage.held_out_parameters.active()) {
     j["held_out_parameters"] = HeldOutParametersToJson(stage.held_out_parameters, stage.validation);
@@ -329,6 +332,10 @@ json RunResultToJson(const RunConfig& config, const RunResult& result) {
   j["admissibility"] = result.admissibility;
   if (config.has_final_validation) {
     j["final_validation"] = FitsToJson(config, result.final_validation);
+    if (!result.final_validation_residuals.empty()) {
+      j["final_validation"]["residual_analysis"] =
+          ResidualAnalysesToJson(result.final_validation_residuals);
+    }
   }
   if (result.final_held_out_parameters.active()) {
     j["final_held_out_parameters"] =

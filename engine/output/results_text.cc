@@ -160,7 +160,9 @@ std::string StageText(const RunConfig& config, const StageResult& stage) {
   out << MetricsTable(config, s.fits);
   out << ResidualAnalysesText(stage.residuals, "  ");
   if (!stage.validation.empty()) {
-    out << "  local validation:\n" << MetricsTable(config, stage.validation);
+    out << "  local validation:\n"
+        << MetricsTable(config, stage.validation)
+        << ResidualAnalysesText(stage.validation_residuals, "  ");
   }
   out << HeldOutParametersText(stage.held_out_parameters, stage.validation, "  ");
   if (stage.held_out.done) {
@@ -266,6 +268,7 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
   if (config.has_final_validation) {
     out << "\nfinal validation\n"
         << MetricsTable(config, result.final_validation)
+        << ResidualAnalysesText(result.final_validation_residuals, "  ")
         << HeldOutParametersText(result.final_held_out_parameters, result.final_validation, "  ");
   }
   if (!result.final_velocity_validation.empty()) {

@@ -123,7 +123,8 @@ nlohmann::json StageResultToArchive(const StageResult& stage) {
                       {"rejected", stage.rejected},
                       {"integration_step", stage.integration_step},
                       {"velocity_validation", stage.velocity_validation},
-                      {"residuals", stage.residuals}};
+                      {"residuals", stage.residuals},
+                      {"validation_residuals", stage.validation_residuals}};
   if (stage.step_regression) j["step_regression"] = *stage.step_regression;
   if (stage.bootstrap.done() || !stage.bootstrap.message.empty()) j["bootstrap"] = stage.bootstrap;
   return j;
@@ -154,6 +155,8 @@ bool StageResultFromArchive(const nlohmann::json& j, StageResult* stage, std::st
     j.at("velocity_validation").get_to(s.velocity_validation);
     // Absent from archives written before stages analysed their residuals.
     if (j.contains("residuals")) j.at("residuals").get_to(s.residuals);
+    if (j.contains("validation_residuals"))
+      j.at("validation_residuals").get_to(s.validation_residuals);
     if (j.contains("step_regression")) {
       s.step_regression =
           std::make_shared<const StepRegressionReport>(j.at("step_regression").get<StepRegressionReport>());

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 
+#include "engine/run/fit_residuals.h"
 #include "engine/solve/covariance.h"
 
 namespace vesselid {
@@ -106,11 +107,13 @@ void CollectEstimates(OutputErrorProblem* problem, const HeldOutPerRun& per_run,
   }
 }
 
-// One held-out run fitted at `values`, estimating its per-experiment parameters if given.
+// One held-out run fitted at `values`, estimating its per-experiment parameters if given;
+// its residual analysis appended to `residuals` if not null.
 ExperimentFit FitOne(const ModelHandle& model, Experiment experiment,
                      const std::vector<std::string>& free_states, const LocalSolveOptions& local,
                      const std::vector<double>& values, const HeldOutPerRun* per_run,
-                     std::vector<Estimate>* estimates) {
+                     std::vector<Estimate>* estimates,
+                     std::vector<ResidualAnalysis>* residuals = nullptr) {
   ExperimentFit fit;
   fit.experiment = experiment.name;
   std::vector<ParameterSpec> own;
@@ -130,6 +133,10 @@ ExperimentFit FitOne(const ModelHandle& model, Experiment experiment,
   }
   std::vector<ExperimentFit> evaluated;
   EvaluateFit(*problem, &evaluated, &why);  // a divergence is recorded in the fit
+  if (residuals != nullptr) {
+    for (ResidualAnalysis& a : AnalyseFitResiduals(model.info(), problem->experiments(), evaluated))
+      residuals->push_back(std::move(a));
+  }
   if (per_run != nullptr) CollectEstimates(problem.get(), *per_run, estimates);
   return std::move(evaluated.front());
 }
@@ -141,7 +148,8 @@ bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
                      const std::vector<std::string>& free_states, const LocalSolveOptions& local,
                      const std::vector<double>& values, TrajectoryCache* cache,
                      std::vector<ExperimentFit>* fits, std::string* error,
-                     const HeldOutPerRun& per_run, HeldOutParameters* parameters) {
+                     const HeldOutPerRun& per_run, HeldOutParameters* parameters,
+                     std::vector<ResidualAnalysis>* residuals) {
   std::vector<Experiment> experiments;
   if (!PrepareExperiments(config, names, model, options, cache, &experiments, error)) {
     return false;
@@ -162,14 +170,16 @@ bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
   // One problem per experiment (they share nothing with the shared parameters fixed), so that
   // one that diverges is recorded and the others are still measured.
   fits->clear();
+  if (residuals != nullptr) residuals->clear();
   for (Experiment& experiment : experiments) {
     if (!fit_own) {
-      fits->push_back(
-          FitOne(model, std::move(experiment), free_states, local, held, nullptr, nullptr));
+      fits->push_back(FitOne(model, std::move(experiment), free_states, local, held, nullptr,
+                             nullptr, residuals));
       continue;
     }
     std::vector<Estimate> estimates;
-    fits->push_back(FitOne(model, experiment, free_states, local, values, &per_run, &estimates));
+    fits->push_back(
+        FitOne(model, experiment, free_states, local, values, &per_run, &estimates, residuals));
     ExperimentFit without =
         FitOne(model, std::move(experiment), free_states, local, held, nullptr, nullptr);
     without.trace = Trajectory();

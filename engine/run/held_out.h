@@ -22,6 +22,7 @@
 #include "engine/solve/local_solve.h"
 #include "engine/solve/metrics.h"
 #include "engine/solve/output_error_problem.h"
+#include "engine/solve/residual_analysis.h"
 
 namespace vesselid {
 
@@ -52,13 +53,15 @@ HeldOutPerRun PerRunFromStage(const StageResult& stage, const ModelInfo& model,
 // per-experiment parameters, their estimates and the fits without them into `parameters`;
 // may be null when there are none). A record whose free run diverges, or whose initial states
 // cannot be estimated, is recorded as diverged with the reason (ExperimentFit::diverged);
-// false only when the records cannot be prepared.
+// false only when the records cannot be prepared. With `residuals`, the residual analysis of
+// each run's fit (fit_residuals.h) goes there.
 bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
                      const std::vector<std::string>& names, const ExperimentOptions& options,
                      const std::vector<std::string>& free_states, const LocalSolveOptions& local,
                      const std::vector<double>& values, TrajectoryCache* cache,
                      std::vector<ExperimentFit>* fits, std::string* error,
-                     const HeldOutPerRun& per_run = {}, HeldOutParameters* parameters = nullptr);
+                     const HeldOutPerRun& per_run = {}, HeldOutParameters* parameters = nullptr,
+                     std::vector<ResidualAnalysis>* residuals = nullptr);
 
 // Notes on held-out per-experiment estimates at a bound ("validation: delta_0[zz3] is at its
 // upper bound 0.05 ..."), as the stage notes active bounds.

@@ -45,7 +45,7 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
       PerRunFromStage(*result, model.info(), stage.validation_per_experiment);
   if (!SimulateHeldOut(config, model, stage.validation, options, stage.problem.free_initial_states,
                        stage.options.local, values, cache, &result->validation, error, per_run,
-                       &result->held_out_parameters) ||
+                       &result->held_out_parameters, &result->validation_residuals) ||
       !SimulateHeldOut(config, model, stage.validation, options, stage.problem.free_initial_states,
                        stage.options.local, start_values, cache, &at_start, error, per_run)) {
     *error = "validation: " + *error;
@@ -230,7 +230,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     }
     if (!SimulateHeldOut(config, model, v.experiments, options, v.free_initial_states, {},
                          final_values, &cache, &run.final_validation, error, per_run,
-                         &run.final_held_out_parameters)) {
+                         &run.final_held_out_parameters, &run.final_validation_residuals)) {
       *error = "final validation: " + *error;
       return false;
     }

@@ -88,6 +88,7 @@ struct StageResult {
   // Output-error stages: whiteness of the fit's residuals and their correlation with the
   // inputs, per experiment and compared output (residual_analysis.h).
   std::vector<ResidualAnalysis> residuals;
+  std::vector<ResidualAnalysis> validation_residuals;  // of `validation`, reported only
   // Step-regression stages: the samples, lasso paths and timings (step_regression.h).
   std::shared_ptr<const StepRegressionReport> step_regression;
   // Regression stages: bootstrap over the CV groups (group_bootstrap.h); runs 0: none.
@@ -150,6 +151,7 @@ struct RunResult {
   std::vector<FinalParameter> parameters;  // model parameter order
   std::vector<std::string> admissibility;  // of the final values
   std::vector<ExperimentFit> final_validation;
+  std::vector<ResidualAnalysis> final_validation_residuals;  // reported only
   HeldOutParameters final_held_out_parameters;  // per-experiment parameters of final_validation
   std::vector<ChannelMetrics> final_velocity_validation;
   std::vector<ZigzagRun> zigzags;  // every zigzag fit of the stages and the final validation
