@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "engine/output/held_out_parameters_report.h"
+#include "engine/output/noise_model_report.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/output/run_fit_table.h"
 #include "engine/output/zigzag_report.h"
@@ -131,6 +132,7 @@ std::string StageText(const RunConfig& config, const StageResult& stage) {
     out << EstimateLine(e.name, ParameterRoleToString(e.role), e.value, e.std_error, e.undetermined,
                         "");
   }
+  out << NoiseModelText(config, stage);
   for (const std::string& note : s.notes) out << "  note: " << note << "\n";
   for (const std::string& d : s.uncertainty.undetermined) out << "  undetermined: " << d << "\n";
   for (const std::string& a : stage.admissibility) out << "  not admissible: " << a << "\n";

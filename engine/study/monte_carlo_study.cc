@@ -114,6 +114,36 @@ json Summary(const StudyStage& stage, const std::vector<double>& truth, double z
   return {{"runs", cases.size()}, {"usable_runs", usable}, {"parameters", parameters}};
 }
 
+// Under `weights: noise`: per compared output the estimated sigma over the usable runs
+// (mean, SD, mean / truth) and the runs whose noise model did not settle; null otherwise.
+json NoiseModelSummary(const MonteCarloOptions& options, const std::vector<json>& cases) {
+  json outputs = json::array();
+  int unsettled = 0, with_model = 0;
+  for (const json& c : cases) {
+    if (!c.contains("noise_sigma")) continue;
+    ++with_model;
+    unsettled += c.value("noise_converged", true) ? 0 : 1;
+  }
+  if (with_model == 0) return nullptr;
+  for (const auto& [name, truth] : options.noise) {
+    std::vector<double> sigma;
+    for (const json& c : cases) {
+      if (c.contains("noise_sigma") && c["noise_sigma"].contains(name)) {
+        sigma.push_back(NumberOr(c["noise_sigma"][name], NAN));
+      }
+    }
+    if (sigma.empty()) continue;
+    const MeanSd m = Summarise(sigma);
+    outputs.push_back({{"output", name},
+                       {"truth", truth},
+                       {"mean", JsonNumber(m.mean)},
+                       {"sd", JsonNumber(m.sd)},
+                       {"mean_over_truth", JsonNumber(m.mean / truth)},
+                       {"runs", m.n}});
+  }
+  return {{"runs", with_model}, {"unsettled_runs", unsettled}, {"outputs", outputs}};
+}
+
 }  // namespace
 
 bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& options,
@@ -160,6 +190,15 @@ bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& option
       for (double v : solve.StdErrors(stage)) errors.push_back(JsonNumber(v));
       c["estimates"] = estimates;
       c["std_errors"] = errors;
+      if (solve.noise.active()) {
+        json sigma = json::object();
+        for (size_t k = 0; k < solve.noise.outputs.size(); ++k) {
+          sigma[solve.noise.outputs[k]] = JsonNumber(solve.noise.sigma[k]);
+        }
+        c["noise_sigma"] = sigma;
+        c["noise_iterations"] = solve.noise.iterations;
+        c["noise_converged"] = solve.noise.converged;
+      }
       c["cost"] = solve.summary.local().final_cost;
       c["iterations"] = solve.summary.local().iterations;
     }
@@ -184,6 +223,7 @@ bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& option
              {"z", z},
              {"parameters", stage.free_names},
              {"summary", Summary(stage, truth, z, cases)},
+             {"noise_model", NoiseModelSummary(options, cases)},
              {"cases", cases},
              {"time_seconds", std::chrono::duration<double>(
                                   std::chrono::steady_clock::now() - start_time)
@@ -214,6 +254,22 @@ std::string MonteCarloText(const json& result) {
                   NumberOr(p["std_error_over_sd"], NAN), 100.0 * NumberOr(p["coverage"], NAN),
                   100.0 * NumberOr(p["coverage_std_error"], NAN));
     text += line;
+  }
+  const json& noise = result.contains("noise_model") ? result["noise_model"] : json();
+  if (noise.is_object()) {
+    std::snprintf(line, sizeof(line),
+                  "  noise model (weights: noise), estimated sigma over %d runs (%d did not "
+                  "settle):\n  %-12s %13s %13s %12s %12s\n",
+                  noise["runs"].get<int>(), noise["unsettled_runs"].get<int>(), "output",
+                  "truth", "mean", "SD", "mean/truth");
+    text += line;
+    for (const json& o : noise["outputs"]) {
+      std::snprintf(line, sizeof(line), "  %-12s %13.6g %13.6g %12.4g %12.4f\n",
+                    o["output"].get<std::string>().c_str(), o["truth"].get<double>(),
+                    NumberOr(o["mean"], NAN), NumberOr(o["sd"], NAN),
+                    NumberOr(o["mean_over_truth"], NAN));
+      text += line;
+    }
   }
   return text;
 }

@@ -13,6 +13,7 @@
 
 #include "engine/base/json_number.h"
 #include "engine/run/run_config.h"
+#include "engine/solve/noise_weights.h"
 #include "engine/solve/output_error_problem.h"
 #include "engine/solve/stage.h"
 #include "nlohmann/json.hpp"
@@ -31,6 +32,9 @@ struct StudyStage {
   // With PrepareStudyStage(..., solve = true): every unknown's value (by variable name) as
   // the run's own solve of the stage found it, continuation and global start included.
   std::map<std::string, double> run_optimum;
+  // The stage weighs its channels by their estimated noise (stage_weights.h): every solve
+  // iterates the noise model (noise_weights.h) as the run does.
+  bool noise_weights = false;
 
   // Starts of the free parameters, in `free` order.
   std::vector<double> FreeStarts() const;
@@ -45,6 +49,7 @@ bool PrepareStudyStage(const RunConfig& config, const std::string& name, StudySt
 struct StudySolve {
   std::unique_ptr<OutputErrorProblem> problem;
   StageSummary summary;
+  NoiseModel noise;  // with StudyStage::noise_weights
   bool usable = false;
   std::string message;
 
