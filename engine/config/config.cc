@@ -327,7 +327,7 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
       {"name", "type", "least_squares", "step_regression", "model", "experiments", "validation",
        "validation_per_experiment", "outputs", "parameters", "free_initial_states", "loss",
        "integration", "normalize_by_length", "continuation", "global", "local", "uncertainty",
-       "initial_state_prior", "outliers", "velocity_validation"});
+       "initial_state_prior", "outliers", "velocity_validation", "weights"});
   StageConfig stage;
   if (node["model"]) {
     stage.model = OverrideModel(reader, family, model_node, node["model"], Child(path, "model"));
@@ -467,6 +467,17 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
     }
   }
   reader.Read(node, path, "normalize_by_length", &stage.experiment.normalize_by_length);
+  stage.normalize_by_length_set = static_cast<bool>(node["normalize_by_length"]);
+  //   weights: noise | given (stage_weights.h)
+  if (const YAML::Node n = node["weights"]) {
+    const std::string text = reader.String(n, Child(path, "weights"));
+    if (text == "noise")
+      stage.weights = StageConfig::Weights::kNoise;
+    else if (text == "given")
+      stage.weights = StageConfig::Weights::kGiven;
+    else
+      reader.Fail(n, Child(path, "weights"), "unknown choice '" + text + "' (noise, given)");
+  }
   if (node["global"]) {
     stage.options.use_global_start = true;
     ReadGlobal(reader, node["global"], Child(path, "global"), &stage.options.global);
@@ -489,7 +500,7 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
                        &stage);
     for (const char* key :
          {"loss", "continuation", "global", "least_squares", "free_initial_states",
-          "normalize_by_length", "integration", "initial_state_prior", "outliers"}) {
+          "normalize_by_length", "integration", "initial_state_prior", "outliers", "weights"}) {
       if (node[key]) reader.Fail(node[key], Child(path, key), "not used by a step-regression stage");
     }
   }
@@ -498,7 +509,7 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
       reader.Fail(node["type"], Child(path, "type"),
                   "model " + info.name + " has no equation-error form for a least-squares stage");
     }
-    for (const char* key : {"loss", "continuation", "global", "outliers"}) {
+    for (const char* key : {"loss", "continuation", "global", "outliers", "weights"}) {
       if (node[key]) reader.Fail(node[key], Child(path, key), "not used by a least-squares stage");
     }
   }

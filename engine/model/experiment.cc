@@ -126,6 +126,8 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
   // Samples grouped by node.
   std::vector<std::vector<ExperimentSample>> by_node(nodes);
   e.output_sample_count.assign(info.outputs.size(), 0);
+  e.channel_weight.assign(info.outputs.size(), 1.0);
+  e.channel_noise_power.assign(info.outputs.size(), 0.0);
   for (const OutputChannel& oc : channels) {
     size_t k = 0;
     for (size_t i = 0; i < oc.channel.t.size(); ++i) {
@@ -135,6 +137,7 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
       by_node[k].push_back({oc.output, oc.channel.value[i], oc.weight});
       ++e.output_sample_count[oc.output];
     }
+    e.channel_weight[oc.output] = oc.weight;
   }
   for (int k = 0; k < nodes; ++k) {
     e.node_first_sample.push_back(e.num_samples());
@@ -315,6 +318,7 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
     }
     const double sigma = level.Sigma();
     if (!std::isfinite(sigma)) continue;
+    e.channel_noise_power[oc.output] = level.count() * sigma * sigma;
     noise2 += level.count() * (oc.weight * sigma) * (oc.weight * sigma);
     counted += level.count();
   }

@@ -84,6 +84,11 @@ struct Experiment {
   double prior_weight = 0.0;
   bool segment = false;  // a piece of a longer record (segments, segment_length, input_range)
   std::vector<int> output_sample_count;  // per model output
+  // Per model output: the factor its samples' weights carry for the channel (the configured
+  // weight, or 1/sigma under noise weights, channel_weights.h), and count x noise level^2 of
+  // its data (the prior weight's share; 0 where unknown).
+  std::vector<double> channel_weight;
+  std::vector<double> channel_noise_power;
   std::vector<bool> wrapped_outputs;     // per model output: residual wrapped (empty: none)
 
   bool Wrapped(int output) const {

@@ -10,6 +10,7 @@
 #include "engine/output/display_units.h"
 #include "engine/output/bootstrap_report.h"
 #include "engine/output/held_out_parameters_report.h"
+#include "engine/output/noise_model_report.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/output/report_figures.h"
 #include "engine/output/report_plots.h"
@@ -265,6 +266,7 @@ void StageSection(const RunConfig& config, const StageResult& stage, size_t numb
   ResidualSection(stage, id, key, page);
   html << "<h3 id=\"" << id << "-parameters\">Estimates</h3>\n" << EstimatesTables(stage.estimates);
   html << BootstrapHtml(stage);
+  html << NoiseModelHtml(config, stage);
 
   std::vector<int> index;
   const std::vector<std::string> names = SharedNames(stage, &index);

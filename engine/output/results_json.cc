@@ -5,6 +5,7 @@
 #include "engine/output/display_units.h"
 #include "engine/output/bootstrap_report.h"
 #include "engine/output/held_out_parameters_report.h"
+#include "engine/output/noise_model_report.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/output/residual_report.h"
 #include "engine/output/run_fit_table.h"
@@ -268,6 +269,7 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
   }
   if (!stage.rejected.empty()) j["rejected"] = stage.rejected;
   if (stage.integration_step > 0.0) j["integration_step"] = stage.integration_step;
+  if (stage.noise_model.active()) j["noise_model"] = NoiseModelToJson(config, stage);
   if (!stage.velocity_validation.empty()) {
     j["velocity_validation"] = VelocityToJson(stage.velocity_validation);
   }

@@ -6,6 +6,7 @@
 
 #include "engine/output/bootstrap_report.h"
 #include "engine/output/held_out_parameters_report.h"
+#include "engine/output/noise_model_report.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/output/residual_report.h"
 #include "engine/output/run_fit_table.h"
@@ -138,6 +139,7 @@ std::string StageText(const RunConfig& config, const StageResult& stage) {
         << (s.uncertainty.method_reason.empty() ? "" : " (" + s.uncertainty.method_reason + ")")
         << "\n";
   }
+  out << NoiseModelText(config, stage);
   for (const std::string& note : s.notes) out << "  note: " << note << "\n";
   for (const std::string& d : s.uncertainty.undetermined) out << "  undetermined: " << d << "\n";
   for (const std::string& a : stage.admissibility) out << "  not admissible: " << a << "\n";

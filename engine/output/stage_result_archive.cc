@@ -83,6 +83,8 @@ void from_json(const nlohmann::json& j, ParameterRole& role) {
     throw nlohmann::json::other_error::create(501, "unknown parameter role " + j.dump(), &j);
   }
 }
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(NoiseModel, method, iterations, converged, outputs, sigma,
+                                   samples)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Estimate, name, kind, role, experiment, value, start,
                                    std_error, lower, upper, undetermined)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(HeldOutParameters, fitted, parameters, estimates, without)
@@ -122,6 +124,7 @@ nlohmann::json StageResultToArchive(const StageResult& stage) {
                       {"held_out_parameters", stage.held_out_parameters},
                       {"rejected", stage.rejected},
                       {"integration_step", stage.integration_step},
+                      {"noise_model", stage.noise_model},
                       {"velocity_validation", stage.velocity_validation},
                       {"residuals", stage.residuals},
                       {"validation_residuals", stage.validation_residuals}};
@@ -152,6 +155,8 @@ bool StageResultFromArchive(const nlohmann::json& j, StageResult* stage, std::st
       j.at("held_out_parameters").get_to(s.held_out_parameters);
     j.at("rejected").get_to(s.rejected);
     j.at("integration_step").get_to(s.integration_step);
+    // Absent from archives written before stages had a noise model (configured weights).
+    if (j.contains("noise_model")) j.at("noise_model").get_to(s.noise_model);
     j.at("velocity_validation").get_to(s.velocity_validation);
     // Absent from archives written before stages analysed their residuals.
     if (j.contains("residuals")) j.at("residuals").get_to(s.residuals);

@@ -10,7 +10,10 @@
 
 #include "engine/run/continuation.h"
 #include "engine/run/fit_residuals.h"
+#include "engine/model/channel_weights.h"
 #include "engine/run/records.h"
+#include "engine/run/stage_weights.h"
+#include "engine/solve/noise_weights.h"
 #include "engine/solve/step_stability.h"
 
 namespace vesselid {
@@ -103,7 +106,7 @@ std::unique_ptr<OutputErrorProblem> RefineFrom(const OutputErrorProblem& solved,
 // (step_stability.h), prepares the experiments with a step that can and refines again from
 // the estimate; the step used goes to result->integration_step (0: the configured one).
 bool FollowTheDynamics(const RunConfig& config, const StageConfig& stage, const ModelHandle& model,
-                       const StageOptions& options, TrajectoryCache* cache,
+                       const StageOptions& options, const NoiseModel& noise, TrajectoryCache* cache,
                        std::unique_ptr<OutputErrorProblem>* problem, StageSummary* summary,
                        StageResult* result, std::string* error) {
   ExperimentOptions finer = stage.experiment;
@@ -136,6 +139,9 @@ bool FollowTheDynamics(const RunConfig& config, const StageConfig& stage, const 
     std::vector<Experiment> experiments;
     if (!PrepareExperiments(config, stage.experiments, model, finer, cache, &experiments, error)) {
       return false;
+    }
+    if (noise.active()) {  // the stage's noise weights, not the configured ones
+      for (Experiment& e : experiments) SetChannelWeights(noise.Weights(model.info()), &e);
     }
     std::unique_ptr<OutputErrorProblem> refined =
         RefineFrom(**problem, std::move(experiments), stage, options, summary, error);
@@ -246,10 +252,14 @@ bool HandleOutliers(const StageConfig& stage, const StageOptions& options,
 
 }  // namespace
 
-bool RunOutputErrorStage(const RunConfig& config, const StageConfig& stage,
+bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_stage,
                          const ModelHandle& model, std::vector<ParameterSpec>* resolved,
                          TrajectoryCache* cache, const ProgressCallback& progress,
                          StageResult* result, std::string* error) {
+  // The stage with its experiments prepared as its weighting needs (stage_weights.h).
+  StageConfig stage = configured_stage;
+  const bool noise_weights = UsesNoiseWeights(config, stage);
+  stage.experiment = StageExperimentOptions(config, stage);
   std::vector<ParameterSpec>& specs = *resolved;
   const std::vector<ParameterSpec> configured = specs;
   std::vector<StateAt> states;
@@ -292,7 +302,13 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& stage,
     *error = summary.message;
     return false;
   }
-  if (!FollowTheDynamics(config, stage, model, options, cache, &problem, &summary, result, error) ||
+  NoiseModel noise;
+  if (noise_weights && !IterateNoiseWeights(options, problem.get(), &summary, &noise)) {
+    *error = summary.message;
+    return false;
+  }
+  if (!FollowTheDynamics(config, stage, model, options, noise, cache, &problem, &summary, result,
+                         error) ||
       !HandleOutliers(stage, options, &problem, &summary, error)) {
     return false;
   }
@@ -305,6 +321,7 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& stage,
   *result = Collect(*problem, starts, std::move(summary));
   result->integration_step = integration_step;
   result->residuals = std::move(residuals);
+  result->noise_model = std::move(noise);
   return true;
 }
 

@@ -67,6 +67,12 @@ struct StageConfig {
   std::vector<ParameterSpec> parameters;
   OutputErrorOptions problem;
   ExperimentOptions experiment;  // compared outputs, step bound, length normalisation
+  // `weights:` noise (per-channel noise model, noise_weights.h) or given (the experiments'
+  // configured weights); kDefault: noise when the stage compares two or more outputs
+  // (stage_weights.h). `normalize_by_length_set`: the stage sets normalize_by_length itself.
+  enum class Weights { kDefault, kNoise, kGiven };
+  Weights weights = Weights::kDefault;
+  bool normalize_by_length_set = false;
   // Segment lengths (s, increasing) the stage is solved with first, each phase starting the
   // next; empty: the stage is solved once on its experiments as configured.
   std::vector<double> continuation;

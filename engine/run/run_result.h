@@ -12,6 +12,7 @@
 #include "Eigen/Dense"
 #include "engine/data/zigzag_figures.h"
 #include "engine/model/model.h"
+#include "engine/solve/noise_weights.h"
 #include "engine/solve/parameter.h"
 #include "engine/solve/residual_analysis.h"
 #include "engine/solve/stage.h"
@@ -79,6 +80,9 @@ struct StageResult {
   // > 0: the integration step the stage was solved with, shorter than the configured one
   // because its estimate's dynamics were too fast for that (step_stability.h).
   double integration_step = 0.0;
+  // Output-error stages: the per-channel noise model under `weights: noise` (its sigmas
+  // weigh the samples and make the covariance), else method "given" (noise_weights.h).
+  NoiseModel noise_model;
   // Non-empty: why the run set the stage's estimates aside (final: best_validation); later
   // stages and the final values take its start values instead.
   std::string rejected;

@@ -37,10 +37,12 @@ void FailedFits(const std::string& where, const std::vector<ExperimentFit>& fits
   }
 }
 
-// Stage notes that are warnings: active bounds and held-out divergences.
+// Stage notes that are warnings: active bounds, held-out divergences, a noise model that
+// did not settle or could not be estimated.
 bool WarningNote(const std::string& note) {
   return note.rfind("integration step", 0) == 0 || note.rfind("outliers:", 0) == 0 ||
          note.rfind(kNarrowHessianNote, 0) == 0 ||
+         note.rfind("noise weights:", 0) == 0 ||
          note.find(" is at its lower bound") != std::string::npos ||
          note.find(" is at its upper bound") != std::string::npos ||
          note.find("diverges") != std::string::npos;

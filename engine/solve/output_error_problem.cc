@@ -4,6 +4,8 @@
 #include <cmath>
 #include <map>
 
+#include "engine/model/channel_weights.h"
+
 namespace vesselid {
 namespace {
 
@@ -35,19 +37,22 @@ bool MakeLoss(const OutputErrorOptions& options, std::unique_ptr<ceres::LossFunc
 
 namespace {
 
-// r = a (x - guess) on a block holding x / scale.
+// r = a (x - guess) on a block holding x / scale, a = prior_weight x factor; the experiment's
+// prior weight is read at each evaluation (channel re-weighting changes it, SetChannelWeights).
 class PriorCost final : public ceres::SizedCostFunction<1, 1> {
  public:
-  PriorCost(double weight, double guess, double scale)
-      : weight_(weight), guess_(guess), scale_(scale) {}
+  PriorCost(const double* prior_weight, double factor, double guess, double scale)
+      : prior_weight_(prior_weight), factor_(factor), guess_(guess), scale_(scale) {}
   bool Evaluate(double const* const* x, double* residual, double** jacobian) const override {
-    residual[0] = weight_ * (x[0][0] * scale_ - guess_);
-    if (jacobian != nullptr && jacobian[0] != nullptr) jacobian[0][0] = weight_ * scale_;
+    const double weight = *prior_weight_ * factor_;
+    residual[0] = weight * (x[0][0] * scale_ - guess_);
+    if (jacobian != nullptr && jacobian[0] != nullptr) jacobian[0][0] = weight * scale_;
     return true;
   }
 
  private:
-  double weight_, guess_, scale_;
+  const double* prior_weight_;
+  double factor_, guess_, scale_;
 };
 
 double Median(std::vector<double> values) {
@@ -93,7 +98,7 @@ void OutputErrorProblem::AddInitialStatePriors(const InitialStatePrior& prior,
       const double guess = guesses[i];
       if (e.prior_weight > 0.0) {
         p->problem_->AddResidualBlock(
-            new PriorCost(e.prior_weight / (prior.scale * sigmas[i]), guess, v.scale), nullptr,
+            new PriorCost(&e.prior_weight, 1.0 / (prior.scale * sigmas[i]), guess, v.scale), nullptr,
             v.block);
       }
       if (reach > 0.0 && std::isfinite(reach)) {
@@ -236,6 +241,10 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
     if (std::isfinite(v.upper)) p->problem_->SetParameterUpperBound(v.block, 0, v.upper / v.scale);
   }
   return p;
+}
+
+void OutputErrorProblem::SetChannelWeights(const std::vector<double>& weight) {
+  for (Experiment& e : experiments_) vesselid::SetChannelWeights(weight, &e);
 }
 
 int OutputErrorProblem::num_residuals() const {

@@ -85,6 +85,10 @@ class OutputErrorProblem {
   std::vector<double> Values() const;
   void SetValues(const std::vector<double>& values);
 
+  // Re-weights every experiment's output channels (channel_weights.h; `weight` per model
+  // output), priors included; the next solve or evaluation sees the new weights.
+  void SetChannelWeights(const std::vector<double>& weight);
+
   // 1/2 sum r^2 at the current values; false if any simulation diverges.
   bool Cost(double* cost);
 

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "engine/run/records.h"
+#include "engine/run/stage_weights.h"
 
 namespace vesselid {
 
@@ -106,8 +107,9 @@ bool NoisyInputExperiments(const StudyStage& stage, const std::vector<double>& i
       }
     }
   }
-  if (!PrepareExperiments(config, stage.stage->experiments, *stage.model, stage.stage->experiment,
-                          &records, experiments, error)) {
+  if (!PrepareExperiments(config, stage.stage->experiments, *stage.model,
+                          StageExperimentOptions(config, *stage.stage), &records, experiments,
+                          error)) {
     return false;
   }
   bool same = experiments->size() == stage.experiments.size();

@@ -75,6 +75,36 @@ std::string UncertaintyMethod(std::vector<json>* cases) {
   return joined.empty() ? "none" : joined;
 }
 
+// Under `weights: noise`: per compared output the estimated sigma over the usable runs
+// (mean, SD, mean / truth) and the runs whose noise model did not settle; null otherwise.
+json NoiseModelSummary(const MonteCarloOptions& options, const std::vector<json>& cases) {
+  json outputs = json::array();
+  int unsettled = 0, with_model = 0;
+  for (const json& c : cases) {
+    if (!c.contains("noise_sigma")) continue;
+    ++with_model;
+    unsettled += c.value("noise_converged", true) ? 0 : 1;
+  }
+  if (with_model == 0) return nullptr;
+  for (const auto& [name, truth] : options.noise) {
+    std::vector<double> sigma;
+    for (const json& c : cases) {
+      if (c.contains("noise_sigma") && c["noise_sigma"].contains(name)) {
+        sigma.push_back(NumberOr(c["noise_sigma"][name], NAN));
+      }
+    }
+    if (sigma.empty()) continue;
+    const MeanSd m = Summarise(sigma);
+    outputs.push_back({{"output", name},
+                       {"truth", truth},
+                       {"mean", JsonNumber(m.mean)},
+                       {"sd", JsonNumber(m.sd)},
+                       {"mean_over_truth", JsonNumber(m.mean / truth)},
+                       {"runs", m.n}});
+  }
+  return {{"runs", with_model}, {"unsettled_runs", unsettled}, {"outputs", outputs}};
+}
+
 }  // namespace
 
 bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& options, unsigned seed,
@@ -141,6 +171,15 @@ bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& option
       for (double v : solve.StdErrors(stage)) errors.push_back(JsonNumber(v));
       c["estimates"] = estimates;
       c["std_errors"] = errors;
+      if (solve.noise.active()) {
+        json sigma = json::object();
+        for (size_t k = 0; k < solve.noise.outputs.size(); ++k) {
+          sigma[solve.noise.outputs[k]] = JsonNumber(solve.noise.sigma[k]);
+        }
+        c["noise_sigma"] = sigma;
+        c["noise_iterations"] = solve.noise.iterations;
+        c["noise_converged"] = solve.noise.converged;
+      }
       c["cost"] = solve.summary.local().final_cost;
       c["iterations"] = solve.summary.local().iterations;
       c["uncertainty_method"] = solve.summary.uncertainty.method;
@@ -215,6 +254,7 @@ bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& option
       {"parameters", stage.free_names},
       {"summary", summary},
       {"notes", notes},
+      {"noise_model", NoiseModelSummary(options, cases)},
       {"cases", cases},
       {"time_seconds",
        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count()}};
@@ -274,6 +314,22 @@ std::string MonteCarloText(const json& result) {
   }
   for (const json& note : result.value("notes", json::array())) {
     text += "  note: " + note.get<std::string>() + "\n";
+  }
+  const json& noise = result.contains("noise_model") ? result["noise_model"] : json();
+  if (noise.is_object()) {
+    std::snprintf(line, sizeof(line),
+                  "  noise model (weights: noise), estimated sigma over %d runs (%d did not "
+                  "settle):\n  %-12s %13s %13s %12s %12s\n",
+                  noise["runs"].get<int>(), noise["unsettled_runs"].get<int>(), "output",
+                  "truth", "mean", "SD", "mean/truth");
+    text += line;
+    for (const json& o : noise["outputs"]) {
+      std::snprintf(line, sizeof(line), "  %-12s %13.6g %13.6g %12.4g %12.4f\n",
+                    o["output"].get<std::string>().c_str(), o["truth"].get<double>(),
+                    NumberOr(o["mean"], NAN), NumberOr(o["sd"], NAN),
+                    NumberOr(o["mean_over_truth"], NAN));
+      text += line;
+    }
   }
   return text;
 }

@@ -15,6 +15,7 @@
 #include "engine/run/pipeline.h"
 #include "engine/run/records.h"
 #include "engine/run/run_config.h"
+#include "engine/run/stage_weights.h"
 #include "engine/study/partition_study.h"
 #include "engine/study/study_stage.h"
 
@@ -173,7 +174,8 @@ class OutputErrorPartitionPool : public PartitionPool {
 
   PartitionOutcome FitPoints(const std::vector<SplitPart>& parts) const {
     PartitionOutcome outcome;
-    const bool normalize = stage.stage->experiment.normalize_by_length;
+    const bool normalize =
+        StageExperimentOptions(*stage.config, *stage.stage).normalize_by_length;
     std::vector<Experiment> training;
     std::vector<int> source;  // pool index of each training experiment
     int left_out = 0;         // experiments with held-out samples but none to train on
@@ -251,7 +253,8 @@ std::unique_ptr<PartitionPool> OutputErrorPool(const RunConfig& config, const St
   if (!added.empty()) {
     TrajectoryCache cache;
     std::vector<Experiment> more;
-    if (!PrepareExperiments(config, added, model, stage.experiment, &cache, &more, error)) {
+    if (!PrepareExperiments(config, added, model, StageExperimentOptions(config, stage), &cache,
+                            &more, error)) {
       *error = "stage '" + stage.options.name + "': " + *error;
       return nullptr;
     }

@@ -81,6 +81,11 @@ bool ProfileStage(const RunConfig& config, const std::string& name, const Profil
   const double s2 = m > n ? 2.0 * best_cost / (m - n) : NAN;
   const std::vector<double> best = optimum.Values(stage), se = optimum.StdErrors(stage);
   const std::map<std::string, double> best_values = ValuesByName(*optimum.problem);
+  // Profiles compare costs with the optimum's, so they keep its noise weights fixed.
+  if (stage.noise_weights) {
+    stage.experiments = optimum.problem->experiments();
+    stage.noise_weights = false;
+  }
 
   std::vector<std::vector<double>> grids;
   for (int k : profiled) {

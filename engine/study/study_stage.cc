@@ -5,6 +5,7 @@
 
 #include "engine/run/pipeline.h"
 #include "engine/run/records.h"
+#include "engine/run/stage_weights.h"
 
 namespace vesselid {
 
@@ -45,8 +46,9 @@ bool PrepareStudyStage(const RunConfig& config, const std::string& name, StudySt
     stage->run_optimum[e.name] = e.value;
     stage->run_std_errors[e.name] = e.std_error;
   }
-  if (!PrepareExperiments(config, s.experiments, *stage->model, s.experiment, &stage->records,
-                          &stage->experiments, error)) {
+  stage->noise_weights = UsesNoiseWeights(config, s);
+  if (!PrepareExperiments(config, s.experiments, *stage->model, StageExperimentOptions(config, s),
+                          &stage->records, &stage->experiments, error)) {
     *error = "stage '" + s.options.name + "': " + *error;
     return false;
   }
@@ -111,7 +113,9 @@ StudySolve SolveStudyStage(const StudyStage& stage, std::vector<Experiment> expe
       v.set_value(value->second);
     }
   }
-  if (!RunStage(options, solve.problem.get(), &solve.summary)) {
+  if (!RunStage(options, solve.problem.get(), &solve.summary) ||
+      (stage.noise_weights &&
+       !IterateNoiseWeights(options, solve.problem.get(), &solve.summary, &solve.noise))) {
     solve.message = solve.summary.message;
     return solve;
   }

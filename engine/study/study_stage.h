@@ -14,6 +14,7 @@
 #include "engine/base/json_number.h"
 #include "engine/run/records.h"
 #include "engine/run/run_config.h"
+#include "engine/solve/noise_weights.h"
 #include "engine/solve/output_error_problem.h"
 #include "engine/solve/stage.h"
 #include "nlohmann/json.hpp"
@@ -36,6 +37,9 @@ struct StudyStage {
   // The stage's records as read and prepared once (by configured experiment name), from
   // which variants of the data rebuild its experiments (PrepareExperiments).
   TrajectoryCache records;
+  // The stage weighs its channels by their estimated noise (stage_weights.h): every solve
+  // iterates the noise model (noise_weights.h) as the run does.
+  bool noise_weights = false;
 
   // Starts of the free parameters, in `free` order.
   std::vector<double> FreeStarts() const;
@@ -50,6 +54,7 @@ bool PrepareStudyStage(const RunConfig& config, const std::string& name, StudySt
 struct StudySolve {
   std::unique_ptr<OutputErrorProblem> problem;
   StageSummary summary;
+  NoiseModel noise;  // with StudyStage::noise_weights
   bool usable = false;
   std::string message;
 

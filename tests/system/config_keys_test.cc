@@ -118,7 +118,10 @@ const Variant kPerRun =
 
 const KeyCase kCases[] = {
     {"interpolation", V, V.A(", interpolation: {delta: zero_order_hold}")},
-    {"weights", V, V.A(", weights: {psi: 3.0}")},
+    // The experiments' output weights and length normalisation act under `weights: given`
+    // (under the default noise weights of this two-output stage they serve the first solve).
+    {"weights", V.K("    weights: given"), V.K("    weights: given").A(", weights: {psi: 3.0}")},
+    {"stage_weights", V, V.K("    weights: given")},
     {"initial_state", V, V.A(", initial_state: {r: 0.05}")},
     {"window", V, V.A(", window: [10, 100]")},
     {"degrees", V, V.A(", degrees: [delta]")},
@@ -132,7 +135,9 @@ const KeyCase kCases[] = {
     {"free_initial_states", V, V.F("[psi, r]")},
     {"loss", V, V.K("    loss: {type: cauchy, scale: 0.001}")},
     {"integration", V, V.K("    integration: {max_step: 0.013}")},
-    {"normalize_by_length", V, V.K("    normalize_by_length: false")},
+    {"normalize_by_length", V.K("    weights: given"),
+     V.K("    weights: given\n    normalize_by_length: false")},
+    {"normalize_by_length_under_noise_weights", V, V.K("    normalize_by_length: true")},
     {"global", V, V.K("    global: {algorithm: GN_CRS2_LM, max_evaluations: 40, seed: 1}")},
     {"local", V, V.K("    local: {max_iterations: 2}")},
     {"continuation", V, V.K("    continuation: [20]")},
@@ -224,6 +229,10 @@ const KeyCase kCases[] = {
      kLeastSquares.K(kLeastSquares.stage + "\n    outliers: {action: drop}"),
      "stages[0].outliers: not used by a least-squares stage"},
     {"wrap_of_a_rate", V, V.A(", wrap: [r]"), "output 'r' is not an angle"},
+    {"unknown_stage_weights", V, V.K("    weights: heavy"),
+     "config.yaml:12: stages[0].weights: unknown choice 'heavy' (noise, given)"},
+    {"weights_in_least_squares", V, kLeastSquares.K(kLeastSquares.stage + "\n    weights: noise"),
+     "stages[0].weights: not used by a least-squares stage"},
     {"velocity_validation_not_a_yes_or_no", V, V.K("    velocity_validation: sometimes"),
      "config.yaml:12: stages[0].velocity_validation: expected true or false"},
     {"model_length_without_n1_form", V, V.M(", length: 320"),

@@ -1,0 +1,44 @@
+#include "engine/run/stage_weights.h"
+
+#include <set>
+#include <string>
+
+namespace vesselid {
+
+int ComparedOutputCount(const RunConfig& config, const StageConfig& stage) {
+  if (!stage.experiment.outputs.empty()) {
+    return static_cast<int>(
+        std::set<std::string>(stage.experiment.outputs.begin(), stage.experiment.outputs.end())
+            .size());
+  }
+  std::set<std::string> outputs;
+  for (const std::string& name : stage.experiments) {
+    const ExperimentSpec* spec = config.FindExperiment(name);
+    if (spec == nullptr) continue;
+    for (const auto& [output, column] : spec->outputs) outputs.insert(output);
+  }
+  return static_cast<int>(outputs.size());
+}
+
+bool UsesNoiseWeights(const RunConfig& config, const StageConfig& stage) {
+  if (stage.kind != StageConfig::Kind::kOutputError) return false;
+  switch (stage.weights) {
+    case StageConfig::Weights::kNoise:
+      return true;
+    case StageConfig::Weights::kGiven:
+      return false;
+    case StageConfig::Weights::kDefault:
+      break;
+  }
+  return ComparedOutputCount(config, stage) >= 2;
+}
+
+ExperimentOptions StageExperimentOptions(const RunConfig& config, const StageConfig& stage) {
+  ExperimentOptions options = stage.experiment;
+  if (UsesNoiseWeights(config, stage) && !stage.normalize_by_length_set) {
+    options.normalize_by_length = false;
+  }
+  return options;
+}
+
+}  // namespace vesselid

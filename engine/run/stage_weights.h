@@ -1,0 +1,25 @@
+// How an output-error stage weighs its channels (StageConfig::weights):
+//   given: the experiments' configured `weights:` (relative, per output), each experiment
+//          normalised by its length unless normalize_by_length: false;
+//   noise: the per-channel noise model (noise_weights.h), every sample weighted 1/sigma_c of
+//          its channel. Maximum likelihood weighs each sample alike, so experiments weigh by
+//          their samples: length normalisation is off unless the stage sets
+//          normalize_by_length: true itself; the configured output weights serve only the
+//          first solve.
+// Default: noise for a stage comparing two or more outputs, given for one (whose estimate
+// does not depend on a channel weight).
+#pragma once
+
+#include "engine/run/run_config.h"
+
+namespace vesselid {
+
+// The outputs the stage compares: its `outputs:`, else every output its experiments map.
+int ComparedOutputCount(const RunConfig& config, const StageConfig& stage);
+
+bool UsesNoiseWeights(const RunConfig& config, const StageConfig& stage);
+
+// The options the stage's experiments are prepared with (length normalisation as above).
+ExperimentOptions StageExperimentOptions(const RunConfig& config, const StageConfig& stage);
+
+}  // namespace vesselid

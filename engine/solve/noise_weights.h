@@ -1,0 +1,54 @@
+// Per-channel noise model (`weights: noise`): maximum likelihood for Gaussian output noise
+// of unknown variance sigma_c^2 per output channel c. For fixed sigmas the likelihood is the
+// output-error cost with every sample of channel c weighted 1/sigma_c; for fixed parameters
+// its maximum over sigma_c is the channel's mean squared (unweighted) residual, pooled over
+// the stage's experiments and corrected for the free unknowns' share of the samples:
+//   sigma_c^2 = SSE_c / (m_c - n m_c / m) = (SSE_c / m_c) m / (m - n)
+// (m samples, m_c of channel c, n free unknowns). The stage alternates the two: solved with
+// its configured weights, then re-solved from its estimate with w = 1/sigma_c until every
+// sigma changes by less than kNoiseTolerance (relative), at most kNoiseMaxResolves times.
+// At the fixed point the weighted residuals have unit variance per channel, so the
+// covariance's s^2 = 2F / (m - n) is ~1 and the standard errors are those of the noise model.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/solve/output_error_problem.h"
+#include "engine/solve/stage.h"
+
+namespace vesselid {
+
+inline constexpr double kNoiseTolerance = 0.01;
+inline constexpr int kNoiseMaxResolves = 5;
+
+// A stage's noise model as reported. `method` "noise" when estimated (active), "given" for
+// the configured weights (nothing else set then).
+struct NoiseModel {
+  std::string method = "given";
+  int iterations = 0;      // re-solves with noise weights
+  bool converged = false;  // the last re-solve changed no sigma by kNoiseTolerance or more
+  std::vector<std::string> outputs;  // compared outputs, model order
+  std::vector<double> sigma;         // per output, physical units (radians for angles)
+  std::vector<int> samples;          // per output, over the stage's experiments
+
+  bool active() const { return method == "noise"; }
+  // Per model output (`num_outputs`): 1/sigma for the compared ones, NaN elsewhere.
+  std::vector<double> Weights(const ModelInfo& info) const;
+};
+
+// sigma per compared output from the fit at the problem's current values (`fits` as
+// EvaluateFit made them). False (with `error`) when a channel has no residual to estimate it
+// from (no samples, or an exact fit).
+bool EstimateChannelNoise(const OutputErrorProblem& problem, const std::vector<ExperimentFit>& fits,
+                          NoiseModel* noise, std::string* error);
+
+// Iterates the noise weights from a solved problem (`summary` its RunStage summary): each
+// re-solve starts from the current values without global start and replaces `summary`. A
+// model that did not settle is named in a note ("noise weights: ..."). False if a re-solve
+// fails (summary->message says why) or no sigma can be estimated (`summary` unchanged, the
+// reason in a note; noise->method stays "given").
+bool IterateNoiseWeights(const StageOptions& options, OutputErrorProblem* problem,
+                         StageSummary* summary, NoiseModel* noise);
+
+}  // namespace vesselid
