@@ -107,7 +107,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BootstrapSummary, runs, failed, groups, resam
                                    message, time_seconds)
 
 namespace {
-constexpr int kArchiveVersion = 2;
+constexpr int kArchiveVersion = 3;  // 3: Uncertainty method, hessian_std_errors, method_reason, hac_bandwidth
 }  // namespace
 
 nlohmann::json StageResultToArchive(const StageResult& stage) {
