@@ -14,7 +14,6 @@ namespace vesselid {
 
 struct Uncertainty {
   bool available = false;
-  std::string method = "hessian";  // how the covariance was estimated (studies report it)
   std::string message;         // why not available, or a rank-deficiency note
   std::vector<int> variables;  // free variable indices, in matrix order
   Eigen::MatrixXd covariance;  // physical units

@@ -62,7 +62,7 @@ bool ResolveTruth(const StudyStage& stage, const MonteCarloOptions& options,
 }
 
 // The uncertainty method of the runs: one name if they all agree, else each one once.
-std::string UncertaintyMethod(std::vector<json>* cases) {
+std::string RunsUncertaintyMethod(std::vector<json>* cases) {
   std::vector<std::string> methods;
   for (json& c : *cases) {
     if (!c.contains("uncertainty_method")) continue;
@@ -216,7 +216,7 @@ bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& option
       about.stage_std_errors.push_back(se != stage.run_std_errors.end() ? se->second : NAN);
     }
   }
-  const std::string method = UncertaintyMethod(&cases);
+  const std::string method = RunsUncertaintyMethod(&cases);
   const json summary = MonteCarloSummary(about, z, cases);
   json notes = json::array();
   if (options.truth_estimate) {
