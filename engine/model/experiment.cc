@@ -309,7 +309,8 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
       end = InterpolateAt(channel, interpolation, end_times, true);
     } else if (!FitLatentInput(spec, input, mapped->second, i, channel, t0, t_end, right_times,
                                end_times, &e, &right, &end, error)) {
-      return fail("input '" + input + "': " + *error);
+      const std::string& key = noise->second.key;
+      return fail("input '" + input + "': " + (key.empty() ? "" : key + ": ") + *error);
     }
     for (size_t j = 0; j < steps; ++j) {
       e.input_cache[(3 * j) * nu + i] = right[2 * j];

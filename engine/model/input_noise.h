@@ -18,6 +18,7 @@ struct InputNoiseSpec {
   double sigma = 0.0;       // noise SD in the column's unit; 0: estimated from the spline fit
   double knots = 0.0;       // spline knot spacing in s; 0: chosen from the data (GCV / C_p)
   double correction = 0.0;  // spacing D of the corrections in s; 0: auto; < 0: none
+  std::string key;          // "file:line: key" of the config entry, for messages
 };
 
 // Corrections per experiment at most, and their shortest spacing in input samples.
