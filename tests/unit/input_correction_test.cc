@@ -92,14 +92,18 @@ TEST(InputCorrection, JetDerivativesMatchFiniteDifferences) {
   }
 }
 
-// |relative error| of T2 plus that of T3 after a stage from 50 % off.
+// |relative error| of T2 plus that of T3 after a stage from 20 % off (near enough for the
+// local solve to find the minimum with either input).
 double FastError(const ModelHandle& model, Experiment e) {
   const std::vector<double> truth = testing::PatrolVessel().truth;
   OutputErrorOptions options;
   options.free_initial_states = {"psi"};
+  std::vector<ParameterSpec> specs = testing::FiftyPercentOff(truth);
+  const double factor[] = {1.2, 1.0 / 1.2, 1.2, 1.0 / 1.2};
+  for (int i = 0; i < 4; ++i) specs[i].start = truth[i] * factor[i];
   std::string error;
-  auto problem = OutputErrorProblem::Create(&model, {std::move(e)},
-                                            testing::FiftyPercentOff(truth), options, &error);
+  auto problem =
+      OutputErrorProblem::Create(&model, {std::move(e)}, specs, options, &error);
   EXPECT_NE(problem, nullptr) << error;
   if (problem == nullptr) return NAN;
   StageOptions stage;
@@ -107,6 +111,7 @@ double FastError(const ModelHandle& model, Experiment e) {
   StageSummary summary;
   EXPECT_TRUE(RunStage(stage, problem.get(), &summary)) << summary.message;
   const std::vector<double> p = problem->ParametersOf(0);
+  std::printf("  T1 %.4f T2 %.4f T3 %.4f K %.5f\n", p[0], p[1], p[2], p[3]);
   return std::abs(p[1] / truth[1] - 1.0) + std::abs(p[2] / truth[2] - 1.0);
 }
 
@@ -114,7 +119,7 @@ TEST(InputCorrection, NoisyRudderBiasesFastTimeConstantsLess) {
   auto model = nomoto::MakeSecondOrderHandle();
   double without = 0.0, with = 0.0;
   for (unsigned seed : {21u, 22u, 23u}) {
-    const nomoto::ClosedLoopOptions loop = PatrolMultisine(180.0, 0.5, seed);
+    const nomoto::ClosedLoopOptions loop = PatrolMultisine(300.0, 0.5, seed);
     const double a = FastError(*model, Build(*model, loop, false));
     const double b = FastError(*model, Build(*model, loop, true));
     without += a;
