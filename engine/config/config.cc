@@ -8,6 +8,7 @@
 #include "engine/config/config_sections.h"
 #include "engine/config/experiment_data_config.h"
 #include "engine/config/experiment_templates.h"
+#include "engine/config/input_noise_config.h"
 
 namespace vesselid {
 
@@ -168,6 +169,9 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
                       "': each segment starts from its own state; estimate it with the "
                       "stage's free_initial_states");
     }
+  }
+  if (const YAML::Node n = node["input_noise"]) {
+    ReadInputNoise(reader, n, Child(path, "input_noise"), info, &spec);
   }
   ReadExperimentData(reader, node, path, info, &spec);  // time, position, screen, resample
   return spec;

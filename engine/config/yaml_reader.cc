@@ -81,6 +81,15 @@ void YamlReader::CheckLimit(const YAML::Node& node, const std::string& key, doub
   Fail(node, key, text);
 }
 
+std::string YamlReader::Where(const YAML::Node& node, const std::string& key) const {
+  try {
+    Fail(node, key, "");
+  } catch (const ConfigError& e) {
+    const std::string text = e.what();
+    return text.substr(0, text.size() - 2);  // without the ": " of the empty message
+  }
+}
+
 void YamlReader::Fail(const YAML::Node& node, const std::string& key,
                       const std::string& what) const {
   std::string where = file_;

@@ -41,6 +41,9 @@ class YamlReader {
   void CheckLimit(const YAML::Node& node, const std::string& key, double count, std::uint64_t limit,
                   const std::string& limit_key) const;
 
+  // "file:line: key" of a node, for messages about it written after the config is read.
+  std::string Where(const YAML::Node& node, const std::string& key) const;
+
   // "file:line: key: what"; "file:line: what" for the top level (key "").
   [[noreturn]] void Fail(const YAML::Node& node, const std::string& key,
                          const std::string& what) const;

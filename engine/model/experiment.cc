@@ -7,6 +7,7 @@
 
 #include "engine/base/angle.h"
 #include "engine/data/angle_units.h"
+#include "engine/data/latent_input.h"
 #include "engine/data/noise_level.h"
 #include "engine/data/record_start.h"
 
@@ -53,6 +54,81 @@ double Median(std::vector<double> values) {
   if (values.empty()) return 0.0;
   std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
   return values[values.size() / 2];
+}
+
+
+bool IsDegreeColumn(const ExperimentSpec& spec, const std::string& column) {
+  return std::find(spec.degree_columns.begin(), spec.degree_columns.end(), column) !=
+         spec.degree_columns.end();
+}
+
+// The latent input of model input `index` (input_noise.h): the spline fitted to the samples
+// in the window (and a few beyond it, so that its ends are held by data) evaluated at the step
+// times, and the grid of its corrections.
+bool FitLatentInput(const ExperimentSpec& spec, const std::string& input,
+                    const std::string& column, int index, const Channel& channel, double t0,
+                    double t_end, const std::vector<double>& right_times,
+                    const std::vector<double>& end_times, Experiment* e,
+                    std::vector<double>* right, std::vector<double>* end, std::string* error) {
+  const InputNoiseSpec& noise = spec.input_noise.at(input);
+  constexpr int kPad = 20;
+  const auto first = std::lower_bound(channel.t.begin(), channel.t.end(), t0 - kTimeTolerance);
+  const auto last = std::upper_bound(channel.t.begin(), channel.t.end(), t_end + kTimeTolerance);
+  const long lo = std::max(0L, static_cast<long>(first - channel.t.begin()) - kPad);
+  const long hi = std::min(static_cast<long>(channel.t.size()),
+                           static_cast<long>(last - channel.t.begin()) + kPad);
+  Channel window;
+  window.t.assign(channel.t.begin() + lo, channel.t.begin() + hi);
+  window.value.assign(channel.value.begin() + lo, channel.value.begin() + hi);
+  const bool degrees = IsDegreeColumn(spec, column);
+  const double unit = degrees ? M_PI / 180.0 : 1.0;
+  LatentInputSpline spline;
+  if (!spline.Fit(window, {noise.sigma * unit, noise.knots}, error)) return false;
+  *right = spline.At(right_times);
+  *end = spline.At(end_times);
+  LatentInput latent;
+  latent.input = index;
+  latent.column = column;
+  latent.degrees = degrees;
+  latent.sigma = spline.sigma();
+  latent.sigma_estimated = !(noise.sigma > 0.0);
+  NoiseLevel level;
+  for (double v : window.value) level.Add(v);
+  latent.noise_level = level.Sigma();
+  latent.knot_spacing = spline.knot_spacing();
+  latent.sample_interval = spline.sample_interval();
+  latent.samples = spline.samples();
+  e->latent_inputs.push_back(latent);
+  if (noise.correction < 0.0) return true;
+
+  // Corrections: at most kMaxInputCorrections, each over at least kMinCorrectionSamples.
+  const double length = t_end - t0, dt = latent.sample_interval;
+  const double spacing =
+      noise.correction > 0.0
+          ? noise.correction
+          : std::max(length / kMaxInputCorrections, kMinCorrectionSamples * dt);
+  if (spacing < kMinCorrectionSamples * dt) {
+    char text[200];
+    std::snprintf(text, sizeof(text),
+                  "correction spacing %g s is shorter than %g input samples (%g s)", spacing,
+                  kMinCorrectionSamples, kMinCorrectionSamples * dt);
+    *error = text;
+    return false;
+  }
+  InputCorrectionGrid grid;
+  grid.input = index;
+  grid.spacing = spacing;
+  grid.count = std::max(1, static_cast<int>(std::ceil(length / spacing - 1e-9)));
+  grid.offset = e->num_input_corrections();
+  grid.sigma = latent.sigma * std::sqrt(dt / spacing);
+  const size_t steps = end_times.size();
+  grid.step_interval.resize(steps);
+  for (size_t s = 0; s < steps; ++s) {
+    const int j = static_cast<int>(std::floor((right_times[2 * s] - t0) / spacing));
+    grid.step_interval[s] = std::clamp(j, 0, grid.count - 1);
+  }
+  e->input_corrections.push_back(std::move(grid));
+  return true;
 }
 
 }  // namespace
@@ -229,8 +305,16 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
     auto method = spec.interpolation.find(input);
     Interpolation interpolation =
         method == spec.interpolation.end() ? spec.default_interpolation : method->second;
-    const std::vector<double> right = InterpolateAt(channel, interpolation, right_times);
-    const std::vector<double> end = InterpolateAt(channel, interpolation, end_times, true);
+    std::vector<double> right, end;
+    auto noise = spec.input_noise.find(input);
+    if (noise == spec.input_noise.end()) {
+      right = InterpolateAt(channel, interpolation, right_times);
+      end = InterpolateAt(channel, interpolation, end_times, true);
+    } else if (!FitLatentInput(spec, input, mapped->second, i, channel, t0, t_end, right_times,
+                               end_times, &e, &right, &end, error)) {
+      const std::string& key = noise->second.key;
+      return fail("input '" + input + "': " + (key.empty() ? "" : key + ": ") + *error);
+    }
     for (size_t j = 0; j < steps; ++j) {
       e.input_cache[(3 * j) * nu + i] = right[2 * j];
       e.input_cache[(3 * j + 1) * nu + i] = right[2 * j + 1];

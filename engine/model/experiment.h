@@ -16,6 +16,7 @@
 #include "engine/data/segments.h"
 #include "engine/data/trajectory.h"
 #include "engine/model/experiment_data.h"
+#include "engine/model/input_noise.h"
 #include "engine/model/model.h"
 
 namespace vesselid {
@@ -53,6 +54,8 @@ struct ExperimentSpec {
   double input_range_skip = 0.0;
   // time, position, screen and resample keys: preparation of the raw columns.
   ExperimentDataSpec data;
+  // Model input -> noise description: the input is simulated as a latent signal (input_noise.h).
+  std::map<std::string, InputNoiseSpec> input_noise;
 };
 
 struct ExperimentSample {
@@ -90,6 +93,16 @@ struct Experiment {
   std::vector<double> channel_weight;
   std::vector<double> channel_noise_power;
   std::vector<bool> wrapped_outputs;     // per model output: residual wrapped (empty: none)
+  // Inputs simulated as latent signals (input_noise.h): the input cache holds their spline,
+  // and the corrections (if any) are added per step by the cost function.
+  std::vector<LatentInput> latent_inputs;
+  std::vector<InputCorrectionGrid> input_corrections;
+
+  int num_input_corrections() const {
+    return input_corrections.empty()
+               ? 0
+               : input_corrections.back().offset + input_corrections.back().count;
+  }
 
   bool Wrapped(int output) const {
     return output < static_cast<int>(wrapped_outputs.size()) && wrapped_outputs[output];

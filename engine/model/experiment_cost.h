@@ -1,7 +1,8 @@
 // Output-error residuals of one whole experiment as a Ceres cost function.
 //
 // Parameter blocks (all of size 1): the model parameters in model order, then the initial
-// state in state order. A block holds theta = value / scale. Residual i, for sample i of
+// state in state order, then the experiment's input corrections (input_noise.h; a block holds
+// c / sigma_c). A parameter block holds theta = value / scale. Residual i, for sample i of
 // output c at node k:
 //   r_i = w_i (y_c(x_k, u_k, p) - y_i)          (wrapped to (-pi, pi] for angle outputs)
 // and, with a per-sample robust loss rho, r~_i = sign(r_i) sqrt(rho(r_i^2)) so that
@@ -41,7 +42,11 @@ class ExperimentCost final : public ceres::CostFunction {
         wrapped_(experiment->wrapped_outputs),
         loss_(loss) {
     num_parameters_ = static_cast<int>(scales_.size());
-    for (int i = 0; i < num_parameters_ + Model::kNumStates; ++i) {
+    num_corrections_ = experiment->num_input_corrections();
+    for (const InputCorrectionGrid& g : experiment->input_corrections) {
+      for (int j = 0; j < g.count; ++j) correction_scales_.push_back(g.sigma);
+    }
+    for (int i = 0; i < NumBlocks(); ++i) {
       mutable_parameter_block_sizes()->push_back(1);
     }
     set_num_residuals(experiment->num_samples());
@@ -58,7 +63,7 @@ class ExperimentCost final : public ceres::CostFunction {
   }
 
  private:
-  int NumBlocks() const { return num_parameters_ + Model::kNumStates; }
+  int NumBlocks() const { return num_parameters_ + Model::kNumStates + num_corrections_; }
 
   template <int... Sizes>
   bool Dispatch(std::integer_sequence<int, Sizes...>, int directions,
@@ -103,9 +108,15 @@ class ExperimentCost final : public ceres::CostFunction {
       Seed(parameters[num_parameters_ + i][0], 1.0, direction[num_parameters_ + i], &x[i]);
     }
 
+    std::vector<T> c(num_corrections_);
+    for (int j = 0; j < num_corrections_; ++j) {
+      const int b = num_parameters_ + n + j;
+      Seed(parameters[b][0] * correction_scales_[j], correction_scales_[j], direction[b], &c[j]);
+    }
+
     const Experiment& e = *experiment_;
     std::array<T, Model::kNumOutputs> y;
-    auto visit = [&](int k, const T* state, const double* u) {
+    auto visit = [&](int k, const T* state, const auto* u) {
       const int first = e.node_first_sample[k], last = e.node_first_sample[k + 1];
       if (first == last) return;
       model_.Output(state, u, p.data(), y.data());
@@ -119,11 +130,22 @@ class ExperimentCost final : public ceres::CostFunction {
         StoreResidual(r, i, direction, count, residuals, jacobians);
       }
     };
-    if (!SimulateExperiment(model_, e, p.data(), x.data(), visit)) return false;
+    const bool simulated = num_corrections_ == 0
+                               ? SimulateExperiment(model_, e, p.data(), x.data(), visit)
+                               : SimulateCorrected(c.data(), p.data(), x.data(), visit);
+    if (!simulated) return false;
     for (int i = 0; i < e.num_samples(); ++i) {
       if (!std::isfinite(residuals[i])) return false;
     }
     return true;
+  }
+
+  // Kept out of EvaluateScalar so that the plain path keeps its inlining (measured: inlined,
+  // the corrected simulation made the compiler outline the Jet arithmetic of the RK4 step).
+  template <class T, class Visitor>
+  __attribute__((noinline)) bool SimulateCorrected(const T* c, const T* p, T* x,
+                                                   Visitor& visit) const {
+    return SimulateExperimentCorrected(model_, *experiment_, c, p, x, visit);
   }
 
   template <class T>
@@ -153,6 +175,8 @@ class ExperimentCost final : public ceres::CostFunction {
   std::vector<bool> wrapped_;  // per output: residual wrapped to (-pi, pi] (empty: none)
   const ceres::LossFunction* loss_;
   int num_parameters_ = 0;
+  int num_corrections_ = 0;
+  std::vector<double> correction_scales_;  // sigma_c of each correction block
 };
 
 }  // namespace vesselid

@@ -3,10 +3,10 @@
 //   struct MyModel {
 //     static constexpr int kNumStates, kNumInputs, kNumOutputs;
 //     ModelInfo Info() const;                        // names, in the order of the arrays below
-//     template <class T>                              // T = double or ceres::Jet
-//     bool operator()(const T* x, const double* u, const T* p, T* xdot) const;
-//     template <class T>
-//     void Output(const T* x, const double* u, const T* p, T* y) const;
+//     template <class T, class U>                     // T = double or ceres::Jet; U = double,
+//     bool operator()(const T* x, const U* u, const T* p, T* xdot) const;  // or T where the
+//     template <class T, class U>                     // inputs are estimated (input_noise.h)
+//     void Output(const T* x, const U* u, const T* p, T* y) const;
 //   };
 //
 // Optional members, found by ModelAdapter when present:

@@ -30,9 +30,11 @@ class ModelHandle {
 
   // Simulates in double from x0 with parameters p; `outputs` gets every model output at every
   // node (row-major, nodes x outputs). False if the simulation diverges; the nodes it did not
-  // reach are then NaN (DivergenceTime, metrics.h).
+  // reach are then NaN (DivergenceTime, metrics.h). `corrections`: the experiment's input
+  // corrections (input_noise.h; null: none added to its latent inputs).
   virtual bool SimulateOutputs(const Experiment& experiment, const double* p, const double* x0,
-                               std::vector<double>* outputs) const = 0;
+                               std::vector<double>* outputs,
+                               const double* corrections = nullptr) const = 0;
 
   // The right-hand side and output map in double, for simulators and tools (not the hot path).
   virtual bool Derivative(const double* x, const double* u, const double* p,
@@ -115,17 +117,21 @@ class ModelAdapter final : public ModelHandle {
   }
 
   bool SimulateOutputs(const Experiment& e, const double* p, const double* x0,
-                       std::vector<double>* outputs) const override {
+                       std::vector<double>* outputs,
+                       const double* corrections = nullptr) const override {
     constexpr int ny = Model::kNumOutputs;
     outputs->assign(static_cast<size_t>(e.num_nodes()) * ny,
                     std::numeric_limits<double>::quiet_NaN());
     std::array<double, Model::kNumStates> x;
     std::copy(x0, x0 + Model::kNumStates, x.begin());
     double* out = outputs->data();
-    return SimulateExperiment(model_, e, p, x.data(),
-                              [&](int k, const double* state, const double* u) {
-                                model_.Output(state, u, p, out + static_cast<size_t>(k) * ny);
-                              });
+    auto visit = [&](int k, const double* state, const double* u) {
+      model_.Output(state, u, p, out + static_cast<size_t>(k) * ny);
+    };
+    if (corrections != nullptr && !e.input_corrections.empty()) {
+      return SimulateExperimentCorrected(model_, e, corrections, p, x.data(), visit);
+    }
+    return SimulateExperiment(model_, e, p, x.data(), visit);
   }
 
   bool Derivative(const double* x, const double* u, const double* p, double* xdot) const override {

@@ -4,15 +4,15 @@
 //   k3 = f(x + h/2 k2, u(t + h/2)),  k4 = f(x + h k3, u(t + h)),
 //   x(t + h) = x + h/6 (k1 + 2 k2 + 2 k3 + k4).
 // Inputs at t, t + h/2, t + h are passed in (precomputed), so a step does no lookup and no
-// allocation.
+// allocation; they are doubles, or Jets where the inputs themselves are estimated (input_noise.h).
 #pragma once
 
 #include <array>
 
 namespace vesselid {
 
-template <class Model, class T>
-bool Rk4Step(const Model& model, const double* u0, const double* u_mid, const double* u1,
+template <class Model, class T, class U>
+bool Rk4Step(const Model& model, const U* u0, const U* u_mid, const U* u1,
              const T* p, double h, T* x) {
   constexpr int n = Model::kNumStates;
   std::array<T, n> k1, k2, k3, k4, xs;

@@ -11,6 +11,7 @@
 #include "engine/run/continuation.h"
 #include "engine/run/fit_residuals.h"
 #include "engine/model/channel_weights.h"
+#include "engine/run/input_noise_notes.h"
 #include "engine/run/records.h"
 #include "engine/run/stage_weights.h"
 #include "engine/solve/noise_weights.h"
@@ -31,6 +32,7 @@ StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>
   const Uncertainty& u = summary.uncertainty;
   for (size_t i = 0; i < variables.size(); ++i) {
     const Variable& v = variables[i];
+    if (v.kind == Variable::Kind::kInputCorrection) continue;  // summarised in the notes
     Estimate e;
     e.name = v.name;
     e.kind = v.kind == Variable::Kind::kParameter ? EstimateKind::kParameter
@@ -46,9 +48,21 @@ StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>
     result.estimates.push_back(e);
   }
   if (u.available) {
-    for (int index : u.variables) result.correlation_names.push_back(variables[index].name);
-    result.correlation = u.correlation;
+    std::vector<int> kept;  // matrix rows of the reported variables (no input corrections)
+    for (size_t k = 0; k < u.variables.size(); ++k) {
+      const Variable& v = variables[u.variables[k]];
+      if (v.kind == Variable::Kind::kInputCorrection) continue;
+      kept.push_back(static_cast<int>(k));
+      result.correlation_names.push_back(v.name);
+    }
+    result.correlation.resize(kept.size(), kept.size());
+    for (size_t a = 0; a < kept.size(); ++a) {
+      for (size_t b = 0; b < kept.size(); ++b)
+        result.correlation(a, b) = u.correlation(kept[a], kept[b]);
+    }
   }
+  const std::vector<std::string> input_noise = InputNoiseNotes(problem);
+  summary.notes.insert(summary.notes.end(), input_noise.begin(), input_noise.end());
   result.summary = std::move(summary);
   return result;
 }

@@ -8,6 +8,7 @@
 #include "engine/run/parameter_ledger.h"
 #include "engine/run/record_notes.h"
 #include "engine/run/records.h"
+#include "engine/run/input_noise_warnings.h"
 #include "engine/run/run_warnings.h"
 #include "engine/run/step_regression_stage.h"
 #include "engine/run/unit_warnings.h"
@@ -251,6 +252,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
   run.zigzags = FindZigzagRuns(config, run, &cache);
   std::vector<std::string> unit_warnings;
   AddUnitWarnings(config, &cache, &unit_warnings);
+  AddInputNoiseWarnings(config, run, &cache, &unit_warnings);
   AddRunWarnings(config, &run);
   AddRecordNotes(config, cache, &run);
   run.warnings.insert(run.warnings.begin(), unit_warnings.begin(), unit_warnings.end());

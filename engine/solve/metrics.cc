@@ -92,10 +92,12 @@ bool EvaluateFit(const OutputErrorProblem& problem, std::vector<ExperimentFit>* 
     const Experiment& experiment = problem.experiments()[e];
     std::vector<double> p = problem.ParametersOf(static_cast<int>(e));
     std::vector<double> x0 = problem.InitialStateOf(static_cast<int>(e));
+    const std::vector<double> c = problem.InputCorrectionsOf(static_cast<int>(e));
     std::vector<double> outputs;
     ExperimentFit fit;
     fit.experiment = experiment.name;
-    if (!problem.model().SimulateOutputs(experiment, p.data(), x0.data(), &outputs)) {
+    if (!problem.model().SimulateOutputs(experiment, p.data(), x0.data(), &outputs,
+                                         c.empty() ? nullptr : c.data())) {
       fit.diverged = true;
       fit.message = DivergenceMessage(experiment, outputs, ny);
       if (first_divergence.empty()) first_divergence = fit.message;

@@ -110,6 +110,19 @@ void OutputErrorProblem::AddInitialStatePriors(const InitialStatePrior& prior,
   }
 }
 
+void OutputErrorProblem::AddInputCorrectionPriors(OutputErrorProblem* p) {
+  for (const Variable& v : p->variables_) {
+    if (v.kind != Variable::Kind::kInputCorrection) continue;
+    const Experiment& e = p->experiments_[v.experiment];
+    // Without an output noise level (noise-free outputs) the prior still keeps each value
+    // determined, at the weight of one sample.
+    const double weight =
+        e.prior_weight > 0.0 ? e.prior_weight : 1e-6 / std::sqrt(double(e.num_samples()));
+    p->problem_->AddResidualBlock(new PriorCost(weight / v.scale, 0.0, v.scale), nullptr,
+                                  v.block);
+  }
+}
+
 std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
     const ModelHandle* model, std::vector<Experiment> experiments,
     const std::vector<ParameterSpec>& parameters, const OutputErrorOptions& options,
@@ -154,8 +167,10 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
   // One array holds every block, in variable order, never reallocated: Ceres orders blocks
   // by address in places (covariance), so addresses must follow the variables for results
   // to be reproducible from run to run and thread to thread.
+  size_t corrections = 0;
+  for (const Experiment& e : p->experiments_) corrections += e.num_input_corrections();
   p->storage_.reserve(specs.size() * (p->experiments_.size() + 1) +
-                      info.states.size() * p->experiments_.size());
+                      info.states.size() * p->experiments_.size() + corrections);
   auto add_variable = [&](Variable v, double start) {
     p->storage_.push_back(start / v.scale);
     v.block = &p->storage_.back();
@@ -211,6 +226,19 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
           state_free[s] ? experiment.initial_state_guess[s] : experiment.initial_state[s];
       p->block_of_[e].push_back(add_variable(v, start));
     }
+    // Input corrections, free, starting at zero, block value c / sigma_c.
+    for (const InputCorrectionGrid& g : experiment.input_corrections) {
+      for (int j = 0; j < g.count; ++j) {
+        Variable v;
+        v.name = "c." + info.inputs[g.input] + "#" + std::to_string(j) + "[" + experiment.name + "]";
+        v.kind = Variable::Kind::kInputCorrection;
+        v.index = g.input;
+        v.experiment = e;
+        v.role = ParameterRole::kPerExperiment;
+        v.scale = g.sigma > 0.0 ? g.sigma : 1.0;
+        p->block_of_[e].push_back(add_variable(v, 0.0));
+      }
+    }
   }
 
   p->problem_ = std::make_unique<ceres::Problem>();
@@ -232,6 +260,7 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
         model->NewExperimentCost(&p->experiments_[e], scales, p->loss_.get()), nullptr, blocks));
   }
   AddInitialStatePriors(options.prior, p.get());
+  AddInputCorrectionPriors(p.get());
   for (const Variable& v : p->variables_) {
     if (!v.free) {
       p->problem_->SetParameterBlockConstant(v.block);
@@ -268,7 +297,15 @@ std::vector<double> OutputErrorProblem::ParametersOf(int e) const {
 std::vector<double> OutputErrorProblem::InitialStateOf(int e) const {
   std::vector<double> values;
   const size_t n = model_->info().parameters.size();
-  for (size_t j = n; j < block_of_[e].size(); ++j)
+  for (size_t j = n; j < n + model_->info().states.size(); ++j)
+    values.push_back(variables_[block_of_[e][j]].value());
+  return values;
+}
+
+std::vector<double> OutputErrorProblem::InputCorrectionsOf(int e) const {
+  std::vector<double> values;
+  const size_t first = model_->info().parameters.size() + model_->info().states.size();
+  for (size_t j = first; j < block_of_[e].size(); ++j)
     values.push_back(variables_[block_of_[e][j]].value());
   return values;
 }

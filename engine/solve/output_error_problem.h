@@ -21,10 +21,11 @@ namespace vesselid {
 
 // One scalar unknown of the problem.
 struct Variable {
-  enum class Kind { kParameter, kInitialState };
-  std::string name;  // "T1", "delta_0[run2]", "x0.psi[run2]"
+  // kInputCorrection: one low-frequency correction value of a noisy input (input_noise.h).
+  enum class Kind { kParameter, kInitialState, kInputCorrection };
+  std::string name;  // "T1", "delta_0[run2]", "x0.psi[run2]", "c.delta#3[run2]"
   Kind kind = Kind::kParameter;
-  int index = 0;        // parameter or state index in the model
+  int index = 0;        // parameter, state or input index in the model
   int experiment = -1;  // -1: shared by all experiments
   ParameterRole role = ParameterRole::kFree;
   double scale = 1.0;
@@ -77,9 +78,11 @@ class OutputErrorProblem {
   const std::vector<ceres::ResidualBlockId>& data_residual_blocks() const { return data_blocks_; }
   int num_free() const;
 
-  // Model parameters and initial state as experiment e sees them (physical units).
+  // Model parameters, initial state and input corrections (Experiment::input_corrections
+  // order) as experiment e sees them (physical units).
   std::vector<double> ParametersOf(int e) const;
   std::vector<double> InitialStateOf(int e) const;
+  std::vector<double> InputCorrectionsOf(int e) const;
 
   // Values of all variables (physical) and back; used to restart from candidates.
   std::vector<double> Values() const;
@@ -96,6 +99,8 @@ class OutputErrorProblem {
   OutputErrorProblem() = default;
   // Prior residuals and bounds of the free initial states (InitialStatePrior).
   static void AddInitialStatePriors(const InitialStatePrior& prior, OutputErrorProblem* p);
+  // Prior residuals of the input corrections: r = prior_weight c / sigma_c (input_noise.h).
+  static void AddInputCorrectionPriors(OutputErrorProblem* p);
 
   const ModelHandle* model_ = nullptr;
   std::vector<Experiment> experiments_;
@@ -104,7 +109,8 @@ class OutputErrorProblem {
   std::vector<ceres::ResidualBlockId> data_blocks_;
   std::vector<double> storage_;  // every block, reserved once: stable, ordered addresses
   std::vector<Variable> variables_;
-  // block_of_[e][j]: variable index of block j (parameters, then states) of experiment e.
+  // block_of_[e][j]: variable index of block j (parameters, states, then input corrections) of
+  // experiment e.
   std::vector<std::vector<int>> block_of_;
 };
 

@@ -81,8 +81,12 @@ std::string StartFailure(OutputErrorProblem* problem_ptr) {
     const Experiment& experiment = problem.experiments()[e];
     const std::vector<double> p = problem.ParametersOf(static_cast<int>(e));
     const std::vector<double> x0 = problem.InitialStateOf(static_cast<int>(e));
+    const std::vector<double> c = problem.InputCorrectionsOf(static_cast<int>(e));
     std::vector<double> outputs;
-    if (problem.model().SimulateOutputs(experiment, p.data(), x0.data(), &outputs)) continue;
+    if (problem.model().SimulateOutputs(experiment, p.data(), x0.data(), &outputs,
+                                        c.empty() ? nullptr : c.data())) {
+      continue;
+    }
     std::string text =
         "the simulation diverges at the start values: " + DivergenceMessage(experiment, outputs, ny);
     char part[200];

@@ -48,8 +48,8 @@ struct Model {
   ModelInfo Info() const;
   DampingInertiaForm DampingInertia() const;
 
-  template <class T>
-  bool operator()(const T* x, const double* u, const T* p, T* xdot) const {
+  template <class T, class U>
+  bool operator()(const T* x, const U* u, const T* p, T* xdot) const {
     T phi[kBasis];
     Monomials(kDegree, x[3] / speed_scale, x[4] / yaw_rate_scale, phi);
     T sigma_u = p[kSigmaU] * phi[0], sigma_r = p[kSigmaR] * phi[0];
@@ -74,8 +74,8 @@ struct Model {
     return true;
   }
 
-  template <class T>
-  void Output(const T* x, const double*, const T*, T* y) const {
+  template <class T, class U>
+  void Output(const T* x, const U*, const T*, T* y) const {
     for (int i = 0; i < kNumOutputs; ++i) y[i] = x[i];
   }
 };

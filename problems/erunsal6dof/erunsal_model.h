@@ -77,25 +77,26 @@ struct Model {
   // psi']; an unmeasured rate counts as zero, inactive DOFs stay zero.
   void GuessState(const double* y, const double* ydot, double* x) const;
 
-  template <class T>
-  bool operator()(const T* x, const double* u, const T* p, T* xdot) const;
+  template <class T, class U>
+  bool operator()(const T* x, const U* u, const T* p, T* xdot) const;
 
-  template <class T>
-  void Output(const T* x, const double* u, const T* p, T* y) const {
+  template <class T, class U>
+  void Output(const T* x, const U* u, const T* p, T* y) const {
     for (int i = 0; i < kNumStates; ++i) y[i] = x[i];
     Thrust(u, p, &y[12], &y[13]);
   }
 
  private:
-  template <class T>
-  static void Thrust(const double* u, const T* p, T* left, T* right) {
-    *left = std::isnan(u[0]) ? T(0.0) : p[kLTS] * u[0] + p[kLTO];
-    *right = std::isnan(u[1]) ? T(0.0) : p[kRTS] * u[1] + p[kRTO];
+  template <class T, class U>
+  static void Thrust(const U* u, const T* p, T* left, T* right) {
+    using std::isnan;
+    *left = isnan(u[0]) ? T(0.0) : p[kLTS] * u[0] + p[kLTO];
+    *right = isnan(u[1]) ? T(0.0) : p[kRTS] * u[1] + p[kRTO];
   }
 };
 
-template <class T>
-bool Model::operator()(const T* x, const double* u, const T* p, T* xdot) const {
+template <class T, class U>
+bool Model::operator()(const T* x, const U* u, const T* p, T* xdot) const {
   using std::abs;
   using std::cos;
   using std::sin;
@@ -171,7 +172,8 @@ bool Model::operator()(const T* x, const double* u, const T* p, T* xdot) const {
 
   // Air drag on the velocity relative to the wind (still air when no wind input).
   T u_rw = uu, v_rw = v;
-  if (!std::isnan(u[2]) && !std::isnan(u[3]) && u[2] != 0.0) {
+  using std::isnan;
+  if (!isnan(u[2]) && !isnan(u[3]) && u[2] != 0.0) {
     u_rw -= u[2] * cos(u[3] - psi);
     v_rw -= u[2] * sin(u[3] - psi);
   }

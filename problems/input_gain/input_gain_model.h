@@ -126,8 +126,8 @@ class InputGainModel {
   }
 
   // T_s(x) of the configured law (thrust_law.h); p: all parameters.
-  template <class T>
-  T StaticThrust(double x, const T* p) const {
+  template <class T, class U>
+  T StaticThrust(const U& x, const T* p) const {
     const T* prop = p + PropellerIndex();
     const T zero(0.0);
     const T d_f = law_.dead_zone ? prop[thrust_.d_f] : zero;
@@ -148,8 +148,8 @@ class InputGainModel {
     return zero;
   }
 
-  template <class T>
-  bool operator()(const T* x, const double* in, const T* p, T* xdot) const {
+  template <class T, class U>
+  bool operator()(const T* x, const U* in, const T* p, T* xdot) const {
     using std::cos;
     using std::sin;
     const T& psi = x[2];
@@ -181,8 +181,8 @@ class InputGainModel {
     return IsFinite(xdot[3]) && IsFinite(xdot[4]) && IsFinite(xdot[5]);
   }
 
-  template <class T>
-  void Output(const T* x, const double* u, const T* p, T* y) const {
+  template <class T, class U>
+  void Output(const T* x, const U* u, const T* p, T* y) const {
     for (int i = 0; i < 6; ++i) y[i] = x[i];
   }
 

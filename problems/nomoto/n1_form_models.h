@@ -72,16 +72,18 @@ struct N1Form {
   }
 
   // s = U/L, or 1 without a length; NaN when the speed is not a positive number.
-  double SpeedRatio(const double* u) const {
-    if (!speed()) return 1.0;
-    return u[1] > 0.0 ? u[1] / length : std::nan("");
+  template <class U>
+  U SpeedRatio(const U* u) const {
+    if (!speed()) return U(1.0);
+    return u[1] > 0.0 ? U(u[1] / length) : U(std::nan(""));
   }
 
-  template <class T>
-  bool operator()(const T* x, const double* u, const T* p, T* xdot) const {
+  template <class T, class U>
+  bool operator()(const T* x, const U* u, const T* p, T* xdot) const {
     const T& time_constant = p[0];
-    const double s = SpeedRatio(u);
-    if (!(time_constant > 0.0) || !std::isfinite(s)) return false;
+    using std::isfinite;
+    const U s = SpeedRatio(u);
+    if (!(time_constant > 0.0) || !isfinite(s)) return false;
     const T& r = x[1];
     xdot[0] = r;
     T rate = s * s * p[1] * (u[0] + p[delta_0()]) - s * p[2] * r;
@@ -90,8 +92,8 @@ struct N1Form {
     return true;
   }
 
-  template <class T>
-  void Output(const T* x, const double*, const T*, T* y) const {
+  template <class T, class U>
+  void Output(const T* x, const U*, const T*, T* y) const {
     y[0] = x[0];
     y[1] = x[1];
   }

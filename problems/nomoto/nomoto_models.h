@@ -59,8 +59,8 @@ struct FirstOrder {
             {"rad", "rad/s"},     {"rad"}};
   }
 
-  template <class T>
-  bool operator()(const T* x, const double* u, const T* p, T* xdot) const {
+  template <class T, class U>
+  bool operator()(const T* x, const U* u, const T* p, T* xdot) const {
     const T& time_constant = p[0];
     if (!(time_constant > 0.0)) return false;
     xdot[0] = x[1];
@@ -84,8 +84,8 @@ struct FirstOrder {
   }
   int Region(const double*) const { return 0; }
 
-  template <class T>
-  void Output(const T* x, const double* u, const T* p, T* y) const {
+  template <class T, class U>
+  void Output(const T* x, const U* u, const T* p, T* y) const {
     y[0] = x[0];
     y[1] = x[1];
   }
@@ -111,8 +111,8 @@ struct Norrbin {
             {"rad"}};
   }
 
-  template <class T>
-  bool operator()(const T* x, const double* u, const T* p, T* xdot) const {
+  template <class T, class U>
+  bool operator()(const T* x, const U* u, const T* p, T* xdot) const {
     const T& time_constant = p[0];
     if (!(time_constant > 0.0)) return false;
     const T& r = x[1];
@@ -138,8 +138,8 @@ struct Norrbin {
   }
   int Region(const double*) const { return 0; }
 
-  template <class T>
-  void Output(const T* x, const double* u, const T* p, T* y) const {
+  template <class T, class U>
+  void Output(const T* x, const U* u, const T* p, T* y) const {
     y[0] = x[0];
     y[1] = x[1];
   }
@@ -165,8 +165,8 @@ struct SecondOrder {
             {"rad"}};
   }
 
-  template <class T>
-  bool operator()(const T* x, const double* u, const T* p, T* xdot) const {
+  template <class T, class U>
+  bool operator()(const T* x, const U* u, const T* p, T* xdot) const {
     const T product = p[0] * p[1];
     if (!(product > 0.0)) return false;
     xdot[0] = p[3] * (x[1] + p[2] * x[2]);
@@ -175,8 +175,8 @@ struct SecondOrder {
     return true;
   }
 
-  template <class T>
-  void Output(const T* x, const double* u, const T* p, T* y) const {
+  template <class T, class U>
+  void Output(const T* x, const U* u, const T* p, T* y) const {
     y[0] = x[0];
     y[1] = p[3] * (x[1] + p[2] * x[2]);
   }

@@ -46,16 +46,16 @@ struct SecondOrderRates {
             {}};
   }
 
-  template <class T>
-  bool operator()(const T* x, const double* u, const T* p, T* xdot) const {
+  template <class T, class U>
+  bool operator()(const T* x, const U* u, const T* p, T* xdot) const {
     xdot[0] = x[1] + p[3] * x[2];
     xdot[1] = x[2];
     xdot[2] = p[2] * (u[0] + p[4]) - p[1] * x[1] - p[0] * x[2];
     return true;
   }
 
-  template <class T>
-  void Output(const T* x, const double*, const T* p, T* y) const {
+  template <class T, class U>
+  void Output(const T* x, const U*, const T* p, T* y) const {
     y[0] = x[0];
     y[1] = x[1] + p[3] * x[2];
   }

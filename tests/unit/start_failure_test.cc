@@ -30,13 +30,13 @@ struct SqrtDecay {
     info.parameter_defaults = {1.0, 1.0};
     return info;
   }
-  template <class T>
-  bool operator()(const T* x, const double* u, const T* p, T* xdot) const {
+  template <class T, class U>
+  bool operator()(const T* x, const U* u, const T* p, T* xdot) const {
     xdot[0] = -sqrt(p[0]) * x[0] + p[1] * u[0];
     return true;
   }
-  template <class T>
-  void Output(const T* x, const double*, const T*, T* y) const {
+  template <class T, class U>
+  void Output(const T* x, const U*, const T*, T* y) const {
     y[0] = x[0];
   }
   std::vector<std::string> Admissibility(const double* p) const {

@@ -1,0 +1,34 @@
+// Detection of white noise on a measured input that the run treats as exact: for each
+// experiment input not listed in the experiment's `input_noise`, a warning naming the
+// experiment, the input and the estimated noise SD, suggesting `input_noise: {<input>: auto}`,
+// when all of these hold:
+//   * the input's noise level (second differences, noise_level.h) is at least kRatio of its
+//     standard deviation over the window;
+//   * it is white: consecutive first differences d_k = u_k - u_k-1 correlate by about -1/2
+//     (white noise), not by about +1 (a signal smooth on the sampling scale); held and
+//     quantised inputs (PWM steps, a zigzag rudder held constant, where most d_k are 0) are
+//     passed over;
+//   * the outputs' residuals of a stage that fitted the experiment are coloured: the variance
+//     of their means over blocks of B samples is above twice sigma^2 / B (what white residuals
+//     give). The input noise integrated by the model shows as such slow residuals.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/run/records.h"
+#include "engine/run/run_config.h"
+#include "engine/run/run_result.h"
+
+namespace vesselid {
+
+void AddInputNoiseWarnings(const RunConfig& config, const RunResult& run, TrajectoryCache* cache,
+                           std::vector<std::string>* warnings);
+
+// The test on one input's samples: its white-noise SD, or 0 when it has none that matters.
+double WhiteInputNoise(const std::vector<double>& values);
+
+// Whether a residual series is coloured (block means vary more than white noise allows).
+bool ResidualsColoured(const std::vector<double>& residuals);
+
+}  // namespace vesselid
