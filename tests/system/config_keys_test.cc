@@ -146,7 +146,7 @@ const KeyCase kCases[] = {
     {"continuation", V, V.K("    continuation: [20]")},
     {"continuation_on_segments", V.E("[s]"), V.E("[s]").K("    continuation: [20]")},
     {"uncertainty", V, V.K("    uncertainty: false")},
-    {"uncertainty_method", V, V.K("    uncertainty: {method: sandwich_hac}")},
+    {"uncertainty_method", V, V.K("    uncertainty: {method: hessian}")},
     {"uncertainty_bandwidth", V.K("    uncertainty: {method: sandwich_hac}"),
      V.K("    uncertainty: {method: sandwich_hac, bandwidth: 3}")},
     {"uncertainty_aggregation", V.K("    uncertainty: {method: sandwich_hac}"),

@@ -90,14 +90,16 @@ TEST_F(MonteCarloNoise, InputNoiseWidensTheSpreadAndEveryCoverageIsCounted) {
   EXPECT_EQ(without["noisy_inputs"], json::array());
   EXPECT_EQ(with["noisy_inputs"], json::array({"delta"}));
   EXPECT_DOUBLE_EQ(with["noise"]["delta"].get<double>(), kRudder);
-  EXPECT_EQ(with["uncertainty_method"], "hessian");
+  // The rudder noise colours the residuals: the stage's default method reports the HAC.
+  EXPECT_EQ(without["uncertainty_method"], "hessian");
+  EXPECT_EQ(with["uncertainty_method"], "sandwich_hac");
   ASSERT_EQ(with["summary"]["usable_runs"], 20);
   ASSERT_EQ(without["summary"]["usable_runs"], 20);
   for (size_t r = 0; r < 20; ++r) {
     EXPECT_NE(with["cases"][r]["estimates"], without["cases"][r]["estimates"]) << "run " << r;
   }
-  // Measured: SD 2.1 times wider for T1, T2, T3 and 4.5 times for K; K's intervals cover the
-  // truth in 35 % of the runs.
+  // Measured: SD 2.1 times wider for T1, T2, T3 and 4.5 times for K; with the Hessian K's
+  // intervals covered the truth in 35 % of the runs (the HAC: below).
   for (size_t k = 0; k < 4; ++k) {
     const json& a = without["summary"]["parameters"][k];
     const json& b = with["summary"]["parameters"][k];
@@ -111,11 +113,12 @@ TEST_F(MonteCarloNoise, InputNoiseWidensTheSpreadAndEveryCoverageIsCounted) {
   ASSERT_EQ(folder_->Study("inputs.yaml", "inputs_one", &messages, "--threads 1"), 0) << messages;
   EXPECT_EQ(testing::ComparableStudy(folder_->Load("inputs_one")),
             testing::ComparableStudy(folder_->Load("inputs")));
-  const std::string note = "K: the reported 95 % intervals covered the truth in";
-  EXPECT_NE(messages.find("note: study monte_carlo: " + note), std::string::npos) << messages;
-  bool noted = false;
-  for (const json& n : with["notes"]) noted |= n.get<std::string>().rfind(note, 0) == 0;
-  EXPECT_TRUE(noted) << with["notes"];
+  // With the HAC (measured: coverage 95, 95, 95, 90 % over these 20 runs; SE / SD 0.84-1.24)
+  // the intervals are honest where the Hessian's covered K in 35 % of the runs.
+  for (const json& p : with["summary"]["parameters"]) {
+    EXPECT_GE(p["coverage"].get<double>(), 0.8) << p["name"];
+    EXPECT_GT(p["std_error_over_sd"].get<double>(), 0.6) << p["name"];
+  }
 }
 
 TEST_F(MonteCarloNoise, BootstrapIsAroundTheRunsOwnEstimate) {
