@@ -116,10 +116,14 @@ void OutputErrorProblem::AddInputCorrectionPriors(OutputErrorProblem* p) {
     const Experiment& e = p->experiments_[v.experiment];
     // Without an output noise level (noise-free outputs) the prior still keeps each value
     // determined, at the weight of one sample.
-    const double weight =
-        e.prior_weight > 0.0 ? e.prior_weight : 1e-6 / std::sqrt(double(e.num_samples()));
-    p->problem_->AddResidualBlock(new PriorCost(weight / v.scale, 0.0, v.scale), nullptr,
-                                  v.block);
+    // The experiment's prior weight is read live (noise weights rescale it).
+    static const double kUnit = 1.0;
+    PriorCost* cost =
+        e.prior_weight > 0.0
+            ? new PriorCost(&e.prior_weight, 1.0 / v.scale, 0.0, v.scale)
+            : new PriorCost(&kUnit, 1e-6 / std::sqrt(double(e.num_samples())) / v.scale, 0.0,
+                            v.scale);
+    p->problem_->AddResidualBlock(cost, nullptr, v.block);
   }
 }
 
