@@ -12,7 +12,7 @@
 namespace vesselid {
 
 template <class Model, class T, class U>
-bool Rk4Step(const Model& model, const U* u0, const U* u_mid, const U* u1,
+__attribute__((flatten)) bool Rk4Step(const Model& model, const U* u0, const U* u_mid, const U* u1,
              const T* p, double h, T* x) {
   constexpr int n = Model::kNumStates;
   std::array<T, n> k1, k2, k3, k4, xs;
