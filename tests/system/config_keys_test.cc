@@ -162,6 +162,13 @@ const KeyCase kCases[] = {
     // Six experiments: a, b, c and the three segments of s.
     {"uncertainty_experiment_bootstrap", V.E("[a, b, c, s]"),
      V.E("[a, b, c, s]").K("    uncertainty: {method: experiment_bootstrap, runs: 10}")},
+    // Six segments of 20 s cut from a's 120 s.
+    {"uncertainty_experiment_bootstrap_segment_length", V.E("[a]").A(", segment_length: 20"),
+     V.E("[a]").A(", segment_length: 20")
+         .K("    uncertainty: {method: experiment_bootstrap, runs: 10}")},
+    // Three segments: known only from the data, a warning and auto's figures.
+    {"uncertainty_experiment_bootstrap_three_segments", V.E("[s]"),
+     V.E("[s]").K("    uncertainty: {method: experiment_bootstrap, runs: 10}")},
     {"uncertainty_experiment_bootstrap_few", V,
      V.K("    uncertainty: {method: experiment_bootstrap}"),
      "config.yaml:12: stages[0].uncertainty.method: experiment_bootstrap in stage 'fit' needs at "
