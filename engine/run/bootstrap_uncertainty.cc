@@ -273,6 +273,18 @@ void BootstrapStageUncertainty(const StageOptions& options, const OutputErrorOpt
                   runs, failed, count);
   }
   u.method_reason = text;
+  // A variable every replicate leaves at one value (held by a bound): its SE 0 says nothing.
+  std::string constant;
+  for (size_t i = 0; i < variables.size(); ++i) {
+    if (u.std_errors[i] == 0.0) {
+      constant += (constant.empty() ? "" : ", ") + solved->variables()[variables[i]].name;
+    }
+  }
+  if (!constant.empty()) {
+    summary->notes.push_back(std::string(kBootstrapNote) + " " + method + ": " + constant +
+                             " took the same value in every replicate (held by a bound): the "
+                             "standard error 0 does not measure its uncertainty");
+  }
   summary->uncertainty = std::move(u);
 }
 
