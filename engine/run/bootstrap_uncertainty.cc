@@ -171,12 +171,27 @@ void BootstrapStageUncertainty(const StageOptions& options, const OutputErrorOpt
       if (solved->variables()[i].free) variables.push_back(static_cast<int>(i));
     }
   }
+  const std::vector<ParameterSpec> specs = EstimateSpecs(*solved);
+  const std::vector<double> estimate = solved->Values();
   BlockData data;
   double block_seconds = 0.0;
   if (blocks) {
+    // A robust loss scales the residuals the problem returns: evaluate them without it.
+    OutputErrorProblem* residuals = solved;
+    std::unique_ptr<OutputErrorProblem> plain;
+    if (problem_options.loss != "none") {
+      OutputErrorOptions no_loss = problem_options;
+      no_loss.loss = "none";
+      std::string error;
+      plain = OutputErrorProblem::Create(&solved->model(), original, specs, no_loss, &error);
+      if (plain != nullptr && plain->variables().size() == estimate.size()) {
+        plain->SetValues(estimate);
+        residuals = plain.get();
+      }
+    }
     for (int e = 0; e < count; ++e) {
       std::vector<double> d;
-      if (!SimulatedMinusMeasured(solved, e, &d)) {
+      if (!SimulatedMinusMeasured(residuals, e, &d)) {
         summary->notes.push_back(std::string(kBootstrapNote) + " " + method +
                                  ": the residuals of " + original[e].name +
                                  " could not be evaluated" + keeping);
@@ -193,8 +208,6 @@ void BootstrapStageUncertainty(const StageOptions& options, const OutputErrorOpt
       }
     }
   }
-  const std::vector<ParameterSpec> specs = EstimateSpecs(*solved);
-  const std::vector<double> estimate = solved->Values();
   StageOptions replicate_options = options;
   replicate_options.use_global_start = false;
   replicate_options.compute_uncertainty = false;
