@@ -90,8 +90,11 @@ std::string ColouredResidualWarning(const std::string& stage, const std::string&
                 kWhitenessLevel);
   const std::string& reason = uncertainty.method_reason;
   std::string consequence;
-  if (uncertainty.method == "hessian") {
-    // The HAC's own figures, computed beside the Hessian (uncertainty_method.h), say by how much.
+  if (uncertainty.method == "hessian" && reason.rfind("auto:", 0) == 0) {
+    // `auto` kept the Hessian: the HAC beside it (uncertainty_method.h) found the intervals hold.
+    consequence = "; the HAC standard errors, which allow for serially correlated residuals, "
+                  "are close to the Hessian ones reported (" + reason + ")";
+  } else if (uncertainty.method == "hessian") {
     consequence = "; the Hessian standard errors assume white residuals and are too narrow" +
                   (reason.empty() ? std::string() : " (" + reason + ")");
   } else {
