@@ -489,6 +489,7 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
   if (node["local"]) ReadLocal(reader, node["local"], Child(path, "local"), &stage.options.local);
   if (const YAML::Node n = node["uncertainty"]) {
     ReadUncertainty(reader, n, Child(path, "uncertainty"), &stage.options);
+    CheckBootstrapExperiments(reader, n, Child(path, "uncertainty"), config, stage);
   }
   const ModelHandle& model = config.StageModel(stage);
   if (const YAML::Node ls = node["least_squares"]) {

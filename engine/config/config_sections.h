@@ -22,6 +22,11 @@ void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::str
 // (uncertainty_config.cc) over the values already in `options`.
 void ReadUncertainty(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                      StageOptions* options);
+// experiment_bootstrap refused (file:line) when the stage's experiments are known to be fewer
+// than kMinBootstrapExperiments (none cut into segments or ranges).
+void CheckBootstrapExperiments(const YamlReader& reader, const YAML::Node& node,
+                               const std::string& path, const RunConfig& config,
+                               const StageConfig& stage);
 
 // Fails unless every name is in `known` (a model's `kind` names, e.g. outputs).
 void CheckNames(const YamlReader& reader, const YAML::Node& node, const std::string& key,

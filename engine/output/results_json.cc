@@ -243,6 +243,11 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
                       {"method", u.method},
                       {"method_reason", u.method_reason}};
   if (u.method == "sandwich_hac") j["uncertainty"]["bandwidth"] = u.hac_bandwidth;
+  if (u.bootstrap_runs > 0) {
+    j["uncertainty"]["runs"] = u.bootstrap_runs;
+    j["uncertainty"]["failed"] = u.bootstrap_failed;
+    if (u.method == "block_bootstrap") j["uncertainty"]["block_length"] = u.block_length;
+  }
   if (u.available) {
     json matrix = json::array();
     for (int r = 0; r < stage.correlation.rows(); ++r) {

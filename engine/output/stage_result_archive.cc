@@ -55,7 +55,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LocalSolveSummary, run, usable, initial_cost,
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Uncertainty, available, message, variables, covariance,
                                    correlation, std_errors, residual_variance, undetermined,
                                    undetermined_variables, method, hessian_std_errors,
-                                   method_reason, hac_bandwidth)
+                                   method_reason, hac_bandwidth, bootstrap_runs,
+                                   bootstrap_failed, block_length)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(WeakDirection, combination, coefficients, eigenvalue_ratio,
                                    std_dev, std_dev_normalised, status)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LocalAnalysis, available, message, parameters, names,
@@ -107,7 +108,9 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BootstrapSummary, runs, failed, groups, resam
                                    message, time_seconds)
 
 namespace {
-constexpr int kArchiveVersion = 3;  // 3: Uncertainty method, hessian_std_errors, method_reason, hac_bandwidth
+// 3: Uncertainty method, hessian_std_errors, method_reason, hac_bandwidth; 4: bootstrap runs,
+// failed, block length
+constexpr int kArchiveVersion = 4;
 }  // namespace
 
 nlohmann::json StageResultToArchive(const StageResult& stage) {

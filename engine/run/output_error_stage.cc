@@ -8,7 +8,9 @@
 #include <map>
 #include <memory>
 
+#include "engine/run/bootstrap_uncertainty.h"
 #include "engine/run/continuation.h"
+#include "engine/run/estimate_specs.h"
 #include "engine/run/fit_residuals.h"
 #include "engine/model/channel_weights.h"
 #include "engine/run/input_noise_notes.h"
@@ -76,25 +78,7 @@ std::unique_ptr<OutputErrorProblem> RefineFrom(const OutputErrorProblem& solved,
                                                const StageConfig& stage, StageOptions options,
                                                StageSummary* summary, std::string* error) {
   const ModelHandle& model = solved.model();
-  const std::vector<double> values = solved.ParametersOf(0);
-  std::vector<ParameterSpec> specs;
-  for (size_t i = 0; i < values.size(); ++i) {
-    const Variable* parameter = nullptr;
-    for (const Variable& v : solved.variables()) {
-      if (v.kind == Variable::Kind::kParameter && v.index == static_cast<int>(i)) parameter = &v;
-    }
-    ParameterSpec spec;
-    spec.name = model.info().parameters[i];
-    spec.start = values[i];
-    spec.role = parameter->role;
-    spec.lower = parameter->lower;
-    spec.upper = parameter->upper;
-    spec.scale = parameter->scale;
-    if (!parameter->free && spec.role != ParameterRole::kPerExperiment) {
-      spec.role = ParameterRole::kFixed;
-    }
-    specs.push_back(spec);
-  }
+  const std::vector<ParameterSpec> specs = EstimateSpecs(solved);
   std::unique_ptr<OutputErrorProblem> refined =
       OutputErrorProblem::Create(&model, std::move(experiments), specs, stage.problem, error);
   if (refined == nullptr) return nullptr;
@@ -325,6 +309,10 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
                          error) ||
       !HandleOutliers(stage, options, &problem, &summary, error)) {
     return false;
+  }
+  if (options.compute_uncertainty && IsBootstrap(options.uncertainty.method)) {
+    // On the final problem: after the noise weights, step reductions and outlier refinement.
+    BootstrapStageUncertainty(options, stage.problem, problem.get(), &summary);
   }
   summary.notes.insert(summary.notes.begin(), continuation_notes.begin(), continuation_notes.end());
   summary.time_seconds =

@@ -83,14 +83,27 @@ std::string DescribeResiduals(const ResidualAnalysis& a) {
 
 std::string ColouredResidualWarning(const std::string& stage, const std::string& output,
                                     const std::vector<const ResidualAnalysis*>& coloured,
-                                    int analysed) {
+                                    int analysed, const Uncertainty& uncertainty) {
   char count[96];
   std::snprintf(count, sizeof(count),
                 " in %zu of %d experiment(s) (Ljung-Box p < %g): ", coloured.size(), analysed,
                 kWhitenessLevel);
+  const std::string& reason = uncertainty.method_reason;
+  std::string consequence;
+  if (uncertainty.method == "hessian" && reason.rfind("auto:", 0) == 0) {
+    // `auto` kept the Hessian: the HAC beside it (uncertainty_method.h) found the intervals hold.
+    consequence = "; the HAC standard errors, which allow for serially correlated residuals, "
+                  "are close to the Hessian ones reported (" + reason + ")";
+  } else if (uncertainty.method == "hessian") {
+    consequence = "; the Hessian standard errors assume white residuals and are too narrow" +
+                  (reason.empty() ? std::string() : " (" + reason + ")");
+  } else {
+    consequence = "; the standard errors reported are the " + uncertainty.method +
+                  " ones, which allow for serially correlated residuals" +
+                  (reason.empty() ? std::string() : " (" + reason + ")");
+  }
   return "stage '" + stage + "': the residuals of " + output + " are coloured" + count +
-         Experiments(Worst(coloured), false) +
-         "; the Hessian standard errors assume white residuals and are too narrow";
+         Experiments(Worst(coloured), false) + consequence;
 }
 
 std::string InputCorrelatedResidualWarning(const std::string& stage, const std::string& output,
@@ -124,7 +137,8 @@ void AddResidualWarnings(const StageResult& stage, std::vector<std::string>* war
   for (const std::string& output : outputs) {
     if (!coloured[output].empty()) {
       warnings->push_back(
-          ColouredResidualWarning(stage.name, output, coloured[output], analysed[output]));
+          ColouredResidualWarning(stage.name, output, coloured[output], analysed[output],
+                                  stage.summary.uncertainty));
     }
     if (!correlated[output].empty()) {
       warnings->push_back(

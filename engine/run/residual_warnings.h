@@ -18,10 +18,12 @@ namespace vesselid {
 std::string DescribeResiduals(const ResidualAnalysis& a);
 
 // The warning for one stage's output whose residuals are coloured in `coloured` of its
-// `analysed` experiments (the worst, largest |lag-1|, named first, at most six).
+// `analysed` experiments (the worst, largest |lag-1|, named first, at most six), with what it
+// means for the stage's standard errors: too narrow when `uncertainty` is the Hessian's (and
+// by how much the HAC beside it says), allowed for when it is the HAC's.
 std::string ColouredResidualWarning(const std::string& stage, const std::string& output,
                                     const std::vector<const ResidualAnalysis*>& coloured,
-                                    int analysed);
+                                    int analysed, const Uncertainty& uncertainty);
 
 // The warning for one stage's output whose residuals are correlated with past inputs.
 std::string InputCorrelatedResidualWarning(const std::string& stage, const std::string& output,

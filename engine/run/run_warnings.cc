@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <map>
 
+#include "engine/run/bootstrap_uncertainty.h"
 #include "engine/run/bootstrap_warnings.h"
 #include "engine/run/compensation_warnings.h"
 #include "engine/run/residual_warnings.h"
@@ -41,7 +42,7 @@ void FailedFits(const std::string& where, const std::vector<ExperimentFit>& fits
 // did not settle or could not be estimated.
 bool WarningNote(const std::string& note) {
   return note.rfind("integration step", 0) == 0 || note.rfind("outliers:", 0) == 0 ||
-         note.rfind(kNarrowHessianNote, 0) == 0 ||
+         note.rfind(kNarrowHessianNote, 0) == 0 || note.rfind(kBootstrapNote, 0) == 0 ||
          note.rfind("noise weights:", 0) == 0 ||
          note.find(" is at its lower bound") != std::string::npos ||
          note.find(" is at its upper bound") != std::string::npos ||

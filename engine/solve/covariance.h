@@ -33,6 +33,9 @@ struct Uncertainty {
   std::vector<double> hessian_std_errors;  // empty when method is "hessian"
   std::string method_reason;
   double hac_bandwidth = 0.0;  // sandwich_hac: largest kernel bandwidth S, in time nodes
+  // Bootstrap methods: replicates run and failed; block_bootstrap: the longest block, s.
+  int bootstrap_runs = 0, bootstrap_failed = 0;
+  double block_length = 0.0;
 
   // Standard error of variable `index`, or NaN if unknown.
   double StdError(int index) const;

@@ -19,8 +19,10 @@
 
 namespace vesselid {
 
-inline constexpr double kNoiseTolerance = 0.01;
-inline constexpr int kNoiseMaxResolves = 5;
+// 5 %: a sigma within it moves the weights (and the estimate) by less; each re-solve repeats
+// the stage's whole refinement, so the loop stops there.
+inline constexpr double kNoiseTolerance = 0.05;
+inline constexpr int kNoiseMaxResolves = 3;
 
 // A stage's noise model as reported. `method` "noise" when estimated (active), "given" for
 // the configured weights (nothing else set then).

@@ -31,13 +31,18 @@ const char* UncertaintyMethodToString(UncertaintyMethod method) {
       return "hessian";
     case UncertaintyMethod::kSandwichHac:
       return "sandwich_hac";
+    case UncertaintyMethod::kBlockBootstrap:
+      return "block_bootstrap";
+    case UncertaintyMethod::kExperimentBootstrap:
+      return "experiment_bootstrap";
   }
   return "auto";
 }
 
 bool StringToUncertaintyMethod(const std::string& text, UncertaintyMethod* method) {
   for (UncertaintyMethod m :
-       {UncertaintyMethod::kAuto, UncertaintyMethod::kHessian, UncertaintyMethod::kSandwichHac}) {
+       {UncertaintyMethod::kAuto, UncertaintyMethod::kHessian, UncertaintyMethod::kSandwichHac,
+        UncertaintyMethod::kBlockBootstrap, UncertaintyMethod::kExperimentBootstrap}) {
     if (text == UncertaintyMethodToString(m)) {
       *method = m;
       return true;
@@ -66,9 +71,12 @@ UncertaintyMethod ChooseUncertaintyMethod(const std::vector<StdErrorRatio>& rati
   return UncertaintyMethod::kHessian;
 }
 
-bool ComputeStageUncertainty(const UncertaintyOptions& options, OutputErrorProblem* problem,
+bool ComputeStageUncertainty(const UncertaintyOptions& configured, OutputErrorProblem* problem,
                              double final_cost, Uncertainty* uncertainty,
                              std::vector<std::string>* notes) {
+  // A bootstrap replaces these figures after the final solve; until then, those of `auto`.
+  UncertaintyOptions options = configured;
+  if (IsBootstrap(options.method)) options.method = UncertaintyMethod::kAuto;
   Uncertainty hessian;
   if (!ComputeUncertainty(problem, final_cost, &hessian)) {
     *uncertainty = hessian;

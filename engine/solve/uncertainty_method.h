@@ -1,7 +1,10 @@
 // How a stage estimates the covariance of its estimate (`uncertainty: {method: ...}`):
 //   hessian       s^2 (J^T J)^-1 (covariance.h): right for white residuals;
 //   sandwich_hac  A^-1 B A^-1 with the residuals' serial correlation in B (hac_covariance.h);
-//   auto          both, and the HAC when residuals are serially correlated (the rule below).
+//   auto          both, and the HAC when residuals are serially correlated (the rule below);
+//   block_bootstrap, experiment_bootstrap   the spread of re-solved replicates
+//                 (engine/run/bootstrap_uncertainty.h), computed after the stage's final
+//                 solve; until then, and where it cannot be, the stage keeps `auto`'s figures.
 #pragma once
 
 #include <string>
@@ -13,14 +16,35 @@
 
 namespace vesselid {
 
-enum class UncertaintyMethod { kAuto, kHessian, kSandwichHac };
+enum class UncertaintyMethod {
+  kAuto,
+  kHessian,
+  kSandwichHac,
+  kBlockBootstrap,
+  kExperimentBootstrap
+};
+
+inline bool IsBootstrap(UncertaintyMethod method) {
+  return method == UncertaintyMethod::kBlockBootstrap ||
+         method == UncertaintyMethod::kExperimentBootstrap;
+}
 
 const char* UncertaintyMethodToString(UncertaintyMethod method);  // "auto", "hessian", ...
 bool StringToUncertaintyMethod(const std::string& text, UncertaintyMethod* method);
 
+// The bootstrap methods' settings (`runs`, `block_length`, `seed`).
+struct BootstrapOptions {
+  int runs = 100;             // replicates, >= kMinBootstrapRuns
+  double block_length = 0.0;  // block_bootstrap: s; 0: auto (sqrt of the experiment's nodes)
+  unsigned seed = 1;          // replicate r of part p draws from CaseSeed(seed, p, r)
+  int num_threads = 0;        // replicates in parallel; <= 0: the machine's cores
+};
+inline constexpr int kMinBootstrapRuns = 10;
+
 struct UncertaintyOptions {
   UncertaintyMethod method = UncertaintyMethod::kAuto;
   HacOptions hac;
+  BootstrapOptions bootstrap;
 };
 
 // HAC standard error over the Hessian's above which the residuals count as serially

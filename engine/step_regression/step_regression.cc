@@ -27,6 +27,23 @@ void Normalise(const SampleSet& set, TermRegression* term) {
 }
 
 // Normalised regressors: the polynomial basis, then (inertia) the asymptotic term.
+void NormalisedTarget(const SampleSet& set, const TermRegression& term, Eigen::VectorXd* y,
+                      Eigen::VectorXd* w) {
+  y->resize(set.y.size());
+  w->resize(set.y.size());
+  for (size_t i = 0; i < set.y.size(); ++i) {
+    (*y)[i] = (set.y[i] - term.mean_y) / term.sd_y;
+    (*w)[i] = set.w[i];
+  }
+}
+
+LassoOptions TermLassoOptions(const StepRegressionOptions& options, int columns) {
+  LassoOptions lasso = options.lasso;
+  lasso.penalty_factors = Eigen::VectorXd::Ones(columns);
+  lasso.penalty_factors[0] = 0.0;  // intercept
+  return lasso;
+}
+
 Eigen::MatrixXd Regressors(int degree, const SampleSet& set, const TermRegression& term,
                            bool asymptote, int asymptote_state, double a_n, double b_n) {
   const int nb = NumMonomials(degree);
@@ -58,14 +75,9 @@ bool RegressTerm(const DampingInertiaForm& form, const SampleSet& set, bool iner
              " coefficients (more steady states or steps are needed)";
     return false;
   }
-  Eigen::VectorXd y(set.y.size()), w(set.y.size());
-  for (size_t i = 0; i < set.y.size(); ++i) {
-    y[i] = (set.y[i] - term->mean_y) / term->sd_y;
-    w[i] = set.w[i];
-  }
-  LassoOptions lasso = options.lasso;
-  lasso.penalty_factors = Eigen::VectorXd::Ones(columns);
-  lasso.penalty_factors[0] = 0.0;  // intercept
+  Eigen::VectorXd y, w;
+  NormalisedTarget(set, *term, &y, &w);
+  const LassoOptions lasso = TermLassoOptions(options, columns);
   const int s = form.asymptote_state;
   std::vector<std::pair<double, double>> grid = {{0.0, 0.0}};
   if (inertia) {

@@ -37,14 +37,9 @@ bool RefitHeld(const DampingInertiaForm& form, const SampleSet& set, bool inerti
   const int s = form.asymptote_state;
   const double a_n = term->a * term->sd_x[s], b_n = (term->b - term->mean_x[s]) / term->sd_x[s];
   const Eigen::MatrixXd x = Regressors(form.degree, set, *term, inertia, s, a_n, b_n);
-  Eigen::VectorXd y(set.y.size()), w(set.y.size());
-  for (size_t i = 0; i < set.y.size(); ++i) {
-    y[i] = (set.y[i] - term->mean_y) / term->sd_y;
-    w[i] = set.w[i];
-  }
-  LassoOptions lasso = options.lasso;
-  lasso.penalty_factors = Eigen::VectorXd::Ones(columns);
-  lasso.penalty_factors[0] = 0.0;  // intercept
+  Eigen::VectorXd y, w;
+  NormalisedTarget(set, *term, &y, &w);
+  const LassoOptions lasso = TermLassoOptions(options, columns);
   term->normalised = FitLasso(x, y, w, term->lambda, lasso, &term->normalised);
   term->coefficients =
       ExpandToModelBasis(form.degree, form.scale.data(), term->mean_x, term->sd_x, term->mean_y,

@@ -30,6 +30,12 @@ void Normalise(const SampleSet& set, TermRegression* term);
 Eigen::MatrixXd Regressors(int degree, const SampleSet& set, const TermRegression& term,
                            bool asymptote, int asymptote_state, double a_n, double b_n);
 
+// The normalised target and weights of the set, and the lasso options of a term with
+// `columns` regressors (the intercept, column 0, unpenalised).
+void NormalisedTarget(const SampleSet& set, const TermRegression& term, Eigen::VectorXd* y,
+                      Eigen::VectorXd* w);
+LassoOptions TermLassoOptions(const StepRegressionOptions& options, int columns);
+
 // Lasso path with leave-one-group-out CV (and, for inertia terms, the (a, b) grid), the fit,
 // and its expansion into the model basis; term->name and the normalisation must be set.
 bool RegressTerm(const DampingInertiaForm& form, const SampleSet& set, bool inertia,

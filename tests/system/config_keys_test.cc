@@ -155,9 +155,35 @@ const KeyCase kCases[] = {
      V.K("    uncertainty: {method: sandwich_hac, kernel: quadratic_spectral}")},
     {"uncertainty_prewhiten", V.K("    uncertainty: {method: sandwich_hac}"),
      V.K("    uncertainty: {method: sandwich_hac, prewhiten: true}")},
+    {"uncertainty_block_bootstrap", V, V.K("    uncertainty: {method: block_bootstrap, runs: 10}")},
+    {"uncertainty_runs", V.K("    uncertainty: {method: block_bootstrap, runs: 10}"),
+     V.K("    uncertainty: {method: block_bootstrap, runs: 12}")},
+    {"uncertainty_block_length", V.K("    uncertainty: {method: block_bootstrap, runs: 10}"),
+     V.K("    uncertainty: {method: block_bootstrap, runs: 10, block_length: 2}")},
+    {"uncertainty_seed", V.K("    uncertainty: {method: block_bootstrap, runs: 10}"),
+     V.K("    uncertainty: {method: block_bootstrap, runs: 10, seed: 2}")},
+    // Six experiments: a, b, c and the three segments of s.
+    {"uncertainty_experiment_bootstrap", V.E("[a, b, c, s]"),
+     V.E("[a, b, c, s]").K("    uncertainty: {method: experiment_bootstrap, runs: 10}")},
+    // Six segments of 20 s cut from a's 120 s.
+    {"uncertainty_experiment_bootstrap_segment_length", V.E("[a]").A(", segment_length: 20"),
+     V.E("[a]").A(", segment_length: 20")
+         .K("    uncertainty: {method: experiment_bootstrap, runs: 10}")},
+    // Three segments: known only from the data, a warning and auto's figures.
+    {"uncertainty_experiment_bootstrap_three_segments", V.E("[s]"),
+     V.E("[s]").K("    uncertainty: {method: experiment_bootstrap, runs: 10}")},
+    {"uncertainty_experiment_bootstrap_few", V,
+     V.K("    uncertainty: {method: experiment_bootstrap}"),
+     "config.yaml:12: stages[0].uncertainty.method: experiment_bootstrap in stage 'fit' needs at "
+     "least 5 experiments or segments to resample, it has 2 (cut the records into segments with "
+     "`segment_length`"},
+    {"uncertainty_few_runs", V, V.K("    uncertainty: {method: block_bootstrap, runs: 5}"),
+     "config.yaml:12: stages[0].uncertainty.runs: must be >= 10"},
+    {"uncertainty_bad_block_length", V, V.K("    uncertainty: {method: block_bootstrap, block_length: 0}"),
+     "config.yaml:12: stages[0].uncertainty.block_length: must be auto or > 0 (seconds)"},
     {"uncertainty_unknown_method", V, V.K("    uncertainty: {method: jackknife}"),
      "config.yaml:12: stages[0].uncertainty.method: unknown method 'jackknife' (auto, hessian, "
-     "sandwich_hac)"},
+     "sandwich_hac, block_bootstrap, experiment_bootstrap)"},
     {"uncertainty_bad_bandwidth", V, V.K("    uncertainty: {bandwidth: 0.5}"),
      "config.yaml:12: stages[0].uncertainty.bandwidth: must be auto or >= 1 (blocks)"},
     {"validation", V, V.K("    validation: [c]")},

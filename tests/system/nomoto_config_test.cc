@@ -61,7 +61,8 @@ TEST(NomotoConfigs, PatrolNoiseSingleSineReportsPoorDetermination) {
     EXPECT_LT(relative_multi, 0.1) << name;
     EXPECT_GT(relative_sine, 5 * relative_multi) << name;
   }
-  // The T2/T3 correlation is reported and near 1 for the single sine.
+  // The T2/T3 correlation is reported and near 1 for the single sine (0.973 by the HAC covariance
+  // the rudder noise makes the default here; above 0.99 by the Hessian).
   const json& correlation = results["stages"][0]["correlation"];
   const auto& names = correlation["names"];
   int t2 = -1, t3 = -1;
@@ -71,7 +72,7 @@ TEST(NomotoConfigs, PatrolNoiseSingleSineReportsPoorDetermination) {
   }
   ASSERT_GE(t2, 0);
   ASSERT_GE(t3, 0);
-  EXPECT_GT(std::abs(correlation["matrix"][t2][t3].get<double>()), 0.99);
+  EXPECT_GT(std::abs(correlation["matrix"][t2][t3].get<double>()), 0.95);
   for (const auto& [name, value] : kPatrol) {
     const double error = std::abs(multisine[name]["value"].get<double>() - value);
     EXPECT_LT(error, 3.0 * multisine[name]["std_error"].get<double>()) << name;

@@ -228,7 +228,8 @@ size_t Records(const nlohmann::json& fit) {
 // The plots report.html has for a results.json (report_html.h): per stage a trace figure per
 // record of its fit and of its validation (and its x-y track), a correlation heat map over two or
 // more shared parameters, a cost history when a refinement iterated or a global start evaluated
-// twice, lasso paths and samples for step regression; a trace figure per final validation record.
+// twice, lasso paths and samples for step regression, the residual analysis of the four worst
+// channels; a trace figure per final validation record.
 size_t ExpectedPlots(const nlohmann::json& results) {
   size_t plots = 0;
   for (const nlohmann::json& stage : results.at("stages")) {
@@ -247,6 +248,11 @@ size_t ExpectedPlots(const nlohmann::json& results) {
       iterated = iterated || r.at("iterations").get<int>() >= 1;
     }
     plots += iterated ? 1 : 0;
+    if (stage.contains("residual_analysis")) {  // MATLAB resid's figure of the 4 worst channels
+      size_t tested = 0;
+      for (const nlohmann::json& a : stage.at("residual_analysis")) tested += a.at("tested").get<bool>();
+      plots += std::min<size_t>(tested, 4);
+    }
     if (stage.contains("step_regression")) {
       const nlohmann::json& s = stage.at("step_regression");
       plots += s.at("terms").empty() ? 0 : 1;

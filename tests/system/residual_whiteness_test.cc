@@ -145,7 +145,9 @@ TEST(ResidualWhiteness, RudderNoiseColoursTheHeadingResiduals) {
   EXPECT_GT(a["lag1"].get<double>(), a["band_99"].get<double>());
   const std::string warning = "stage 'multisine': the residuals of psi are coloured";
   EXPECT_TRUE(AnyWarningHas(run.results, warning)) << run.results["warnings"].dump(1);
-  EXPECT_TRUE(AnyWarningHas(run.results, "standard errors assume white residuals"));
+  // The default method has seen the same in the scores and reports the HAC (uncertainty_method.h).
+  EXPECT_EQ(run.results["stages"][0]["uncertainty"]["method"], "sandwich_hac");
+  EXPECT_TRUE(AnyWarningHas(run.results, "the standard errors reported are the sandwich_hac ones"));
   EXPECT_NE(run.stderr_text.find(warning), std::string::npos) << run.stderr_text;
   EXPECT_NE(run.report.find("warning: " + warning), std::string::npos);
   EXPECT_NE(run.report.find("residuals multisine psi: coloured (lag-1 "), std::string::npos)

@@ -102,7 +102,11 @@ TEST_F(UsvLog, EveryDefectNamedAndTheQuadraticLawFitsWithoutCompensation) {
   EXPECT_NE(text.find("resampl"), std::string::npos) << "the jittered rows' grid is not named";
   EXPECT_NE(text.find("log1@9"), std::string::npos) << "the 2 s segment is not named";
   EXPECT_NE(text.find("skip"), std::string::npos) << "no skipped segment is named";
-  EXPECT_EQ(CompensationWarnings(results, ""), 0) << results["warnings"].dump(1);
+  // The quadratic law leaves no thrust-law compensation (the default law's k_f, below). The
+  // refinement's r.r / b_r and u.vr / u.rr pairs are warned since the residuals' serial
+  // correlation (model mismatch) made the HAC covariance the default: its correlations pass 0.999
+  // where the Hessian's did not (the yaw equation is stiff on this log, issue 20's note).
+  EXPECT_EQ(CompensationWarnings(results, "k_f"), 0) << results["warnings"].dump(1);
 }
 
 TEST_F(UsvLog, DefaultThrustLawGetsACompensationWarning) {

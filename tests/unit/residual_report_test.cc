@@ -157,6 +157,16 @@ TEST(ResidualWarnings, ColouredChannelsNamedWorstFirstExceptFailedFits) {
             "stage 'multisine': the residuals of psi are coloured in 2 of 3 experiment(s) "
             "(Ljung-Box p < 0.01): run3 (lag-1 0.93), run1 (lag-1 0.40); the Hessian standard "
             "errors assume white residuals and are too narrow");
+  // With the HAC reported the warning says so, with the ratios behind the choice.
+  stage.summary.uncertainty.method = "sandwich_hac";
+  stage.summary.uncertainty.method_reason = "auto: K 3.2x";
+  warnings.clear();
+  AddResidualWarnings(stage, &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("; the standard errors reported are the sandwich_hac ones, which "
+                             "allow for serially correlated residuals (auto: K 3.2x)"),
+            std::string::npos)
+      << warnings[0];
 }
 
 TEST(ResidualReportText, OneLinePerChannelOrASummaryOfManySegments) {

@@ -1,0 +1,304 @@
+#include "engine/run/bootstrap_uncertainty.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <random>
+
+#include "engine/base/case_seed.h"
+#include "engine/base/parallel_for.h"
+#include "engine/run/estimate_specs.h"
+
+namespace vesselid {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Per sample of experiment e: simulated minus measured at the estimate (d_i = r_i / w_i,
+// wrapped as the residual is); NaN where the sample has no weight.
+bool SimulatedMinusMeasured(OutputErrorProblem* problem, int e, std::vector<double>* d) {
+  const Experiment& experiment = problem->experiments()[e];
+  std::vector<double> r(experiment.num_samples());
+  double cost = 0.0;
+  if (!problem->problem()->EvaluateResidualBlock(problem->data_residual_blocks()[e], false, &cost,
+                                                 r.data(), nullptr)) {
+    return false;
+  }
+  d->resize(r.size());
+  for (size_t i = 0; i < r.size(); ++i) {
+    const double w = experiment.samples[i].weight;
+    (*d)[i] = w != 0.0 ? r[i] / w : kNaN;
+  }
+  return true;
+}
+
+// d of each output at every node: its value at the node, else at the nearest earlier node
+// sampling it (else the first later one), so that a block drawn from any node has every
+// channel (channels at different rates).
+std::vector<std::vector<double>> NodeFilled(const Experiment& e, const std::vector<double>& d) {
+  const int outputs = static_cast<int>(e.output_sample_count.size());
+  std::vector<std::vector<double>> filled(outputs, std::vector<double>(e.num_nodes(), kNaN));
+  for (int k = 0; k < e.num_nodes(); ++k) {
+    for (int i = e.node_first_sample[k]; i < e.node_first_sample[k + 1]; ++i) {
+      if (std::isfinite(d[i])) filled[e.samples[i].output][k] = d[i];
+    }
+  }
+  for (std::vector<double>& f : filled) {
+    double last = kNaN;
+    for (double& v : f) std::isfinite(v) ? (last = v) : (v = last);
+    for (auto v = f.rbegin(); v != f.rend(); ++v) std::isfinite(*v) ? (last = *v) : (*v = last);
+  }
+  return filled;
+}
+
+// Block length in nodes: configured seconds over the mean node interval, or sqrt(nodes) (the
+// HAC's aggregation: blocks long against the residuals' memory, many per experiment).
+int BlockNodes(const Experiment& e, double seconds) {
+  const int n = e.num_nodes();
+  if (n < 2) return 1;
+  if (seconds <= 0.0) return std::max(1, static_cast<int>(std::lround(std::sqrt(n))));
+  const double interval = (e.node_time.back() - e.node_time.front()) / (n - 1);
+  return std::clamp(static_cast<int>(std::lround(seconds / interval)), 1, n);
+}
+
+struct BlockData {
+  std::vector<std::vector<double>> d;                    // per experiment, per sample
+  std::vector<std::vector<std::vector<double>>> filled;  // per experiment, output, node
+  std::vector<int> block;                                // nodes per block, per experiment
+};
+
+// Replicate r's experiments of the block bootstrap: value* = value + d_i - d_source, i.e.
+// y* = y_fit + (y - y_fit) at the node the block maps node k to.
+std::vector<Experiment> BlockReplicate(const std::vector<Experiment>& original,
+                                       const BlockData& data, unsigned seed, int r) {
+  std::vector<Experiment> experiments = original;
+  for (size_t e = 0; e < experiments.size(); ++e) {
+    Experiment& x = experiments[e];
+    const int n = x.num_nodes(), b = data.block[e];
+    std::mt19937_64 rng(CaseSeed(seed, static_cast<int>(e), r));
+    std::uniform_int_distribution<int> start(0, n - b);
+    std::vector<int> source;
+    source.reserve(n + b);
+    while (static_cast<int>(source.size()) < n) {
+      const int s = start(rng);
+      for (int j = 0; j < b; ++j) source.push_back(s + j);
+    }
+    for (int k = 0; k < n; ++k) {
+      for (int i = x.node_first_sample[k]; i < x.node_first_sample[k + 1]; ++i) {
+        const double di = data.d[e][i];
+        const double ds = data.filled[e][x.samples[i].output][source[k]];
+        if (std::isfinite(di) && std::isfinite(ds)) x.samples[i].value += di - ds;
+      }
+    }
+  }
+  return experiments;
+}
+
+// Replicate r's experiments of the experiment bootstrap; drawn[e] = k, the times drawn.
+std::vector<Experiment> ExperimentReplicate(const std::vector<Experiment>& original, unsigned seed,
+                                            int r, std::vector<int>* drawn) {
+  const int count = static_cast<int>(original.size());
+  std::mt19937_64 rng(CaseSeed(seed, 0, r));
+  std::uniform_int_distribution<int> pick(0, count - 1);
+  drawn->assign(count, 0);
+  for (int i = 0; i < count; ++i) ++(*drawn)[pick(rng)];
+  std::vector<Experiment> experiments = original;
+  for (int e = 0; e < count; ++e) {
+    const double factor = std::sqrt(static_cast<double>((*drawn)[e]));
+    for (ExperimentSample& s : experiments[e].samples) s.weight *= factor;
+    experiments[e].prior_weight *= factor;
+  }
+  return experiments;
+}
+
+// Sample covariance over the replicates in which both variables take part (`present`).
+Eigen::MatrixXd ReplicateCovariance(const std::vector<std::vector<double>>& values,
+                                    const std::vector<std::vector<char>>& present) {
+  const int m = values.empty() ? 0 : static_cast<int>(values[0].size());
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Constant(m, m, kNaN);
+  std::vector<double> mean(m, 0.0);
+  std::vector<int> count(m, 0);
+  for (size_t r = 0; r < values.size(); ++r) {
+    for (int i = 0; i < m; ++i) {
+      if (present[r][i]) mean[i] += values[r][i], ++count[i];
+    }
+  }
+  for (int i = 0; i < m; ++i) mean[i] /= std::max(1, count[i]);
+  for (int i = 0; i < m; ++i) {
+    for (int j = 0; j <= i; ++j) {
+      double sum = 0.0;
+      int n = 0;
+      for (size_t r = 0; r < values.size(); ++r) {
+        if (!present[r][i] || !present[r][j]) continue;
+        sum += (values[r][i] - mean[i]) * (values[r][j] - mean[j]);
+        ++n;
+      }
+      if (n >= 2) cov(i, j) = cov(j, i) = sum / (n - 1);
+    }
+  }
+  return cov;
+}
+
+}  // namespace
+
+std::string ExperimentBootstrapRefusal(const std::string& stage, int count) {
+  return "experiment_bootstrap in stage '" + stage + "' needs at least " +
+         std::to_string(kMinBootstrapExperiments) + " experiments or segments to resample, it has " +
+         std::to_string(count) +
+         " (cut the records into segments with `segment_length`, or use block_bootstrap)";
+}
+
+void BootstrapStageUncertainty(const StageOptions& options, const OutputErrorOptions& problem_options,
+                               OutputErrorProblem* solved, StageSummary* summary) {
+  const BootstrapOptions& boot = options.uncertainty.bootstrap;
+  const bool blocks = options.uncertainty.method == UncertaintyMethod::kBlockBootstrap;
+  const char* method = UncertaintyMethodToString(options.uncertainty.method);
+  const Uncertainty& kept = summary->uncertainty;
+  const std::string keeping = std::string("; the ") + kept.method + " covariance is reported";
+  const std::vector<Experiment>& original = solved->experiments();
+  const int count = static_cast<int>(original.size());
+  if (!blocks && count < kMinBootstrapExperiments) {
+    summary->notes.push_back(std::string(kBootstrapNote) + " " +
+                             ExperimentBootstrapRefusal(options.name, count) + keeping);
+    return;
+  }
+  // The variables reported: those of the stage's covariance, else every free one.
+  std::vector<int> variables = kept.variables;
+  if (variables.empty()) {
+    for (size_t i = 0; i < solved->variables().size(); ++i) {
+      if (solved->variables()[i].free) variables.push_back(static_cast<int>(i));
+    }
+  }
+  const std::vector<ParameterSpec> specs = EstimateSpecs(*solved);
+  const std::vector<double> estimate = solved->Values();
+  BlockData data;
+  double block_seconds = 0.0;
+  if (blocks) {
+    // A robust loss scales the residuals the problem returns: evaluate them without it.
+    OutputErrorProblem* residuals = solved;
+    std::unique_ptr<OutputErrorProblem> plain;
+    if (problem_options.loss != "none") {
+      OutputErrorOptions no_loss = problem_options;
+      no_loss.loss = "none";
+      std::string error;
+      plain = OutputErrorProblem::Create(&solved->model(), original, specs, no_loss, &error);
+      if (plain != nullptr && plain->variables().size() == estimate.size()) {
+        plain->SetValues(estimate);
+        residuals = plain.get();
+      }
+    }
+    for (int e = 0; e < count; ++e) {
+      std::vector<double> d;
+      if (!SimulatedMinusMeasured(residuals, e, &d)) {
+        summary->notes.push_back(std::string(kBootstrapNote) + " " + method +
+                                 ": the residuals of " + original[e].name +
+                                 " could not be evaluated" + keeping);
+        return;
+      }
+      data.filled.push_back(NodeFilled(original[e], d));
+      data.d.push_back(std::move(d));
+      const Experiment& x = original[e];
+      const int b = BlockNodes(x, boot.block_length);
+      data.block.push_back(b);
+      if (x.num_nodes() > 1) {
+        block_seconds = std::max(block_seconds, b * (x.node_time.back() - x.node_time.front()) /
+                                                    (x.num_nodes() - 1));
+      }
+    }
+  }
+  StageOptions replicate_options = options;
+  replicate_options.use_global_start = false;
+  replicate_options.compute_uncertainty = false;
+  replicate_options.local.num_threads = 1;  // the replicates are the parallel work
+  replicate_options.local.progress = nullptr;
+  replicate_options.global.progress = nullptr;
+
+  const int runs = boot.runs;
+  std::vector<std::vector<double>> values(runs);
+  std::vector<std::vector<char>> present(runs);
+  std::vector<char> solved_ok(runs, 0);
+  ParallelFor(runs, boot.num_threads, [&](int r) {
+    std::vector<int> drawn(count, 1);
+    std::vector<Experiment> experiments =
+        blocks ? BlockReplicate(original, data, boot.seed, r)
+               : ExperimentReplicate(original, boot.seed, r, &drawn);
+    std::string error;
+    std::unique_ptr<OutputErrorProblem> p = OutputErrorProblem::Create(
+        &solved->model(), std::move(experiments), specs, problem_options, &error);
+    if (p == nullptr || p->variables().size() != estimate.size()) return;
+    p->SetValues(estimate);
+    StageSummary s;
+    if (!RunStage(replicate_options, p.get(), &s)) return;
+    const std::vector<double> v = p->Values();
+    for (int index : variables) {
+      const int e = p->variables()[index].experiment;
+      values[r].push_back(v[index]);
+      present[r].push_back(e < 0 || drawn[e] > 0);
+    }
+    solved_ok[r] = 1;
+  });
+  std::vector<std::vector<double>> good_values;
+  std::vector<std::vector<char>> good_present;
+  for (int r = 0; r < runs; ++r) {
+    if (!solved_ok[r]) continue;
+    good_values.push_back(std::move(values[r]));
+    good_present.push_back(std::move(present[r]));
+  }
+  const int failed = runs - static_cast<int>(good_values.size());
+  char text[512];
+  if (static_cast<int>(good_values.size()) < kMinBootstrapRuns) {
+    std::snprintf(text, sizeof(text), "%s %s: only %d of %d replicates solved", kBootstrapNote,
+                  method, runs - failed, runs);
+    summary->notes.push_back(text + keeping);
+    return;
+  }
+  if (failed > kBootstrapFailureWarning * runs) {
+    std::snprintf(text, sizeof(text),
+                  "%s %s: %d of %d replicates failed to solve (more than %.0f %%); the "
+                  "covariance comes from the %d that did and may be too narrow",
+                  kBootstrapNote, method, failed, runs, 100 * kBootstrapFailureWarning,
+                  runs - failed);
+    summary->notes.push_back(text);
+  }
+  Uncertainty u;
+  u.available = true;
+  u.variables = variables;
+  u.covariance = ReplicateCovariance(good_values, good_present);
+  u.undetermined = kept.undetermined;
+  u.undetermined_variables = kept.undetermined_variables;
+  u.residual_variance = kept.residual_variance;
+  SetStdErrorsAndCorrelation(&u);
+  u.method = method;
+  u.bootstrap_runs = runs;
+  u.bootstrap_failed = failed;
+  u.block_length = block_seconds;
+  // The Hessian's standard errors beside, in the same variable order.
+  if (kept.available && kept.variables == variables) {
+    u.hessian_std_errors = kept.method == "hessian" ? kept.std_errors : kept.hessian_std_errors;
+  }
+  if (blocks) {
+    std::snprintf(text, sizeof(text), "configured: %d replicates (%d failed), blocks of %.3g s%s",
+                  runs, failed, block_seconds, boot.block_length > 0.0 ? "" : " (sqrt of the nodes)");
+  } else {
+    std::snprintf(text, sizeof(text), "configured: %d replicates (%d failed) of %d experiments",
+                  runs, failed, count);
+  }
+  u.method_reason = text;
+  // A variable every replicate leaves at one value (held by a bound): its SE 0 says nothing.
+  std::string constant;
+  for (size_t i = 0; i < variables.size(); ++i) {
+    if (u.std_errors[i] == 0.0) {
+      constant += (constant.empty() ? "" : ", ") + solved->variables()[variables[i]].name;
+    }
+  }
+  if (!constant.empty()) {
+    summary->notes.push_back(std::string(kBootstrapNote) + " " + method + ": " + constant +
+                             " took the same value in every replicate (held by a bound): the "
+                             "standard error 0 does not measure its uncertainty");
+  }
+  summary->uncertainty = std::move(u);
+}
+
+}  // namespace vesselid

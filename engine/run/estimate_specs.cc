@@ -1,0 +1,29 @@
+#include "engine/run/estimate_specs.h"
+
+namespace vesselid {
+
+std::vector<ParameterSpec> EstimateSpecs(const OutputErrorProblem& solved) {
+  const ModelHandle& model = solved.model();
+  const std::vector<double> values = solved.ParametersOf(0);
+  std::vector<ParameterSpec> specs;
+  for (size_t i = 0; i < values.size(); ++i) {
+    const Variable* parameter = nullptr;
+    for (const Variable& v : solved.variables()) {
+      if (v.kind == Variable::Kind::kParameter && v.index == static_cast<int>(i)) parameter = &v;
+    }
+    ParameterSpec spec;
+    spec.name = model.info().parameters[i];
+    spec.start = values[i];
+    spec.role = parameter->role;
+    spec.lower = parameter->lower;
+    spec.upper = parameter->upper;
+    spec.scale = parameter->scale;
+    if (!parameter->free && spec.role != ParameterRole::kPerExperiment) {
+      spec.role = ParameterRole::kFixed;
+    }
+    specs.push_back(spec);
+  }
+  return specs;
+}
+
+}  // namespace vesselid

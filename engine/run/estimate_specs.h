@@ -1,0 +1,15 @@
+// The model parameters of a solved stage as specifications to build the same problem again
+// on other data (a refinement, a bootstrap replicate): each parameter starts at its estimate
+// and keeps its role, bounds and scale; a shared parameter held fixed stays fixed.
+#pragma once
+
+#include <vector>
+
+#include "engine/solve/output_error_problem.h"
+#include "engine/solve/parameter.h"
+
+namespace vesselid {
+
+std::vector<ParameterSpec> EstimateSpecs(const OutputErrorProblem& solved);
+
+}  // namespace vesselid
