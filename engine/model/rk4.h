@@ -11,9 +11,20 @@
 
 namespace vesselid {
 
+// GCC: the whole step, the model's right-hand side and its Jet arithmetic included, is
+// inlined (flatten). Left to itself GCC outlines the Jet operators once a model has two
+// instantiations (double and Jet inputs): cargo 1.5 -> 2.3 s; flattened, the input-gain
+// refinement runs 2.5x faster than before either. Clang inlines the step by itself, and
+// flattening under its sanitizers takes minutes and gigabytes per file.
+#if defined(__GNUC__) && !defined(__clang__)
+#define VESSELID_FLATTEN __attribute__((flatten))
+#else
+#define VESSELID_FLATTEN
+#endif
+
 template <class Model, class T, class U>
-__attribute__((flatten)) bool Rk4Step(const Model& model, const U* u0, const U* u_mid, const U* u1,
-             const T* p, double h, T* x) {
+VESSELID_FLATTEN bool Rk4Step(const Model& model, const U* u0, const U* u_mid, const U* u1,
+                              const T* p, double h, T* x) {
   constexpr int n = Model::kNumStates;
   std::array<T, n> k1, k2, k3, k4, xs;
   if (!model(x, u0, p, k1.data())) return false;

@@ -7,6 +7,7 @@
 #include "engine/run/bootstrap_uncertainty.h"
 #include "engine/run/bootstrap_warnings.h"
 #include "engine/run/compensation_warnings.h"
+#include "engine/run/input_noise_notes.h"
 #include "engine/run/residual_warnings.h"
 
 namespace vesselid {
@@ -43,7 +44,7 @@ void FailedFits(const std::string& where, const std::vector<ExperimentFit>& fits
 bool WarningNote(const std::string& note) {
   return note.rfind("integration step", 0) == 0 || note.rfind("outliers:", 0) == 0 ||
          note.rfind(kNarrowHessianNote, 0) == 0 || note.rfind(kBootstrapNote, 0) == 0 ||
-         note.rfind("noise weights:", 0) == 0 ||
+         note.rfind("noise weights:", 0) == 0 || note.rfind(kInputNoiseIntervalNote, 0) == 0 ||
          note.find(" is at its lower bound") != std::string::npos ||
          note.find(" is at its upper bound") != std::string::npos ||
          note.find("diverges") != std::string::npos;

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "engine/model/experiment.h"
+#include "engine/run/input_noise_notes.h"
 #include "engine/solve/output_error_problem.h"
 #include "engine/solve/stage.h"
 #include "gtest/gtest.h"
@@ -128,6 +129,28 @@ TEST(InputCorrection, NoisyRudderBiasesFastTimeConstantsLess) {
                 a, b);
   }
   EXPECT_LT(with, 0.6 * without);
+}
+
+// A stage with a latent input says that its intervals hold the spline as exact (a warning,
+// run_warnings.cc) and names the parametric bootstrap with the input's noise SD; a stage
+// without one says nothing of the kind.
+TEST(InputCorrection, IntervalWarningNamesTheBootstrap) {
+  auto model = nomoto::MakeSecondOrderHandle();
+  const nomoto::ClosedLoopOptions loop = PatrolMultisine(120.0, 0.5, 21u);
+  for (bool noisy : {false, true}) {
+    std::string error;
+    auto problem = OutputErrorProblem::Create(model.get(), {Build(*model, loop, noisy)},
+                                              testing::FiftyPercentOff(testing::PatrolVessel().truth),
+                                              OutputErrorOptions(), &error);
+    ASSERT_NE(problem, nullptr) << error;
+    int found = 0;
+    for (const std::string& note : InputNoiseNotes(*problem)) {
+      if (note.rfind(kInputNoiseIntervalNote, 0) != 0) continue;
+      ++found;
+      EXPECT_NE(note.find("truth: estimate, noise: {delta: 0.00"), std::string::npos) << note;
+    }
+    EXPECT_EQ(found, noisy ? 1 : 0);
+  }
 }
 
 }  // namespace
