@@ -18,7 +18,8 @@ use) and the CSV files `vesselid simulate` writes, and identifies the stage by o
     free_initial_states (per experiment, started from the data: psi at t0, r from the first
     second's slope, other states 0);
   * solver: scipy.optimize.least_squares, method 'trf', finite-difference Jacobian ('2-point'),
-    x_scale 'jac', ftol = xtol = gtol = 1e-10.
+    x_scale 'jac', ftol = xtol = 1e-12, gtol = 1e-14 (the engine's Ceres tolerances: a noise-free
+    case ends at a cost near 1e-18, and gtol = 1e-10 stopped patrol starts 5 % off).
 
 The integrator is compiled with numba when it is importable (Debian python3-numba), plain
 Python otherwise (correct, about 100x slower); `backend` in the output says which.
@@ -265,7 +266,7 @@ class Problem:
         z0 = np.clip(z0, bounds[0], bounds[1])
         wall, cpu = time.perf_counter(), time.process_time()
         fit = least_squares(self.residuals, z0, jac="2-point", method="trf", bounds=bounds,
-                            x_scale="jac", ftol=1e-10, xtol=1e-10, gtol=1e-10)
+                            x_scale="jac", ftol=1e-12, xtol=1e-12, gtol=1e-14)
         wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
         nf = len(self.free)
         return {"start": {n: float(v) for n, v in zip(self.free, z0[:nf])},
