@@ -45,6 +45,9 @@ import numpy as np  # noqa: E402
 import yaml  # noqa: E402
 from scipy.optimize import least_squares  # noqa: E402
 
+# numba's compiled cache outside the source tree unless the caller chose a place.
+os.environ.setdefault("NUMBA_CACHE_DIR", os.path.join(
+    os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache")), "vesselid_peer_numba"))
 try:
     from numba import njit
 
