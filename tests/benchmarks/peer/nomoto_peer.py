@@ -25,6 +25,7 @@ The integrator is compiled with numba when it is importable (Debian python3-numb
 Python otherwise (correct, about 100x slower); `backend` in the output says which.
 
   nomoto_peer.py <config.yaml> --data <dir> [--stage NAME] [--starts starts.json] [--json out]
+                 [--tolerances ftol,xtol,gtol]
 
 starts.json: a list of {parameter: start value}, each one solve from the config's starts with
 those replaced (default: one solve from the config). Output (stdout or --json): per start the
@@ -143,11 +144,18 @@ def interpolate(t, v, method, times, left_limit=False):
 
 
 def read_csv(path):
+    """Columns by name; an empty field is a missing sample (NaN)."""
     with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    header = rows[0]
+        header = next(csv.reader(f))
+    try:  # numpy's C reader when every field is filled
+        table = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+        return {name: table[:, i] for i, name in enumerate(header)}
+    except ValueError:
+        pass
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))[1:]
     cols = {name: [] for name in header}
-    for row in rows[1:]:
+    for row in rows:
         for name, field in zip(header, row):
             cols[name].append(float(field) if field.strip() else math.nan)
     return {name: np.array(values) for name, values in cols.items()}
@@ -264,12 +272,13 @@ class Problem:
             out.append(e.weight * (e.psi_sim[e.mask] - e.psi))
         return np.concatenate(out)
 
-    def solve(self, starts):
+    def solve(self, starts, tolerances=(1e-12, 1e-12, 1e-14)):
         z0, bounds = self.layout(starts)
         z0 = np.clip(z0, bounds[0], bounds[1])
         wall, cpu = time.perf_counter(), time.process_time()
         fit = least_squares(self.residuals, z0, jac="2-point", method="trf", bounds=bounds,
-                            x_scale="jac", ftol=1e-12, xtol=1e-12, gtol=1e-14)
+                            x_scale="jac", ftol=tolerances[0], xtol=tolerances[1],
+                            gtol=tolerances[2])
         wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
         nf = len(self.free)
         return {"start": {n: float(v) for n, v in zip(self.free, z0[:nf])},
@@ -289,9 +298,12 @@ def main():
     parser.add_argument("--stage")
     parser.add_argument("--starts", help="JSON list of {parameter: start}")
     parser.add_argument("--json", help="write the result here (default stdout)")
+    parser.add_argument("--tolerances", default="1e-12,1e-12,1e-14",
+                        help="least_squares ftol,xtol,gtol (SciPy's defaults: 1e-8,1e-8,1e-8)")
     args = parser.parse_args()
     with open(args.config) as f:
         config = yaml.safe_load(f)
+    tolerances = [float(v) for v in args.tolerances.split(",")]
     problem = Problem(config, args.data, args.stage)
     starts = [{}]
     if args.starts:
@@ -302,7 +314,7 @@ def main():
     setup = time.perf_counter() - T_START
     result = {"backend": BACKEND, "setup_seconds": setup,
               "unknowns": len(z0), "samples": int(sum(len(e.psi) for e in problem.experiments)),
-              "solves": [problem.solve(s) for s in starts]}
+              "tolerances": tolerances, "solves": [problem.solve(s, tolerances) for s in starts]}
     text = json.dumps(result, indent=1)
     if args.json:
         with open(args.json, "w") as f:
