@@ -184,13 +184,14 @@ def prepare(bench, case):
         local = copy.deepcopy(config)
         local["stages"][0].pop("global", None)
         peer = dump(local, os.path.join(cfg, "patrol_local.yaml"))
-        engine = []
+        engine = {"local": [], "global": []}
         for k, start in enumerate(starts):
             for mode, base in (("local", local), ("global", config)):
                 c = copy.deepcopy(base)
                 for n, v in start.items():
                     c["stages"][0]["parameters"][n]["start"] = v
-                engine.append(dump(c, os.path.join(cfg, "patrol_%s_%02d.yaml" % (mode, k))))
+                path = os.path.join(cfg, "patrol_%s_%02d.yaml" % (mode, k))
+                engine[mode].append(dump(c, path))
         return engine, peer, bench.data(shipped), truth, starts
     if case in ("tanker4_first", "tanker4_second"):
         shipped = os.path.join(ROOT, "configs", "nomoto_tanker.yaml")
@@ -215,7 +216,7 @@ def run_case(bench, case, repeats):
             else:  # one process per start, local and with the global start
                 for mode in ("local", "global"):
                     runs = [bench.engine(c, data, "patrol_%s_%d_%02d" % (mode, r, k))
-                            for k, c in enumerate(x for x in engine_configs if "_%s_" % mode in x)]
+                            for k, c in enumerate(engine_configs[mode])]
                     row["engine_" + mode] = {
                         key: sum(x[key] for x in runs) for key in ("wall", "cpu", "solve",
                                                                    "stage")}
