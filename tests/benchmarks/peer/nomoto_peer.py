@@ -182,9 +182,10 @@ class Experiment:
         step = max_step if max_step > 0 else float(np.median(intervals))
         self.substeps = np.maximum(1, np.ceil(intervals / step - 1e-6)).astype(np.int64)
         self.h = intervals / self.substeps
-        starts = np.repeat(t[:-1], self.substeps) + (
-            np.concatenate([np.arange(m) for m in self.substeps]) * np.repeat(self.h, self.substeps))
+        first = np.repeat(np.cumsum(self.substeps) - self.substeps, self.substeps)
+        within = np.arange(len(first)) - first  # step index inside its sample interval
         hs = np.repeat(self.h, self.substeps)
+        starts = np.repeat(t[:-1], self.substeps) + within * hs
         method = spec.get("interpolation", {}).get("delta", "linear")
         tu, vu = t[keep_u], delta[keep_u]
         u = np.empty(3 * len(starts))
