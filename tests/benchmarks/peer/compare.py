@@ -139,6 +139,7 @@ class Bench:
                 "solve": sum(s["solve_seconds"] for s in solves),
                 "solve_cpu": sum(s["solve_cpu_seconds"] for s in solves),
                 "setup": result["setup_seconds"], "backend": result["backend"],
+                "tolerances": result["tolerances"],
                 "evaluations": sum(s["evaluations"] for s in solves),
                 "cost": solves[0]["cost"], "estimates": solves[0]["estimates"],
                 "solves": solves}
@@ -324,7 +325,8 @@ def main():
     print(text)
     report = {"date": datetime.datetime.utcnow().isoformat() + "Z", "cpus": os.cpu_count(),
               "load_average": os.getloadavg(), "repeats": args.repeats,
-              "peer_backend": warm["backend"], "table": text.splitlines(), "cases": results}
+              "peer_backend": warm["backend"], "peer_tolerances": warm["tolerances"],
+              "table": text.splitlines(), "cases": results}
     path = args.json or os.path.join(bench.work, "compare.json")
     with open(path, "w") as f:
         json.dump(report, f, indent=1)
