@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/base/parallel_for.h"
 #include "engine/solve/metrics.h"
 #include "engine/solve/start_failure.h"
 
@@ -39,8 +40,8 @@ bool LocalSolveOptions::IsValid(std::string* error) const {
     *error = "parameter_tolerance must be >= 0";
   else if (!(max_time_seconds > 0.0))
     *error = "max_time_seconds must be > 0";
-  else if (num_threads < 1)
-    *error = "num_threads must be >= 1";
+  else if (num_threads < 0)
+    *error = "num_threads must be >= 0 (0: the machine's cores)";
   else
     return true;
   return false;
@@ -94,7 +95,7 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   ceres_options.gradient_tolerance = options.gradient_tolerance;
   ceres_options.parameter_tolerance = options.parameter_tolerance;
   ceres_options.max_solver_time_in_seconds = options.max_time_seconds;
-  ceres_options.num_threads = options.num_threads;
+  ceres_options.num_threads = ParallelThreads(options.num_threads);
   ceres_options.logging_type = ceres::SILENT;
   if (!ceres_options.IsValid(&error)) {
     summary->message = error;

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/base/parallel_for.h"
+
 namespace vesselid {
 namespace {
 
@@ -216,7 +218,7 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
 
   if (options.compute_uncertainty) {
     UncertaintyOptions uncertainty = options.uncertainty;
-    uncertainty.hac.num_threads = options.local.num_threads;
+    uncertainty.hac.num_threads = ParallelThreads(options.local.num_threads);
     if (!ComputeStageUncertainty(uncertainty, problem, best_cost, &summary->uncertainty,
                                  &summary->notes)) {
       summary->notes.push_back("uncertainty: " + summary->uncertainty.message);
@@ -224,7 +226,7 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
   }
   if (options.compute_uncertainty) {
     LocalAnalysisOptions analysis;
-    analysis.num_threads = options.local.num_threads;
+    analysis.num_threads = ParallelThreads(options.local.num_threads);
     if (!ComputeLocalAnalysis(analysis, problem, &summary->analysis)) {
       summary->notes.push_back("local analysis: " + summary->analysis.message);
     }
