@@ -3,7 +3,7 @@
 // report.txt, report.html, results.json), per shipped config and on a tank-like case of four
 // zigzags (tank_zigzags.yaml, first-order Nomoto on the tanker campaign's data).
 //
-//   build/tests/benchmarks/benchmark_overheads [--one-thread] [config name ...]
+//   build/tests/benchmarks/benchmark_overheads [--one-thread] [--binary <vesselid>] [config ...]
 //
 // Each config's data are simulated first (`vesselid simulate`), then it is run as a user
 // would, once with report.html and once with --no-report. Per run: wall and CPU time of the
@@ -14,7 +14,8 @@
 //   outside the process's wall time outside the stages: config, reading and checking data,
 //           validation and held-out runs, checkpoints, traces and reports.
 // The target is outside <= 20 % with report.html. --one-thread sets local.num_threads: 1 in
-// every stage (the default before threads were the machine's cores).
+// every stage (the default before threads were the machine's cores); --binary times another
+// build of vesselid (one without --no-report prints n/a there).
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -86,12 +87,16 @@ struct Case {
 int main(int argc, char** argv) {
   const std::string source = VESSELID_SOURCE_DIR;
   bool one_thread = false;
+  std::string binary = VESSELID_BINARY;
   std::vector<std::string> names;
   for (int i = 1; i < argc; ++i) {
-    if (std::string(argv[i]) == "--one-thread")
+    const std::string arg = argv[i];
+    if (arg == "--one-thread")
       one_thread = true;
+    else if (arg == "--binary" && i + 1 < argc)
+      binary = argv[++i];
     else
-      names.push_back(argv[i]);
+      names.push_back(arg);
   }
   std::vector<Case> cases;
   if (names.empty()) {
@@ -111,7 +116,6 @@ int main(int argc, char** argv) {
     }
   }
   const fs::path dir = fs::temp_directory_path() / "vesselid_benchmark_overheads";
-  const std::string binary = VESSELID_BINARY;
   std::printf("%s; shares of the wall time (solve | rest of the stages | outside the stages)\n",
               one_thread ? "local.num_threads: 1" : "threads: the config's (default: all cores)");
   std::printf("%-20s %8s %8s %6s %6s %8s   %8s %8s %8s\n", "config", "wall s", "cpu s", "solve",
@@ -141,15 +145,20 @@ int main(int argc, char** argv) {
     };
     json with_report, without;
     const Timing full = run("full", "", &with_report);
+    if (!full.ok || with_report.is_discarded()) return 1;
     const Timing batch = run("batch", "--no-report", &without);
-    if (!full.ok || !batch.ok || with_report.is_discarded() || without.is_discarded()) return 1;
     double solve = 0.0, stages = 0.0, batch_solve = 0.0, batch_stages = 0.0;
     StageTimes(with_report, &solve, &stages);
-    StageTimes(without, &batch_solve, &batch_stages);
-    std::printf("%-20s %8.2f %8.2f %5.0f%% %5.0f%% %7.0f%%   %8.2f %8.2f %7.0f%%\n",
-                c.name.c_str(), full.wall, full.cpu, 100.0 * solve / full.wall,
-                100.0 * (stages - solve) / full.wall, 100.0 * (full.wall - stages) / full.wall,
-                batch.wall, batch.cpu, 100.0 * (batch.wall - batch_stages) / batch.wall);
+    std::printf("%-20s %8.2f %8.2f %5.0f%% %5.0f%% %7.0f%%", c.name.c_str(), full.wall, full.cpu,
+                100.0 * solve / full.wall, 100.0 * (stages - solve) / full.wall,
+                100.0 * (full.wall - stages) / full.wall);
+    if (batch.ok && !without.is_discarded()) {
+      StageTimes(without, &batch_solve, &batch_stages);
+      std::printf("   %8.2f %8.2f %7.0f%%\n", batch.wall, batch.cpu,
+                  100.0 * (batch.wall - batch_stages) / batch.wall);
+    } else {
+      std::printf("   %8s\n", "n/a");
+    }
     std::fflush(stdout);
   }
   fs::remove_all(dir);
