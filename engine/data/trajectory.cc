@@ -98,6 +98,8 @@ int Trajectory::Find(const std::string& name) const {
 Channel ExtractChannel(const Trajectory& trajectory, int column) {
   Channel channel;
   const std::vector<double>& values = trajectory.columns[column];
+  channel.t.reserve(values.size());  // one allocation: experiments cut from long records call
+  channel.value.reserve(values.size());  // this once per segment and output
   for (size_t k = 0; k < values.size(); ++k) {
     if (std::isnan(values[k])) continue;
     channel.t.push_back(trajectory.t[k]);
