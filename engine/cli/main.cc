@@ -2,7 +2,7 @@
 //
 //   vesselid simulate <config.yaml> --out <dir>                 synthetic experiments
 //   vesselid run      <config.yaml> [--data <dir>] --out <dir>  staged identification
-//                     [--resume] [--quiet | --verbose]
+//                     [--resume] [--quiet | --verbose] [--no-report]
 //   vesselid study    <config.yaml> [--data <dir>] --out <dir>  sensitivity studies (the
 //                     [--only part...] [--threads n]             config's `study` section;
 //                                                                also under mpirun -np K)
@@ -80,6 +80,7 @@ struct RunFlags {
   bool quiet = false;
   bool verbose = false;
   bool resume = false;
+  bool no_report = false;  // batch use: results.json, report.txt and traces, no report.html
 };
 
 // A staged run: progress on stderr, a checkpoint in out_dir after each stage; with --resume,
@@ -128,7 +129,9 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
   // A run that stopped after finishing a stage still writes what it finished.
   if (!complete && result.stages.empty()) return Fail(error);
   std::string write_error;
-  if (!vesselid::WriteRunResults(config, result, out_dir, &write_error)) return Fail(write_error);
+  if (!vesselid::WriteRunResults(config, result, out_dir, &write_error, !flags.no_report)) {
+    return Fail(write_error);
+  }
   if (!flags.quiet) std::cout << vesselid::RunResultToText(config, result);
   for (const std::string& w : result.warnings) {
     std::fprintf(stderr, "vesselid: warning: %s\n", w.c_str());
@@ -224,6 +227,9 @@ int main(int argc, char** argv) {
       ->excludes(quiet_flag);
   run->add_flag("--resume", run_flags.resume,
                 "continue from the last stage the checkpoint in --out finished");
+  run->add_flag("--no-report", run_flags.no_report,
+                "batch use: write results.json, report.txt and traces/ but no report.html "
+                "(an earlier one in --out is removed)");
 
   CLI::App* study = app.add_subcommand(
       "study", "sensitivity studies: profile likelihood, Monte Carlo, start points, partitions");

@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "engine/base/parallel_for.h"
 #include "engine/output/decimation.h"
 
 namespace vesselid {
@@ -48,12 +50,12 @@ std::string DataName(size_t figure, size_t k) {
 std::string SvgName(size_t figure) { return "f" + std::to_string(figure) + ".svg"; }
 
 // The script drawing figures [first, end); each finished figure prints its index to `done`.
-std::string Script(const std::vector<Figure>& figures, size_t first, const std::string& folder,
-                   const std::string& done) {
+std::string Script(const std::vector<Figure>& figures, size_t first, size_t end,
+                   const std::string& folder, const std::string& done) {
   std::ostringstream s;
   s << "cd " << GnuplotString(folder) << "\n"
     << "set print " << GnuplotString(done) << "\n";
-  for (size_t i = first; i < figures.size(); ++i) {
+  for (size_t i = first; i < end; ++i) {
     const Figure& f = figures[i];
     s << "reset\n"
       << "set encoding utf8\n"
@@ -71,6 +73,64 @@ std::string Script(const std::vector<Figure>& figures, size_t first, const std::
 
 std::string Tail(const std::string& text) {
   return text.size() <= kMaxMessage ? text : "..." + text.substr(text.size() - kMaxMessage);
+}
+
+// Bounds of `groups` contiguous runs of figures of about equal work: a figure weighs its data
+// bytes plus a fixed share for gnuplot's own drawing.
+std::vector<size_t> GroupBounds(const std::vector<Figure>& figures, size_t groups) {
+  constexpr size_t kFigureBytes = 20000;
+  std::vector<size_t> weight;
+  size_t total = 0;
+  for (const Figure& f : figures) {
+    size_t w = kFigureBytes;
+    for (const std::string& d : f.data) w += d.size();
+    weight.push_back(w);
+    total += w;
+  }
+  std::vector<size_t> bounds{0};
+  size_t sum = 0;
+  for (size_t i = 0; i < figures.size(); ++i) {
+    sum += weight[i];
+    const size_t g = bounds.size();  // the group being filled
+    if (g < groups && i + 1 < figures.size() && sum * groups >= total * g) bounds.push_back(i + 1);
+  }
+  bounds.push_back(figures.size());
+  return bounds;
+}
+
+// Draws figures [begin, end) with gnuplot into result->svg; gnuplot's messages into *error.
+void DrawGroup(const std::vector<Figure>& figures, size_t begin, size_t end,
+               const fs::path& folder, const std::string& group, FigureRendering* result,
+               std::string* error) {
+  size_t first = begin;
+  for (int run = 0; run < kMaxRuns && first < end; ++run) {
+    const std::string tag = group + "_" + std::to_string(run);
+    const fs::path script = folder / ("figures" + tag + ".gp");
+    const fs::path messages = folder / ("gnuplot" + tag + ".txt");
+    if (!WriteFile(script, Script(figures, first, end, folder.string(), "done" + tag + ".txt"))) {
+      *error = script.string() + ": write failed";
+      break;
+    }
+    const std::string command = "gnuplot -d " + ShellQuote(script.string()) + " > /dev/null 2> " +
+                                ShellQuote(messages.string());
+    const int status = std::system(command.c_str());
+    std::set<size_t> done;
+    std::istringstream done_list(ReadFile(folder / ("done" + tag + ".txt")));
+    for (size_t i; done_list >> i;) done.insert(i);
+    for (size_t i : done) result->svg[i] = ReadFile(folder / SvgName(i));
+    if (status == 0) break;
+    const bool missing = status == -1 || (WIFEXITED(status) && WEXITSTATUS(status) == 127);
+    size_t failed = first;
+    while (failed < end && done.count(failed) > 0) ++failed;
+    if (!error->empty()) *error += "\n";
+    if (missing) {
+      *error += "gnuplot could not be run: " + Tail(ReadFile(messages));
+      break;
+    }
+    *error += (failed < end ? "figure " + figures[failed].name + ": " : "") +
+              Tail(ReadFile(messages));
+    first = failed + 1;
+  }
 }
 
 }  // namespace
@@ -136,34 +196,18 @@ FigureRendering RenderFigures(const std::vector<Figure>& figures) {
       }
     }
   }
-  size_t first = 0;
-  for (int run = 0; run < kMaxRuns && first < figures.size(); ++run) {
-    const std::string tag = std::to_string(run);
-    const fs::path script = folder / ("figures" + tag + ".gp");
-    const fs::path messages = folder / ("gnuplot" + tag + ".txt");
-    if (!WriteFile(script, Script(figures, first, folder.string(), "done" + tag + ".txt"))) {
-      result.error = script.string() + ": write failed";
-      break;
-    }
-    const std::string command = "gnuplot -d " + ShellQuote(script.string()) + " > /dev/null 2> " +
-                                ShellQuote(messages.string());
-    const int status = std::system(command.c_str());
-    std::set<size_t> done;
-    std::istringstream done_list(ReadFile(folder / ("done" + tag + ".txt")));
-    for (size_t i; done_list >> i;) done.insert(i);
-    for (size_t i : done) result.svg[i] = ReadFile(folder / SvgName(i));
-    if (status == 0) break;
-    const bool missing = status == -1 || (WIFEXITED(status) && WEXITSTATUS(status) == 127);
-    size_t failed = first;
-    while (failed < figures.size() && done.count(failed) > 0) ++failed;
-    if (!result.error.empty()) result.error += "\n";
-    if (missing) {
-      result.error += "gnuplot could not be run: " + Tail(ReadFile(messages));
-      break;
-    }
-    result.error += (failed < figures.size() ? "figure " + figures[failed].name + ": " : "") +
-                    Tail(ReadFile(messages));
-    first = failed + 1;
+  const std::vector<size_t> bounds = GroupBounds(
+      figures, std::min(figures.size(), static_cast<size_t>(ParallelThreads(0))));
+  const int groups = static_cast<int>(bounds.size()) - 1;
+  std::vector<std::string> errors(groups);
+  ParallelFor(groups, 0, [&](int g) {
+    DrawGroup(figures, bounds[g], bounds[g + 1], folder, std::to_string(g), &result, &errors[g]);
+  });
+  for (const std::string& e : errors) {
+    if (e.empty()) continue;
+    // gnuplot missing is one message, not one per group.
+    if (result.error.find(e) != std::string::npos) continue;
+    result.error += (result.error.empty() ? "" : "\n") + e;
   }
   std::error_code ec;
   fs::remove_all(folder, ec);

@@ -1,9 +1,11 @@
 // Figures of the HTML report, drawn by gnuplot to SVG. A figure is its data (whitespace-
 // separated text files) and the gnuplot commands that draw it. RenderFigures writes the data of
-// every figure and ONE script for all of them into a private temporary folder, runs gnuplot
-// once on it (`gnuplot` from PATH; Debian package gnuplot-nox), reads the SVGs back and removes
-// the folder. gnuplot stops at its first error, so after a failing figure it is run again on
-// the figures that follow, a few times at most.
+// every figure into a private temporary folder, splits the figures into contiguous groups of
+// about equal data size, one per core, and runs one gnuplot per group in parallel on a script
+// for its figures (`gnuplot` from PATH; Debian package gnuplot-nox); then it reads the SVGs back
+// and removes the folder. Every figure's script starts with `reset`, so a figure draws the same
+// in any group. gnuplot stops at its first error, so after a failing figure it is run again
+// on the figures of its group that follow, a few times at most.
 #pragma once
 
 #include <cstddef>

@@ -1,8 +1,10 @@
 #include "engine/output/results_writer.h"
 
 #include <filesystem>
+#include <future>
 
 #include "engine/base/atomic_file.h"
+#include "engine/base/parallel_for.h"
 #include "engine/data/trajectory.h"
 #include "engine/output/display_units.h"
 #include "engine/output/report_html.h"
@@ -37,11 +39,19 @@ Trajectory TraceInDisplayUnits(const RunConfig& config, const ExperimentFit& fit
   return trace;
 }
 
+// One file per experiment, written in parallel; the first failure in the fits' order reported.
 bool WriteTraces(const RunConfig& config, const std::string& folder, const std::string& prefix,
                  const std::vector<ExperimentFit>& fits, std::string* error) {
-  for (const ExperimentFit& fit : fits) {
-    const std::string path = (fs::path(folder) / TraceFileName(prefix, fit.experiment)).string();
-    if (!WriteTrajectoryCsv(path, TraceInDisplayUnits(config, fit), error)) return false;
+  std::vector<std::string> errors(fits.size());
+  ParallelFor(static_cast<int>(fits.size()), 0, [&](int i) {
+    const std::string path =
+        (fs::path(folder) / TraceFileName(prefix, fits[i].experiment)).string();
+    WriteTrajectoryCsv(path, TraceInDisplayUnits(config, fits[i]), &errors[i]);
+  });
+  for (const std::string& e : errors) {
+    if (e.empty()) continue;
+    *error = e;
+    return false;
   }
   return true;
 }
@@ -49,7 +59,7 @@ bool WriteTraces(const RunConfig& config, const std::string& folder, const std::
 }  // namespace
 
 bool WriteRunResults(const RunConfig& config, const RunResult& result, const std::string& out_dir,
-                     std::string* error) {
+                     std::string* error, bool html_report) {
   std::error_code ec;
   const std::string traces = (fs::path(out_dir) / "traces").string();
   fs::create_directories(traces, ec);
@@ -57,18 +67,38 @@ bool WriteRunResults(const RunConfig& config, const RunResult& result, const std
     *error = out_dir + ": cannot create folder: " + ec.message();
     return false;
   }
+  // report.html (its plots drawn by gnuplot processes) is formed while the traces and
+  // report.txt are written; results.json waits for both.
+  std::string html_error;
+  std::future<bool> html;
+  if (html_report) {
+    html = std::async(std::launch::async, [&]() {
+      return WriteRunReport(config, result, out_dir, &html_error);
+    });
+  }
+  bool written = true;
   for (const StageResult& stage : result.stages) {
-    if (!WriteTraces(config, traces, stage.name, stage.summary.fits, error) ||
-        !WriteTraces(config, traces, stage.name + ".validation", stage.validation, error)) {
+    if (!written) break;
+    written = WriteTraces(config, traces, stage.name, stage.summary.fits, error) &&
+              WriteTraces(config, traces, stage.name + ".validation", stage.validation, error);
+  }
+  written = written &&
+            WriteTraces(config, traces, "final_validation", result.final_validation, error) &&
+            WriteStepRegressionFiles(config, result, out_dir, error) &&
+            WriteFileAtomically((fs::path(out_dir) / "report.txt").string(),
+                                RunResultToText(config, result), error);
+  if (html_report && !html.get() && written) {
+    *error = html_error;
+    return false;
+  }
+  if (!written) return false;
+  if (!html_report) {
+    const fs::path stale = fs::path(out_dir) / "report.html";
+    fs::remove(stale, ec);
+    if (ec) {
+      *error = stale.string() + ": cannot remove the earlier run's report: " + ec.message();
       return false;
     }
-  }
-  if (!WriteTraces(config, traces, "final_validation", result.final_validation, error) ||
-      !WriteStepRegressionFiles(config, result, out_dir, error) ||
-      !WriteFileAtomically((fs::path(out_dir) / "report.txt").string(),
-                           RunResultToText(config, result), error) ||
-      !WriteRunReport(config, result, out_dir, error)) {
-    return false;
   }
   return WriteFileAtomically((fs::path(out_dir) / "results.json").string(),
                              RunResultToJson(config, result).dump(2) + "\n", error);

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 
+#include "engine/base/parallel_for.h"
 #include "engine/run/fit_residuals.h"
 #include "engine/solve/covariance.h"
 
@@ -168,24 +169,38 @@ bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
     parameters->fitted = fit_own;
   }
   // One problem per experiment (they share nothing with the shared parameters fixed), so that
-  // one that diverges is recorded and the others are still measured.
+  // one that diverges is recorded and the others are still measured. The runs are fitted in
+  // parallel (local.num_threads; each run's own solve on one thread), each into its own slot,
+  // and collected in the config's order: the same results on any number of threads.
+  const int count = static_cast<int>(experiments.size());
+  std::vector<ExperimentFit> with(count), without(count);
+  std::vector<std::vector<Estimate>> estimates(count);
+  std::vector<std::vector<ResidualAnalysis>> analyses(count);
+  LocalSolveOptions one_run = local;
+  if (count > 1) one_run.num_threads = 1;
+  ParallelFor(count, local.num_threads, [&](int e) {
+    std::vector<ResidualAnalysis>* own = residuals != nullptr ? &analyses[e] : nullptr;
+    if (!fit_own) {
+      with[e] = FitOne(model, std::move(experiments[e]), free_states, one_run, held, nullptr,
+                       nullptr, own);
+      return;
+    }
+    with[e] = FitOne(model, experiments[e], free_states, one_run, values, &per_run, &estimates[e],
+                     own);
+    without[e] =
+        FitOne(model, std::move(experiments[e]), free_states, one_run, held, nullptr, nullptr);
+    without[e].trace = Trajectory();
+  });
   fits->clear();
   if (residuals != nullptr) residuals->clear();
-  for (Experiment& experiment : experiments) {
-    if (!fit_own) {
-      fits->push_back(FitOne(model, std::move(experiment), free_states, local, held, nullptr,
-                             nullptr, residuals));
-      continue;
+  for (int e = 0; e < count; ++e) {
+    fits->push_back(std::move(with[e]));
+    if (residuals != nullptr) {
+      for (ResidualAnalysis& a : analyses[e]) residuals->push_back(std::move(a));
     }
-    std::vector<Estimate> estimates;
-    fits->push_back(
-        FitOne(model, experiment, free_states, local, values, &per_run, &estimates, residuals));
-    ExperimentFit without =
-        FitOne(model, std::move(experiment), free_states, local, held, nullptr, nullptr);
-    without.trace = Trajectory();
-    if (parameters != nullptr) {
-      parameters->without.push_back(std::move(without));
-      for (Estimate& e : estimates) parameters->estimates.push_back(std::move(e));
+    if (fit_own && parameters != nullptr) {
+      parameters->without.push_back(std::move(without[e]));
+      for (Estimate& est : estimates[e]) parameters->estimates.push_back(std::move(est));
     }
   }
   return true;

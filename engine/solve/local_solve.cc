@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/base/parallel_for.h"
 #include "engine/solve/metrics.h"
 #include "engine/solve/start_failure.h"
 
@@ -39,8 +40,8 @@ bool LocalSolveOptions::IsValid(std::string* error) const {
     *error = "parameter_tolerance must be >= 0";
   else if (!(max_time_seconds > 0.0))
     *error = "max_time_seconds must be > 0";
-  else if (num_threads < 1)
-    *error = "num_threads must be >= 1";
+  else if (num_threads < 0)
+    *error = "num_threads must be >= 0 (0: the machine's cores)";
   else
     return true;
   return false;
@@ -94,7 +95,7 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   ceres_options.gradient_tolerance = options.gradient_tolerance;
   ceres_options.parameter_tolerance = options.parameter_tolerance;
   ceres_options.max_solver_time_in_seconds = options.max_time_seconds;
-  ceres_options.num_threads = options.num_threads;
+  ceres_options.num_threads = ParallelThreads(options.num_threads);
   ceres_options.logging_type = ceres::SILENT;
   if (!ceres_options.IsValid(&error)) {
     summary->message = error;
@@ -102,8 +103,24 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   }
   ProgressReporter reporter(options.progress);
   if (options.progress) ceres_options.callbacks.push_back(&reporter);
+  // Ceres sums the cost in the order of its reordered program, per thread and then over its
+  // threads, so the last bits of its costs depend on the thread count. The costs reported
+  // (and the residual variance the standard errors take from them) are summed in the
+  // problem's own order instead, one evaluation each: the same numbers on any number of
+  // threads.
+  const bool threaded = problem->problem()->NumResidualBlocks() > 1;
+  double ordered_initial = -1.0;
+  if (threaded && !problem->Cost(&ordered_initial)) ordered_initial = -1.0;
   ceres::Solver::Summary ceres_summary;
   ceres::Solve(ceres_options, problem->problem(), &ceres_summary);
+  if (threaded && ceres_summary.initial_cost >= 0.0 && ordered_initial >= 0.0) {
+    ceres_summary.initial_cost = ordered_initial;
+    if (!ceres_summary.iterations.empty()) ceres_summary.iterations.front().cost = ordered_initial;
+  }
+  double ordered_final = 0.0;
+  if (threaded && ceres_summary.IsSolutionUsable() && problem->Cost(&ordered_final)) {
+    ceres_summary.final_cost = ordered_final;
+  }
   summary->run = true;
   summary->usable = ceres_summary.IsSolutionUsable();
   summary->initial_cost = ceres_summary.initial_cost;

@@ -21,7 +21,9 @@ struct LocalSolveOptions {
   double gradient_tolerance = 1e-14;
   double parameter_tolerance = 1e-12;
   double max_time_seconds = 3600.0;
-  int num_threads = 1;  // experiments evaluated in parallel
+  // Experiments evaluated in parallel; 0: the machine's cores (one inside a parallel worker,
+  // base/parallel_for.h).
+  int num_threads = 0;
   ProgressCallback progress;  // after each iteration; may be empty
 
   bool IsValid(std::string* error) const;

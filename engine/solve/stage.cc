@@ -216,7 +216,10 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
 
   if (options.compute_uncertainty) {
     UncertaintyOptions uncertainty = options.uncertainty;
-    uncertainty.hac.num_threads = options.local.num_threads;
+    // One Jacobian evaluation each for the HAC and the local analysis, on one thread: Ceres'
+    // threaded evaluation sums in an order that depends on the thread count, and the
+    // standard errors must not (a small cost beside the solve).
+    uncertainty.hac.num_threads = 1;
     if (!ComputeStageUncertainty(uncertainty, problem, best_cost, &summary->uncertainty,
                                  &summary->notes)) {
       summary->notes.push_back("uncertainty: " + summary->uncertainty.message);
@@ -224,7 +227,7 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
   }
   if (options.compute_uncertainty) {
     LocalAnalysisOptions analysis;
-    analysis.num_threads = options.local.num_threads;
+    analysis.num_threads = 1;
     if (!ComputeLocalAnalysis(analysis, problem, &summary->analysis)) {
       summary->notes.push_back("local analysis: " + summary->analysis.message);
     }

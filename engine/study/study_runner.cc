@@ -24,6 +24,8 @@
 #include <sanitizer/lsan_interface.h>
 #endif
 
+#include "engine/base/parallel_for.h"
+
 namespace vesselid {
 namespace {
 
@@ -127,6 +129,7 @@ void RunCases(int count, const CaseFunction& run, const CaseOptions& options,
   std::atomic<size_t> next{0};
   std::mutex progress_mutex;
   auto worker = [&]() {
+    const ParallelWorkerScope scope;  // the cases own the cores: their solves take one each
 #ifdef VESSELID_WITH_OPENMP
     // One OpenMP thread inside each case (SuiteSparse): sums in a fixed order.
     omp_set_num_threads(1);
