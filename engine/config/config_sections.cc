@@ -8,9 +8,14 @@ namespace vesselid {
 void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                 GlobalStartOptions* global) {
   reader.CheckMap(node, path,
-                  {"algorithm", "max_evaluations", "max_time", "seed", "population", "candidates",
-                   "min_separation"});
+                  {"algorithm", "points", "short_iterations", "threads", "max_evaluations",
+                   "max_time", "seed", "population", "candidates", "min_separation"});
   reader.Read(node, path, "algorithm", &global->algorithm);
+  reader.Read(node, path, "points", &global->points);
+  reader.CheckLimit(node["points"], Child(path, "points"), global->points,
+                    reader.limits().evaluations, "limits.evaluations");
+  reader.Read(node, path, "short_iterations", &global->short_iterations);
+  reader.Read(node, path, "threads", &global->threads);
   reader.Read(node, path, "max_evaluations", &global->max_evaluations);
   reader.CheckLimit(node["max_evaluations"], Child(path, "max_evaluations"),
                     global->max_evaluations, reader.limits().evaluations, "limits.evaluations");

@@ -1,6 +1,7 @@
 // Local refinement of an output-error problem with Ceres' trust-region solver.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,6 +24,9 @@ struct LocalSolveOptions {
   double max_time_seconds = 3600.0;
   int num_threads = 1;  // experiments evaluated in parallel
   ProgressCallback progress;  // after each iteration; may be empty
+  // After each iteration (iteration, cost); false abandons the solve (termination
+  // USER_FAILURE, not usable). A multistart's short solves use it. May be empty.
+  std::function<bool(int, double)> keep_going;
 
   bool IsValid(std::string* error) const;
 };

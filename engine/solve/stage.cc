@@ -135,6 +135,43 @@ void SolveInitialStates(const LocalSolveOptions& options, OutputErrorProblem* pr
   for (const Variable* v : held) problem->problem()->SetParameterBlockVariable(v->block);
 }
 
+// Which refinement won, against the plain local solve from the start point (refinement 0),
+// and how many global points diverged.
+void NoteGlobalOutcome(const StageSummary& summary, size_t extra_starts,
+                       std::vector<std::string>* notes) {
+  const GlobalStartSummary& g = summary.global;
+  if (!g.run) return;
+  char text[512];
+  if (g.failed_evaluations > 0) {
+    std::snprintf(text, sizeof(text),
+                  "global start: %d of %d %s diverged (simulation not finite) and were left out",
+                  g.failed_evaluations, g.evaluations,
+                  g.algorithm == "multistart" ? "points" : "evaluations");
+    notes->push_back(text);
+  }
+  const LocalSolveSummary& plain = summary.refinements[0];
+  const int first_candidate = 1 + static_cast<int>(extra_starts);
+  std::string winner = "the plain local solve from the start point";
+  if (summary.chosen >= first_candidate) {
+    winner = "global candidate " + std::to_string(summary.chosen - first_candidate + 1) + " of " +
+             std::to_string(g.candidates.size());
+  } else if (summary.chosen > 0) {
+    winner = "extra start " + std::to_string(summary.chosen);
+  }
+  if (plain.usable) {
+    std::snprintf(text, sizeof(text),
+                  "global start: %s won (cost %.6e; plain local solve from the start point "
+                  "%.6e)",
+                  winner.c_str(), summary.local().final_cost, plain.final_cost);
+  } else {
+    std::snprintf(text, sizeof(text),
+                  "global start: %s won (cost %.6e; the plain local solve from the start point "
+                  "failed)",
+                  winner.c_str(), summary.local().final_cost);
+  }
+  notes->push_back(text);
+}
+
 }  // namespace
 
 bool StageOptions::IsValid(std::string* error) const {
@@ -210,6 +247,7 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
     return false;
   }
   problem->SetValues(best_values);
+  NoteGlobalOutcome(*summary, extra_starts.size(), &summary->notes);
   summary->notes.insert(summary->notes.end(), chosen_ridge_notes.begin(), chosen_ridge_notes.end());
   OrderExchangeable(problem, &summary->notes);
   NoteActiveBounds(*problem, &summary->notes);
