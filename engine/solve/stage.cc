@@ -158,17 +158,25 @@ void NoteGlobalOutcome(const StageSummary& summary, size_t extra_starts,
   } else if (summary.chosen > 0) {
     winner = "extra start " + std::to_string(summary.chosen);
   }
-  if (plain.usable) {
+  std::string search;
+  if (g.algorithm == "multistart") {
     std::snprintf(text, sizeof(text),
-                  "global start: %s won (cost %.6e; plain local solve from the start point "
-                  "%.6e)",
-                  winner.c_str(), summary.local().final_cost, plain.final_cost);
+                  "%d points (%d diverged, %d abandoned, %d short iterations), %d distinct end "
+                  "points",
+                  g.evaluations, g.failed_evaluations, g.abandoned, g.short_iterations_total,
+                  g.clusters);
   } else {
-    std::snprintf(text, sizeof(text),
-                  "global start: %s won (cost %.6e; the plain local solve from the start point "
-                  "failed)",
-                  winner.c_str(), summary.local().final_cost);
+    std::snprintf(text, sizeof(text), "%d evaluations (%d diverged)", g.evaluations,
+                  g.failed_evaluations);
   }
+  search = text;
+  char plain_cost[64] = "failed";
+  if (plain.usable) std::snprintf(plain_cost, sizeof(plain_cost), "%.6e", plain.final_cost);
+  std::snprintf(text, sizeof(text),
+                "global start (%s, %s): %s won with cost %.6e (plain local solve from the start "
+                "point: %s)",
+                g.algorithm.c_str(), search.c_str(), winner.c_str(), summary.local().final_cost,
+                plain_cost);
   notes->push_back(text);
 }
 
