@@ -210,6 +210,9 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
 
   std::vector<std::vector<double>> starts{problem->Values()};
   starts.insert(starts.end(), extra_starts.begin(), extra_starts.end());
+  // The multistart searched the ordered half of exchangeable pairs already: a candidate of it
+  // that ends on their ridge is not split again (other candidates lie off it).
+  const size_t first_candidate = starts.size();
   if (options.use_global_start) {
     if (!RunGlobalStart(options.global, problem, &summary->global)) {
       summary->message = "global start: " + summary->global.message;
@@ -235,7 +238,9 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
     }
     LocalSolveSummary local;
     ridge_notes.clear();
-    if (RunLocalSolve(local_options, problem, &local)) {
+    const bool escape =
+        i < first_candidate || summary->global.algorithm != "multistart";
+    if (RunLocalSolve(local_options, problem, &local) && escape) {
       EscapeExchangeRidge(local_options, problem, &local, &ridge_notes);
     }
     summary->refinements.push_back(local);

@@ -123,7 +123,8 @@ bool RunStartPointStudy(const RunConfig& config, const StartPointOptions& option
                         std::string* error, const CaseProgress& progress) {
   const auto start_time = std::chrono::steady_clock::now();
   StudyStage stage;
-  if (!PrepareStudyStage(config, options.stage, &stage, error)) return false;
+  // spread: the run's optimum is the centre of the starts.
+  if (!PrepareStudyStage(config, options.stage, &stage, error, options.spread > 0.0)) return false;
   if (!CheckBounds(stage, options, error)) {
     *error = "starts: stage '" + stage.stage->options.name + "': " + *error;
     return false;
