@@ -194,5 +194,29 @@ TEST(Multistart, LeavesTheExchangeRidgeWhereTheLocalSolveStays) {
   EXPECT_NEAR(ValueOf(*problem, "K"), -0.1724, 0.02 * 0.1724);
 }
 
+TEST(Multistart, CountsAndNotesPointsWhoseSimulationDiverges) {
+  // T1 < 0 is an unstable yaw mode: those points' simulations overflow over 300 s.
+  auto model = nomoto::MakeSecondOrderHandle();
+  Experiment e = RealisticPatrol(*model);
+  std::vector<ParameterSpec> specs = PatrolSpecs(3.0, 0.2, 0.3, -0.1);
+  specs[0].lower = -5.0;
+  auto problem = Problem(*model, e, specs);
+  StageOptions options;
+  options.compute_uncertainty = false;
+  options.use_global_start = true;
+  options.global.points = 16;
+  StageSummary summary;
+  ASSERT_TRUE(RunStage(options, problem.get(), &summary)) << summary.message;
+  EXPECT_GT(summary.global.failed_evaluations, 0);
+  EXPECT_LT(summary.global.failed_evaluations, 16);
+  bool noted = false;
+  for (const std::string& note : summary.notes) {
+    noted = noted || note.find(std::to_string(summary.global.failed_evaluations) +
+                               " of 16 points diverged") != std::string::npos;
+  }
+  EXPECT_TRUE(noted);
+  EXPECT_NEAR(ValueOf(*problem, "K"), -0.1724, 0.02 * 0.1724);
+}
+
 }  // namespace
 }  // namespace vesselid
