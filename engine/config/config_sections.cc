@@ -8,9 +8,14 @@ namespace vesselid {
 void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                 GlobalStartOptions* global) {
   reader.CheckMap(node, path,
-                  {"algorithm", "max_evaluations", "max_time", "seed", "population", "candidates",
-                   "min_separation"});
+                  {"algorithm", "points", "short_iterations", "threads", "max_evaluations",
+                   "max_time", "seed", "population", "candidates", "min_separation"});
   reader.Read(node, path, "algorithm", &global->algorithm);
+  reader.Read(node, path, "points", &global->points);
+  reader.CheckLimit(node["points"], Child(path, "points"), global->points,
+                    reader.limits().evaluations, "limits.evaluations");
+  reader.Read(node, path, "short_iterations", &global->short_iterations);
+  reader.Read(node, path, "threads", &global->threads);
   reader.Read(node, path, "max_evaluations", &global->max_evaluations);
   reader.CheckLimit(node["max_evaluations"], Child(path, "max_evaluations"),
                     global->max_evaluations, reader.limits().evaluations, "limits.evaluations");
@@ -21,6 +26,22 @@ void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::str
   reader.Read(node, path, "population", &global->population);
   reader.Read(node, path, "candidates", &global->candidates);
   reader.Read(node, path, "min_separation", &global->min_separation);
+  // Keys of the other kind of search would have no effect.
+  const bool multistart = global->algorithm == "multistart";
+  for (const char* key : {"max_evaluations", "population"}) {
+    if (multistart && node[key]) {
+      reader.Fail(node[key], Child(path, key),
+                  std::string(key) + " applies to NLopt algorithms; the multistart takes points "
+                                     "and short_iterations");
+    }
+  }
+  for (const char* key : {"points", "short_iterations", "threads"}) {
+    if (!multistart && node[key]) {
+      reader.Fail(node[key], Child(path, key),
+                  std::string(key) + " applies to the multistart, not to NLopt's " +
+                      global->algorithm + " (which takes max_evaluations)");
+    }
+  }
   std::string error;
   if (!global->IsValid(&error)) reader.Fail(node, path, error);
 }

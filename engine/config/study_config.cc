@@ -201,11 +201,11 @@ MonteCarloOptions ReadMonteCarlo(const YamlReader& reader, const YAML::Node& nod
   return mc;
 }
 
-//   starts: {stage, runs, sampling: uniform|log, global: {...}, tolerance}
+//   starts: {stage, runs, sampling: uniform|log, spread, global: {...}, tolerance}
 StartPointOptions ReadStarts(const YamlReader& reader, const YAML::Node& node,
                              const RunConfig& config) {
   const std::string path = "study.starts";
-  reader.CheckMap(node, path, {"stage", "runs", "sampling", "global", "tolerance"});
+  reader.CheckMap(node, path, {"stage", "runs", "sampling", "spread", "global", "tolerance"});
   StartPointOptions starts;
   const StageConfig& stage =
       StudiedStage(reader, node, path, config, StageConfig::Kind::kOutputError, &starts.stage);
@@ -216,6 +216,10 @@ StartPointOptions ReadStarts(const YamlReader& reader, const YAML::Node& node,
       reader.Fail(n, Child(path, "sampling"), "expected uniform or log, got '" + sampling + "'");
     }
     starts.log_sampling = sampling == "log";
+  }
+  reader.Read(node, path, "spread", &starts.spread);
+  if (node["spread"] && !(starts.spread > 1.0)) {
+    reader.Fail(node["spread"], Child(path, "spread"), "must be > 1 (a factor around the optimum)");
   }
   starts.global = stage.options.global;
   if (const YAML::Node n = node["global"]) {

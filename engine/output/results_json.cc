@@ -192,9 +192,12 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
   j["model"] = stage.model;
   j["time_seconds"] = s.time_seconds;
   if (s.global.run) {
-    j["global_start"] = {{"variables", s.global.variables},
+    j["global_start"] = {{"algorithm", s.global.algorithm},
+                         {"variables", s.global.variables},
                          {"evaluations", s.global.evaluations},
                          {"diverged_evaluations", s.global.failed_evaluations},
+                         {"abandoned", s.global.abandoned},
+                         {"distinct_end_points", s.global.clusters},
                          {"best_cost", s.global.best_cost},
                          {"candidate_costs", s.global.candidate_costs},
                          {"time_seconds", s.global.time_seconds},

@@ -40,11 +40,12 @@ void FailedFits(const std::string& where, const std::vector<ExperimentFit>& fits
 }
 
 // Stage notes that are warnings: active bounds, held-out divergences, a noise model that
-// did not settle or could not be estimated.
+// did not settle or could not be estimated, global-start points that diverged.
 bool WarningNote(const std::string& note) {
   return note.rfind("integration step", 0) == 0 || note.rfind("outliers:", 0) == 0 ||
          note.rfind(kNarrowHessianNote, 0) == 0 || note.rfind(kBootstrapNote, 0) == 0 ||
          note.rfind("noise weights:", 0) == 0 || note.rfind(kInputNoiseIntervalNote, 0) == 0 ||
+         note.rfind("global start: ", 0) == 0 ||  // points whose simulation diverged
          note.find(" is at its lower bound") != std::string::npos ||
          note.find(" is at its upper bound") != std::string::npos ||
          note.find("diverges") != std::string::npos;

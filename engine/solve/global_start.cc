@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/solve/multistart.h"
 #include "nlopt.hpp"
 
 namespace vesselid {
@@ -54,8 +55,27 @@ double Objective(unsigned n, const double* z, double* gradient, void* data) {
 }  // namespace
 
 bool GlobalStartOptions::IsValid(std::string* error) const {
+  if (algorithm == "multistart") {
+    if (points < 1) {
+      *error = "points must be >= 1";
+    } else if (short_iterations < 1) {
+      *error = "short_iterations must be >= 1";
+    } else if (threads < 0) {
+      *error = "threads must be >= 0 (0: the machine's cores)";
+    } else if (!(max_time_seconds > 0.0)) {
+      *error = "max_time_seconds must be > 0";
+    } else if (candidates < 1) {
+      *error = "candidates must be >= 1";
+    } else if (!(min_separation >= 0.0)) {
+      *error = "min_separation must be >= 0";
+    } else {
+      return true;
+    }
+    return false;
+  }
   if (nlopt_algorithm_from_string(algorithm.c_str()) < 0) {
-    *error = "unknown NLopt algorithm '" + algorithm + "' (e.g. GN_DIRECT_L, GN_CRS2_LM, GN_ISRES)";
+    *error = "unknown algorithm '" + algorithm +
+             "': multistart or an NLopt global algorithm (e.g. GN_DIRECT_L, GN_CRS2_LM, GN_ISRES)";
   } else if (algorithm.rfind("GN_", 0) != 0 && algorithm.rfind("G_MLSL", 0) != 0) {
     *error = "algorithm '" + algorithm + "' is not a global derivative-free NLopt algorithm";
   } else if (max_evaluations < 1) {
@@ -75,6 +95,13 @@ bool GlobalStartOptions::IsValid(std::string* error) const {
 std::string GlobalStartSummary::BriefReport() const {
   if (!run) return "global start: not run";
   char text[256];
+  if (algorithm == "multistart") {
+    std::snprintf(text, sizeof(text),
+                  "global start (multistart): %d points (%d diverged, %d abandoned), %d distinct "
+                  "end points, best cost %.6e, %.3f s",
+                  evaluations, failed_evaluations, abandoned, clusters, best_cost, time_seconds);
+    return text;
+  }
   std::snprintf(text, sizeof(text),
                 "global start: %d evaluations (%d diverged), best cost %.6e, %.3f s, %s",
                 evaluations, failed_evaluations, best_cost, time_seconds, result.c_str());
@@ -85,6 +112,12 @@ bool RunGlobalStart(const GlobalStartOptions& options, OutputErrorProblem* probl
                     GlobalStartSummary* summary) {
   *summary = GlobalStartSummary();
   if (!options.IsValid(&summary->message)) return false;
+  if (options.algorithm == "multistart") {
+    const bool found = RunMultistart(options, problem, summary);
+    summary->algorithm = options.algorithm;
+    return found;
+  }
+  summary->algorithm = options.algorithm;
   const auto start_time = std::chrono::steady_clock::now();
   SearchState state;
   state.problem = problem;

@@ -1,7 +1,9 @@
-// Global start: an NLopt global algorithm searches the box of the bounded free variables
-// (normalised to [0, 1]) on the output-error cost; the best distinct points it visited are
-// returned as candidates for local refinement. A diverging simulation scores a large
-// penalty instead of failing the search.
+// Global start: candidates for the stage's local refinement, found in the box of the bounded
+// free variables. The default, "multistart" (multistart.h), runs short Ceres solves from
+// low-discrepancy points in log/linear coordinates and clusters their end points; an NLopt
+// global algorithm named instead (e.g. GN_CRS2_LM) searches the box normalised to [0, 1] on
+// the output-error cost and returns its best distinct visited points, a diverging
+// simulation scoring a large penalty.
 #pragma once
 
 #include <string>
@@ -13,14 +15,19 @@
 namespace vesselid {
 
 struct GlobalStartOptions {
-  // NLopt algorithm name, e.g. GN_DIRECT_L, GN_CRS2_LM, GN_ISRES, GN_ESCH, GN_MLSL_LDS.
-  std::string algorithm = "GN_CRS2_LM";
+  // "multistart", or an NLopt algorithm name, e.g. GN_DIRECT_L, GN_CRS2_LM, GN_ISRES.
+  std::string algorithm = "multistart";
+  // multistart: points (short solves), Ceres iterations of each, threads (0: the cores).
+  int points = 32;
+  int short_iterations = 4;
+  int threads = 0;
+  // NLopt: cost evaluations.
   int max_evaluations = 1000;
   double max_time_seconds = 600.0;
   unsigned seed = 1;
   int population = 0;            // 0: NLopt's default
   int candidates = 3;            // best distinct points handed to local refinement
-  double min_separation = 0.05;  // between candidates, in normalised coordinates (max-norm)
+  double min_separation = 0.05;  // between candidates, in the box's coordinates (max-norm)
   ProgressCallback progress;     // after each evaluation; may be empty
 
   bool IsValid(std::string* error) const;
@@ -29,8 +36,12 @@ struct GlobalStartOptions {
 struct GlobalStartSummary {
   bool run = false;
   std::vector<std::string> variables;  // names of the searched variables
-  int evaluations = 0;
-  int failed_evaluations = 0;  // diverging simulations
+  std::string algorithm;
+  int evaluations = 0;         // NLopt: cost evaluations; multistart: points started
+  int failed_evaluations = 0;  // diverging simulations (multistart: points)
+  int abandoned = 0;           // multistart: short solves abandoned as clearly worse
+  int clusters = 0;            // multistart: distinct end points
+  int short_iterations_total = 0;  // multistart: Ceres iterations of the short solves
   double best_cost = -1.0;
   double time_seconds = 0.0;
   std::string result;  // NLopt's return code

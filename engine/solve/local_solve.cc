@@ -27,6 +27,20 @@ class ProgressReporter : public ceres::IterationCallback {
   const ProgressCallback& progress_;
 };
 
+// Abandons the solve when LocalSolveOptions::keep_going says so.
+class AbandonCheck : public ceres::IterationCallback {
+ public:
+  explicit AbandonCheck(const std::function<bool(int, double)>& keep_going)
+      : keep_going_(keep_going) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    return keep_going_(summary.iteration, summary.cost) ? ceres::SOLVER_CONTINUE
+                                                        : ceres::SOLVER_ABORT;
+  }
+
+ private:
+  const std::function<bool(int, double)>& keep_going_;
+};
+
 }  // namespace
 
 bool LocalSolveOptions::IsValid(std::string* error) const {
@@ -111,6 +125,8 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   const bool threaded = problem->problem()->NumResidualBlocks() > 1;
   double ordered_initial = -1.0;
   if (threaded && !problem->Cost(&ordered_initial)) ordered_initial = -1.0;
+  AbandonCheck abandon(options.keep_going);
+  if (options.keep_going) ceres_options.callbacks.push_back(&abandon);
   ceres::Solver::Summary ceres_summary;
   ceres::Solve(ceres_options, problem->problem(), &ceres_summary);
   if (threaded && ceres_summary.initial_cost >= 0.0 && ordered_initial >= 0.0) {

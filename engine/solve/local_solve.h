@@ -1,6 +1,7 @@
 // Local refinement of an output-error problem with Ceres' trust-region solver.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,6 +26,9 @@ struct LocalSolveOptions {
   // base/parallel_for.h).
   int num_threads = 0;
   ProgressCallback progress;  // after each iteration; may be empty
+  // After each iteration (iteration, cost); false abandons the solve (termination
+  // USER_FAILURE, not usable). A multistart's short solves use it. May be empty.
+  std::function<bool(int, double)> keep_going;
 
   bool IsValid(std::string* error) const;
 };

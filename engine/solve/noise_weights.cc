@@ -64,6 +64,12 @@ bool IterateNoiseWeights(const StageOptions& options, OutputErrorProblem* proble
   }
   StageOptions again_options = options;
   again_options.use_global_start = false;
+  // The re-solves start from the first solve's optimum; its global search stays reported.
+  const GlobalStartSummary first_global = summary->global;
+  std::vector<std::string> global_notes;
+  for (const std::string& note : summary->notes) {
+    if (note.rfind("global start", 0) == 0) global_notes.push_back(note);
+  }
   double time = summary->time_seconds;
   double change = 0.0;
   std::string largest;
@@ -77,6 +83,8 @@ bool IterateNoiseWeights(const StageOptions& options, OutputErrorProblem* proble
     }
     time += again.time_seconds;
     again.name = summary->name;
+    again.global = first_global;
+    again.notes.insert(again.notes.begin(), global_notes.begin(), global_notes.end());
     *summary = std::move(again);
     NoiseModel next;
     if (!EstimateChannelNoise(*problem, summary->fits, &next, &reason)) {

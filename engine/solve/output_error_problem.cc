@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "engine/base/check.h"
 #include "engine/model/channel_weights.h"
 
 namespace vesselid {
@@ -134,6 +135,8 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
   const ModelInfo& info = model->info();
   std::unique_ptr<OutputErrorProblem> p(new OutputErrorProblem);
   p->model_ = model;
+  p->specs_ = parameters;
+  p->options_ = options;
   p->experiments_ = std::move(experiments);
   if (p->experiments_.empty()) {
     *error = "no experiments";
@@ -274,6 +277,14 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
     if (std::isfinite(v.upper)) p->problem_->SetParameterUpperBound(v.block, 0, v.upper / v.scale);
   }
   return p;
+}
+
+std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Clone() const {
+  std::string error;
+  std::unique_ptr<OutputErrorProblem> copy = Create(model_, experiments_, specs_, options_, &error);
+  VESSELID_CHECK(copy != nullptr);  // the same inputs created this problem
+  copy->SetValues(Values());
+  return copy;
 }
 
 void OutputErrorProblem::SetChannelWeights(const std::vector<double>& weight) {

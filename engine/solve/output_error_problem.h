@@ -69,6 +69,10 @@ class OutputErrorProblem {
                                                     const OutputErrorOptions& options,
                                                     std::string* error);
 
+  // An independent copy at the current values and channel weights (one per thread of a
+  // parallel search); nullptr only if memory runs out.
+  std::unique_ptr<OutputErrorProblem> Clone() const;
+
   ceres::Problem* problem() { return problem_.get(); }
   const ModelHandle& model() const { return *model_; }
   const std::vector<Variable>& variables() const { return variables_; }
@@ -103,6 +107,8 @@ class OutputErrorProblem {
   static void AddInputCorrectionPriors(OutputErrorProblem* p);
 
   const ModelHandle* model_ = nullptr;
+  std::vector<ParameterSpec> specs_;  // as created, for Clone
+  OutputErrorOptions options_;
   std::vector<Experiment> experiments_;
   std::unique_ptr<ceres::LossFunction> loss_;
   std::unique_ptr<ceres::Problem> problem_;

@@ -135,6 +135,51 @@ void SolveInitialStates(const LocalSolveOptions& options, OutputErrorProblem* pr
   for (const Variable* v : held) problem->problem()->SetParameterBlockVariable(v->block);
 }
 
+// Which refinement won, against the plain local solve from the start point (refinement 0),
+// and how many global points diverged.
+void NoteGlobalOutcome(const StageSummary& summary, size_t extra_starts,
+                       std::vector<std::string>* notes) {
+  const GlobalStartSummary& g = summary.global;
+  if (!g.run) return;
+  char text[512];
+  if (g.failed_evaluations > 0) {
+    std::snprintf(text, sizeof(text),
+                  "global start: %d of %d %s diverged (simulation not finite) and were left out",
+                  g.failed_evaluations, g.evaluations,
+                  g.algorithm == "multistart" ? "points" : "evaluations");
+    notes->push_back(text);
+  }
+  const LocalSolveSummary& plain = summary.refinements[0];
+  const int first_candidate = 1 + static_cast<int>(extra_starts);
+  std::string winner = "the plain local solve from the start point";
+  if (summary.chosen >= first_candidate) {
+    winner = "global candidate " + std::to_string(summary.chosen - first_candidate + 1) + " of " +
+             std::to_string(g.candidates.size());
+  } else if (summary.chosen > 0) {
+    winner = "extra start " + std::to_string(summary.chosen);
+  }
+  std::string search;
+  if (g.algorithm == "multistart") {
+    std::snprintf(text, sizeof(text),
+                  "%d points (%d diverged, %d abandoned, %d short iterations), %d distinct end "
+                  "points",
+                  g.evaluations, g.failed_evaluations, g.abandoned, g.short_iterations_total,
+                  g.clusters);
+  } else {
+    std::snprintf(text, sizeof(text), "%d evaluations (%d diverged)", g.evaluations,
+                  g.failed_evaluations);
+  }
+  search = text;
+  char plain_cost[64] = "failed";
+  if (plain.usable) std::snprintf(plain_cost, sizeof(plain_cost), "%.6e", plain.final_cost);
+  std::snprintf(text, sizeof(text),
+                "global start (%s, %s): %s won with cost %.6e (plain local solve from the start "
+                "point: %s)",
+                g.algorithm.c_str(), search.c_str(), winner.c_str(), summary.local().final_cost,
+                plain_cost);
+  notes->push_back(text);
+}
+
 }  // namespace
 
 bool StageOptions::IsValid(std::string* error) const {
@@ -165,6 +210,9 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
 
   std::vector<std::vector<double>> starts{problem->Values()};
   starts.insert(starts.end(), extra_starts.begin(), extra_starts.end());
+  // The multistart searched the ordered half of exchangeable pairs already: a candidate of it
+  // that ends on their ridge is not split again (other candidates lie off it).
+  const size_t first_candidate = starts.size();
   if (options.use_global_start) {
     if (!RunGlobalStart(options.global, problem, &summary->global)) {
       summary->message = "global start: " + summary->global.message;
@@ -190,7 +238,9 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
     }
     LocalSolveSummary local;
     ridge_notes.clear();
-    if (RunLocalSolve(local_options, problem, &local)) {
+    const bool escape =
+        i < first_candidate || summary->global.algorithm != "multistart";
+    if (RunLocalSolve(local_options, problem, &local) && escape) {
       EscapeExchangeRidge(local_options, problem, &local, &ridge_notes);
     }
     summary->refinements.push_back(local);
@@ -210,6 +260,7 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
     return false;
   }
   problem->SetValues(best_values);
+  NoteGlobalOutcome(*summary, extra_starts.size(), &summary->notes);
   summary->notes.insert(summary->notes.end(), chosen_ridge_notes.begin(), chosen_ridge_notes.end());
   OrderExchangeable(problem, &summary->notes);
   NoteActiveBounds(*problem, &summary->notes);

@@ -17,6 +17,12 @@ using nlohmann::json;
 constexpr int kPart = 2;  // CaseSeed part of this study
 const char* const kModes[] = {"local", "global"};
 
+std::string SpreadText(double spread) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", spread);
+  return text;
+}
+
 bool CheckBounds(const StudyStage& stage, const StartPointOptions& options, std::string* error) {
   for (int index : stage.free) {
     const ParameterSpec& spec = stage.specs[index];
@@ -24,7 +30,13 @@ bool CheckBounds(const StudyStage& stage, const StartPointOptions& options, std:
       *error = "parameter '" + spec.name + "' needs finite bounds to draw starts in";
       return false;
     }
-    if (options.log_sampling && !(spec.lower > 0.0)) {
+    if (options.spread > 0.0) {
+      const auto o = stage.run_optimum.find(spec.name);
+      if (o == stage.run_optimum.end() || !(o->second != 0.0)) {
+        *error = "parameter '" + spec.name + "': spread needs a non-zero optimum to draw around";
+        return false;
+      }
+    } else if (options.log_sampling && !(spec.lower > 0.0)) {
       *error = "parameter '" + spec.name + "': log sampling needs a positive lower bound";
       return false;
     }
@@ -111,12 +123,14 @@ bool RunStartPointStudy(const RunConfig& config, const StartPointOptions& option
                         std::string* error, const CaseProgress& progress) {
   const auto start_time = std::chrono::steady_clock::now();
   StudyStage stage;
-  if (!PrepareStudyStage(config, options.stage, &stage, error)) return false;
+  // spread: the run's optimum is the centre of the starts.
+  if (!PrepareStudyStage(config, options.stage, &stage, error, options.spread > 0.0)) return false;
   if (!CheckBounds(stage, options, error)) {
     *error = "starts: stage '" + stage.stage->options.name + "': " + *error;
     return false;
   }
   GlobalStartOptions global = options.global_given ? options.global : stage.options.global;
+  global.threads = 1;  // the cases already fill the cores
   auto run_case = [&](int index) -> json {
     const auto case_start = std::chrono::steady_clock::now();
     const int r = index % options.runs;
@@ -128,9 +142,19 @@ bool RunStartPointStudy(const RunConfig& config, const StartPointOptions& option
     for (int i : stage.free) {
       ParameterSpec& spec = specs[i];
       const double u = uniform(random);
-      spec.start = options.log_sampling
-                       ? spec.lower * std::pow(spec.upper / spec.lower, u)
-                       : spec.lower + u * (spec.upper - spec.lower);
+      if (options.spread > 0.0) {
+        // log-uniform within a factor spread of the optimum, cut to the bounds
+        const double o = stage.run_optimum.at(spec.name), sign = o > 0.0 ? 1.0 : -1.0;
+        double lo = std::abs(o) / options.spread, hi = std::abs(o) * options.spread;
+        const double bound_lo = sign > 0 ? spec.lower : -spec.upper;
+        const double bound_hi = sign > 0 ? spec.upper : -spec.lower;
+        lo = std::max(lo, std::max(bound_lo, 1e-300));
+        hi = std::min(hi, bound_hi);
+        spec.start = sign * lo * std::pow(hi / lo, u);
+      } else {
+        spec.start = options.log_sampling ? spec.lower * std::pow(spec.upper / spec.lower, u)
+                                          : spec.lower + u * (spec.upper - spec.lower);
+      }
       start.push_back(spec.start);
     }
     StageOptions stage_options = stage.options;
@@ -164,10 +188,14 @@ bool RunStartPointStudy(const RunConfig& config, const StartPointOptions& option
   for (const char* mode : kModes) modes.push_back(ModeSummary(stage, mode, cases));
   *result = {{"stage", stage.stage->options.name},
              {"runs", options.runs},
-             {"sampling", options.log_sampling ? "log" : "uniform"},
+             {"sampling", options.spread > 0.0
+                              ? "log within x" + SpreadText(options.spread) + " of the optimum"
+                              : options.log_sampling ? "log" : "uniform"},
              {"tolerance", options.tolerance},
              {"global", {{"algorithm", global.algorithm},
-                         {"max_evaluations", global.max_evaluations},
+                         {"max_evaluations", global.algorithm == "multistart"
+                                                 ? global.points
+                                                 : global.max_evaluations},
                          {"candidates", global.candidates}}},
              {"parameters", stage.free_names},
              {"optima", optima},
@@ -184,11 +212,12 @@ std::string StartPointText(const json& result) {
   char line[512];
   std::snprintf(line, sizeof(line),
                 "Start-point study, stage %s: %d starts drawn %s in the bounds, each solved "
-                "locally and with the global start (%s, %d evaluations), %.1f s\n",
+                "locally and with the global start (%s, %d %s), %.1f s\n",
                 result["stage"].get<std::string>().c_str(), result["runs"].get<int>(),
                 result["sampling"].get<std::string>().c_str(),
                 result["global"]["algorithm"].get<std::string>().c_str(),
                 result["global"]["max_evaluations"].get<int>(),
+                result["global"]["algorithm"] == "multistart" ? "points" : "evaluations",
                 NumberOr(result["time_seconds"], NAN));
   text += line;
   for (const json& m : result["modes"]) {
@@ -199,6 +228,16 @@ std::string StartPointText(const json& result) {
                   m["runs"].get<int>(), 100.0 * m["success_fraction"].get<double>(),
                   m["runs"].get<int>() - m["usable"].get<int>(),
                   NumberOr(m["mean_time_seconds"], NAN));
+    text += line;
+  }
+  const json& modes = result["modes"];
+  if (modes.size() == 2) {
+    std::snprintf(line, sizeof(line),
+                  "  global / local: success %.1f %% vs %.1f %%, time per start %.2fx\n",
+                  100.0 * modes[1]["success_fraction"].get<double>(),
+                  100.0 * modes[0]["success_fraction"].get<double>(),
+                  NumberOr(modes[1]["mean_time_seconds"], NAN) /
+                      NumberOr(modes[0]["mean_time_seconds"], NAN));
     text += line;
   }
   const std::vector<std::string> names = result["parameters"].get<std::vector<std::string>>();

@@ -64,6 +64,9 @@ struct StartPointOptions {
   std::string stage;
   int runs = 50;
   bool log_sampling = false;      // sampling: log (positive bounds) or uniform
+  // > 0: each start log-uniform in [o / spread, o * spread] (o: the run's optimum of the
+  // parameter, sign kept), cut to the bounds; 0: drawn in the whole bounds.
+  double spread = 0.0;
   GlobalStartOptions global;      // the stage's own global options unless given
   bool global_given = false;
   // Two optima are the same when every free parameter agrees within tolerance * max(|value|,

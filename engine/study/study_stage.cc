@@ -54,6 +54,7 @@ bool PrepareStudyStage(const RunConfig& config, const std::string& name, StudySt
   }
   stage->options = s.options;
   stage->options.local.num_threads = 1;
+  stage->options.global.threads = 1;  // the study's cases already fill the cores
   for (size_t i = 0; i < stage->specs.size(); ++i) {
     if (IsEstimatedOnce(stage->specs[i].role)) {
       stage->free.push_back(static_cast<int>(i));

@@ -2,9 +2,11 @@
 // plain SciPy least-squares fit on the same data (reference_3dof.py, an implementation of
 // MODELS.md section 1 written from the spec, also the data's simulator): how many of the
 // fixed starts reach the optimum, and at what time: with headings compared unwrapped (the
-// default) and modulo one turn (`wrap: [psi]`), and with the far-start recipe.
+// default) and modulo one turn (`wrap: [psi]`), with the far-start recipe, and with the
+// multistart global start (`global: {seed: 1}`).
 //
-//   build/tests/benchmarks/benchmark_spirals [starts]        (default 11 starts, +-30 %)
+//   build/tests/benchmarks/benchmark_spirals [starts] [variant]  (default 11 starts, +-30 %;
+//       variant: plain, wrapped, continuation or global; default all)
 //
 // A start succeeds when its final cost is within 1 % of the cost the same tool reaches from
 // the true values (run first, not counted).
@@ -17,6 +19,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "nlohmann/json.hpp"
@@ -48,7 +51,7 @@ bool Success(double cost, double reference) { return cost <= 1.01 * reference; }
 // How the engine is asked: as the SciPy script fits (whole runs), with the heading wrapped
 // (today's behaviour before unwrapping), and with the far-start recipe (continuation on 10 s,
 // then 30 s pieces, each piece's velocities free).
-enum class Variant { kPlain, kWrapped, kContinuation };
+enum class Variant { kPlain, kWrapped, kContinuation, kGlobal };
 
 std::string Config(const std::map<std::string, double>& start, Variant variant) {
   const bool wrap = variant == Variant::kWrapped;
@@ -65,6 +68,7 @@ std::string Config(const std::map<std::string, double>& start, Variant variant) 
   if (variant == Variant::kContinuation) {
     text += "    continuation: [10, 30]\n    free_initial_states: [u, v, r]\n";
   }
+  if (variant == Variant::kGlobal) text += "    global: {seed: 1}\n";
   text += "    parameters:\n";
   for (const auto& [name, value] : start) {
     const auto& [lower, upper] = kBounds.at(name);
@@ -78,6 +82,7 @@ std::string Config(const std::map<std::string, double>& start, Variant variant) 
 
 int main(int argc, char** argv) {
   const int count = argc > 1 ? std::atoi(argv[1]) : 11;
+  const std::string only = argc > 2 ? argv[2] : "";
   const fs::path dir = fs::temp_directory_path() / "vesselid_benchmark_spirals";
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -104,11 +109,13 @@ int main(int argc, char** argv) {
       "surge-sway-yaw fit of %d spiral/zigzag runs, %d starts within +-30 %% of the truth\n", kRuns,
       count);
   std::printf("  %-34s %10s %12s\n", "", "successes", "time/start");
-  const std::pair<Variant, const char*> variants[] = {
-      {Variant::kPlain, "vesselid, heading unwrapped"},
-      {Variant::kWrapped, "vesselid, heading wrapped (wrap:)"},
-      {Variant::kContinuation, "vesselid, unwrapped, continuation"}};
-  for (const auto& [variant, label] : variants) {
+  const std::tuple<Variant, const char*, const char*> variants[] = {
+      {Variant::kPlain, "plain", "vesselid, heading unwrapped"},
+      {Variant::kWrapped, "wrapped", "vesselid, heading wrapped (wrap:)"},
+      {Variant::kContinuation, "continuation", "vesselid, unwrapped, continuation"},
+      {Variant::kGlobal, "global", "vesselid, unwrapped, multistart"}};
+  for (const auto& [variant, name, label] : variants) {
+    if (!only.empty() && only != name) continue;
     int successes = 0;
     double seconds = 0.0, reference = 0.0;
     for (int i = 0; i <= count; ++i) {
@@ -129,6 +136,10 @@ int main(int argc, char** argv) {
       successes += Success(cost, reference);
     }
     std::printf("  %-34s %7d/%-2d %10.1f s\n", label, successes, count, seconds / count);
+  }
+  if (!only.empty()) {  // one engine variant asked for: no SciPy fit
+    fs::remove_all(dir);
+    return 0;
   }
   const fs::path fits = dir / "scipy.json";
   const double scipy_time = Timed(std::string(kPython) + " " + script + " fit " + dir.string() +

@@ -34,7 +34,7 @@ class Study : public ::testing::Test {
       seed: 5
       monte_carlo: {stage: multisine, runs: 16, noise: {psi: 0.001745}, start: truth}
       profile: {stage: multisine, parameters: [T2, T3], points: 7, span: 3}
-      starts: {stage: multisine, runs: 4, global: {max_evaluations: 150, candidates: 2}})");
+      starts: {stage: multisine, runs: 4, global: {points: 16, candidates: 2}})");
     folder_->Write("study.yaml", config);
     config["study"]["monte_carlo"]["noise"] = YAML::Load("{heading: 0.001}");
     folder_->Write("bad_noise.yaml", config);

@@ -1,0 +1,177 @@
+#include "engine/solve/multistart.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <mutex>
+
+#include "engine/base/parallel_for.h"
+#include "engine/solve/halton_sequence.h"
+#include "engine/solve/local_solve.h"
+#include "engine/solve/search_box.h"
+
+namespace vesselid {
+namespace {
+
+enum class PointStatus { kDiverged, kAbandoned, kEnded };
+
+struct PointResult {
+  PointStatus status = PointStatus::kDiverged;
+  std::vector<double> values;  // end point, exchangeable pairs ordered
+  double cost = std::numeric_limits<double>::infinity();
+  int iterations = 0;
+};
+
+// Problems for the worker threads: each body borrows one and gives it back.
+class ProblemPool {
+ public:
+  ProblemPool(OutputErrorProblem* problem, int size) : free_{problem} {
+    for (int i = 1; i < size; ++i) {
+      owned_.push_back(problem->Clone());
+      free_.push_back(owned_.back().get());
+    }
+  }
+  OutputErrorProblem* Borrow() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    OutputErrorProblem* p = free_.back();
+    free_.pop_back();
+    return p;
+  }
+  void Return(OutputErrorProblem* p) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    free_.push_back(p);
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<OutputErrorProblem>> owned_;
+  std::vector<OutputErrorProblem*> free_;
+};
+
+PointResult ShortSolve(const GlobalStartOptions& options, const SearchBox& box,
+                       const std::vector<double>& start, double best_before,
+                       OutputErrorProblem* problem) {
+  PointResult result;
+  problem->SetValues(start);
+  double cost = 0.0;
+  if (!problem->Cost(&cost) || !std::isfinite(cost)) return result;  // diverged at the start
+  LocalSolveOptions local;
+  local.max_iterations = options.short_iterations;
+  local.num_threads = 1;
+  bool abandoned = false;
+  if (std::isfinite(best_before)) {
+    local.keep_going = [&](int iteration, double c) {
+      abandoned = iteration >= 1 && c > kMultistartAbandonFactor * best_before;
+      return !abandoned;
+    };
+  }
+  LocalSolveSummary summary;
+  RunLocalSolve(local, problem, &summary);
+  result.iterations = std::max(0, summary.iterations);
+  if (abandoned) {
+    result.status = PointStatus::kAbandoned;
+    return result;
+  }
+  // Ceres keeps the last accepted point; a solve whose every step diverged ends unusable.
+  if (!summary.usable || !std::isfinite(summary.final_cost)) return result;
+  result.status = PointStatus::kEnded;
+  result.cost = summary.final_cost;
+  const std::vector<double> end = problem->Values();
+  result.values = box.Values(box.Coordinates(end), end);
+  return result;
+}
+
+}  // namespace
+
+bool RunMultistart(const GlobalStartOptions& options, OutputErrorProblem* problem,
+                   GlobalStartSummary* summary) {
+  const auto start_time = std::chrono::steady_clock::now();
+  *summary = GlobalStartSummary();
+  const SearchBox box(*problem);
+  summary->variables = box.names();
+  if (box.dimension() == 0) {
+    summary->message = "no free parameter has finite lower and upper bounds to search";
+    return false;
+  }
+  const std::vector<double> base = problem->Values();
+  const HaltonSequence halton(box.dimension(), options.seed);
+  std::vector<std::vector<double>> starts;
+  for (int i = 0; i < options.points; ++i) starts.push_back(box.Values(halton.Point(i + 1), base));
+
+  const int threads = std::min(ParallelThreads(options.threads), kMultistartBatch);
+  ProblemPool pool(problem, std::min(threads, options.points));
+  std::vector<PointResult> results(starts.size());
+  double best = std::numeric_limits<double>::infinity();
+  int done = 0;
+  for (int first = 0; first < options.points; first += kMultistartBatch) {
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+    if (first > 0 && elapsed > options.max_time_seconds) {
+      summary->result = "stopped at max_time";
+      break;
+    }
+    const int count = std::min(kMultistartBatch, options.points - first);
+    const double best_before = best;
+    ParallelFor(count, threads, [&](int j) {
+      OutputErrorProblem* p = pool.Borrow();
+      results[first + j] = ShortSolve(options, box, starts[first + j], best_before, p);
+      pool.Return(p);
+    });
+    for (int j = 0; j < count; ++j) {
+      const PointResult& r = results[first + j];
+      summary->short_iterations_total += r.iterations;
+      if (r.status == PointStatus::kDiverged) ++summary->failed_evaluations;
+      if (r.status == PointStatus::kAbandoned) ++summary->abandoned;
+      if (r.status == PointStatus::kEnded) best = std::min(best, r.cost);
+      summary->best_cost_history.push_back(std::isfinite(best) ? best : std::nan(""));
+    }
+    done = first + count;
+    if (options.progress) {
+      SolveProgress p;
+      p.phase = SolveProgress::Phase::kGlobal;
+      p.iteration = done;
+      p.cost = std::isfinite(best) ? best : std::nan("");
+      options.progress(p);
+    }
+  }
+  problem->SetValues(base);
+  summary->run = true;
+  summary->evaluations = done;
+  if (summary->result.empty()) summary->result = "multistart";
+
+  // Clusters, best end point first: a point within min_separation of a kept one joins it.
+  std::vector<int> order;
+  for (int i = 0; i < done; ++i) {
+    if (results[i].status == PointStatus::kEnded) order.push_back(i);
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return results[a].cost < results[b].cost; });
+  std::vector<const std::vector<double>*> representatives;
+  for (int i : order) {
+    bool distinct = true;
+    for (const std::vector<double>* c : representatives) {
+      distinct = distinct && box.Distance(*c, results[i].values) >= options.min_separation;
+    }
+    if (!distinct) continue;
+    representatives.push_back(&results[i].values);
+    ++summary->clusters;
+    if (static_cast<int>(summary->candidates.size()) < options.candidates) {
+      summary->candidates.push_back(results[i].values);
+      summary->candidate_costs.push_back(results[i].cost);
+    }
+  }
+  summary->best_cost = summary->candidate_costs.empty() ? -1.0 : summary->candidate_costs[0];
+  summary->time_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  if (summary->candidates.empty()) {
+    summary->message = "no short solve of the multistart ended with a finite cost (" +
+                       std::to_string(summary->failed_evaluations) + " of " +
+                       std::to_string(done) + " points diverged)";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace vesselid
