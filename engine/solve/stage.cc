@@ -215,17 +215,19 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
   NoteActiveBounds(*problem, &summary->notes);
 
   if (options.compute_uncertainty) {
+    // One Jet simulation at the optimum serves the HAC and the local analysis.
+    SolutionJacobian solution;
     UncertaintyOptions uncertainty = options.uncertainty;
     uncertainty.hac.num_threads = options.local.num_threads;
     if (!ComputeStageUncertainty(uncertainty, problem, best_cost, &summary->uncertainty,
-                                 &summary->notes)) {
+                                 &summary->notes, &solution)) {
       summary->notes.push_back("uncertainty: " + summary->uncertainty.message);
     }
-  }
-  if (options.compute_uncertainty) {
     LocalAnalysisOptions analysis;
     analysis.num_threads = options.local.num_threads;
-    if (!ComputeLocalAnalysis(analysis, problem, &summary->analysis)) {
+    const bool evaluated = solution.data_rows > 0;
+    if (!ComputeLocalAnalysis(analysis, problem, &summary->analysis,
+                              evaluated ? &solution : nullptr)) {
       summary->notes.push_back("local analysis: " + summary->analysis.message);
     }
   }
