@@ -108,7 +108,8 @@ Eigen::MatrixXd LongRunCovariance(const HacOptions& options, const Eigen::Matrix
 }
 
 bool ComputeHacCovariance(const HacOptions& options, OutputErrorProblem* problem,
-                          const Uncertainty& hessian, Uncertainty* hac) {
+                          const Uncertainty& hessian, Uncertainty* hac,
+                          const SolutionJacobian* shared) {
   *hac = Uncertainty();
   hac->method = "sandwich_hac";
   if (!hessian.available) {
@@ -121,24 +122,17 @@ bool ComputeHacCovariance(const HacOptions& options, OutputErrorProblem* problem
   }
   const int n = static_cast<int>(hessian.variables.size());
   const std::vector<Variable>& variables = problem->variables();
-  ceres::Problem::EvaluateOptions evaluate;
-  evaluate.num_threads = std::max(1, options.num_threads);
-  for (int index : hessian.variables) evaluate.parameter_blocks.push_back(variables[index].block);
+  SolutionJacobian evaluated;
+  if (shared == nullptr || shared->variables != hessian.variables) {
+    if (!EvaluateSolutionJacobian(problem, options.num_threads, &evaluated)) {
+      hac->message = "the Jacobian could not be evaluated at the solution";
+      return false;
+    }
+    shared = &evaluated;
+  }
   // Rows: the experiments' samples in order, then every other block (initial-state priors).
-  evaluate.residual_blocks = problem->data_residual_blocks();
-  const std::unordered_set<ceres::ResidualBlockId> data(evaluate.residual_blocks.begin(),
-                                                        evaluate.residual_blocks.end());
-  std::vector<ceres::ResidualBlockId> all;
-  problem->problem()->GetResidualBlocks(&all);
-  for (ceres::ResidualBlockId id : all) {
-    if (data.count(id) == 0) evaluate.residual_blocks.push_back(id);
-  }
-  std::vector<double> residuals;
-  ceres::CRSMatrix jacobian;
-  if (!problem->problem()->Evaluate(evaluate, nullptr, &residuals, nullptr, &jacobian)) {
-    hac->message = "the Jacobian could not be evaluated at the solution";
-    return false;
-  }
+  const std::vector<double>& residuals = shared->residuals;
+  const ceres::CRSMatrix& jacobian = shared->jacobian;
 
   Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(n, n);  // B, in scaled variables
   double largest_bandwidth = 0.0;

@@ -25,6 +25,7 @@
 
 #include "Eigen/Dense"
 #include "engine/solve/covariance.h"
+#include "engine/solve/solution_jacobian.h"
 #include "engine/solve/output_error_problem.h"
 
 namespace vesselid {
@@ -58,8 +59,10 @@ Eigen::MatrixXd LongRunCovariance(const HacOptions& options, const Eigen::Matrix
 
 // HAC covariance of the problem at its current values, given the Hessian uncertainty
 // computed there; `hac` gets method "sandwich_hac". False (with hac->message) when the
-// Jacobian cannot be evaluated or the Hessian's is not available.
+// Jacobian cannot be evaluated or the Hessian's is not available. `shared` (may be null): the
+// residuals and Jacobian already evaluated there (over the Hessian's variables).
 bool ComputeHacCovariance(const HacOptions& options, OutputErrorProblem* problem,
-                          const Uncertainty& hessian, Uncertainty* hac);
+                          const Uncertainty& hessian, Uncertainty* hac,
+                          const SolutionJacobian* shared = nullptr);
 
 }  // namespace vesselid

@@ -89,7 +89,7 @@ const char* DirectionStatusToString(DirectionStatus status) {
 }
 
 bool ComputeLocalAnalysis(const LocalAnalysisOptions& options, OutputErrorProblem* problem,
-                          LocalAnalysis* a) {
+                          LocalAnalysis* a, const SolutionJacobian* shared) {
   *a = LocalAnalysis();
   const auto start_time = std::chrono::steady_clock::now();
   const std::vector<Variable>& variables = problem->variables();
@@ -100,9 +100,6 @@ bool ComputeLocalAnalysis(const LocalAnalysisOptions& options, OutputErrorProble
   // Columns in free-variable order.
   std::vector<Column> columns;
   std::vector<int> locals(num_experiments, 0);
-  ceres::Problem::EvaluateOptions evaluate;
-  evaluate.num_threads = options.num_threads;
-  evaluate.residual_blocks = problem->data_residual_blocks();  // rows: experiment, sample
   for (size_t i = 0; i < variables.size(); ++i) {
     const Variable& v = variables[i];
     if (!v.free) continue;
@@ -118,7 +115,6 @@ bool ComputeLocalAnalysis(const LocalAnalysisOptions& options, OutputErrorProble
       ++a->profiled;
     }
     columns.push_back(column);
-    evaluate.parameter_blocks.push_back(v.block);
   }
   const int ns = static_cast<int>(a->parameters.size());
   a->num_free = static_cast<int>(columns.size());
@@ -131,13 +127,18 @@ bool ComputeLocalAnalysis(const LocalAnalysisOptions& options, OutputErrorProble
     a->message = "fewer residuals than free variables";
     return false;
   }
-  double cost = 0.0;
-  ceres::CRSMatrix jacobian;
-  if (!problem->problem()->Evaluate(evaluate, &cost, nullptr, nullptr, &jacobian)) {
-    a->message = "the Jacobian could not be evaluated at the solution";
-    return false;
+  SolutionJacobian evaluated;
+  if (shared == nullptr) {
+    if (!EvaluateSolutionJacobian(problem, options.num_threads, &evaluated)) {
+      a->message = "the Jacobian could not be evaluated at the solution";
+      return false;
+    }
+    shared = &evaluated;
   }
-  VESSELID_CHECK(jacobian.num_rows == a->num_residuals && jacobian.num_cols == a->num_free);
+  // Only the data rows [0, num_residuals) are read below.
+  const ceres::CRSMatrix& jacobian = shared->jacobian;
+  VESSELID_CHECK(shared->data_rows == a->num_residuals && jacobian.num_cols == a->num_free);
+  const double cost = shared->DataCost();
   a->residual_variance = 2.0 * cost / (a->num_residuals - a->num_free);
   const double s = std::sqrt(a->residual_variance);
 

@@ -39,6 +39,7 @@
 
 #include "Eigen/Dense"
 #include "engine/solve/output_error_problem.h"
+#include "engine/solve/solution_jacobian.h"
 
 namespace vesselid {
 
@@ -84,8 +85,9 @@ struct LocalAnalysis {
 };
 
 // Analyses the problem at its current values (the optimum). False, with analysis->message,
-// when there is nothing to analyse or the Jacobian cannot be evaluated.
+// when there is nothing to analyse or the Jacobian cannot be evaluated. `shared` (may be
+// null): the residuals and Jacobian already evaluated there (EvaluateSolutionJacobian).
 bool ComputeLocalAnalysis(const LocalAnalysisOptions& options, OutputErrorProblem* problem,
-                          LocalAnalysis* analysis);
+                          LocalAnalysis* analysis, const SolutionJacobian* shared = nullptr);
 
 }  // namespace vesselid

@@ -145,6 +145,11 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   summary->successful_steps = ceres_summary.num_successful_steps;
   summary->unsuccessful_steps = ceres_summary.num_unsuccessful_steps;
   summary->time_seconds = ceres_summary.total_time_in_seconds;
+  summary->residual_seconds = ceres_summary.residual_evaluation_time_in_seconds;
+  summary->jacobian_seconds = ceres_summary.jacobian_evaluation_time_in_seconds;
+  summary->linear_solver_seconds = ceres_summary.linear_solver_time_in_seconds;
+  summary->residual_evaluations = ceres_summary.num_residual_evaluations;
+  summary->jacobian_evaluations = ceres_summary.num_jacobian_evaluations;
   summary->termination = ceres::TerminationTypeToString(ceres_summary.termination_type);
   summary->message = ceres_summary.message;
   for (const ceres::IterationSummary& it : ceres_summary.iterations) {

@@ -45,6 +45,10 @@ struct LocalSolveSummary {
   std::string termination;  // Ceres termination type
   std::string message;
   std::vector<double> cost_history;  // cost at each iteration, [0] the initial cost
+  // Where the solve's time went (Ceres' own accounting): residual-only and residual+Jacobian
+  // evaluations (the simulations) and the linear solver; the rest is Ceres' bookkeeping.
+  double residual_seconds = 0.0, jacobian_seconds = 0.0, linear_solver_seconds = 0.0;
+  int residual_evaluations = 0, jacobian_evaluations = 0;
 
   std::string BriefReport() const;
 };

@@ -266,20 +266,22 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
   NoteActiveBounds(*problem, &summary->notes);
 
   if (options.compute_uncertainty) {
+    // One Jet simulation at the optimum serves the HAC and the local analysis.
+    SolutionJacobian solution;
     UncertaintyOptions uncertainty = options.uncertainty;
     // One Jacobian evaluation each for the HAC and the local analysis, on one thread: Ceres'
     // threaded evaluation sums in an order that depends on the thread count, and the
     // standard errors must not (a small cost beside the solve).
     uncertainty.hac.num_threads = 1;
     if (!ComputeStageUncertainty(uncertainty, problem, best_cost, &summary->uncertainty,
-                                 &summary->notes)) {
+                                 &summary->notes, &solution)) {
       summary->notes.push_back("uncertainty: " + summary->uncertainty.message);
     }
-  }
-  if (options.compute_uncertainty) {
     LocalAnalysisOptions analysis;
-    analysis.num_threads = 1;
-    if (!ComputeLocalAnalysis(analysis, problem, &summary->analysis)) {
+    analysis.num_threads = 1;  // as the HAC's Jacobian above, when it is evaluated here
+    const bool evaluated = solution.data_rows > 0;
+    if (!ComputeLocalAnalysis(analysis, problem, &summary->analysis,
+                              evaluated ? &solution : nullptr)) {
       summary->notes.push_back("local analysis: " + summary->analysis.message);
     }
   }

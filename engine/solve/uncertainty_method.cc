@@ -73,7 +73,7 @@ UncertaintyMethod ChooseUncertaintyMethod(const std::vector<StdErrorRatio>& rati
 
 bool ComputeStageUncertainty(const UncertaintyOptions& configured, OutputErrorProblem* problem,
                              double final_cost, Uncertainty* uncertainty,
-                             std::vector<std::string>* notes) {
+                             std::vector<std::string>* notes, SolutionJacobian* solution) {
   // A bootstrap replaces these figures after the final solve; until then, those of `auto`.
   UncertaintyOptions options = configured;
   if (IsBootstrap(options.method)) options.method = UncertaintyMethod::kAuto;
@@ -83,7 +83,12 @@ bool ComputeStageUncertainty(const UncertaintyOptions& configured, OutputErrorPr
     return false;
   }
   Uncertainty hac;
-  if (!ComputeHacCovariance(options.hac, problem, hessian, &hac)) {
+  const SolutionJacobian* shared = nullptr;
+  if (solution != nullptr &&
+      EvaluateSolutionJacobian(problem, options.hac.num_threads, solution)) {
+    shared = solution;
+  }
+  if (!ComputeHacCovariance(options.hac, problem, hessian, &hac, shared)) {
     *uncertainty = hessian;
     if (options.method == UncertaintyMethod::kSandwichHac) {
       uncertainty->available = false;

@@ -1,0 +1,101 @@
+// The solution Jacobian evaluated once by the stage and shared by the HAC covariance and the
+// local analysis gives the figures each computes from its own evaluation; on a first-order
+// Nomoto model fitted to noisy closed-loop second-order data (the model does not match), two
+// experiments with free initial headings and their priors (rows after the data rows).
+#include "engine/solve/solution_jacobian.h"
+
+#include <cmath>
+
+#include "engine/solve/stage.h"
+#include "gtest/gtest.h"
+#include "problems/nomoto/handles.h"
+#include "tests/support/nomoto_data.h"
+
+namespace vesselid {
+namespace {
+
+nomoto::ClosedLoopOptions NoisyLoop(unsigned seed) {
+  nomoto::ClosedLoopOptions loop;
+  loop.controller_gain = 0.7;
+  loop.duration = 120.0;
+  loop.sample_time = 0.05;
+  loop.excitation.type = nomoto::Excitation::Type::kMultisine;
+  loop.excitation.amplitude = 25.0 * M_PI / 180.0;
+  loop.excitation.periods = {60.0, 23.0, 11.0, 5.0};
+  loop.heading_noise = 0.2 * M_PI / 180.0;
+  loop.seed = seed;
+  return loop;
+}
+
+TEST(SolutionJacobianTest, SharedEvaluationGivesTheAnalysesTheirOwnFigures) {
+  auto second = nomoto::MakeSecondOrderHandle();
+  auto first = nomoto::MakeFirstOrderHandle();
+  const std::vector<double> truth = {2.0875, 0.3179, 0.1830, -0.1724, 0.0};
+  // Simulated by the second-order loop, read by the first-order model.
+  std::vector<Experiment> runs;
+  for (unsigned seed : {3u, 4u}) {
+    Trajectory trajectory;
+    std::string error;
+    ASSERT_TRUE(nomoto::SimulateClosedLoop(*second, truth, NoisyLoop(seed), &trajectory, &error))
+        << error;
+    trajectory.source = "run" + std::to_string(seed);
+    ExperimentSpec spec;
+    spec.name = trajectory.source;
+    spec.inputs = {{"delta", "delta"}};
+    spec.outputs = {{"psi", "psi"}};
+    Experiment e;
+    ASSERT_TRUE(BuildExperiment(spec, trajectory, first->info(), ExperimentOptions(), &e, &error))
+        << error;
+    runs.push_back(std::move(e));
+  }
+  ParameterSpec t{}, k{};
+  t.name = "T";
+  t.start = 3.0;
+  k.name = "K";
+  k.start = -0.1;
+  OutputErrorOptions options;
+  options.free_initial_states = {"psi"};
+  options.prior.apply = InitialStatePrior::Apply::kAll;
+  std::string error;
+  auto problem = OutputErrorProblem::Create(first.get(), runs, {t, k}, options, &error);
+  ASSERT_NE(problem, nullptr) << error;
+  StageSummary summary;
+  ASSERT_TRUE(RunStage(StageOptions(), problem.get(), &summary)) << summary.message;
+  ASSERT_TRUE(summary.uncertainty.available) << summary.uncertainty.message;
+  ASSERT_TRUE(summary.analysis.available) << summary.analysis.message;
+
+  SolutionJacobian solution;
+  ASSERT_TRUE(EvaluateSolutionJacobian(problem.get(), 1, &solution));
+  EXPECT_EQ(solution.data_rows, problem->num_residuals());
+  EXPECT_EQ(solution.variables.size(), 4u);  // T, K, two initial headings
+  EXPECT_GE(solution.jacobian.num_rows, solution.data_rows);
+  double cost = 0.0;
+  ASSERT_TRUE(problem->Cost(&cost));
+  EXPECT_LE(solution.DataCost(), cost * (1 + 1e-12));  // priors add to the problem's cost
+
+  // Each analysis on its own evaluation.
+  Uncertainty hessian, hac;
+  ASSERT_TRUE(ComputeUncertainty(problem.get(), summary.local().final_cost, &hessian));
+  ASSERT_TRUE(ComputeHacCovariance(HacOptions(), problem.get(), hessian, &hac)) << hac.message;
+  LocalAnalysis alone;
+  ASSERT_TRUE(ComputeLocalAnalysis(LocalAnalysisOptions(), problem.get(), &alone));
+
+  const Uncertainty& staged = summary.uncertainty;
+  ASSERT_EQ(staged.variables, hac.variables);
+  for (size_t i = 0; i < hac.variables.size(); ++i) {
+    const double reference =
+        staged.method == "sandwich_hac" ? hac.std_errors[i] : hessian.std_errors[i];
+    EXPECT_NEAR(staged.std_errors[i], reference, 1e-9 * reference) << i;
+  }
+  const LocalAnalysis& shared = summary.analysis;
+  ASSERT_EQ(shared.std_errors.size(), alone.std_errors.size());
+  EXPECT_EQ(shared.profiled, 2);
+  EXPECT_NEAR(shared.residual_variance, alone.residual_variance, 1e-9 * alone.residual_variance);
+  for (size_t i = 0; i < alone.std_errors.size(); ++i) {
+    EXPECT_NEAR(shared.std_errors[i], alone.std_errors[i], 1e-9 * alone.std_errors[i]);
+  }
+  EXPECT_LT((shared.information - alone.information).norm(), 1e-9 * alone.information.norm());
+}
+
+}  // namespace
+}  // namespace vesselid
