@@ -94,18 +94,8 @@ void AddInputNoiseWarnings(const RunConfig& config, const RunResult& run, Trajec
     if (!coloured) continue;
     for (const auto& [input, column] : spec.inputs) {
       if (spec.input_noise.count(input) > 0 || info.InputIndex(input) < 0) continue;
-      std::string error;
-      const Trajectory* data = LoadCachedTrajectory(spec, cache, &error);
-      if (data == nullptr) continue;
-      const int c = data->Find(column);
-      if (c < 0) continue;
       std::vector<double> values;
-      for (size_t k = 0; k < data->t.size(); ++k) {
-        const double v = data->columns[c][k];
-        if (data->t[k] >= spec.t_begin && data->t[k] <= spec.t_end && std::isfinite(v)) {
-          values.push_back(v);
-        }
-      }
+      if (!WindowSamples(spec, column, cache, &values)) continue;
       const double sigma = WhiteInputNoise(values);
       if (!(sigma > 0.0)) continue;
       const bool degrees = std::find(spec.degree_columns.begin(), spec.degree_columns.end(),

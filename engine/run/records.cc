@@ -167,6 +167,23 @@ const Trajectory* LoadCachedTrajectory(const ExperimentSpec& spec, TrajectoryCac
   return &cached->second;
 }
 
+bool WindowSamples(const ExperimentSpec& spec, const std::string& column, TrajectoryCache* cache,
+                   std::vector<double>* values) {
+  std::string error;
+  const Trajectory* data = LoadCachedTrajectory(spec, cache, &error);
+  if (data == nullptr) return false;
+  const int c = data->Find(column);
+  if (c < 0) return false;
+  values->clear();
+  for (size_t k = 0; k < data->t.size(); ++k) {
+    const double v = data->columns[c][k];
+    if (data->t[k] >= spec.t_begin && data->t[k] <= spec.t_end && std::isfinite(v)) {
+      values->push_back(v);
+    }
+  }
+  return true;
+}
+
 bool RecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double segment_length,
                  std::vector<ExperimentSpec>* specs, std::string* error) {
   std::vector<ExperimentSpec> whole;

@@ -23,6 +23,12 @@ using TrajectoryCache = std::map<std::string, Trajectory>;
 const Trajectory* LoadCachedTrajectory(const ExperimentSpec& spec, TrajectoryCache* cache,
                                        std::string* error);
 
+// The finite samples of `column` within the experiment's time window [t_begin, t_end], read
+// through the cache; false when the data cannot be read or have no such column (checks that
+// look at one column pass over it then).
+bool WindowSamples(const ExperimentSpec& spec, const std::string& column, TrajectoryCache* cache,
+                   std::vector<double>* values);
+
 // Reads and prepares experiments for a model (used by RunIdentification and by tools); the
 // model guesses initial states from the data (ModelHandle::GuessState). segment_length > 0
 // cuts every record into segments no longer than that (continuation phases); 0 keeps each

@@ -18,17 +18,8 @@ void AddUnitWarnings(const RunConfig& config, TrajectoryCache* cache,
       }
       const std::vector<std::string>& degrees = spec.degree_columns;
       if (std::find(degrees.begin(), degrees.end(), column) != degrees.end()) continue;
-      std::string error;
-      const Trajectory* data = LoadCachedTrajectory(spec, cache, &error);
-      if (data == nullptr) continue;
-      const int c = data->Find(column);
-      if (c < 0) continue;
       std::vector<double> values;
-      for (size_t k = 0; k < data->t.size(); ++k) {
-        if (data->t[k] >= spec.t_begin && data->t[k] <= spec.t_end) {
-          values.push_back(data->columns[c][k]);
-        }
-      }
+      if (!WindowSamples(spec, column, cache, &values)) continue;
       const AngleUnitCheck check = CheckAngleUnit(values);
       if (check.looks_like_degrees) {
         warnings->push_back("experiment '" + spec.name + "', output " + output + ": " +

@@ -55,40 +55,35 @@ double Objective(unsigned n, const double* z, double* gradient, void* data) {
 }  // namespace
 
 bool GlobalStartOptions::IsValid(std::string* error) const {
+  std::string message;  // the algorithm's own options first, then those both kinds share
   if (algorithm == "multistart") {
     if (points < 1) {
-      *error = "points must be >= 1";
+      message = "points must be >= 1";
     } else if (short_iterations < 1) {
-      *error = "short_iterations must be >= 1";
+      message = "short_iterations must be >= 1";
     } else if (threads < 0) {
-      *error = "threads must be >= 0 (0: the machine's cores)";
-    } else if (!(max_time_seconds > 0.0)) {
-      *error = "max_time_seconds must be > 0";
-    } else if (candidates < 1) {
-      *error = "candidates must be >= 1";
-    } else if (!(min_separation >= 0.0)) {
-      *error = "min_separation must be >= 0";
-    } else {
-      return true;
+      message = "threads must be >= 0 (0: the machine's cores)";
     }
-    return false;
-  }
-  if (nlopt_algorithm_from_string(algorithm.c_str()) < 0) {
-    *error = "unknown algorithm '" + algorithm +
-             "': multistart or an NLopt global algorithm (e.g. GN_DIRECT_L, GN_CRS2_LM, GN_ISRES)";
+  } else if (nlopt_algorithm_from_string(algorithm.c_str()) < 0) {
+    message = "unknown algorithm '" + algorithm +
+              "': multistart or an NLopt global algorithm (e.g. GN_DIRECT_L, GN_CRS2_LM, "
+              "GN_ISRES)";
   } else if (algorithm.rfind("GN_", 0) != 0 && algorithm.rfind("G_MLSL", 0) != 0) {
-    *error = "algorithm '" + algorithm + "' is not a global derivative-free NLopt algorithm";
+    message = "algorithm '" + algorithm + "' is not a global derivative-free NLopt algorithm";
   } else if (max_evaluations < 1) {
-    *error = "max_evaluations must be >= 1";
-  } else if (!(max_time_seconds > 0.0)) {
-    *error = "max_time_seconds must be > 0";
-  } else if (candidates < 1) {
-    *error = "candidates must be >= 1";
-  } else if (!(min_separation >= 0.0)) {
-    *error = "min_separation must be >= 0";
-  } else {
-    return true;
+    message = "max_evaluations must be >= 1";
   }
+  if (message.empty()) {
+    if (!(max_time_seconds > 0.0)) {
+      message = "max_time_seconds must be > 0";
+    } else if (candidates < 1) {
+      message = "candidates must be >= 1";
+    } else if (!(min_separation >= 0.0)) {
+      message = "min_separation must be >= 0";
+    }
+  }
+  if (message.empty()) return true;
+  *error = message;
   return false;
 }
 
