@@ -46,12 +46,15 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ExperimentFit, experiment, diverged, message,
                                    trace)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(HeldOutCheck, done, outputs, start_mae, stage_mae,
                                    start_diverged, stage_diverged, worse)
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(GlobalStartSummary, run, variables, evaluations,
-                                   failed_evaluations, best_cost, time_seconds, result, message,
-                                   candidates, candidate_costs, best_cost_history)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(GlobalStartSummary, run, variables, algorithm, evaluations,
+                                   failed_evaluations, abandoned, clusters,
+                                   short_iterations_total, best_cost, time_seconds, result,
+                                   message, candidates, candidate_costs, best_cost_history)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LocalSolveSummary, run, usable, initial_cost, final_cost,
                                    iterations, successful_steps, unsuccessful_steps, time_seconds,
-                                   termination, message, cost_history)
+                                   termination, message, cost_history, residual_seconds,
+                                   jacobian_seconds, linear_solver_seconds, residual_evaluations,
+                                   jacobian_evaluations)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Uncertainty, available, message, variables, covariance,
                                    correlation, std_errors, residual_variance, undetermined,
                                    undetermined_variables, method, hessian_std_errors,
@@ -110,7 +113,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BootstrapSummary, runs, failed, groups, resam
 namespace {
 // 3: Uncertainty method, hessian_std_errors, method_reason, hac_bandwidth; 4: bootstrap runs,
 // failed, block length
-constexpr int kArchiveVersion = 4;
+constexpr int kArchiveVersion = 5;
 }  // namespace
 
 nlohmann::json StageResultToArchive(const StageResult& stage) {
