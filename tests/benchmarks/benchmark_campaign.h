@@ -17,6 +17,18 @@ inline double Seconds(Clock::time_point since) {
   return std::chrono::duration<double>(Clock::now() - since).count();
 }
 
+// Mean time of `f` over enough repetitions to take at least `min_seconds`.
+template <class F>
+double MeanTime(F&& f, double min_seconds) {
+  int reps = 0;
+  const auto start = Clock::now();
+  do {
+    f();
+    ++reps;
+  } while (Seconds(start) < min_seconds);
+  return Seconds(start) / reps;
+}
+
 inline std::filesystem::path DataFolder(const std::string& folder) {
   return std::filesystem::temp_directory_path() / folder;
 }

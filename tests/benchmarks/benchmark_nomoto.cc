@@ -8,28 +8,15 @@
 #include "engine/solve/output_error_problem.h"
 #include "engine/solve/stage.h"
 #include "problems/nomoto/handles.h"
+#include "tests/benchmarks/benchmark_campaign.h"
 #include "tests/support/nomoto_data.h"
 
 namespace vesselid {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double Seconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
-
-// Mean time of `f` over enough repetitions to take ~0.5 s.
-template <class F>
-double MeanTime(F&& f) {
-  int reps = 0;
-  const auto start = Clock::now();
-  do {
-    f();
-    ++reps;
-  } while (Seconds(start) < 0.5);
-  return Seconds(start) / reps;
-}
+using benchmark::Clock;
+using benchmark::MeanTime;
+using benchmark::Seconds;
 
 void Report(const char* name, const testing::SeedVessel& vessel, bool global_start) {
   auto model = nomoto::MakeSecondOrderHandle();
@@ -53,11 +40,11 @@ void Report(const char* name, const testing::SeedVessel& vessel, bool global_sta
   std::unique_ptr<ceres::CostFunction> cost(model->NewExperimentCost(&e, scales, nullptr));
   std::vector<double> p = problem->ParametersOf(0), outputs;
   const double simulate =
-      MeanTime([&] { model->SimulateOutputs(e, p.data(), x0.data(), &outputs); });
+      MeanTime([&] { model->SimulateOutputs(e, p.data(), x0.data(), &outputs); }, 0.5);
   const double residual =
-      MeanTime([&] { cost->Evaluate(blocks.data(), residuals.data(), nullptr); });
-  const double jacobian_time =
-      MeanTime([&] { cost->Evaluate(blocks.data(), residuals.data(), jacobian_blocks.data()); });
+      MeanTime([&] { cost->Evaluate(blocks.data(), residuals.data(), nullptr); }, 0.5);
+  const double jacobian_time = MeanTime(
+      [&] { cost->Evaluate(blocks.data(), residuals.data(), jacobian_blocks.data()); }, 0.5);
 
   StageOptions options;
   options.use_global_start = global_start;

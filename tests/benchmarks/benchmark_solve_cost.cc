@@ -29,6 +29,7 @@ namespace vesselid {
 namespace {
 
 using benchmark::Clock;
+using benchmark::MeanTime;
 using benchmark::Seconds;
 
 struct CargoTimes {
@@ -63,18 +64,6 @@ CargoTimes TimeCargo(const std::vector<std::string>& free_states) {
   return t;
 }
 
-// Mean time of `f` over enough repetitions to take ~0.3 s.
-template <class F>
-double MeanTime(F&& f) {
-  int reps = 0;
-  const auto start = Clock::now();
-  do {
-    f();
-    ++reps;
-  } while (Seconds(start) < 0.3);
-  return Seconds(start) / reps;
-}
-
 // Time of one cargo residual + Jacobian evaluation for 1..8 free blocks (T1 T2 T3 K delta_0,
 // then the three initial states), relative to a residual-only evaluation.
 void TimeJetWidths() {
@@ -88,14 +77,15 @@ void TimeJetWidths() {
   std::vector<double> residuals(e.num_samples());
   std::vector<std::vector<double>> jacobian(8, std::vector<double>(e.num_samples()));
   std::unique_ptr<ceres::CostFunction> cost(model->NewExperimentCost(&e, scales, nullptr));
-  const double plain = MeanTime([&] { cost->Evaluate(blocks.data(), residuals.data(), nullptr); });
+  const double plain =
+      MeanTime([&] { cost->Evaluate(blocks.data(), residuals.data(), nullptr); }, 0.3);
   std::printf("cargo evaluation, %d samples: residuals only %.1f ms; with Jacobian, by free "
               "blocks:\n ", e.num_samples(), 1e3 * plain);
   for (int d = 1; d <= 8; ++d) {
     std::vector<double*> jacobian_blocks(8, nullptr);
     for (int i = 0; i < d; ++i) jacobian_blocks[i] = jacobian[i].data();
     const double t = MeanTime(
-        [&] { cost->Evaluate(blocks.data(), residuals.data(), jacobian_blocks.data()); });
+        [&] { cost->Evaluate(blocks.data(), residuals.data(), jacobian_blocks.data()); }, 0.3);
     std::printf(" %d: %.1f ms (%.2fx)", d, 1e3 * t, t / plain);
   }
   std::printf("\n");
