@@ -1,10 +1,12 @@
 #include "engine/solve/covariance.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
-#include "ceres/covariance.h"
+#include "engine/base/check.h"
+#include "engine/solve/arrow_qr.h"
 
 namespace vesselid {
 namespace {
@@ -17,45 +19,27 @@ constexpr double kRankTolerance = 1e-8;
 // offset in the force-scale direction).
 constexpr double kInvolvedComponent = 0.01;
 
-// Dense Jacobian of the free variables, columns normalised; `norms` gets the column norms.
-bool NormalisedJacobian(OutputErrorProblem* problem, const std::vector<int>& variables,
-                        Eigen::MatrixXd* jacobian, Eigen::VectorXd* norms) {
-  ceres::Problem::EvaluateOptions options;
-  for (int index : variables) options.parameter_blocks.push_back(problem->variables()[index].block);
-  ceres::CRSMatrix crs;
-  if (!problem->problem()->Evaluate(options, nullptr, nullptr, nullptr, &crs)) return false;
-  *jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
-  for (int r = 0; r < crs.num_rows; ++r) {
-    for (int k = crs.rows[r]; k < crs.rows[r + 1]; ++k) (*jacobian)(r, crs.cols[k]) = crs.values[k];
-  }
-  *norms = jacobian->colwise().norm();
-  for (int c = 0; c < norms->size(); ++c) {
-    if ((*norms)[c] > 0) jacobian->col(c) /= (*norms)[c];
-  }
-  return true;
+// Rank is decided as a sparse QR would (SuiteSparseQR's default tolerance, 20 (m + n) eps
+// of the largest column norm, here of the largest singular value of the normalised
+// Jacobian); only then are the directions below kRankTolerance named undetermined, so that a
+// merely ill-conditioned problem keeps its (large) standard errors.
+double RankDecisionTolerance(int m, int n) {
+  return 20.0 * (m + n) * std::numeric_limits<double>::epsilon();
 }
 
-// Rank-deficient case: names the null-space directions of the normalised Jacobian and forms
-// the covariance from the pseudo-inverse over the determined subspace (in theta units).
-bool RankDeficientCovariance(OutputErrorProblem* problem, Uncertainty* u, Eigen::MatrixXd* c) {
-  Eigen::MatrixXd jacobian;
-  Eigen::VectorXd norms;
-  if (!NormalisedJacobian(problem, u->variables, &jacobian, &norms)) return false;
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(jacobian, Eigen::ComputeThinV);
-  const Eigen::VectorXd& sigma = svd.singularValues();
-  const Eigen::MatrixXd& v = svd.matrixV();
+// Names the directions with sigma_k <= tolerance sigma_0 (columns of v, normalised
+// coordinates) in physical units and marks the variables taking part.
+void NameUndetermined(const OutputErrorProblem& problem, const Eigen::VectorXd& sigma,
+                      const Eigen::MatrixXd& v, const Eigen::VectorXd& norms, double tolerance,
+                      Uncertainty* u) {
   const int n = static_cast<int>(sigma.size());
   std::vector<bool> involved(n, false);
-  Eigen::MatrixXd pseudo = Eigen::MatrixXd::Zero(n, n);
   for (int k = 0; k < n; ++k) {
-    if (sigma[k] > kRankTolerance * sigma[0]) {
-      pseudo += v.col(k) * v.col(k).transpose() / (sigma[k] * sigma[k]);
-      continue;
-    }
+    if (sigma[k] > tolerance * sigma[0]) continue;
     // The null vector in physical units (dp = dtheta * scale) and as relative changes.
     Eigen::VectorXd physical(n), relative(n);
     for (int i = 0; i < n; ++i) {
-      const Variable& var = problem->variables()[u->variables[i]];
+      const Variable& var = problem.variables()[u->variables[i]];
       physical[i] = v(i, k) / norms[i] * var.scale;
       const double size = std::abs(var.value());
       relative[i] = physical[i] / (size > 1e-3 * var.scale ? size : var.scale);
@@ -69,7 +53,7 @@ bool RankDeficientCovariance(OutputErrorProblem* problem, Uncertainty* u, Eigen:
       involved[i] = true;
       char term[160];
       std::snprintf(term, sizeof(term), "%s%+.2g %s", text.empty() ? "" : " ", physical[i],
-                    problem->variables()[u->variables[i]].name.c_str());
+                    problem.variables()[u->variables[i]].name.c_str());
       text += term;
     }
     u->undetermined.push_back(text);
@@ -77,9 +61,6 @@ bool RankDeficientCovariance(OutputErrorProblem* problem, Uncertainty* u, Eigen:
   for (int i = 0; i < n; ++i) {
     if (involved[i]) u->undetermined_variables.push_back(u->variables[i]);
   }
-  const Eigen::VectorXd inverse_norms = norms.cwiseInverse();
-  *c = inverse_norms.asDiagonal() * pseudo * inverse_norms.asDiagonal();
-  return true;
 }
 
 }  // namespace
@@ -109,16 +90,15 @@ void SetStdErrorsAndCorrelation(Uncertainty* u) {
   }
 }
 
-bool ComputeUncertainty(OutputErrorProblem* problem, double final_cost, Uncertainty* u) {
+bool ComputeUncertainty(OutputErrorProblem* problem, double final_cost, Uncertainty* u,
+                        const SolutionJacobian* solution) {
   *u = Uncertainty();
   const std::vector<Variable>& variables = problem->variables();
-  std::vector<const double*> blocks;
   for (size_t i = 0; i < variables.size(); ++i) {
     if (!variables[i].free) continue;
     u->variables.push_back(static_cast<int>(i));
-    blocks.push_back(variables[i].block);
   }
-  const int n = static_cast<int>(blocks.size());
+  const int n = static_cast<int>(u->variables.size());
   const int m = problem->num_residuals();
   if (n == 0) {
     u->message = "no free variables";
@@ -128,19 +108,46 @@ bool ComputeUncertainty(OutputErrorProblem* problem, double final_cost, Uncertai
     u->message = "fewer residuals than free variables";
     return false;
   }
-  ceres::Covariance::Options options;
-  options.algorithm_type = ceres::SPARSE_QR;
-  ceres::Covariance covariance(options);
-  Eigen::MatrixXd c(n, n);
-  if (covariance.Compute(blocks, problem->problem())) {
-    covariance.GetCovarianceMatrix(blocks, c.data());
-  } else if (RankDeficientCovariance(problem, u, &c)) {
+  SolutionJacobian evaluated;
+  if (solution == nullptr) {
+    if (!EvaluateSolutionJacobian(problem, 1, &evaluated)) {
+      u->message = "the Jacobian could not be evaluated at the solution";
+      return false;
+    }
+    solution = &evaluated;
+  }
+  VESSELID_CHECK(solution->variables == u->variables);
+  // R of J (every residual block: data and priors), in normalised coordinates.
+  std::vector<int> group(n);
+  for (int i = 0; i < n; ++i) group[i] = variables[u->variables[i]].experiment;
+  const ArrowR arrow = ArrowQr(solution->jacobian, group);
+  Eigen::VectorXd norms(n);  // column norms of J, in J's column order
+  Eigen::MatrixXd rn(n, n);  // R D^-1, columns back in J's order
+  for (int k = 0; k < n; ++k) {
+    const int c = arrow.order[k];
+    norms[c] = arrow.r.col(k).norm();
+    rn.col(c) = arrow.r.col(k) / (norms[c] > 0 ? norms[c] : 1.0);
+    if (!(norms[c] > 0)) norms[c] = 1.0;
+  }
+  // (J^T J)^+ = D^-1 V S^-2 V^T D^-1 over the determined directions.
+  Eigen::BDCSVD<Eigen::MatrixXd> svd(rn, Eigen::ComputeThinV);
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  const Eigen::MatrixXd& v = svd.matrixV();
+  const double decision = RankDecisionTolerance(m, n);
+  const bool deficient = !(sigma[n - 1] > decision * sigma[0]);
+  const double tolerance = std::max(kRankTolerance, decision);
+  Eigen::MatrixXd pseudo = Eigen::MatrixXd::Zero(n, n);
+  for (int k = 0; k < n; ++k) {
+    if (deficient && !(sigma[k] > tolerance * sigma[0])) continue;
+    pseudo += v.col(k) * v.col(k).transpose() / (sigma[k] * sigma[k]);
+  }
+  if (deficient) {
+    NameUndetermined(*problem, sigma, v, norms, tolerance, u);
     u->message = "the Jacobian is rank deficient: the data do not determine " +
                  std::to_string(u->undetermined.size()) + " combination(s) of the free variables";
-  } else {
-    u->message = "the Jacobian could not be evaluated at the solution";
-    return false;
   }
+  const Eigen::VectorXd inverse_norms = norms.cwiseInverse();
+  const Eigen::MatrixXd c = inverse_norms.asDiagonal() * pseudo * inverse_norms.asDiagonal();
   u->residual_variance = 2.0 * final_cost / (m - n);
   Eigen::VectorXd scales(n);
   for (int i = 0; i < n; ++i) scales[i] = variables[u->variables[i]].scale;

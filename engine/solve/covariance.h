@@ -1,7 +1,11 @@
-// Parameter uncertainty at the optimum from Ceres' covariance estimate:
+// Parameter uncertainty at the optimum (the Hessian, or Gauss-Newton, covariance):
 //   Cov(theta) = s^2 (J^T J)^-1,  s^2 = 2 F / (m - n)   (F final cost, m residuals, n free)
-// converted to physical units with the scales, plus standard errors and correlations.
-// A rank-deficient Jacobian is reported, with the combination that is undetermined.
+// converted to physical units with the scales, plus standard errors and correlations. J is
+// every residual block's Jacobian (data and priors); (J^T J)^-1 comes from the SVD of the
+// column-normalised triangular factor R of J (arrow_qr.h), n x n, so memory stays that of
+// the Jacobian however many samples there are.
+// A rank-deficient Jacobian is reported, with the combinations that are undetermined; the
+// covariance is then the pseudo-inverse over the determined subspace.
 #pragma once
 
 #include <string>
@@ -9,6 +13,7 @@
 
 #include "Eigen/Dense"
 #include "engine/solve/output_error_problem.h"
+#include "engine/solve/solution_jacobian.h"
 
 namespace vesselid {
 
@@ -44,6 +49,9 @@ struct Uncertainty {
 // std_errors (NaN for undetermined_variables) and correlation from covariance.
 void SetStdErrorsAndCorrelation(Uncertainty* uncertainty);
 
-bool ComputeUncertainty(OutputErrorProblem* problem, double final_cost, Uncertainty* uncertainty);
+// `solution` (may be null): the Jacobian already evaluated at the current values
+// (EvaluateSolutionJacobian); otherwise it is evaluated here on one thread.
+bool ComputeUncertainty(OutputErrorProblem* problem, double final_cost, Uncertainty* uncertainty,
+                        const SolutionJacobian* solution = nullptr);
 
 }  // namespace vesselid

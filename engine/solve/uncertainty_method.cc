@@ -77,17 +77,18 @@ bool ComputeStageUncertainty(const UncertaintyOptions& configured, OutputErrorPr
   // A bootstrap replaces these figures after the final solve; until then, those of `auto`.
   UncertaintyOptions options = configured;
   if (IsBootstrap(options.method)) options.method = UncertaintyMethod::kAuto;
+  // One Jacobian at the optimum serves the Hessian covariance, the HAC and (via `solution`)
+  // the local analysis.
+  SolutionJacobian evaluated;
+  SolutionJacobian* target = solution != nullptr ? solution : &evaluated;
+  const SolutionJacobian* shared =
+      EvaluateSolutionJacobian(problem, options.hac.num_threads, target) ? target : nullptr;
   Uncertainty hessian;
-  if (!ComputeUncertainty(problem, final_cost, &hessian)) {
+  if (!ComputeUncertainty(problem, final_cost, &hessian, shared)) {
     *uncertainty = hessian;
     return false;
   }
   Uncertainty hac;
-  const SolutionJacobian* shared = nullptr;
-  if (solution != nullptr &&
-      EvaluateSolutionJacobian(problem, options.hac.num_threads, solution)) {
-    shared = solution;
-  }
   if (!ComputeHacCovariance(options.hac, problem, hessian, &hac, shared)) {
     *uncertainty = hessian;
     if (options.method == UncertaintyMethod::kSandwichHac) {

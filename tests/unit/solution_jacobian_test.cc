@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include "ceres/covariance.h"
+
 #include "engine/solve/stage.h"
 #include "gtest/gtest.h"
 #include "problems/nomoto/handles.h"
@@ -27,45 +29,57 @@ nomoto::ClosedLoopOptions NoisyLoop(unsigned seed) {
   return loop;
 }
 
-TEST(SolutionJacobianTest, SharedEvaluationGivesTheAnalysesTheirOwnFigures) {
-  auto second = nomoto::MakeSecondOrderHandle();
-  auto first = nomoto::MakeFirstOrderHandle();
-  const std::vector<double> truth = {2.0875, 0.3179, 0.1830, -0.1724, 0.0};
-  // Simulated by the second-order loop, read by the first-order model.
-  std::vector<Experiment> runs;
-  for (unsigned seed : {3u, 4u}) {
-    Trajectory trajectory;
+// A first-order model of two noisy second-order closed-loop runs with free initial headings
+// and their priors (rows after the data rows).
+class SolutionJacobianTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    second_ = nomoto::MakeSecondOrderHandle();
+    first_ = nomoto::MakeFirstOrderHandle();
+    const std::vector<double> truth = {2.0875, 0.3179, 0.1830, -0.1724, 0.0};
+    // Simulated by the second-order loop, read by the first-order model.
+    std::vector<Experiment> runs;
+    for (unsigned seed : {3u, 4u}) {
+      Trajectory trajectory;
+      std::string error;
+      ASSERT_TRUE(nomoto::SimulateClosedLoop(*second_, truth, NoisyLoop(seed), &trajectory, &error))
+          << error;
+      trajectory.source = "run" + std::to_string(seed);
+      ExperimentSpec spec;
+      spec.name = trajectory.source;
+      spec.inputs = {{"delta", "delta"}};
+      spec.outputs = {{"psi", "psi"}};
+      Experiment e;
+      ASSERT_TRUE(BuildExperiment(spec, trajectory, first_->info(), ExperimentOptions(), &e, &error))
+          << error;
+      runs.push_back(std::move(e));
+    }
+    ParameterSpec t{}, k{};
+    t.name = "T";
+    t.start = 3.0;
+    k.name = "K";
+    k.start = -0.1;
+    OutputErrorOptions options;
+    options.free_initial_states = {"psi"};
+    options.prior.apply = InitialStatePrior::Apply::kAll;
     std::string error;
-    ASSERT_TRUE(nomoto::SimulateClosedLoop(*second, truth, NoisyLoop(seed), &trajectory, &error))
-        << error;
-    trajectory.source = "run" + std::to_string(seed);
-    ExperimentSpec spec;
-    spec.name = trajectory.source;
-    spec.inputs = {{"delta", "delta"}};
-    spec.outputs = {{"psi", "psi"}};
-    Experiment e;
-    ASSERT_TRUE(BuildExperiment(spec, trajectory, first->info(), ExperimentOptions(), &e, &error))
-        << error;
-    runs.push_back(std::move(e));
+    problem_ = OutputErrorProblem::Create(first_.get(), runs, {t, k}, options, &error);
+    ASSERT_NE(problem_, nullptr) << error;
   }
-  ParameterSpec t{}, k{};
-  t.name = "T";
-  t.start = 3.0;
-  k.name = "K";
-  k.start = -0.1;
-  OutputErrorOptions options;
-  options.free_initial_states = {"psi"};
-  options.prior.apply = InitialStatePrior::Apply::kAll;
-  std::string error;
-  auto problem = OutputErrorProblem::Create(first.get(), runs, {t, k}, options, &error);
-  ASSERT_NE(problem, nullptr) << error;
+
+  std::unique_ptr<ModelHandle> second_, first_;
+  std::unique_ptr<OutputErrorProblem> problem_;
+};
+
+TEST_F(SolutionJacobianTest, SharedEvaluationGivesTheAnalysesTheirOwnFigures) {
+  OutputErrorProblem* problem = problem_.get();
   StageSummary summary;
-  ASSERT_TRUE(RunStage(StageOptions(), problem.get(), &summary)) << summary.message;
+  ASSERT_TRUE(RunStage(StageOptions(), problem, &summary)) << summary.message;
   ASSERT_TRUE(summary.uncertainty.available) << summary.uncertainty.message;
   ASSERT_TRUE(summary.analysis.available) << summary.analysis.message;
 
   SolutionJacobian solution;
-  ASSERT_TRUE(EvaluateSolutionJacobian(problem.get(), 1, &solution));
+  ASSERT_TRUE(EvaluateSolutionJacobian(problem, 1, &solution));
   EXPECT_EQ(solution.data_rows, problem->num_residuals());
   EXPECT_EQ(solution.variables.size(), 4u);  // T, K, two initial headings
   EXPECT_GE(solution.jacobian.num_rows, solution.data_rows);
@@ -75,10 +89,10 @@ TEST(SolutionJacobianTest, SharedEvaluationGivesTheAnalysesTheirOwnFigures) {
 
   // Each analysis on its own evaluation.
   Uncertainty hessian, hac;
-  ASSERT_TRUE(ComputeUncertainty(problem.get(), summary.local().final_cost, &hessian));
-  ASSERT_TRUE(ComputeHacCovariance(HacOptions(), problem.get(), hessian, &hac)) << hac.message;
+  ASSERT_TRUE(ComputeUncertainty(problem, summary.local().final_cost, &hessian));
+  ASSERT_TRUE(ComputeHacCovariance(HacOptions(), problem, hessian, &hac)) << hac.message;
   LocalAnalysis alone;
-  ASSERT_TRUE(ComputeLocalAnalysis(LocalAnalysisOptions(), problem.get(), &alone));
+  ASSERT_TRUE(ComputeLocalAnalysis(LocalAnalysisOptions(), problem, &alone));
 
   const Uncertainty& staged = summary.uncertainty;
   ASSERT_EQ(staged.variables, hac.variables);
@@ -95,6 +109,38 @@ TEST(SolutionJacobianTest, SharedEvaluationGivesTheAnalysesTheirOwnFigures) {
     EXPECT_NEAR(shared.std_errors[i], alone.std_errors[i], 1e-9 * alone.std_errors[i]);
   }
   EXPECT_LT((shared.information - alone.information).norm(), 1e-9 * alone.information.norm());
+}
+
+// The Hessian covariance from the triangular factor of the shared Jacobian equals Ceres'
+// own (sparse QR) over every free variable, the initial headings included.
+TEST_F(SolutionJacobianTest, HessianCovarianceMatchesCeresSparseQr) {
+  OutputErrorProblem* problem = problem_.get();
+  StageSummary summary;
+  ASSERT_TRUE(RunStage(StageOptions(), problem, &summary)) << summary.message;
+  SolutionJacobian solution;
+  ASSERT_TRUE(EvaluateSolutionJacobian(problem, 1, &solution));
+  Uncertainty hessian;
+  ASSERT_TRUE(ComputeUncertainty(problem, summary.local().final_cost, &hessian, &solution));
+  ASSERT_TRUE(hessian.undetermined.empty());
+
+  std::vector<const double*> blocks;
+  for (int index : hessian.variables) blocks.push_back(problem->variables()[index].block);
+  ceres::Covariance::Options options;
+  options.algorithm_type = ceres::SPARSE_QR;
+  ceres::Covariance covariance(options);
+  ASSERT_TRUE(covariance.Compute(blocks, problem->problem()));
+  const int n = static_cast<int>(blocks.size());
+  Eigen::MatrixXd theta(n, n);
+  covariance.GetCovarianceMatrix(blocks, theta.data());
+  for (int a = 0; a < n; ++a) {
+    for (int b = 0; b < n; ++b) {
+      const double sa = problem->variables()[hessian.variables[a]].scale;
+      const double sb = problem->variables()[hessian.variables[b]].scale;
+      const double expected = hessian.residual_variance * sa * sb * theta(a, b);
+      const double size = std::sqrt(hessian.covariance(a, a) * hessian.covariance(b, b));
+      EXPECT_NEAR(hessian.covariance(a, b), expected, 1e-8 * size) << a << "," << b;
+    }
+  }
 }
 
 }  // namespace
