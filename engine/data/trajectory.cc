@@ -7,6 +7,8 @@
 #include <limits>
 #include <set>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "engine/base/input_file.h"
 #include "engine/base/number_text.h"
@@ -15,20 +17,22 @@
 namespace vesselid {
 namespace {
 
-std::string Trim(const std::string& s) {
-  size_t b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return "";
-  size_t e = s.find_last_not_of(" \t\r");
+std::string_view Trim(std::string_view s) {
+  const size_t b = s.find_first_not_of(" \t\r");
+  if (b == std::string_view::npos) return {};
+  const size_t e = s.find_last_not_of(" \t\r");
   return s.substr(b, e - b + 1);
 }
 
 // Lines of a file read in blocks, none longer than kMaxLine (a file without newlines would
-// otherwise be read into one string whole).
+// otherwise be read into one string whole). A line is a view into the block it lies in, or
+// into a carry string when it spans two blocks; it stays valid until the next call.
 class LineReader {
  public:
   static constexpr size_t kMaxLine = size_t{16} << 20;
 
-  explicit LineReader(const std::string& path) : file_(std::fopen(path.c_str(), "rb")) {}
+  explicit LineReader(const std::string& path)
+      : file_(std::fopen(path.c_str(), "rb")), buffer_(size_t{1} << 18) {}
   ~LineReader() {
     if (file_ != nullptr) std::fclose(file_);
   }
@@ -40,26 +44,35 @@ class LineReader {
   bool failed() const { return file_ != nullptr && std::ferror(file_) != 0; }
 
   // The next line without its '\n'; false at the end, on a read error or a line too long.
-  bool Next(std::string* line) {
-    line->clear();
+  bool Next(std::string_view* line) {
+    carry_.clear();
     while (true) {
       if (begin_ == end_) {
         if (file_ == nullptr) return false;
-        end_ = std::fread(buffer_, 1, sizeof(buffer_), file_);
+        end_ = std::fread(buffer_.data(), 1, buffer_.size(), file_);
         begin_ = 0;
-        if (end_ == 0) return !line->empty();
+        if (end_ == 0) {
+          *line = carry_;
+          return !carry_.empty();
+        }
       }
-      const char* start = buffer_ + begin_;
+      const char* start = buffer_.data() + begin_;
       const void* newline = std::memchr(start, '\n', end_ - begin_);
       const size_t length = newline ? static_cast<const char*>(newline) - start : end_ - begin_;
-      if (line->size() + length > kMaxLine) {
+      if (carry_.size() + length > kMaxLine) {
         too_long_ = true;
         return false;
       }
-      line->append(start, length);
       begin_ += length;
+      if (newline && carry_.empty()) {  // the whole line in this block: no copy
+        ++begin_;
+        *line = std::string_view(start, length);
+        return true;
+      }
+      carry_.append(start, length);
       if (newline) {
         ++begin_;
+        *line = carry_;
         return true;
       }
     }
@@ -67,23 +80,24 @@ class LineReader {
 
  private:
   std::FILE* file_;
-  char buffer_[1 << 16];
+  std::vector<char> buffer_;
+  std::string carry_;
   size_t begin_ = 0, end_ = 0;
   bool too_long_ = false;
 };
 
 constexpr char kByteOrderMark[] = "\xEF\xBB\xBF";
 
-std::vector<std::string> SplitFields(const std::string& line, char separator) {
-  std::vector<std::string> fields;
+// The trimmed fields of `line` into *fields (views into the line).
+void SplitFields(std::string_view line, char separator, std::vector<std::string_view>* fields) {
+  fields->clear();
   size_t start = 0;
   while (true) {
-    size_t comma = line.find(separator, start);
-    fields.push_back(Trim(line.substr(start, comma - start)));
-    if (comma == std::string::npos) break;
+    const size_t comma = line.find(separator, start);
+    fields->push_back(Trim(line.substr(start, comma - start)));
+    if (comma == std::string_view::npos) break;
     start = comma + 1;
   }
-  return fields;
 }
 
 }  // namespace
@@ -120,10 +134,11 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
   }
   Trajectory result;
   result.source = path;
-  std::string line;
+  std::string_view line;
   int line_number = 0;
   int time_column = -1;
   std::vector<std::string> header;
+  std::vector<std::string_view> fields;
   auto fail = [&](const std::string& what) {
     *error = path + ":" + std::to_string(line_number) + ": " + what;
     return false;
@@ -133,9 +148,10 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
     return in.Next(&line);
   };
   while (next()) {
-    if (line_number == 1 && line.compare(0, 3, kByteOrderMark) == 0) line.erase(0, 3);
+    if (line_number == 1 && line.substr(0, 3) == kByteOrderMark) line.remove_prefix(3);
     if (Trim(line).empty()) continue;
-    header = SplitFields(line, options.separator);
+    SplitFields(line, options.separator, &fields);
+    header.assign(fields.begin(), fields.end());
     break;
   }
   if (in.too_long()) return fail("line longer than " + ByteCount(LineReader::kMaxLine));
@@ -149,7 +165,8 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
     // A header split by another separator names the separator, not a missing column.
     for (char other : {',', ';', '\t'}) {
       if (other == options.separator) continue;
-      for (const std::string& name : SplitFields(line, other)) {
+      SplitFields(line, other, &fields);
+      for (std::string_view name : fields) {
         if (name != time_name) continue;
         return fail("the header is separated by " + SeparatorName(other) + ", not " +
                     SeparatorName(options.separator) + ": convert the file to commas or set " +
@@ -168,7 +185,6 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
   result.columns.resize(result.names.size());
 
   const double kMissing = std::numeric_limits<double>::quiet_NaN();
-  std::vector<std::string> fields;
   std::uint64_t values = 0;
   std::vector<std::int64_t> time_ns;  // epoch logs: every time exactly, in nanoseconds
   while (next()) {
@@ -178,38 +194,41 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
       return fail("more than " + std::to_string(options.max_values) +
                   " values (rows x columns) in one data file (limits.data_values)");
     }
-    fields = SplitFields(line, options.separator);
+    SplitFields(line, options.separator, &fields);
     if (fields.size() != header.size()) {
       return fail("expected " + std::to_string(header.size()) + " fields, found " +
                   std::to_string(fields.size()));
     }
     size_t channel = 0;
     for (size_t i = 0; i < fields.size(); ++i) {
+      const std::string_view field = fields[i];
       double value = kMissing;
-      if (!fields[i].empty() && !ParseFiniteNumber(fields[i], &value)) {
-        return fail("column '" + header[i] + "': '" + fields[i] + "' is not a finite number");
+      if (!field.empty() && !ParseFiniteNumber(field, &value)) {
+        return fail("column '" + header[i] + "': '" + std::string(field) +
+                    "' is not a finite number");
       }
       if (std::abs(value) > kMaxDataMagnitude) {
-        return fail("column '" + header[i] + "': " + fields[i] +
+        return fail("column '" + header[i] + "': " + std::string(field) +
                     " is too large for a measurement (|value| > 1e100; its square would "
                     "overflow the cost)");
       }
       if (static_cast<int>(i) == time_column) {
-        if (fields[i].empty()) return fail("missing time value");
+        if (field.empty()) return fail("missing time value");
         if (result.t.empty()) result.epoch = std::abs(value) >= kEpochThreshold;
         if (result.epoch) {
           std::int64_t ns = 0;
-          if (!ParseNanoseconds(fields[i], &ns)) {
-            return fail("time " + fields[i] + " cannot be read to the nanosecond (an epoch " +
-                        "time needs |t| < 9.2e9 s: give it in seconds, not milliseconds)");
+          if (!ParseNanoseconds(field, &ns)) {
+            return fail("time " + std::string(field) +
+                        " cannot be read to the nanosecond (an epoch time needs |t| < 9.2e9 s: "
+                        "give it in seconds, not milliseconds)");
           }
           if (!time_ns.empty() && !(ns > time_ns.back())) {
-            return fail("time " + fields[i] + " is not after the previous time " +
+            return fail("time " + std::string(field) + " is not after the previous time " +
                         FormatNanoseconds(time_ns.back()) + " (t must be strictly increasing)");
           }
           time_ns.push_back(ns);
         } else if (!result.t.empty() && !(value > result.t.back())) {
-          return fail("time " + fields[i] + " is not after the previous time " +
+          return fail("time " + std::string(field) + " is not after the previous time " +
                       std::to_string(result.t.back()) + " (t must be strictly increasing)");
         }
         result.t.push_back(value);
