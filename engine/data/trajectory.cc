@@ -1,5 +1,8 @@
 #include "engine/data/trajectory.h"
 
+#include <sys/stat.h>
+
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -17,11 +20,13 @@
 namespace vesselid {
 namespace {
 
+bool IsBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
 std::string_view Trim(std::string_view s) {
-  const size_t b = s.find_first_not_of(" \t\r");
-  if (b == std::string_view::npos) return {};
-  const size_t e = s.find_last_not_of(" \t\r");
-  return s.substr(b, e - b + 1);
+  size_t b = 0, e = s.size();
+  while (b < e && IsBlank(s[b])) ++b;
+  while (e > b && IsBlank(s[e - 1])) --e;
+  return s.substr(b, e - b);
 }
 
 // Lines of a file read in blocks, none longer than kMaxLine (a file without newlines would
@@ -32,7 +37,10 @@ class LineReader {
   static constexpr size_t kMaxLine = size_t{16} << 20;
 
   explicit LineReader(const std::string& path)
-      : file_(std::fopen(path.c_str(), "rb")), buffer_(size_t{1} << 18) {}
+      : file_(std::fopen(path.c_str(), "rb")), buffer_(size_t{1} << 18) {
+    struct stat info;
+    if (file_ != nullptr && ::fstat(fileno(file_), &info) == 0) size_ = info.st_size;
+  }
   ~LineReader() {
     if (file_ != nullptr) std::fclose(file_);
   }
@@ -40,6 +48,10 @@ class LineReader {
   LineReader& operator=(const LineReader&) = delete;
 
   bool open() const { return file_ != nullptr; }
+  // Bytes of the file not yet returned as lines (from its size when opened).
+  std::uint64_t bytes_left() const {
+    return (size_ > read_ ? size_ - read_ : 0) + (end_ - begin_);
+  }
   bool too_long() const { return too_long_; }
   bool failed() const { return file_ != nullptr && std::ferror(file_) != 0; }
 
@@ -50,6 +62,7 @@ class LineReader {
       if (begin_ == end_) {
         if (file_ == nullptr) return false;
         end_ = std::fread(buffer_.data(), 1, buffer_.size(), file_);
+        read_ += end_;
         begin_ = 0;
         if (end_ == 0) {
           *line = carry_;
@@ -83,20 +96,32 @@ class LineReader {
   std::vector<char> buffer_;
   std::string carry_;
   size_t begin_ = 0, end_ = 0;
+  std::uint64_t size_ = 0, read_ = 0;
   bool too_long_ = false;
 };
+
+// Room for about `rows` more rows (the bytes left over the first row's length, a little
+// more): the columns then grow without copies. Capacity never touched costs no memory.
+void ReserveRows(std::uint64_t rows, Trajectory* trajectory) {
+  const size_t n = static_cast<size_t>(std::min<std::uint64_t>(rows + rows / 8 + 16, 1u << 26));
+  trajectory->t.reserve(n);
+  trajectory->line.reserve(n);
+  for (std::vector<double>& column : trajectory->columns) column.reserve(n);
+}
 
 constexpr char kByteOrderMark[] = "\xEF\xBB\xBF";
 
 // The trimmed fields of `line` into *fields (views into the line).
 void SplitFields(std::string_view line, char separator, std::vector<std::string_view>* fields) {
   fields->clear();
-  size_t start = 0;
+  const char* p = line.data();
+  const char* const end = p + line.size();
   while (true) {
-    const size_t comma = line.find(separator, start);
-    fields->push_back(Trim(line.substr(start, comma - start)));
-    if (comma == std::string_view::npos) break;
-    start = comma + 1;
+    const char* field = p;
+    while (p != end && *p != separator) ++p;
+    fields->push_back(Trim(std::string_view(field, p - field)));
+    if (p == end) break;
+    ++p;
   }
 }
 
@@ -231,6 +256,7 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
           return fail("time " + std::string(field) + " is not after the previous time " +
                       std::to_string(result.t.back()) + " (t must be strictly increasing)");
         }
+        if (result.t.empty()) ReserveRows(in.bytes_left() / (line.size() + 1), &result);
         result.t.push_back(value);
         result.line.push_back(line_number);
       } else {
