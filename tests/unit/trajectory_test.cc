@@ -88,6 +88,41 @@ TEST(Trajectory, ReadsLinesAcrossBlocksAsWritten) {
       << error;
 }
 
+// Traces are formatted in blocks of rows on several threads: the file holds every row once,
+// in order, as %.10g (t) and %.12g (channels) with NaN as an empty field.
+TEST(Trajectory, WritesEveryRowInOrderFromParallelBlocks) {
+  Trajectory trace;
+  trace.names = {"psi_measured", "psi_simulated"};
+  trace.columns.resize(2);
+  const int rows = 20000;  // several blocks
+  for (int k = 0; k < rows; ++k) {
+    trace.t.push_back(0.02 * k);
+    trace.columns[0].push_back(k % 5 == 0 ? std::nan("") : std::sin(1e-3 * k) / 3.0);
+    trace.columns[1].push_back(-1e5 * std::cos(1e-3 * k) / 7.0);
+  }
+  const std::string path =
+      (fs::temp_directory_path() / "vesselid_trace_blocks.csv").string();
+  std::string error;
+  ASSERT_TRUE(WriteTrajectoryCsv(path, trace, &error)) << error;
+  Trajectory read;
+  ASSERT_TRUE(ReadTrajectoryCsv(path, &read, &error)) << error;
+  ASSERT_EQ(read.names, trace.names);
+  ASSERT_EQ(read.t.size(), trace.t.size());
+  auto printed = [](double value, int digits) {
+    char text[40];
+    std::snprintf(text, sizeof(text), "%.*g", digits, value);
+    return std::stod(text);
+  };
+  for (int k = 0; k < rows; ++k) {
+    ASSERT_EQ(read.t[k], printed(trace.t[k], 10)) << k;
+    ASSERT_EQ(std::isnan(read.columns[0][k]), std::isnan(trace.columns[0][k])) << k;
+    if (!std::isnan(trace.columns[0][k])) {
+      ASSERT_EQ(read.columns[0][k], printed(trace.columns[0][k], 12)) << k;
+    }
+    ASSERT_EQ(read.columns[1][k], printed(trace.columns[1][k], 12)) << k;
+  }
+}
+
 Channel Sampled(double (*f)(double), double dt, int n) {
   Channel c;
   for (int k = 0; k < n; ++k) {
