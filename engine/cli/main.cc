@@ -13,12 +13,14 @@
 
 #include "CLI/CLI.hpp"
 #include "engine/base/atomic_file.h"
+#include "engine/base/parallel_for.h"
 #include "engine/cli/terminal_progress.h"
 #include "engine/config/config.h"
 #include "engine/output/checkpoint.h"
 #include "engine/output/output_folder.h"
 #include "engine/output/results_text.h"
 #include "engine/output/results_writer.h"
+#include "engine/output/started_gnuplots.h"
 #include "engine/run/pipeline.h"
 #include "engine/study/study.h"
 #include "engine/study/study_runner.h"
@@ -97,6 +99,9 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
   const auto folder =
       OpenOutput(out_dir, vesselid::RunOutputs(config), InputFiles(config), &error);
   if (folder == nullptr) return Fail(error);
+  // report.html's gnuplots start now, while the stages run: one per group of figures
+  // (RenderFigures draws at most one group per core).
+  if (!flags.no_report) vesselid::StartGnuplots(vesselid::ParallelThreads(0));
   vesselid::TerminalProgress progress(
       vesselid::TerminalProgress::ChooseMode(stderr, flags.quiet, flags.verbose), stderr,
       config.stages.size());

@@ -1,5 +1,7 @@
 #include "engine/data/interpolation.h"
 
+#include <algorithm>
+
 #include "engine/base/check.h"
 
 namespace vesselid {
@@ -44,7 +46,17 @@ std::vector<double> InterpolateAt(const Channel& c, Interpolation interpolation,
   VESSELID_CHECK(!c.t.empty());
   std::vector<double> out(times.size());
   const size_t n = c.t.size();
-  size_t k = 0;  // c.t[k] <= t < c.t[k+1]
+  // c.t[k] <= t < c.t[k+1] (c.t[k] < t <= c.t[k+1] for the left limit), k walking forward
+  // over the increasing times from where the first one lies (bisection, not a walk from the
+  // channel's start: a segment's times lie in a short stretch of a long record).
+  size_t k = 0;
+  if (!times.empty()) {
+    const double t = times.front();
+    const auto after =
+        left_limit ? std::lower_bound(c.t.begin(), c.t.end(), t)
+                   : std::upper_bound(c.t.begin(), c.t.end(), t);
+    k = after == c.t.begin() ? 0 : static_cast<size_t>(after - c.t.begin()) - 1;
+  }
   for (size_t i = 0; i < times.size(); ++i) {
     const double t = times[i];
     while (k + 1 < n && (left_limit ? c.t[k + 1] < t : c.t[k + 1] <= t)) ++k;

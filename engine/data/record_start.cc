@@ -1,5 +1,6 @@
 #include "engine/data/record_start.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -11,7 +12,11 @@ namespace vesselid {
 bool FitStart(const Channel& channel, double t0, double window, bool angle, StartFit* fit) {
   constexpr double kTimeTolerance = 1e-9;
   std::vector<double> dt, y;
-  for (size_t i = 0; i < channel.t.size(); ++i) {
+  // The first sample not before t0 - tolerance, by bisection with the scan's own test.
+  const size_t begin = std::partition_point(channel.t.begin(), channel.t.end(),
+                                            [&](double t) { return t - t0 < -kTimeTolerance; }) -
+                       channel.t.begin();
+  for (size_t i = begin; i < channel.t.size(); ++i) {
     const double tau = channel.t[i] - t0;
     if (tau < -kTimeTolerance) continue;
     if (tau > window && dt.size() >= 3) break;

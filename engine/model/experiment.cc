@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <utility>
 
 #include "engine/base/angle.h"
 #include "engine/data/angle_units.h"
@@ -48,6 +49,16 @@ bool OutputChannelOf(const Trajectory& trajectory, int column, const ModelInfo& 
     return false;
   }
   return true;
+}
+
+// The samples [first, last) of sorted times `t` with t0 - tol <= t <= t_end + tol: the same
+// tests as a scan, found by bisection (a segment of a long record is a short window of it).
+std::pair<size_t, size_t> InWindow(const std::vector<double>& t, double t0, double t_end) {
+  const auto first = std::partition_point(
+      t.begin(), t.end(), [&](double x) { return !(x >= t0 - kTimeTolerance); });
+  const auto last =
+      std::partition_point(first, t.end(), [&](double x) { return x <= t_end + kTimeTolerance; });
+  return {static_cast<size_t>(first - t.begin()), static_cast<size_t>(last - t.begin())};
 }
 
 double Median(std::vector<double> values) {
@@ -185,14 +196,13 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
     channels.push_back(std::move(oc));
   }
 
-  // Nodes: t0 and every output sample time inside the window.
+  // Nodes: t0 and every output sample time inside the window (one output's are in order).
   std::vector<double> times{t0};
   for (const OutputChannel& oc : channels) {
-    for (double t : oc.channel.t) {
-      if (t >= t0 - kTimeTolerance && t <= t_end + kTimeTolerance) times.push_back(t);
-    }
+    const auto [first, last] = InWindow(oc.channel.t, t0, t_end);
+    times.insert(times.end(), oc.channel.t.begin() + first, oc.channel.t.begin() + last);
   }
-  std::sort(times.begin(), times.end());
+  if (!std::is_sorted(times.begin(), times.end())) std::sort(times.begin(), times.end());
   for (double t : times) {
     if (e.node_time.empty() || t - e.node_time.back() > kTimeTolerance) e.node_time.push_back(t);
   }
@@ -206,9 +216,9 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
   e.channel_noise_power.assign(info.outputs.size(), 0.0);
   for (const OutputChannel& oc : channels) {
     size_t k = 0;
-    for (size_t i = 0; i < oc.channel.t.size(); ++i) {
+    const auto [first, last] = InWindow(oc.channel.t, t0, t_end);
+    for (size_t i = first; i < last; ++i) {
       const double t = oc.channel.t[i];
-      if (t < t0 - kTimeTolerance || t > t_end + kTimeTolerance) continue;
       while (e.node_time[k] < t - kTimeTolerance) ++k;
       by_node[k].push_back({oc.output, oc.channel.value[i], oc.weight});
       ++e.output_sample_count[oc.output];
@@ -396,10 +406,8 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
   int counted = 0;
   for (const OutputChannel& oc : channels) {
     NoiseLevel level;
-    for (size_t i = 0; i < oc.channel.t.size(); ++i) {
-      const double t = oc.channel.t[i];
-      if (t >= t0 - kTimeTolerance && t <= t_end + kTimeTolerance) level.Add(oc.channel.value[i]);
-    }
+    const auto [first, last] = InWindow(oc.channel.t, t0, t_end);
+    for (size_t i = first; i < last; ++i) level.Add(oc.channel.value[i]);
     const double sigma = level.Sigma();
     if (!std::isfinite(sigma)) continue;
     e.channel_noise_power[oc.output] = level.count() * sigma * sigma;

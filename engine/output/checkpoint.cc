@@ -7,6 +7,7 @@
 #include <iterator>
 
 #include "engine/base/atomic_file.h"
+#include "engine/base/content_hash.h"
 #include "engine/base/input_file.h"
 #include "engine/base/work_limits.h"
 #include "engine/output/stage_result_archive.h"
@@ -35,28 +36,31 @@ bool ReadBytes(const std::string& path, std::string* bytes, std::string* error) 
   return true;
 }
 
-void Fnv1a(const char* bytes, size_t size, uint64_t* hash) {
-  for (size_t i = 0; i < size; ++i) {
-    *hash ^= static_cast<unsigned char>(bytes[i]);
-    *hash *= 0x100000001b3ULL;
-  }
+// A piece of the fingerprint followed by its length, so that pieces cannot run together.
+void AddPiece(const std::string& bytes, ContentHash* hash) {
+  hash->Add(bytes);
+  const std::uint64_t size = bytes.size();
+  hash->Add(&size, sizeof(size));
 }
-void Fnv1a(const std::string& bytes, uint64_t* hash) { Fnv1a(bytes.data(), bytes.size(), hash); }
 
-// Hashes a regular file of at most max_bytes as it reads it, a block at a time.
+// Hashes a regular file of at most max_bytes as it reads it, a block at a time, then its
+// length.
 bool HashFile(const std::string& path, const std::string& kind, std::uint64_t max_bytes,
-              const std::string& limit_key, uint64_t* hash, std::string* error) {
+              const std::string& limit_key, ContentHash* hash, std::string* error) {
   if (!CheckInputFile(path, kind, max_bytes, limit_key, error)) return false;
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr) {
     *error = path + ": cannot open";
     return false;
   }
-  std::vector<char> block(1 << 16);
+  std::vector<char> block(1 << 18);
+  std::uint64_t size = 0;
   size_t read;
   while ((read = std::fread(block.data(), 1, block.size(), file)) > 0) {
-    Fnv1a(block.data(), read, hash);
+    hash->Add(block.data(), read);
+    size += read;
   }
+  hash->Add(&size, sizeof(size));
   const bool failed = std::ferror(file) != 0;
   std::fclose(file);
   if (failed) *error = path + ": read failed";
@@ -90,20 +94,20 @@ bool ReadManifest(const fs::path& folder, json* manifest, std::string* error) {
 }  // namespace
 
 bool RunFingerprint(const RunConfig& config, std::string* fingerprint, std::string* error) {
-  uint64_t hash = 0xcbf29ce484222325ULL;
+  ContentHash hash;
   if (!HashFile(config.path, "config file", kMaxConfigBytes, "", &hash, error)) return false;
   for (const ExperimentSpec& spec : config.experiments) {
-    Fnv1a(spec.name, &hash);
+    AddPiece(spec.name, &hash);
     // A missing file counts as absent: the run itself reports it when it needs the data.
     std::error_code ec;
     if (!fs::exists(spec.file, ec)) {
-      Fnv1a("absent", &hash);
+      AddPiece("absent", &hash);
       continue;
     }
     if (!HashFile(spec.file, "data file", spec.csv.max_bytes, "limits.file_mb", &hash, error)) return false;
   }
   char hex[20];
-  std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(hash));
+  std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(hash.Digest()));
   *fingerprint = hex;
   return true;
 }

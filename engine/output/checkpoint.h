@@ -14,8 +14,8 @@
 
 namespace vesselid {
 
-// FNV-1a (64 bit) over the config file and every experiment's data file, in hex: a resumed
-// run must see the same bytes as the run it continues.
+// A 64-bit hash (content_hash.h) of the config file and every experiment's name and data
+// file, in hex: a resumed run must see the same bytes as the run it continues.
 bool RunFingerprint(const RunConfig& config, std::string* fingerprint, std::string* error);
 
 // A fresh run: removes any earlier checkpoint in out_dir and starts an empty one.

@@ -15,6 +15,7 @@
 
 #include "engine/base/parallel_for.h"
 #include "engine/output/decimation.h"
+#include "engine/output/started_gnuplots.h"
 
 namespace vesselid {
 namespace {
@@ -111,9 +112,16 @@ void DrawGroup(const std::vector<Figure>& figures, size_t begin, size_t end,
       *error = script.string() + ": write failed";
       break;
     }
-    const std::string command = "gnuplot -d " + ShellQuote(script.string()) + " > /dev/null 2> " +
-                                ShellQuote(messages.string());
-    const int status = std::system(command.c_str());
+    // The first run takes a gnuplot started ahead (started_gnuplots.h) if there is one.
+    int status = 0;
+    std::string started_messages;
+    if (run == 0 && RunStartedGnuplot(script.string(), &status, &started_messages)) {
+      WriteFile(messages, started_messages);
+    } else {
+      const std::string command = "gnuplot -d " + ShellQuote(script.string()) +
+                                  " > /dev/null 2> " + ShellQuote(messages.string());
+      status = std::system(command.c_str());
+    }
     std::set<size_t> done;
     std::istringstream done_list(ReadFile(folder / ("done" + tag + ".txt")));
     for (size_t i; done_list >> i;) done.insert(i);

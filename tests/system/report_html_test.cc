@@ -14,7 +14,9 @@
 
 #include "engine/output/base64.h"
 #include "engine/output/decimation.h"
+#include "engine/base/parallel_for.h"
 #include "engine/output/report_figures.h"
+#include "engine/output/started_gnuplots.h"
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
 #include "problems/registry.h"
@@ -113,6 +115,43 @@ TEST(RenderFiguresTest, FiguresAfterAFailingOneAreStillDrawn) {
   EXPECT_NE(rendering.svg[2].find("</svg>"), std::string::npos);
   EXPECT_NE(rendering.error.find("figure broken"), std::string::npos) << rendering.error;
   EXPECT_NE(rendering.svg[0].find("it's a_b"), std::string::npos);
+}
+
+// gnuplots started ahead (as a run that writes report.html does) draw the same figures as
+// ones started for the report, stop at a failing figure alike, and are each used once.
+TEST(RenderFiguresTest, StartedGnuplotsDrawWhatOnesStartedLaterDraw) {
+  ASSERT_TRUE(HaveProgram("gnuplot")) << kNoGnuplot;
+  Figure good;
+  good.width = 300;
+  good.height = 200;
+  good.data = {"0 1\n1 2\n2 NaN\n3 0\n"};
+  good.script = "plot D0 using 1:2 with lines title 'a'";
+  Figure bad = good;
+  bad.script = "plot D0 using 1:2 with no_such_style";
+  std::vector<Figure> figures = {good, good, bad, good};
+  for (size_t i = 0; i < figures.size(); ++i) figures[i].name = "f" + std::to_string(i);
+  figures[1].script = "plot D0 using 1:2 with points title 'b'";
+  const FigureRendering later = RenderFigures(figures);
+  StartGnuplots(4);  // more than the groups: the rest are left unused
+  const FigureRendering started = RenderFigures(figures);
+  EXPECT_EQ(started.svg, later.svg);
+  EXPECT_TRUE(started.svg[2].empty());
+  EXPECT_NE(started.svg[3].find("</svg>"), std::string::npos);
+  EXPECT_NE(started.error.find("figure f2"), std::string::npos) << started.error;
+  EXPECT_NE(started.error.find("no_such_style"), std::string::npos) << started.error;
+  // Each group of figures (one per core) took one started gnuplot; the rest are left, each
+  // runs one script (a script it cannot load is its error), then none is left and
+  // RenderFigures starts its own.
+  const int groups = std::min(static_cast<int>(figures.size()), ParallelThreads(0));
+  int left = 0, status = 0;
+  std::string messages;
+  while (RunStartedGnuplot("/nonexistent/vesselid.gp", &status, &messages)) {
+    ++left;
+    EXPECT_NE(status, 0);
+    EXPECT_NE(messages.find("vesselid.gp"), std::string::npos) << messages;
+  }
+  EXPECT_EQ(left, 4 - groups);
+  EXPECT_EQ(RenderFigures(figures).svg, later.svg);
 }
 
 // A one-stage result of a first-order Nomoto model with names that need escaping.

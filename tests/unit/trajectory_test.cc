@@ -2,6 +2,8 @@
 #include "engine/data/trajectory.h"
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <filesystem>
 #include <fstream>
 
@@ -43,6 +45,82 @@ TEST(Trajectory, RejectsMissingTimeColumnAndDuplicates) {
   EXPECT_NE(error.find(":3: column 'a': 'inf' is not a finite number"), std::string::npos) << error;
   EXPECT_FALSE(ReadTrajectoryCsv(WriteTemp("vesselid_empty.csv", ""), &t, &error));
   EXPECT_NE(error.find("empty file"), std::string::npos) << error;
+}
+
+// The reader parses lines in place inside blocks of the file: lines that straddle a block
+// boundary, CRLF endings, padded and missing fields, a last line without a newline and an
+// error line far into the file read as a line-by-line reading would.
+TEST(Trajectory, ReadsLinesAcrossBlocksAsWritten) {
+  std::string text = "\xEF\xBB\xBF t ,heading, rate\r\n";
+  std::vector<double> heading, rate;
+  const int rows = 40000;  // about 1 MB: several read blocks
+  for (int k = 0; k < rows; ++k) {
+    heading.push_back(std::sin(0.001 * k) * 1e3 + 1e-7 * k);
+    rate.push_back(k % 7 == 0 ? std::nan("") : -1.25e-3 * k);
+    char line[128];
+    std::snprintf(line, sizeof(line), "%.6f, %.17g ,%s%s", 0.05 * k, heading.back(),
+                  std::isnan(rate.back()) ? "" : std::to_string(rate.back()).c_str(),
+                  k + 1 == rows ? "" : (k % 3 == 0 ? "\r\n" : "\n"));
+    text += line;
+    if (!std::isnan(rate.back())) rate.back() = std::stod(std::to_string(rate.back()));
+  }
+  const std::string path = WriteTemp("vesselid_blocks.csv", text);
+  Trajectory t;
+  std::string error;
+  ASSERT_TRUE(ReadTrajectoryCsv(path, &t, &error)) << error;
+  ASSERT_EQ(t.names, (std::vector<std::string>{"heading", "rate"}));
+  ASSERT_EQ(t.t.size(), static_cast<size_t>(rows));
+  for (int k = 0; k < rows; ++k) {
+    ASSERT_EQ(t.columns[0][k], heading[k]) << k;
+    if (std::isnan(rate[k])) {
+      ASSERT_TRUE(std::isnan(t.columns[1][k])) << k;
+    } else {
+      ASSERT_EQ(t.columns[1][k], rate[k]) << k;
+    }
+    ASSERT_EQ(t.line[k], k + 2);
+  }
+  // A bad field on the last line, which has no newline, names its line.
+  text += "\n2000.0,1x,2";
+  EXPECT_FALSE(ReadTrajectoryCsv(WriteTemp("vesselid_blocks_bad.csv", text), &t, &error));
+  EXPECT_NE(error.find(":" + std::to_string(rows + 2) + ": column 'heading': '1x' is not a "
+                       "finite number"),
+            std::string::npos)
+      << error;
+}
+
+// Traces are formatted in blocks of rows on several threads: the file holds every row once,
+// in order, as %.10g (t) and %.12g (channels) with NaN as an empty field.
+TEST(Trajectory, WritesEveryRowInOrderFromParallelBlocks) {
+  Trajectory trace;
+  trace.names = {"psi_measured", "psi_simulated"};
+  trace.columns.resize(2);
+  const int rows = 20000;  // several blocks
+  for (int k = 0; k < rows; ++k) {
+    trace.t.push_back(0.02 * k);
+    trace.columns[0].push_back(k % 5 == 0 ? std::nan("") : std::sin(1e-3 * k) / 3.0);
+    trace.columns[1].push_back(-1e5 * std::cos(1e-3 * k) / 7.0);
+  }
+  const std::string path =
+      (fs::temp_directory_path() / "vesselid_trace_blocks.csv").string();
+  std::string error;
+  ASSERT_TRUE(WriteTrajectoryCsv(path, trace, &error)) << error;
+  Trajectory read;
+  ASSERT_TRUE(ReadTrajectoryCsv(path, &read, &error)) << error;
+  ASSERT_EQ(read.names, trace.names);
+  ASSERT_EQ(read.t.size(), trace.t.size());
+  auto printed = [](double value, int digits) {
+    char text[40];
+    std::snprintf(text, sizeof(text), "%.*g", digits, value);
+    return std::stod(text);
+  };
+  for (int k = 0; k < rows; ++k) {
+    ASSERT_EQ(read.t[k], printed(trace.t[k], 10)) << k;
+    ASSERT_EQ(std::isnan(read.columns[0][k]), std::isnan(trace.columns[0][k])) << k;
+    if (!std::isnan(trace.columns[0][k])) {
+      ASSERT_EQ(read.columns[0][k], printed(trace.columns[0][k], 12)) << k;
+    }
+    ASSERT_EQ(read.columns[1][k], printed(trace.columns[1][k], 12)) << k;
+  }
 }
 
 Channel Sampled(double (*f)(double), double dt, int n) {
