@@ -263,8 +263,16 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
                " free quantities; at most " + std::to_string(kMaxJetSize) + " are supported";
       return nullptr;
     }
+    ExperimentCostOptions cost_options;
+    cost_options.counts = p->counts_.get();
+    if (options.evaluation_cache) {
+      p->caches_.push_back(std::make_unique<EvaluationCache>(p->experiments_[e].num_samples(),
+                                                             static_cast<int>(blocks.size())));
+      cost_options.cache = p->caches_.back().get();
+    }
     p->data_blocks_.push_back(p->problem_->AddResidualBlock(
-        model->NewExperimentCost(&p->experiments_[e], scales, p->loss_.get()), nullptr, blocks));
+        model->NewExperimentCost(&p->experiments_[e], scales, p->loss_.get(), cost_options),
+        nullptr, blocks));
   }
   AddInitialStatePriors(options.prior, p.get());
   AddInputCorrectionPriors(p.get());
@@ -333,6 +341,10 @@ std::vector<double> OutputErrorProblem::Values() const {
 
 void OutputErrorProblem::SetValues(const std::vector<double>& values) {
   for (size_t i = 0; i < variables_.size(); ++i) variables_[i].set_value(values[i]);
+}
+
+void OutputErrorProblem::ReleaseEvaluationCaches() {
+  for (const std::unique_ptr<EvaluationCache>& cache : caches_) cache->Clear();
 }
 
 bool OutputErrorProblem::Cost(double* cost) {
