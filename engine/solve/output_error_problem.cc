@@ -249,6 +249,14 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
   }
 
   p->problem_ = std::make_unique<ceres::Problem>();
+  // Only Ceres' bounded trust region asks twice at one point on Jets (its projected line
+  // search, evaluation_cache.h); without bounds a cache would hold a Jacobian per experiment
+  // for nothing but the final cost. (Bounds the initial-state priors add below do not count:
+  // a missed copy, not a wrong one.)
+  bool bounded = false;
+  for (const Variable& v : p->variables_) {
+    bounded |= v.free && (std::isfinite(v.lower) || std::isfinite(v.upper));
+  }
   std::vector<double> scales(specs.size());
   for (size_t i = 0; i < specs.size(); ++i) scales[i] = specs[i].EffectiveScale();
   for (int e = 0; e < num_experiments; ++e) {
@@ -265,7 +273,7 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
     }
     ExperimentCostOptions cost_options;
     cost_options.counts = p->counts_.get();
-    if (options.evaluation_cache) {
+    if (options.evaluation_cache && bounded) {
       p->caches_.push_back(std::make_unique<EvaluationCache>(p->experiments_[e].num_samples(),
                                                              static_cast<int>(blocks.size())));
       cost_options.cache = p->caches_.back().get();

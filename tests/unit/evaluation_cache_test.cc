@@ -140,8 +140,9 @@ TEST(EvaluationCache, UnboundedSolveIsBitIdentical) {
   ASSERT_TRUE(without.summary.usable && with.summary.usable);
   ExpectSameSolve(with, without);
   EXPECT_GE(without.summary.successful_steps, 3);
-  // Without bounds no line search: a candidate's cost is evaluated on doubles and only the
-  // accepted point's Jacobian on Jets; what repeats is the final cost (local_solve.cc).
+  // Without bounds no line search: a candidate's cost is evaluated on doubles and only an
+  // accepted point's Jacobian on Jets, so the problem keeps no cache (output_error_problem.cc).
+  EXPECT_EQ(with.hits, 0);
   EXPECT_LE(with.jet_simulations, without.jet_simulations);
   EXPECT_EQ(with.jet_simulations + with.simulations + with.hits,
             without.jet_simulations + without.simulations);
