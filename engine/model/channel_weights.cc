@@ -23,6 +23,7 @@ void SetChannelWeights(const std::vector<double>& weight, Experiment* experiment
   for (ExperimentSample& s : e.samples) {
     if (s.output >= 0 && static_cast<size_t>(s.output) < outputs) s.weight *= factor[s.output];
   }
+  ++e.weights_revision;
   if (old_power > 0.0 && new_power > 0.0) e.prior_weight *= std::sqrt(new_power / old_power);
 }
 

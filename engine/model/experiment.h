@@ -92,6 +92,9 @@ struct Experiment {
   // its data (the prior weight's share; 0 where unknown).
   std::vector<double> channel_weight;
   std::vector<double> channel_noise_power;
+  // Changes whenever sample weights change in place (SetChannelWeights), so that a cost
+  // function's cached evaluations (evaluation_cache.h) of the old weights are not reused.
+  long weights_revision = 0;
   std::vector<bool> wrapped_outputs;     // per model output: residual wrapped (empty: none)
   // Inputs simulated as latent signals (input_noise.h): the input cache holds their spline,
   // and the corrections (if any) are added per step by the cost function.

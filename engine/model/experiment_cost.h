@@ -11,6 +11,9 @@
 // Derivatives: the whole experiment is simulated once on Jets whose dimension is the number
 // of blocks Ceres asks a Jacobian for (constant blocks cost nothing), chosen from a fixed list
 // of sizes.
+//
+// With a cache (ExperimentCostOptions), an evaluation at the values of the previous one of
+// its kind is copied from it (evaluation_cache.h).
 #pragma once
 
 #include <array>
@@ -20,6 +23,7 @@
 
 #include "ceres/ceres.h"
 #include "engine/base/check.h"
+#include "engine/model/evaluation_cache.h"
 #include "engine/model/experiment.h"
 #include "engine/model/simulate.h"
 
@@ -33,17 +37,27 @@ namespace vesselid {
 using JetSizes = std::integer_sequence<int, 2, 4, 6, 8, 10, 12, 16, 20, 24, 32, 48, 64, 80>;
 inline constexpr int kMaxJetSize = 80;
 
+struct ExperimentCostOptions {
+  // Keeps the last evaluation of each kind; null: every evaluation simulates. Sized by the
+  // caller for the experiment's samples and blocks; must outlive the cost function.
+  EvaluationCache* cache = nullptr;
+  EvaluationCounts* counts = nullptr;  // counts evaluations (may be null)
+};
+
 template <class Model>
 class ExperimentCost final : public ceres::CostFunction {
  public:
   // `experiment` and `loss` (may be null) must outlive the cost function.
   ExperimentCost(const Model& model, const Experiment* experiment,
-                 std::vector<double> parameter_scales, const ceres::LossFunction* loss)
+                 std::vector<double> parameter_scales, const ceres::LossFunction* loss,
+                 ExperimentCostOptions options = {})
       : model_(model),
         experiment_(experiment),
         scales_(std::move(parameter_scales)),
         wrapped_(experiment->wrapped_outputs),
-        loss_(loss) {
+        loss_(loss),
+        counts_(options.counts),
+        cache_(options.cache) {
     num_parameters_ = static_cast<int>(scales_.size());
     num_corrections_ = experiment->num_input_corrections();
     for (const InputCorrectionGrid& g : experiment->input_corrections) {
@@ -53,6 +67,8 @@ class ExperimentCost final : public ceres::CostFunction {
       mutable_parameter_block_sizes()->push_back(1);
     }
     set_num_residuals(experiment->num_samples());
+    VESSELID_CHECK(cache_ == nullptr || (cache_->num_residuals() == num_residuals() &&
+                                         cache_->num_blocks() == NumBlocks()));
   }
 
   bool Evaluate(double const* const* parameters, double* residuals,
@@ -61,9 +77,20 @@ class ExperimentCost final : public ceres::CostFunction {
     if (jacobians != nullptr) {
       for (int b = 0; b < NumBlocks(); ++b) directions += jacobians[b] != nullptr;
     }
-    if (directions == 0) return EvaluateScalar<double>(parameters, residuals, nullptr);
-    return Dispatch(JetSizes{}, directions, parameters, residuals, jacobians);
+    if (directions == 0) jacobians = nullptr;
+    const long revision = experiment_->weights_revision;
+    if (cache_ != nullptr && cache_->Lookup(parameters, revision, residuals, jacobians)) {
+      if (counts_ != nullptr) ++counts_->hits;
+      return true;
+    }
+    if (counts_ != nullptr) ++(directions == 0 ? counts_->simulations : counts_->jet_simulations);
+    const bool ok = directions == 0
+                        ? EvaluateScalar<double>(parameters, residuals, nullptr)
+                        : Dispatch(JetSizes{}, directions, parameters, residuals, jacobians);
+    if (ok && cache_ != nullptr) cache_->Store(parameters, revision, residuals, jacobians);
+    return ok;
   }
+
 
  private:
   int NumBlocks() const { return num_parameters_ + Model::kNumStates + num_corrections_; }
@@ -180,6 +207,8 @@ class ExperimentCost final : public ceres::CostFunction {
   int num_parameters_ = 0;
   int num_corrections_ = 0;
   std::vector<double> correction_scales_;  // sigma_c of each correction block
+  EvaluationCounts* counts_;
+  EvaluationCache* cache_;
 };
 
 }  // namespace vesselid

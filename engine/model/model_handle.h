@@ -26,7 +26,8 @@ class ModelHandle {
   // Output-error cost of one experiment (see experiment_cost.h for the block layout).
   virtual ceres::CostFunction* NewExperimentCost(const Experiment* experiment,
                                                  std::vector<double> parameter_scales,
-                                                 const ceres::LossFunction* loss) const = 0;
+                                                 const ceres::LossFunction* loss,
+                                                 ExperimentCostOptions options = {}) const = 0;
 
   // Simulates in double from x0 with parameters p; `outputs` gets every model output at every
   // node (row-major, nodes x outputs). False if the simulation diverges; the nodes it did not
@@ -112,8 +113,10 @@ class ModelAdapter final : public ModelHandle {
 
   ceres::CostFunction* NewExperimentCost(const Experiment* experiment,
                                          std::vector<double> parameter_scales,
-                                         const ceres::LossFunction* loss) const override {
-    return new ExperimentCost<Model>(model_, experiment, std::move(parameter_scales), loss);
+                                         const ceres::LossFunction* loss,
+                                         ExperimentCostOptions options = {}) const override {
+    return new ExperimentCost<Model>(model_, experiment, std::move(parameter_scales), loss,
+                                     options);
   }
 
   bool SimulateOutputs(const Experiment& e, const double* p, const double* x0,

@@ -249,6 +249,14 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
   }
 
   p->problem_ = std::make_unique<ceres::Problem>();
+  // Only Ceres' bounded trust region asks twice at one point on Jets (its projected line
+  // search, evaluation_cache.h); without bounds a cache would hold a Jacobian per experiment
+  // for nothing but the final cost. (Bounds the initial-state priors add below do not count:
+  // a missed copy, not a wrong one.)
+  bool bounded = false;
+  for (const Variable& v : p->variables_) {
+    bounded |= v.free && (std::isfinite(v.lower) || std::isfinite(v.upper));
+  }
   std::vector<double> scales(specs.size());
   for (size_t i = 0; i < specs.size(); ++i) scales[i] = specs[i].EffectiveScale();
   for (int e = 0; e < num_experiments; ++e) {
@@ -263,8 +271,16 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
                " free quantities; at most " + std::to_string(kMaxJetSize) + " are supported";
       return nullptr;
     }
+    ExperimentCostOptions cost_options;
+    cost_options.counts = p->counts_.get();
+    if (options.evaluation_cache && bounded) {
+      p->caches_.push_back(std::make_unique<EvaluationCache>(p->experiments_[e].num_samples(),
+                                                             static_cast<int>(blocks.size())));
+      cost_options.cache = p->caches_.back().get();
+    }
     p->data_blocks_.push_back(p->problem_->AddResidualBlock(
-        model->NewExperimentCost(&p->experiments_[e], scales, p->loss_.get()), nullptr, blocks));
+        model->NewExperimentCost(&p->experiments_[e], scales, p->loss_.get(), cost_options),
+        nullptr, blocks));
   }
   AddInitialStatePriors(options.prior, p.get());
   AddInputCorrectionPriors(p.get());
@@ -333,6 +349,10 @@ std::vector<double> OutputErrorProblem::Values() const {
 
 void OutputErrorProblem::SetValues(const std::vector<double>& values) {
   for (size_t i = 0; i < variables_.size(); ++i) variables_[i].set_value(values[i]);
+}
+
+void OutputErrorProblem::ReleaseEvaluationCaches() {
+  for (const std::unique_ptr<EvaluationCache>& cache : caches_) cache->Clear();
 }
 
 bool OutputErrorProblem::Cost(double* cost) {

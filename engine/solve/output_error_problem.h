@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "ceres/ceres.h"
+#include "engine/model/evaluation_cache.h"
 #include "engine/model/experiment.h"
 #include "engine/model/model_handle.h"
 #include "engine/solve/parameter.h"
@@ -57,6 +58,9 @@ struct OutputErrorOptions {
   InitialStatePrior prior;
   std::string loss = "none";                     // none, huber, cauchy, soft_l1, arctan
   double loss_scale = 1.0;                       // residual size where the loss bends
+  // Each experiment's cost keeps its last evaluation of each kind and copies it when asked
+  // again at the same values (evaluation_cache.h); off: every evaluation simulates.
+  bool evaluation_cache = true;
 };
 
 class OutputErrorProblem {
@@ -99,6 +103,12 @@ class OutputErrorProblem {
   // 1/2 sum r^2 at the current values; false if any simulation diverges.
   bool Cost(double* cost);
 
+  // Simulations and cache hits of the experiments' costs so far.
+  const EvaluationCounts& evaluation_counts() const { return *counts_; }
+  // Frees the experiments' cached evaluations (a Jacobian each); later evaluations fill the
+  // caches again.
+  void ReleaseEvaluationCaches();
+
  private:
   OutputErrorProblem() = default;
   // Prior residuals and bounds of the free initial states (InitialStatePrior).
@@ -113,6 +123,8 @@ class OutputErrorProblem {
   std::unique_ptr<ceres::LossFunction> loss_;
   std::unique_ptr<ceres::Problem> problem_;
   std::vector<ceres::ResidualBlockId> data_blocks_;
+  std::unique_ptr<EvaluationCounts> counts_ = std::make_unique<EvaluationCounts>();
+  std::vector<std::unique_ptr<EvaluationCache>> caches_;  // per experiment (if enabled)
   std::vector<double> storage_;  // every block, reserved once: stable, ordered addresses
   std::vector<Variable> variables_;
   // block_of_[e][j]: variable index of block j (parameters, states, then input corrections) of

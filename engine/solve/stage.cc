@@ -285,6 +285,9 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
       summary->notes.push_back("local analysis: " + summary->analysis.message);
     }
   }
+  // The solve and the Jacobian at the optimum are done: the cached evaluations (a Jacobian
+  // per experiment) are not kept with the results.
+  problem->ReleaseEvaluationCaches();
   if (!EvaluateFit(*problem, &summary->fits, &summary->message)) return false;
   summary->usable = true;
   summary->time_seconds =

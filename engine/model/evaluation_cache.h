@@ -1,0 +1,114 @@
+// The last evaluation of one residual block, so that Ceres asking again at bit-identical
+// parameter values copies the result instead of simulating the experiment again.
+//
+// Ceres 2.1's bounded trust region evaluates each candidate three times: the projected line
+// search asks for the gradient there (cubic interpolation: residuals and Jacobian, a Jet
+// simulation), the candidate's cost is evaluated again (residuals only), and an accepted step
+// asks for residuals and Jacobian at the same point once more. The cache holds one slot per
+// kind of evaluation, because a residual-only evaluation runs on doubles and a Jacobian
+// evaluation on Jets, and their residuals differ in the last bits (a Jet divides as
+// a * (1 / b)): a request is answered only from an evaluation of the same kind with the same
+// constant blocks, so that every result is bit-identical to a new simulation.
+//
+// An entry is keyed by the values of every parameter block (bit patterns) and a revision of
+// the data the residuals depend on (Experiment::weights_revision). Lookups and stores lock a
+// mutex (never held during a simulation), so that a cost function evaluated from several
+// threads at once stays correct; as the cache only returns what a simulation would compute,
+// results do not depend on the order of those threads.
+#pragma once
+
+#include <atomic>
+#include <cstring>
+#include <mutex>
+#include <vector>
+
+namespace vesselid {
+
+// Counts of one problem's residual-block evaluations (shared by its experiments' costs).
+struct EvaluationCounts {
+  std::atomic<long> simulations{0};      // residuals only, on doubles
+  std::atomic<long> jet_simulations{0};  // residuals and Jacobian, on Jets
+  std::atomic<long> hits{0};             // answered from the cache
+};
+
+class EvaluationCache {
+ public:
+  // A block of `num_residuals` residuals over `num_blocks` parameter blocks of size 1.
+  EvaluationCache(int num_residuals, int num_blocks)
+      : num_residuals_(num_residuals), num_blocks_(num_blocks) {}
+
+  int num_residuals() const { return num_residuals_; }
+  int num_blocks() const { return num_blocks_; }
+
+  // Copies a stored evaluation matching the request into `residuals` (and `jacobians`, whose
+  // non-null entries say which columns are asked for); false if there is none.
+  bool Lookup(double const* const* parameters, long revision, double* residuals,
+              double** jacobians) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const Slot& slot = slots_[jacobians != nullptr];
+    if (!Matches(slot, parameters, revision, jacobians)) return false;
+    std::memcpy(residuals, slot.residuals.data(), sizeof(double) * num_residuals_);
+    if (jacobians == nullptr) return true;
+    const double* column = slot.jacobian.data();
+    for (int b = 0; b < num_blocks_; ++b) {
+      if (jacobians[b] == nullptr) continue;
+      std::memcpy(jacobians[b], column, sizeof(double) * num_residuals_);
+      column += num_residuals_;
+    }
+    return true;
+  }
+
+  // Keeps a successful evaluation (the arguments as Lookup's), replacing the previous one of
+  // its kind.
+  void Store(double const* const* parameters, long revision, const double* residuals,
+             double** jacobians) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    Slot& slot = slots_[jacobians != nullptr];
+    slot.valid = true;
+    slot.revision = revision;
+    slot.key.resize(num_blocks_);
+    slot.asked.assign(num_blocks_, false);
+    for (int b = 0; b < num_blocks_; ++b) slot.key[b] = parameters[b][0];
+    slot.residuals.assign(residuals, residuals + num_residuals_);
+    slot.jacobian.clear();
+    if (jacobians == nullptr) return;
+    for (int b = 0; b < num_blocks_; ++b) {
+      if (jacobians[b] == nullptr) continue;
+      slot.asked[b] = true;
+      slot.jacobian.insert(slot.jacobian.end(), jacobians[b], jacobians[b] + num_residuals_);
+    }
+  }
+
+  // Frees both slots (their memory too).
+  void Clear() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (Slot& slot : slots_) slot = Slot();
+  }
+
+ private:
+  struct Slot {
+    bool valid = false;
+    long revision = 0;
+    std::vector<double> key;         // parameter block values
+    std::vector<bool> asked;         // blocks whose Jacobian column was computed
+    std::vector<double> residuals;
+    std::vector<double> jacobian;    // the asked columns, in block order
+  };
+
+  bool Matches(const Slot& slot, double const* const* parameters, long revision,
+               double** jacobians) const {
+    if (!slot.valid || slot.revision != revision) return false;
+    for (int b = 0; b < num_blocks_; ++b) {
+      // Bit patterns: -0.0 and 0.0 are different keys, as a simulation may tell them apart.
+      if (std::memcmp(&slot.key[b], parameters[b], sizeof(double)) != 0) return false;
+      if (jacobians != nullptr && slot.asked[b] != (jacobians[b] != nullptr)) return false;
+    }
+    return true;
+  }
+
+  const int num_residuals_, num_blocks_;
+  mutable std::mutex mutex_;
+  Slot slots_[2];  // [0]: residuals only, [1]: with Jacobian
+};
+
+}  // namespace vesselid
