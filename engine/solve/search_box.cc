@@ -13,9 +13,12 @@ SearchBox::SearchBox(const OutputErrorProblem& problem) {
       continue;
     searched_.push_back(static_cast<int>(i));
     names_.push_back(v.name);
-    lower_.push_back(v.lower);
+    // A positive parameter bounded below by 0 is searched over the top decades of its box.
+    const bool positive = problem.model().info().ParameterPositive(v.index) &&
+                          v.lower == 0.0 && v.upper > 0.0;
+    lower_.push_back(positive ? kPositiveFloor * v.upper : v.lower);
     upper_.push_back(v.upper);
-    log_.push_back((v.lower > 0.0) || (v.upper < 0.0));
+    log_.push_back(positive || (v.lower > 0.0) || (v.upper < 0.0));
   }
   // Shared parameters only: per-experiment copies are separate unknowns.
   for (const auto& [first, second] : problem.model().info().exchangeable) {
