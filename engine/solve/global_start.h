@@ -31,8 +31,8 @@ struct GlobalStartOptions {
   double min_separation = 0.05;  // between candidates, in the box's coordinates (max-norm)
   ProgressCallback progress;     // after each evaluation; may be empty
   // Optima the stage has already refined (full value vectors) and their costs: the
-  // multistart abandons short solves against the lowest and does not hand back a candidate
-  // that lies within min_separation of one at no lower cost (its refinement would end there).
+  // multistart does not hand back a candidate that lies within min_separation of one at no
+  // lower cost (its refinement would end there).
   std::vector<std::vector<double>> known_optima;
   std::vector<double> known_costs;
 

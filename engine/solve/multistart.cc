@@ -135,10 +135,13 @@ bool RunMultistart(const GlobalStartOptions& options, OutputErrorProblem* proble
   ranked.resize(ShortSolveCount(static_cast<int>(ranked.size()), box.dimension(),
                                 options.candidates));
 
+  // Short solves are abandoned against the end costs of earlier short solves only: a known
+  // optimum's cost is that of a converged solve, which a far point that would lead to a
+  // better one may exceed tenfold after its first iteration.
   double known_best = std::numeric_limits<double>::infinity();
   for (double c : options.known_costs) known_best = std::min(known_best, c);
   std::vector<PointResult> results(ranked.size());
-  double best = known_best;
+  double best = std::numeric_limits<double>::infinity();
   int done = 0;
   const int count_all = static_cast<int>(ranked.size());
   for (int first = 0; first < count_all; first += kMultistartBatch) {
