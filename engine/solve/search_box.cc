@@ -75,7 +75,9 @@ std::vector<double> SearchBox::Coordinates(const std::vector<double>& values) co
 }
 
 double SearchBox::Distance(const std::vector<double>& a, const std::vector<double>& b) const {
-  const std::vector<double> za = Coordinates(a), zb = Coordinates(b);
+  // Both in the ordered half: a solve may end with an exchangeable pair either way round.
+  const std::vector<double> za = Coordinates(Values(Coordinates(a), a));
+  const std::vector<double> zb = Coordinates(Values(Coordinates(b), b));
   double distance = 0.0;
   for (int k = 0; k < dimension(); ++k) distance = std::max(distance, std::abs(za[k] - zb[k]));
   return distance;

@@ -38,7 +38,7 @@ class SearchBox {
   std::vector<double> Values(const std::vector<double>& z, const std::vector<double>& base) const;
   // The cube coordinates of a value vector (values outside the bounds are clamped).
   std::vector<double> Coordinates(const std::vector<double>& values) const;
-  // Max-norm distance of two value vectors in cube coordinates.
+  // Max-norm distance of two value vectors in cube coordinates, exchangeable pairs ordered.
   double Distance(const std::vector<double>& a, const std::vector<double>& b) const;
 
  private:

@@ -90,6 +90,10 @@ TEST(SearchBox, LogCoordinatesForSignedScalesAndTheOrderedHalf) {
   EXPECT_DOUBLE_EQ(swapped[0], v[0] = box.Values({0.9, 0.3, 0.25, 0.7}, base)[0]);
   EXPECT_DOUBLE_EQ(swapped[1], box.Values({0.9, 0.3, 0.25, 0.7}, base)[1]);
   EXPECT_GE(swapped[0], swapped[1]);
+  // Distances compare the ordered halves: a pair either way round is the same point.
+  std::vector<double> reversed = swapped;
+  std::swap(reversed[0], reversed[1]);
+  EXPECT_EQ(box.Distance(reversed, swapped), 0.0);
 }
 
 TEST(SearchBox, SignFreeParametersStayLinear) {
