@@ -63,12 +63,18 @@ struct ModelInfo {
   // Per parameter name, what to change in the model's structure when its estimate compensates
   // another (|correlation| > 0.999) or ends at a bound: appended to those warnings.
   std::map<std::string, std::string> compensation_hints = {};
+  // Parameters that are positive by their nature (time constants, masses): a global start
+  // searches them in log coordinates also when their lower bound is 0 (search_box.h).
+  std::vector<bool> positive_parameters = {};
 
   bool InputOptional(int index) const {
     return index < static_cast<int>(optional_inputs.size()) && optional_inputs[index];
   }
   bool InputPositive(int index) const {
     return index < static_cast<int>(positive_inputs.size()) && positive_inputs[index];
+  }
+  bool ParameterPositive(int index) const {
+    return index < static_cast<int>(positive_parameters.size()) && positive_parameters[index];
   }
   int ParameterIndex(const std::string& name) const;
   int StateIndex(const std::string& name) const;

@@ -17,7 +17,8 @@ namespace vesselid {
 struct GlobalStartOptions {
   // "multistart", or an NLopt algorithm name, e.g. GN_DIRECT_L, GN_CRS2_LM, GN_ISRES.
   std::string algorithm = "multistart";
-  // multistart: points (short solves), Ceres iterations of each, threads (0: the cores).
+  // multistart: points screened by their cost, Ceres iterations of each short solve, threads
+  // (0: the cores).
   int points = 32;
   int short_iterations = 4;
   int threads = 0;
@@ -29,6 +30,11 @@ struct GlobalStartOptions {
   int candidates = 3;            // best distinct points handed to local refinement
   double min_separation = 0.05;  // between candidates, in the box's coordinates (max-norm)
   ProgressCallback progress;     // after each evaluation; may be empty
+  // Optima the stage has already refined (full value vectors) and their costs: the
+  // multistart does not hand back a candidate that lies within min_separation of one at no
+  // lower cost (its refinement would end there).
+  std::vector<std::vector<double>> known_optima;
+  std::vector<double> known_costs;
 
   bool IsValid(std::string* error) const;
 };
@@ -37,9 +43,11 @@ struct GlobalStartSummary {
   bool run = false;
   std::vector<std::string> variables;  // names of the searched variables
   std::string algorithm;
-  int evaluations = 0;         // NLopt: cost evaluations; multistart: points started
+  int evaluations = 0;         // NLopt: cost evaluations; multistart: points screened
   int failed_evaluations = 0;  // diverging simulations (multistart: points)
   int abandoned = 0;           // multistart: short solves abandoned as clearly worse
+  int short_solves = 0;        // multistart: short solves started (from the best screened)
+  int known_joined = 0;        // multistart: end points within reach of a known optimum
   int clusters = 0;            // multistart: distinct end points
   int short_iterations_total = 0;  // multistart: Ceres iterations of the short solves
   double best_cost = -1.0;

@@ -126,7 +126,10 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   double ordered_initial = -1.0;
   if (threaded && !problem->Cost(&ordered_initial)) ordered_initial = -1.0;
   AbandonCheck abandon(options.keep_going);
-  if (options.keep_going) ceres_options.callbacks.push_back(&abandon);
+  if (options.keep_going) {
+    ceres_options.callbacks.push_back(&abandon);
+    ceres_options.update_state_every_iteration = true;  // keep_going may read the values
+  }
   ceres::Solver::Summary ceres_summary;
   ceres::Solve(ceres_options, problem->problem(), &ceres_summary);
   if (threaded && ceres_summary.initial_cost >= 0.0 && ordered_initial >= 0.0) {

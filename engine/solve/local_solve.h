@@ -27,7 +27,8 @@ struct LocalSolveOptions {
   int num_threads = 0;
   ProgressCallback progress;  // after each iteration; may be empty
   // After each iteration (iteration, cost); false abandons the solve (termination
-  // USER_FAILURE, not usable). A multistart's short solves use it. May be empty.
+  // USER_FAILURE, not usable); the problem's values are the iteration's when it is called.
+  // A multistart's short solves use it. May be empty.
   std::function<bool(int, double)> keep_going;
 
   bool IsValid(std::string* error) const;

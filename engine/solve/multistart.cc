@@ -50,13 +50,12 @@ class ProblemPool {
   std::vector<OutputErrorProblem*> free_;
 };
 
+// A short solve from `start`, whose cost the screening found finite.
 PointResult ShortSolve(const GlobalStartOptions& options, const SearchBox& box,
                        const std::vector<double>& start, double best_before,
                        OutputErrorProblem* problem) {
   PointResult result;
   problem->SetValues(start);
-  double cost = 0.0;
-  if (!problem->Cost(&cost) || !std::isfinite(cost)) return result;  // diverged at the start
   LocalSolveOptions local;
   local.max_iterations = options.short_iterations;
   local.num_threads = 1;
@@ -83,7 +82,15 @@ PointResult ShortSolve(const GlobalStartOptions& options, const SearchBox& box,
   return result;
 }
 
+// Relative cost margin within which an end point counts as no better than a known optimum
+// (the last bits of a cost depend on the summation order).
+constexpr double kSameCost = 1e-6;
+
 }  // namespace
+
+int ShortSolveCount(int finite, int dimension, int candidates) {
+  return std::min(finite, std::max(2 * dimension, 2 * candidates));
+}
 
 bool RunMultistart(const GlobalStartOptions& options, OutputErrorProblem* problem,
                    GlobalStartSummary* summary) {
@@ -102,21 +109,51 @@ bool RunMultistart(const GlobalStartOptions& options, OutputErrorProblem* proble
 
   const int threads = std::min(ParallelThreads(options.threads), kMultistartBatch);
   ProblemPool pool(problem, std::min(threads, options.points));
-  std::vector<PointResult> results(starts.size());
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  };
+
+  // Screening: the cost of every point, one simulation each.
+  std::vector<double> screened(starts.size(), std::numeric_limits<double>::infinity());
+  ParallelFor(options.points, threads, [&](int i) {
+    OutputErrorProblem* p = pool.Borrow();
+    p->SetValues(starts[i]);
+    double cost = 0.0;
+    if (p->Cost(&cost) && std::isfinite(cost)) screened[i] = cost;
+    pool.Return(p);
+  });
+  std::vector<int> ranked;
+  for (int i = 0; i < options.points; ++i) {
+    if (std::isfinite(screened[i])) {
+      ranked.push_back(i);
+    } else {
+      ++summary->failed_evaluations;
+    }
+  }
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [&](int a, int b) { return screened[a] < screened[b]; });
+  ranked.resize(ShortSolveCount(static_cast<int>(ranked.size()), box.dimension(),
+                                options.candidates));
+
+  // Short solves are abandoned against the end costs of earlier short solves only: a known
+  // optimum's cost is that of a converged solve, which a far point that would lead to a
+  // better one may exceed tenfold after its first iteration.
+  double known_best = std::numeric_limits<double>::infinity();
+  for (double c : options.known_costs) known_best = std::min(known_best, c);
+  std::vector<PointResult> results(ranked.size());
   double best = std::numeric_limits<double>::infinity();
   int done = 0;
-  for (int first = 0; first < options.points; first += kMultistartBatch) {
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
-    if (first > 0 && elapsed > options.max_time_seconds) {
+  const int count_all = static_cast<int>(ranked.size());
+  for (int first = 0; first < count_all; first += kMultistartBatch) {
+    if (first > 0 && elapsed() > options.max_time_seconds) {
       summary->result = "stopped at max_time";
       break;
     }
-    const int count = std::min(kMultistartBatch, options.points - first);
+    const int count = std::min(kMultistartBatch, count_all - first);
     const double best_before = best;
     ParallelFor(count, threads, [&](int j) {
       OutputErrorProblem* p = pool.Borrow();
-      results[first + j] = ShortSolve(options, box, starts[first + j], best_before, p);
+      results[first + j] = ShortSolve(options, box, starts[ranked[first + j]], best_before, p);
       pool.Return(p);
     });
     for (int j = 0; j < count; ++j) {
@@ -125,7 +162,8 @@ bool RunMultistart(const GlobalStartOptions& options, OutputErrorProblem* proble
       if (r.status == PointStatus::kDiverged) ++summary->failed_evaluations;
       if (r.status == PointStatus::kAbandoned) ++summary->abandoned;
       if (r.status == PointStatus::kEnded) best = std::min(best, r.cost);
-      summary->best_cost_history.push_back(std::isfinite(best) ? best : std::nan(""));
+      const double found = std::min(best, known_best);
+      summary->best_cost_history.push_back(std::isfinite(found) ? found : std::nan(""));
     }
     done = first + count;
     if (options.progress) {
@@ -138,10 +176,12 @@ bool RunMultistart(const GlobalStartOptions& options, OutputErrorProblem* proble
   }
   problem->SetValues(base);
   summary->run = true;
-  summary->evaluations = done;
+  summary->evaluations = options.points;
+  summary->short_solves = done;
   if (summary->result.empty()) summary->result = "multistart";
 
-  // Clusters, best end point first: a point within min_separation of a kept one joins it.
+  // Clusters, best end point first: a point within min_separation of a kept one joins it; a
+  // point within min_separation of a known optimum at no lower cost is that optimum's.
   std::vector<int> order;
   for (int i = 0; i < done; ++i) {
     if (results[i].status == PointStatus::kEnded) order.push_back(i);
@@ -157,18 +197,24 @@ bool RunMultistart(const GlobalStartOptions& options, OutputErrorProblem* proble
     if (!distinct) continue;
     representatives.push_back(&results[i].values);
     ++summary->clusters;
-    if (static_cast<int>(summary->candidates.size()) < options.candidates) {
+    bool known = false;
+    for (size_t k = 0; k < options.known_optima.size() && !known; ++k) {
+      known = box.Distance(options.known_optima[k], results[i].values) < options.min_separation &&
+              results[i].cost >= (1.0 - kSameCost) * options.known_costs[k];
+    }
+    if (known) {
+      ++summary->known_joined;
+    } else if (static_cast<int>(summary->candidates.size()) < options.candidates) {
       summary->candidates.push_back(results[i].values);
       summary->candidate_costs.push_back(results[i].cost);
     }
   }
   summary->best_cost = summary->candidate_costs.empty() ? -1.0 : summary->candidate_costs[0];
-  summary->time_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
-  if (summary->candidates.empty()) {
+  summary->time_seconds = elapsed();
+  if (summary->candidates.empty() && options.known_optima.empty()) {
     summary->message = "no short solve of the multistart ended with a finite cost (" +
                        std::to_string(summary->failed_evaluations) + " of " +
-                       std::to_string(done) + " points diverged)";
+                       std::to_string(options.points) + " points diverged)";
     return false;
   }
   return true;

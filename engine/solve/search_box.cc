@@ -13,9 +13,12 @@ SearchBox::SearchBox(const OutputErrorProblem& problem) {
       continue;
     searched_.push_back(static_cast<int>(i));
     names_.push_back(v.name);
-    lower_.push_back(v.lower);
+    // A positive parameter bounded below by 0 is searched over the top decades of its box.
+    const bool positive = problem.model().info().ParameterPositive(v.index) &&
+                          v.lower == 0.0 && v.upper > 0.0;
+    lower_.push_back(positive ? kPositiveFloor * v.upper : v.lower);
     upper_.push_back(v.upper);
-    log_.push_back((v.lower > 0.0) || (v.upper < 0.0));
+    log_.push_back(positive || (v.lower > 0.0) || (v.upper < 0.0));
   }
   // Shared parameters only: per-experiment copies are separate unknowns.
   for (const auto& [first, second] : problem.model().info().exchangeable) {
@@ -72,7 +75,9 @@ std::vector<double> SearchBox::Coordinates(const std::vector<double>& values) co
 }
 
 double SearchBox::Distance(const std::vector<double>& a, const std::vector<double>& b) const {
-  const std::vector<double> za = Coordinates(a), zb = Coordinates(b);
+  // Both in the ordered half: a solve may end with an exchangeable pair either way round.
+  const std::vector<double> za = Coordinates(Values(Coordinates(a), a));
+  const std::vector<double> zb = Coordinates(Values(Coordinates(b), b));
   double distance = 0.0;
   for (int k = 0; k < dimension(); ++k) distance = std::max(distance, std::abs(za[k] - zb[k]));
   return distance;

@@ -4,7 +4,9 @@
 //
 //   log:     theta = sign l * |l| (|u| / |l|)^z        linear: theta = l + z (u - l)
 //
-// so that a time constant is as likely to be drawn in [0.1, 1] as in [1, 10]. Exchangeable
+// so that a time constant is as likely to be drawn in [0.1, 1] as in [1, 10]. A parameter the
+// model declares positive (ModelInfo::positive_parameters) with a lower bound 0 is searched
+// in log coordinates over [kPositiveFloor u, u] (its solves may still go below). Exchangeable
 // parameter pairs (the model is symmetric in them, ModelInfo::exchangeable) are folded into
 // the ordered half first >= second: the other half holds the same simulations again.
 #pragma once
@@ -16,6 +18,8 @@
 #include "engine/solve/output_error_problem.h"
 
 namespace vesselid {
+
+constexpr double kPositiveFloor = 1e-3;
 
 class SearchBox {
  public:
@@ -34,7 +38,7 @@ class SearchBox {
   std::vector<double> Values(const std::vector<double>& z, const std::vector<double>& base) const;
   // The cube coordinates of a value vector (values outside the bounds are clamped).
   std::vector<double> Coordinates(const std::vector<double>& values) const;
-  // Max-norm distance of two value vectors in cube coordinates.
+  // Max-norm distance of two value vectors in cube coordinates, exchangeable pairs ordered.
   double Distance(const std::vector<double>& a, const std::vector<double>& b) const;
 
  private:

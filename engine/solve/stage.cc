@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/solve/search_box.h"
+
 namespace vesselid {
 namespace {
 
@@ -70,6 +72,12 @@ constexpr double kRidgeGain = 1e-9;  // relative cost decrease that counts as le
 bool OnRidge(double a, double b) {
   return std::abs(a - b) <= 1e-3 * std::max(std::abs(a), std::abs(b));
 }
+
+// A candidate's refinement joins an earlier optimum within kJoinDistance (the search box's
+// max-norm coordinates: 1 % of each linear range, 0.01 of the decades of a log range) at a
+// cost no lower by kJoinSameCost (relative).
+constexpr double kJoinDistance = 0.01;
+constexpr double kJoinSameCost = 1e-6;
 
 void EscapeExchangeRidge(const LocalSolveOptions& options, OutputErrorProblem* problem,
                          LocalSolveSummary* local, std::vector<std::string>* notes) {
@@ -161,10 +169,10 @@ void NoteGlobalOutcome(const StageSummary& summary, size_t extra_starts,
   std::string search;
   if (g.algorithm == "multistart") {
     std::snprintf(text, sizeof(text),
-                  "%d points (%d diverged, %d abandoned, %d short iterations), %d distinct end "
-                  "points",
-                  g.evaluations, g.failed_evaluations, g.abandoned, g.short_iterations_total,
-                  g.clusters);
+                  "%d points screened (%d diverged), %d short solves (%d abandoned, %d "
+                  "iterations), %d distinct end points (%d at an optimum already refined)",
+                  g.evaluations, g.failed_evaluations, g.short_solves, g.abandoned,
+                  g.short_iterations_total, g.clusters, g.known_joined);
   } else {
     std::snprintf(text, sizeof(text), "%d evaluations (%d diverged)", g.evaluations,
                   g.failed_evaluations);
@@ -210,22 +218,18 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
 
   std::vector<std::vector<double>> starts{problem->Values()};
   starts.insert(starts.end(), extra_starts.begin(), extra_starts.end());
-  // The multistart searched the ordered half of exchangeable pairs already: a candidate of it
-  // that ends on their ridge is not split again (other candidates lie off it).
   const size_t first_candidate = starts.size();
-  if (options.use_global_start) {
-    if (!RunGlobalStart(options.global, problem, &summary->global)) {
-      summary->message = "global start: " + summary->global.message;
-      return false;
-    }
-    for (const std::vector<double>& c : summary->global.candidates) starts.push_back(c);
-  }
+  const SearchBox box(*problem);
 
   std::vector<double> best_values;
   double best_cost = 0.0;
   std::string last_failure;
   std::vector<std::string> ridge_notes, chosen_ridge_notes;  // of the refinement kept
-  for (size_t i = 0; i < starts.size(); ++i) {
+  // End points of the usable refinements so far and their costs.
+  std::vector<std::vector<double>> optima;
+  std::vector<double> optimum_costs;
+  std::vector<int> optimum_refinement;
+  auto refine = [&](size_t i) {
     problem->SetValues(starts[i]);
     if (options.initial_states_first) SolveInitialStates(options.local, problem);
     LocalSolveOptions local_options = options.local;
@@ -236,24 +240,62 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
         options.local.progress(p);
       };
     }
+    // A candidate's refinement stops once it comes close to an optimum already refined at
+    // no lower cost: it would end there.
+    int joined = -1;
+    if (i >= first_candidate && !optima.empty() && box.dimension() > 0) {
+      local_options.keep_going = [&](int, double cost) {
+        const std::vector<double> now = problem->Values();
+        for (size_t k = 0; k < optima.size() && joined < 0; ++k) {
+          if (cost >= (1.0 - kJoinSameCost) * optimum_costs[k] &&
+              box.Distance(now, optima[k]) < kJoinDistance) {
+            joined = optimum_refinement[k];
+          }
+        }
+        return joined < 0;
+      };
+    }
     LocalSolveSummary local;
     ridge_notes.clear();
-    const bool escape =
-        i < first_candidate || summary->global.algorithm != "multistart";
+    // The multistart searched the ordered half of exchangeable pairs already: a candidate of
+    // it that ends on their ridge is not split again (other candidates lie off it).
+    const bool escape = i < first_candidate || summary->global.algorithm != "multistart";
     if (RunLocalSolve(local_options, problem, &local) && escape) {
       EscapeExchangeRidge(local_options, problem, &local, &ridge_notes);
     }
+    if (joined >= 0) {
+      local.termination = "JOINED";
+      local.message = "stopped near the optimum of refinement " + std::to_string(joined);
+    }
     summary->refinements.push_back(local);
     if (!local.usable) {
-      last_failure = local.message;
-      continue;
+      if (joined < 0) last_failure = local.message;
+      return;
     }
+    optima.push_back(problem->Values());
+    optimum_costs.push_back(local.final_cost);
+    optimum_refinement.push_back(static_cast<int>(i));
     if (summary->chosen < 0 || local.final_cost < best_cost) {
       summary->chosen = static_cast<int>(i);
       best_cost = local.final_cost;
       best_values = problem->Values();
       chosen_ridge_notes = ridge_notes;
     }
+  };
+  // The start points first: the multistart abandons its short solves against their optima
+  // and skips candidates that would end in them.
+  for (size_t i = 0; i < first_candidate; ++i) refine(i);
+  if (options.use_global_start) {
+    GlobalStartOptions global = options.global;
+    global.known_optima = optima;
+    global.known_costs = optimum_costs;
+    problem->SetValues(starts[0]);  // the unsearched variables keep the start's values
+    if (!RunGlobalStart(global, problem, &summary->global)) {
+      summary->message = "global start: " + summary->global.message;
+      return false;
+    }
+    for (const std::vector<double>& c : summary->global.candidates) starts.push_back(c);
+    for (size_t i = first_candidate; i < starts.size(); ++i) refine(i);
   }
   if (summary->chosen < 0) {
     summary->message = "no local refinement succeeded: " + last_failure;

@@ -151,18 +151,20 @@ struct SecondOrder {
   static constexpr int kNumOutputs = 2;
 
   ModelInfo Info() const {
-    return {"nomoto_second_order",
-            {"psi", "xi1", "xi2"},
-            {"delta"},
-            {"psi", "r"},
-            {"T1", "T2", "T3", "K", "delta_0"},
-            {20.0, 5.0, 5.0, 0.1, 0.0},
-            {true, false},
-            {{0, 1}},
-            {},
-            {"rad", "rad/s"},
-            {"rad", "rad", "rad/s"},  // xi1, xi2 carry the rudder angle's unit
-            {"rad"}};
+    ModelInfo info{"nomoto_second_order",
+                   {"psi", "xi1", "xi2"},
+                   {"delta"},
+                   {"psi", "r"},
+                   {"T1", "T2", "T3", "K", "delta_0"},
+                   {20.0, 5.0, 5.0, 0.1, 0.0},
+                   {true, false},
+                   {{0, 1}},
+                   {},
+                   {"rad", "rad/s"},
+                   {"rad", "rad", "rad/s"},  // xi1, xi2 carry the rudder angle's unit
+                   {"rad"}};
+    info.positive_parameters = {true, true, true, false, false};  // the time constants
+    return info;
   }
 
   template <class T, class U>

@@ -8,6 +8,10 @@
 //   build/tests/benchmarks/benchmark_spirals [starts] [variant]  (default 11 starts, +-30 %;
 //       variant: plain, wrapped, continuation or global; default all)
 //
+// Each start's outcome is printed as it ends (a campaign takes minutes per start).
+// VESSELID_BENCHMARK_BINARY runs another vesselid binary (e.g. a copy, while the build tree
+// changes).
+//
 // A start succeeds when its final cost is within 1 % of the cost the same tool reaches from
 // the true values (run first, not counted).
 #include <chrono>
@@ -21,6 +25,8 @@
 #include <string>
 #include <tuple>
 #include <vector>
+
+#include <unistd.h>
 
 #include "nlohmann/json.hpp"
 
@@ -83,7 +89,8 @@ std::string Config(const std::map<std::string, double>& start, Variant variant) 
 int main(int argc, char** argv) {
   const int count = argc > 1 ? std::atoi(argv[1]) : 11;
   const std::string only = argc > 2 ? argv[2] : "";
-  const fs::path dir = fs::temp_directory_path() / "vesselid_benchmark_spirals";
+  const fs::path dir = fs::temp_directory_path() /
+                      ("vesselid_benchmark_spirals_" + std::to_string(getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   const std::string script =
@@ -122,12 +129,17 @@ int main(int argc, char** argv) {
       const fs::path config = dir / ("start" + std::to_string(i) + ".yaml");
       const fs::path out = dir / ("out" + std::to_string(i));
       std::ofstream(config) << Config(starts[i], variant);
-      const double t = Timed(std::string(VESSELID_BINARY) + " run " + config.string() + " --out " +
-                             out.string() + " --quiet > /dev/null 2>&1");
+      const char* binary = std::getenv("VESSELID_BENCHMARK_BINARY");
+      const double t = Timed(std::string(binary != nullptr ? binary : VESSELID_BINARY) + " run " +
+                             config.string() + " --out " + out.string() +
+                             " --quiet > /dev/null 2>&1");
       std::ifstream in(out / "results.json");
       const json results = json::parse(in, nullptr, false);
       const double cost =
           results.is_discarded() ? INFINITY : results["stages"][0]["cost"].get<double>();
+      std::fprintf(stderr, "  %s start %d: cost %.6e, %.1f s%s\n", name, i, cost, t,
+                   i == 0 ? " (from the truth: the reference)"
+                          : (Success(cost, reference) ? " (optimum)" : " (missed)"));
       if (i == 0) {
         reference = cost;
         continue;

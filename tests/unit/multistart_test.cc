@@ -68,16 +68,16 @@ TEST(SearchBox, LogCoordinatesForSignedScalesAndTheOrderedHalf) {
   auto problem = Problem(*model, e, PatrolSpecs(3.0, 0.2, 0.3, -0.1));
   const SearchBox box(*problem);
   ASSERT_EQ(box.dimension(), 4);
-  EXPECT_TRUE(box.logarithmic(0));   // T1 in [0.01, 20]
-  EXPECT_FALSE(box.logarithmic(2));  // T3 may be 0
-  EXPECT_TRUE(box.logarithmic(3));   // K in [-2, -0.001]
+  EXPECT_TRUE(box.logarithmic(0));  // T1 in [0.01, 20]
+  EXPECT_TRUE(box.logarithmic(2));  // T3 in [0, 5], a time constant: searched in [0.005, 5]
+  EXPECT_TRUE(box.logarithmic(3));  // K in [-2, -0.001]
   ASSERT_EQ(box.exchangeable().size(), 1u);
   const std::vector<double> base = problem->Values();
   // The middle of a log box is the geometric mean; z = 0 is the lower bound also for K < 0.
   std::vector<double> v = box.Values({0.5, 0.0, 0.5, 0.0}, base);
   EXPECT_NEAR(v[0], std::sqrt(0.01 * 20.0), 1e-12);
   EXPECT_NEAR(v[1], 0.01, 1e-15);
-  EXPECT_NEAR(v[2], 2.5, 1e-12);
+  EXPECT_NEAR(v[2], std::sqrt(kPositiveFloor * 5.0 * 5.0), 1e-12);
   EXPECT_NEAR(v[3], -2.0, 1e-12);
   EXPECT_NEAR(box.Values({0.5, 0.0, 0.5, 0.5}, base)[3], -std::sqrt(2.0 * 0.001), 1e-12);
   const std::vector<double> z = box.Coordinates(box.Values({0.9, 0.3, 0.25, 0.7}, base));
@@ -90,6 +90,34 @@ TEST(SearchBox, LogCoordinatesForSignedScalesAndTheOrderedHalf) {
   EXPECT_DOUBLE_EQ(swapped[0], v[0] = box.Values({0.9, 0.3, 0.25, 0.7}, base)[0]);
   EXPECT_DOUBLE_EQ(swapped[1], box.Values({0.9, 0.3, 0.25, 0.7}, base)[1]);
   EXPECT_GE(swapped[0], swapped[1]);
+  // Distances compare the ordered halves: a pair either way round is the same point.
+  std::vector<double> reversed = swapped;
+  std::swap(reversed[0], reversed[1]);
+  EXPECT_EQ(box.Distance(reversed, swapped), 0.0);
+}
+
+TEST(SearchBox, SignFreeParametersStayLinear) {
+  // K may take either sign here, delta_0 is not declared positive: both linear; T3 with a
+  // positive lower bound is logarithmic over its own bounds.
+  auto model = nomoto::MakeSecondOrderHandle();
+  Experiment e = RealisticPatrol(*model);
+  std::vector<ParameterSpec> specs = PatrolSpecs(3.0, 0.2, 0.3, -0.1);
+  specs[2].lower = 0.05;
+  specs[3].upper = 2.0;
+  specs.push_back(Spec("delta_0", 0.0, 0.0, 0.1));
+  auto problem = Problem(*model, e, specs);
+  const SearchBox box(*problem);
+  ASSERT_EQ(box.dimension(), 5);
+  EXPECT_TRUE(box.logarithmic(2));
+  EXPECT_NEAR(box.Values({0, 0, 0, 0, 0}, problem->Values())[2], 0.05, 1e-15);
+  EXPECT_FALSE(box.logarithmic(3));
+  EXPECT_FALSE(box.logarithmic(4));
+}
+
+TEST(Multistart, ShortSolvesFromTheBestScreenedPoints) {
+  EXPECT_EQ(ShortSolveCount(32, 4, 3), 8);   // twice the dimension
+  EXPECT_EQ(ShortSolveCount(32, 2, 3), 6);   // at least twice the candidates
+  EXPECT_EQ(ShortSolveCount(11, 12, 3), 11);  // no more than the finite points
 }
 
 TEST(HaltonSequence, FillsTheCubeEvenlyAndDependsOnTheSeed) {
@@ -132,6 +160,7 @@ TEST(Multistart, SameResultForAnyThreadCount) {
     EXPECT_EQ(summaries[i].short_iterations_total, summaries[0].short_iterations_total);
   }
   EXPECT_EQ(summaries[0].evaluations, 16);
+  EXPECT_EQ(summaries[0].short_solves, 8);  // the best 2 x 4 screened points
   EXPECT_EQ(summaries[0].algorithm, "multistart");
   for (const std::vector<double>& c : summaries[0].candidates) {
     EXPECT_GE(c[0], c[1]);  // T1 >= T2: the ordered half
@@ -166,6 +195,62 @@ TEST(Multistart, NeverWorseThanThePlainLocalSolve) {
                       note.find(" won with cost ") != std::string::npos);
   }
   EXPECT_TRUE(noted);
+}
+
+TEST(Multistart, HandsBackNoCandidateThatWouldEndAtAKnownOptimum) {
+  // Told the optimum (found by the stage's plain solve), the multistart drops end points in
+  // its reach; without it, the same search hands back a candidate there.
+  auto model = nomoto::MakeSecondOrderHandle();
+  Experiment e = RealisticPatrol(*model);
+  auto problem = Problem(*model, e, PatrolSpecs(2.0875, 0.3179, 0.1830, -0.1724));
+  LocalSolveOptions local;
+  LocalSolveSummary solved;
+  ASSERT_TRUE(RunLocalSolve(local, problem.get(), &solved));
+  const std::vector<double> optimum = problem->Values();
+  GlobalStartOptions options;
+  options.short_iterations = 8;
+  GlobalStartSummary free_search, told;
+  ASSERT_TRUE(RunGlobalStart(options, problem.get(), &free_search)) << free_search.message;
+  ASSERT_FALSE(free_search.candidates.empty());
+  const SearchBox box(*problem);
+  EXPECT_LT(box.Distance(free_search.candidates[0], optimum), options.min_separation);
+  options.known_optima = {optimum};
+  options.known_costs = {solved.final_cost};
+  ASSERT_TRUE(RunGlobalStart(options, problem.get(), &told)) << told.message;
+  EXPECT_EQ(told.short_iterations_total, free_search.short_iterations_total);
+  EXPECT_GT(told.known_joined, 0);
+  for (const std::vector<double>& c : told.candidates) {
+    EXPECT_GE(box.Distance(c, optimum), options.min_separation);
+  }
+}
+
+TEST(Multistart, CandidatesThatReachAnEarlierOptimumStopThere) {
+  // From the optimum the plain solve stays; a candidate refinement that comes within reach
+  // of it stops (JOINED) instead of converging again, and the stage keeps the plain result.
+  auto model = nomoto::MakeSecondOrderHandle();
+  Experiment e = RealisticPatrol(*model);
+  auto reference = Problem(*model, e, PatrolSpecs(2.0875, 0.3179, 0.1830, -0.1724));
+  LocalSolveSummary solved;
+  ASSERT_TRUE(RunLocalSolve(LocalSolveOptions(), reference.get(), &solved));
+  const std::vector<double> o = reference->Values();
+  auto problem = Problem(*model, e, PatrolSpecs(o[0], o[1], o[2], o[3]));
+  StageOptions options;
+  options.compute_uncertainty = false;
+  options.use_global_start = true;
+  options.global.min_separation = 0.0;  // every end point is a candidate
+  options.global.candidates = 3;
+  StageSummary summary;
+  ASSERT_TRUE(RunStage(options, problem.get(), &summary)) << summary.message;
+  int joined = 0;
+  for (size_t i = 1; i < summary.refinements.size(); ++i) {
+    const LocalSolveSummary& r = summary.refinements[i];
+    if (r.termination != "JOINED") continue;
+    ++joined;
+    EXPECT_FALSE(r.usable);
+    EXPECT_EQ(r.message, "stopped near the optimum of refinement 0");
+  }
+  EXPECT_GT(joined, 0);
+  EXPECT_EQ(summary.chosen, 0);
 }
 
 TEST(Multistart, LeavesTheExchangeRidgeWhereTheLocalSolveStays) {
