@@ -38,8 +38,8 @@ class ContentHash {
   void Add(const std::string& text) { Add(text.data(), text.size()); }
 
   std::uint64_t Digest() const {
-    std::uint64_t h = Rotl(lane_[0], 1) + Rotl(lane_[1], 7) + Rotl(lane_[2], 12) +
-                      Rotl(lane_[3], 18);
+    std::uint64_t h =
+        Rotl(lane_[0], 1) + Rotl(lane_[1], 7) + Rotl(lane_[2], 12) + Rotl(lane_[3], 18);
     for (std::uint64_t lane : lane_) h = (h ^ Round(0, lane)) * kP1 + kP4;
     h += total_;
     for (size_t i = 0; i < pending_; ++i) h = Rotl(h ^ (stripe_[i] * kP5), 11) * kP1;

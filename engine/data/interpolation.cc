@@ -52,9 +52,8 @@ std::vector<double> InterpolateAt(const Channel& c, Interpolation interpolation,
   size_t k = 0;
   if (!times.empty()) {
     const double t = times.front();
-    const auto after =
-        left_limit ? std::lower_bound(c.t.begin(), c.t.end(), t)
-                   : std::upper_bound(c.t.begin(), c.t.end(), t);
+    const auto after = left_limit ? std::lower_bound(c.t.begin(), c.t.end(), t)
+                                  : std::upper_bound(c.t.begin(), c.t.end(), t);
     k = after == c.t.begin() ? 0 : static_cast<size_t>(after - c.t.begin()) - 1;
   }
   for (size_t i = 0; i < times.size(); ++i) {

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "engine/base/input_file.h"
-#include "engine/base/parallel_for.h"
 #include "engine/base/number_text.h"
+#include "engine/base/parallel_for.h"
 #include "engine/data/time_base.h"
 
 namespace vesselid {
@@ -50,9 +50,7 @@ class LineReader {
 
   bool open() const { return file_ != nullptr; }
   // Bytes of the file not yet returned as lines (from its size when opened).
-  std::uint64_t bytes_left() const {
-    return (size_ > read_ ? size_ - read_ : 0) + (end_ - begin_);
-  }
+  std::uint64_t bytes_left() const { return (size_ > read_ ? size_ - read_ : 0) + (end_ - begin_); }
   bool too_long() const { return too_long_; }
   bool failed() const { return file_ != nullptr && std::ferror(file_) != 0; }
 

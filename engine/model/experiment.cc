@@ -54,8 +54,8 @@ bool OutputChannelOf(const Trajectory& trajectory, int column, const ModelInfo& 
 // The samples [first, last) of sorted times `t` with t0 - tol <= t <= t_end + tol: the same
 // tests as a scan, found by bisection (a segment of a long record is a short window of it).
 std::pair<size_t, size_t> InWindow(const std::vector<double>& t, double t0, double t_end) {
-  const auto first = std::partition_point(
-      t.begin(), t.end(), [&](double x) { return !(x >= t0 - kTimeTolerance); });
+  const auto first = std::partition_point(t.begin(), t.end(),
+                                          [&](double x) { return !(x >= t0 - kTimeTolerance); });
   const auto last =
       std::partition_point(first, t.end(), [&](double x) { return x <= t_end + kTimeTolerance; });
   return {static_cast<size_t>(first - t.begin()), static_cast<size_t>(last - t.begin())};

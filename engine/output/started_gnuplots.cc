@@ -22,7 +22,7 @@ namespace {
 
 struct StartedGnuplot {
   pid_t pid = -1;
-  int input = -1;              // write end of its standard input
+  int input = -1;               // write end of its standard input
   std::FILE* errors = nullptr;  // an unnamed file holding its standard error
 };
 
@@ -76,9 +76,8 @@ class StartedGnuplots {
     if (g->errors != nullptr) posix_spawn_file_actions_adddup2(&actions, fileno(g->errors), 2);
     char name[] = "gnuplot", option[] = "-d";
     char* argv[] = {name, option, nullptr};
-    const int failed = g->errors == nullptr
-                           ? -1
-                           : posix_spawnp(&g->pid, name, &actions, nullptr, argv, environ);
+    const int failed =
+        g->errors == nullptr ? -1 : posix_spawnp(&g->pid, name, &actions, nullptr, argv, environ);
     posix_spawn_file_actions_destroy(&actions);
     ::close(pipe[0]);
     if (failed != 0) {

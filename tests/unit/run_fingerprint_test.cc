@@ -60,9 +60,9 @@ TEST(RunFingerprint, ChangesWithEveryChangeOfTheData) {
   std::rotate(edited.begin() + line, edited.begin() + next,
               edited.begin() + a.find('\n', next) + 1);
   EXPECT_NE(with_a(edited), original);
-  EXPECT_NE(with_a(a + "30000,0.25,15000\n"), original);  // a row appended
+  EXPECT_NE(with_a(a + "30000,0.25,15000\n"), original);   // a row appended
   EXPECT_NE(with_a(a.substr(0, a.size() - 1)), original);  // the last newline removed
-  EXPECT_EQ(with_a(a), original);  // the same bytes again
+  EXPECT_EQ(with_a(a), original);                          // the same bytes again
 
   // The data of the two experiments swapped, or one experiment renamed.
   WriteTemp("vesselid_fingerprint_a.csv", b);
