@@ -89,10 +89,10 @@ class EvaluationCache {
   struct Slot {
     bool valid = false;
     long revision = 0;
-    std::vector<double> key;         // parameter block values
-    std::vector<bool> asked;         // blocks whose Jacobian column was computed
+    std::vector<double> key;  // parameter block values
+    std::vector<bool> asked;  // blocks whose Jacobian column was computed
     std::vector<double> residuals;
-    std::vector<double> jacobian;    // the asked columns, in block order
+    std::vector<double> jacobian;  // the asked columns, in block order
   };
 
   bool Matches(const Slot& slot, double const* const* parameters, long revision,

@@ -67,8 +67,8 @@ Experiment NorrbinRun(const ModelHandle& model, double period, unsigned seed,
   spec.inputs = {{"delta", "delta"}};
   spec.outputs = {{"psi", "psi"}};
   Experiment experiment;
-  EXPECT_TRUE(BuildExperiment(spec, trajectory, model.info(), ExperimentOptions(), &experiment,
-                              &error))
+  EXPECT_TRUE(
+      BuildExperiment(spec, trajectory, model.info(), ExperimentOptions(), &experiment, &error))
       << error;
   return experiment;
 }
@@ -166,8 +166,8 @@ TEST(EvaluationCache, WeightsAndConstantBlocksInvalidate) {
                      std::vector<double>* jacobian) {
     double cost = 0.0;
     ceres::CRSMatrix crs;
-    EXPECT_TRUE(p->problem()->Evaluate(ceres::Problem::EvaluateOptions(), &cost, residuals,
-                                       nullptr, &crs));
+    EXPECT_TRUE(
+        p->problem()->Evaluate(ceres::Problem::EvaluateOptions(), &cost, residuals, nullptr, &crs));
     *jacobian = crs.values;
   };
   std::vector<double> ra, rb, ja, jb;
