@@ -74,9 +74,9 @@ bool OnRidge(double a, double b) {
 }
 
 // A candidate's refinement joins an earlier optimum within kJoinDistance (the search box's
-// max-norm coordinates: 1 % of each linear range, 0.01 of the decades of a log range) at a
-// cost no lower by kJoinSameCost (relative).
-constexpr double kJoinDistance = 0.01;
+// max-norm coordinates: 5 % of each linear range, 0.05 of the decades of a log range; the
+// multistart's default cluster distance) at a cost no lower by kJoinSameCost (relative).
+constexpr double kJoinDistance = 0.05;
 constexpr double kJoinSameCost = 1e-6;
 
 void EscapeExchangeRidge(const LocalSolveOptions& options, OutputErrorProblem* problem,
