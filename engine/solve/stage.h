@@ -23,9 +23,8 @@ struct StageOptions {
   LocalSolveOptions local;
   bool compute_uncertainty = true;  // and the local analysis (local_analysis.h)
   UncertaintyOptions uncertainty;   // how, when computed
-  // Before each refinement of a problem with segments, solve for the free initial states
-  // alone with the parameters held: a segment started from zero velocities would otherwise
-  // drag the parameters away.
+  // Before each refinement, solve for the free initial states alone with the parameters
+  // held: a segment started from zero velocities would otherwise drag the parameters away.
   bool initial_states_first = true;
 
   bool IsValid(std::string* error) const;
