@@ -13,6 +13,7 @@
 #include "engine/solve/local_solve.h"
 #include "engine/solve/output_error_problem.h"
 #include "gtest/gtest.h"
+#include "tests/support/parameter_spec.h"
 #include "problems/nomoto/handles.h"
 #include "tests/support/nomoto_data.h"
 
@@ -37,12 +38,7 @@ nomoto::ClosedLoopOptions Loop(double period, unsigned seed) {
 }
 
 ParameterSpec Spec(const std::string& name, double start, double lower, double upper) {
-  ParameterSpec s;
-  s.name = name;
-  s.start = start;
-  s.lower = lower;
-  s.upper = upper;
-  return s;
+  return testing::BoundedSpec(name, start, lower, upper);
 }
 
 struct Solved {

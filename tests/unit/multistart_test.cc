@@ -10,6 +10,7 @@
 #include "engine/solve/search_box.h"
 #include "engine/solve/stage.h"
 #include "gtest/gtest.h"
+#include "tests/support/parameter_spec.h"
 #include "problems/nomoto/handles.h"
 #include "tests/support/nomoto_data.h"
 
@@ -19,12 +20,7 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 
 ParameterSpec Spec(const std::string& name, double start, double lower, double upper) {
-  ParameterSpec s;
-  s.name = name;
-  s.start = start;
-  s.lower = lower;
-  s.upper = upper;
-  return s;
+  return testing::BoundedSpec(name, start, lower, upper);
 }
 
 // Patrol bounds of configs/nomoto_patrol.yaml.
