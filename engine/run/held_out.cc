@@ -144,6 +144,95 @@ ExperimentFit FitOne(const ModelHandle& model, Experiment experiment,
 
 }  // namespace
 
+bool SimulateHeldOutPasses(const RunConfig& config, const ModelHandle& model,
+                           const std::vector<std::string>& names, const ExperimentOptions& options,
+                           const std::vector<std::string>& free_states,
+                           const LocalSolveOptions& local, const std::vector<HeldOutPass>& passes,
+                           TrajectoryCache* cache, std::string* error,
+                           const HeldOutPerRun& per_run) {
+  std::vector<Experiment> experiments;
+  if (!PrepareExperiments(config, names, model, options, cache, &experiments, error)) {
+    return false;
+  }
+  const bool fit_own = !per_run.parameters.empty() && per_run.mode == HeldOutPerExperiment::kFit;
+  // Held values: the per-experiment parameters at their start.
+  const int count = static_cast<int>(experiments.size());
+  const int num_passes = static_cast<int>(passes.size());
+  std::vector<std::vector<double>> held(num_passes);
+  for (int p = 0; p < num_passes; ++p) {
+    held[p] = *passes[p].values;
+    for (const ParameterSpec& spec : per_run.parameters) {
+      const int index = model.info().ParameterIndex(spec.name);
+      if (index >= 0) held[p][index] = spec.start;
+    }
+  }
+  // One problem per run and pass (they share nothing with the shared parameters fixed), so
+  // that one that diverges is recorded and the others are still measured. Every run of every
+  // pass, and each fit "without" its per-experiment parameters (only where they are
+  // reported), is one task of a single parallel batch (local.num_threads; each run's own
+  // solve on one thread), each into its own slot, collected in the config's order: the same
+  // results on any number of threads.
+  struct Task {
+    int pass, run;
+    bool without;
+  };
+  std::vector<Task> tasks;
+  for (int p = 0; p < num_passes; ++p) {
+    for (int e = 0; e < count; ++e) {
+      tasks.push_back({p, e, false});
+      if (fit_own && passes[p].parameters != nullptr) tasks.push_back({p, e, true});
+    }
+  }
+  std::vector<ExperimentFit> with(num_passes * count), without(num_passes * count);
+  std::vector<std::vector<Estimate>> estimates(num_passes * count);
+  std::vector<std::vector<ResidualAnalysis>> analyses(num_passes * count);
+  LocalSolveOptions one_run = local;
+  if (tasks.size() > 1) one_run.num_threads = 1;
+  ParallelFor(static_cast<int>(tasks.size()), local.num_threads, [&](int t) {
+    const Task& task = tasks[t];
+    const int slot = task.pass * count + task.run;
+    const Experiment& experiment = experiments[task.run];
+    if (task.without) {
+      without[slot] = FitOne(model, experiment, free_states, one_run, held[task.pass], nullptr,
+                             nullptr);
+      without[slot].trace = Trajectory();
+      return;
+    }
+    std::vector<ResidualAnalysis>* own =
+        passes[task.pass].residuals != nullptr ? &analyses[slot] : nullptr;
+    if (!fit_own) {
+      with[slot] =
+          FitOne(model, experiment, free_states, one_run, held[task.pass], nullptr, nullptr, own);
+    } else {
+      with[slot] = FitOne(model, experiment, free_states, one_run, *passes[task.pass].values,
+                          &per_run, &estimates[slot], own);
+    }
+  });
+  for (int p = 0; p < num_passes; ++p) {
+    const HeldOutPass& pass = passes[p];
+    if (pass.parameters != nullptr) {
+      *pass.parameters = HeldOutParameters();
+      for (const ParameterSpec& spec : per_run.parameters)
+        pass.parameters->parameters.push_back(spec.name);
+      pass.parameters->fitted = fit_own;
+    }
+    pass.fits->clear();
+    if (pass.residuals != nullptr) pass.residuals->clear();
+    for (int e = 0; e < count; ++e) {
+      const int slot = p * count + e;
+      pass.fits->push_back(std::move(with[slot]));
+      if (pass.residuals != nullptr) {
+        for (ResidualAnalysis& a : analyses[slot]) pass.residuals->push_back(std::move(a));
+      }
+      if (fit_own && pass.parameters != nullptr) {
+        pass.parameters->without.push_back(std::move(without[slot]));
+        for (Estimate& est : estimates[slot]) pass.parameters->estimates.push_back(std::move(est));
+      }
+    }
+  }
+  return true;
+}
+
 bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
                      const std::vector<std::string>& names, const ExperimentOptions& options,
                      const std::vector<std::string>& free_states, const LocalSolveOptions& local,
@@ -151,59 +240,8 @@ bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
                      std::vector<ExperimentFit>* fits, std::string* error,
                      const HeldOutPerRun& per_run, HeldOutParameters* parameters,
                      std::vector<ResidualAnalysis>* residuals) {
-  std::vector<Experiment> experiments;
-  if (!PrepareExperiments(config, names, model, options, cache, &experiments, error)) {
-    return false;
-  }
-  // Held values: the per-experiment parameters at their start.
-  std::vector<double> held = values;
-  for (const ParameterSpec& spec : per_run.parameters) {
-    const int index = model.info().ParameterIndex(spec.name);
-    if (index >= 0) held[index] = spec.start;
-  }
-  const bool fit_own = !per_run.parameters.empty() && per_run.mode == HeldOutPerExperiment::kFit;
-  if (parameters != nullptr) {
-    *parameters = HeldOutParameters();
-    for (const ParameterSpec& spec : per_run.parameters)
-      parameters->parameters.push_back(spec.name);
-    parameters->fitted = fit_own;
-  }
-  // One problem per experiment (they share nothing with the shared parameters fixed), so that
-  // one that diverges is recorded and the others are still measured. The runs are fitted in
-  // parallel (local.num_threads; each run's own solve on one thread), each into its own slot,
-  // and collected in the config's order: the same results on any number of threads.
-  const int count = static_cast<int>(experiments.size());
-  std::vector<ExperimentFit> with(count), without(count);
-  std::vector<std::vector<Estimate>> estimates(count);
-  std::vector<std::vector<ResidualAnalysis>> analyses(count);
-  LocalSolveOptions one_run = local;
-  if (count > 1) one_run.num_threads = 1;
-  ParallelFor(count, local.num_threads, [&](int e) {
-    std::vector<ResidualAnalysis>* own = residuals != nullptr ? &analyses[e] : nullptr;
-    if (!fit_own) {
-      with[e] = FitOne(model, std::move(experiments[e]), free_states, one_run, held, nullptr,
-                       nullptr, own);
-      return;
-    }
-    with[e] = FitOne(model, experiments[e], free_states, one_run, values, &per_run, &estimates[e],
-                     own);
-    without[e] =
-        FitOne(model, std::move(experiments[e]), free_states, one_run, held, nullptr, nullptr);
-    without[e].trace = Trajectory();
-  });
-  fits->clear();
-  if (residuals != nullptr) residuals->clear();
-  for (int e = 0; e < count; ++e) {
-    fits->push_back(std::move(with[e]));
-    if (residuals != nullptr) {
-      for (ResidualAnalysis& a : analyses[e]) residuals->push_back(std::move(a));
-    }
-    if (fit_own && parameters != nullptr) {
-      parameters->without.push_back(std::move(without[e]));
-      for (Estimate& est : estimates[e]) parameters->estimates.push_back(std::move(est));
-    }
-  }
-  return true;
+  return SimulateHeldOutPasses(config, model, names, options, free_states, local,
+                               {{&values, fits, parameters, residuals}}, cache, error, per_run);
 }
 
 std::vector<std::string> HeldOutBoundNotes(const HeldOutParameters& parameters) {

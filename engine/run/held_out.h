@@ -63,6 +63,25 @@ bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
                      const HeldOutPerRun& per_run = {}, HeldOutParameters* parameters = nullptr,
                      std::vector<ResidualAnalysis>* residuals = nullptr);
 
+// One set of parameter values (model order) at which SimulateHeldOutPasses fits the held-out
+// runs, and where that pass's fits go. With `parameters` null the fits "without" the
+// per-experiment parameters are not run; `residuals` may be null.
+struct HeldOutPass {
+  const std::vector<double>* values = nullptr;
+  std::vector<ExperimentFit>* fits = nullptr;
+  HeldOutParameters* parameters = nullptr;
+  std::vector<ResidualAnalysis>* residuals = nullptr;
+};
+
+// SimulateHeldOut at several sets of values at once (a stage's estimate and its start): the
+// records are prepared once and every fit of every pass runs in one parallel batch.
+bool SimulateHeldOutPasses(const RunConfig& config, const ModelHandle& model,
+                           const std::vector<std::string>& names, const ExperimentOptions& options,
+                           const std::vector<std::string>& free_states,
+                           const LocalSolveOptions& local, const std::vector<HeldOutPass>& passes,
+                           TrajectoryCache* cache, std::string* error,
+                           const HeldOutPerRun& per_run = {});
+
 // Notes on held-out per-experiment estimates at a bound ("validation: delta_0[zz3] is at its
 // upper bound 0.05 ..."), as the stage notes active bounds.
 std::vector<std::string> HeldOutBoundNotes(const HeldOutParameters& parameters);

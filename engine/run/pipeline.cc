@@ -44,11 +44,12 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
   // per-experiment parameters in both (or hold them in both).
   const HeldOutPerRun per_run =
       PerRunFromStage(*result, model.info(), stage.validation_per_experiment);
-  if (!SimulateHeldOut(config, model, stage.validation, options, stage.problem.free_initial_states,
-                       stage.options.local, values, cache, &result->validation, error, per_run,
-                       &result->held_out_parameters, &result->validation_residuals) ||
-      !SimulateHeldOut(config, model, stage.validation, options, stage.problem.free_initial_states,
-                       stage.options.local, start_values, cache, &at_start, error, per_run)) {
+  const std::vector<HeldOutPass> passes = {
+      {&values, &result->validation, &result->held_out_parameters, &result->validation_residuals},
+      {&start_values, &at_start}};
+  if (!SimulateHeldOutPasses(config, model, stage.validation, options,
+                             stage.problem.free_initial_states, stage.options.local, passes, cache,
+                             error, per_run)) {
     *error = "validation: " + *error;
     return false;
   }
@@ -149,6 +150,83 @@ size_t StagesNeededBefore(const RunConfig& config, size_t index) {
   return 0;
 }
 
+// Whether two held-out validations fit alike: same outputs, step, weighting, rate window and
+// limits (a state guess is the model's: set in both or in neither), and the same solver
+// settings for the runs' own unknowns (threads aside: results do not depend on them).
+bool SameHeldOutSettings(const ExperimentOptions& a, const LocalSolveOptions& la,
+                         const ExperimentOptions& b, const LocalSolveOptions& lb) {
+  return a.outputs == b.outputs && a.max_step == b.max_step &&
+         a.normalize_by_length == b.normalize_by_length &&
+         static_cast<bool>(a.state_guess) == static_cast<bool>(b.state_guess) &&
+         a.rate_window == b.rate_window && a.max_steps == b.max_steps &&
+         la.trust_region == lb.trust_region && la.linear_solver == lb.linear_solver &&
+         la.max_iterations == lb.max_iterations &&
+         la.function_tolerance == lb.function_tolerance &&
+         la.gradient_tolerance == lb.gradient_tolerance &&
+         la.parameter_tolerance == lb.parameter_tolerance &&
+         la.max_time_seconds == lb.max_time_seconds && !la.keep_going && !lb.keep_going;
+}
+
+bool SamePerRun(const HeldOutPerRun& a, const HeldOutPerRun& b) {
+  if (a.mode != b.mode || a.fit_start != b.fit_start ||
+      a.parameters.size() != b.parameters.size()) {
+    return false;
+  }
+  for (size_t k = 0; k < a.parameters.size(); ++k) {
+    const ParameterSpec &x = a.parameters[k], &y = b.parameters[k];
+    if (x.name != y.name || x.start != y.start || x.lower != y.lower || x.upper != y.upper ||
+        x.role != y.role) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Whether held-out runs see the same parameter values: the per-experiment ones of `per_run`
+// aside, which every held-out run replaces (by its own estimate, or their start).
+bool SameHeldValues(const ModelInfo& info, const HeldOutPerRun& per_run,
+                    const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    bool replaced = false;
+    for (const ParameterSpec& spec : per_run.parameters) replaced |= spec.name == info.parameters[i];
+    if (!replaced && a[i] != b[i]) return false;
+  }
+  return true;
+}
+
+// The stage among run.stages[first, ...) whose held-out validation is the final validation:
+// accepted, validated on the same records with the same model, settings and per-experiment
+// treatment at exactly the final values. Its fits then serve as the final validation instead
+// of being computed again (the last such stage; null if none).
+const StageResult* StageValidationAsFinal(const RunConfig& config, const RunResult& run,
+                                          size_t first, const ModelHandle& model,
+                                          const ExperimentOptions& options,
+                                          const LocalSolveOptions& local,
+                                          const HeldOutPerRun& per_run,
+                                          const std::vector<double>& values) {
+  const FinalValidationConfig& v = config.final_validation;
+  for (size_t i = run.stages.size(); i-- > first;) {
+    const StageConfig& stage = config.stages[i];
+    const StageResult& result = run.stages[i];
+    if (!result.rejected.empty() || stage.validation != v.experiments ||
+        stage.problem.free_initial_states != v.free_initial_states ||
+        &config.StageModel(stage) != &model ||
+        !SameHeldValues(model.info(), per_run, StageParameterValues(model.info(), result),
+                        values)) {
+      continue;
+    }
+    ExperimentOptions stage_options = stage.experiment;
+    if (result.integration_step > 0.0) stage_options.max_step = result.integration_step;
+    if (SameHeldOutSettings(stage_options, stage.options.local, options, local) &&
+        SamePerRun(PerRunFromStage(result, model.info(), stage.validation_per_experiment),
+                   per_run)) {
+      return &result;
+    }
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 bool ResolveStage(const RunConfig& config, size_t index, std::vector<ParameterSpec>* specs,
@@ -191,6 +269,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     if (finished[i].rejected.empty()) RecordStage(finished[i], &ledger);
     run.stages.push_back(std::move(finished[i]));
   }
+  const size_t resumed = run.stages.size();  // their fits were not kept in full
   if (!CheckWorkSize(config, &cache, error)) return false;
   std::string stop;
   if (!RunStages(config, run.stages.size(), config.stages.size(), &cache, &ledger, &run, &stop,
@@ -229,9 +308,16 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
       HeldOutPerRun own = PerRunFromStage(s, model.info(), v.per_experiment);
       if (!own.parameters.empty()) per_run = std::move(own);
     }
-    if (!SimulateHeldOut(config, model, v.experiments, options, v.free_initial_states, {},
-                         final_values, &cache, &run.final_validation, error, per_run,
-                         &run.final_held_out_parameters, &run.final_validation_residuals)) {
+    const LocalSolveOptions local;
+    if (const StageResult* same = StageValidationAsFinal(config, run, resumed, model, options,
+                                                         local, per_run, final_values)) {
+      run.final_validation = same->validation;
+      run.final_held_out_parameters = same->held_out_parameters;
+      run.final_validation_residuals = same->validation_residuals;
+    } else if (!SimulateHeldOut(config, model, v.experiments, options, v.free_initial_states,
+                                local, final_values, &cache, &run.final_validation, error,
+                                per_run, &run.final_held_out_parameters,
+                                &run.final_validation_residuals)) {
       *error = "final validation: " + *error;
       return false;
     }

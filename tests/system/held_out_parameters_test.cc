@@ -13,6 +13,7 @@
 #include "engine/output/results_json.h"
 #include "engine/output/results_text.h"
 #include "engine/output/stage_result_archive.h"
+#include "engine/run/held_out.h"
 #include "engine/run/pipeline.h"
 #include "gtest/gtest.h"
 #include "problems/nomoto/closed_loop_simulator.h"
@@ -263,6 +264,85 @@ TEST_F(HeldOutParametersTest, HeldOutEstimateAtABoundIsAWarning) {
              "lower bound -0.04"));
   EXPECT_TRUE(warned("final validation: delta_0[z5] of held-out run 'z5' is at its lower bound"));
   EXPECT_FALSE(warned("run 'z4'"));
+}
+
+// A final validation that would fit what the last stage's validation fitted (same records,
+// free states and settings, the same values) takes the stage's fits instead of fitting them
+// again: they are what fitting them again gives, bit for bit. The stage's two passes (at its
+// estimate and at its start) run as one batch and give what two separate calls give.
+TEST_F(HeldOutParametersTest, FinalValidationReusesTheStagesWhenItIsTheSame) {
+  RunConfig config;
+  RunResult result;
+  ASSERT_TRUE(Run("final_validation: {experiments: [z4, z5], free_initial_states: [psi]}\n",
+                  &config, &result));
+  ASSERT_EQ(result.stages.size(), 1u);
+  const StageResult& stage = result.stages[0];
+  const StageConfig& stage_config = config.stages[0];
+  const ModelHandle& model = *config.model;
+  std::vector<double> values;
+  for (const FinalParameter& f : result.parameters) values.push_back(f.value);
+  const HeldOutPerRun per_run =
+      PerRunFromStage(stage, model.info(), HeldOutPerExperiment::kFit);
+  ExperimentOptions options = config.final_validation.experiment;
+  if (stage.integration_step > 0.0) options.max_step = stage.integration_step;
+  TrajectoryCache cache;
+  std::vector<ExperimentFit> fits;
+  HeldOutParameters parameters;
+  std::vector<ResidualAnalysis> residuals;
+  std::string error;
+  ASSERT_TRUE(SimulateHeldOut(config, model, {"z4", "z5"}, options, {"psi"}, {}, values, &cache,
+                              &fits, &error, per_run, &parameters, &residuals))
+      << error;
+  auto same_fits = [](const std::vector<ExperimentFit>& a, const std::vector<ExperimentFit>& b) {
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t k = 0; k < a.size(); ++k) {
+      EXPECT_EQ(a[k].experiment, b[k].experiment);
+      ASSERT_EQ(a[k].channels.size(), b[k].channels.size());
+      for (size_t c = 0; c < a[k].channels.size(); ++c) {
+        EXPECT_EQ(a[k].channels[c].mae, b[k].channels[c].mae);
+        EXPECT_EQ(a[k].channels[c].fit_percent, b[k].channels[c].fit_percent);
+      }
+    }
+  };
+  same_fits(result.final_validation, fits);
+  same_fits(result.final_held_out_parameters.without, parameters.without);
+  ASSERT_EQ(result.final_held_out_parameters.estimates.size(), parameters.estimates.size());
+  for (size_t k = 0; k < parameters.estimates.size(); ++k) {
+    EXPECT_EQ(result.final_held_out_parameters.estimates[k].value, parameters.estimates[k].value);
+    EXPECT_EQ(result.final_held_out_parameters.estimates[k].std_error,
+              parameters.estimates[k].std_error);
+  }
+  EXPECT_EQ(result.final_validation_residuals.size(), residuals.size());
+  // Without the stage's free initial heading the final validation is another one: fitted.
+  RunConfig other_config;
+  RunResult other;
+  ASSERT_TRUE(Run("final_validation: {experiments: [z4, z5]}\n", &other_config, &other));
+  EXPECT_EQ(other.stages[0].validation[0].channels[0].mae, stage.validation[0].channels[0].mae);
+  EXPECT_NE(other.final_validation[0].channels[0].mae, stage.validation[0].channels[0].mae);
+
+  // The stage's batch of two passes against one call per pass, on one thread and on two.
+  std::vector<double> start_values(values.size());
+  for (size_t i = 0; i < values.size(); ++i) start_values[i] = 0.8 * values[i];
+  for (int threads : {1, 2}) {
+    LocalSolveOptions local = stage_config.options.local;
+    local.num_threads = threads;
+    std::vector<ExperimentFit> at_values, at_start, single_values, single_start;
+    HeldOutParameters batch_parameters;
+    ASSERT_TRUE(SimulateHeldOutPasses(
+        config, model, {"z4", "z5"}, options, {"psi"}, local,
+        {{&values, &at_values, &batch_parameters}, {&start_values, &at_start}}, &cache, &error,
+        per_run))
+        << error;
+    ASSERT_TRUE(SimulateHeldOut(config, model, {"z4", "z5"}, options, {"psi"}, local, values,
+                                &cache, &single_values, &error, per_run));
+    ASSERT_TRUE(SimulateHeldOut(config, model, {"z4", "z5"}, options, {"psi"}, local,
+                                start_values, &cache, &single_start, &error, per_run));
+    same_fits(at_values, single_values);
+    same_fits(at_start, single_start);
+    same_fits(batch_parameters.without, parameters.without);
+    // The start's fits move off the data: the two passes are not the same fits.
+    EXPECT_NE(at_values[0].channels[0].mae, at_start[0].channels[0].mae);
+  }
 }
 
 }  // namespace
