@@ -1,5 +1,7 @@
 #include "engine/output/stage_result_archive.h"
 
+#include <cstdint>
+#include <cstring>
 #include <memory>
 
 namespace nlohmann {
@@ -39,7 +41,57 @@ namespace vesselid {
 // Every member of each type, so that a restored stage is the stage. A member missing here
 // is lost on resume; the resume test compares every output of a resumed run with an
 // uninterrupted one.
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Trajectory, source, t, names, columns)
+namespace {
+
+// A column of samples as a CBOR byte string of its doubles (the machine's byte order: a
+// checkpoint resumes on the machine that wrote it): a fit's trace is hundreds of thousands of
+// samples, which as JSON numbers cost a node each to write and to read.
+nlohmann::json SamplesToBinary(const std::vector<double>& values) {
+  const auto* bytes = reinterpret_cast<const std::uint8_t*>(values.data());
+  return nlohmann::json::binary(
+      std::vector<std::uint8_t>(bytes, bytes + values.size() * sizeof(double)));
+}
+
+std::vector<double> SamplesFromBinary(const nlohmann::json& j) {
+  const nlohmann::json::binary_t& bytes = j.get_binary();
+  if (bytes.size() % sizeof(double) != 0) {
+    throw nlohmann::json::other_error::create(501, "samples are not a whole number of doubles",
+                                              &j);
+  }
+  std::vector<double> values(bytes.size() / sizeof(double));
+  std::memcpy(values.data(), bytes.data(), bytes.size());
+  return values;
+}
+
+}  // namespace
+
+void to_json(nlohmann::json& j, const Trajectory& trajectory) {
+  nlohmann::json columns = nlohmann::json::array();
+  for (const std::vector<double>& column : trajectory.columns)
+    columns.push_back(SamplesToBinary(column));
+  j = {{"source", trajectory.source},
+       {"names", trajectory.names},
+       {"t", SamplesToBinary(trajectory.t)},
+       {"columns", std::move(columns)}};
+}
+
+void from_json(const nlohmann::json& j, Trajectory& trajectory) {
+  j.at("source").get_to(trajectory.source);
+  j.at("names").get_to(trajectory.names);
+  trajectory.t = SamplesFromBinary(j.at("t"));
+  trajectory.columns.clear();
+  for (const nlohmann::json& column : j.at("columns"))
+    trajectory.columns.push_back(SamplesFromBinary(column));
+  if (trajectory.columns.size() != trajectory.names.size()) {
+    throw nlohmann::json::other_error::create(501, "trace columns do not match their names", &j);
+  }
+  for (const std::vector<double>& column : trajectory.columns) {
+    if (column.size() != trajectory.t.size()) {
+      throw nlohmann::json::other_error::create(501, "trace column length differs from t", &j);
+    }
+  }
+}
+
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ChannelMetrics, experiment, output, samples, rmse, mae, r2,
                                    fit_percent, hold_mae, noise)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ExperimentFit, experiment, diverged, message, rms_cost, channels,
@@ -112,8 +164,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BootstrapSummary, runs, failed, groups, resam
 
 namespace {
 // 3: Uncertainty method, hessian_std_errors, method_reason, hac_bandwidth; 4: bootstrap runs,
-// failed, block length
-constexpr int kArchiveVersion = 5;
+// failed, block length; 6: traces' samples as byte strings
+constexpr int kArchiveVersion = 6;
 }  // namespace
 
 nlohmann::json StageResultToArchive(const StageResult& stage) {
