@@ -1,6 +1,9 @@
 #include "engine/data/trajectory.h"
 
+#include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <charconv>
@@ -124,6 +127,246 @@ void SplitFields(std::string_view line, char separator, std::vector<std::string_
   }
 }
 
+// The header row's checks (a time column, named columns, no duplicates): the time column's
+// index and the channel names, or false with the message. `line` is the raw header row (to
+// name another separator it is split by).
+bool CheckHeader(const std::vector<std::string>& header, std::string_view line,
+                 const CsvReadOptions& options, int* time_column, std::vector<std::string>* names,
+                 std::string* what) {
+  auto fail = [&](const std::string& message) {
+    *what = message;
+    return false;
+  };
+  *time_column = -1;
+  names->clear();
+  std::vector<std::string_view> fields;
+  std::set<std::string> seen;  // not a pairwise check: that is quadratic in a wide header
+  const std::string& time_name = options.time_column;
+  for (size_t i = 0; i < header.size(); ++i) {
+    if (header[i] == time_name) *time_column = static_cast<int>(i);
+  }
+  if (*time_column < 0) {
+    // A header split by another separator names the separator, not a missing column.
+    for (char other : {',', ';', '\t'}) {
+      if (other == options.separator) continue;
+      SplitFields(line, other, &fields);
+      for (std::string_view name : fields) {
+        if (name != time_name) continue;
+        return fail("the header is separated by " + SeparatorName(other) + ", not " +
+                    SeparatorName(options.separator) + ": convert the file to commas or set " +
+                    "the experiment's separator: \"" +
+                    (other == '\t' ? "\\t" : std::string(1, other)) + "\"");
+      }
+    }
+    return fail("header has no time column '" + time_name + "'");
+  }
+  for (size_t i = 0; i < header.size(); ++i) {
+    if (header[i].empty())
+      return fail("empty column name in header (column " + std::to_string(i + 1) + ")");
+    if (!seen.insert(header[i]).second) return fail("duplicate column '" + header[i] + "'");
+    if (static_cast<int>(i) != *time_column) names->push_back(header[i]);
+  }
+  return true;
+}
+
+// One block of a file read whole: its text, its rows (non-blank lines) and lines (blank
+// ones included), counted first so that every block parses into its own place of the
+// trajectory's columns, from row `first_row`.
+struct RowBlock {
+  std::string_view text;
+  size_t rows = 0, first_row = 0;
+  int lines = 0;
+  bool ok = true;
+};
+
+// Counts the rows and lines of `block`; false for a line longer than LineReader::kMaxLine.
+bool CountRows(RowBlock* block) {
+  const char* p = block->text.data();
+  const char* const end = p + block->text.size();
+  while (p != end) {
+    const char* newline = static_cast<const char*>(std::memchr(p, '\n', end - p));
+    const char* line_end = newline != nullptr ? newline : end;
+    if (static_cast<size_t>(line_end - p) > LineReader::kMaxLine) return false;
+    ++block->lines;
+    if (!Trim(std::string_view(p, line_end - p)).empty()) ++block->rows;
+    p = newline != nullptr ? newline + 1 : end;
+  }
+  return true;
+}
+
+// Parses the rows of `block` as ReadTrajectoryCsv does into rows [first_row, first_row + rows)
+// of `result` (and of `time_ns` for an epoch record), numbering lines from `first_line`;
+// false at the first thing the sequential reader would reject, which then names it. Times are
+// checked to increase within the block.
+bool ParseRowBlock(const RowBlock& block, const CsvReadOptions& options, size_t fields_per_row,
+                   int time_column, int first_line, Trajectory* result,
+                   std::vector<std::int64_t>* time_ns) {
+  std::vector<std::string_view> fields;
+  const char* p = block.text.data();
+  const char* const end = p + block.text.size();
+  size_t row = block.first_row;
+  int number = first_line;
+  for (; p != end; ++number) {
+    const char* newline = static_cast<const char*>(std::memchr(p, '\n', end - p));
+    const std::string_view line(p, (newline != nullptr ? newline : end) - p);
+    p = newline != nullptr ? newline + 1 : end;
+    if (Trim(line).empty()) continue;
+    SplitFields(line, options.separator, &fields);
+    if (fields.size() != fields_per_row) return false;
+    size_t channel = 0;
+    for (size_t i = 0; i < fields.size(); ++i) {
+      double value = std::numeric_limits<double>::quiet_NaN();
+      if (!fields[i].empty() && !ParseFiniteNumber(fields[i], &value)) return false;
+      if (std::abs(value) > kMaxDataMagnitude) return false;
+      if (static_cast<int>(i) != time_column) {
+        result->columns[channel++][row] = value;
+        continue;
+      }
+      if (fields[i].empty()) return false;
+      if (result->epoch) {
+        std::int64_t& ns = (*time_ns)[row];
+        if (!ParseNanoseconds(fields[i], &ns)) return false;
+        if (row > block.first_row && !(ns > (*time_ns)[row - 1])) return false;
+      } else if (row > block.first_row && !(value > result->t[row - 1])) {
+        return false;
+      }
+      result->t[row] = value;
+      result->line[row] = number;
+    }
+    ++row;
+  }
+  return true;
+}
+
+// ReadTrajectoryCsv's fast path for a file of many rows: read whole, cut into blocks at line
+// ends, the blocks parsed on the machine's cores and joined in order. False, with nothing
+// reported, for anything the sequential reader would reject or that needs its care (a file
+// below `parallel_bytes`, one core, a bad header or row, a time not after the last block's):
+// the caller then reads the file sequentially, which names the first problem's line.
+bool ReadTrajectoryCsvInBlocks(const std::string& path, const CsvReadOptions& options,
+                               Trajectory* trajectory) {
+  const int threads = ParallelThreads(0);
+  // The file mapped, not copied: its pages are the page cache's (MAP_POPULATE maps them all
+  // at once rather than a fault per page).
+  struct Mapping {
+    void* data = MAP_FAILED;
+    size_t length = 0;
+    ~Mapping() {
+      if (data != MAP_FAILED) ::munmap(data, length);
+    }
+  } mapping;
+  {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return false;
+    struct stat info;
+    if (::fstat(fd, &info) == 0 && S_ISREG(info.st_mode) && threads > 1 &&
+        static_cast<std::uint64_t>(info.st_size) >= std::max<std::uint64_t>(options.parallel_bytes, 2) &&
+        static_cast<std::uint64_t>(info.st_size) <= options.max_bytes) {
+      mapping.length = static_cast<size_t>(info.st_size);
+      mapping.data = ::mmap(nullptr, mapping.length, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+    }
+    ::close(fd);
+    if (mapping.data == MAP_FAILED) return false;
+  }
+  const std::string_view text(static_cast<const char*>(mapping.data), mapping.length);
+  // The header: the first line that is not blank.
+  size_t begin = 0;
+  int header_line = 0;
+  std::string_view line;
+  while (begin < text.size()) {
+    const size_t newline = text.find('\n', begin);
+    if (newline == std::string_view::npos) return false;
+    line = text.substr(begin, newline - begin);
+    begin = newline + 1;
+    ++header_line;
+    if (line.size() > LineReader::kMaxLine) return false;
+    if (header_line == 1 && line.substr(0, 3) == kByteOrderMark) line.remove_prefix(3);
+    if (!Trim(line).empty()) break;
+  }
+  std::vector<std::string_view> fields;
+  SplitFields(line, options.separator, &fields);
+  const std::vector<std::string> header(fields.begin(), fields.end());
+  Trajectory result;
+  result.source = path;
+  int time_column = -1;
+  std::string what;
+  if (!CheckHeader(header, line, options, &time_column, &result.names, &what)) return false;
+  // Epoch or not, from the first row's time.
+  {
+    size_t at = begin;
+    std::string_view first;
+    while (at < text.size()) {
+      const size_t newline = std::min(text.find('\n', at), text.size());
+      first = text.substr(at, newline - at);
+      at = newline + 1;
+      if (!Trim(first).empty()) break;
+    }
+    SplitFields(first, options.separator, &fields);
+    double t0 = 0.0;
+    if (fields.size() != header.size() || !ParseFiniteNumber(fields[time_column], &t0)) {
+      return false;
+    }
+    result.epoch = std::abs(t0) >= kEpochThreshold;
+  }
+  // Blocks of about equal size, each ending at a line end (the last at the file's end).
+  const size_t wanted = static_cast<size_t>(threads) * 4;
+  const size_t size = std::max<size_t>((text.size() - begin + wanted - 1) / wanted, 1);
+  std::vector<RowBlock> blocks;
+  for (size_t from = begin; from < text.size();) {
+    size_t to = std::min(text.size(), from + size);
+    if (to < text.size()) {
+      const size_t newline = text.find('\n', to - 1);
+      to = newline == std::string_view::npos ? text.size() : newline + 1;
+    }
+    blocks.emplace_back();
+    blocks.back().text = text.substr(from, to - from);
+    from = to;
+  }
+  ParallelFor(static_cast<int>(blocks.size()), 0,
+              [&](int b) { blocks[b].ok = CountRows(&blocks[b]); });
+  size_t rows = 0;
+  std::vector<int> first_line(blocks.size());
+  int line_number = header_line + 1;
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    if (!blocks[b].ok) return false;
+    blocks[b].first_row = rows;
+    first_line[b] = line_number;
+    rows += blocks[b].rows;
+    line_number += blocks[b].lines;
+  }
+  if (rows < 2 || rows > options.max_values / header.size()) return false;
+  // The columns' pages are first touched (zeroed) on every core, a column each.
+  result.columns.resize(result.names.size());
+  std::vector<std::int64_t> time_ns;
+  ParallelFor(static_cast<int>(result.columns.size()) + 3, 0, [&](int c) {
+    if (c == 0) result.t.resize(rows);
+    if (c == 1) result.line.resize(rows);
+    if (c == 2) time_ns.resize(result.epoch ? rows : 0);
+    if (c >= 3) result.columns[c - 3].resize(rows);
+  });
+  ParallelFor(static_cast<int>(blocks.size()), 0, [&](int b) {
+    blocks[b].ok = ParseRowBlock(blocks[b], options, header.size(), time_column, first_line[b],
+                                 &result, &time_ns);
+  });
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    if (!blocks[b].ok) return false;
+    // Times increase across the join too.
+    const size_t row = blocks[b].first_row;
+    if (blocks[b].rows > 0 && row > 0 &&
+        !(result.epoch ? time_ns[row] > time_ns[row - 1] : result.t[row] > result.t[row - 1])) {
+      return false;
+    }
+  }
+  if (result.epoch) {
+    result.time_origin_ns = time_ns.front();
+    for (size_t k = 0; k < time_ns.size(); ++k) {
+      result.t[k] = NanosecondsToSeconds(time_ns[k] - time_ns.front());
+    }
+  }
+  *trajectory = std::move(result);
+  return true;
+}
+
 }  // namespace
 
 int Trajectory::Find(const std::string& name) const {
@@ -151,6 +394,7 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
   if (!CheckInputFile(path, "data file", options.max_bytes, "limits.file_mb", error)) {
     return false;
   }
+  if (ReadTrajectoryCsvInBlocks(path, options, trajectory)) return true;
   LineReader in(path);
   if (!in.open()) {
     *error = path + ": cannot open file";
@@ -180,31 +424,9 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
   }
   if (in.too_long()) return fail("line longer than " + ByteCount(LineReader::kMaxLine));
   if (header.empty()) return fail("empty file, expected a header row");
-  std::set<std::string> seen;  // not a pairwise check: that is quadratic in a wide header
-  const std::string& time_name = options.time_column;
-  for (size_t i = 0; i < header.size(); ++i) {
-    if (header[i] == time_name) time_column = static_cast<int>(i);
-  }
-  if (time_column < 0) {
-    // A header split by another separator names the separator, not a missing column.
-    for (char other : {',', ';', '\t'}) {
-      if (other == options.separator) continue;
-      SplitFields(line, other, &fields);
-      for (std::string_view name : fields) {
-        if (name != time_name) continue;
-        return fail("the header is separated by " + SeparatorName(other) + ", not " +
-                    SeparatorName(options.separator) + ": convert the file to commas or set " +
-                    "the experiment's separator: \"" +
-                    (other == '\t' ? "\\t" : std::string(1, other)) + "\"");
-      }
-    }
-    return fail("header has no time column '" + time_name + "'");
-  }
-  for (size_t i = 0; i < header.size(); ++i) {
-    if (header[i].empty())
-      return fail("empty column name in header (column " + std::to_string(i + 1) + ")");
-    if (!seen.insert(header[i]).second) return fail("duplicate column '" + header[i] + "'");
-    if (static_cast<int>(i) != time_column) result.names.push_back(header[i]);
+  {
+    std::string what;
+    if (!CheckHeader(header, line, options, &time_column, &result.names, &what)) return fail(what);
   }
   result.columns.resize(result.names.size());
 

@@ -47,6 +47,9 @@ struct CsvReadOptions {
   std::string time_column = "t";
   std::uint64_t max_bytes = WorkLimits().file_bytes;
   std::uint64_t max_values = WorkLimits().data_values;  // rows x columns
+  // Files of at least this many bytes are parsed in blocks on the machine's cores (the same
+  // result; problems are still named by the sequential reader).
+  std::uint64_t parallel_bytes = std::uint64_t{1} << 20;
 };
 
 // Reads a CSV file: header row, a time column (`t` unless named otherwise; seconds, strictly

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <filesystem>
 #include <fstream>
@@ -86,6 +87,80 @@ TEST(Trajectory, ReadsLinesAcrossBlocksAsWritten) {
                        "finite number"),
             std::string::npos)
       << error;
+}
+
+// Files past CsvReadOptions::parallel_bytes are parsed in blocks on several threads: the
+// same trajectory as the sequential reader, to the bit, line numbers included (blank lines,
+// CRLF, padded and missing fields, epoch times, no final newline), and the same message,
+// naming the same line, for each thing it rejects anywhere in the file.
+TEST(Trajectory, ParallelBlocksReadWhatTheSequentialReaderReads) {
+  auto read = [](const std::string& text, bool parallel, Trajectory* t, std::string* error) {
+    CsvReadOptions options;
+    options.parallel_bytes = parallel ? 0 : std::numeric_limits<std::uint64_t>::max();
+    options.max_values = 3 * 50000;
+    return ReadTrajectoryCsv(WriteTemp("vesselid_parallel.csv", text), options, t, error);
+  };
+  for (const double origin : {0.0, 1.7e9}) {  // relative and epoch times
+    std::string text = "\n t ,heading, rate\r\n";
+    const int rows = 30000;
+    for (int k = 0; k < rows; ++k) {
+      char line[160];
+      std::snprintf(line, sizeof(line), "%.3f, %.17g ,%s%s%s", origin + 0.05 * k,
+                    std::sin(0.001 * k) * 1e3, k % 7 == 0 ? "" : std::to_string(-1e-3 * k).c_str(),
+                    k % 101 == 0 ? "\n  \n" : "", k + 1 == rows ? "" : (k % 3 == 0 ? "\r\n" : "\n"));
+      text += line;
+    }
+    Trajectory sequential, parallel;
+    std::string error;
+    ASSERT_TRUE(read(text, false, &sequential, &error)) << error;
+    ASSERT_TRUE(read(text, true, &parallel, &error)) << error;
+    EXPECT_EQ(parallel.names, sequential.names);
+    EXPECT_EQ(parallel.t, sequential.t);
+    EXPECT_EQ(parallel.line, sequential.line);
+    EXPECT_EQ(parallel.epoch, sequential.epoch);
+    EXPECT_EQ(parallel.time_origin_ns, sequential.time_origin_ns);
+    ASSERT_EQ(parallel.columns.size(), 2u);
+    for (int c = 0; c < 2; ++c) {
+      ASSERT_EQ(parallel.columns[c].size(), sequential.columns[c].size());
+      for (size_t k = 0; k < parallel.columns[c].size(); ++k) {
+        ASSERT_EQ(std::isnan(parallel.columns[c][k]), std::isnan(sequential.columns[c][k]));
+        if (!std::isnan(parallel.columns[c][k])) {
+          ASSERT_EQ(parallel.columns[c][k], sequential.columns[c][k]);
+        }
+      }
+    }
+    EXPECT_EQ(sequential.line.back(), rows + 2 + 2 * (rows / 101 + 1));  // blank lines too
+    // Each defect at a few places: early, at about a block's edge, late.
+    const auto lines_at = [&](int k) {
+      size_t at = 0;
+      for (int n = 0; n < k; ++n) at = text.find('\n', at) + 1;
+      return at;
+    };
+    for (int k : {5, 3751, 3752, 7500, 22222}) {
+      const size_t at = lines_at(k), end = text.find('\n', at);
+      const std::string line = text.substr(at, end - at);
+      for (const std::string& bad :
+           {std::string("1.0,1x,2"), std::string("1,2"), line + ",3", std::string("0,1,2"),
+            std::string(",1,2"), std::string("5,1e200,2")}) {
+        std::string defective = text;
+        defective.replace(at, end - at, bad);
+        std::string sequential_error, parallel_error;
+        Trajectory ignored;
+        ASSERT_FALSE(read(defective, false, &ignored, &sequential_error)) << bad;
+        ASSERT_FALSE(read(defective, true, &ignored, &parallel_error)) << bad;
+        EXPECT_EQ(parallel_error, sequential_error);
+      }
+    }
+    // Too many values (rows x columns) for limits.data_values.
+    std::string longer = text;
+    for (int k = 0; k < 25000; ++k) longer += "\n" + std::to_string(origin + 2000.0 + k) + ",1,2";
+    std::string sequential_error, parallel_error;
+    Trajectory ignored;
+    ASSERT_FALSE(read(longer, false, &ignored, &sequential_error));
+    ASSERT_FALSE(read(longer, true, &ignored, &parallel_error));
+    EXPECT_EQ(parallel_error, sequential_error);
+    EXPECT_NE(sequential_error.find("limits.data_values"), std::string::npos) << sequential_error;
+  }
 }
 
 // Traces are formatted in blocks of rows on several threads: the file holds every row once,
