@@ -12,10 +12,15 @@ constexpr double kHeldShare = 0.8;        // 80 % of the plateau samples above t
 constexpr double kCheckTolerance = 0.25;  // heading changes at the reversals within 25 %
 constexpr double kSmallestCheck = 0.5 * M_PI / 180.0;
 
-double Median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
+// The median of values already in ascending order.
+double SortedMedian(const std::vector<double>& values) {
   const size_t n = values.size();
   return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+double Median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return SortedMedian(values);
 }
 
 // The finite value of `psi` nearest to index i (searching both ways); NaN if none.
@@ -47,9 +52,9 @@ bool DetectZigzag(const std::vector<double>& t, const std::vector<double>& delta
   for (size_t i : valid) {
     if (std::abs(delta[i]) >= kPlateauShare * largest) plateau.push_back(std::abs(delta[i]));
   }
-  const double rudder = Median(plateau);
-  // Held, not swept: most plateau samples sit at delta_z (a sine's spread down to half).
   std::sort(plateau.begin(), plateau.end());
+  const double rudder = SortedMedian(plateau);
+  // Held, not swept: most plateau samples sit at delta_z (a sine's spread down to half).
   if (plateau[plateau.size() / 5] < kHeldShare * rudder) return fail("the rudder is not held");
   // Plateau sides in order: the first one's start, then each reversal's first sample.
   std::vector<size_t> sides;
