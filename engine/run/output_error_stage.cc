@@ -315,11 +315,12 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
     BootstrapStageUncertainty(options, stage.problem, problem.get(), &summary);
   }
   summary.notes.insert(summary.notes.begin(), continuation_notes.begin(), continuation_notes.end());
-  summary.time_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start).count();
   const double integration_step = result->integration_step;
   std::vector<ResidualAnalysis> residuals =
       AnalyseFitResiduals(model.info(), problem->experiments(), summary.fits);
+  // The stage's time includes the analysis of its residuals, as it does its uncertainty.
+  summary.time_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start).count();
   *result = Collect(*problem, starts, std::move(summary));
   result->integration_step = integration_step;
   result->residuals = std::move(residuals);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "engine/base/chi_square.h"
+#include "engine/base/parallel_for.h"
 
 namespace vesselid {
 namespace {
@@ -40,6 +41,11 @@ double IntervalSpread(const std::vector<double>& t) {
   return spread;
 }
 
+// Each lag is a pass over the record: over a long record (hundreds of thousands of samples)
+// the lags are shared out over the cores; a short one stays on the caller's thread, where
+// starting threads would cost more than the passes.
+int LagThreads(const std::vector<double>& e) { return e.size() >= 50000 ? 0 : 1; }
+
 }  // namespace
 
 int ResidualLags(int samples) {
@@ -52,7 +58,7 @@ std::vector<double> Autocorrelation(const std::vector<double>& e, int max_lag) {
   const double mean = Mean(e);
   const double c0 = Covariance(e, mean, e, mean, 0);
   if (!(c0 > 0.0)) return r;
-  for (int k = 0; k <= max_lag; ++k) r[k] = Covariance(e, mean, e, mean, k) / c0;
+  ParallelFor(max_lag + 1, LagThreads(e), [&](int k) { r[k] = Covariance(e, mean, e, mean, k) / c0; });
   return r;
 }
 
@@ -63,9 +69,9 @@ std::vector<double> CrossCorrelation(const std::vector<double>& e, const std::ve
   const double scale =
       std::sqrt(Covariance(e, mean_e, e, mean_e, 0) * Covariance(u, mean_u, u, mean_u, 0));
   if (!(scale > 0.0) || e.size() != u.size()) return r;
-  for (int k = -max_lag; k <= max_lag; ++k) {
-    r[k + max_lag] = Covariance(e, mean_e, u, mean_u, k) / scale;
-  }
+  ParallelFor(2 * max_lag + 1, LagThreads(e), [&](int i) {
+    r[i] = Covariance(e, mean_e, u, mean_u, i - max_lag) / scale;
+  });
   return r;
 }
 
