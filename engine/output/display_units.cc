@@ -10,7 +10,7 @@ DisplayUnit OutputDisplayUnit(const RunConfig& config, const std::string& experi
   const ModelInfo& info = config.model->info();
   DisplayUnit shown{info.OutputUnit(info.OutputIndex(output)), 1.0};
   const ExperimentSpec* spec =
-      config.FindExperiment(experiment.substr(0, experiment.find_first_of("@#")));
+      config.FindExperiment(RecordName(experiment));
   if (spec == nullptr || shown.unit.compare(0, 3, "rad") != 0) return shown;
   const auto column = spec->outputs.find(output);
   if (column == spec->outputs.end()) return shown;

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "engine/run/records.h"
 #include "engine/run/run_config.h"
 
 namespace vesselid {

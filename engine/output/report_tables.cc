@@ -84,10 +84,6 @@ std::string HtmlNumber(double value, const char* format) {
   return text;
 }
 
-std::string RecordName(const std::string& experiment) {
-  return experiment.substr(0, experiment.find_first_of("@#"));
-}
-
 std::vector<std::vector<const ExperimentFit*>> GroupByRecord(
     const std::vector<ExperimentFit>& fits) {
   std::vector<std::vector<const ExperimentFit*>> groups;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/run/records.h"
 #include "engine/run/run_config.h"
 #include "engine/run/run_result.h"
 #include "engine/solve/metrics.h"
@@ -19,10 +20,6 @@ std::string HtmlEscape(const std::string& text);
 
 // printf-formatted number, or a dash when it is not finite.
 std::string HtmlNumber(double value, const char* format = "%.6g");
-
-// The record an experiment belongs to: its name up to the first '@' (segment) or '#' (input
-// range piece).
-std::string RecordName(const std::string& experiment);
 
 // Fits grouped by record, in order of first appearance.
 std::vector<std::vector<const ExperimentFit*>> GroupByRecord(

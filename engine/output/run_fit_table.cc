@@ -12,10 +12,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string RunOf(const std::string& experiment) {
-  return experiment.substr(0, experiment.find_first_of("@#"));
-}
-
 // Sums of one run and output over its segments.
 struct ChannelSums {
   int samples = 0;
@@ -45,7 +41,7 @@ RunFitTable PerRunFits(const RunConfig& config, const std::vector<ExperimentFit>
   std::vector<std::vector<ChannelSums>> sums;
   std::vector<double> cost2, cost_samples;
   for (const ExperimentFit& fit : fits) {
-    const std::string run = RunOf(fit.experiment);
+    const std::string run = RecordName(fit.experiment);
     const auto [at, added] = row_of.emplace(run, table.rows.size());
     if (added) {
       table.rows.emplace_back();

@@ -1,8 +1,10 @@
 #include "engine/run/pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "engine/run/held_out.h"
+#include "engine/run/held_out_memo.h"
 #include "engine/run/least_squares_stage.h"
 #include "engine/run/output_error_stage.h"
 #include "engine/run/parameter_ledger.h"
@@ -36,23 +38,47 @@ RegressionDataOptions VelocityData(const RunConfig& config, size_t count) {
 bool ValidateStage(const RunConfig& config, const StageConfig& stage, const ModelHandle& model,
                    const RegressionDataOptions& velocity_data,
                    const std::vector<double>& start_values, const std::vector<double>& values,
-                   TrajectoryCache* cache, StageResult* result, std::string* error) {
-  std::vector<ExperimentFit> at_start;
+                   TrajectoryCache* cache, HeldOutMemo* memo, StageResult* result,
+                   std::string* error) {
   ExperimentOptions options = stage.experiment;
   if (result->integration_step > 0.0) options.max_step = result->integration_step;
   // The stage and its start are validated alike: held-out runs estimate their own
   // per-experiment parameters in both (or hold them in both).
-  const HeldOutPerRun per_run =
-      PerRunFromStage(*result, model.info(), stage.validation_per_experiment);
-  const std::vector<HeldOutPass> passes = {
-      {&values, &result->validation, &result->held_out_parameters, &result->validation_residuals},
-      {&start_values, &at_start}};
-  if (!SimulateHeldOutPasses(config, model, stage.validation, options,
-                             stage.problem.free_initial_states, stage.options.local, passes, cache,
-                             error, per_run)) {
+  HeldOutRequest request;
+  request.model = &model;
+  request.names = stage.validation;
+  request.options = options;
+  request.free_states = stage.problem.free_initial_states;
+  request.local = stage.options.local;
+  request.per_run = PerRunFromStage(*result, model.info(), stage.validation_per_experiment);
+  request.values = values;
+  HeldOutRequest start_request = request;
+  start_request.values = start_values;
+  // At the estimate with the per-experiment estimates and residuals, at the start the fits
+  // alone; each taken from an earlier pass if one asked the same.
+  HeldOutAnswer estimate, start;
+  const bool known_estimate = memo->Find(request, true, true, &estimate);
+  const bool known_start = memo->Find(start_request, false, false, &start);
+  std::vector<HeldOutPass> passes;
+  if (!known_estimate) {
+    passes.push_back(
+        {&values, &estimate.fits, &estimate.parameters, &estimate.residuals});
+    estimate.with_parameters = estimate.with_residuals = true;
+  }
+  if (!known_start) passes.push_back({&start_values, &start.fits});
+  if (!passes.empty() &&
+      !SimulateHeldOutPasses(config, model, stage.validation, options,
+                             stage.problem.free_initial_states, stage.options.local, passes,
+                             cache, error, request.per_run)) {
     *error = "validation: " + *error;
     return false;
   }
+  result->validation = estimate.fits;
+  result->held_out_parameters = estimate.parameters;
+  result->validation_residuals = estimate.residuals;
+  const std::vector<ExperimentFit> at_start = start.fits;
+  if (!known_estimate) memo->Remember(request, std::move(estimate));
+  if (!known_start) memo->Remember(std::move(start_request), std::move(start));
   for (const ExperimentFit& fit : result->validation) {
     if (fit.diverged) result->summary.notes.push_back("validation: " + fit.message);
   }
@@ -80,8 +106,8 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
 
 // Runs stages [first, count) into `run`, recording every estimate in `ledger`.
 bool RunStages(const RunConfig& config, size_t first, size_t count, TrajectoryCache* cache_ptr,
-               ParameterLedger* ledger_ptr, RunResult* run_ptr, std::string* error,
-               const RunObserver& observer) {
+               HeldOutMemo* memo, ParameterLedger* ledger_ptr, RunResult* run_ptr,
+               std::string* error, const RunObserver& observer) {
   TrajectoryCache& cache = *cache_ptr;
   ParameterLedger& ledger = *ledger_ptr;
   RunResult& run = *run_ptr;
@@ -115,7 +141,7 @@ bool RunStages(const RunConfig& config, size_t first, size_t count, TrajectoryCa
     const std::vector<double> values = StageParameterValues(model.info(), stage_result);
     stage_result.admissibility = model.Admissibility(values.data());
     if (!stage.validation.empty() &&
-        !ValidateStage(config, stage, model, velocity_data, start_values, values, &cache,
+        !ValidateStage(config, stage, model, velocity_data, start_values, values, &cache, memo,
                        &stage_result, error)) {
       return fail(*error);
     }
@@ -150,92 +176,16 @@ size_t StagesNeededBefore(const RunConfig& config, size_t index) {
   return 0;
 }
 
-// Whether two held-out validations fit alike: same outputs, step, weighting, rate window and
-// limits (a state guess is the model's: set in both or in neither), and the same solver
-// settings for the runs' own unknowns (threads aside: results do not depend on them).
-bool SameHeldOutSettings(const ExperimentOptions& a, const LocalSolveOptions& la,
-                         const ExperimentOptions& b, const LocalSolveOptions& lb) {
-  return a.outputs == b.outputs && a.max_step == b.max_step &&
-         a.normalize_by_length == b.normalize_by_length &&
-         static_cast<bool>(a.state_guess) == static_cast<bool>(b.state_guess) &&
-         a.rate_window == b.rate_window && a.max_steps == b.max_steps &&
-         la.trust_region == lb.trust_region && la.linear_solver == lb.linear_solver &&
-         la.max_iterations == lb.max_iterations &&
-         la.function_tolerance == lb.function_tolerance &&
-         la.gradient_tolerance == lb.gradient_tolerance &&
-         la.parameter_tolerance == lb.parameter_tolerance &&
-         la.max_time_seconds == lb.max_time_seconds && !la.keep_going && !lb.keep_going;
-}
-
-bool SamePerRun(const HeldOutPerRun& a, const HeldOutPerRun& b) {
-  if (a.mode != b.mode || a.fit_start != b.fit_start ||
-      a.parameters.size() != b.parameters.size()) {
-    return false;
-  }
-  for (size_t k = 0; k < a.parameters.size(); ++k) {
-    const ParameterSpec &x = a.parameters[k], &y = b.parameters[k];
-    if (x.name != y.name || x.start != y.start || x.lower != y.lower || x.upper != y.upper ||
-        x.role != y.role) {
-      return false;
-    }
-  }
-  return true;
-}
-
-// Whether held-out runs see the same parameter values: the per-experiment ones of `per_run`
-// aside, which every held-out run replaces (by its own estimate, or their start).
-bool SameHeldValues(const ModelInfo& info, const HeldOutPerRun& per_run,
-                    const std::vector<double>& a, const std::vector<double>& b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i) {
-    bool replaced = false;
-    for (const ParameterSpec& spec : per_run.parameters) replaced |= spec.name == info.parameters[i];
-    if (!replaced && a[i] != b[i]) return false;
-  }
-  return true;
-}
-
-// The stage among run.stages[first, ...) whose held-out validation is the final validation:
-// accepted, validated on the same records with the same model, settings and per-experiment
-// treatment at exactly the final values. Its fits then serve as the final validation instead
-// of being computed again (the last such stage; null if none).
-const StageResult* StageValidationAsFinal(const RunConfig& config, const RunResult& run,
-                                          size_t first, const ModelHandle& model,
-                                          const ExperimentOptions& options,
-                                          const LocalSolveOptions& local,
-                                          const HeldOutPerRun& per_run,
-                                          const std::vector<double>& values) {
-  const FinalValidationConfig& v = config.final_validation;
-  for (size_t i = run.stages.size(); i-- > first;) {
-    const StageConfig& stage = config.stages[i];
-    const StageResult& result = run.stages[i];
-    if (!result.rejected.empty() || stage.validation != v.experiments ||
-        stage.problem.free_initial_states != v.free_initial_states ||
-        &config.StageModel(stage) != &model ||
-        !SameHeldValues(model.info(), per_run, StageParameterValues(model.info(), result),
-                        values)) {
-      continue;
-    }
-    ExperimentOptions stage_options = stage.experiment;
-    if (result.integration_step > 0.0) stage_options.max_step = result.integration_step;
-    if (SameHeldOutSettings(stage_options, stage.options.local, options, local) &&
-        SamePerRun(PerRunFromStage(result, model.info(), stage.validation_per_experiment),
-                   per_run)) {
-      return &result;
-    }
-  }
-  return nullptr;
-}
-
 }  // namespace
 
 bool ResolveStage(const RunConfig& config, size_t index, std::vector<ParameterSpec>* specs,
                   std::vector<StageResult>* before, std::string* error, StageResult* solved) {
   TrajectoryCache cache;
+  HeldOutMemo memo;
   ParameterLedger ledger;
   RunResult run;
   const size_t needed = StagesNeededBefore(config, index);
-  if (!RunStages(config, 0, needed, &cache, &ledger, &run, error, {})) return false;
+  if (!RunStages(config, 0, needed, &cache, &memo, &ledger, &run, error, {})) return false;
   const StageConfig& stage = config.stages[index];
   const ModelHandle& model = config.StageModel(stage);
   if (!ResolveParameters(stage, model.info(), ledger, specs, error)) {
@@ -244,7 +194,9 @@ bool ResolveStage(const RunConfig& config, size_t index, std::vector<ParameterSp
   }
   if (before != nullptr) *before = run.stages;
   if (solved != nullptr) {
-    if (!RunStages(config, index, index + 1, &cache, &ledger, &run, error, {})) return false;
+    if (!RunStages(config, index, index + 1, &cache, &memo, &ledger, &run, error, {})) {
+      return false;
+    }
     *solved = run.stages.back();
   }
   return true;
@@ -269,10 +221,11 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     if (finished[i].rejected.empty()) RecordStage(finished[i], &ledger);
     run.stages.push_back(std::move(finished[i]));
   }
-  const size_t resumed = run.stages.size();  // their fits were not kept in full
   if (!CheckWorkSize(config, &cache, error)) return false;
   std::string stop;
-  if (!RunStages(config, run.stages.size(), config.stages.size(), &cache, &ledger, &run, &stop,
+  HeldOutMemo memo;  // the held-out passes of the stages run here (resumed ones aside)
+  if (!RunStages(config, run.stages.size(), config.stages.size(), &cache, &memo, &ledger, &run,
+                 &stop,
                  observer)) {
     *error = stop;
     if (run.stages.empty()) return false;
@@ -308,15 +261,21 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
       HeldOutPerRun own = PerRunFromStage(s, model.info(), v.per_experiment);
       if (!own.parameters.empty()) per_run = std::move(own);
     }
-    const LocalSolveOptions local;
-    if (const StageResult* same = StageValidationAsFinal(config, run, resumed, model, options,
-                                                         local, per_run, final_values)) {
-      run.final_validation = same->validation;
-      run.final_held_out_parameters = same->held_out_parameters;
-      run.final_validation_residuals = same->validation_residuals;
+    HeldOutRequest request;
+    request.model = &model;
+    request.names = v.experiments;
+    request.options = options;
+    request.free_states = v.free_initial_states;
+    request.per_run = per_run;
+    request.values = final_values;
+    HeldOutAnswer answer;
+    if (memo.Find(request, true, true, &answer)) {
+      run.final_validation = std::move(answer.fits);
+      run.final_held_out_parameters = std::move(answer.parameters);
+      run.final_validation_residuals = std::move(answer.residuals);
     } else if (!SimulateHeldOut(config, model, v.experiments, options, v.free_initial_states,
-                                local, final_values, &cache, &run.final_validation, error,
-                                per_run, &run.final_held_out_parameters,
+                                request.local, final_values, &cache, &run.final_validation,
+                                error, per_run, &run.final_held_out_parameters,
                                 &run.final_validation_residuals)) {
       *error = "final validation: " + *error;
       return false;

@@ -16,6 +16,12 @@
 
 namespace vesselid {
 
+// The configured record an experiment comes from: a segment "<record>@<id>" or a piece
+// "<record>#<k>" of it, or the record itself.
+inline std::string RecordName(const std::string& experiment) {
+  return experiment.substr(0, experiment.find_first_of("@#"));
+}
+
 // Recorded data by experiment, so that stages sharing an experiment read it once.
 using TrajectoryCache = std::map<std::string, Trajectory>;
 

@@ -7,7 +7,7 @@ namespace {
 
 // The configured experiment a fit belongs to (a segment "<name>@<k>" or piece "<name>#<k>").
 const ExperimentSpec* SpecOf(const RunConfig& config, const std::string& experiment) {
-  return config.FindExperiment(experiment.substr(0, experiment.find_first_of("@#")));
+  return config.FindExperiment(RecordName(experiment));
 }
 
 // The record's rudder column: the one mapped to the input `delta` (or delta...).

@@ -1,0 +1,112 @@
+#include "engine/run/held_out_memo.h"
+
+#include <algorithm>
+
+#include "engine/run/records.h"
+
+namespace vesselid {
+namespace {
+
+// The same fits: same outputs, step, weighting, rate window and limits (a state guess is the
+// model's: set in both or in neither), and the same solver settings for the runs' own
+// unknowns (threads aside: results do not depend on them).
+bool SameSettings(const HeldOutRequest& a, const HeldOutRequest& b) {
+  const ExperimentOptions &x = a.options, &y = b.options;
+  const LocalSolveOptions &lx = a.local, &ly = b.local;
+  return x.outputs == y.outputs && x.max_step == y.max_step &&
+         x.normalize_by_length == y.normalize_by_length &&
+         static_cast<bool>(x.state_guess) == static_cast<bool>(y.state_guess) &&
+         x.rate_window == y.rate_window && x.max_steps == y.max_steps &&
+         lx.trust_region == ly.trust_region && lx.linear_solver == ly.linear_solver &&
+         lx.max_iterations == ly.max_iterations &&
+         lx.function_tolerance == ly.function_tolerance &&
+         lx.gradient_tolerance == ly.gradient_tolerance &&
+         lx.parameter_tolerance == ly.parameter_tolerance &&
+         lx.max_time_seconds == ly.max_time_seconds && !lx.keep_going && !ly.keep_going;
+}
+
+bool SamePerRun(const HeldOutPerRun& a, const HeldOutPerRun& b) {
+  if (a.mode != b.mode || a.fit_start != b.fit_start ||
+      a.parameters.size() != b.parameters.size()) {
+    return false;
+  }
+  for (size_t k = 0; k < a.parameters.size(); ++k) {
+    const ParameterSpec &x = a.parameters[k], &y = b.parameters[k];
+    if (x.name != y.name || x.start != y.start || x.lower != y.lower || x.upper != y.upper ||
+        x.role != y.role) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// The same values as held-out runs see them: the per-experiment ones aside, which every
+// held-out run replaces (by its own estimate, or their start).
+bool SameValues(const HeldOutRequest& a, const HeldOutRequest& b) {
+  if (a.values.size() != b.values.size()) return false;
+  const ModelInfo& info = a.model->info();
+  for (size_t i = 0; i < a.values.size(); ++i) {
+    bool replaced = false;
+    for (const ParameterSpec& spec : a.per_run.parameters) replaced |= spec.name == info.parameters[i];
+    if (!replaced && a.values[i] != b.values[i]) return false;
+  }
+  return true;
+}
+
+// Whether `part` lists some of `whole`'s records in the same order.
+bool InOrderSubset(const std::vector<std::string>& part, const std::vector<std::string>& whole) {
+  size_t k = 0;
+  for (const std::string& name : whole) {
+    if (k < part.size() && part[k] == name) ++k;
+  }
+  return !part.empty() && k == part.size();
+}
+
+}  // namespace
+
+bool HeldOutMemo::Find(const HeldOutRequest& request, bool need_parameters, bool need_residuals,
+                       HeldOutAnswer* answer) const {
+  for (auto entry = entries_.rbegin(); entry != entries_.rend(); ++entry) {
+    const auto& [asked, given] = *entry;
+    if (asked.model != request.model || (need_parameters && !given.with_parameters) ||
+        (need_residuals && !given.with_residuals) || asked.free_states != request.free_states ||
+        !InOrderSubset(request.names, asked.names) || !SameSettings(asked, request) ||
+        !SamePerRun(asked.per_run, request.per_run) || !SameValues(asked, request)) {
+      continue;
+    }
+    const std::vector<std::string>& names = request.names;
+    auto taken = [&](const std::string& experiment) {
+      return std::find(names.begin(), names.end(), RecordName(experiment)) != names.end();
+    };
+    *answer = HeldOutAnswer();
+    answer->with_parameters = need_parameters;
+    answer->with_residuals = need_residuals;
+    for (const ExperimentFit& fit : given.fits) {
+      if (taken(fit.experiment)) answer->fits.push_back(fit);
+    }
+    if (need_parameters) {
+      HeldOutParameters& held = answer->parameters;
+      held.fitted = given.parameters.fitted;
+      held.parameters = given.parameters.parameters;
+      for (const Estimate& e : given.parameters.estimates) {
+        if (taken(e.experiment)) held.estimates.push_back(e);
+      }
+      for (const ExperimentFit& fit : given.parameters.without) {
+        if (taken(fit.experiment)) held.without.push_back(fit);
+      }
+    }
+    if (need_residuals) {
+      for (const ResidualAnalysis& a : given.residuals) {
+        if (taken(a.experiment)) answer->residuals.push_back(a);
+      }
+    }
+    return true;
+  }
+  return false;
+}
+
+void HeldOutMemo::Remember(HeldOutRequest request, HeldOutAnswer answer) {
+  entries_.emplace_back(std::move(request), std::move(answer));
+}
+
+}  // namespace vesselid
