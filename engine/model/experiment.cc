@@ -21,16 +21,19 @@ constexpr double kTimeTolerance = 1e-9;
 // and refused where two samples inside [t0, t_end] are too far apart to tell which way it
 // turned (gaps outside the window, e.g. between the segments of a record, do not matter: the
 // window's start value and samples move by the same whole turns).
-bool OutputChannelOf(const Trajectory& trajectory, int column, const ModelInfo& info, int output,
-                     bool wrapped, double t0, double t_end, Channel* channel,
+bool OutputChannelOf(RecordChannels* channels, int column, const ModelInfo& info, int output,
+                     bool wrapped, double t0, double t_end, const Channel** channel,
                      std::string* error) {
-  *channel = ExtractChannel(trajectory, column);
+  const Trajectory& trajectory = channels->trajectory();
+  *channel = &channels->Extracted(column);
   const bool angle =
       output < static_cast<int>(info.angle_outputs.size()) && info.angle_outputs[output];
   if (!angle || wrapped) return true;
-  const std::vector<double> raw = channel->value;
-  if (UnwrapAngles(&channel->value) <= kMaxAngleStep) return true;
-  const std::vector<double>& t = channel->t;
+  const std::vector<double>& raw = channels->Extracted(column).value;
+  double largest = 0.0;
+  *channel = &channels->Unwrapped(column, &largest);
+  if (largest <= kMaxAngleStep) return true;
+  const std::vector<double>& t = (*channel)->t;
   for (size_t k = 1; k < raw.size(); ++k) {
     const double step = WrapAngle(raw[k] - raw[k - 1]);
     const bool inside = t[k - 1] >= t0 - kTimeTolerance && t[k] <= t_end + kTimeTolerance;
@@ -147,6 +150,14 @@ bool FitLatentInput(const ExperimentSpec& spec, const std::string& input,
 bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
                      const ModelInfo& info, const ExperimentOptions& options,
                      Experiment* experiment, std::string* error) {
+  RecordChannels channels(trajectory);
+  return BuildExperiment(spec, &channels, info, options, experiment, error);
+}
+
+bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* record_channels,
+                     const ModelInfo& info, const ExperimentOptions& options,
+                     Experiment* experiment, std::string* error) {
+  const Trajectory& trajectory = record_channels->trajectory();
   auto fail = [&](const std::string& what) {
     *error = "experiment '" + spec.name + "' (" + trajectory.source + "): " + what;
     return false;
@@ -167,7 +178,7 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
   struct OutputChannel {
     int output;
     double weight;
-    Channel channel;
+    const Channel* channel;
   };
   e.wrapped_outputs.assign(info.outputs.size(), false);
   for (const std::string& output : spec.wrapped_outputs) {
@@ -187,20 +198,20 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
     int column = trajectory.Find(mapped->second);
     if (column < 0) return fail("no column '" + mapped->second + "' for output '" + output + "'");
     auto weight = spec.output_weights.find(output);
-    OutputChannel oc{index, weight == spec.output_weights.end() ? 1.0 : weight->second, {}};
-    if (!OutputChannelOf(trajectory, column, info, index, e.Wrapped(index), t0, t_end,
+    OutputChannel oc{index, weight == spec.output_weights.end() ? 1.0 : weight->second, nullptr};
+    if (!OutputChannelOf(record_channels, column, info, index, e.Wrapped(index), t0, t_end,
                          &oc.channel, error)) {
       return fail(*error);
     }
-    if (oc.channel.t.empty()) return fail("column '" + mapped->second + "' has no samples");
+    if (oc.channel->t.empty()) return fail("column '" + mapped->second + "' has no samples");
     channels.push_back(std::move(oc));
   }
 
   // Nodes: t0 and every output sample time inside the window (one output's are in order).
   std::vector<double> times{t0};
   for (const OutputChannel& oc : channels) {
-    const auto [first, last] = InWindow(oc.channel.t, t0, t_end);
-    times.insert(times.end(), oc.channel.t.begin() + first, oc.channel.t.begin() + last);
+    const auto [first, last] = InWindow(oc.channel->t, t0, t_end);
+    times.insert(times.end(), oc.channel->t.begin() + first, oc.channel->t.begin() + last);
   }
   if (!std::is_sorted(times.begin(), times.end())) std::sort(times.begin(), times.end());
   for (double t : times) {
@@ -216,11 +227,11 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
   e.channel_noise_power.assign(info.outputs.size(), 0.0);
   for (const OutputChannel& oc : channels) {
     size_t k = 0;
-    const auto [first, last] = InWindow(oc.channel.t, t0, t_end);
+    const auto [first, last] = InWindow(oc.channel->t, t0, t_end);
     for (size_t i = first; i < last; ++i) {
-      const double t = oc.channel.t[i];
+      const double t = oc.channel->t[i];
       while (e.node_time[k] < t - kTimeTolerance) ++k;
-      by_node[k].push_back({oc.output, oc.channel.value[i], oc.weight});
+      by_node[k].push_back({oc.output, oc.channel->value[i], oc.weight});
       ++e.output_sample_count[oc.output];
     }
     e.channel_weight[oc.output] = oc.weight;
@@ -303,7 +314,7 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
     if (mapped == spec.inputs.end()) return fail("input '" + input + "' is not mapped to a column");
     int column = trajectory.Find(mapped->second);
     if (column < 0) return fail("no column '" + mapped->second + "' for input '" + input + "'");
-    Channel channel = ExtractChannel(trajectory, column);
+    const Channel& channel = record_channels->Extracted(column);
     if (channel.t.empty()) return fail("input column '" + mapped->second + "' has no samples");
     for (size_t k = 0; k < channel.t.size() && info.InputPositive(i); ++k) {
       if (channel.value[k] > 0.0) continue;
@@ -343,10 +354,12 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
     const int o = info.OutputIndex(output);
     const int column = trajectory.Find(column_name);
     if (o < 0 || column < 0) continue;
-    Channel channel;
-    if (!OutputChannelOf(trajectory, column, info, o, e.Wrapped(o), t0, t_end, &channel, error)) {
+    const Channel* extracted = nullptr;
+    if (!OutputChannelOf(record_channels, column, info, o, e.Wrapped(o), t0, t_end, &extracted,
+                         error)) {
       return fail(*error);
     }
+    const Channel& channel = *extracted;
     if (channel.t.empty()) continue;
     y0[o] = InterpolateAt(channel, Interpolation::kLinear, {t0})[0];
     const bool angle = o < static_cast<int>(info.angle_outputs.size()) && info.angle_outputs[o];
@@ -406,8 +419,8 @@ bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
   int counted = 0;
   for (const OutputChannel& oc : channels) {
     NoiseLevel level;
-    const auto [first, last] = InWindow(oc.channel.t, t0, t_end);
-    for (size_t i = first; i < last; ++i) level.Add(oc.channel.value[i]);
+    const auto [first, last] = InWindow(oc.channel->t, t0, t_end);
+    for (size_t i = first; i < last; ++i) level.Add(oc.channel->value[i]);
     const double sigma = level.Sigma();
     if (!std::isfinite(sigma)) continue;
     e.channel_noise_power[oc.output] = level.count() * sigma * sigma;

@@ -16,6 +16,7 @@
 #include "engine/data/segments.h"
 #include "engine/data/trajectory.h"
 #include "engine/model/experiment_data.h"
+#include "engine/model/record_channels.h"
 #include "engine/model/input_noise.h"
 #include "engine/model/model.h"
 
@@ -139,6 +140,11 @@ inline constexpr double kMaxAngleStep = M_PI / 2;
 // e.g., velocities from measured position rates) over the latter two.
 // Errors name the experiment and the missing column or key.
 bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
+                     const ModelInfo& info, const ExperimentOptions& options,
+                     Experiment* experiment, std::string* error);
+// The same, taking the record's channels from `channels` (shared by the experiments cut from
+// one record; channels->trajectory() is the record).
+bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* channels,
                      const ModelInfo& info, const ExperimentOptions& options,
                      Experiment* experiment, std::string* error);
 

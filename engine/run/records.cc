@@ -222,11 +222,13 @@ bool PrepareExperiments(const RunConfig& config, const std::vector<std::string>&
     specs->push_back(s);
     return true;
   };
+  std::map<const Trajectory*, RecordChannels> record_channels;  // for the record's segments
   return ForEachRecordSpec(
       config, names, segment_length, cache, whole, too_short,
       [&](const std::string& name, const ExperimentSpec& s, const Trajectory& data) {
         Experiment experiment;
-        if (!BuildExperiment(s, data, info, options, &experiment, error)) return false;
+        RecordChannels& channels = record_channels.try_emplace(&data, data).first->second;
+        if (!BuildExperiment(s, &channels, info, options, &experiment, error)) return false;
         experiment.record = name;
         experiment.segment = s.name != name;
         experiments->push_back(std::move(experiment));

@@ -12,6 +12,7 @@ bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model, const std
   const RegressionForm& form = *model.regression_form();
   const int ny = static_cast<int>(info.outputs.size());
   std::vector<MetricAccumulator> accumulators(form.states.size());
+  std::map<const Trajectory*, RecordChannels> record_channels;  // for the record's segments
   for (RegressionRecord& record : *records) {
     std::vector<Eigen::MatrixXd> phi;
     model.Regressors(p.data(), &record, &phi);  // internal states at p
@@ -27,7 +28,9 @@ bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model, const std
     // dynamics (a propeller lag), and a step beyond ~2.8 time constants is unstable.
     options.max_step = record.dt / 10.0;
     Experiment experiment;
-    if (!BuildExperiment(spec, cache.at(record.record), info, options, &experiment, error)) {
+    const Trajectory& data = cache.at(record.record);
+    RecordChannels& channels = record_channels.try_emplace(&data, data).first->second;
+    if (!BuildExperiment(spec, &channels, info, options, &experiment, error)) {
       return false;
     }
     if (experiment.num_nodes() != record.size()) {

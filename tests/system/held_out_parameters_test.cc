@@ -3,6 +3,8 @@
 // with a different rudder bias in every run, steering-gear lag and sensor noise. Each held-out
 // run estimates its own bias with the shared T and K held; the run reports the estimate and the
 // fit without it, in every output.
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -32,7 +34,9 @@ constexpr double kBias[] = {2.0, -1.5, 3.0, -2.5, 1.5, -3.0};
 class HeldOutParametersTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(fs::temp_directory_path() / "vesselid_held_out_parameters");
+    // One folder per test process: ctest runs this suite's tests as parallel processes.
+    dir_ = new fs::path(fs::temp_directory_path() /
+                        ("vesselid_held_out_parameters_" + std::to_string(::getpid())));
     fs::remove_all(*dir_);
     fs::create_directories(*dir_);
     // Second-order ship: T1 25 s, T2 3 s, T3 6 s, K 0.08 1/s; zigzags 10/10 and 20/20.

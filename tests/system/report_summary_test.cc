@@ -4,6 +4,8 @@
 // record's segments fold into one row and are drawn on their own time axis; a parameter on
 // its bound is flagged and its interval clipped; a fused value outside every stage's estimate
 // is explained; fixed parameters and initial states are counted apart.
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -52,7 +54,8 @@ ExperimentFit Fit(const std::string& experiment, double fit, double t0 = 0.0) {
 class ReportSummaryTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / "vesselid_report_summary";
+    // One folder per test process: ctest runs this suite's tests as parallel processes.
+    dir_ = fs::temp_directory_path() / ("vesselid_report_summary_" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     std::ofstream(dir_ / "run.csv") << "t,delta,psi\n0,0,0\n1,0.1,0.01\n2,0.1,0.03\n";
