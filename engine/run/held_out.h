@@ -28,7 +28,8 @@ namespace vesselid {
 
 // The problem of `experiments` with every parameter fixed at `values` (model order) except
 // `per_experiment` (role per_experiment, start and bounds as given), at its estimated free
-// states and per-experiment values; null with `error`.
+// states and per-experiment values (solved with `local`, to tolerances no tighter than 1e-8
+// in cost and step); null with `error`.
 std::unique_ptr<OutputErrorProblem> HeldOutProblem(
     const ModelHandle& model, std::vector<Experiment> experiments,
     const std::vector<std::string>& free_states, const LocalSolveOptions& local,
