@@ -10,7 +10,8 @@
 // process, and the wall-time shares of
 //   solve   the local refinements and global search of every output-error stage, and the
 //           whole of the least-squares and step-regression stages (results.json times);
-//   stage   the rest of the stages: continuation, experiments built, uncertainty, fits;
+//   stage   the rest of the stages: continuation, experiments built, uncertainty, fits and
+//           their residual analysis;
 //   outside the process's wall time outside the stages: config, reading and checking data,
 //           validation and held-out runs, checkpoints, traces and reports.
 // The target is outside <= 20 % with report.html. --one-thread sets local.num_threads: 1 in
