@@ -126,6 +126,42 @@ TEST_F(AngleTest, JumpOutsideTheWindowIsNotRefused) {
       << error;
 }
 
+// The experiments cut from one record share its channels (RecordChannels): windows built
+// one after another from one cache, wrapped or not, refused or not, are what building each
+// alone gives, sample for sample and message for message.
+TEST_F(AngleTest, WindowsSharingTheRecordsChannelsAreBuiltAsAlone) {
+  Trajectory data = TurningRecord();
+  for (size_t k = 0; k < data.t.size(); ++k) {
+    if (data.t[k] >= 500.0) data.columns[1][k] = WrapAngle(data.columns[1][k] + 2.6);
+  }
+  std::vector<ExperimentSpec> specs(5, Spec());
+  specs[0].t_end = 499.9;
+  specs[1].t_begin = 500.0;
+  specs[2].t_begin = 250.0;  // across the jump: refused
+  specs[3].wrapped_outputs = {"psi"};
+  specs[4].t_begin = 600.0;
+  specs[4].t_end = 900.0;
+  RecordChannels shared(data);
+  for (const ExperimentSpec& spec : specs) {
+    Experiment alone, together;
+    std::string alone_error, together_error;
+    const bool built =
+        BuildExperiment(spec, data, model_->info(), ExperimentOptions(), &alone, &alone_error);
+    EXPECT_EQ(BuildExperiment(spec, &shared, model_->info(), ExperimentOptions(), &together,
+                              &together_error),
+              built);
+    EXPECT_EQ(together_error, alone_error);
+    if (!built) continue;
+    ASSERT_EQ(together.num_samples(), alone.num_samples());
+    for (int k = 0; k < alone.num_samples(); ++k) {
+      ASSERT_EQ(together.samples[k].value, alone.samples[k].value) << k;
+    }
+    EXPECT_EQ(together.node_time, alone.node_time);
+    EXPECT_EQ(together.input_cache, alone.input_cache);
+    EXPECT_EQ(together.initial_state, alone.initial_state);
+  }
+}
+
 TEST_F(AngleTest, UnwrapAnglesTakesTheShorterWayRound) {
   std::vector<double> angles = {3.0, -3.0, 3.1, -3.1};
   const double largest = UnwrapAngles(&angles);
