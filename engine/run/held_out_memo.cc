@@ -18,8 +18,7 @@ bool SameSettings(const HeldOutRequest& a, const HeldOutRequest& b) {
          static_cast<bool>(x.state_guess) == static_cast<bool>(y.state_guess) &&
          x.rate_window == y.rate_window && x.max_steps == y.max_steps &&
          lx.trust_region == ly.trust_region && lx.linear_solver == ly.linear_solver &&
-         lx.max_iterations == ly.max_iterations &&
-         lx.function_tolerance == ly.function_tolerance &&
+         lx.max_iterations == ly.max_iterations && lx.function_tolerance == ly.function_tolerance &&
          lx.gradient_tolerance == ly.gradient_tolerance &&
          lx.parameter_tolerance == ly.parameter_tolerance &&
          lx.max_time_seconds == ly.max_time_seconds && !lx.keep_going && !ly.keep_going;
@@ -47,7 +46,8 @@ bool SameValues(const HeldOutRequest& a, const HeldOutRequest& b) {
   const ModelInfo& info = a.model->info();
   for (size_t i = 0; i < a.values.size(); ++i) {
     bool replaced = false;
-    for (const ParameterSpec& spec : a.per_run.parameters) replaced |= spec.name == info.parameters[i];
+    for (const ParameterSpec& spec : a.per_run.parameters)
+      replaced |= spec.name == info.parameters[i];
     if (!replaced && a.values[i] != b.values[i]) return false;
   }
   return true;
