@@ -47,9 +47,9 @@ namespace {
 // checkpoint resumes on the machine that wrote it): a fit's trace is hundreds of thousands of
 // samples, which as JSON numbers cost a node each to write and to read.
 nlohmann::json SamplesToBinary(const std::vector<double>& values) {
-  const auto* bytes = reinterpret_cast<const std::uint8_t*>(values.data());
-  return nlohmann::json::binary(
-      std::vector<std::uint8_t>(bytes, bytes + values.size() * sizeof(double)));
+  std::vector<std::uint8_t> bytes(values.size() * sizeof(double));
+  if (!values.empty()) std::memcpy(bytes.data(), values.data(), bytes.size());
+  return nlohmann::json::binary(std::move(bytes));
 }
 
 std::vector<double> SamplesFromBinary(const nlohmann::json& j) {
@@ -59,7 +59,7 @@ std::vector<double> SamplesFromBinary(const nlohmann::json& j) {
                                               &j);
   }
   std::vector<double> values(bytes.size() / sizeof(double));
-  std::memcpy(values.data(), bytes.data(), bytes.size());
+  if (!values.empty()) std::memcpy(values.data(), bytes.data(), bytes.size());  // not null
   return values;
 }
 
