@@ -64,12 +64,11 @@ bool InOrderSubset(const std::vector<std::string>& part, const std::vector<std::
 
 }  // namespace
 
-bool HeldOutMemo::Find(const HeldOutRequest& request, bool need_parameters, bool need_residuals,
-                       HeldOutAnswer* answer) const {
+bool HeldOutMemo::Find(const HeldOutRequest& request, HeldOutAnswer* answer) const {
   for (auto entry = entries_.rbegin(); entry != entries_.rend(); ++entry) {
     const auto& [asked, given] = *entry;
-    if (asked.model != request.model || (need_parameters && !given.with_parameters) ||
-        (need_residuals && !given.with_residuals) || asked.free_states != request.free_states ||
+    if (asked.model != request.model || (request.parameters && !asked.parameters) ||
+        (request.residuals && !asked.residuals) || asked.free_states != request.free_states ||
         !InOrderSubset(request.names, asked.names) || !SameSettings(asked, request) ||
         !SamePerRun(asked.per_run, request.per_run) || !SameValues(asked, request)) {
       continue;
@@ -79,12 +78,10 @@ bool HeldOutMemo::Find(const HeldOutRequest& request, bool need_parameters, bool
       return std::find(names.begin(), names.end(), RecordName(experiment)) != names.end();
     };
     *answer = HeldOutAnswer();
-    answer->with_parameters = need_parameters;
-    answer->with_residuals = need_residuals;
     for (const ExperimentFit& fit : given.fits) {
       if (taken(fit.experiment)) answer->fits.push_back(fit);
     }
-    if (need_parameters) {
+    if (request.parameters) {
       HeldOutParameters& held = answer->parameters;
       held.fitted = given.parameters.fitted;
       held.parameters = given.parameters.parameters;
@@ -95,7 +92,7 @@ bool HeldOutMemo::Find(const HeldOutRequest& request, bool need_parameters, bool
         if (taken(fit.experiment)) held.without.push_back(fit);
       }
     }
-    if (need_residuals) {
+    if (request.residuals) {
       for (const ResidualAnalysis& a : given.residuals) {
         if (taken(a.experiment)) answer->residuals.push_back(a);
       }
@@ -105,8 +102,28 @@ bool HeldOutMemo::Find(const HeldOutRequest& request, bool need_parameters, bool
   return false;
 }
 
-void HeldOutMemo::Remember(HeldOutRequest request, HeldOutAnswer answer) {
-  entries_.emplace_back(std::move(request), std::move(answer));
+bool HeldOutMemo::Fit(const RunConfig& config, const std::vector<HeldOutRequest>& requests,
+                      TrajectoryCache* cache, std::vector<HeldOutAnswer>* answers,
+                      std::string* error) {
+  answers->assign(requests.size(), HeldOutAnswer());
+  std::vector<size_t> fitted;
+  std::vector<HeldOutPass> passes;
+  for (size_t k = 0; k < requests.size(); ++k) {
+    if (Find(requests[k], &(*answers)[k])) continue;
+    HeldOutAnswer& a = (*answers)[k];
+    fitted.push_back(k);
+    passes.push_back({&requests[k].values, &a.fits,
+                      requests[k].parameters ? &a.parameters : nullptr,
+                      requests[k].residuals ? &a.residuals : nullptr});
+  }
+  if (passes.empty()) return true;
+  const HeldOutRequest& first = requests[fitted.front()];
+  if (!SimulateHeldOutPasses(config, *first.model, first.names, first.options, first.free_states,
+                             first.local, passes, cache, error, first.per_run)) {
+    return false;
+  }
+  for (size_t k : fitted) entries_.emplace_back(requests[k], (*answers)[k]);
+  return true;
 }
 
 }  // namespace vesselid

@@ -11,13 +11,16 @@
 #include "engine/model/experiment.h"
 #include "engine/model/model_handle.h"
 #include "engine/run/held_out.h"
+#include "engine/run/records.h"
+#include "engine/run/run_config.h"
 #include "engine/run/run_result.h"
 #include "engine/solve/local_solve.h"
 #include "engine/solve/residual_analysis.h"
 
 namespace vesselid {
 
-// What a held-out pass fits (SimulateHeldOutPasses' arguments for one pass).
+// What a held-out pass fits (SimulateHeldOutPasses' arguments for one pass), and whether it
+// needs the per-experiment estimates with the fits without them, and the residual analyses.
 struct HeldOutRequest {
   const ModelHandle* model = nullptr;
   std::vector<std::string> names;  // records
@@ -26,29 +29,33 @@ struct HeldOutRequest {
   LocalSolveOptions local;
   HeldOutPerRun per_run;
   std::vector<double> values;  // model order
+  bool parameters = false, residuals = false;
 };
 
-// What it gave: the fits; with `with_parameters`, the per-experiment estimates and the fits
-// without them; with `with_residuals`, the fits' residual analyses.
+// What it gave: the fits, and what the request needed.
 struct HeldOutAnswer {
   std::vector<ExperimentFit> fits;
   HeldOutParameters parameters;
   std::vector<ResidualAnalysis> residuals;
-  bool with_parameters = false, with_residuals = false;
 };
 
 class HeldOutMemo {
  public:
-  // A remembered answer holding `request` (same model, settings, free states and
-  // per-experiment treatment, the same values but for the per-experiment ones, which every
-  // held-out run replaces, and its records among the remembered ones, in the same order),
-  // with what `need_parameters` and `need_residuals` ask for: its part for request.names
-  // into *answer; false if none.
-  bool Find(const HeldOutRequest& request, bool need_parameters, bool need_residuals,
-            HeldOutAnswer* answer) const;
-  void Remember(HeldOutRequest request, HeldOutAnswer answer);
+  // The answers to `requests`, passes over the same records with the same model, settings,
+  // free states and per-experiment treatment at different values: each taken from a
+  // remembered pass that holds it, the others fitted in one parallel batch
+  // (SimulateHeldOutPasses) and remembered. False with `error` when the records cannot be
+  // prepared.
+  bool Fit(const RunConfig& config, const std::vector<HeldOutRequest>& requests,
+           TrajectoryCache* cache, std::vector<HeldOutAnswer>* answers, std::string* error);
 
  private:
+  // A remembered answer holding `request` (same model, settings, free states and
+  // per-experiment treatment, the same values but for the per-experiment ones, which every
+  // held-out run replaces, its records among the remembered ones in the same order, and what
+  // it needs): its part for request.names into *answer; false if none.
+  bool Find(const HeldOutRequest& request, HeldOutAnswer* answer) const;
+
   std::vector<std::pair<HeldOutRequest, HeldOutAnswer>> entries_;
 };
 

@@ -1,6 +1,5 @@
 #include "engine/run/pipeline.h"
 
-#include <algorithm>
 #include <chrono>
 
 #include "engine/run/held_out.h"
@@ -51,34 +50,21 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
   request.free_states = stage.problem.free_initial_states;
   request.local = stage.options.local;
   request.per_run = PerRunFromStage(*result, model.info(), stage.validation_per_experiment);
-  request.values = values;
-  HeldOutRequest start_request = request;
-  start_request.values = start_values;
-  // At the estimate with the per-experiment estimates and residuals, at the start the fits
-  // alone; each taken from an earlier pass if one asked the same.
-  HeldOutAnswer estimate, start;
-  const bool known_estimate = memo->Find(request, true, true, &estimate);
-  const bool known_start = memo->Find(start_request, false, false, &start);
-  std::vector<HeldOutPass> passes;
-  if (!known_estimate) {
-    passes.push_back(
-        {&values, &estimate.fits, &estimate.parameters, &estimate.residuals});
-    estimate.with_parameters = estimate.with_residuals = true;
-  }
-  if (!known_start) passes.push_back({&start_values, &start.fits});
-  if (!passes.empty() &&
-      !SimulateHeldOutPasses(config, model, stage.validation, options,
-                             stage.problem.free_initial_states, stage.options.local, passes,
-                             cache, error, request.per_run)) {
+  // At the start the fits alone; at the estimate with the per-experiment estimates and the
+  // residual analyses, which the stage reports.
+  HeldOutRequest at_estimate = request;
+  at_estimate.values = values;
+  at_estimate.parameters = at_estimate.residuals = true;
+  request.values = start_values;
+  std::vector<HeldOutAnswer> answers;
+  if (!memo->Fit(config, {at_estimate, request}, cache, &answers, error)) {
     *error = "validation: " + *error;
     return false;
   }
-  result->validation = estimate.fits;
-  result->held_out_parameters = estimate.parameters;
-  result->validation_residuals = estimate.residuals;
-  const std::vector<ExperimentFit> at_start = start.fits;
-  if (!known_estimate) memo->Remember(request, std::move(estimate));
-  if (!known_start) memo->Remember(std::move(start_request), std::move(start));
+  result->validation = std::move(answers[0].fits);
+  result->held_out_parameters = std::move(answers[0].parameters);
+  result->validation_residuals = std::move(answers[0].residuals);
+  const std::vector<ExperimentFit>& at_start = answers[1].fits;
   for (const ExperimentFit& fit : result->validation) {
     if (fit.diverged) result->summary.notes.push_back("validation: " + fit.message);
   }
@@ -268,18 +254,15 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     request.free_states = v.free_initial_states;
     request.per_run = per_run;
     request.values = final_values;
-    HeldOutAnswer answer;
-    if (memo.Find(request, true, true, &answer)) {
-      run.final_validation = std::move(answer.fits);
-      run.final_held_out_parameters = std::move(answer.parameters);
-      run.final_validation_residuals = std::move(answer.residuals);
-    } else if (!SimulateHeldOut(config, model, v.experiments, options, v.free_initial_states,
-                                request.local, final_values, &cache, &run.final_validation,
-                                error, per_run, &run.final_held_out_parameters,
-                                &run.final_validation_residuals)) {
+    request.parameters = request.residuals = true;
+    std::vector<HeldOutAnswer> answers;
+    if (!memo.Fit(config, {request}, &cache, &answers, error)) {
       *error = "final validation: " + *error;
       return false;
     }
+    run.final_validation = std::move(answers[0].fits);
+    run.final_held_out_parameters = std::move(answers[0].parameters);
+    run.final_validation_residuals = std::move(answers[0].residuals);
     for (const std::string& note : HeldOutBoundNotes(run.final_held_out_parameters)) {
       run.warnings.push_back("final " + note);
     }
