@@ -127,6 +127,23 @@ void SplitFields(std::string_view line, char separator, std::vector<std::string_
   }
 }
 
+// The number in a field (NaN when it is empty), or false with why it is not a measurement,
+// to follow "column '<name>': " in a message.
+bool ParseMeasurement(std::string_view field, double* value, std::string* why) {
+  *value = std::numeric_limits<double>::quiet_NaN();
+  if (!field.empty() && !ParseFiniteNumber(field, value)) {
+    *why = "'" + std::string(field) + "' is not a finite number";
+    return false;
+  }
+  if (std::abs(*value) > kMaxDataMagnitude) {
+    *why = std::string(field) +
+           " is too large for a measurement (|value| > 1e100; its square would overflow the "
+           "cost)";
+    return false;
+  }
+  return true;
+}
+
 // The header row's checks (a time column, named columns, no duplicates): the time column's
 // index and the channel names, or false with the message. `line` is the raw header row (to
 // name another separator it is split by).
@@ -202,6 +219,7 @@ bool ParseRowBlock(const RowBlock& block, const CsvReadOptions& options, size_t 
                    int time_column, int first_line, Trajectory* result,
                    std::vector<std::int64_t>* time_ns) {
   std::vector<std::string_view> fields;
+  std::string why;
   const char* p = block.text.data();
   const char* const end = p + block.text.size();
   size_t row = block.first_row;
@@ -215,9 +233,8 @@ bool ParseRowBlock(const RowBlock& block, const CsvReadOptions& options, size_t 
     if (fields.size() != fields_per_row) return false;
     size_t channel = 0;
     for (size_t i = 0; i < fields.size(); ++i) {
-      double value = std::numeric_limits<double>::quiet_NaN();
-      if (!fields[i].empty() && !ParseFiniteNumber(fields[i], &value)) return false;
-      if (std::abs(value) > kMaxDataMagnitude) return false;
+      double value;
+      if (!ParseMeasurement(fields[i], &value, &why)) return false;
       if (static_cast<int>(i) != time_column) {
         result->columns[channel++][row] = value;
         continue;
@@ -430,7 +447,6 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
   }
   result.columns.resize(result.names.size());
 
-  const double kMissing = std::numeric_limits<double>::quiet_NaN();
   std::uint64_t values = 0;
   std::vector<std::int64_t> time_ns;  // epoch logs: every time exactly, in nanoseconds
   while (next()) {
@@ -448,16 +464,9 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
     size_t channel = 0;
     for (size_t i = 0; i < fields.size(); ++i) {
       const std::string_view field = fields[i];
-      double value = kMissing;
-      if (!field.empty() && !ParseFiniteNumber(field, &value)) {
-        return fail("column '" + header[i] + "': '" + std::string(field) +
-                    "' is not a finite number");
-      }
-      if (std::abs(value) > kMaxDataMagnitude) {
-        return fail("column '" + header[i] + "': " + std::string(field) +
-                    " is too large for a measurement (|value| > 1e100; its square would "
-                    "overflow the cost)");
-      }
+      double value;
+      std::string why;
+      if (!ParseMeasurement(field, &value, &why)) return fail("column '" + header[i] + "': " + why);
       if (static_cast<int>(i) == time_column) {
         if (field.empty()) return fail("missing time value");
         if (result.t.empty()) result.epoch = std::abs(value) >= kEpochThreshold;
