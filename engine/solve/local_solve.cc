@@ -1,7 +1,9 @@
 #include "engine/solve/local_solve.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "engine/base/parallel_for.h"
 #include "engine/solve/metrics.h"
@@ -41,6 +43,26 @@ class AbandonCheck : public ceres::IterationCallback {
   const std::function<bool(int, double)>& keep_going_;
 };
 
+// Ends a crawl: LocalSolveOptions::stall_window and stall_tolerance.
+class StallCheck : public ceres::IterationCallback {
+ public:
+  StallCheck(int window, double tolerance) : window_(window), tolerance_(tolerance) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    // best_[i]: the lowest cost up to iteration i (a rejected step reports its own cost).
+    best_.push_back(best_.empty() ? summary.cost : std::min(best_.back(), summary.cost));
+    const size_t n = best_.size();
+    if (n <= static_cast<size_t>(window_)) return ceres::SOLVER_CONTINUE;
+    const double before = best_[n - 1 - window_];
+    return before - best_.back() < tolerance_ * before ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
+                                                       : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const int window_;
+  const double tolerance_;
+  std::vector<double> best_;
+};
+
 }  // namespace
 
 bool LocalSolveOptions::IsValid(std::string* error) const {
@@ -54,6 +76,8 @@ bool LocalSolveOptions::IsValid(std::string* error) const {
     *error = "parameter_tolerance must be >= 0";
   else if (!(max_time_seconds > 0.0))
     *error = "max_time_seconds must be > 0";
+  else if (stall_window < 0 || !(stall_tolerance >= 0.0))
+    *error = "stall_window and stall_tolerance must be >= 0";
   else if (num_threads < 0)
     *error = "num_threads must be >= 0 (0: the machine's cores)";
   else
@@ -130,6 +154,8 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
     ceres_options.callbacks.push_back(&abandon);
     ceres_options.update_state_every_iteration = true;  // keep_going may read the values
   }
+  StallCheck stall(options.stall_window, options.stall_tolerance);
+  if (options.stall_window > 0) ceres_options.callbacks.push_back(&stall);
   ceres::Solver::Summary ceres_summary;
   ceres::Solve(ceres_options, problem->problem(), &ceres_summary);
   if (threaded && ceres_summary.initial_cost >= 0.0 && ordered_initial >= 0.0) {

@@ -30,6 +30,12 @@ struct LocalSolveOptions {
   // USER_FAILURE, not usable); the problem's values are the iteration's when it is called.
   // A multistart's short solves use it. May be empty.
   std::function<bool(int, double)> keep_going;
+  // Stops, successfully (termination USER_SUCCESS), when the best cost of the last
+  // `stall_window` iterations is less than a fraction `stall_tolerance` below the best before
+  // them: a crawl along a valley that the relative change of one step (function_tolerance)
+  // does not end. 0: off.
+  int stall_window = 0;
+  double stall_tolerance = 0.0;
 
   bool IsValid(std::string* error) const;
 };

@@ -1,0 +1,74 @@
+// The local solve's stall stop (LocalSolveOptions::stall_window, stall_tolerance): it ends a
+// solve whose last iterations together gain less than the tolerance, successfully, at the
+// best point reached, and not before.
+#include "engine/solve/local_solve.h"
+
+#include <algorithm>
+
+#include "gtest/gtest.h"
+#include "problems/nomoto/handles.h"
+#include "tests/support/nomoto_data.h"
+
+namespace vesselid {
+namespace {
+
+// First-order Nomoto from a start far off (T 8x, K a third), so the solve takes a while.
+std::unique_ptr<OutputErrorProblem> FarStart(const ModelHandle& model) {
+  nomoto::ClosedLoopOptions loop;
+  loop.controller_gain = 0.7;
+  loop.duration = 120.0;
+  loop.sample_time = 0.05;
+  loop.excitation.amplitude = 0.3;
+  loop.excitation.periods = {20.0};
+  loop.seed = 1;
+  std::vector<Experiment> runs = {testing::MakeExperiment(model, {2.0, -0.17, 0.0}, loop,
+                                                          Interpolation::kCubic, "a")};
+  ParameterSpec t, k;
+  t.name = "T", t.start = 16.0, t.lower = 0.1, t.upper = 50.0;
+  k.name = "K", k.start = -0.05, k.lower = -1.0, k.upper = -0.001;
+  std::string error;
+  auto problem = OutputErrorProblem::Create(&model, runs, {t, k}, {}, &error);
+  EXPECT_NE(problem, nullptr) << error;
+  return problem;
+}
+
+TEST(LocalSolve, StallStopEndsACrawlAtItsBestPoint) {
+  auto model = nomoto::MakeFirstOrderHandle();
+  auto full = FarStart(*model);
+  LocalSolveOptions options;
+  LocalSolveSummary converged;
+  ASSERT_TRUE(RunLocalSolve(options, full.get(), &converged)) << converged.message;
+  EXPECT_EQ(converged.termination, "CONVERGENCE");
+  ASSERT_GT(converged.iterations, 6);
+
+  // A window of 2 iterations that must gain half the cost: stops as soon as two iterations
+  // together gain less, which a converging solve reaches well before its tolerances.
+  auto stalled = FarStart(*model);
+  options.stall_window = 2;
+  options.stall_tolerance = 0.5;
+  LocalSolveSummary summary;
+  ASSERT_TRUE(RunLocalSolve(options, stalled.get(), &summary)) << summary.message;
+  EXPECT_EQ(summary.termination, "USER_SUCCESS");
+  EXPECT_LT(summary.iterations, converged.iterations);
+  const std::vector<double>& h = summary.cost_history;
+  ASSERT_EQ(static_cast<int>(h.size()), summary.iterations + 1);
+  ASSERT_GT(h.size(), 2u);
+  // Stopped at the first iteration where the best cost gained less than half over two.
+  auto best = [&](size_t i) { return *std::min_element(h.begin(), h.begin() + i + 1); };
+  const size_t last = h.size() - 1;
+  EXPECT_LT(best(last - 2) - best(last), 0.5 * best(last - 2));
+  for (size_t i = 2; i < last; ++i) EXPECT_GE(best(i - 2) - best(i), 0.5 * best(i - 2)) << i;
+  // The values left are those of the best iteration.
+  double cost = 0.0;
+  ASSERT_TRUE(stalled->Cost(&cost));
+  EXPECT_NEAR(cost, best(last), 1e-12 * best(last));
+  EXPECT_GT(cost, converged.final_cost);
+
+  options.stall_window = -1;
+  std::string error;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("stall_window"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vesselid
