@@ -4,12 +4,12 @@
 
 #include "engine/run/held_out.h"
 #include "engine/run/held_out_memo.h"
+#include "engine/run/input_noise_warnings.h"
 #include "engine/run/least_squares_stage.h"
 #include "engine/run/output_error_stage.h"
 #include "engine/run/parameter_ledger.h"
 #include "engine/run/record_notes.h"
 #include "engine/run/records.h"
-#include "engine/run/input_noise_warnings.h"
 #include "engine/run/run_warnings.h"
 #include "engine/run/step_regression_stage.h"
 #include "engine/run/unit_warnings.h"
@@ -81,7 +81,8 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
   if (stage.velocity_validation && model.regression_form() != nullptr) {
     std::vector<std::string> diverged;
     if (!ValidateVelocities(config, model, stage.validation, velocity_data, values, cache,
-                            &result->velocity_validation, &diverged, error)) {
+                            &result->velocity_validation, &diverged, error,
+                            stage.options.local.num_threads)) {
       *error = "velocity validation: " + *error;
       return false;
     }
@@ -211,8 +212,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
   std::string stop;
   HeldOutMemo memo;  // the held-out passes of the stages run here (resumed ones aside)
   if (!RunStages(config, run.stages.size(), config.stages.size(), &cache, &memo, &ledger, &run,
-                 &stop,
-                 observer)) {
+                 &stop, observer)) {
     *error = stop;
     if (run.stages.empty()) return false;
     // The finished stages are a result: reported with where and why the run stopped.

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "engine/base/parallel_for.h"
+
 namespace vesselid {
 
 bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model, const std::vector<double>& p,
@@ -64,20 +66,42 @@ bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
                         const std::vector<std::string>& names, const RegressionDataOptions& data,
                         const std::vector<double>& p, TrajectoryCache* cache,
                         std::vector<ChannelMetrics>* metrics, std::vector<std::string>* diverged,
-                        std::string* error) {
+                        std::string* error, int threads) {
   metrics->clear();
-  for (const std::string& name : names) {
-    std::vector<RegressionRecord> records;
-    std::vector<ChannelMetrics> one_step, free_run;
-    if (!PrepareRegressionRecords(config, {name}, model, data, cache, &records, error) ||
-        !OneStepMetrics(model, p, LeastSquaresOptions(), &records, "one-step", &one_step, error) ||
-        !FreeRunMetrics(config, model, p, *cache, &records, &free_run, diverged, error)) {
+  // The records are prepared in turn (preparing notes skipped segments in the cache), then
+  // measured in parallel, each into its own slot, collected in the given order.
+  const int count = static_cast<int>(names.size());
+  std::vector<std::vector<RegressionRecord>> records(count);
+  for (int i = 0; i < count; ++i) {
+    if (!PrepareRegressionRecords(config, {names[i]}, model, data, cache, &records[i], error)) {
       return false;
     }
-    for (std::vector<ChannelMetrics>* part : {&one_step, &free_run}) {
-      for (ChannelMetrics& m : *part) {
-        m.experiment = name + " " + m.experiment;
-        metrics->push_back(m);
+  }
+  struct Measured {
+    bool ok = false;
+    std::string error;
+    std::vector<ChannelMetrics> one_step, free_run;
+    std::vector<std::string> diverged;
+  };
+  std::vector<Measured> measured(count);
+  ParallelFor(count, threads, [&](int i) {
+    Measured& m = measured[i];
+    m.ok =
+        OneStepMetrics(model, p, LeastSquaresOptions(), &records[i], "one-step", &m.one_step,
+                       &m.error) &&
+        FreeRunMetrics(config, model, p, *cache, &records[i], &m.free_run, &m.diverged, &m.error);
+  });
+  for (int i = 0; i < count; ++i) {
+    Measured& m = measured[i];
+    if (!m.ok) {
+      *error = m.error;
+      return false;
+    }
+    diverged->insert(diverged->end(), m.diverged.begin(), m.diverged.end());
+    for (std::vector<ChannelMetrics>* part : {&m.one_step, &m.free_run}) {
+      for (ChannelMetrics& c : *part) {
+        c.experiment = names[i] + " " + c.experiment;
+        metrics->push_back(std::move(c));
       }
     }
   }

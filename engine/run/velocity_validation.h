@@ -19,12 +19,13 @@ namespace vesselid {
 
 // Metrics per experiment and regressed state over every sample (whatever regions a stage was
 // fitted on), labelled "<experiment> one-step" and "<experiment> free-run". A record whose
-// free run diverges is left out of the free-run metrics with a line in `diverged`.
+// free run diverges is left out of the free-run metrics with a line in `diverged`. The records
+// are measured on `threads` (0: the machine's cores) with the same results on any number.
 bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
                         const std::vector<std::string>& names, const RegressionDataOptions& data,
                         const std::vector<double>& p, TrajectoryCache* cache,
                         std::vector<ChannelMetrics>* metrics, std::vector<std::string>* diverged,
-                        std::string* error);
+                        std::string* error, int threads = 0);
 
 // Free-run part on prepared records (which get the model's internal states at p).
 bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model, const std::vector<double>& p,

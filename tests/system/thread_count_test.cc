@@ -5,8 +5,8 @@
 // yaw disturbance and a quantised compass, logged in degrees) cut to four training runs and
 // two held-out runs, run with `local: {num_threads: 1}`, 2 and 3 (more threads than this
 // machine's cores included), and once with num_threads absent (the machine's cores). Ceres
-// evaluates the experiments' residual blocks on its threads and the held-out runs are fitted
-// in parallel; results.json must be the same bit for bit, timings apart.
+// evaluates the experiments' residual blocks on its threads, the held-out runs are fitted and
+// their velocities measured in parallel; results.json must be the same bit for bit, timings apart.
 //
 // Ceres 2.1 sums the cost and gradient per thread and then over threads, so the thread count
 // changes the last bits of the costs it reports (found here: the cost, the residual variance
@@ -128,6 +128,7 @@ TEST_F(ThreadCount, EstimatesCostsAndErrorsAreTheSameOnAnyNumberOfThreads) {
   ASSERT_EQ(stage["name"], "output_error");
   ASSERT_GT(stage["iterations"].get<int>(), 0);
   ASSERT_FALSE(stage["validation"].empty()) << "the held-out runs are part of the comparison";
+  ASSERT_FALSE(stage["velocity_validation"].empty()) << "measured per record in parallel";
   for (int threads : {2, 3, 0}) {
     const std::string name = "threads" + std::to_string(threads);
     ASSERT_EQ(Run(name, threads), 0) << threads << " threads";
