@@ -57,6 +57,19 @@ inline std::vector<ParameterSpec> FiftyPercentOff(const std::vector<double>& tru
   return specs;
 }
 
+// Two minutes at 20 Hz under a gain-0.7 autopilot, a 0.3 rad sine of `period` seconds on the
+// heading command: enough for a quick vessel (T ~ 2 s).
+inline nomoto::ClosedLoopOptions ShortLoop(double period, unsigned seed) {
+  nomoto::ClosedLoopOptions loop;
+  loop.controller_gain = 0.7;
+  loop.duration = 120.0;
+  loop.sample_time = 0.05;
+  loop.excitation.amplitude = 0.3;
+  loop.excitation.periods = {period};
+  loop.seed = seed;
+  return loop;
+}
+
 // Simulates `loop` with `model` and prepares the experiment comparing psi (delta as input).
 inline Experiment MakeExperiment(const ModelHandle& model, const std::vector<double>& truth,
                                  const nomoto::ClosedLoopOptions& loop,

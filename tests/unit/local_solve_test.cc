@@ -14,15 +14,8 @@ namespace {
 
 // First-order Nomoto from a start far off (T 8x, K a third), so the solve takes a while.
 std::unique_ptr<OutputErrorProblem> FarStart(const ModelHandle& model) {
-  nomoto::ClosedLoopOptions loop;
-  loop.controller_gain = 0.7;
-  loop.duration = 120.0;
-  loop.sample_time = 0.05;
-  loop.excitation.amplitude = 0.3;
-  loop.excitation.periods = {20.0};
-  loop.seed = 1;
-  std::vector<Experiment> runs = {testing::MakeExperiment(model, {2.0, -0.17, 0.0}, loop,
-                                                          Interpolation::kCubic, "a")};
+  std::vector<Experiment> runs = {testing::MakeExperiment(
+      model, {2.0, -0.17, 0.0}, testing::ShortLoop(20.0, 1), Interpolation::kCubic, "a")};
   ParameterSpec t, k;
   t.name = "T", t.start = 16.0, t.lower = 0.1, t.upper = 50.0;
   k.name = "K", k.start = -0.05, k.lower = -1.0, k.upper = -0.001;

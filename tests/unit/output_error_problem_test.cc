@@ -12,16 +12,7 @@
 namespace vesselid {
 namespace {
 
-nomoto::ClosedLoopOptions ShortLoop(double period, unsigned seed) {
-  nomoto::ClosedLoopOptions loop;
-  loop.controller_gain = 0.7;
-  loop.duration = 120.0;
-  loop.sample_time = 0.05;
-  loop.excitation.amplitude = 0.3;
-  loop.excitation.periods = {period};
-  loop.seed = seed;
-  return loop;
-}
+using testing::ShortLoop;
 
 ParameterSpec Spec(const std::string& name, double start, double lower, double upper,
                    ParameterRole role = ParameterRole::kFree) {
