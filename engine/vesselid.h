@@ -10,8 +10,9 @@
 //      (solve/stage.h), or RunLeastSquares (regression/least_squares.h) and RunStepRegression
 //      (step_regression/step_regression.h) for the equation-error starts;
 //   4. a staged run: a RunConfig (run/run_config.h), filled in C++ or loaded from YAML
-//      (config/config.h), run by RunIdentification (run/pipeline.h) into a RunResult
-//      (run/run_result.h), written by WriteRunResults (output/results_writer.h);
+//      (config/config.h), run and judged by Identify (diagnose/run_findings.h) into a
+//      RunResult (run/run_result.h) with its findings and verdict, written by WriteRunResults
+//      (output/results_writer.h);
 //   5. studies of a stage (study/study.h).
 //
 // examples/identify_zigzag.cc runs one stage, examples/staged_run.cc a staged run without
@@ -50,6 +51,10 @@
 #include "engine/run/pipeline.h"
 #include "engine/run/run_config.h"
 #include "engine/run/run_result.h"
+
+// The judgement of a run: typed findings and verdicts; Identify runs and judges.
+#include "engine/base/finding.h"
+#include "engine/diagnose/run_findings.h"
 
 // Studies and outputs.
 #include "engine/output/report_html.h"

@@ -79,7 +79,7 @@ int main() {
 
   RunResult result;
   std::string error;
-  if (!RunIdentification(config, &result, &error)) {
+  if (!Identify(config, &result, &error)) {
     std::fprintf(stderr, "%s\n", error.c_str());
     return 1;
   }

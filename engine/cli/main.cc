@@ -2,7 +2,8 @@
 //
 //   vesselid simulate <config.yaml> --out <dir>                 synthetic experiments
 //   vesselid run      <config.yaml> [--data <dir>] --out <dir>  staged identification
-//                     [--resume] [--quiet | --verbose] [--no-report]
+//                     [--resume] [--quiet | --verbose] [--no-report] [--strict]
+//   vesselid findings                                           the catalogue of finding kinds
 //   vesselid study    <config.yaml> [--data <dir>] --out <dir>  sensitivity studies (the
 //                     [--only part...] [--threads n]             config's `study` section;
 //                                                                also under mpirun -np K)
@@ -16,7 +17,9 @@
 #include "engine/base/parallel_for.h"
 #include "engine/cli/terminal_progress.h"
 #include "engine/config/config.h"
+#include "engine/diagnose/run_findings.h"
 #include "engine/output/checkpoint.h"
+#include "engine/output/finding_report.h"
 #include "engine/output/output_folder.h"
 #include "engine/output/results_text.h"
 #include "engine/output/results_writer.h"
@@ -83,7 +86,12 @@ struct RunFlags {
   bool verbose = false;
   bool resume = false;
   bool no_report = false;  // batch use: results.json, report.txt and traces, no report.html
+  bool strict = false;     // exit 3 on a doubtful verdict, 4 on a failed one
 };
+
+// Exit codes of a finished run under --strict (0 otherwise, whatever the verdict).
+constexpr int kExitDoubtful = 3;
+constexpr int kExitFailed = 4;
 
 // A staged run: progress on stderr, a checkpoint in out_dir after each stage; with --resume,
 // the stages an earlier run of the same config and data finished are loaded, not rerun.
@@ -130,7 +138,7 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
   };
   vesselid::RunResult result;
   const bool complete =
-      vesselid::RunIdentification(config, &result, &error, observer, std::move(finished));
+      vesselid::Identify(config, &result, &error, observer, std::move(finished));
   // A run that stopped after finishing a stage still writes what it finished.
   if (!complete && result.stages.empty()) return Fail(error);
   std::string write_error;
@@ -138,8 +146,13 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
     return Fail(write_error);
   }
   if (!flags.quiet) std::cout << vesselid::RunResultToText(config, result);
-  for (const std::string& w : result.warnings) {
-    std::fprintf(stderr, "vesselid: warning: %s\n", w.c_str());
+  // Failures and warnings on stderr (notes too with --verbose), the verdict last.
+  const std::vector<vesselid::Finding> findings = vesselid::AllFindings(result);
+  if (!flags.quiet) {
+    for (const vesselid::Finding& f : findings) {
+      if (f.severity == vesselid::FindingSeverity::kInfo && !flags.verbose) continue;
+      std::fprintf(stderr, "vesselid: %s\n", vesselid::DescribeFinding(f).c_str());
+    }
   }
   std::printf("\nresults written to %s/results.json\n", out_dir.c_str());
   if (!complete) {
@@ -147,6 +160,9 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
                 std::to_string(result.stages.size()) + " finished stage(s) are in " + out_dir +
                 "/results.json");
   }
+  std::fprintf(stderr, "vesselid: %s\n", vesselid::VerdictLine(result.verdict, findings).c_str());
+  if (flags.strict && result.verdict == vesselid::Verdict::kDoubtful) return kExitDoubtful;
+  if (flags.strict && result.verdict == vesselid::Verdict::kFailed) return kExitFailed;
   return 0;
 }
 
@@ -236,6 +252,13 @@ int main(int argc, char** argv) {
                 "batch use: write results.json, report.txt and traces/ but no report.html "
                 "(an earlier one in --out is removed)");
 
+  run->add_flag("--strict", run_flags.strict,
+                "batch and CI use: exit 3 when the verdict is doubtful and 4 when it is failed "
+                "(every output is written either way)");
+
+  CLI::App* findings = app.add_subcommand(
+      "findings", "print the catalogue of finding kinds: rule, severity, what to do (Markdown)");
+
   CLI::App* study = app.add_subcommand(
       "study", "sensitivity studies: profile likelihood, Monte Carlo, start points, partitions");
   study->add_option("config", config_path, "run configuration (YAML) with a study section")
@@ -253,6 +276,10 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   if (simulate->parsed()) return Simulate(config_path, out_dir);
+  if (findings->parsed()) {
+    std::cout << vesselid::FindingCatalogueMarkdown();
+    return 0;
+  }
   if (study->parsed()) return Study(config_path, data_dir, out_dir, only, threads, quiet);
   return Run(config_path, data_dir, out_dir, run_flags);
 }

@@ -5,7 +5,7 @@
 //   * a range max - min > 2 pi while the channel swings back and forth: its travel (the
 //     sum of moves larger than kSwingBand, so that noise does not add up) exceeds 1.5 x the
 //     range. Whole turns logged unwrapped in radians travel about their range once.
-// A run warns (unit_warnings.h); it cannot refuse: no series proves its unit.
+// A run warns (unit_findings.h); it cannot refuse: no series proves its unit.
 #pragma once
 
 #include <string>

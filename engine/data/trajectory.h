@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/base/finding.h"
+
 #include "engine/base/work_limits.h"
 
 namespace vesselid {
@@ -20,9 +22,9 @@ struct Trajectory {
   // Local positions from GNSS fixes (gnss_position.h): their origin in degrees.
   bool position_origin = false;
   double origin_lat = 0.0, origin_lon = 0.0;
-  // What preparing the data did to it (epoch origin, removed samples, resampling), one line
-  // per concern naming the experiment: reported with the run's warnings.
-  std::vector<std::string> notes;
+  // What preparing the data did to it (epoch origin, removed samples, resampling, skipped
+  // pieces), one finding per concern naming the experiment: reported with the run's.
+  std::vector<Finding> findings;
   std::vector<std::string> names;            // channel names, header order (without t)
   std::vector<std::vector<double>> columns;  // columns[c][k], NaN where missing
 

@@ -84,8 +84,14 @@ bool Screen(const ExperimentSpec& spec, const GnssPositionReport& gnss, Trajecto
     findings.insert(findings.end(), more.begin(), more.end());
   }
   if (findings.empty()) return true;
-  data->notes.push_back("experiment '" + spec.name + "': removed " + DescribeGlitches(findings) +
-                        (d.screen ? " (" + d.screen_key + ")" : ""));
+  Finding removed = MakeFinding(FindingKind::kSamplesRemoved,
+                                "removed " + DescribeGlitches(findings) +
+                                    (d.screen ? " (" + d.screen_key + ")" : ""));
+  removed.experiment = spec.name;
+  removed.count = 0;
+  for (const GlitchFinding& g : findings) removed.count += g.count;
+  removed.value = removed.count;
+  data->findings.push_back(std::move(removed));
   return true;
 }
 
@@ -110,7 +116,7 @@ bool ResampleRecord(const ExperimentSpec& spec, Trajectory* data, std::string* e
                 "interpolated linearly across gaps of up to %g samples, other columns held)",
                 options.rate, report.rows_after, report.rows_before, outputs.c_str(),
                 options.max_gap);
-  std::string note = "experiment '" + spec.name + text;
+  std::string note = text + 3;  // after "': "
   if (report.outside > 0) {
     note += "; " + std::to_string(report.outside) +
             " grid point(s) in gaps of the log itself left empty";
@@ -119,7 +125,10 @@ bool ResampleRecord(const ExperimentSpec& spec, Trajectory* data, std::string* e
     note += "; " + std::to_string(count) + " grid point(s) of " + column +
             " left empty in its longer gaps";
   }
-  data->notes.push_back(note);
+  Finding resampled = MakeFinding(FindingKind::kResampled, note);
+  resampled.experiment = spec.name;
+  resampled.value = options.rate;
+  data->findings.push_back(std::move(resampled));
   return true;
 }
 
@@ -132,11 +141,13 @@ bool LoadExperimentData(const ExperimentSpec& spec, Trajectory* trajectory, std:
     return false;
   };
   if (trajectory->epoch) {
-    trajectory->notes.push_back("experiment '" + spec.name +
-                                "': times are Unix epoch seconds; t = 0 is " +
-                                FormatNanoseconds(trajectory->time_origin_ns) + " (" +
-                                FormatUtc(trajectory->time_origin_ns) +
-                                "), and windows, segments and reported times count from there");
+    Finding origin = MakeFinding(FindingKind::kRecordOrigin,
+                                 "times are Unix epoch seconds; t = 0 is " +
+                                     FormatNanoseconds(trajectory->time_origin_ns) + " (" +
+                                     FormatUtc(trajectory->time_origin_ns) +
+                                     "), and windows, segments and reported times count from there");
+    origin.experiment = spec.name;
+    trajectory->findings.push_back(std::move(origin));
   }
   GnssPositionReport gnss;
   if (spec.data.position && !AddLocalPositions(spec.data.gnss, trajectory, &gnss, error)) {

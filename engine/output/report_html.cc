@@ -1,6 +1,7 @@
 #include "engine/output/report_html.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -9,6 +10,7 @@
 #include "engine/output/base64.h"
 #include "engine/output/display_units.h"
 #include "engine/output/bootstrap_report.h"
+#include "engine/output/finding_report.h"
 #include "engine/output/held_out_parameters_report.h"
 #include "engine/output/noise_model_report.h"
 #include "engine/output/parameter_summary.h"
@@ -19,7 +21,6 @@
 #include "engine/output/residual_report.h"
 #include "engine/output/zigzag_report.h"
 #include "engine/run/held_out.h"
-#include "engine/run/run_warnings.h"
 
 namespace vesselid {
 namespace {
@@ -27,7 +28,9 @@ namespace {
 constexpr char kStyle[] = R"(<style>
 body { font-family: "DejaVu Sans", Verdana, Arial, sans-serif; font-size: 14px; line-height: 1.45;
        color: #222; max-width: 1180px; margin: 0 auto; padding: 0 24px 60px; }
-.warnings li, p.warning { color: #8a1c1c; }
+.warnings li, p.warning, .findings.failure li, p.verdict.failed { color: #8a1c1c; }
+.findings.warning li, p.verdict.doubtful { color: #8a5a00; }
+p.verdict.good { color: #1c6a1c; }
 h1 { font-size: 24px; border-bottom: 2px solid #34506b; padding-bottom: 6px; }
 h2 { font-size: 20px; margin-top: 44px; border-bottom: 1px solid #c8d0d8; padding-bottom: 3px; }
 h3 { font-size: 16px; margin: 26px 0 6px; color: #34506b; }
@@ -235,6 +238,12 @@ void StageSection(const RunConfig& config, const StageResult& stage, size_t numb
        << "</td></tr>\n</table>\n<p>" << HtmlEscape(DescribeCounts(CountUnknowns(stage.estimates)))
        << ".</p>\n";
   if (s.global.run) html << "<p>" << HtmlEscape(s.global.BriefReport()) << "</p>\n";
+  html << "<p class=\"verdict " << VerdictToString(stage.verdict) << "\">"
+       << HtmlEscape(VerdictLine(stage.verdict, stage.findings));
+  if (std::isfinite(stage.comparable_cost)) {
+    html << "; comparable cost (configured weights) " << HtmlNumber(stage.comparable_cost, "%.6e");
+  }
+  html << "</p>\n" << FindingsHtml(stage.findings);
   std::vector<std::string> notes = s.notes;
   if (!s.uncertainty.available && !s.uncertainty.message.empty()) {
     notes.push_back("uncertainty: " + s.uncertainty.message);
@@ -245,12 +254,10 @@ void StageSection(const RunConfig& config, const StageResult& stage, size_t numb
                                                          : " (" + s.uncertainty.method_reason + ")"));
   }
   for (const std::string& d : s.uncertainty.undetermined) notes.push_back("undetermined: " + d);
-  for (const std::string& a : stage.admissibility) notes.push_back("not admissible: " + a);
   if (stage.held_out.done) {
     notes.push_back("held-out check against the stage's start: " + DescribeHeldOut(stage.held_out) +
                     (stage.held_out.worse ? " (worse)" : " (not worse)"));
   }
-  if (!stage.rejected.empty()) notes.insert(notes.begin(), "set aside: " + stage.rejected);
   if (!notes.empty()) {
     html << "<ul class=\"notes\">\n";
     for (const std::string& note : notes) html << "<li>" << HtmlEscape(note) << "</li>\n";
@@ -336,16 +343,15 @@ void FinalSection(const RunConfig& config, const RunResult& result, ReportPage* 
        << HtmlEscape(FusionRuleToString(config.fusion))
        << "</strong> rule; isolated and free ones from the last stage that estimated them. Their "
           "values and intervals are in the <a href=\"#summary-parameters\">summary</a>.</p>\n";
-  std::vector<std::string> doubts;
-  for (const std::string& a : result.admissibility) doubts.push_back("not admissible: " + a);
-  FinalHeldOutFailed(result, &doubts);
+  std::vector<Finding> doubts;
+  for (const Finding& f : result.findings) {
+    if (f.stage == "final") doubts.push_back(f);
+  }
   if (doubts.empty()) {
     html << "<p>The final values are admissible"
          << (result.final_validation.empty() ? "" : " and predict the held-out data") << ".</p>\n";
   } else {
-    html << "<ul class=\"notes\">\n";
-    for (const std::string& d : doubts) html << "<li>" << HtmlEscape(d) << "</li>\n";
-    html << "</ul>\n";
+    html << FindingsHtml(doubts);
   }
   if (!result.final_validation.empty() || !result.final_velocity_validation.empty()) {
     html << "<h3 id=\"final-validation\">Final validation</h3>\n";

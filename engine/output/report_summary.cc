@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "engine/output/finding_report.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/output/report_table_cells.h"
 #include "engine/output/report_tables.h"
@@ -137,6 +138,9 @@ std::string FinalParametersSummaryHtml(const RunResult& result) {
 
 std::string SummarySectionHtml(const RunConfig& config, const RunResult& result) {
   std::string out = "<section id=\"summary\">\n<h2>Summary</h2>\n";
+  const std::vector<Finding> all = AllFindings(result);
+  out += "<p class=\"verdict " + std::string(VerdictToString(result.verdict)) + "\"><strong>" +
+         HtmlEscape(VerdictLine(result.verdict, all)) + "</strong></p>\n";
   out += "<h3 id=\"summary-parameters\">Final parameters</h3>\n<p>" +
          HtmlEscape(DescribeCounts(CountUnknowns(result))) +
          "; shared parameters fused by the <strong>" +
@@ -151,14 +155,8 @@ std::string SummarySectionHtml(const RunConfig& config, const RunResult& result)
     out += "<h3 id=\"summary-validation\">Fit per run: final values on held-out data</h3>\n" +
            RunFitTableHtml(PerRunFits(config, result.final_validation));
   }
-  out += "<h3 id=\"warnings\">Warnings (" + std::to_string(result.warnings.size()) + ")</h3>\n";
-  if (result.warnings.empty()) {
-    out += "<p>None.</p>\n";
-  } else {
-    out += "<ul class=\"warnings\">\n";
-    for (const std::string& w : result.warnings) out += "<li>" + HtmlEscape(w) + "</li>\n";
-    out += "</ul>\n";
-  }
+  out += "<h3 id=\"warnings\">Findings (" + std::to_string(all.size()) + ")</h3>\n";
+  out += all.empty() ? std::string("<p>None.</p>\n") : FindingsHtml(all);
   return out + "</section>\n";
 }
 

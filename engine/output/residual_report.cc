@@ -9,7 +9,7 @@
 #include "engine/base/json_number.h"
 #include "engine/output/report_table_cells.h"
 #include "engine/output/report_tables.h"
-#include "engine/run/residual_warnings.h"
+#include "engine/diagnose/residual_findings.h"
 
 namespace vesselid {
 namespace {

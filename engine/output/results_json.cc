@@ -3,6 +3,7 @@
 #include "engine/base/json_number.h"
 #include "engine/data/time_base.h"
 #include "engine/output/display_units.h"
+#include "engine/output/finding_report.h"
 #include "engine/output/bootstrap_report.h"
 #include "engine/output/held_out_parameters_report.h"
 #include "engine/output/noise_model_report.h"
@@ -189,6 +190,8 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
   const StageSummary& s = stage.summary;
   json j;
   j["name"] = stage.name;
+  j["verdict"] = VerdictToString(stage.verdict);
+  j["findings"] = FindingsToJson(stage.findings);
   j["model"] = stage.model;
   j["time_seconds"] = s.time_seconds;
   if (s.global.run) {
@@ -215,6 +218,10 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
   j["refinements"] = refinements;
   j["chosen_refinement"] = s.chosen;
   j["cost"] = s.local().final_cost;
+  // The cost at the estimate with the configured weights: comparable across end points,
+  // starts, runs and tools whatever the noise model did (StageResult::comparable_cost).
+  j["comparable_cost"] = JsonNumber(stage.comparable_cost);
+  j["comparable_cost_weights"] = "configured";
   j["iterations"] = s.local().iterations;
   j["notes"] = s.notes;
   j["counts"] = CountsToJson(CountUnknowns(stage.estimates));
@@ -294,10 +301,12 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
 json RunResultToJson(const RunConfig& config, const RunResult& result) {
   json j;
   j["vesselid_version"] = "0.1.0";
+  // The verdict first: a reader (or a script) sees it before anything else.
   j["config"] = config.path;
   j["model"] = {{"family", config.family}, {"name", config.model->info().name}};
   j["time_seconds"] = result.time_seconds;
-  j["warnings"] = result.warnings;
+  j["verdict"] = VerdictToString(result.verdict);
+  j["findings"] = FindingsToJson(result.findings);
   // Where relative times (epoch logs) and local positions (GNSS) start, per experiment.
   for (const RecordOrigin& o : result.record_origins) {
     json& origin = j["record_origins"][o.experiment];

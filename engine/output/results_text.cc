@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "engine/output/bootstrap_report.h"
+#include "engine/output/finding_report.h"
 #include "engine/output/held_out_parameters_report.h"
 #include "engine/output/noise_model_report.h"
 #include "engine/output/parameter_summary.h"
@@ -124,6 +125,12 @@ std::string StageText(const RunConfig& config, const StageResult& stage) {
   std::ostringstream out;
   char line[512];
   out << "\n" << s.BriefReport() << " [" << stage.model << "]\n";
+  out << "  " << VerdictLine(stage.verdict, stage.findings) << "\n";
+  if (std::isfinite(stage.comparable_cost)) {
+    std::snprintf(line, sizeof(line), "  comparable cost (configured weights): %.6e\n",
+                  stage.comparable_cost);
+    out << line;
+  }
   out << "  " << DescribeCounts(CountUnknowns(stage.estimates)) << "\n";
   if (s.global.run) out << "  " << s.global.BriefReport() << "\n";
   std::snprintf(line, sizeof(line), "  %-24s %-15s %16s %12s %10s\n", "name", "role", "value",
@@ -140,6 +147,7 @@ std::string StageText(const RunConfig& config, const StageResult& stage) {
         << "\n";
   }
   out << NoiseModelText(config, stage);
+  out << FindingsText(stage.findings, true, "  ");
   for (const std::string& note : s.notes) out << "  note: " << note << "\n";
   for (const std::string& d : s.uncertainty.undetermined) out << "  undetermined: " << d << "\n";
   for (const std::string& a : stage.admissibility) out << "  not admissible: " << a << "\n";
@@ -245,6 +253,9 @@ const StageResult* LastAcceptedStage(const RunResult& result) {
 
 std::string RunResultToText(const RunConfig& config, const RunResult& result) {
   std::ostringstream out;
+  const std::vector<Finding> all = AllFindings(result);
+  // The verdict is the first line (run_findings.h states its rule).
+  out << VerdictLine(result.verdict, all) << "\n";
   out << "vesselid run of " << config.path << " (model " << config.model->info().name << ")\n";
   if (!result.stopped_stage.empty()) {
     out << "STOPPED in stage '" << result.stopped_stage << "': " << result.stop_message << "\n";
@@ -259,11 +270,10 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
     out << "\n  fit per run, final values on held-out data:\n"
         << MetricsTable(config, result.final_validation);
   }
-  if (result.warnings.empty()) {
-    out << "\n  no warnings\n";
+  if (all.empty()) {
+    out << "\nfindings: none\n";
   } else {
-    out << "\nwarnings (" << result.warnings.size() << ")\n";
-    for (const std::string& w : result.warnings) out << "  warning: " << w << "\n";
+    out << "\nfindings (" << all.size() << ")\n" << FindingsText(all, true, "  ");
   }
   out << "\nstages\n";
   for (const StageResult& stage : result.stages) out << StageText(config, stage);

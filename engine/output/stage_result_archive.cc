@@ -124,8 +124,24 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ResidualAnalysis, experiment, output, samples
                                    autocorrelation, band_99, band_95, ljung_box_q, ljung_box_p,
                                    lag1, white, cross_correlation, input_correlated,
                                    interval_spread, noise_free)
+// Kind and severity as the words results.json uses; an unknown word fails the archive.
+void to_json(nlohmann::json& j, FindingKind kind) { j = FindingKindToString(kind); }
+void from_json(const nlohmann::json& j, FindingKind& kind) {
+  if (!StringToFindingKind(j.get<std::string>(), &kind)) {
+    throw nlohmann::json::other_error::create(501, "unknown finding kind " + j.dump(), &j);
+  }
+}
+void to_json(nlohmann::json& j, FindingSeverity severity) { j = FindingSeverityToString(severity); }
+void from_json(const nlohmann::json& j, FindingSeverity& severity) {
+  if (!StringToFindingSeverity(j.get<std::string>(), &severity)) {
+    throw nlohmann::json::other_error::create(501, "unknown finding severity " + j.dump(), &j);
+  }
+}
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Finding, kind, severity, stage, experiment, segment, parameter,
+                                   output, value, threshold, count, message)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(StageSummary, name, usable, message, global, refinements,
-                                   chosen, uncertainty, analysis, fits, notes, time_seconds)
+                                   chosen, uncertainty, analysis, fits, notes, findings,
+                                   time_seconds)
 // Kind and role as the words results.json uses; an unknown word fails the archive.
 void to_json(nlohmann::json& j, EstimateKind kind) { j = EstimateKindToString(kind); }
 void from_json(const nlohmann::json& j, EstimateKind& kind) {
@@ -164,8 +180,9 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BootstrapSummary, runs, failed, groups, resam
 
 namespace {
 // 3: Uncertainty method, hessian_std_errors, method_reason, hac_bandwidth; 4: bootstrap runs,
-// failed, block length; 6: traces' samples as byte strings
-constexpr int kArchiveVersion = 6;
+// failed, block length; 6: traces' samples as byte strings; 7: typed solver findings,
+// comparable cost
+constexpr int kArchiveVersion = 7;
 }  // namespace
 
 nlohmann::json StageResultToArchive(const StageResult& stage) {
@@ -182,6 +199,7 @@ nlohmann::json StageResultToArchive(const StageResult& stage) {
                       {"held_out_parameters", stage.held_out_parameters},
                       {"rejected", stage.rejected},
                       {"integration_step", stage.integration_step},
+                      {"comparable_cost", stage.comparable_cost},
                       {"noise_model", stage.noise_model},
                       {"velocity_validation", stage.velocity_validation},
                       {"residuals", stage.residuals},
@@ -213,6 +231,7 @@ bool StageResultFromArchive(const nlohmann::json& j, StageResult* stage, std::st
       j.at("held_out_parameters").get_to(s.held_out_parameters);
     j.at("rejected").get_to(s.rejected);
     j.at("integration_step").get_to(s.integration_step);
+    j.at("comparable_cost").get_to(s.comparable_cost);
     // Absent from archives written before stages had a noise model (configured weights).
     if (j.contains("noise_model")) j.at("noise_model").get_to(s.noise_model);
     j.at("velocity_validation").get_to(s.velocity_validation);

@@ -160,8 +160,8 @@ void BootstrapStageUncertainty(const StageOptions& options, const OutputErrorOpt
   const std::vector<Experiment>& original = solved->experiments();
   const int count = static_cast<int>(original.size());
   if (!blocks && count < kMinBootstrapExperiments) {
-    summary->notes.push_back(std::string(kBootstrapNote) + " " +
-                             ExperimentBootstrapRefusal(options.name, count) + keeping);
+    summary->findings.push_back(MakeFinding(
+        FindingKind::kBootstrap, ExperimentBootstrapRefusal(options.name, count) + keeping));
     return;
   }
   // The variables reported: those of the stage's covariance, else every free one.
@@ -192,9 +192,10 @@ void BootstrapStageUncertainty(const StageOptions& options, const OutputErrorOpt
     for (int e = 0; e < count; ++e) {
       std::vector<double> d;
       if (!SimulatedMinusMeasured(residuals, e, &d)) {
-        summary->notes.push_back(std::string(kBootstrapNote) + " " + method +
-                                 ": the residuals of " + original[e].name +
-                                 " could not be evaluated" + keeping);
+        summary->findings.push_back(MakeFinding(FindingKind::kBootstrap,
+                                                std::string(method) + ": the residuals of " +
+                                                    original[e].name +
+                                                    " could not be evaluated" + keeping));
         return;
       }
       data.filled.push_back(NodeFilled(original[e], d));
@@ -249,18 +250,20 @@ void BootstrapStageUncertainty(const StageOptions& options, const OutputErrorOpt
   const int failed = runs - static_cast<int>(good_values.size());
   char text[512];
   if (static_cast<int>(good_values.size()) < kMinBootstrapRuns) {
-    std::snprintf(text, sizeof(text), "%s %s: only %d of %d replicates solved", kBootstrapNote,
-                  method, runs - failed, runs);
-    summary->notes.push_back(text + keeping);
+    std::snprintf(text, sizeof(text), "%s: only %d of %d replicates solved", method,
+                  runs - failed, runs);
+    summary->findings.push_back(MakeFinding(FindingKind::kBootstrap, text + keeping));
     return;
   }
   if (failed > kBootstrapFailureWarning * runs) {
     std::snprintf(text, sizeof(text),
-                  "%s %s: %d of %d replicates failed to solve (more than %.0f %%); the "
+                  "%s: %d of %d replicates failed to solve (more than %.0f %%); the "
                   "covariance comes from the %d that did and may be too narrow",
-                  kBootstrapNote, method, failed, runs, 100 * kBootstrapFailureWarning,
-                  runs - failed);
-    summary->notes.push_back(text);
+                  method, failed, runs, 100 * kBootstrapFailureWarning, runs - failed);
+    Finding lost = MakeFinding(FindingKind::kBootstrap, text);
+    lost.value = static_cast<double>(failed) / runs;
+    lost.threshold = kBootstrapFailureWarning;
+    summary->findings.push_back(std::move(lost));
   }
   Uncertainty u;
   u.available = true;
@@ -294,9 +297,12 @@ void BootstrapStageUncertainty(const StageOptions& options, const OutputErrorOpt
     }
   }
   if (!constant.empty()) {
-    summary->notes.push_back(std::string(kBootstrapNote) + " " + method + ": " + constant +
-                             " took the same value in every replicate (held by a bound): the "
-                             "standard error 0 does not measure its uncertainty");
+    Finding held = MakeFinding(FindingKind::kBootstrap,
+                               std::string(method) + ": " + constant +
+                                   " took the same value in every replicate (held by a bound): "
+                                   "the standard error 0 does not measure its uncertainty");
+    held.parameter = constant;
+    summary->findings.push_back(std::move(held));
   }
   summary->uncertainty = std::move(u);
 }

@@ -22,8 +22,6 @@ namespace vesselid {
 inline constexpr int kMinBootstrapExperiments = 5;
 // Share of failed replicates above which a warning is given.
 inline constexpr double kBootstrapFailureWarning = 0.1;
-// Prefix of the bootstrap's notes that are warnings (run_warnings.cc).
-inline constexpr char kBootstrapNote[] = "uncertainty bootstrap:";
 
 // The refusal of experiment_bootstrap for stage `stage` with `count` experiments.
 std::string ExperimentBootstrapRefusal(const std::string& stage, int count);

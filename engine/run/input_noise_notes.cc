@@ -6,8 +6,9 @@
 
 namespace vesselid {
 
-std::vector<std::string> InputNoiseNotes(const OutputErrorProblem& problem) {
-  std::vector<std::string> notes;
+void InputNoiseNotes(const OutputErrorProblem& problem, std::vector<std::string>* notes_out,
+                     std::vector<Finding>* findings) {
+  std::vector<std::string>& notes = *notes_out;
   const ModelInfo& info = problem.model().info();
   std::string noisy;  // "delta 0.1 deg" per noisy input, for the bootstrap suggestion
   for (size_t e = 0; e < problem.experiments().size(); ++e) {
@@ -51,14 +52,14 @@ std::vector<std::string> InputNoiseNotes(const OutputErrorProblem& problem) {
     }
   }
   if (!noisy.empty()) {
-    notes.push_back(std::string(kInputNoiseIntervalNote) +
-                    " the standard errors hold the latent input splines as exact and miss the "
+    findings->push_back(MakeFinding(
+        FindingKind::kNarrowIntervals,
+                    "the standard errors hold the latent input splines as exact and miss the "
                     "input noise they pass, so they may be too narrow (1.5-2.3x in the cargo "
                     "multi-sine Monte Carlo); for intervals run the parametric bootstrap "
                     "`study: {monte_carlo: {truth: estimate, noise: {" + noisy + "}}}` (SD in "
-                    "model units), which fits the splines again in every run");
+                    "model units), which fits the splines again in every run"));
   }
-  return notes;
 }
 
 }  // namespace vesselid

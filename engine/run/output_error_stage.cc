@@ -63,8 +63,7 @@ StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>
         result.correlation(a, b) = u.correlation(kept[a], kept[b]);
     }
   }
-  const std::vector<std::string> input_noise = InputNoiseNotes(problem);
-  summary.notes.insert(summary.notes.end(), input_noise.begin(), input_noise.end());
+  InputNoiseNotes(problem, &summary.notes, &summary.findings);
   result.summary = std::move(summary);
   return result;
 }
@@ -95,6 +94,11 @@ std::unique_ptr<OutputErrorProblem> RefineFrom(const OutputErrorProblem& solved,
     return nullptr;
   }
   again.notes.insert(again.notes.begin(), summary->notes.begin(), summary->notes.end());
+  // What the earlier solves found about the process stays; what they found about their own
+  // estimate (its intervals) the new solve finds again for its own.
+  for (const Finding& f : summary->findings) {
+    if (f.kind != FindingKind::kNarrowIntervals) again.findings.push_back(f);
+  }
   again.name = summary->name;
   *summary = std::move(again);
   return refined;
@@ -116,16 +120,24 @@ bool FollowTheDynamics(const RunConfig& config, const StageConfig& stage, const 
       for (const ChannelMetrics& m : fit.channels) failed |= FitFailed(m);
     }
     if (failed) {  // a shorter step would refine a fit that missed the data anyway
-      summary->notes.push_back("integration step too long for the estimate's dynamics (" +
-                               stability.Describe() +
-                               "), and the fit failed: not refined again at a shorter step");
+      Finding f = MakeFinding(FindingKind::kIntegrationStep,
+                              "integration step too long for the estimate's dynamics (" +
+                                  stability.Describe() +
+                                  "), and the fit failed: not refined again at a shorter step");
+      f.value = stability.worst;
+      f.threshold = kStepStabilityLimit;
+      summary->findings.push_back(std::move(f));
       return true;
     }
     if (reduction == kMaxStepReductions) {
-      summary->notes.push_back("integration step too long for the estimate's dynamics after " +
-                               std::to_string(kMaxStepReductions) +
-                               " reductions: " + stability.Describe() +
-                               "; the estimate may fit the integrator, not the vessel");
+      Finding f = MakeFinding(FindingKind::kIntegrationStep,
+                              "integration step too long for the estimate's dynamics after " +
+                                  std::to_string(kMaxStepReductions) +
+                                  " reductions: " + stability.Describe() +
+                                  "; the estimate may fit the integrator, not the vessel");
+      f.value = stability.worst;
+      f.threshold = kStepStabilityLimit;
+      summary->findings.push_back(std::move(f));
       return true;
     }
     finer.max_step = stability.SafeStep();
@@ -133,7 +145,11 @@ bool FollowTheDynamics(const RunConfig& config, const StageConfig& stage, const 
     std::snprintf(
         text, sizeof(text),
         "integration step reduced to %.3g s and the stage refined again: ", finer.max_step);
-    summary->notes.push_back(text + stability.Describe());
+    // Handled: the stage is solved again at a step that follows the dynamics.
+    Finding reduced = MakeFinding(FindingKind::kIntegrationStep, text + stability.Describe());
+    reduced.severity = FindingSeverity::kInfo;
+    reduced.value = finer.max_step;
+    summary->findings.push_back(std::move(reduced));
     std::vector<Experiment> experiments;
     if (!PrepareExperiments(config, stage.experiments, model, finer, cache, &experiments, error)) {
       return false;
@@ -210,15 +226,25 @@ bool HandleOutliers(const StageConfig& stage, const StageOptions& options,
   };
   if (!costly.empty()) {
     for (auto& [cost, name] : costly) name += Format(" (%.3g)", cost);
-    summary->notes.push_back(
-        "outliers: " + std::to_string(costly.size()) + " of " + std::to_string(count) +
-        " experiments fit far worse than the rest (RMS cost above " + Format("%.3g", limit) +
-        " = median + " + Format("%g", stage.outliers.threshold) + " x MAD): " + list(costly));
+    Finding f = MakeFinding(
+        FindingKind::kOutliers,
+        std::to_string(costly.size()) + " of " + std::to_string(count) +
+            " experiments fit far worse than the rest (RMS cost above " + Format("%.3g", limit) +
+            " = median + " + Format("%g", stage.outliers.threshold) + " x MAD): " + list(costly));
+    f.count = static_cast<int>(costly.size());
+    f.threshold = limit;
+    summary->findings.push_back(std::move(f));
   }
   if (!far.empty()) {
-    summary->notes.push_back("outliers: " + std::to_string(far.size()) + " of " +
-                             std::to_string(free_states) +
-                             " initial states end far from the data's guess: " + list(far));
+    Finding f = MakeFinding(FindingKind::kOutliers,
+                            std::to_string(far.size()) + " of " + std::to_string(free_states) +
+                                " initial states end far from the data's guess: " + list(far));
+    f.count = static_cast<int>(far.size());
+    f.threshold = 3.0;
+    // The guess is the data's own (a derivative of smooth model-test records is sharply
+    // "known"), so a state far from it is no doubt about the fit: context.
+    f.severity = FindingSeverity::kInfo;
+    summary->findings.push_back(std::move(f));
   }
   if (stage.outliers.action == OutlierOptions::Action::kNote || (costly.empty() && far.empty())) {
     return true;
@@ -295,6 +321,12 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
   options.use_global_start = options.use_global_start && stage.continuation.empty();
   options.local.progress = progress;
   options.global.progress = progress;
+  // The weights the first solve uses (configured), by experiment, for the comparable cost.
+  std::map<std::string, std::vector<double>> first_weights;
+  {
+    const std::vector<std::vector<double>> w = problem->ChannelWeights();
+    for (size_t e = 0; e < w.size(); ++e) first_weights[problem->experiments()[e].name] = w[e];
+  }
   StageSummary summary;
   if (!RunStage(options, problem.get(), &summary, extra_starts)) {
     *error = summary.message;
@@ -315,6 +347,17 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
     BootstrapStageUncertainty(options, stage.problem, problem.get(), &summary);
   }
   summary.notes.insert(summary.notes.begin(), continuation_notes.begin(), continuation_notes.end());
+  // The cost at the end point with the first solve's weights: under noise weights the
+  // minimised cost is ~N/2 wherever the solve ends, this one ranks end points.
+  double comparable_cost = summary.local().final_cost;
+  if (noise.active()) {
+    std::vector<std::vector<double>> weights = problem->ChannelWeights();
+    for (size_t e = 0; e < weights.size(); ++e) {
+      const auto found = first_weights.find(problem->experiments()[e].name);
+      if (found != first_weights.end()) weights[e] = found->second;
+    }
+    if (!problem->CostWithChannelWeights(weights, &comparable_cost)) comparable_cost = kUnknown;
+  }
   const double integration_step = result->integration_step;
   std::vector<ResidualAnalysis> residuals =
       AnalyseFitResiduals(model.info(), problem->experiments(), summary.fits);
@@ -325,6 +368,7 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
   result->integration_step = integration_step;
   result->residuals = std::move(residuals);
   result->noise_model = std::move(noise);
+  result->comparable_cost = comparable_cost;
   return true;
 }
 

@@ -4,15 +4,14 @@
 
 #include "engine/run/held_out.h"
 #include "engine/run/held_out_memo.h"
-#include "engine/run/input_noise_warnings.h"
+#include "engine/run/input_noise_findings.h"
 #include "engine/run/least_squares_stage.h"
 #include "engine/run/output_error_stage.h"
 #include "engine/run/parameter_ledger.h"
 #include "engine/run/record_notes.h"
 #include "engine/run/records.h"
-#include "engine/run/run_warnings.h"
 #include "engine/run/step_regression_stage.h"
-#include "engine/run/unit_warnings.h"
+#include "engine/run/unit_findings.h"
 #include "engine/run/velocity_validation.h"
 #include "engine/run/work_size.h"
 #include "engine/run/zigzag_runs.h"
@@ -65,12 +64,6 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
   result->held_out_parameters = std::move(answers[0].parameters);
   result->validation_residuals = std::move(answers[0].residuals);
   const std::vector<ExperimentFit>& at_start = answers[1].fits;
-  for (const ExperimentFit& fit : result->validation) {
-    if (fit.diverged) result->summary.notes.push_back("validation: " + fit.message);
-  }
-  for (std::string& note : HeldOutBoundNotes(result->held_out_parameters)) {
-    result->summary.notes.push_back(std::move(note));
-  }
   result->held_out = CompareHeldOut(at_start, result->validation);
   if (result->held_out.worse && config.final_choice == FinalChoice::kBestValidation) {
     result->rejected = "worse on held-out data than its start (" +
@@ -86,7 +79,10 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
       *error = "velocity validation: " + *error;
       return false;
     }
-    for (const std::string& d : diverged) result->summary.notes.push_back(d);
+    for (const std::string& d : diverged) {
+      result->summary.findings.push_back(
+          MakeFinding(FindingKind::kHeldOutDiverged, "velocity validation: " + d));
+    }
   }
   return true;
 }
@@ -263,9 +259,6 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     run.final_validation = std::move(answers[0].fits);
     run.final_held_out_parameters = std::move(answers[0].parameters);
     run.final_validation_residuals = std::move(answers[0].residuals);
-    for (const std::string& note : HeldOutBoundNotes(run.final_held_out_parameters)) {
-      run.warnings.push_back("final " + note);
-    }
     if (config.velocity_validation && model.regression_form() != nullptr) {
       const RegressionDataOptions velocity_data = VelocityData(config, config.stages.size());
       std::vector<std::string> diverged;
@@ -274,16 +267,20 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
         *error = "final velocity validation: " + *error;
         return false;
       }
-      for (const std::string& d : diverged) run.warnings.push_back("final validation: " + d);
+      for (const std::string& d : diverged) {
+        Finding f = MakeFinding(FindingKind::kHeldOutDiverged, "velocity validation: " + d);
+        f.stage = "final";
+        run.findings.push_back(std::move(f));
+      }
     }
   }
   run.zigzags = FindZigzagRuns(config, run, &cache);
-  std::vector<std::string> unit_warnings;
-  AddUnitWarnings(config, &cache, &unit_warnings);
-  AddInputNoiseWarnings(config, run, &cache, &unit_warnings);
-  AddRunWarnings(config, &run);
+  // What the records say (the judgement of the stages and final values is diagnose/'s).
+  std::vector<Finding> data_findings;
+  AddUnitFindings(config, &cache, &data_findings);
+  AddInputNoiseFindings(config, run, &cache, &data_findings);
   AddRecordNotes(config, cache, &run);
-  run.warnings.insert(run.warnings.begin(), unit_warnings.begin(), unit_warnings.end());
+  run.findings.insert(run.findings.begin(), data_findings.begin(), data_findings.end());
   run.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   *result = std::move(run);

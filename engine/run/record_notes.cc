@@ -3,12 +3,12 @@
 namespace vesselid {
 
 void AddRecordNotes(const RunConfig& config, const TrajectoryCache& cache, RunResult* run) {
-  std::vector<std::string> notes;
+  std::vector<Finding> findings;
   for (const ExperimentSpec& spec : config.experiments) {
     const auto cached = cache.find(spec.name);
     if (cached == cache.end()) continue;
     const Trajectory& data = cached->second;
-    notes.insert(notes.end(), data.notes.begin(), data.notes.end());
+    findings.insert(findings.end(), data.findings.begin(), data.findings.end());
     if (!data.epoch && !data.position_origin) continue;
     RecordOrigin origin;
     origin.experiment = spec.name;
@@ -19,7 +19,7 @@ void AddRecordNotes(const RunConfig& config, const TrajectoryCache& cache, RunRe
     origin.lon = data.origin_lon;
     run->record_origins.push_back(origin);
   }
-  run->warnings.insert(run->warnings.begin(), notes.begin(), notes.end());
+  run->findings.insert(run->findings.begin(), findings.begin(), findings.end());
 }
 
 }  // namespace vesselid

@@ -109,10 +109,11 @@ void NoteSkipped(TrajectoryCache* cache, const std::string& record, const Experi
   char span[96];
   std::snprintf(span, sizeof(span), " (t = %g to %g s)", std::max(piece.t_begin, data.t.front()),
                 std::min(piece.t_end, data.t.back()));
-  const std::string note =
-      "experiment '" + record + "': segment '" + piece.name + "'" + span + " skipped: " + why;
-  std::vector<std::string>& notes = (*cache)[record].notes;
-  if (std::find(notes.begin(), notes.end(), note) == notes.end()) notes.push_back(note);
+  Finding skipped = MakeFinding(FindingKind::kSegmentSkipped, std::string("skipped") + span +
+                                                                   ": " + why);
+  skipped.experiment = record;
+  skipped.segment = piece.name;
+  AddFindingOnce(std::move(skipped), &(*cache)[record].findings);
 }
 
 // Calls `build` with every experiment spec the records `names` are cut into, and its data.
@@ -309,9 +310,9 @@ bool PrepareRegressionRecords(const RunConfig& config, const std::vector<std::st
                   "' cut into %zu pieces at gaps of its output %s longer than %g median steps "
                   "(equation-error grid; max_gap): ",
                   cuts.size(), output.c_str(), limit / sorted[sorted.size() / 2]);
-    const std::string note = "experiment '" + record + "': '" + s.name + text + where;
-    std::vector<std::string>& notes = (*cache)[record].notes;
-    if (std::find(notes.begin(), notes.end(), note) == notes.end()) notes.push_back(note);
+    Finding cut = MakeFinding(FindingKind::kRecordCut, "'" + s.name + text + where);
+    cut.experiment = record;
+    AddFindingOnce(std::move(cut), &(*cache)[record].findings);
     return true;
   };
   // The Savitzky-Golay window must fit in the samples of the grid output.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "Eigen/Dense"
+#include "engine/base/finding.h"
 #include "engine/data/zigzag_figures.h"
 #include "engine/model/model.h"
 #include "engine/solve/noise_weights.h"
@@ -93,6 +94,14 @@ struct StageResult {
   // inputs, per experiment and compared output (residual_analysis.h).
   std::vector<ResidualAnalysis> residuals;
   std::vector<ResidualAnalysis> validation_residuals;  // of `validation`, reported only
+  // The cost at the estimate with every channel weighted as configured (weights: fixed for
+  // the stage whatever the noise model did), so that end points from other starts, runs
+  // and tools rank by it; the minimised cost under `weights: noise` is ~N/2 at any end point.
+  // NaN where not computed (regression stages: their cost is the regression's).
+  double comparable_cost = std::numeric_limits<double>::quiet_NaN();
+  // What the stage's judgement found (diagnose/) and the verdict they make.
+  std::vector<Finding> findings;
+  Verdict verdict = Verdict::kGood;
   // Step-regression stages: the samples, lasso paths and timings (step_regression.h).
   std::shared_ptr<const StepRegressionReport> step_regression;
   // Regression stages: bootstrap over the CV groups (group_bootstrap.h); runs 0: none.
@@ -147,9 +156,11 @@ struct RecordOrigin {
 
 struct RunResult {
   std::vector<StageResult> stages;  // the finished ones
-  // Everything doubtful about the result, each naming the stage, parameter or experiment:
-  // printed on stderr and first in every output (run_warnings.h).
-  std::vector<std::string> warnings;
+  // What the run found about its records and its final values (diagnose/), each naming the
+  // stage, parameter or experiment, and the run's verdict: printed on stderr and first in
+  // every output. Stage findings are in each StageResult.
+  std::vector<Finding> findings;
+  Verdict verdict = Verdict::kGood;
   // Set when the run stopped before its last stage: the stage it stopped in and why.
   std::string stopped_stage, stop_message;
   std::vector<FinalParameter> parameters;  // model parameter order

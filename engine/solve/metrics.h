@@ -32,12 +32,21 @@ struct ChannelMetrics {
   double noise = std::numeric_limits<double>::quiet_NaN();
 };
 
-// A channel whose fit has missed the signal: R2 < 0, or an RMSE above kFailedFitNoiseRatio
-// times the noise level of its data.
-inline constexpr double kFailedFitNoiseRatio = 100.0;
+// A channel whose simulation has missed its record, judged against what the record allows:
+// the record varies beyond its noise (its SD, sqrt(RMSE^2 / (1 - R2)), above
+// kSignalToNoise x its noise level; a flat record can be fitted by nothing better than its
+// mean), and the simulation predicts it worse than its mean (R2 < 0) or worse than holding its
+// first value (MAE above hold MAE). Not an RMSE against the noise level: smooth model-test
+// records have a tiny noise level and any real fit would fail that.
+inline constexpr double kSignalToNoise = 3.0;
+inline double ChannelSignalSd(const ChannelMetrics& m) {
+  return m.r2 < 1.0 ? m.rmse / std::sqrt(1.0 - m.r2) : std::numeric_limits<double>::infinity();
+}
 inline bool FitFailed(const ChannelMetrics& m) {
-  return m.r2 < 0.0 ||
-         (std::isfinite(m.noise) && m.noise > 0.0 && m.rmse > kFailedFitNoiseRatio * m.noise);
+  if (std::isfinite(m.noise) && m.noise > 0.0 && !(ChannelSignalSd(m) > kSignalToNoise * m.noise)) {
+    return false;
+  }
+  return m.r2 < 0.0 || (std::isfinite(m.hold_mae) && m.mae > m.hold_mae);
 }
 
 // Metrics of a regression's fit to its samples (no MAE or fit %: only RMS residual and R2).

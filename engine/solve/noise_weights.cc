@@ -59,17 +59,20 @@ bool IterateNoiseWeights(const StageOptions& options, OutputErrorProblem* proble
   NoiseModel current;
   std::string reason;
   if (!EstimateChannelNoise(*problem, summary->fits, &current, &reason)) {
-    summary->notes.push_back("noise weights: not applied, the configured weights stay: " + reason);
+    summary->findings.push_back(MakeFinding(
+        FindingKind::kNoiseModel, "noise weights not applied, the configured weights stay: " + reason));
     return true;
   }
   StageOptions again_options = options;
   again_options.use_global_start = false;
   // The re-solves start from the first solve's optimum; its global search stays reported.
   const GlobalStartSummary first_global = summary->global;
-  std::vector<std::string> global_notes;
+  // The first solve's global search stays reported: its narrative and its finding.
+  std::vector<std::string> first_notes;
   for (const std::string& note : summary->notes) {
-    if (note.rfind("global start", 0) == 0) global_notes.push_back(note);
+    if (note.rfind("global start", 0) == 0) first_notes.push_back(note);
   }
+  const std::vector<Finding> first_findings = summary->findings;
   double time = summary->time_seconds;
   double change = 0.0;
   std::string largest;
@@ -84,7 +87,10 @@ bool IterateNoiseWeights(const StageOptions& options, OutputErrorProblem* proble
     time += again.time_seconds;
     again.name = summary->name;
     again.global = first_global;
-    again.notes.insert(again.notes.begin(), global_notes.begin(), global_notes.end());
+    again.notes.insert(again.notes.begin(), first_notes.begin(), first_notes.end());
+    for (const Finding& f : first_findings) {
+      if (f.kind == FindingKind::kGlobalStartDiverged) again.findings.insert(again.findings.begin(), f);
+    }
     *summary = std::move(again);
     NoiseModel next;
     if (!EstimateChannelNoise(*problem, summary->fits, &next, &reason)) {
@@ -109,10 +115,14 @@ bool IterateNoiseWeights(const StageOptions& options, OutputErrorProblem* proble
   if (!current.converged) {
     char text[256];
     std::snprintf(text, sizeof(text),
-                  "noise weights: the noise model did not settle in %d re-solves (sigma of %s "
-                  "still changed by %.1f %%); the weights are those of the last estimate",
+                  "the noise model did not settle in %d re-solves (sigma of %s still changed by "
+                  "%.1f %%); the weights are those of the last estimate",
                   kNoiseMaxResolves, largest.c_str(), 100.0 * change);
-    summary->notes.push_back(text);
+    Finding unsettled = MakeFinding(FindingKind::kNoiseModel, text);
+    unsettled.output = largest;
+    unsettled.value = change;
+    unsettled.threshold = kNoiseTolerance;
+    summary->findings.push_back(std::move(unsettled));
   }
   *noise = std::move(current);
   return true;

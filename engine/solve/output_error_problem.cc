@@ -307,6 +307,26 @@ void OutputErrorProblem::SetChannelWeights(const std::vector<double>& weight) {
   for (Experiment& e : experiments_) vesselid::SetChannelWeights(weight, &e);
 }
 
+std::vector<std::vector<double>> OutputErrorProblem::ChannelWeights() const {
+  std::vector<std::vector<double>> weights;
+  for (const Experiment& e : experiments_) weights.push_back(e.channel_weight);
+  return weights;
+}
+
+bool OutputErrorProblem::CostWithChannelWeights(const std::vector<std::vector<double>>& weights,
+                                                double* cost) {
+  if (weights.size() != experiments_.size()) return false;
+  const std::vector<std::vector<double>> current = ChannelWeights();
+  for (size_t e = 0; e < experiments_.size(); ++e) {
+    vesselid::SetChannelWeights(weights[e], &experiments_[e]);
+  }
+  const bool ok = Cost(cost);
+  for (size_t e = 0; e < experiments_.size(); ++e) {
+    vesselid::SetChannelWeights(current[e], &experiments_[e]);
+  }
+  return ok;
+}
+
 int OutputErrorProblem::num_residuals() const {
   int total = 0;
   for (const Experiment& e : experiments_) total += e.num_samples();

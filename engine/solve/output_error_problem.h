@@ -103,6 +103,12 @@ class OutputErrorProblem {
   // 1/2 sum r^2 at the current values; false if any simulation diverges.
   bool Cost(double* cost);
 
+  // Every experiment's channel weights (Experiment::channel_weight), experiment order.
+  std::vector<std::vector<double>> ChannelWeights() const;
+  // Cost() with each experiment's channels weighted by `weights` (as ChannelWeights returned
+  // them), the current weights restored after.
+  bool CostWithChannelWeights(const std::vector<std::vector<double>>& weights, double* cost);
+
   // Simulations and cache hits of the experiments' costs so far.
   const EvaluationCounts& evaluation_counts() const { return *counts_; }
   // Frees the experiments' cached evaluations (a Jacobian each); later evaluations fill the

@@ -44,24 +44,6 @@ void OrderExchangeable(OutputErrorProblem* problem, std::vector<std::string>* no
   }
 }
 
-// Free variables that end on a bound: their standard errors assume an interior optimum, so
-// the report says which bound is active.
-void NoteActiveBounds(const OutputErrorProblem& problem, std::vector<std::string>* notes) {
-  for (const Variable& v : problem.variables()) {
-    if (!v.free || !v.bounded()) continue;
-    const double tolerance = 1e-6 * (v.upper - v.lower);
-    const double value = v.value();
-    const bool at_lower = value - v.lower <= tolerance, at_upper = v.upper - value <= tolerance;
-    if (!at_lower && !at_upper) continue;
-    char text[256];
-    std::snprintf(text, sizeof(text),
-                  "%s is at its %s bound %g: the data pull it further; its standard error "
-                  "assumes an interior optimum",
-                  v.name.c_str(), at_lower ? "lower" : "upper", at_lower ? v.lower : v.upper);
-    notes->push_back(text);
-  }
-}
-
 // A model symmetric in (a, b) has zero gradient across a = b, so a local solve that reaches
 // the ridge stays there. If it ended on it, restart with the pair split by each of
 // kRidgeSplits either way of its geometric mean (the true pair may be an order of magnitude
@@ -154,7 +136,7 @@ void SolveInitialStates(const LocalSolveOptions& options, OutputErrorProblem* pr
 // Which refinement won, against the plain local solve from the start point (refinement 0),
 // and how many global points diverged.
 void NoteGlobalOutcome(const StageSummary& summary, size_t extra_starts,
-                       std::vector<std::string>* notes) {
+                       std::vector<std::string>* notes, std::vector<Finding>* findings) {
   const GlobalStartSummary& g = summary.global;
   if (!g.run) return;
   char text[512];
@@ -163,7 +145,10 @@ void NoteGlobalOutcome(const StageSummary& summary, size_t extra_starts,
                   "global start: %d of %d %s diverged (simulation not finite) and were left out",
                   g.failed_evaluations, g.evaluations,
                   g.algorithm == "multistart" ? "points" : "evaluations");
-    notes->push_back(text);
+    Finding diverged = MakeFinding(FindingKind::kGlobalStartDiverged, text);
+    diverged.value = g.failed_evaluations;
+    diverged.count = 1;
+    findings->push_back(std::move(diverged));
   }
   const LocalSolveSummary& plain = summary.refinements[0];
   const int first_candidate = 1 + static_cast<int>(extra_starts);
@@ -310,10 +295,9 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
     return false;
   }
   problem->SetValues(best_values);
-  NoteGlobalOutcome(*summary, extra_starts.size(), &summary->notes);
+  NoteGlobalOutcome(*summary, extra_starts.size(), &summary->notes, &summary->findings);
   summary->notes.insert(summary->notes.end(), chosen_ridge_notes.begin(), chosen_ridge_notes.end());
   OrderExchangeable(problem, &summary->notes);
-  NoteActiveBounds(*problem, &summary->notes);
 
   if (options.compute_uncertainty) {
     // One Jet simulation at the optimum serves the HAC and the local analysis.
@@ -324,7 +308,7 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
     // standard errors must not (a small cost beside the solve).
     uncertainty.hac.num_threads = 1;
     if (!ComputeStageUncertainty(uncertainty, problem, best_cost, &summary->uncertainty,
-                                 &summary->notes, &solution)) {
+                                 &summary->notes, &summary->findings, &solution)) {
       summary->notes.push_back("uncertainty: " + summary->uncertainty.message);
     }
     LocalAnalysisOptions analysis;

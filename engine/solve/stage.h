@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/base/finding.h"
 #include "engine/solve/covariance.h"
 #include "engine/solve/global_start.h"
 #include "engine/solve/local_analysis.h"
@@ -41,7 +42,8 @@ struct StageSummary {
   Uncertainty uncertainty;
   LocalAnalysis analysis;  // conditioning and sensitivities at the optimum
   std::vector<ExperimentFit> fits;
-  std::vector<std::string> notes;
+  std::vector<std::string> notes;     // what the solver did, in order (narrative)
+  std::vector<Finding> findings;      // what it found doubtful (typed; diagnose/ adds the rest)
   double time_seconds = 0.0;
 
   const LocalSolveSummary& local() const { return refinements[chosen]; }

@@ -73,7 +73,8 @@ UncertaintyMethod ChooseUncertaintyMethod(const std::vector<StdErrorRatio>& rati
 
 bool ComputeStageUncertainty(const UncertaintyOptions& configured, OutputErrorProblem* problem,
                              double final_cost, Uncertainty* uncertainty,
-                             std::vector<std::string>* notes, SolutionJacobian* solution) {
+                             std::vector<std::string>* notes, std::vector<Finding>* findings,
+                             SolutionJacobian* solution) {
   // A bootstrap replaces these figures after the final solve; until then, those of `auto`.
   UncertaintyOptions options = configured;
   if (IsBootstrap(options.method)) options.method = UncertaintyMethod::kAuto;
@@ -128,7 +129,7 @@ bool ComputeStageUncertainty(const UncertaintyOptions& configured, OutputErrorPr
       std::sort(wide.begin(), wide.end(), [](const StdErrorRatio& a, const StdErrorRatio& b) {
         return a.ratio() > b.ratio();
       });
-      std::string text = std::string(kNarrowHessianNote) + " (residuals serially correlated): ";
+      std::string text = "the Hessian intervals are too narrow (residuals serially correlated): ";
       for (size_t i = 0; i < wide.size(); ++i) {
         char item[256];
         std::snprintf(item, sizeof(item), "%s%s: Hessian SE %.2g is %.2gx narrower than the HAC SE %.2g",
@@ -136,7 +137,13 @@ bool ComputeStageUncertainty(const UncertaintyOptions& configured, OutputErrorPr
                       wide[i].hac);
         text += item;
       }
-      notes->push_back(text + " (method sandwich_hac or auto reports the HAC)");
+      Finding narrow = MakeFinding(FindingKind::kNarrowIntervals,
+                                   text + " (method sandwich_hac or auto reports the HAC)");
+      narrow.parameter = wide[0].name;
+      narrow.value = wide[0].ratio();
+      narrow.threshold = kHacRatioLimit;
+      narrow.count = static_cast<int>(wide.size());
+      findings->push_back(std::move(narrow));
     }
   }
   if (chosen == UncertaintyMethod::kSandwichHac) {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/base/finding.h"
 #include "engine/solve/covariance.h"
 #include "engine/solve/hac_covariance.h"
 #include "engine/solve/output_error_problem.h"
@@ -68,15 +69,13 @@ UncertaintyMethod ChooseUncertaintyMethod(const std::vector<StdErrorRatio>& rati
 
 // The stage's uncertainty by options.method, at the problem's current values (final cost
 // `final_cost`). The method used, the Hessian's standard errors beside another's, and why,
-// go into `uncertainty`; with `hessian`, a note (a run warning) when the HAC says its
-// intervals are too narrow, and one when the HAC could not be computed. `solution` (may be
+// go into `uncertainty`; with `hessian`, a finding (narrow_intervals) when the HAC says its
+// intervals are too narrow, and a note when the HAC could not be computed. `solution` (may be
 // null) gets the residuals and Jacobian evaluated for the HAC, for later analyses to reuse
 // (evaluated after the Hessian covariance, so that the two Jacobians are never held at once).
 bool ComputeStageUncertainty(const UncertaintyOptions& options, OutputErrorProblem* problem,
                              double final_cost, Uncertainty* uncertainty,
-                             std::vector<std::string>* notes, SolutionJacobian* solution = nullptr);
-
-// Prefix of the note that says the Hessian intervals are too narrow (run_warnings.cc).
-inline constexpr char kNarrowHessianNote[] = "uncertainty: the Hessian intervals are too narrow";
+                             std::vector<std::string>* notes, std::vector<Finding>* findings,
+                             SolutionJacobian* solution = nullptr);
 
 }  // namespace vesselid

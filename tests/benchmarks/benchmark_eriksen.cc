@@ -10,6 +10,7 @@
 #include <cstdio>
 
 #include "engine/config/config.h"
+#include "engine/diagnose/run_findings.h"
 #include "engine/run/pipeline.h"
 #include "engine/run/records.h"
 #include "problems/registry.h"
@@ -66,7 +67,7 @@ int Main(int argc, char** argv) {
 
   RunResult result;
   start = Clock::now();
-  if (!RunIdentification(config, &result, &error)) {
+  if (!Identify(config, &result, &error)) {
     std::fprintf(stderr, "%s\n", error.c_str());
     return 1;
   }

@@ -12,6 +12,7 @@
 #include <set>
 
 #include "engine/config/config.h"
+#include "engine/diagnose/run_findings.h"
 #include "engine/run/pipeline.h"
 #include "engine/run/records.h"
 #include "problems/registry.h"
@@ -58,7 +59,7 @@ int Main(int argc, char** argv) {
         experiments.size(), finished.estimates.size());
     return true;
   };
-  const bool ok = RunIdentification(config, &result, &error, observer);
+  const bool ok = Identify(config, &result, &error, observer);
   const double total = Seconds(start);
   std::filesystem::remove_all(benchmark::DataFolder("vesselid_benchmark_erunsal"));
   if (!ok) {

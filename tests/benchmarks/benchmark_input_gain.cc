@@ -14,6 +14,7 @@
 
 #include "engine/config/config.h"
 #include "engine/run/least_squares_stage.h"
+#include "engine/diagnose/run_findings.h"
 #include "engine/run/pipeline.h"
 #include "engine/run/records.h"
 #include "engine/solve/local_solve.h"
@@ -106,7 +107,7 @@ int Main(int argc, char** argv) {
   // The whole run (least squares, refinement, validations) and its velocity metrics.
   RunResult result;
   start = Clock::now();
-  if (!RunIdentification(config, &result, &error)) {
+  if (!Identify(config, &result, &error)) {
     std::fprintf(stderr, "%s\n", error.c_str());
     return 1;
   }

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "engine/config/config.h"
+#include "engine/diagnose/run_findings.h"
 #include "engine/run/pipeline.h"
 #include "engine/run/records.h"
 #include "gtest/gtest.h"
@@ -78,7 +79,7 @@ class Identifiability : public ::testing::Test {
     EXPECT_TRUE(LoadRunConfig((*dir_ / "run.yaml").string(), "", DefaultRegistry(), &config,
                               &error))
         << error;
-    EXPECT_TRUE(RunIdentification(config, &result, &error)) << error;
+    EXPECT_TRUE(Identify(config, &result, &error)) << error;
     return result;
   }
 

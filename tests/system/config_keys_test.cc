@@ -13,6 +13,7 @@
 #include <string>
 
 #include "engine/config/config.h"
+#include "engine/diagnose/run_findings.h"
 #include "engine/run/pipeline.h"
 #include "gtest/gtest.h"
 #include "problems/nomoto/closed_loop_simulator.h"
@@ -426,7 +427,7 @@ class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
     RunResult result;
     std::string error;
     EXPECT_TRUE(Load(text, &config, &error)) << error << "\n" << text;
-    EXPECT_TRUE(RunIdentification(config, &result, &error)) << error << "\n" << text;
+    EXPECT_TRUE(Identify(config, &result, &error)) << error << "\n" << text;
     return Signature(result);
   }
 
@@ -442,7 +443,7 @@ TEST_P(ConfigKeys, HasAnEffectOrIsRefused) {
     RunConfig config;
     RunResult result;
     std::string error;
-    EXPECT_FALSE(Load(Text(c.with), &config, &error) && RunIdentification(config, &result, &error))
+    EXPECT_FALSE(Load(Text(c.with), &config, &error) && Identify(config, &result, &error))
         << Text(c.with);
     EXPECT_TRUE(result.stages.empty());
     EXPECT_NE(error.find(c.refusal), std::string::npos) << error;

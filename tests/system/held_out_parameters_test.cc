@@ -16,6 +16,7 @@
 #include "engine/output/results_text.h"
 #include "engine/output/stage_result_archive.h"
 #include "engine/run/held_out.h"
+#include "engine/diagnose/run_findings.h"
 #include "engine/run/pipeline.h"
 #include "gtest/gtest.h"
 #include "problems/nomoto/closed_loop_simulator.h"
@@ -92,7 +93,7 @@ class HeldOutParametersTest : public ::testing::Test {
       ADD_FAILURE() << error;
       return false;
     }
-    if (!RunIdentification(*config, result, &error)) {
+    if (!Identify(*config, result, &error)) {
       ADD_FAILURE() << error;
       return false;
     }

@@ -1,6 +1,6 @@
 # The layering rule of engine/: a file includes only its own folder and the folders below it.
 #
-#   base < data < model < solve < regression < step_regression < run < {study, output}
+#   base < data < model < solve < regression < step_regression < run < diagnose < {study, output}
 #        < config < engine/vesselid.h (the public API) < problems < cli
 #
 # study and output are siblings (neither includes the other). Only the command line may
@@ -17,12 +17,13 @@ set(rank_solve 3)
 set(rank_regression 4)
 set(rank_step_regression 5)
 set(rank_run 6)
-set(rank_study 7)
-set(rank_output 7)
-set(rank_config 8)
-set(rank_api 9)        # engine/vesselid.h
-set(rank_problems 10)
-set(rank_cli 11)
+set(rank_diagnose 7)
+set(rank_study 8)
+set(rank_output 8)
+set(rank_config 9)
+set(rank_api 10)       # engine/vesselid.h
+set(rank_problems 11)
+set(rank_cli 12)
 
 # The layer of a path relative to ROOT ("" when it belongs to none).
 function(layer_of path out)

@@ -1,5 +1,6 @@
 // The staged pipeline: carried starts, isolated and shared roles, fusion rules, local and
 // final validation, per-stage model restriction, and undetermined combinations.
+#include "engine/diagnose/run_findings.h"
 #include "engine/run/pipeline.h"
 
 #include <cmath>
@@ -76,7 +77,7 @@ experiments:
     const ModelRegistry registry = DefaultRegistry();
     EXPECT_TRUE(LoadRunConfig((dir_ / "run.yaml").string(), "", registry, &config, &error))
         << error;
-    EXPECT_TRUE(RunIdentification(config, &result, &error)) << error;
+    EXPECT_TRUE(Identify(config, &result, &error)) << error;
     return result;
   }
 
@@ -213,7 +214,7 @@ stages:
   RunResult result;
   std::string error;
   ASSERT_TRUE(LoadRunConfig((dir_ / "run.yaml").string(), "", DefaultRegistry(), &config, &error));
-  EXPECT_FALSE(RunIdentification(config, &result, &error));
+  EXPECT_FALSE(Identify(config, &result, &error));
   EXPECT_NE(error.find("stage 'second': parameter 'T': carried start"), std::string::npos) << error;
 }
 
@@ -336,7 +337,7 @@ stages:
   RunConfig config;
   RunResult result;
   ASSERT_TRUE(LoadRunConfig((dir_ / "run.yaml").string(), "", DefaultRegistry(), &config, &error));
-  ASSERT_TRUE(RunIdentification(config, &result, &error)) << error;
+  ASSERT_TRUE(Identify(config, &result, &error)) << error;
   const StageResult& stage = result.stages[0];
   EXPECT_GT(stage.integration_step, 0.0);
   EXPECT_LE(stage.integration_step, T * kStepStabilityLimit);
@@ -374,7 +375,7 @@ stages:
   RunConfig config;
   RunResult result;
   ASSERT_TRUE(LoadRunConfig((dir_ / "run.yaml").string(), "", DefaultRegistry(), &config, &error));
-  ASSERT_TRUE(RunIdentification(config, &result, &error)) << error;
+  ASSERT_TRUE(Identify(config, &result, &error)) << error;
   const std::vector<std::string>& notes = result.stages[0].summary.notes;
   ASSERT_FALSE(notes.empty());
   EXPECT_EQ(notes[0].rfind("continuation: 10 s segments (8 pieces)", 0), 0u) << notes[0];
@@ -418,7 +419,7 @@ final_validation: {experiments: [hard]}
   RunResult result;
   std::string error;
   ASSERT_TRUE(LoadRunConfig((dir_ / "run.yaml").string(), "", DefaultRegistry(), &config, &error));
-  ASSERT_TRUE(RunIdentification(config, &result, &error)) << error;
+  ASSERT_TRUE(Identify(config, &result, &error)) << error;
   ASSERT_EQ(result.stages[0].validation.size(), 1u);
   const ExperimentFit& held = result.stages[0].validation[0];
   EXPECT_TRUE(held.diverged);

@@ -13,6 +13,7 @@
 
 #include "engine/config/config.h"
 #include "engine/output/results_writer.h"
+#include "engine/diagnose/run_findings.h"
 #include "engine/run/pipeline.h"
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
@@ -94,7 +95,7 @@ class UnitsTest : public ::testing::Test {
       ADD_FAILURE() << error;
       return result;
     }
-    RunIdentification(config, &result, &error);
+    Identify(config, &result, &error);
     EXPECT_FALSE(result.stages.empty()) << error;
     fs::create_directories(*dir_ / out);
     EXPECT_TRUE(WriteRunResults(config, result, (*dir_ / out).string(), &error)) << error;

@@ -1,4 +1,4 @@
-#include "engine/run/compensation_warnings.h"
+#include "engine/diagnose/compensation_findings.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,11 +8,11 @@
 namespace vesselid {
 namespace {
 
-// The stage's reported estimate of a shared parameter, or null (initial states,
-// per-experiment values).
+// The stage's reported estimate of a parameter (shared, or one run's value of a
+// per-experiment one, "delta_0[zz1]"), or null (initial states).
 const Estimate* ParameterEstimateNamed(const StageResult& stage, const std::string& name) {
   for (const Estimate& e : stage.estimates) {
-    if (e.kind == EstimateKind::kParameter && e.experiment.empty() && e.name == name) return &e;
+    if (e.kind == EstimateKind::kParameter && e.name == name) return &e;
   }
   return nullptr;
 }
@@ -32,8 +32,8 @@ std::string Percent(double relative) {
 
 }  // namespace
 
-void AddCompensationWarnings(const ModelInfo& info, const StageResult& stage,
-                             const std::string& where, std::vector<std::string>* warnings) {
+void AddCompensationFindings(const ModelInfo& info, const StageResult& stage,
+                             std::vector<Finding>* findings) {
   const Eigen::MatrixXd& c = stage.correlation;
   const int n = static_cast<int>(stage.correlation_names.size());
   if (c.rows() != n || c.cols() != n) return;
@@ -102,7 +102,7 @@ void AddCompensationWarnings(const ModelInfo& info, const StageResult& stage,
                     "%s/%s %+.4f)",
                     count, estimate[a]->name.c_str(), estimate[b]->name.c_str(), c(a, b));
     }
-    std::string line = where + names + text + ": the data determine only " +
+    std::string line = names + text + ": the data determine only " +
                        (members.size() == 2 ? "their combination" : "combinations of them") +
                        "; drop or fix " + estimate[drop]->name + " (" +
                        Percent(RelativeError(*estimate[drop])) + ")";
@@ -120,14 +120,17 @@ void AddCompensationWarnings(const ModelInfo& info, const StageResult& stage,
       }
     }
     if (!hint.empty()) line += "; " + hint;
-    warnings->push_back(line);
+    Finding f = MakeFinding(FindingKind::kCompensation, line);
+    f.stage = stage.name;
+    f.parameter = names;
+    f.value = c(a, b);
+    f.threshold = kCompensationCorrelation;
+    findings->push_back(std::move(f));
   }
 }
 
-std::string StructureHint(const ModelInfo& info, const std::string& note) {
-  const size_t end = note.find(' ');
-  if (end == std::string::npos) return "";
-  const auto it = info.compensation_hints.find(note.substr(0, end));
+std::string StructureHint(const ModelInfo& info, const std::string& parameter) {
+  const auto it = info.compensation_hints.find(parameter);
   return it == info.compensation_hints.end() ? "" : " (" + it->second + ")";
 }
 

@@ -1,8 +1,8 @@
 // Estimates that compensate each other: when two free parameters of a stage have
 // |correlation| > kCompensationCorrelation, the data determine only a combination of them and
 // each value is an artefact of the other (a quadratic thrust law on a purely quadratic
-// thruster drives k_f up and b_u down at correlation -1). One warning per group of estimates
-// linked by such pairs names them and the (strongest) correlation and suggests the one to drop
+// thruster drives k_f up and b_u down at correlation -1). One finding per group of estimates
+// linked by such pairs (per-experiment values included: a gain and a per-run bias) names them and the (strongest) correlation and suggests the one to drop
 // or fix: the one whose removal the data support, i.e. with the largest relative standard
 // error, plus the model's own hint (ModelInfo::compensation_hints).
 #pragma once
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "engine/model/model.h"
+#include "engine/base/finding.h"
 #include "engine/run/run_result.h"
 
 namespace vesselid {
@@ -20,12 +21,12 @@ inline constexpr double kCompensationCorrelation = 0.999;
 // correlation (noise-free data) and not reported.
 inline constexpr double kCompensationRelativeError = 0.01;
 
-// Appends "<where>b_u and k_f compensate each other ..." lines for `stage` to `warnings`;
-// initial states and per-experiment values are left to the correlation matrix.
-void AddCompensationWarnings(const ModelInfo& info, const StageResult& stage,
-                             const std::string& where, std::vector<std::string>* warnings);
+// Appends "b_u and k_f compensate each other ..." findings for `stage`; initial states are
+// left to the correlation matrix.
+void AddCompensationFindings(const ModelInfo& info, const StageResult& stage,
+                             std::vector<Finding>* findings);
 
-// " (hint)" for the parameter a note begins with ("d_f is at its upper bound ..."), or "".
-std::string StructureHint(const ModelInfo& info, const std::string& note);
+// " (hint)" for a parameter the model has a structure hint for, or "".
+std::string StructureHint(const ModelInfo& info, const std::string& parameter);
 
 }  // namespace vesselid

@@ -1,5 +1,5 @@
 // Detection of white noise on a measured input that the run treats as exact: for each
-// experiment input not listed in the experiment's `input_noise`, a warning naming the
+// experiment input not listed in the experiment's `input_noise`, an input_noise finding naming the
 // experiment, the input and the estimated noise SD, suggesting `input_noise: {<input>: auto}`,
 // when all of these hold:
 //   * the input's noise level (second differences, noise_level.h) is at least kRatio of its
@@ -16,14 +16,15 @@
 #include <string>
 #include <vector>
 
+#include "engine/base/finding.h"
 #include "engine/run/records.h"
 #include "engine/run/run_config.h"
 #include "engine/run/run_result.h"
 
 namespace vesselid {
 
-void AddInputNoiseWarnings(const RunConfig& config, const RunResult& run, TrajectoryCache* cache,
-                           std::vector<std::string>* warnings);
+void AddInputNoiseFindings(const RunConfig& config, const RunResult& run, TrajectoryCache* cache,
+                           std::vector<Finding>* findings);
 
 // The test on one input's samples: its white-noise SD, or 0 when it has none that matters.
 double WhiteInputNoise(const std::vector<double>& values);

@@ -1,4 +1,4 @@
-#include "engine/run/bootstrap_warnings.h"
+#include "engine/diagnose/bootstrap_findings.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,15 +6,20 @@
 
 namespace vesselid {
 
-void AddBootstrapWarnings(const StageResult& stage, const std::string& where,
-                          std::vector<std::string>* warnings) {
+void AddBootstrapFindings(const StageResult& stage, std::vector<Finding>* findings) {
+  const auto add = [&](std::string message, std::string parameter = "") {
+    Finding f = MakeFinding(FindingKind::kBootstrap, std::move(message));
+    f.stage = stage.name;
+    f.parameter = std::move(parameter);
+    findings->push_back(std::move(f));
+  };
   const BootstrapSummary& b = stage.bootstrap;
   if (!b.done()) {
-    if (!b.message.empty()) warnings->push_back(where + "the bootstrap did not run: " + b.message);
+    if (!b.message.empty()) add("the bootstrap did not run: " + b.message);
     return;
   }
   if (b.failed > b.runs / 10) {
-    warnings->push_back(where + std::to_string(b.failed) + " of " + std::to_string(b.runs) +
+    add(std::to_string(b.failed) + " of " + std::to_string(b.runs) +
                         " bootstrap replicates could not be fitted (too few distinct groups "
                         "drawn, or a failed fit): the bootstrap SEs rest on the rest");
   }
@@ -36,8 +41,9 @@ void AddBootstrapWarnings(const StageResult& stage, const std::string& where,
   }
   if (!zero.empty()) {
     zero.pop_back();
-    warnings->push_back(where + "the 95 % bootstrap interval contains 0 for" + zero +
-                        ": not distinguishable from zero on these data");
+    add("the 95 % bootstrap interval contains 0 for" + zero +
+            ": not distinguishable from zero on these data",
+        zero.substr(1));
   }
   std::string unstable;
   char text[128];
@@ -49,8 +55,7 @@ void AddBootstrapWarnings(const StageResult& stage, const std::string& where,
   }
   if (!unstable.empty()) {
     unstable.pop_back();
-    warnings->push_back(where + "unstable lasso selection, zero in 20-80 % of the bootstrap "
-                        "replicates:" + unstable);
+    add("unstable lasso selection, zero in 20-80 % of the bootstrap replicates:" + unstable);
   }
 }
 

@@ -1,4 +1,4 @@
-#include "engine/run/unit_warnings.h"
+#include "engine/run/unit_findings.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,8 +7,8 @@
 
 namespace vesselid {
 
-void AddUnitWarnings(const RunConfig& config, TrajectoryCache* cache,
-                     std::vector<std::string>* warnings) {
+void AddUnitFindings(const RunConfig& config, TrajectoryCache* cache,
+                     std::vector<Finding>* findings) {
   const ModelInfo& info = config.model->info();
   for (const ExperimentSpec& spec : config.experiments) {
     for (const auto& [output, column] : spec.outputs) {
@@ -22,8 +22,10 @@ void AddUnitWarnings(const RunConfig& config, TrajectoryCache* cache,
       if (!WindowSamples(spec, column, cache, &values)) continue;
       const AngleUnitCheck check = CheckAngleUnit(values);
       if (check.looks_like_degrees) {
-        warnings->push_back("experiment '" + spec.name + "', output " + output + ": " +
-                            DescribeDegreesLook(column, check));
+        Finding f = MakeFinding(FindingKind::kUnitSuspect, DescribeDegreesLook(column, check));
+        f.experiment = spec.name;
+        f.output = output;
+        findings->push_back(std::move(f));
       }
     }
   }

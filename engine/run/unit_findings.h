@@ -1,5 +1,5 @@
 // Units a run doubts: an angle output whose column is not listed in the experiment's
-// `degrees:` but looks like degrees (angle_units.h) gets a warning naming the experiment and
+// `degrees:` but looks like degrees (angle_units.h) gets a unit_suspect finding naming the experiment and
 // the column. Read as radians such a heading runs to nonsense while a wrapped residual stays
 // below pi.
 #pragma once
@@ -7,14 +7,15 @@
 #include <string>
 #include <vector>
 
+#include "engine/base/finding.h"
 #include "engine/run/records.h"
 #include "engine/run/run_config.h"
 
 namespace vesselid {
 
-// Appends one warning per experiment and suspicious column (within the experiment's window).
+// Appends one finding per experiment and suspicious column (within the experiment's window).
 // Experiments whose data cannot be read are passed over (the stages report them).
-void AddUnitWarnings(const RunConfig& config, TrajectoryCache* cache,
-                     std::vector<std::string>* warnings);
+void AddUnitFindings(const RunConfig& config, TrajectoryCache* cache,
+                     std::vector<Finding>* findings);
 
 }  // namespace vesselid

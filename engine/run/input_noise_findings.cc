@@ -1,4 +1,4 @@
-#include "engine/run/input_noise_warnings.h"
+#include "engine/run/input_noise_findings.h"
 
 #include <algorithm>
 #include <cmath>
@@ -66,8 +66,8 @@ bool ResidualsColoured(const std::vector<double>& r) {
   return variance > 0.0 && mean_variance * kBlock > kColouredRatio * variance;
 }
 
-void AddInputNoiseWarnings(const RunConfig& config, const RunResult& run, TrajectoryCache* cache,
-                           std::vector<std::string>* warnings) {
+void AddInputNoiseFindings(const RunConfig& config, const RunResult& run, TrajectoryCache* cache,
+                           std::vector<Finding>* findings) {
   const ModelInfo& info = config.model->info();
   for (const ExperimentSpec& spec : config.experiments) {
     // Coloured residuals in any stage fit of this experiment (or of its segments).
@@ -103,14 +103,18 @@ void AddInputNoiseWarnings(const RunConfig& config, const RunResult& run, Trajec
       const std::string unit = degrees ? "deg" : info.InputUnit(info.InputIndex(input));
       char text[512];
       std::snprintf(text, sizeof(text),
-                    "experiment '%s', input %s (column '%s'): white noise of SD %.3g %s on the "
+                    "input %s (column '%s'): white noise of SD %.3g %s on the "
                     "measured input, and the fit's residuals are coloured: the simulation "
                     "integrates the noise, which biases fast parameters and makes the standard "
                     "errors too small; consider input_noise: {%s: auto}",
-                    spec.name.c_str(), input.c_str(), column.c_str(),
+                    input.c_str(), column.c_str(),
                     degrees ? sigma * 180.0 / M_PI : sigma, unit.c_str(),
                     input.c_str());
-      warnings->push_back(text);
+      Finding f = MakeFinding(FindingKind::kInputNoise, text);
+      f.experiment = spec.name;
+      f.output = input;
+      f.value = degrees ? sigma * 180.0 / M_PI : sigma;
+      findings->push_back(std::move(f));
     }
   }
 }

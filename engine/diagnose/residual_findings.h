@@ -1,4 +1,4 @@
-// Warnings and one-line verdicts from the residual analysis of a stage (residual_analysis.h):
+// Findings and one-line descriptions from the residual analysis of a stage (residual_analysis.h):
 // a channel whose residuals are coloured breaks the assumption of the Hessian standard errors
 // s^2 (J^T J)^-1 (white residuals), which are then too narrow; residuals correlated with past
 // inputs point at dynamics the model leaves out (or noise on a measured input).
@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/base/finding.h"
 #include "engine/run/run_result.h"
 #include "engine/solve/residual_analysis.h"
 
@@ -30,9 +31,9 @@ std::string InputCorrelatedResidualWarning(const std::string& stage, const std::
                                            const std::vector<const ResidualAnalysis*>& correlated,
                                            int analysed);
 
-// Appends the stage's residual warnings, one per output and kind, to `warnings`; channels of
-// noise-free data (ResidualAnalysis::noise_free) and of failed fits (FitFailed, warned as
-// such) are left out.
-void AddResidualWarnings(const StageResult& stage, std::vector<std::string>* warnings);
+// Appends the stage's residual findings, one per output and kind with the count of its
+// experiments; channels of noise-free data (ResidualAnalysis::noise_free) and of failed fits
+// (FitFailed, a finding of their own) are left out.
+void AddResidualFindings(const StageResult& stage, std::vector<Finding>* findings);
 
 }  // namespace vesselid

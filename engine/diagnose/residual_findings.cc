@@ -1,4 +1,4 @@
-#include "engine/run/residual_warnings.h"
+#include "engine/diagnose/residual_findings.h"
 
 #include <algorithm>
 #include <cmath>
@@ -102,7 +102,7 @@ std::string ColouredResidualWarning(const std::string& stage, const std::string&
                   " ones, which allow for serially correlated residuals" +
                   (reason.empty() ? std::string() : " (" + reason + ")");
   }
-  return "stage '" + stage + "': the residuals of " + output + " are coloured" + count +
+  return "the residuals of " + output + " are coloured" + count +
          Experiments(Worst(coloured), false) + consequence;
 }
 
@@ -111,14 +111,13 @@ std::string InputCorrelatedResidualWarning(const std::string& stage, const std::
                                            int analysed) {
   char count[64];
   std::snprintf(count, sizeof(count), " in %zu of %d experiment(s): ", correlated.size(), analysed);
-  return "stage '" + stage + "': the residuals of " + output +
-         " are correlated with past inputs (beyond the 99 % band)" + count +
+  return "the residuals of " + output + " are correlated with past inputs (beyond the 99 % band)" + count +
          Experiments(Worst(correlated), true) +
          ": dynamics the model leaves out, or noise on the measured input";
 }
 
-void AddResidualWarnings(const StageResult& stage, std::vector<std::string>* warnings) {
-  // A failed fit has its own warning (run_warnings.cc): its residuals are the signal.
+void AddResidualFindings(const StageResult& stage, std::vector<Finding>* findings) {
+  // A failed fit has its own finding (FitFailed): its residuals are the signal.
   std::set<std::pair<std::string, std::string>> failed;
   for (const ExperimentFit& fit : stage.summary.fits) {
     for (const ChannelMetrics& m : fit.channels) {
@@ -136,13 +135,22 @@ void AddResidualWarnings(const StageResult& stage, std::vector<std::string>* war
   }
   for (const std::string& output : outputs) {
     if (!coloured[output].empty()) {
-      warnings->push_back(
-          ColouredResidualWarning(stage.name, output, coloured[output], analysed[output],
-                                  stage.summary.uncertainty));
+      Finding f = MakeFinding(FindingKind::kColouredResiduals,
+                              ColouredResidualWarning(stage.name, output, coloured[output],
+                                                      analysed[output], stage.summary.uncertainty));
+      f.stage = stage.name;
+      f.output = output;
+      f.count = static_cast<int>(coloured[output].size());
+      findings->push_back(std::move(f));
     }
     if (!correlated[output].empty()) {
-      warnings->push_back(
+      Finding f = MakeFinding(
+          FindingKind::kInputCorrelatedResiduals,
           InputCorrelatedResidualWarning(stage.name, output, correlated[output], analysed[output]));
+      f.stage = stage.name;
+      f.output = output;
+      f.count = static_cast<int>(correlated[output].size());
+      findings->push_back(std::move(f));
     }
   }
 }

@@ -1,0 +1,310 @@
+#include "engine/base/finding.h"
+
+#include <algorithm>
+#include <tuple>
+
+namespace vesselid {
+namespace {
+
+using K = FindingKind;
+using S = FindingSeverity;
+
+// One row per kind, in enum order: name, severity, rule, advice.
+struct Row {
+  K kind;
+  const char* name;
+  S severity;
+  const char* rule;
+  const char* advice;
+};
+
+const Row kRows[] = {
+    {K::kRunStopped, "run_stopped", S::kFailure,
+     "The run stopped before its last stage (a stage could not be solved); the results are "
+     "those of the finished stages.",
+     "Read the message: it names the stage and the cause."},
+    {K::kSamplesRemoved, "samples_removed", S::kWarning,
+     "The screen (`screen:`) or a position fix of exactly 0/0 removed samples of a measured "
+     "output; the finding gives the count per kind and channel and the first times.",
+     "Check the times it names; loosen `screen:` if real motion was removed."},
+    {K::kResampled, "resampled", S::kInfo,
+     "A record was resampled to a uniform grid (`resample:`).",
+     "None; the grid serves every stage."},
+    {K::kRecordOrigin, "record_origin", S::kInfo,
+     "Times were Unix epoch seconds (t = 0 is the first time), or positions were GNSS fixes "
+     "mapped to north/east metres about an origin.",
+     "None; results.json's `record_origins` gives the origin."},
+    {K::kSegmentSkipped, "segment_skipped", S::kWarning,
+     "A piece of a record has fewer samples than a stage needs (a least-squares stage: its "
+     "Savitzky-Golay window; an output-error stage: the model's number of states) and is left "
+     "out of that stage.",
+     "Lengthen the piece, shorten the smoothing window, or accept the loss."},
+    {K::kRecordCut, "record_cut", S::kInfo,
+     "An equation-error stage cut a record into pieces at gaps of its output longer than "
+     "max(max_gap, 2) median steps (the rule `resample:` uses too, so a resampled record is "
+     "cut or accepted, never refused).",
+     "None; raise `least_squares: {max_gap: ...}` to bridge the gaps."},
+    {K::kUnitSuspect, "unit_suspect", S::kWarning,
+     "An angle output not listed under `degrees:` looks like degrees: it swings back and forth "
+     "over more than one turn (a heading that turns steadily, a spiral, is not counted), or "
+     "steps by more than pi within one turn.",
+     "Add the column to the experiment's `degrees:` if it was logged in degrees."},
+    {K::kBadCells, "bad_cells", S::kWarning,
+     "Cells of a mapped column are not numbers (a spreadsheet's mangled cells, text); those "
+     "samples are removed. More than `bad_cells` (share, default 0.05) of a column stops the "
+     "run.",
+     "Check the logger or the export; fix the column if the share is large."},
+    {K::kQuantised, "quantised", S::kInfo,
+     "A mapped channel takes few distinct values on a regular grid (a compass in whole degrees, "
+     "a rudder indicator in 1-degree steps): its noise is at least a step / sqrt(12).",
+     "None needed for output error; expect coloured residuals of about that size."},
+    {K::kStaleRepeats, "stale_repeats", S::kWarning,
+     "An output repeats its value for 3 or more samples in a row in more than 20 % of its "
+     "samples while it varies overall: a logger holding its last value.",
+     "Use `screen: {stale: 3}` to remove the repeats."},
+    {K::kAllZeroInput, "all_zero_input", S::kWarning,
+     "A mapped input column is zero in every sample: the parameters it drives cannot be "
+     "identified from this record.",
+     "Check the column mapping and the logger."},
+    {K::kStartsMidManoeuvre, "starts_mid_manoeuvre", S::kInfo,
+     "A record starts with an input already far from rest (over half of its range at t = 0) "
+     "and the outputs already moving: its initial states carry the past.",
+     "Free the initial states (`free_initial_states`) or cut the record where it is at rest."},
+    {K::kCheckSkipped, "check_skipped", S::kWarning,
+     "An optional check (velocity validation, zigzag figures, residual analysis) could not be "
+     "made on a record and was skipped; the run went on.",
+     "The finding names the key that turns the check off."},
+    {K::kAtBound, "at_bound", S::kWarning,
+     "A free estimate, as reported, lies within 1e-6 of its range from a bound: the data pull "
+     "it further, and its standard error assumes an interior optimum. Computed from the "
+     "reported value, so it is never stale after a re-solve.",
+     "Widen the bound if the physics allow it, or fix the parameter; a bound the physics "
+     "require means the structure is wrong."},
+    {K::kNoConvergence, "no_convergence", S::kWarning,
+     "The solver stopped at its iteration limit (`local.max_iterations`) without meeting a "
+     "tolerance: the estimate may not be an optimum.",
+     "Raise `local.max_iterations`, or start closer (a least-squares stage)."},
+    {K::kNoProgress, "no_progress", S::kWarning,
+     "The chosen solve ended where it started: 0 successful steps, or the cost fell by less "
+     "than 1e-9 of itself with free parameters. A solver stuck at its start reports "
+     "convergence without having searched.",
+     "Check the scales (`scale:`) and the start; a start on a flat region needs a global "
+     "start."},
+    {K::kIntegrationStep, "integration_step", S::kWarning,
+     "The configured integration step was too long for the estimate's dynamics (RK4's "
+     "stability limit): the stage was solved again with a shorter step, or could not be.",
+     "Set `integration: {max_step: ...}` to the step the finding names."},
+    {K::kOutliers, "outliers", S::kWarning,
+     "Experiments whose RMS cost is far above the rest, or free initial states that end far "
+     "from the data's guess (OutlierOptions).",
+     "Look at the named records; drop them (`outliers: drop`) if they are broken."},
+    {K::kNoiseModel, "noise_model", S::kWarning,
+     "Under `weights: noise` the per-channel noise model did not settle, or could not be "
+     "estimated (the configured weights stay).",
+     "Give `weights:` per output."},
+    {K::kGlobalStartDiverged, "global_start_diverged", S::kInfo,
+     "Points of the global search whose simulation diverged were left out.",
+     "None unless most diverged: then narrow the bounds."},
+    {K::kNarrowIntervals, "narrow_intervals", S::kWarning,
+     "The reported standard errors are known to be too narrow: coloured residuals under the "
+     "Hessian's covariance (by the HAC's ratio), or latent input splines held exact.",
+     "Use `uncertainty: {method: sandwich_hac}` or a bootstrap."},
+    {K::kBootstrap, "bootstrap", S::kWarning,
+     "The bootstrap could not run, lost replicates, or found an interval containing 0 or an "
+     "unstable lasso selection.",
+     "Read the message; more runs or blocks may help."},
+    {K::kCompensation, "compensation", S::kWarning,
+     "Two estimates of a stage correlate beyond 0.999 (per-experiment values included) while "
+     "either has a relative standard error of 1 % or more: the data determine only their "
+     "combination.",
+     "Fix or drop the one the finding names."},
+    {K::kInputNoise, "input_noise", S::kWarning,
+     "A measured input is noisy enough to bias output error (errors in variables).",
+     "Declare it under `input_noise:`."},
+    {K::kFailedFit, "failed_fit", S::kFailure,
+     "A simulated output predicts its record no better than holding the record's first value "
+     "(MAE above the hold MAE) or worse than its mean (R^2 < 0). Judged against what the "
+     "record allows, never against a noise level. A stage's finding is a warning when the "
+     "stage is not the last kept one.",
+     "The structure, a start, or the data are wrong for this record: look at its trace."},
+    {K::kColouredResiduals, "coloured_residuals", S::kInfo,
+     "Residuals are coloured (Ljung-Box p < 0.01, lag-1 autocorrelation > 0.3): normal for "
+     "real records with unmodelled dynamics; it matters for the standard errors "
+     "(narrow_intervals says when).",
+     "None for the fit; for the intervals use sandwich_hac."},
+    {K::kInputCorrelatedResiduals, "input_correlated_residuals", S::kInfo,
+     "Residuals correlate with past inputs: dynamics the model leaves out, or noise on a "
+     "measured input.",
+     "Consider a richer structure or input_noise."},
+    {K::kNotAdmissible, "not_admissible", S::kWarning,
+     "The estimate breaks a physical condition over the range the data cover (mass matrix not "
+     "positive definite, damping that feeds energy in at a speed the data reach, a thrust law "
+     "not monotone in its input). A failure for the final values.",
+     "Bound the offending parameter or fix the structure."},
+    {K::kStageSetAside, "stage_set_aside", S::kWarning,
+     "Under `final: best_validation` a stage predicted its held-out records worse than its "
+     "start and its estimates were set aside; the next stage and the final values take the "
+     "best earlier model, never the start of a least-squares stage.",
+     "Look at the stage's held-out fits; the stage may need other records or bounds."},
+    {K::kHeldOutWorse, "held_out_worse", S::kWarning,
+     "A kept stage predicts its held-out records worse than its start (mean MAE ratio above "
+     "1.01, or more runs diverged).",
+     "Use `final: best_validation` or look at the held-out traces."},
+    {K::kHeldOutOutputWorse, "held_out_output_worse", S::kWarning,
+     "A stage better over all held-out outputs predicts one of them worse than its start "
+     "(MAE ratio above 1.01).",
+     "Look at that output's held-out trace."},
+    {K::kHeldOutDiverged, "held_out_diverged", S::kFailure,
+     "The simulation of a held-out record diverged with the stage's estimate.",
+     "The estimate is unstable outside the training records."},
+    {K::kHeldOutFreeRun, "held_out_free_run", S::kWarning,
+     "The free-run velocity prediction of a held-out record has R^2 < 0 in a regressed state "
+     "(a failure for the final values).",
+     "The model does not predict these velocities; check the structure."},
+    {K::kFinalHeldOutFailed, "final_held_out_failed", S::kFailure,
+     "The final values' simulation of the held-out records diverges, or predicts an output "
+     "worse than holding its first measured value (pooled MAE ratio above 1).",
+     "Do not use the model for prediction as it is."},
+};
+
+}  // namespace
+
+const char* FindingSeverityToString(FindingSeverity severity) {
+  switch (severity) {
+    case S::kInfo: return "info";
+    case S::kWarning: return "warning";
+    case S::kFailure: return "failure";
+  }
+  return "?";
+}
+
+bool StringToFindingSeverity(const std::string& text, FindingSeverity* severity) {
+  for (S s : {S::kInfo, S::kWarning, S::kFailure}) {
+    if (text == FindingSeverityToString(s)) {
+      *severity = s;
+      return true;
+    }
+  }
+  return false;
+}
+
+const char* FindingKindToString(FindingKind kind) {
+  for (const Row& row : kRows) {
+    if (row.kind == kind) return row.name;
+  }
+  return "?";
+}
+
+bool StringToFindingKind(const std::string& text, FindingKind* kind) {
+  for (const Row& row : kRows) {
+    if (text == row.name) {
+      *kind = row.kind;
+      return true;
+    }
+  }
+  return false;
+}
+
+const std::vector<FindingRule>& FindingCatalogue() {
+  static const std::vector<FindingRule> catalogue = [] {
+    std::vector<FindingRule> rules;
+    for (const Row& row : kRows) rules.push_back({row.kind, row.severity, row.rule, row.advice});
+    return rules;
+  }();
+  return catalogue;
+}
+
+const FindingRule& RuleOf(FindingKind kind) {
+  for (const FindingRule& rule : FindingCatalogue()) {
+    if (rule.kind == kind) return rule;
+  }
+  return FindingCatalogue().front();
+}
+
+Finding MakeFinding(FindingKind kind, std::string message) {
+  Finding f;
+  f.kind = kind;
+  f.severity = RuleOf(kind).severity;
+  f.message = std::move(message);
+  return f;
+}
+
+void AddFindingOnce(Finding finding, std::vector<Finding>* findings) {
+  for (const Finding& f : *findings) {
+    if (f.kind == finding.kind && f.experiment == finding.experiment &&
+        f.segment == finding.segment && f.message == finding.message) {
+      return;
+    }
+  }
+  findings->push_back(std::move(finding));
+}
+
+std::string FindingCatalogueMarkdown() {
+  std::string out =
+      "| kind | severity | rule | what to do |\n"
+      "|---|---|---|---|\n";
+  for (const Row& row : kRows) {
+    out += std::string("| `") + row.name + "` | " + FindingSeverityToString(row.severity) + " | " +
+           row.rule + " | " + row.advice + " |\n";
+  }
+  return out;
+}
+
+const char* VerdictToString(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::kGood: return "good";
+    case Verdict::kDoubtful: return "doubtful";
+    case Verdict::kFailed: return "failed";
+  }
+  return "?";
+}
+
+bool StringToVerdict(const std::string& text, Verdict* verdict) {
+  for (Verdict v : {Verdict::kGood, Verdict::kDoubtful, Verdict::kFailed}) {
+    if (text == VerdictToString(v)) {
+      *verdict = v;
+      return true;
+    }
+  }
+  return false;
+}
+
+Verdict Worse(Verdict a, Verdict b) { return static_cast<int>(a) > static_cast<int>(b) ? a : b; }
+
+Verdict VerdictOf(const std::vector<Finding>& findings) {
+  Verdict verdict = Verdict::kGood;
+  for (const Finding& f : findings) {
+    if (f.severity == S::kFailure) verdict = Verdict::kFailed;
+    if (f.severity == S::kWarning) verdict = Worse(verdict, Verdict::kDoubtful);
+  }
+  return verdict;
+}
+
+std::string DescribeFinding(const Finding& f) {
+  std::string where;
+  auto add = [&where](const std::string& label, const std::string& value) {
+    if (value.empty()) return;
+    where += (where.empty() ? "" : ", ") + label + value;
+  };
+  add("stage ", f.stage.empty() ? "" : (f.stage == "final" ? "final" : "'" + f.stage + "'"));
+  add("experiment ", f.experiment.empty() ? "" : "'" + f.experiment + "'");
+  add("segment ", f.segment);
+  add("", f.parameter);
+  add("output ", f.output);
+  std::string text = std::string(FindingSeverityToString(f.severity)) + " [" +
+                     FindingKindToString(f.kind) + "] " + (where.empty() ? "" : where + ": ") +
+                     f.message;
+  if (f.count > 1) text += " (x" + std::to_string(f.count) + ")";
+  return text;
+}
+
+void SortFindings(std::vector<Finding>* findings) {
+  std::stable_sort(findings->begin(), findings->end(), [](const Finding& a, const Finding& b) {
+    return std::make_tuple(-static_cast<int>(a.severity), static_cast<int>(a.kind), a.stage,
+                           a.experiment) < std::make_tuple(-static_cast<int>(b.severity),
+                                                           static_cast<int>(b.kind), b.stage,
+                                                           b.experiment);
+  });
+}
+
+}  // namespace vesselid

@@ -1,0 +1,136 @@
+#include "engine/diagnose/run_findings.h"
+
+#include <cstdio>
+#include <map>
+#include <tuple>
+
+#include "engine/diagnose/stage_findings.h"
+
+namespace vesselid {
+
+bool FinalHeldOutFailed(const RunResult& run, std::vector<Finding>* findings) {
+  std::map<std::string, std::pair<double, double>> error_sum;  // output: (sum MAE n, hold)
+  std::vector<std::string> order;
+  bool failed = false;
+  for (const ExperimentFit& fit : run.final_validation) {
+    if (fit.diverged) {
+      failed = true;
+      if (findings != nullptr) {
+        Finding f = MakeFinding(FindingKind::kFinalHeldOutFailed, "diverges: " + fit.message);
+        f.stage = "final";
+        f.experiment = fit.experiment;
+        findings->push_back(std::move(f));
+      }
+      continue;
+    }
+    for (const ChannelMetrics& m : fit.channels) {
+      if (error_sum.count(m.output) == 0) order.push_back(m.output);
+      error_sum[m.output].first += m.mae * m.samples;
+      error_sum[m.output].second += m.hold_mae * m.samples;
+    }
+  }
+  for (const std::string& output : order) {
+    const auto& sums = error_sum[output];
+    if (!(sums.first > sums.second)) continue;
+    failed = true;
+    if (findings == nullptr) continue;
+    char text[256];
+    std::snprintf(text, sizeof(text),
+                  "the simulated %s predicts the held-out data worse than holding its first "
+                  "measured value (pooled MAE ratio %.3g)",
+                  output.c_str(), sums.first / sums.second);
+    Finding f = MakeFinding(FindingKind::kFinalHeldOutFailed, text);
+    f.stage = "final";
+    f.output = output;
+    f.value = sums.first / sums.second;
+    f.threshold = 1.0;
+    findings->push_back(std::move(f));
+  }
+  return failed;
+}
+
+std::vector<Finding> FoldFindings(const std::vector<Finding>& findings) {
+  using Key = std::tuple<int, int, std::string, std::string, std::string, std::string>;
+  std::map<Key, size_t> first;
+  std::vector<Finding> folded;
+  std::vector<int> extra;
+  for (const Finding& f : findings) {
+    // Record findings differ in what they say of each record: not folded.
+    const bool foldable = !f.experiment.empty() && f.kind != FindingKind::kSamplesRemoved &&
+                          f.kind != FindingKind::kResampled && f.kind != FindingKind::kRecordOrigin &&
+                          f.kind != FindingKind::kRecordCut;
+    const Key key{static_cast<int>(f.kind), static_cast<int>(f.severity), f.stage,
+                  f.parameter.substr(0, f.parameter.find('[')), f.output,
+                  foldable ? "" : f.experiment + "\n" + f.segment + "\n" + f.message};
+    const auto found = first.find(key);
+    if (found == first.end()) {
+      first[key] = folded.size();
+      folded.push_back(f);
+      extra.push_back(0);
+      continue;
+    }
+    folded[found->second].count += f.count;
+    ++extra[found->second];
+  }
+  for (size_t i = 0; i < folded.size(); ++i) {
+    if (extra[i] == 0) continue;
+    folded[i].message += " (and " + std::to_string(extra[i]) + " more experiment(s) alike)";
+    folded[i].experiment.clear();
+  }
+  return folded;
+}
+
+void DiagnoseRun(const RunConfig& config, RunResult* run) {
+  const ModelInfo& info = config.model->info();
+  for (StageResult& stage : run->stages) {
+    const ModelHandle* model = &*config.model;
+    for (const StageConfig& s : config.stages) {
+      if (s.options.name == stage.name) model = &config.StageModel(s);
+    }
+    DiagnoseStage(model->info(), &stage);
+    stage.findings = FoldFindings(stage.findings);
+  }
+  std::vector<Finding>& findings = run->findings;
+  if (!run->stopped_stage.empty()) {
+    Finding f = MakeFinding(FindingKind::kRunStopped,
+                            "the run stopped in stage '" + run->stopped_stage + "' after " +
+                                std::to_string(run->stages.size()) + " of " +
+                                std::to_string(config.stages.size()) +
+                                " stage(s); the results are those of the finished stages: " +
+                                run->stop_message);
+    f.stage = run->stopped_stage;
+    findings.push_back(std::move(f));
+  }
+  for (const StageResult& stage : run->stages) {
+    if (stage.rejected.empty()) continue;
+    Finding f = MakeFinding(FindingKind::kStageSetAside, stage.rejected);
+    f.stage = stage.name;
+    findings.push_back(std::move(f));
+  }
+  for (const std::string& a : run->admissibility) {
+    Finding f = MakeFinding(FindingKind::kNotAdmissible, "the final values: " + a);
+    f.stage = "final";
+    f.severity = FindingSeverity::kFailure;
+    findings.push_back(std::move(f));
+  }
+  AddBoundFindings(info, run->final_held_out_parameters.estimates, "final", &findings);
+  FinalHeldOutFailed(*run, &findings);
+  findings = FoldFindings(findings);
+  SortFindings(&findings);
+  Verdict verdict = VerdictOf(findings);
+  for (auto stage = run->stages.rbegin(); stage != run->stages.rend(); ++stage) {
+    if (!stage->rejected.empty()) continue;
+    verdict = Worse(verdict, stage->verdict);
+    break;
+  }
+  run->verdict = verdict;
+}
+
+bool Identify(const RunConfig& config, RunResult* result, std::string* error,
+              const RunObserver& observer, std::vector<StageResult> finished) {
+  const bool ok = RunIdentification(config, result, error, observer, std::move(finished));
+  if (ok || !result->stopped_stage.empty()) DiagnoseRun(config, result);
+  return ok;
+}
+
+}  // namespace vesselid

@@ -1,0 +1,194 @@
+#include "engine/diagnose/stage_findings.h"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "engine/diagnose/bootstrap_findings.h"
+#include "engine/diagnose/compensation_findings.h"
+#include "engine/diagnose/residual_findings.h"
+#include "engine/run/held_out.h"
+
+namespace vesselid {
+namespace {
+
+std::string Format(const char* format, double a, double b = 0.0, double c = 0.0) {
+  char text[256];
+  std::snprintf(text, sizeof(text), format, a, b, c);
+  return text;
+}
+
+bool AnyFitFailed(const std::vector<ExperimentFit>& fits) {
+  for (const ExperimentFit& fit : fits) {
+    for (const ChannelMetrics& m : fit.channels) {
+      if (FitFailed(m)) return true;
+    }
+  }
+  return false;
+}
+
+void AddSolveFindings(const StageResult& stage, std::vector<Finding>* findings) {
+  const StageSummary& s = stage.summary;
+  if (!s.usable || s.chosen < 0 || s.refinements.empty()) return;
+  const LocalSolveSummary& local = s.local();
+  const bool not_converged = local.termination == "NO_CONVERGENCE";
+  if (not_converged) {
+    Finding f = MakeFinding(
+        FindingKind::kNoConvergence,
+        "the solver stopped after " + std::to_string(local.iterations) +
+            " iterations without converging (local.max_iterations): the estimate may not be an "
+            "optimum");
+    f.stage = stage.name;
+    f.value = local.iterations;
+    findings->push_back(std::move(f));
+  }
+  bool free = false;
+  for (const Estimate& e : stage.estimates) {
+    free |= e.kind == EstimateKind::kParameter && e.role != ParameterRole::kFixed;
+  }
+  if (!free || !local.run || local.successful_steps > 0) return;
+  const bool failed = AnyFitFailed(s.fits);
+  Finding f = MakeFinding(
+      FindingKind::kNoProgress,
+      "the chosen solve ended at its start (" + std::to_string(local.iterations) +
+          " iterations, no successful step, termination " + local.termination + ")" +
+          (failed ? " with a failed fit: it did not search; try a global start or other scales"
+                  : ": the start was already an optimum"));
+  f.stage = stage.name;
+  f.value = local.successful_steps;
+  if (!failed && !not_converged) f.severity = FindingSeverity::kInfo;
+  findings->push_back(std::move(f));
+}
+
+void AddHeldOutFindings(const StageResult& stage, std::vector<Finding>* findings) {
+  for (const ExperimentFit& fit : stage.validation) {
+    if (!fit.diverged) continue;
+    Finding f = MakeFinding(FindingKind::kHeldOutDiverged, fit.message);
+    f.stage = stage.name;
+    f.experiment = fit.experiment;
+    findings->push_back(std::move(f));
+  }
+  const HeldOutCheck& h = stage.held_out;
+  if (!h.done) return;
+  if (!stage.rejected.empty()) {
+    Finding f = MakeFinding(FindingKind::kStageSetAside, stage.rejected);
+    f.stage = stage.name;
+    findings->push_back(std::move(f));
+    return;
+  }
+  if (h.worse) {
+    Finding f = MakeFinding(FindingKind::kHeldOutWorse,
+                            "worse on held-out data than its start (" + DescribeHeldOut(h) +
+                                "), kept because of final: last");
+    f.stage = stage.name;
+    findings->push_back(std::move(f));
+    return;
+  }
+  for (size_t i = 0; i < h.outputs.size(); ++i) {
+    if (!(h.stage_mae[i] > kHeldOutTolerance * h.start_mae[i])) continue;
+    Finding f = MakeFinding(
+        FindingKind::kHeldOutOutputWorse,
+        "predicts the held-out " + h.outputs[i] +
+            Format(" worse than its start (MAE %.4g -> %.4g), though better over all outputs",
+                   h.start_mae[i], h.stage_mae[i]));
+    f.stage = stage.name;
+    f.output = h.outputs[i];
+    f.value = h.stage_mae[i] / h.start_mae[i];
+    f.threshold = kHeldOutTolerance;
+    findings->push_back(std::move(f));
+  }
+}
+
+}  // namespace
+
+void AddBoundFindings(const ModelInfo& info, const std::vector<Estimate>& estimates,
+                      const std::string& stage, std::vector<Finding>* findings) {
+  for (const Estimate& e : estimates) {
+    if (e.kind != EstimateKind::kParameter || e.role == ParameterRole::kFixed) continue;
+    if (!std::isfinite(e.lower) || !std::isfinite(e.upper) || !(e.upper > e.lower)) continue;
+    const double tolerance = 1e-6 * (e.upper - e.lower);
+    const bool at_lower = e.value - e.lower <= tolerance, at_upper = e.upper - e.value <= tolerance;
+    if (!at_lower && !at_upper) continue;
+    const double bound = at_lower ? e.lower : e.upper;
+    // A per-experiment value is named "delta_0[zz1]"; the model's hint is by "delta_0".
+    const std::string model_name = e.name.substr(0, e.name.find('['));
+    Finding f = MakeFinding(
+        FindingKind::kAtBound,
+        e.name + " = " + Format("%.6g", e.value) + " is at its " + (at_lower ? "lower" : "upper") +
+            " bound " + Format("%g", bound) +
+            ": the data pull it further; its standard error assumes an interior optimum" +
+            StructureHint(info, model_name));
+    f.stage = stage;
+    f.experiment = e.experiment;
+    f.parameter = e.name;
+    f.value = e.value;
+    f.threshold = bound;
+    findings->push_back(std::move(f));
+  }
+}
+
+void AddFailedFitFindings(const std::vector<ExperimentFit>& fits, const std::string& stage,
+                          std::vector<Finding>* findings) {
+  std::map<std::string, std::vector<const ChannelMetrics*>> failed;
+  std::map<std::string, int> compared;
+  std::vector<std::string> order;
+  for (const ExperimentFit& fit : fits) {
+    for (const ChannelMetrics& m : fit.channels) {
+      if (compared[m.output]++ == 0) order.push_back(m.output);
+      if (FitFailed(m)) failed[m.output].push_back(&m);
+    }
+  }
+  for (const std::string& output : order) {
+    const std::vector<const ChannelMetrics*>& list = failed[output];
+    if (list.empty()) continue;
+    // The worst first: lowest R2.
+    const ChannelMetrics* worst = list[0];
+    std::string names;
+    for (size_t i = 0; i < list.size(); ++i) {
+      if (list[i]->r2 < worst->r2) worst = list[i];
+      if (i < 8) names += (i > 0 ? ", " : "") + list[i]->experiment;
+    }
+    if (list.size() > 8) names += ", ...";
+    Finding f = MakeFinding(
+        FindingKind::kFailedFit,
+        "the simulated " + output + " misses its record in " + std::to_string(list.size()) +
+            " of " + std::to_string(compared[output]) +
+            " experiment(s) (worse than its mean, R2 < 0, or than holding its first value): " +
+            names + "; worst " + worst->experiment +
+            Format(": R2 %.3g, MAE %.3g against %.3g holding its first value", worst->r2,
+                   worst->mae, worst->hold_mae));
+    f.stage = stage;
+    f.output = output;
+    f.experiment = list.size() == 1 ? worst->experiment : "";
+    f.value = worst->r2;
+    f.threshold = 0.0;
+    f.count = static_cast<int>(list.size());
+    findings->push_back(std::move(f));
+  }
+}
+
+void DiagnoseStage(const ModelInfo& info, StageResult* stage) {
+  std::vector<Finding> findings;
+  for (Finding f : stage->summary.findings) {
+    f.stage = stage->name;
+    findings.push_back(std::move(f));
+  }
+  AddSolveFindings(*stage, &findings);
+  AddBoundFindings(info, stage->estimates, stage->name, &findings);
+  AddBoundFindings(info, stage->held_out_parameters.estimates, stage->name, &findings);
+  AddFailedFitFindings(stage->summary.fits, stage->name, &findings);
+  AddResidualFindings(*stage, &findings);
+  AddCompensationFindings(info, *stage, &findings);
+  AddBootstrapFindings(*stage, &findings);
+  for (const std::string& a : stage->admissibility) {
+    Finding f = MakeFinding(FindingKind::kNotAdmissible, a);
+    f.stage = stage->name;
+    findings.push_back(std::move(f));
+  }
+  AddHeldOutFindings(*stage, &findings);
+  SortFindings(&findings);
+  stage->findings = std::move(findings);
+  stage->verdict = VerdictOf(stage->findings);
+}
+
+}  // namespace vesselid

@@ -1,0 +1,33 @@
+// A stage's judgement: its solver's own findings (StageSummary::findings) and those derived
+// from what the stage reports, computed from the reported values so that none is stale
+// after a re-solve:
+//   at_bound       a free estimate (or a held-out run's own value) within 1e-6 of its range
+//                  from a bound, as reported;
+//   no_convergence the chosen solve stopped at its iteration limit;
+//   no_progress    the chosen solve made no successful step (a warning when the fit failed
+//                  or the solver did not converge there, else info: the start was an optimum);
+//   failed_fit     per output, the experiments whose simulation missed the record (FitFailed);
+//   residuals, compensation, bootstrap, admissibility, held-out checks (their own headers).
+#pragma once
+
+#include <vector>
+
+#include "engine/base/finding.h"
+#include "engine/model/model.h"
+#include "engine/run/run_result.h"
+
+namespace vesselid {
+
+// Sets stage->findings and stage->verdict.
+void DiagnoseStage(const ModelInfo& info, StageResult* stage);
+
+// at_bound findings of `estimates` (free or per-experiment parameters with finite bounds),
+// named for `stage` ("final" for the final validation's held-out runs).
+void AddBoundFindings(const ModelInfo& info, const std::vector<Estimate>& estimates,
+                      const std::string& stage, std::vector<Finding>* findings);
+
+// failed_fit findings of `fits`, one per output with the count of experiments.
+void AddFailedFitFindings(const std::vector<ExperimentFit>& fits, const std::string& stage,
+                          std::vector<Finding>* findings);
+
+}  // namespace vesselid

@@ -1,0 +1,31 @@
+// Findings and verdicts as the outputs show them: results.json's "findings" arrays (every
+// field of Finding), report.txt's and report.html's lists grouped by severity then kind,
+// and stderr's lines.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/base/finding.h"
+#include "engine/run/run_result.h"
+#include "nlohmann/json.hpp"
+
+namespace vesselid {
+
+nlohmann::json FindingsToJson(const std::vector<Finding>& findings);
+
+// Every finding of the run: its own, then each stage's, in output order (severity first).
+std::vector<Finding> AllFindings(const RunResult& result);
+
+// "verdict: doubtful (0 failures, 3 warnings, 2 notes)".
+std::string VerdictLine(Verdict verdict, const std::vector<Finding>& findings);
+
+// Plain-text lists, one line per finding under a heading per severity ("failures (1)");
+// `info`: include the info findings.
+std::string FindingsText(const std::vector<Finding>& findings, bool info,
+                         const std::string& indent = "  ");
+
+// An HTML list per severity, each finding with its kind as a tag.
+std::string FindingsHtml(const std::vector<Finding>& findings);
+
+}  // namespace vesselid
