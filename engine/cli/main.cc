@@ -146,13 +146,12 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
     return Fail(write_error);
   }
   if (!flags.quiet) std::cout << vesselid::RunResultToText(config, result);
-  // Failures and warnings on stderr (notes too with --verbose), the verdict last.
+  // Failures and warnings on stderr, never silenced (notes too with --verbose), the verdict
+  // last.
   const std::vector<vesselid::Finding> findings = vesselid::AllFindings(result);
-  if (!flags.quiet) {
-    for (const vesselid::Finding& f : findings) {
-      if (f.severity == vesselid::FindingSeverity::kInfo && !flags.verbose) continue;
-      std::fprintf(stderr, "vesselid: %s\n", vesselid::DescribeFinding(f).c_str());
-    }
+  for (const vesselid::Finding& f : findings) {
+    if (f.severity == vesselid::FindingSeverity::kInfo && !flags.verbose) continue;
+    std::fprintf(stderr, "vesselid: %s\n", vesselid::DescribeFinding(f).c_str());
   }
   std::printf("\nresults written to %s/results.json\n", out_dir.c_str());
   if (!complete) {

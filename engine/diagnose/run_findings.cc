@@ -84,10 +84,13 @@ void DiagnoseRun(const RunConfig& config, RunResult* run) {
   const ModelInfo& info = config.model->info();
   for (StageResult& stage : run->stages) {
     const ModelHandle* model = &*config.model;
+    bool output_error = true;
     for (const StageConfig& s : config.stages) {
-      if (s.options.name == stage.name) model = &config.StageModel(s);
+      if (s.options.name != stage.name) continue;
+      model = &config.StageModel(s);
+      output_error = s.kind == StageConfig::Kind::kOutputError;
     }
-    DiagnoseStage(model->info(), &stage);
+    DiagnoseStage(model->info(), output_error, &stage);
     stage.findings = FoldFindings(stage.findings);
   }
   std::vector<Finding>& findings = run->findings;

@@ -167,13 +167,13 @@ void AddFailedFitFindings(const std::vector<ExperimentFit>& fits, const std::str
   }
 }
 
-void DiagnoseStage(const ModelInfo& info, StageResult* stage) {
+void DiagnoseStage(const ModelInfo& info, bool output_error, StageResult* stage) {
   std::vector<Finding> findings;
   for (Finding f : stage->summary.findings) {
     f.stage = stage->name;
     findings.push_back(std::move(f));
   }
-  AddSolveFindings(*stage, &findings);
+  if (output_error) AddSolveFindings(*stage, &findings);
   AddBoundFindings(info, stage->estimates, stage->name, &findings);
   AddBoundFindings(info, stage->held_out_parameters.estimates, stage->name, &findings);
   AddFailedFitFindings(stage->summary.fits, stage->name, &findings);

@@ -18,8 +18,9 @@
 
 namespace vesselid {
 
-// Sets stage->findings and stage->verdict.
-void DiagnoseStage(const ModelInfo& info, StageResult* stage);
+// Sets stage->findings and stage->verdict; `output_error`: the stage was solved by Ceres
+// (a regression stage's "solve" is its regression: no solver findings).
+void DiagnoseStage(const ModelInfo& info, bool output_error, StageResult* stage);
 
 // at_bound findings of `estimates` (free or per-experiment parameters with finite bounds),
 // named for `stage` ("final" for the final validation's held-out runs).

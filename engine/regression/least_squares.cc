@@ -556,18 +556,7 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
     summary->notes.push_back("'" + info.parameters[i] + "' searched in [" +
                              std::to_string(specs[i].lower) + ", " +
                              std::to_string(specs[i].upper) + "]: " + std::to_string(p[i]));
-    // As an output-error stage notes it (a run warning): the search ended on a bound.
-    const double tolerance = 1e-6 * (specs[i].upper - specs[i].lower);
-    const bool at_lower = p[i] - specs[i].lower <= tolerance;
-    if (at_lower || specs[i].upper - p[i] <= tolerance) {
-      char text[200];
-      std::snprintf(text, sizeof(text),
-                    "%s is at its %s bound %g: the profile search ends there; the data pull it "
-                    "further",
-                    info.parameters[i].c_str(), at_lower ? "lower" : "upper",
-                    at_lower ? specs[i].lower : specs[i].upper);
-      summary->notes.push_back(text);
-    }
+    // A search that ends on a bound is an at_bound finding (diagnose/), from the estimate.
   }
   data.Build(p, records);  // leaves the internal states of the records at the final values
   summary->usable = true;

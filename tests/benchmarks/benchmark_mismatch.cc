@@ -85,9 +85,13 @@ void Report(const std::string& label, const fs::path& dir, double seconds) {
     if (m["prediction"].get<std::string>().find("free-run") == std::string::npos) continue;
     std::printf(" %s %.3f", m["state"].get<std::string>().c_str(), m["r2"].get<double>());
   }
-  std::printf("\n  warnings: %zu\n", r["warnings"].size());
-  for (const json& w : r["warnings"])
-    std::printf("    %s\n", w.get<std::string>().substr(0, 220).c_str());
+  std::printf("\n  verdict: %s, run findings: %zu\n", r["verdict"].get<std::string>().c_str(),
+              r["findings"].size());
+  for (const json& f : r["findings"]) {
+    std::printf("    %s [%s] %s\n", f["severity"].get<std::string>().c_str(),
+                f["kind"].get<std::string>().c_str(),
+                f["message"].get<std::string>().substr(0, 200).c_str());
+  }
 }
 
 }  // namespace

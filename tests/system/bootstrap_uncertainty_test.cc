@@ -119,9 +119,11 @@ TEST(BootstrapUncertainty, FewExperimentsAreRefusedAndTheStageKeepsItsFigures) {
   EXPECT_NE(s->summary.uncertainty.method, "experiment_bootstrap");
   EXPECT_TRUE(s->summary.uncertainty.available);
   bool refused = false;
-  for (const std::string& note : s->summary.notes) {
-    if (note.rfind(kBootstrapNote, 0) != 0) continue;
+  for (const Finding& f : s->summary.findings) {
+    if (f.kind != FindingKind::kBootstrap) continue;
     refused = true;
+    EXPECT_EQ(f.severity, FindingSeverity::kWarning);
+    const std::string& note = f.message;
     EXPECT_NE(note.find("stage 'multisine' needs at least 5"), std::string::npos) << note;
     EXPECT_NE(note.find("segment_length"), std::string::npos) << note;
   }

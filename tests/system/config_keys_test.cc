@@ -14,6 +14,7 @@
 
 #include "engine/config/config.h"
 #include "engine/diagnose/run_findings.h"
+#include "engine/output/finding_report.h"
 #include "engine/run/pipeline.h"
 #include "gtest/gtest.h"
 #include "problems/nomoto/closed_loop_simulator.h"
@@ -411,7 +412,7 @@ class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
       std::snprintf(line, sizeof(line), "%s=%.12g;", f.name.c_str(), f.value);
       s += line;
     }
-    for (const std::string& w : r.warnings) s += w + ";";
+    for (const Finding& f : AllFindings(r)) s += DescribeFinding(f) + ";";
     return s + std::to_string(r.final_validation.size()) + " final validation, " +
            std::to_string(r.final_velocity_validation.size()) + " velocity metrics";
   }

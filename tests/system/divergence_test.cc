@@ -123,8 +123,11 @@ TEST_F(DivergenceTest, StageThatDivergesKeepsTheFinishedStagesResults) {
   ASSERT_EQ(results["stages"].size(), 1u);
   EXPECT_EQ(results["stages"][0]["name"], "first");
   EXPECT_EQ(results["stopped"]["stage"], "second");
-  ASSERT_FALSE(results["warnings"].empty());
-  EXPECT_NE(results["warnings"][0].get<std::string>().find("stopped in stage 'second'"),
+  ASSERT_FALSE(results["findings"].empty());
+  EXPECT_EQ(results["findings"][0]["kind"], "run_stopped");
+  EXPECT_EQ(results["findings"][0]["severity"], "failure");
+  EXPECT_EQ(results["verdict"], "failed");
+  EXPECT_NE(results["findings"][0]["message"].get<std::string>().find("stopped in stage 'second'"),
             std::string::npos);
   EXPECT_TRUE(fs::exists(folder_->dir() / "second" / "report.html"));
   std::ifstream text(folder_->dir() / "second" / "report.txt");

@@ -17,6 +17,7 @@
 #include "engine/output/stage_result_archive.h"
 #include "engine/run/held_out.h"
 #include "engine/diagnose/run_findings.h"
+#include "engine/output/finding_report.h"
 #include "engine/run/pipeline.h"
 #include "gtest/gtest.h"
 #include "problems/nomoto/closed_loop_simulator.h"
@@ -251,24 +252,23 @@ TEST_F(HeldOutParametersTest, HoldKeepsThemAtTheirStart) {
             std::string::npos);
 }
 
-// A held-out bias the bounds stop is a warning naming the run, in the stage and the final
-// validation.
+// A held-out bias the bounds stop is an at_bound finding naming the run, in the stage and the
+// final validation.
 TEST_F(HeldOutParametersTest, HeldOutEstimateAtABoundIsAWarning) {
   RunConfig config;
   RunResult result;
   ASSERT_TRUE(Run("final_validation: {experiments: [z4, z5]}\n", &config, &result,
                   "lower: -0.04, upper: 0.1"));
-  auto warned = [&](const std::string& text) {
-    for (const std::string& w : result.warnings) {
-      if (w.find(text) != std::string::npos) return true;
-    }
-    return false;
-  };
-  EXPECT_TRUE(
-      warned("stage 'biased': validation: delta_0[z5] of held-out run 'z5' is at its "
-             "lower bound -0.04"));
-  EXPECT_TRUE(warned("final validation: delta_0[z5] of held-out run 'z5' is at its lower bound"));
-  EXPECT_FALSE(warned("run 'z4'"));
+  std::vector<std::pair<std::string, std::string>> at_bound;  // (stage, experiment)
+  for (const Finding& f : AllFindings(result)) {
+    if (f.kind != FindingKind::kAtBound || f.parameter.rfind("delta_0[", 0) != 0) continue;
+    EXPECT_EQ(f.severity, FindingSeverity::kWarning);
+    EXPECT_EQ(f.threshold, -0.04);
+    EXPECT_NE(f.message.find("is at its lower bound -0.04"), std::string::npos) << f.message;
+    at_bound.emplace_back(f.stage, f.experiment);
+  }
+  EXPECT_EQ(at_bound, (std::vector<std::pair<std::string, std::string>>{{"final", "z5"},
+                                                                         {"biased", "z5"}}));
 }
 
 // A final validation that would fit what the last stage's validation fitted (same records,

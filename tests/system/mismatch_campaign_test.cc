@@ -12,6 +12,7 @@
 #include <string>
 
 #include "gtest/gtest.h"
+#include "tests/support/findings.h"
 #include "nlohmann/json.hpp"
 
 namespace vesselid {
@@ -58,11 +59,9 @@ json RunMismatch(const std::string& kind) {
   return j;
 }
 
-bool Warned(const json& results, const std::string& text) {
-  for (const json& w : results["warnings"]) {
-    if (w.get<std::string>().find(text) != std::string::npos) return true;
-  }
-  return false;
+// A finding of `kind` whose message contains `text`.
+bool Found(const json& results, const std::string& kind, const std::string& text) {
+  return !testing::JsonFindingsOf(results, kind, text).empty();
 }
 
 void CheckRun(const std::string& kind) {
@@ -75,12 +74,13 @@ void CheckRun(const std::string& kind) {
   const json& check = refinement["held_out_check"];
   if (check["worse"].get<bool>()) {
     EXPECT_TRUE(refinement.contains("rejected"));
-    EXPECT_TRUE(Warned(results, "stage 'refinement': worse on held-out data than its start"));
+    EXPECT_TRUE(Found(results, "stage_set_aside", "worse on held-out data than its start"));
   } else {
     for (const json& o : check["outputs"]) {
       if (o["stage_mae"].get<double>() <= 1.01 * o["start_mae"].get<double>()) continue;
-      EXPECT_TRUE(Warned(results, "predicts the held-out " + o["output"].get<std::string>() +
-                                      " worse than its start"))
+      EXPECT_TRUE(Found(results, "held_out_output_worse",
+                        "predicts the held-out " + o["output"].get<std::string>() +
+                            " worse than its start"))
           << o.dump();
     }
   }
@@ -88,7 +88,9 @@ void CheckRun(const std::string& kind) {
   const std::string glitched = "training@" + std::to_string(kGlitchSegment);
   bool trained = false;
   for (const json& m : refinement["fit"]["metrics"]) trained |= m["experiment"] == glitched;
-  if (trained) EXPECT_TRUE(Warned(results, glitched)) << results["warnings"].dump(1);
+  if (trained) {
+    EXPECT_TRUE(Found(results, "outliers", glitched)) << testing::JsonFindingsText(results);
+  }
 }
 
 TEST(MismatchCampaign, StaticConfigSaysWhatItKept) { CheckRun("static"); }

@@ -1,6 +1,5 @@
 // The staged pipeline: carried starts, isolated and shared roles, fusion rules, local and
 // final validation, per-stage model restriction, and undetermined combinations.
-#include "engine/diagnose/run_findings.h"
 #include "engine/run/pipeline.h"
 
 #include <cmath>
@@ -8,9 +7,11 @@
 #include <fstream>
 
 #include "engine/config/config.h"
+#include "engine/diagnose/run_findings.h"
 #include "engine/run/records.h"
 #include "engine/solve/step_stability.h"
 #include "gtest/gtest.h"
+#include "tests/support/findings.h"
 #include "problems/nomoto/closed_loop_simulator.h"
 #include "problems/nomoto/handles.h"
 #include "problems/registry.h"
@@ -81,9 +82,11 @@ experiments:
     return result;
   }
 
-  static bool HasWarning(const RunResult& result, const std::string& text) {
-    for (const std::string& w : result.warnings) {
-      if (w.find(text) != std::string::npos) return true;
+  // A finding of `kind` and `severity` whose line (DescribeFinding) contains `text`.
+  static bool Has(const RunResult& result, FindingKind kind, FindingSeverity severity,
+                  const std::string& text) {
+    for (const Finding& f : testing::FindingsOf(result, &kind, text)) {
+      if (f.severity == severity) return true;
     }
     return false;
   }
@@ -171,9 +174,14 @@ TEST_F(PipelineTest, EstimateOnItsBoundIsReported) {
       T: {start: 1.0, lower: 0.1, upper: 1.5}
       K: {start: -0.1, lower: -1, upper: -0.001}
 )");
-  const std::vector<std::string>& notes = result.stages[0].summary.notes;
-  ASSERT_EQ(notes.size(), 1u);
-  EXPECT_EQ(notes[0].rfind("T is at its upper bound 1.5", 0), 0u) << notes[0];
+  const std::vector<Finding>& findings = result.stages[0].findings;
+  ASSERT_FALSE(findings.empty());
+  EXPECT_EQ(findings[0].kind, FindingKind::kAtBound);
+  EXPECT_EQ(findings[0].parameter, "T");
+  EXPECT_EQ(findings[0].threshold, 1.5);
+  EXPECT_NE(findings[0].message.find(" is at its upper bound 1.5: the data pull it further"),
+            std::string::npos)
+      << findings[0].message;
 }
 
 TEST_F(PipelineTest, UnlistedParametersAreHeldAtTheirLatestEstimate) {
@@ -250,7 +258,10 @@ TEST_F(PipelineTest, StageWorseOnHeldOutDataIsSetAsideAndNamed) {
   // The final values are the first stage's, the better one on held-out data.
   EXPECT_DOUBLE_EQ(Final(result, "T").value, Find(result.stages[0], "T").value);
   EXPECT_EQ(Final(result, "T").stages, (std::vector<std::string>{"first"}));
-  EXPECT_TRUE(HasWarning(result, "stage 'refinement': worse on held-out data than its start"));
+  EXPECT_TRUE(Has(result, FindingKind::kStageSetAside, FindingSeverity::kWarning,
+                  "stage 'refinement': worse on held-out data than its start"));
+  // The final values are the first stage's: the run's verdict says a stage was set aside.
+  EXPECT_EQ(result.verdict, Verdict::kDoubtful);
   EXPECT_GT(result.final_validation[0].channels[0].r2, 0.999);
 }
 
@@ -259,7 +270,9 @@ TEST_F(PipelineTest, FinalLastKeepsTheWorseStageWithAWarning) {
   ASSERT_EQ(result.stages.size(), 2u);
   EXPECT_TRUE(result.stages[1].rejected.empty());
   EXPECT_NEAR(Final(result, "T").value, 4.0, 0.2);
-  EXPECT_TRUE(HasWarning(result, "kept because of final: last"));
+  EXPECT_TRUE(Has(result, FindingKind::kHeldOutWorse, FindingSeverity::kWarning,
+                  "stage 'refinement': worse on held-out data than its start"));
+  EXPECT_EQ(result.stages[1].verdict, Verdict::kDoubtful);
 }
 
 // A carried parameter listed without bounds keeps the bounds of the stage that estimated it.
@@ -343,7 +356,9 @@ stages:
   EXPECT_LE(stage.integration_step, T * kStepStabilityLimit);
   EXPECT_NEAR(Find(stage, "T").value, T, 0.01 * T);
   EXPECT_NEAR(Find(stage, "K").value, K, 0.01 * std::abs(K));
-  EXPECT_TRUE(HasWarning(result, "integration step reduced"));
+  // Handled by the stage: a note, not a doubt.
+  EXPECT_TRUE(Has(result, FindingKind::kIntegrationStep, FindingSeverity::kInfo,
+                  "integration step reduced"));
 }
 
 // continuation on a record split by a segment column cuts each segment into pieces (it was
@@ -427,8 +442,11 @@ final_validation: {experiments: [hard]}
       << held.message;
   ASSERT_EQ(result.final_validation.size(), 1u);
   EXPECT_TRUE(result.final_validation[0].diverged);
-  EXPECT_TRUE(HasWarning(result, "stage 'fit': validation: simulation of experiment 'hard'"));
-  EXPECT_TRUE(HasWarning(result, "final validation: simulation of experiment 'hard'"));
+  EXPECT_TRUE(Has(result, FindingKind::kHeldOutDiverged, FindingSeverity::kFailure,
+                  "stage 'fit', experiment 'hard': simulation of experiment 'hard'"));
+  EXPECT_TRUE(Has(result, FindingKind::kFinalHeldOutFailed, FindingSeverity::kFailure,
+                  "stage final, experiment 'hard': diverges: simulation of experiment 'hard'"));
+  EXPECT_EQ(result.verdict, Verdict::kFailed);
 }
 
 }  // namespace

@@ -180,8 +180,13 @@ TEST_F(RealLog, FinishesWithEveryDefectNamed) {
   ASSERT_EQ(run.status, 0) << run.output;
   std::ifstream in(dir_ / "out" / "results.json");
   const nlohmann::json results = nlohmann::json::parse(in);
+  // Each record finding as a line: "experiment 'log'[, segment s]: message".
   std::string warnings;
-  for (const std::string w : results["warnings"]) warnings += w + "\n";
+  for (const nlohmann::json& f : results["findings"]) {
+    warnings += f["kind"].get<std::string>() + " experiment '" + f["experiment"].get<std::string>() +
+                "'" + (f["segment"] == "" ? "" : ", segment " + f["segment"].get<std::string>()) +
+                ": " + f["message"].get<std::string>() + "\n";
+  }
   std::ostringstream text;
   text << std::ifstream(dir_ / "out" / "report.txt").rdbuf();
   const std::vector<std::string> expected = {
@@ -191,19 +196,23 @@ TEST_F(RealLog, FinishesWithEveryDefectNamed) {
       "1 jump(s) faster than the screen's bound in north/east (t = ",
       "1 jump(s) faster than the screen's bound in hdg_deg (t = ",
       "experiment 'log': resampled to a uniform 5 Hz grid",
-      "experiment 'log': segment 'log@5' (t = ",
-      "skipped: Savitzky-Golay window of 15 samples is longer than the ",
-      "experiment 'log': segment 'log@6' (t = ",
+      "experiment 'log', segment log@5: skipped (t = ",
+      "s): Savitzky-Golay window of 15 samples is longer than the ",
+      "experiment 'log', segment log@6: skipped (t = ",
       " sample time(s) of its outputs, fewer than the 6 the model's states need"};
   for (const std::string& e : expected) {
     EXPECT_NE(warnings.find(e), std::string::npos) << e << "\n" << warnings;
     EXPECT_NE(run.output.find(e), std::string::npos) << e;
     EXPECT_NE(text.str().find(e), std::string::npos) << e;
   }
+  // Each kind as typed: the removals and skips are warnings, the origin and grid notes.
+  for (const char* kind : {"record_origin", "samples_removed", "resampled", "segment_skipped"}) {
+    EXPECT_NE(warnings.find(std::string(kind) + " experiment 'log'"), std::string::npos) << kind;
+  }
   std::ostringstream html;
   html << std::ifstream(dir_ / "out" / "report.html").rdbuf();
   for (const char* e : {"6 stale repeat(s) of north/east", "resampled to a uniform 5 Hz grid",
-                        "skipped: Savitzky-Golay window of 15 samples"}) {
+                        "s): Savitzky-Golay window of 15 samples"}) {
     EXPECT_NE(html.str().find(e), std::string::npos) << e;
   }
   // The origins, exactly: the first row's time text and fix.

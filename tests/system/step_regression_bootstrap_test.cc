@@ -11,6 +11,7 @@
 #include <string>
 
 #include "gtest/gtest.h"
+#include "tests/support/findings.h"
 #include "nlohmann/json.hpp"
 
 namespace vesselid {
@@ -115,12 +116,9 @@ TEST_F(StepRegressionBootstrap, EveryNonZeroEstimateGetsABootstrapStandardError)
   EXPECT_NE(report.find("bootstrap over"), std::string::npos);
   EXPECT_NE(report.find("lasso selection"), std::string::npos);
   EXPECT_NE(html.find("<h4>Bootstrap</h4>"), std::string::npos);
-  // Doubtful estimates are named in the warnings (stderr, report, results.json).
-  bool named = false;
-  for (const auto& w : results["warnings"]) {
-    named = named || w.get<std::string>().find("bootstrap interval contains 0 for") != std::string::npos;
-  }
-  EXPECT_TRUE(named);
+  // Doubtful estimates are named in the findings (stderr, report, results.json).
+  EXPECT_FALSE(
+      testing::JsonFindingsOf(results, "bootstrap", "bootstrap interval contains 0 for").empty());
   EXPECT_NE(errors.find("bootstrap interval contains 0 for"), std::string::npos);
 }
 

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "gtest/gtest.h"
+#include "tests/support/findings.h"
 #include "nlohmann/json.hpp"
 #include "tests/support/shipped_config.h"
 
@@ -99,9 +100,8 @@ fs::path* ThrustLawFit::dir_ = nullptr;
 
 std::vector<std::string> Compensations(const json& results) {
   std::vector<std::string> found;
-  for (const json& w : results["warnings"]) {
-    const std::string text = w.get<std::string>();
-    if (text.find("compensate each other") != std::string::npos) found.push_back(text);
+  for (const json& f : testing::JsonFindingsOf(results, "compensation")) {
+    found.push_back(f["message"].get<std::string>());
   }
   return found;
 }
@@ -111,7 +111,7 @@ TEST_F(ThrustLawFit, QuadraticLawHasNoCompensatingEstimates) {
       Run("quadratic", Config(", thrust: [\"n|n|\"], dead_zone: false", "k_r2: 0.5", "k_r2: {}"));
   ASSERT_FALSE(results.is_discarded());
   ASSERT_EQ(results["stages"].size(), 2u);
-  EXPECT_TRUE(Compensations(results).empty()) << results["warnings"].dump(1);
+  EXPECT_TRUE(Compensations(results).empty()) << testing::JsonFindingsText(results);
 }
 
 TEST_F(ThrustLawFit, DefaultLawWarnsThatTheGainsAndKfCompensate) {
@@ -123,7 +123,7 @@ TEST_F(ThrustLawFit, DefaultLawWarnsThatTheGainsAndKfCompensate) {
   for (const std::string& w : found) {
     named |= w.find("k_f") != std::string::npos && w.find("n|n|") != std::string::npos;
   }
-  EXPECT_TRUE(named) << results["warnings"].dump(1);
+  EXPECT_TRUE(named) << testing::JsonFindingsText(results);
 }
 
 TEST_F(ThrustLawFit, DeadZoneAtItsBoundIsNamed) {
@@ -138,13 +138,14 @@ TEST_F(ThrustLawFit, DeadZoneAtItsBoundIsNamed) {
   const json results = Run("dead_zone", config);
   ASSERT_FALSE(results.is_discarded());
   bool named = false;
-  for (const json& w : results["warnings"]) {
-    const std::string text = w.get<std::string>();
-    named |= text.find("stage 'least_squares': d_f is at its upper bound 0.15") == 0 &&
+  for (const json& f : testing::JsonFindingsOf(results, "at_bound")) {
+    const std::string text = f["message"].get<std::string>();
+    named |= f["stage"] == "least_squares" && f["parameter"] == "d_f" && f["threshold"] == 0.15 &&
+             text.find("is at its upper bound 0.15") != std::string::npos &&
              text.find("a dead zone at its bound stands in for a thrust law the model lacks") !=
                  std::string::npos;
   }
-  EXPECT_TRUE(named) << results["warnings"].dump(1);
+  EXPECT_TRUE(named) << testing::JsonFindingsText(results);
 }
 
 }  // namespace

@@ -64,9 +64,12 @@ TEST(UncertaintyMethod, ChosenHessianWarnsThatItsIntervalsAreTooNarrow) {
   const StageSummary s = Solve(0.1, UncertaintyMethod::kHessian);
   EXPECT_EQ(s.uncertainty.method, "hessian");
   bool warned = false;
-  for (const std::string& note : s.notes) {
-    if (note.rfind(kNarrowHessianNote, 0) != 0) continue;
+  for (const Finding& f : s.findings) {
+    if (f.kind != FindingKind::kNarrowIntervals) continue;
     warned = true;
+    EXPECT_EQ(f.parameter, "K");
+    EXPECT_GT(f.value, f.threshold);
+    const std::string& note = f.message;
     EXPECT_NE(note.find("K: Hessian SE"), std::string::npos) << note;
     EXPECT_NE(note.find("narrower than the HAC SE"), std::string::npos) << note;
   }

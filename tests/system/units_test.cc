@@ -103,9 +103,9 @@ class UnitsTest : public ::testing::Test {
   }
 
   static bool WarnsOfDegrees(const RunResult& result) {
-    for (const std::string& w : result.warnings) {
-      if (w.find("experiment 'zz', output psi: column 'psi' looks like degrees") !=
-          std::string::npos) {
+    for (const Finding& f : result.findings) {
+      if (f.kind == FindingKind::kUnitSuspect && f.experiment == "zz" && f.output == "psi" &&
+          f.message.rfind("column 'psi' looks like degrees", 0) == 0) {
         return true;
       }
     }

@@ -132,7 +132,7 @@ TEST(InputCorrection, NoisyRudderBiasesFastTimeConstantsLess) {
 }
 
 // A stage with a latent input says that its intervals hold the spline as exact (a warning,
-// run_warnings.cc) and names the parametric bootstrap with the input's noise SD; a stage
+// a narrow_intervals finding) and names the parametric bootstrap with the input's noise SD; a stage
 // without one says nothing of the kind.
 TEST(InputCorrection, IntervalWarningNamesTheBootstrap) {
   auto model = nomoto::MakeSecondOrderHandle();
@@ -143,13 +143,15 @@ TEST(InputCorrection, IntervalWarningNamesTheBootstrap) {
                                               testing::FiftyPercentOff(testing::PatrolVessel().truth),
                                               OutputErrorOptions(), &error);
     ASSERT_NE(problem, nullptr) << error;
-    int found = 0;
-    for (const std::string& note : InputNoiseNotes(*problem)) {
-      if (note.rfind(kInputNoiseIntervalNote, 0) != 0) continue;
-      ++found;
-      EXPECT_NE(note.find("truth: estimate, noise: {delta: 0.00"), std::string::npos) << note;
-    }
-    EXPECT_EQ(found, noisy ? 1 : 0);
+    std::vector<std::string> notes;
+    std::vector<Finding> findings;
+    InputNoiseNotes(*problem, &notes, &findings);
+    ASSERT_EQ(findings.size(), noisy ? 1u : 0u);
+    if (!noisy) continue;
+    EXPECT_EQ(findings[0].kind, FindingKind::kNarrowIntervals);
+    EXPECT_EQ(findings[0].severity, FindingSeverity::kWarning);
+    EXPECT_NE(findings[0].message.find("truth: estimate, noise: {delta: 0.00"), std::string::npos)
+        << findings[0].message;
   }
 }
 

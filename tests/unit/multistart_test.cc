@@ -291,9 +291,11 @@ TEST(Multistart, CountsAndNotesPointsWhoseSimulationDiverges) {
   EXPECT_GT(summary.global.failed_evaluations, 0);
   EXPECT_LT(summary.global.failed_evaluations, 16);
   bool noted = false;
-  for (const std::string& note : summary.notes) {
-    noted = noted || note.find(std::to_string(summary.global.failed_evaluations) +
-                               " of 16 points diverged") != std::string::npos;
+  for (const Finding& f : summary.findings) {
+    noted = noted || (f.kind == FindingKind::kGlobalStartDiverged &&
+                      f.value == summary.global.failed_evaluations &&
+                      f.message.find(std::to_string(summary.global.failed_evaluations) +
+                                     " of 16 points diverged") != std::string::npos);
   }
   EXPECT_TRUE(noted);
   EXPECT_NEAR(ValueOf(*problem, "K"), -0.1724, 0.02 * 0.1724);

@@ -10,7 +10,7 @@
 
 #include "engine/base/angle.h"
 #include "engine/run/fit_residuals.h"
-#include "engine/run/residual_warnings.h"
+#include "engine/diagnose/residual_findings.h"
 #include "gtest/gtest.h"
 
 namespace vesselid {
@@ -118,9 +118,9 @@ TEST(FitResiduals, NoiseFreeDataAreMarked) {
   StageResult stage;
   stage.name = "s";
   stage.residuals = a;
-  std::vector<std::string> warnings;
-  AddResidualWarnings(stage, &warnings);
-  EXPECT_TRUE(warnings.empty());
+  std::vector<Finding> findings;
+  AddResidualFindings(stage, &findings);
+  EXPECT_TRUE(findings.empty());
   EXPECT_NE(DescribeResiduals(a[0]).find("noise-free data"), std::string::npos);
 }
 
@@ -141,7 +141,7 @@ ResidualAnalysis Channel(const std::string& experiment, bool white, double lag1)
   return a;
 }
 
-TEST(ResidualWarnings, ColouredChannelsNamedWorstFirstExceptFailedFits) {
+TEST(ResidualFindings, ColouredChannelsNamedWorstFirstExceptFailedFits) {
   StageResult stage;
   stage.name = "multisine";
   stage.residuals = {Channel("run1", false, 0.4), Channel("run2", true, 0.01),
@@ -150,23 +150,28 @@ TEST(ResidualWarnings, ColouredChannelsNamedWorstFirstExceptFailedFits) {
   failed.experiment = "run4";
   failed.channels.push_back({"run4", "psi", 500, 1.0, 1.0, -0.5, 0.0, 0.1, 0.01});  // R2 < 0
   stage.summary.fits = {failed};
-  std::vector<std::string> warnings;
-  AddResidualWarnings(stage, &warnings);
-  ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_EQ(warnings[0],
-            "stage 'multisine': the residuals of psi are coloured in 2 of 3 experiment(s) "
+  std::vector<Finding> findings;
+  AddResidualFindings(stage, &findings);
+  ASSERT_EQ(findings.size(), 1u);
+  EXPECT_EQ(findings[0].kind, FindingKind::kColouredResiduals);
+  EXPECT_EQ(findings[0].stage, "multisine");
+  EXPECT_EQ(findings[0].output, "psi");
+  EXPECT_EQ(findings[0].count, 2);
+  EXPECT_EQ(findings[0].message,
+            "the residuals of psi are coloured in 2 of 3 experiment(s) "
             "(Ljung-Box p < 0.01): run3 (lag-1 0.93), run1 (lag-1 0.40); the Hessian standard "
             "errors assume white residuals and are too narrow");
   // With the HAC reported the warning says so, with the ratios behind the choice.
   stage.summary.uncertainty.method = "sandwich_hac";
   stage.summary.uncertainty.method_reason = "auto: K 3.2x";
-  warnings.clear();
-  AddResidualWarnings(stage, &warnings);
-  ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_NE(warnings[0].find("; the standard errors reported are the sandwich_hac ones, which "
-                             "allow for serially correlated residuals (auto: K 3.2x)"),
+  findings.clear();
+  AddResidualFindings(stage, &findings);
+  ASSERT_EQ(findings.size(), 1u);
+  EXPECT_NE(findings[0].message.find("; the standard errors reported are the sandwich_hac ones, "
+                                     "which allow for serially correlated residuals (auto: K "
+                                     "3.2x)"),
             std::string::npos)
-      << warnings[0];
+      << findings[0].message;
 }
 
 TEST(ResidualReportText, OneLinePerChannelOrASummaryOfManySegments) {
