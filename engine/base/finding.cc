@@ -122,11 +122,18 @@ const Row kRows[] = {
      "A measured input is noisy enough to bias output error (errors in variables).",
      "Declare it under `input_noise:`."},
     {K::kFailedFit, "failed_fit", S::kFailure,
-     "A simulated output predicts its record no better than holding the record's first value "
-     "(MAE above the hold MAE) or worse than its mean (R^2 < 0). Judged against what the "
-     "record allows, never against a noise level. A stage's finding is a warning when the "
-     "stage is not the last kept one.",
+     "A simulated output predicts its record worse than the record's mean (R^2 < 0) or worse "
+     "than holding the record's first value (MAE above the hold MAE), where the record varies "
+     "beyond its noise (its SD above 3 x its noise level). Judged against what the record "
+     "allows, never against a noise level alone: smooth model-test records have a tiny noise "
+     "level that any real fit exceeds 100-fold.",
      "The structure, a start, or the data are wrong for this record: look at its trace."},
+    {K::kPoorFit, "poor_fit", S::kWarning,
+     "A simulated output that did not fail explains less than half of its record's variation "
+     "beyond the noise: fit below 50 % (residual RMS above half the record's SD), where the "
+     "record varies beyond its noise (its SD above 3 x its noise level).",
+     "Expected of a start stage; in the last stage, look for missing dynamics or a wrong "
+     "minimum (a global start)."},
     {K::kColouredResiduals, "coloured_residuals", S::kInfo,
      "Residuals are coloured (Ljung-Box p < 0.01, lag-1 autocorrelation > 0.3): normal for "
      "real records with unmodelled dynamics; it matters for the standard errors "

@@ -49,6 +49,7 @@ enum class FindingKind {
   kInputNoise,
   // Fit and residuals.
   kFailedFit,
+  kPoorFit,
   kColouredResiduals,
   kInputCorrelatedResiduals,
   kNotAdmissible,

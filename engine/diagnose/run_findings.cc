@@ -53,28 +53,33 @@ std::vector<Finding> FoldFindings(const std::vector<Finding>& findings) {
   using Key = std::tuple<int, int, std::string, std::string, std::string, std::string>;
   std::map<Key, size_t> first;
   std::vector<Finding> folded;
-  std::vector<int> extra;
+  std::vector<std::vector<std::string>> also;
   for (const Finding& f : findings) {
     // Record findings differ in what they say of each record: not folded.
     const bool foldable = !f.experiment.empty() && f.kind != FindingKind::kSamplesRemoved &&
+                          f.kind != FindingKind::kSegmentSkipped &&
                           f.kind != FindingKind::kResampled && f.kind != FindingKind::kRecordOrigin &&
                           f.kind != FindingKind::kRecordCut;
     const Key key{static_cast<int>(f.kind), static_cast<int>(f.severity), f.stage,
                   f.parameter.substr(0, f.parameter.find('[')), f.output,
-                  foldable ? "" : f.experiment + "\n" + f.segment + "\n" + f.message};
+                  foldable ? f.segment : f.experiment + "\n" + f.segment + "\n" + f.message};
     const auto found = first.find(key);
     if (found == first.end()) {
       first[key] = folded.size();
       folded.push_back(f);
-      extra.push_back(0);
+      also.emplace_back();
       continue;
     }
     folded[found->second].count += f.count;
-    ++extra[found->second];
+    also[found->second].push_back(f.experiment);
   }
+  // "(also in zz2, zz3 and 4 more)": every folded experiment stays findable by name.
   for (size_t i = 0; i < folded.size(); ++i) {
-    if (extra[i] == 0) continue;
-    folded[i].message += " (and " + std::to_string(extra[i]) + " more experiment(s) alike)";
+    if (also[i].empty()) continue;
+    std::string names;
+    for (size_t k = 0; k < also[i].size() && k < 8; ++k) names += (k > 0 ? ", " : "") + also[i][k];
+    if (also[i].size() > 8) names += " and " + std::to_string(also[i].size() - 8) + " more";
+    folded[i].message += " (also in " + names + ")";
     folded[i].experiment.clear();
   }
   return folded;

@@ -40,7 +40,8 @@ bool Identify(const RunConfig& config, RunResult* result, std::string* error,
               const RunObserver& observer = {}, std::vector<StageResult> finished = {});
 
 // Merges findings that differ only in their experiment (and message) into one with the sum
-// of their counts, the first's message and " (and N more experiments)".
+// of their counts and the first's message followed by " (also in zz2, zz3)"; record findings
+// (removed samples, grids, origins, cuts) and different segments are not merged.
 std::vector<Finding> FoldFindings(const std::vector<Finding>& findings);
 
 }  // namespace vesselid

@@ -127,43 +127,54 @@ void AddBoundFindings(const ModelInfo& info, const std::vector<Estimate>& estima
   }
 }
 
-void AddFailedFitFindings(const std::vector<ExperimentFit>& fits, const std::string& stage,
-                          std::vector<Finding>* findings) {
-  std::map<std::string, std::vector<const ChannelMetrics*>> failed;
-  std::map<std::string, int> compared;
-  std::vector<std::string> order;
-  for (const ExperimentFit& fit : fits) {
-    for (const ChannelMetrics& m : fit.channels) {
-      if (compared[m.output]++ == 0) order.push_back(m.output);
-      if (FitFailed(m)) failed[m.output].push_back(&m);
+void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& stage,
+                    std::vector<Finding>* findings) {
+  struct Rule {
+    FindingKind kind;
+    bool (*fires)(const ChannelMetrics&);
+    const char* what;
+  };
+  const Rule rules[] = {
+      {FindingKind::kFailedFit, FitFailed,
+       "misses its record (worse than its mean, R2 < 0, or than holding its first value)"},
+      {FindingKind::kPoorFit, FitPoor, "explains less than half of its record (fit below 50 %)"}};
+  for (const Rule& rule : rules) {
+    std::map<std::string, std::vector<const ChannelMetrics*>> fired;
+    std::map<std::string, int> compared;
+    std::vector<std::string> order;
+    for (const ExperimentFit& fit : fits) {
+      for (const ChannelMetrics& m : fit.channels) {
+        if (compared[m.output]++ == 0) order.push_back(m.output);
+        if (rule.fires(m)) fired[m.output].push_back(&m);
+      }
     }
-  }
-  for (const std::string& output : order) {
-    const std::vector<const ChannelMetrics*>& list = failed[output];
-    if (list.empty()) continue;
-    // The worst first: lowest R2.
-    const ChannelMetrics* worst = list[0];
-    std::string names;
-    for (size_t i = 0; i < list.size(); ++i) {
-      if (list[i]->r2 < worst->r2) worst = list[i];
-      if (i < 8) names += (i > 0 ? ", " : "") + list[i]->experiment;
+    for (const std::string& output : order) {
+      const std::vector<const ChannelMetrics*>& list = fired[output];
+      if (list.empty()) continue;
+      const ChannelMetrics* worst = list[0];  // lowest R2
+      std::string names;
+      for (size_t i = 0; i < list.size(); ++i) {
+        if (list[i]->r2 < worst->r2) worst = list[i];
+        if (i < 8) names += (i > 0 ? ", " : "") + list[i]->experiment;
+      }
+      if (list.size() > 8) names += ", ...";
+      char figures[160];
+      std::snprintf(figures, sizeof(figures),
+                    ": fit %.3g %%, R2 %.3g, MAE %.3g against %.3g holding its first value",
+                    worst->fit_percent, worst->r2, worst->mae, worst->hold_mae);
+      Finding f = MakeFinding(rule.kind, "the simulated " + output + " " + rule.what + " in " +
+                                             std::to_string(list.size()) + " of " +
+                                             std::to_string(compared[output]) +
+                                             " experiment(s): " + names + "; worst " +
+                                             worst->experiment + figures);
+      f.stage = stage;
+      f.output = output;
+      f.experiment = list.size() == 1 ? worst->experiment : "";
+      f.value = rule.kind == FindingKind::kPoorFit ? worst->fit_percent : worst->r2;
+      f.threshold = rule.kind == FindingKind::kPoorFit ? kPoorFitPercent : 0.0;
+      f.count = static_cast<int>(list.size());
+      findings->push_back(std::move(f));
     }
-    if (list.size() > 8) names += ", ...";
-    Finding f = MakeFinding(
-        FindingKind::kFailedFit,
-        "the simulated " + output + " misses its record in " + std::to_string(list.size()) +
-            " of " + std::to_string(compared[output]) +
-            " experiment(s) (worse than its mean, R2 < 0, or than holding its first value): " +
-            names + "; worst " + worst->experiment +
-            Format(": R2 %.3g, MAE %.3g against %.3g holding its first value", worst->r2,
-                   worst->mae, worst->hold_mae));
-    f.stage = stage;
-    f.output = output;
-    f.experiment = list.size() == 1 ? worst->experiment : "";
-    f.value = worst->r2;
-    f.threshold = 0.0;
-    f.count = static_cast<int>(list.size());
-    findings->push_back(std::move(f));
   }
 }
 
@@ -176,7 +187,7 @@ void DiagnoseStage(const ModelInfo& info, bool output_error, StageResult* stage)
   if (output_error) AddSolveFindings(*stage, &findings);
   AddBoundFindings(info, stage->estimates, stage->name, &findings);
   AddBoundFindings(info, stage->held_out_parameters.estimates, stage->name, &findings);
-  AddFailedFitFindings(stage->summary.fits, stage->name, &findings);
+  AddFitFindings(stage->summary.fits, stage->name, &findings);
   AddResidualFindings(*stage, &findings);
   AddCompensationFindings(info, *stage, &findings);
   AddBootstrapFindings(*stage, &findings);

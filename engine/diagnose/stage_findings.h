@@ -7,6 +7,7 @@
 //   no_progress    the chosen solve made no successful step (a warning when the fit failed
 //                  or the solver did not converge there, else info: the start was an optimum);
 //   failed_fit     per output, the experiments whose simulation missed the record (FitFailed);
+//   poor_fit       per output, those it explains less than half of (FitPoor);
 //   residuals, compensation, bootstrap, admissibility, held-out checks (their own headers).
 #pragma once
 
@@ -27,8 +28,9 @@ void DiagnoseStage(const ModelInfo& info, bool output_error, StageResult* stage)
 void AddBoundFindings(const ModelInfo& info, const std::vector<Estimate>& estimates,
                       const std::string& stage, std::vector<Finding>* findings);
 
-// failed_fit findings of `fits`, one per output with the count of experiments.
-void AddFailedFitFindings(const std::vector<ExperimentFit>& fits, const std::string& stage,
+// failed_fit and poor_fit findings of `fits`, one per kind and output with the count of
+// experiments.
+void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& stage,
                           std::vector<Finding>* findings);
 
 }  // namespace vesselid

@@ -11,7 +11,9 @@
 //
 // Optional members, found by ModelAdapter when present:
 //
-//     std::vector<std::string> Admissibility(const double* p) const;   // physical conditions
+//     std::vector<std::string> Admissibility(const double* p,           // physical conditions
+//                                            const double* state_limits) const;  // (see
+//                                            // ModelHandle::Admissibility)
 //     void GuessState(const double* y, const double* ydot, double* x) const;  // see ModelHandle
 //
 // xdot = f(x, u, p) is the right-hand side; it returns false for an inadmissible or

@@ -3,6 +3,9 @@
 // ModelAdapter<Model> instantiates the templated simulation for the concrete model.
 #pragma once
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <string>
@@ -43,8 +46,16 @@ class ModelHandle {
   virtual void Output(const double* x, const double* u, const double* p, double* y) const = 0;
 
   // Physical admissibility of parameter values (empty when admissible, or when the model
-  // states no conditions).
-  virtual std::vector<std::string> Admissibility(const double* p) const = 0;
+  // states no conditions). `state_limits` (may be null: unknown): per state the largest |x|
+  // the records take it to (StateLimits), over which a condition on a function of the state
+  // (damping that must not feed the motion) is judged; null judges it for every state.
+  virtual std::vector<std::string> Admissibility(const double* p,
+                                                 const double* state_limits = nullptr) const = 0;
+
+  // Per state the largest |x| of a simulation in double from x0 over the experiment's nodes,
+  // folded into `max_abs` (num_states values, max with what it holds). False if it diverges.
+  virtual bool StateLimits(const Experiment& experiment, const double* p, const double* x0,
+                           double* max_abs) const = 0;
 
   // Start values of the states from outputs measured at t0 and their rates (NaN where not
   // measured); x holds the defaults and keeps what the model cannot derive.
@@ -63,12 +74,13 @@ class ModelHandle {
   virtual const DampingInertiaForm* damping_inertia_form() const = 0;
 };
 
-// Detects a model's optional `std::vector<std::string> Admissibility(const double*) const`.
+// Detects a model's optional
+// `std::vector<std::string> Admissibility(const double* p, const double* state_limits) const`.
 template <class Model, class = void>
 struct HasAdmissibility : std::false_type {};
 template <class Model>
 struct HasAdmissibility<
-    Model, std::void_t<decltype(std::declval<const Model&>().Admissibility(nullptr))>>
+    Model, std::void_t<decltype(std::declval<const Model&>().Admissibility(nullptr, nullptr))>>
     : std::true_type {};
 
 // Detects a model's optional `void GuessState(const double* y, const double* ydot, double* x)
@@ -144,12 +156,25 @@ class ModelAdapter final : public ModelHandle {
     model_.Output(x, u, p, y);
   }
 
-  std::vector<std::string> Admissibility(const double* p) const override {
+  std::vector<std::string> Admissibility(const double* p,
+                                         const double* state_limits = nullptr) const override {
     if constexpr (HasAdmissibility<Model>::value) {
-      return model_.Admissibility(p);
+      return model_.Admissibility(p, state_limits);
     } else {
       return {};
     }
+  }
+
+  bool StateLimits(const Experiment& e, const double* p, const double* x0,
+                   double* max_abs) const override {
+    std::array<double, Model::kNumStates> x;
+    std::copy(x0, x0 + Model::kNumStates, x.begin());
+    auto visit = [&](int, const double* state, const double*) {
+      for (int i = 0; i < Model::kNumStates; ++i) {
+        max_abs[i] = std::max(max_abs[i], std::abs(state[i]));
+      }
+    };
+    return SimulateExperiment(model_, e, p, x.data(), visit);
   }
 
   void GuessState(const double* y, const double* ydot, double* x) const override {

@@ -369,6 +369,12 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
   result->residuals = std::move(residuals);
   result->noise_model = std::move(noise);
   result->comparable_cost = comparable_cost;
+  result->state_limits.assign(model.info().states.size(), 0.0);
+  for (size_t e = 0; e < problem->experiments().size(); ++e) {
+    const int index = static_cast<int>(e);
+    model.StateLimits(problem->experiments()[e], problem->ParametersOf(index).data(),
+                      problem->InitialStateOf(index).data(), result->state_limits.data());
+  }
   return true;
 }
 

@@ -122,7 +122,9 @@ bool RunStages(const RunConfig& config, size_t first, size_t count, TrajectoryCa
       return fail(*error);
     }
     const std::vector<double> values = StageParameterValues(model.info(), stage_result);
-    stage_result.admissibility = model.Admissibility(values.data());
+    stage_result.admissibility = model.Admissibility(
+        values.data(),
+        stage_result.state_limits.empty() ? nullptr : stage_result.state_limits.data());
     if (!stage.validation.empty() &&
         !ValidateStage(config, stage, model, velocity_data, start_values, values, &cache, memo,
                        &stage_result, error)) {
@@ -225,7 +227,15 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
   run.parameters = FinalParameters(info, ledger, accepted, config.fusion);
   std::vector<double> final_values;
   for (const FinalParameter& f : run.parameters) final_values.push_back(f.value);
-  run.admissibility = config.model->Admissibility(final_values.data());
+  // Judged over the largest state values any accepted stage of the run's model reached.
+  std::vector<double> limits;
+  for (const StageResult& s : accepted) {
+    if (s.state_limits.size() != config.model->info().states.size()) continue;
+    if (limits.empty()) limits.assign(s.state_limits.size(), 0.0);
+    for (size_t i = 0; i < limits.size(); ++i) limits[i] = std::max(limits[i], s.state_limits[i]);
+  }
+  run.admissibility =
+      config.model->Admissibility(final_values.data(), limits.empty() ? nullptr : limits.data());
   if (config.has_final_validation && run.stopped_stage.empty()) {
     const FinalValidationConfig& v = config.final_validation;
     const ModelHandle& model = v.model ? *v.model : *config.model;

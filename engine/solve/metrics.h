@@ -42,11 +42,18 @@ inline constexpr double kSignalToNoise = 3.0;
 inline double ChannelSignalSd(const ChannelMetrics& m) {
   return m.r2 < 1.0 ? m.rmse / std::sqrt(1.0 - m.r2) : std::numeric_limits<double>::infinity();
 }
+inline bool ChannelVaries(const ChannelMetrics& m) {
+  return !(std::isfinite(m.noise) && m.noise > 0.0) || ChannelSignalSd(m) > kSignalToNoise * m.noise;
+}
 inline bool FitFailed(const ChannelMetrics& m) {
-  if (std::isfinite(m.noise) && m.noise > 0.0 && !(ChannelSignalSd(m) > kSignalToNoise * m.noise)) {
-    return false;
-  }
-  return m.r2 < 0.0 || (std::isfinite(m.hold_mae) && m.mae > m.hold_mae);
+  return ChannelVaries(m) && (m.r2 < 0.0 || (std::isfinite(m.hold_mae) && m.mae > m.hold_mae));
+}
+// A fit that did not fail but explains less than half of a varying record: fit % below
+// kPoorFitPercent (RMSE above half the record's SD).
+inline constexpr double kPoorFitPercent = 50.0;
+inline bool FitPoor(const ChannelMetrics& m) {
+  return !FitFailed(m) && ChannelVaries(m) && std::isfinite(m.fit_percent) &&
+         m.fit_percent < kPoorFitPercent;
 }
 
 // Metrics of a regression's fit to its samples (no MAE or fit %: only RMS residual and R2).

@@ -84,7 +84,7 @@ ModelInfo Model::Info() const {
   return info;
 }
 
-std::vector<std::string> Model::Admissibility(const double* p) const {
+std::vector<std::string> Model::Admissibility(const double* p, const double*) const {
   std::vector<std::string> problems;
   Eigen::Matrix<double, 6, 6> M = Eigen::Matrix<double, 6, 6>::Zero();
   const double m = constants.m;

@@ -70,7 +70,7 @@ struct Model {
 
   // Physical admissibility of a parameter vector: M symmetric positive definite, symmetric
   // part of the linear damping positive semi-definite. Empty when admissible.
-  std::vector<std::string> Admissibility(const double* p) const;
+  std::vector<std::string> Admissibility(const double* p, const double* state_limits) const;
 
   // Start values of unmeasured body velocities from the measured position and Euler-angle
   // rates: [u v w] = R(phi, theta, psi)^T [x' y' z'], [p q r] = T(phi, theta)^-1 [phi' theta'

@@ -30,6 +30,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -199,27 +200,52 @@ class InputGainModel {
     if (std::isnan(y[5]) && std::isfinite(ydot[2])) x[5] = ydot[2];
   }
 
-  std::vector<std::string> Admissibility(const double* p) const {
+  // Passive damping over the range the records cover: a velocity's own terms
+  // f(x) = a x + b |x| x feed the motion where x f(x) = x^2 (a + b |x|) > 0, i.e. near 0 when
+  // a > 0 and above |x| = -a / b when b > 0. With `state_limits` (the largest |u|, |v|, |r|
+  // the records take the model to) judged up to there, else for every x.
+  std::vector<std::string> Admissibility(const double* p, const double* state_limits) const {
     std::vector<std::string> problems;
     const double* prop = p + PropellerIndex();
     if (law_.dead_zone && prop[thrust_.d_r] > prop[thrust_.d_f]) {
       problems.push_back("dead zone d_r > d_f");
     }
     if (kDynamic && !(prop[thrust_.tau_T] > 0)) problems.push_back("tau_T must be > 0");
-    // Passive damping: each velocity's own linear and quadratic terms must not feed it.
     const char* equation[3] = {"u", "v", "r"};
     const int own[3][2] = {{kTermU, kTermAbsUU}, {kTermV, kTermAbsVV}, {kTermR, kTermAbsRR}};
     for (int i = 0; i < 3; ++i) {
+      double coefficient[2] = {0.0, 0.0};
       for (int k = 0; k < static_cast<int>(bases_.terms[i].size()); ++k) {
-        const int term = bases_.terms[i][k];
-        const double value = p[first_[i] + k];
-        if ((term != own[i][0] && term != own[i][1]) || !(value > 0.0)) continue;
-        char text[160];
+        for (int j = 0; j < 2; ++j) {
+          if (bases_.terms[i][k] == own[i][j]) coefficient[j] = p[first_[i] + k];
+        }
+      }
+      const double a = coefficient[0], b = coefficient[1];
+      const double limit = state_limits != nullptr && std::isfinite(state_limits[3 + i])
+                               ? state_limits[3 + i]
+                               : std::numeric_limits<double>::infinity();
+      char text[320];
+      if (a > 0.0) {
         std::snprintf(text, sizeof(text),
-                      "%s.%s = %+.4g > 0: %s damping of %s that feeds the motion (passive "
+                      "%s.%s = %+.4g > 0: linear damping of %s that feeds the motion (passive "
                       "damping is <= 0)",
-                      equation[i], TermNames()[term].c_str(), value,
-                      term == own[i][0] ? "linear" : "quadratic", equation[i]);
+                      equation[i], TermNames()[own[i][0]].c_str(), a, equation[i]);
+        problems.push_back(text);
+      } else if (b > 0.0 && a + b * limit > 0.0) {
+        if (std::isinf(limit)) {
+          std::snprintf(text, sizeof(text),
+                        "%s.%s = %+.4g > 0: quadratic damping of %s that feeds the motion above "
+                        "|%s| = %.4g (passive damping is <= 0)",
+                        equation[i], TermNames()[own[i][1]].c_str(), b, equation[i],
+                        equation[i], -a / b);
+        } else {
+          std::snprintf(text, sizeof(text),
+                        "%s.%s = %+.4g > 0: the damping %+.4g %s %+.4g |%s|%s of %s feeds the "
+                        "motion above |%s| = %.4g, and the records reach |%s| = %.4g",
+                        equation[i], TermNames()[own[i][1]].c_str(), b, a, equation[i], b,
+                        equation[i], equation[i], equation[i], equation[i], -a / b, equation[i],
+                        limit);
+        }
         problems.push_back(text);
       }
     }

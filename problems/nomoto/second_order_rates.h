@@ -62,7 +62,7 @@ struct SecondOrderRates {
 
   // A ship has at most one unstable yaw pole: a1 <= 0 with a0 > 0 puts both in the right
   // half plane (a growing yaw oscillation), which no hull does.
-  std::vector<std::string> Admissibility(const double* p) const {
+  std::vector<std::string> Admissibility(const double* p, const double* = nullptr) const {
     if (p[0] > 0.0 || p[1] <= 0.0) return {};
     char text[160];
     std::snprintf(text, sizeof(text), "a1 = %.4g <= 0 with a0 = %.4g > 0: both yaw poles unstable",

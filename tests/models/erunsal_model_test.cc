@@ -81,14 +81,14 @@ TEST(ErunsalModel, AbsentCommandsMeanMotorsOff) {
 TEST(ErunsalModel, Admissibility) {
   const Model model;
   std::vector<double> p = ReferenceParameters();
-  EXPECT_TRUE(model.Admissibility(p.data()).empty());
+  EXPECT_TRUE(model.Admissibility(p.data(), nullptr).empty());
   p[kIx] = -2.5;  // seed 002 Table 1's inertia
-  ASSERT_EQ(model.Admissibility(p.data()).size(), 1u);
-  EXPECT_NE(model.Admissibility(p.data())[0].find("M is not positive definite"), std::string::npos);
+  ASSERT_EQ(model.Admissibility(p.data(), nullptr).size(), 1u);
+  EXPECT_NE(model.Admissibility(p.data(), nullptr)[0].find("M is not positive definite"), std::string::npos);
   p = ReferenceParameters();
   p[kXu] = 1.0;  // negative damping
-  ASSERT_EQ(model.Admissibility(p.data()).size(), 1u);
-  EXPECT_NE(model.Admissibility(p.data())[0].find("damping"), std::string::npos);
+  ASSERT_EQ(model.Admissibility(p.data(), nullptr).size(), 1u);
+  EXPECT_NE(model.Admissibility(p.data(), nullptr)[0].find("damping"), std::string::npos);
 }
 
 TEST(ErunsalModel, ReferenceVesselBehaviour) {

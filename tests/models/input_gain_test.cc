@@ -240,3 +240,46 @@ TEST(NomotoLeastSquares, FirstOrderAndNorrbinRecoverExactDataExactly) {
 
 }  // namespace
 }  // namespace vesselid
+
+namespace vesselid {
+namespace {
+
+// Passive damping judged over the speeds the records reach: the twin-thruster USV's surge
+// damping -0.815 u + 0.0044 |u|u dissipates below |u| = 185 m/s, so a campaign reaching 3 m/s
+// is admissible, one reaching 200 m/s is not, and without a range the quadratic term is named
+// with the speed where it starts to feed the motion. A positive linear term is never
+// admissible.
+TEST(InputGainAdmissibility, DampingJudgedOverTheRangeTheRecordsReach) {
+  const std::unique_ptr<ModelHandle> model = input_gain::MakeStaticHandle({});
+  const ModelInfo& info = model->info();
+  std::vector<double> p = info.parameter_defaults;
+  auto set = [&](const std::string& name, double value) {
+    const int i = info.ParameterIndex(name);
+    ASSERT_GE(i, 0) << name;
+    p[i] = value;
+  };
+  set("u.u", -0.815);
+  set("u.|u|u", 0.0044);
+  std::vector<double> limits(info.states.size(), 0.0);
+  limits[3] = 3.0;  // |u| [m/s]
+  EXPECT_TRUE(model->Admissibility(p.data(), limits.data()).empty());
+  limits[3] = 200.0;
+  std::vector<std::string> broken = model->Admissibility(p.data(), limits.data());
+  ASSERT_EQ(broken.size(), 1u);
+  EXPECT_EQ(broken[0].rfind("u.|u|u = +0.0044 > 0: the damping -0.815 u +0.0044 |u|u of u feeds "
+                            "the motion above |u| = 185.2, and the records reach |u| = 200",
+                            0),
+            0u)
+      << broken[0];
+  broken = model->Admissibility(p.data(), nullptr);
+  ASSERT_EQ(broken.size(), 1u);
+  EXPECT_NE(broken[0].find("feeds the motion above |u| = 185.2"), std::string::npos) << broken[0];
+  set("u.u", 0.01);
+  limits[3] = 3.0;
+  broken = model->Admissibility(p.data(), limits.data());
+  ASSERT_EQ(broken.size(), 1u);
+  EXPECT_EQ(broken[0].rfind("u.u = +0.01 > 0: linear damping of u", 0), 0u) << broken[0];
+}
+
+}  // namespace
+}  // namespace vesselid

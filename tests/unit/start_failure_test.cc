@@ -39,7 +39,7 @@ struct SqrtDecay {
   void Output(const T* x, const U*, const T*, T* y) const {
     y[0] = x[0];
   }
-  std::vector<std::string> Admissibility(const double* p) const {
+  std::vector<std::string> Admissibility(const double* p, const double*) const {
     if (p[1] > 0.0) return {};
     return {"the gain g is not positive"};
   }
