@@ -49,31 +49,20 @@ const Row kRows[] = {
      "over more than one turn (a heading that turns steadily, a spiral, is not counted), or "
      "steps by more than pi within one turn.",
      "Add the column to the experiment's `degrees:` if it was logged in degrees."},
-    {K::kBadCells, "bad_cells", S::kWarning,
-     "Cells of a mapped column are not numbers (a spreadsheet's mangled cells, text); those "
-     "samples are removed. More than `bad_cells` (share, default 0.05) of a column stops the "
-     "run.",
-     "Check the logger or the export; fix the column if the share is large."},
     {K::kQuantised, "quantised", S::kInfo,
-     "A mapped channel takes few distinct values on a regular grid (a compass in whole degrees, "
-     "a rudder indicator in 1-degree steps): its noise is at least a step / sqrt(12).",
+     "A mapped channel's distinct values lie on a grid (95 % of the gaps between neighbouring "
+     "values are whole steps, fewer distinct values than a fifth of the samples): a compass in "
+     "whole degrees, a rudder indicator in 1-degree steps. Its noise is at least step / "
+     "sqrt(12).",
      "None needed for output error; expect coloured residuals of about that size."},
-    {K::kStaleRepeats, "stale_repeats", S::kWarning,
-     "An output repeats its value for 3 or more samples in a row in more than 20 % of its "
-     "samples while it varies overall: a logger holding its last value.",
-     "Use `screen: {stale: 3}` to remove the repeats."},
     {K::kAllZeroInput, "all_zero_input", S::kWarning,
-     "A mapped input column is zero in every sample: the parameters it drives cannot be "
-     "identified from this record.",
+     "A mapped input column is exactly 0 in every sample of the window: the parameters it drives "
+     "cannot be identified from this record.",
      "Check the column mapping and the logger."},
     {K::kStartsMidManoeuvre, "starts_mid_manoeuvre", S::kInfo,
-     "A record starts with an input already far from rest (over half of its range at t = 0) "
-     "and the outputs already moving: its initial states carry the past.",
+     "An angle input (a rudder) starts at 40 % or more of its largest magnitude in the record: "
+     "the record starts mid-manoeuvre and its initial states carry the past.",
      "Free the initial states (`free_initial_states`) or cut the record where it is at rest."},
-    {K::kCheckSkipped, "check_skipped", S::kWarning,
-     "An optional check (velocity validation, zigzag figures, residual analysis) could not be "
-     "made on a record and was skipped; the run went on.",
-     "The finding names the key that turns the check off."},
     {K::kAtBound, "at_bound", S::kWarning,
      "A free estimate, as reported, lies within 1e-6 of its range from a bound: the data pull "
      "it further, and its standard error assumes an interior optimum. Computed from the "
@@ -164,10 +153,6 @@ const Row kRows[] = {
     {K::kHeldOutDiverged, "held_out_diverged", S::kFailure,
      "The simulation of a held-out record diverged with the stage's estimate.",
      "The estimate is unstable outside the training records."},
-    {K::kHeldOutFreeRun, "held_out_free_run", S::kWarning,
-     "The free-run velocity prediction of a held-out record has R^2 < 0 in a regressed state "
-     "(a failure for the final values).",
-     "The model does not predict these velocities; check the structure."},
     {K::kFinalHeldOutFailed, "final_held_out_failed", S::kFailure,
      "The final values' simulation of the held-out records diverges, or predicts an output "
      "worse than holding its first measured value (pooled MAE ratio above 1).",

@@ -29,12 +29,9 @@ enum class FindingKind {
   kSegmentSkipped,
   kRecordCut,
   kUnitSuspect,
-  kBadCells,
   kQuantised,
-  kStaleRepeats,
   kAllZeroInput,
   kStartsMidManoeuvre,
-  kCheckSkipped,
   // Solver.
   kAtBound,
   kNoConvergence,
@@ -58,7 +55,6 @@ enum class FindingKind {
   kHeldOutWorse,
   kHeldOutOutputWorse,
   kHeldOutDiverged,
-  kHeldOutFreeRun,
   kFinalHeldOutFailed,
 };
 

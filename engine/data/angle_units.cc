@@ -11,6 +11,7 @@ AngleUnitCheck CheckAngleUnit(const std::vector<double>& values) {
   AngleUnitCheck check;
   bool any = false, step_outside_turn = false;
   double previous = 0.0, anchor = 0.0, travel = 0.0;
+  int direction = 0, reversals = 0;  // of the counted moves
   for (double v : values) {
     if (!std::isfinite(v)) continue;
     if (!any) {
@@ -25,6 +26,9 @@ AngleUnitCheck CheckAngleUnit(const std::vector<double>& values) {
     }
     if (std::abs(v - anchor) > kSwingBand) {
       travel += std::abs(v - anchor);
+      const int sign = v > anchor ? 1 : -1;
+      reversals += direction != 0 && sign != direction;
+      direction = sign;
       anchor = v;
     }
     check.min = std::min(check.min, v);
@@ -32,7 +36,8 @@ AngleUnitCheck CheckAngleUnit(const std::vector<double>& values) {
     previous = v;
   }
   const double range = check.max - check.min;
-  check.looks_like_degrees = step_outside_turn || (range > kTurn && travel > 1.5 * range);
+  check.looks_like_degrees = step_outside_turn || (range > kTurn && travel > 1.5 * range &&
+                                                   reversals >= kSwingReversals);
   return check;
 }
 

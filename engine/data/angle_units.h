@@ -4,7 +4,9 @@
 //   * a step |y_k - y_(k-1)| > pi where either value lies outside one turn (|y| > 2 pi), or
 //   * a range max - min > 2 pi while the channel swings back and forth: its travel (the
 //     sum of moves larger than kSwingBand, so that noise does not add up) exceeds 1.5 x the
-//     range. Whole turns logged unwrapped in radians travel about their range once.
+//     range, and those moves change direction kSwingReversals times or more. Whole turns
+//     logged unwrapped in radians travel about their range once; a spiral test (several turns
+//     one way, then the other) reverses once or twice, a zigzag in degrees many times.
 // A run warns (unit_findings.h); it cannot refuse: no series proves its unit.
 #pragma once
 
@@ -14,6 +16,7 @@
 namespace vesselid {
 
 inline constexpr double kSwingBand = 0.5;  // rad: moves below it are not counted as travel
+inline constexpr int kSwingReversals = 3;
 
 struct AngleUnitCheck {
   bool looks_like_degrees = false;

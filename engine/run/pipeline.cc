@@ -8,6 +8,7 @@
 #include "engine/run/least_squares_stage.h"
 #include "engine/run/output_error_stage.h"
 #include "engine/run/parameter_ledger.h"
+#include "engine/run/record_checks.h"
 #include "engine/run/record_notes.h"
 #include "engine/run/records.h"
 #include "engine/run/step_regression_stage.h"
@@ -288,6 +289,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
   // What the records say (the judgement of the stages and final values is diagnose/'s).
   std::vector<Finding> data_findings;
   AddUnitFindings(config, &cache, &data_findings);
+  AddRecordCheckFindings(config, &cache, &data_findings);
   AddInputNoiseFindings(config, run, &cache, &data_findings);
   AddRecordNotes(config, cache, &run);
   run.findings.insert(run.findings.begin(), data_findings.begin(), data_findings.end());

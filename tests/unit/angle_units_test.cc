@@ -62,6 +62,12 @@ TEST(AngleUnitTest, RadianLogsDoNotLookLikeDegrees) {
   }
   EXPECT_FALSE(CheckAngleUnit(unwrapped).looks_like_degrees);
   EXPECT_FALSE(CheckAngleUnit(wrapped).looks_like_degrees);
+  // A spiral test in radians: five turns one way, then two and a half back (range 31 rad,
+  // travel 47 rad above 1.5 x the range, one reversal).
+  std::vector<double> spiral;
+  for (double t = 0; t < 300; t += 0.1) spiral.push_back(0.1025 * t + noise(random));
+  for (double t = 0; t < 150; t += 0.1) spiral.push_back(30.75 - 0.1025 * t + noise(random));
+  EXPECT_FALSE(CheckAngleUnit(spiral).looks_like_degrees);
   // A zigzag around south logged in (-pi, pi]: jumps of 2 pi at the wrap.
   std::vector<double> south = Zigzag(M_PI, 0.3, 300, 0.002);
   for (double& v : south) v = WrapAngle(v);
