@@ -34,6 +34,7 @@ enum class FindingKind {
   kStartsMidManoeuvre,
   // Solver.
   kAtBound,
+  kWeaklyDetermined,
   kNoConvergence,
   kNoProgress,
   kIntegrationStep,

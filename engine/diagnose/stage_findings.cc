@@ -1,5 +1,6 @@
 #include "engine/diagnose/stage_findings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -57,6 +58,47 @@ void AddSolveFindings(const StageResult& stage, std::vector<Finding>* findings) 
   f.stage = stage.name;
   f.value = local.successful_steps;
   if (!failed && !not_converged) f.severity = FindingSeverity::kInfo;
+  findings->push_back(std::move(f));
+}
+
+// One finding per stage naming every free estimate, off its bounds, that the data determine
+// poorly (relative standard error above kWeakRelativeError, or undetermined).
+constexpr double kWeakRelativeError = 0.5;
+
+void AddWeaklyDeterminedFindings(const StageResult& stage, std::vector<Finding>* findings) {
+  std::string names;
+  int count = 0;
+  double worst = 0.0;
+  for (const Estimate& e : stage.estimates) {
+    // Per-experiment values (a bias per run) sit near 0, where a relative error means nothing.
+    if (e.kind != EstimateKind::kParameter || e.role == ParameterRole::kFixed ||
+        e.role == ParameterRole::kPerExperiment) {
+      continue;
+    }
+    const double span = 1e-6 * (e.upper - e.lower);
+    if (e.value - e.lower <= span || e.upper - e.value <= span) continue;  // at_bound's
+    // Relative to the value, floored at 1 % of a finite bound range (a value near 0).
+    const double range = std::isfinite(e.upper - e.lower) ? e.upper - e.lower : 0.0;
+    const double relative = e.std_error / std::max(std::abs(e.value), 0.01 * range);
+    if (!e.undetermined && !(relative > kWeakRelativeError)) continue;
+    ++count;
+    worst = std::max(worst, std::isfinite(relative) ? relative : HUGE_VAL);
+    if (count <= 6) {
+      names += (count > 1 ? ", " : "") + e.name +
+               (e.undetermined || !std::isfinite(relative)
+                    ? " (undetermined)"
+                    : Format(" = %.4g +- %.2g", e.value, e.std_error) +
+                          Format(" (%.0f %%)", 100.0 * relative));
+    }
+  }
+  if (count == 0) return;
+  Finding f = MakeFinding(FindingKind::kWeaklyDetermined,
+                          std::to_string(count) + " estimate(s) the data determine poorly: " +
+                              names + (count > 6 ? ", ..." : ""));
+  f.stage = stage.name;
+  f.count = count;
+  f.value = worst;
+  f.threshold = kWeakRelativeError;
   findings->push_back(std::move(f));
 }
 
@@ -186,6 +228,9 @@ void DiagnoseStage(const ModelInfo& info, bool output_error, StageResult* stage)
   }
   if (output_error) AddSolveFindings(*stage, &findings);
   AddBoundFindings(info, stage->estimates, stage->name, &findings);
+  if (output_error && stage->summary.uncertainty.available) {
+    AddWeaklyDeterminedFindings(*stage, &findings);
+  }
   AddBoundFindings(info, stage->held_out_parameters.estimates, stage->name, &findings);
   AddFitFindings(stage->summary.fits, stage->name, &findings);
   AddResidualFindings(*stage, &findings);
