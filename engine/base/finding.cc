@@ -165,6 +165,21 @@ const Row kRows[] = {
      "Do not use the model for prediction as it is."},
 };
 
+// The value of `values` whose name is `text`.
+template <class E, size_t N>
+bool FromName(const std::string& text, const E (&values)[N], const char* (*name)(E), E* out) {
+  for (E v : values) {
+    if (text == name(v)) {
+      *out = v;
+      return true;
+    }
+  }
+  return false;
+}
+
+const S kSeverities[] = {S::kInfo, S::kWarning, S::kFailure};
+const Verdict kVerdicts[] = {Verdict::kGood, Verdict::kDoubtful, Verdict::kFailed};
+
 }  // namespace
 
 const char* FindingSeverityToString(FindingSeverity severity) {
@@ -177,13 +192,7 @@ const char* FindingSeverityToString(FindingSeverity severity) {
 }
 
 bool StringToFindingSeverity(const std::string& text, FindingSeverity* severity) {
-  for (S s : {S::kInfo, S::kWarning, S::kFailure}) {
-    if (text == FindingSeverityToString(s)) {
-      *severity = s;
-      return true;
-    }
-  }
-  return false;
+  return FromName(text, kSeverities, FindingSeverityToString, severity);
 }
 
 const char* FindingKindToString(FindingKind kind) {
@@ -258,13 +267,7 @@ const char* VerdictToString(Verdict verdict) {
 }
 
 bool StringToVerdict(const std::string& text, Verdict* verdict) {
-  for (Verdict v : {Verdict::kGood, Verdict::kDoubtful, Verdict::kFailed}) {
-    if (text == VerdictToString(v)) {
-      *verdict = v;
-      return true;
-    }
-  }
-  return false;
+  return FromName(text, kVerdicts, VerdictToString, verdict);
 }
 
 Verdict Worse(Verdict a, Verdict b) { return static_cast<int>(a) > static_cast<int>(b) ? a : b; }

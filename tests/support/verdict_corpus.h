@@ -110,7 +110,10 @@ inline std::vector<CorpusCase> VerdictCorpus() {
     for (int s = 0; s < 2; ++s) {
       cases.push_back({"bad_x" + tag + "_bound_s" + std::to_string(s),
                        x + ", noise: {heading_deg: 0.05}", false, "",
-                       CorpusParameters({1.1, 0.9, 1.0, 1.3}, "lower: -2.0, upper: -0.19"), ""});
+                       CorpusParameters(s == 0 ? std::vector<double>{1.1, 0.9, 1.0, 1.3}
+                                               : std::vector<double>{0.9, 1.2, 0.8, 1.2},
+                                        "lower: -2.0, upper: -0.19"),
+                       ""});
     }
     // T1 held at 5 x its value; T2 held at 10 x its value: a wrong structure.
     cases.push_back({"bad_x" + tag + "_T1_held", x + ", noise: {heading_deg: 0.05}", false, "",
