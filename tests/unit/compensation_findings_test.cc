@@ -106,7 +106,7 @@ TEST(CompensationFindings, LinkedPairsMakeOneGroup) {
   stage.correlation = Eigen::MatrixXd::Identity(n, n);
   for (int i = 0; i < n; ++i) {
     stage.correlation_names.push_back("p" + std::to_string(i));
-    stage.estimates.push_back(Parameter("p" + std::to_string(i), 1.0, i == 2 ? 0.5 : 0.1));
+    stage.estimates.push_back(Parameter("p" + std::to_string(i), 1.0, i == 2 ? 0.9 : 0.6));
   }
   const double link[3] = {0.9995, -0.9999, 0.9993};
   for (int i = 0; i < 3; ++i) stage.correlation(i, i + 1) = stage.correlation(i + 1, i) = link[i];
@@ -117,7 +117,7 @@ TEST(CompensationFindings, LinkedPairsMakeOneGroup) {
   EXPECT_EQ(findings[0].message,
             "p0, p1, p2 and p3 compensate each other (3 pairs above |correlation| 0.999, "
             "strongest p1/p2 -0.9999): the data determine only combinations of them; drop or "
-            "fix p2 (relative standard error 50 %)");
+            "fix p2 (relative standard error 90 %)");
 }
 
 TEST(CompensationFindings, ReachTheRunsFindingsWithTheDeadZoneNamed) {
