@@ -110,7 +110,7 @@ const Row kRows[] = {
      "Read the message; more runs or blocks may help."},
     {K::kCompensation, "compensation", S::kWarning,
      "Two estimates of a stage correlate beyond 0.999 (per-experiment values included) while "
-     "either has a relative standard error of 50 % or more (the weakly_determined threshold; pairs determined to 8-20 % at correlation 0.999 fit well in the verdict corpus): the data determine only their "
+     "either has a relative standard error of 30 % or more (pairs determined to 8-20 % at correlation 0.999 fit well in the verdict corpus; the USV log's b_u and k_f, 40 % at -0.9994, are a real trade-off): the data determine only their "
      "combination.",
      "Fix or drop the one the finding names."},
     {K::kInputNoise, "input_noise", S::kWarning,

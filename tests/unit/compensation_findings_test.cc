@@ -1,7 +1,7 @@
 // Compensating estimates (compensation_findings.h) and structure hints through the run's
 // findings (run_findings.h): a pair above |correlation| 0.999 is named with its correlation,
 // the one to drop (larger relative standard error) and the model's hint, per-experiment values
-// included; pairs below it, pairs determined to 50 % each, initial states and undetermined
+// included; pairs below it, pairs determined to 30 % each, initial states and undetermined
 // pairs are not; a dead zone at its bound says what it means, and goes when the value moves.
 #include "engine/diagnose/compensation_findings.h"
 
@@ -67,7 +67,7 @@ TEST(CompensationFindings, NamesThePairTheOneToDropAndTheModelsHint) {
   EXPECT_TRUE(findings.empty());
   AddCompensationFindings(info, ThrustStage(std::nan("")), &findings);
   EXPECT_TRUE(findings.empty());
-  // Determined to better than 50 % each despite the correlation (noise-free data): quiet.
+  // Determined to better than 30 % each despite the correlation (noise-free data): quiet.
   StageResult determined = ThrustStage(-0.99996);
   determined.estimates[1].std_error = 1e-5;
   determined.estimates[2].std_error = 0.5;
