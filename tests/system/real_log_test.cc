@@ -206,7 +206,8 @@ TEST_F(RealLog, FinishesWithEveryDefectNamed) {
     EXPECT_NE(text.str().find(e), std::string::npos) << e;
   }
   // Each kind as typed: the removals and skips are warnings, the origin and grid notes.
-  for (const char* kind : {"record_origin", "samples_removed", "resampled", "segment_skipped"}) {
+  for (const char* kind :
+       {"record_origin", "samples_removed", "resampled", "segment_skipped", "record_cut"}) {
     EXPECT_NE(warnings.find(std::string(kind) + " experiment 'log'"), std::string::npos) << kind;
   }
   std::ostringstream html;

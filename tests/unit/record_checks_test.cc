@@ -37,3 +37,61 @@ TEST(RecordChecks, SmoothNoisyAndTwoLevelChannelsAreNotQuantised) {
 
 }  // namespace
 }  // namespace vesselid
+
+#include "problems/nomoto/handles.h"
+
+namespace vesselid {
+namespace {
+
+// The record checks through a run's config and cache: a rudder that starts hard over and a
+// compass in whole degrees are named (in degrees, the column's unit), a dead rudder column is
+// an all_zero_input warning, and a clean record of the same shape says nothing.
+TEST(RecordChecks, FindingsNameTheExperimentAndChannel) {
+  RunConfig config;
+  config.model = nomoto::MakeSecondOrderHandle();
+  ExperimentSpec spec;
+  spec.name = "zz";
+  spec.inputs = {{"delta", "rudder"}};
+  spec.outputs = {{"psi", "heading"}};
+  spec.degree_columns = {"rudder", "heading"};
+  config.experiments = {spec};
+  auto record = [](double rudder_start, bool quantised, bool dead) {
+    Trajectory t;
+    t.names = {"rudder", "heading"};
+    t.columns.resize(2);
+    for (int k = 0; k < 400; ++k) {
+      t.t.push_back(0.1 * k);
+      const double rudder = k < 50 ? rudder_start : 20.0 * std::sin(0.05 * k);
+      const double heading = 15.0 * std::sin(0.02 * k + 0.3) + 0.013 * k;
+      t.columns[0].push_back(dead ? 0.0 : rudder * M_PI / 180.0);
+      t.columns[1].push_back((quantised ? std::round(heading) : heading) * M_PI / 180.0);
+    }
+    return t;
+  };
+  auto findings_of = [&](Trajectory t) {
+    TrajectoryCache cache;
+    cache["zz"] = std::move(t);
+    std::vector<Finding> findings;
+    AddRecordCheckFindings(config, &cache, &findings);
+    return findings;
+  };
+  std::vector<Finding> found = findings_of(record(30.0, true, false));
+  ASSERT_EQ(found.size(), 2u);
+  EXPECT_EQ(found[0].kind, FindingKind::kStartsMidManoeuvre);
+  EXPECT_EQ(found[0].experiment, "zz");
+  EXPECT_EQ(found[0].output, "delta");
+  EXPECT_NEAR(found[0].value, 30.0, 1e-9);
+  EXPECT_EQ(found[0].message.rfind("column 'rudder' starts at 30 deg", 0), 0u) << found[0].message;
+  EXPECT_EQ(found[1].kind, FindingKind::kQuantised);
+  EXPECT_EQ(found[1].output, "psi");
+  EXPECT_NEAR(found[1].value, 1.0, 1e-9);
+  EXPECT_EQ(found[1].severity, FindingSeverity::kInfo);
+  found = findings_of(record(0.0, false, true));
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_EQ(found[0].kind, FindingKind::kAllZeroInput);
+  EXPECT_EQ(found[0].severity, FindingSeverity::kWarning);
+  EXPECT_TRUE(findings_of(record(0.0, false, false)).empty());
+}
+
+}  // namespace
+}  // namespace vesselid

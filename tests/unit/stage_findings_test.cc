@@ -1,0 +1,173 @@
+// The diagnose layer's rules on hand-made stage results (stage_findings.h, run_findings.h):
+// each fires on what it names, with its value and threshold, and a good stage stays quiet.
+#include "engine/diagnose/stage_findings.h"
+
+#include <cmath>
+
+#include "engine/diagnose/run_findings.h"
+#include "gtest/gtest.h"
+#include "problems/nomoto/handles.h"
+
+namespace vesselid {
+namespace {
+
+Estimate Free(const std::string& name, double value, double std_error) {
+  Estimate e;
+  e.name = name;
+  e.value = value;
+  e.std_error = std_error;
+  e.lower = -10.0;
+  e.upper = 10.0;
+  return e;
+}
+
+ChannelMetrics Channel(double r2, double fit, double mae, double hold_mae) {
+  ChannelMetrics m;
+  m.experiment = "run";
+  m.output = "psi";
+  m.samples = 1000;
+  m.r2 = r2;
+  m.fit_percent = fit;
+  m.rmse = 0.1;
+  m.mae = mae;
+  m.hold_mae = hold_mae;
+  m.noise = 0.001;
+  return m;
+}
+
+// A converged output-error stage with a good fit and determined estimates.
+StageResult GoodStage() {
+  StageResult stage;
+  stage.name = "fit";
+  stage.estimates = {Free("T", 2.0, 0.02), Free("K", -0.17, 0.001)};
+  LocalSolveSummary local;
+  local.run = local.usable = true;
+  local.iterations = 12;
+  local.successful_steps = 10;
+  local.initial_cost = 5.0;
+  local.final_cost = 1.0;
+  local.termination = "CONVERGENCE";
+  stage.summary.usable = true;
+  stage.summary.refinements = {local};
+  stage.summary.chosen = 0;
+  stage.summary.uncertainty.available = true;
+  ExperimentFit fit;
+  fit.experiment = "run";
+  fit.channels = {Channel(0.95, 78.0, 0.05, 0.4)};
+  stage.summary.fits = {fit};
+  return stage;
+}
+
+const ModelInfo& Info() {
+  static const std::unique_ptr<ModelHandle> model = nomoto::MakeFirstOrderHandle();
+  return model->info();
+}
+
+std::vector<FindingKind> Kinds(const StageResult& stage) {
+  std::vector<FindingKind> kinds;
+  for (const Finding& f : stage.findings) kinds.push_back(f.kind);
+  return kinds;
+}
+
+TEST(StageFindings, GoodStageIsQuiet) {
+  StageResult stage = GoodStage();
+  DiagnoseStage(Info(), true, &stage);
+  EXPECT_TRUE(stage.findings.empty());
+  EXPECT_EQ(stage.verdict, Verdict::kGood);
+}
+
+TEST(StageFindings, IterationLimitAndNoProgress) {
+  StageResult stage = GoodStage();
+  stage.summary.refinements[0].termination = "NO_CONVERGENCE";
+  DiagnoseStage(Info(), true, &stage);
+  EXPECT_EQ(Kinds(stage), std::vector<FindingKind>{FindingKind::kNoConvergence});
+  // No successful step from the start with a failed fit: it did not search.
+  stage = GoodStage();
+  stage.summary.refinements[0].successful_steps = 0;
+  stage.summary.fits[0].channels[0] = Channel(-0.3, -14.0, 0.5, 0.4);
+  DiagnoseStage(Info(), true, &stage);
+  ASSERT_EQ(stage.findings.size(), 2u);
+  EXPECT_EQ(stage.findings[0].kind, FindingKind::kFailedFit);
+  EXPECT_EQ(stage.findings[0].severity, FindingSeverity::kFailure);
+  EXPECT_EQ(stage.findings[0].experiment, "run");
+  EXPECT_DOUBLE_EQ(stage.findings[0].value, -0.3);
+  EXPECT_EQ(stage.findings[1].kind, FindingKind::kNoProgress);
+  EXPECT_EQ(stage.findings[1].severity, FindingSeverity::kWarning);
+  EXPECT_EQ(stage.verdict, Verdict::kFailed);
+  // No successful step from a start that was already the optimum: a note.
+  stage = GoodStage();
+  stage.summary.refinements[0].successful_steps = 0;
+  DiagnoseStage(Info(), true, &stage);
+  ASSERT_EQ(stage.findings.size(), 1u);
+  EXPECT_EQ(stage.findings[0].severity, FindingSeverity::kInfo);
+  EXPECT_EQ(stage.verdict, Verdict::kGood);
+  // A regression stage's "solve" is its regression: no solver findings.
+  stage = GoodStage();
+  stage.summary.refinements[0].successful_steps = 0;
+  DiagnoseStage(Info(), false, &stage);
+  EXPECT_TRUE(stage.findings.empty());
+}
+
+TEST(StageFindings, FitJudgedAgainstWhatTheRecordAllows) {
+  // Worse than holding the first value though R2 > 0: failed.
+  StageResult stage = GoodStage();
+  stage.summary.fits[0].channels[0] = Channel(0.2, 10.0, 0.5, 0.4);
+  DiagnoseStage(Info(), true, &stage);
+  EXPECT_EQ(Kinds(stage), std::vector<FindingKind>{FindingKind::kFailedFit});
+  // Better than holding, fit 30 %: poor.
+  stage = GoodStage();
+  stage.summary.fits[0].channels[0] = Channel(0.5, 30.0, 0.2, 0.4);
+  DiagnoseStage(Info(), true, &stage);
+  EXPECT_EQ(Kinds(stage), std::vector<FindingKind>{FindingKind::kPoorFit});
+  EXPECT_EQ(stage.findings[0].threshold, kPoorFitPercent);
+  // A record that does not vary beyond its noise (SD 0.1 against noise 0.05) is not judged.
+  stage = GoodStage();
+  stage.summary.fits[0].channels[0] = Channel(-0.5, -20.0, 0.5, 0.4);
+  stage.summary.fits[0].channels[0].noise = 0.05;
+  DiagnoseStage(Info(), true, &stage);
+  EXPECT_TRUE(stage.findings.empty());
+}
+
+TEST(StageFindings, WeaklyDeterminedAndNotAdmissible) {
+  StageResult stage = GoodStage();
+  stage.estimates[0].std_error = 1.5;  // T = 2 +- 1.5: 75 %
+  stage.admissibility = {"T must be > 0"};
+  DiagnoseStage(Info(), true, &stage);
+  ASSERT_EQ(stage.findings.size(), 2u);
+  EXPECT_EQ(stage.findings[0].kind, FindingKind::kWeaklyDetermined);
+  EXPECT_NEAR(stage.findings[0].value, 0.75, 1e-12);
+  EXPECT_NE(stage.findings[0].message.find("T = 2 +- 1.5 (75 %)"), std::string::npos)
+      << stage.findings[0].message;
+  EXPECT_EQ(stage.findings[1].kind, FindingKind::kNotAdmissible);
+  EXPECT_EQ(stage.findings[1].severity, FindingSeverity::kWarning);
+}
+
+TEST(RunFindings, FinalValuesAndTheVerdictRule) {
+  RunConfig config;
+  config.model = nomoto::MakeFirstOrderHandle();
+  RunResult run;
+  run.stages = {GoodStage(), GoodStage()};
+  run.stages[0].name = "start";
+  run.stages[0].summary.fits[0].channels[0] = Channel(0.5, 30.0, 0.2, 0.4);  // poor: a start
+  run.admissibility = {"T must be > 0"};
+  ExperimentFit held;
+  held.experiment = "check";
+  held.channels = {Channel(0.3, 5.0, 0.6, 0.4)};
+  run.final_validation = {held};
+  DiagnoseRun(config, &run);
+  // The start stage's doubt stays with it; the final values' failures judge the run.
+  EXPECT_EQ(run.stages[0].verdict, Verdict::kDoubtful);
+  EXPECT_EQ(run.stages[1].verdict, Verdict::kGood);
+  ASSERT_EQ(run.findings.size(), 2u);
+  for (const Finding& f : run.findings) {
+    EXPECT_EQ(f.severity, FindingSeverity::kFailure);
+    EXPECT_EQ(f.stage, "final");
+  }
+  EXPECT_EQ(run.findings[0].kind, FindingKind::kNotAdmissible);
+  EXPECT_EQ(run.findings[1].kind, FindingKind::kFinalHeldOutFailed);
+  EXPECT_NEAR(run.findings[1].value, 1.5, 1e-12);
+  EXPECT_EQ(run.verdict, Verdict::kFailed);
+}
+
+}  // namespace
+}  // namespace vesselid
