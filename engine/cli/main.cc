@@ -201,7 +201,7 @@ int Study(const std::string& config_path, const std::string& data_dir, const std
     return Fail(error);
   }
   if (!quiet) std::cout << text;
-  // What a part found doubtful reaches stderr too, as a run's warnings do.
+  // What a part found doubtful reaches stderr too, as a run's findings do.
   for (const auto& [part, section] : result.items()) {
     if (!section.is_object() || !section.contains("notes")) continue;
     for (const auto& note : section["notes"]) {

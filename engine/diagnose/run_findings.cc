@@ -49,7 +49,24 @@ bool FinalHeldOutFailed(const RunResult& run, std::vector<Finding>* findings) {
   return failed;
 }
 
-std::vector<Finding> FoldFindings(const std::vector<Finding>& findings) {
+namespace {
+
+// A piece an equation-error stage cut from a record at a gap is named "record~k" inside the
+// engine: a finding names the user's record and the piece as its segment.
+void UseRecordNames(std::vector<Finding>* findings) {
+  for (Finding& f : *findings) {
+    const size_t cut = f.experiment.find('~');
+    if (cut == std::string::npos) continue;
+    if (f.segment.empty()) f.segment = f.experiment;
+    f.experiment.resize(cut);
+  }
+}
+
+}  // namespace
+
+std::vector<Finding> FoldFindings(const std::vector<Finding>& input) {
+  std::vector<Finding> findings = input;
+  UseRecordNames(&findings);
   using Key = std::tuple<int, int, std::string, std::string, std::string, std::string>;
   std::map<Key, size_t> first;
   std::vector<Finding> folded;

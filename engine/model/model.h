@@ -63,7 +63,7 @@ struct ModelInfo {
   // is not is refused, naming the column and time.
   std::vector<bool> positive_inputs = {};
   // Per parameter name, what to change in the model's structure when its estimate compensates
-  // another (|correlation| > 0.999) or ends at a bound: appended to those warnings.
+  // another (|correlation| > 0.999) or ends at a bound: appended to those findings.
   std::map<std::string, std::string> compensation_hints = {};
   // Parameters that are positive by their nature (time constants, masses): a global start
   // searches them in log coordinates also when their lower bound is 0 (search_box.h).

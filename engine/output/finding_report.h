@@ -17,7 +17,7 @@ nlohmann::json FindingsToJson(const std::vector<Finding>& findings);
 // Every finding of the run: its own, then each stage's, in output order (severity first).
 std::vector<Finding> AllFindings(const RunResult& result);
 
-// "verdict: doubtful (0 failures, 3 warnings, 2 notes)".
+// "verdict: doubtful (0 failure(s), 3 warning(s), 2 note(s))".
 std::string VerdictLine(Verdict verdict, const std::vector<Finding>& findings);
 
 // Plain-text lists, one line per finding under a heading per severity ("failures (1)");

@@ -3,7 +3,7 @@
 //
 //   summary     final parameters (clipped intervals, bounds flagged, counts, fusion notes),
 //               fit per run (sortable, worst first when long, mean / median / worst), every
-//               warning (report_summary.h)
+//               finding (report_summary.h)
 //   per stage   summary (cost, iterations, termination, time, notes); measured vs simulated
 //               outputs and residuals in the data's units, a figure per record of the stage's
 //               fit (its segments end to end, each on its own time axis) with metrics, and its

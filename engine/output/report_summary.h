@@ -2,7 +2,7 @@
 // parameters with their 95 % intervals (clipped to the bounds and flagged, a parameter on its
 // bound marked), the counts of unknowns (parameters by role, initial states apart), why a fused
 // value lies outside its stages' estimates, the fit per run of the last kept stage and of the
-// final validation, and every warning. Other sections plug in after it (report_html.h).
+// final validation, the verdict and every finding. Other sections plug in after it (report_html.h).
 #pragma once
 
 #include <string>

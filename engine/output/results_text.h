@@ -1,6 +1,6 @@
 // report.txt of a run, read top-down: a summary first (the final parameters with their 95 %
 // intervals, bounds flagged, counts; the fit per run of the last kept stage and of the final
-// validation; every warning), then per stage the parameter table, notes, strongest
+// validation; the verdict and every finding), then per stage the parameter table, notes, strongest
 // correlations, local analysis and the fit per run (run_fit_table.h); then the final
 // validation.
 #pragma once

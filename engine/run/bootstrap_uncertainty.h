@@ -28,8 +28,8 @@ std::string ExperimentBootstrapRefusal(const std::string& stage, int count);
 
 // Replaces summary->uncertainty by options.uncertainty's bootstrap estimate at the problem's
 // current (solved) values. Where the bootstrap cannot be done (too few experiments, too few
-// replicates solved), summary->uncertainty is kept and a warning note says why; failed
-// replicates above kBootstrapFailureWarning are a warning note too.
+// replicates solved), summary->uncertainty is kept and a bootstrap finding says why; failed
+// replicates above kBootstrapFailureWarning are a bootstrap finding too.
 void BootstrapStageUncertainty(const StageOptions& options, const OutputErrorOptions& problem_options,
                                OutputErrorProblem* solved, StageSummary* summary);
 

@@ -1,6 +1,6 @@
 // What preparing the recorded data did, brought into the run's result: every record's
 // preparation notes (epoch origin, samples the screen removed, resampling, segments skipped
-// as too short; experiment_data.h, records.h) first among the run's warnings, and where its
+// as too short; experiment_data.h, records.h) first among the run's findings, and where its
 // times and positions start (RunResult::record_origins).
 #pragma once
 

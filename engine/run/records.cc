@@ -103,7 +103,7 @@ int SampleTimes(const Trajectory& data, const ExperimentSpec& s,
 }
 
 // Records the note that a piece of a record was skipped, once per run (the record's
-// preparation notes travel to the run's warnings, record_notes.h).
+// preparation findings travel to the run's, record_notes.h).
 void NoteSkipped(TrajectoryCache* cache, const std::string& record, const ExperimentSpec& piece,
                  const Trajectory& data, const std::string& why) {
   char span[96];
