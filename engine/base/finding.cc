@@ -63,6 +63,10 @@ const Row kRows[] = {
      "An angle input (a rudder) starts at 40 % or more of its largest magnitude in the record: "
      "the record starts mid-manoeuvre and its initial states carry the past.",
      "Free the initial states (`free_initial_states`) or cut the record where it is at rest."},
+    {K::kCheckSkipped, "check_skipped", S::kWarning,
+     "An optional check could not be made (the velocity validation of held-out records with "
+     "gaps its equation-error grid refuses): it is left out and the run goes on.",
+     "The finding names the key that turns the check off (velocity_validation: false)."},
     {K::kAtBound, "at_bound", S::kWarning,
      "A free estimate, as reported, lies within 1e-6 of its range from a bound: the data pull "
      "it further, and its standard error assumes an interior optimum. Computed from the "

@@ -32,6 +32,7 @@ enum class FindingKind {
   kQuantised,
   kAllZeroInput,
   kStartsMidManoeuvre,
+  kCheckSkipped,
   // Solver.
   kAtBound,
   kWeaklyDetermined,

@@ -32,6 +32,13 @@ RegressionDataOptions VelocityData(const RunConfig& config, size_t count) {
   return options;
 }
 
+// The finding of a velocity validation that could not be made, naming the key that drops it.
+Finding SkippedVelocityCheck(const std::string& why, const std::string& key) {
+  return MakeFinding(FindingKind::kCheckSkipped,
+                     "velocity validation skipped: " + why + " (" + key +
+                         ": false leaves it out)");
+}
+
 // The stage's held-out fits at its estimate and at its start (HeldOutCheck); a stage worse
 // than its start is set aside under final: best_validation.
 bool ValidateStage(const RunConfig& config, const StageConfig& stage, const ModelHandle& model,
@@ -74,11 +81,14 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
   }
   if (stage.velocity_validation && model.regression_form() != nullptr) {
     std::vector<std::string> diverged;
+    std::string why;
     if (!ValidateVelocities(config, model, stage.validation, velocity_data, values, cache,
-                            &result->velocity_validation, &diverged, error,
+                            &result->velocity_validation, &diverged, &why,
                             stage.options.local.num_threads)) {
-      *error = "velocity validation: " + *error;
-      return false;
+      // An optional check: the run goes on without it.
+      result->velocity_validation.clear();
+      diverged.clear();
+      result->summary.findings.push_back(SkippedVelocityCheck(why, "stages[].velocity_validation"));
     }
     for (const std::string& d : diverged) {
       result->summary.findings.push_back(
@@ -273,10 +283,14 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     if (config.velocity_validation && model.regression_form() != nullptr) {
       const RegressionDataOptions velocity_data = VelocityData(config, config.stages.size());
       std::vector<std::string> diverged;
+      std::string why;
       if (!ValidateVelocities(config, model, v.experiments, velocity_data, final_values, &cache,
-                              &run.final_velocity_validation, &diverged, error)) {
-        *error = "final velocity validation: " + *error;
-        return false;
+                              &run.final_velocity_validation, &diverged, &why)) {
+        run.final_velocity_validation.clear();
+        diverged.clear();
+        Finding skipped = SkippedVelocityCheck(why, "velocity_validation");
+        skipped.stage = "final";
+        run.findings.push_back(std::move(skipped));
       }
       for (const std::string& d : diverged) {
         Finding f = MakeFinding(FindingKind::kHeldOutDiverged, "velocity validation: " + d);

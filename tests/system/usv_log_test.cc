@@ -117,5 +117,30 @@ TEST_F(UsvLog, DefaultThrustLawGetsACompensationWarning) {
   EXPECT_GE(CompensationWarnings(results, "k_f"), 1) << testing::JsonFindingsText(results);
 }
 
+// An optional check never stops a run: the log's jittered rows unresampled, the final
+// velocity validation's equation-error grid refuses them; the run goes on and says so,
+// naming the key that leaves the check out.
+TEST_F(UsvLog, VelocityValidationThatCannotBeMadeIsSkippedNotFatal) {
+  std::string config = ShippedConfig();
+  Replace(&config,
+          "    resample: {rate: 5}                              # Hz, where a stage needs a "
+          "uniform grid\n",
+          "");
+  config.erase(config.find("  - name: least_squares"),
+               config.find("  - name: refinement") - config.find("  - name: least_squares"));
+  Replace(&config, "    local: {max_iterations: 50}", "    local: {max_iterations: 2}");
+  config += "\nfinal_validation: {experiments: [log1]}\n";
+  const json results = Run("skipped_check", config);
+  ASSERT_FALSE(results.is_discarded());
+  EXPECT_FALSE(results.contains("stopped"));
+  const std::vector<json> skipped = testing::JsonFindingsOf(results, "check_skipped");
+  ASSERT_EQ(skipped.size(), 1u) << testing::JsonFindingsText(results);
+  EXPECT_EQ(skipped[0]["stage"], "final");
+  EXPECT_EQ(skipped[0]["severity"], "warning");
+  const std::string message = skipped[0]["message"].get<std::string>();
+  EXPECT_NE(message.find("velocity_validation: false leaves it out"), std::string::npos) << message;
+  EXPECT_NE(message.find("gap of"), std::string::npos) << message;
+}
+
 }  // namespace
 }  // namespace vesselid
