@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 
+#include "engine/base/format_numbers.h"
 #include "engine/diagnose/bootstrap_findings.h"
 #include "engine/diagnose/compensation_findings.h"
 #include "engine/diagnose/residual_findings.h"
@@ -12,12 +13,6 @@
 
 namespace vesselid {
 namespace {
-
-std::string Format(const char* format, double a, double b = 0.0, double c = 0.0) {
-  char text[256];
-  std::snprintf(text, sizeof(text), format, a, b, c);
-  return text;
-}
 
 bool AnyFitFailed(const std::vector<ExperimentFit>& fits) {
   for (const ExperimentFit& fit : fits) {
@@ -87,8 +82,8 @@ void AddWeaklyDeterminedFindings(const StageResult& stage, std::vector<Finding>*
       names += (count > 1 ? ", " : "") + e.name +
                (e.undetermined || !std::isfinite(relative)
                     ? " (undetermined)"
-                    : Format(" = %.4g +- %.2g", e.value, e.std_error) +
-                          Format(" (%.0f %%)", 100.0 * relative));
+                    : FormatNumbers(" = %.4g +- %.2g", e.value, e.std_error) +
+                          FormatNumbers(" (%.0f %%)", 100.0 * relative));
     }
   }
   if (count == 0) return;
@@ -131,7 +126,7 @@ void AddHeldOutFindings(const StageResult& stage, std::vector<Finding>* findings
     Finding f = MakeFinding(
         FindingKind::kHeldOutOutputWorse,
         "predicts the held-out " + h.outputs[i] +
-            Format(" worse than its start (MAE %.4g -> %.4g), though better over all outputs",
+            FormatNumbers(" worse than its start (MAE %.4g -> %.4g), though better over all outputs",
                    h.start_mae[i], h.stage_mae[i]));
     f.stage = stage.name;
     f.output = h.outputs[i];
@@ -156,8 +151,8 @@ void AddBoundFindings(const ModelInfo& info, const std::vector<Estimate>& estima
     const std::string model_name = e.name.substr(0, e.name.find('['));
     Finding f = MakeFinding(
         FindingKind::kAtBound,
-        e.name + " = " + Format("%.6g", e.value) + " is at its " + (at_lower ? "lower" : "upper") +
-            " bound " + Format("%g", bound) +
+        e.name + " = " + FormatNumbers("%.6g", e.value) + " is at its " + (at_lower ? "lower" : "upper") +
+            " bound " + FormatNumbers("%g", bound) +
             ": the data pull it further; its standard error assumes an interior optimum" +
             StructureHint(info, model_name));
     f.stage = stage;

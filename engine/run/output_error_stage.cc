@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 
+#include "engine/base/format_numbers.h"
 #include "engine/run/bootstrap_uncertainty.h"
 #include "engine/run/continuation.h"
 #include "engine/run/estimate_specs.h"
@@ -174,12 +175,6 @@ double Median(std::vector<double> values) {
   return values.empty() ? 0.0 : values[values.size() / 2];
 }
 
-std::string Format(const char* format, double a, double b = 0.0, double c = 0.0, double d = 0.0) {
-  char text[160];
-  std::snprintf(text, sizeof(text), format, a, b, c, d);
-  return text;
-}
-
 // Names the experiments the fit does not serve (OutlierOptions) and, if asked, refines again
 // with them down-weighted or dropped.
 bool HandleOutliers(const StageConfig& stage, const StageOptions& options,
@@ -213,7 +208,7 @@ bool HandleOutliers(const StageConfig& stage, const StageOptions& options,
     const double guess = e.initial_state_guess[v.index];
     const double z = std::abs(v.value() - guess) / sigma;
     if (!(z > 3.0)) continue;
-    far.emplace_back(z, v.name + Format(" = %.4g (guess %.4g +- %.2g, %.0f standard errors)",
+    far.emplace_back(z, v.name + FormatNumbers(" = %.4g (guess %.4g +- %.2g, %.0f standard errors)",
                                         v.value(), guess, sigma, z));
     factor[v.experiment] = std::min(factor[v.experiment], 3.0 / z);
   }
@@ -225,12 +220,12 @@ bool HandleOutliers(const StageConfig& stage, const StageOptions& options,
     return text + (items.size() > 6 ? ", ..." : "");
   };
   if (!costly.empty()) {
-    for (auto& [cost, name] : costly) name += Format(" (%.3g)", cost);
+    for (auto& [cost, name] : costly) name += FormatNumbers(" (%.3g)", cost);
     Finding f = MakeFinding(
         FindingKind::kOutliers,
         std::to_string(costly.size()) + " of " + std::to_string(count) +
-            " experiments fit far worse than the rest (RMS cost above " + Format("%.3g", limit) +
-            " = median + " + Format("%g", stage.outliers.threshold) + " x MAD): " + list(costly));
+            " experiments fit far worse than the rest (RMS cost above " + FormatNumbers("%.3g", limit) +
+            " = median + " + FormatNumbers("%g", stage.outliers.threshold) + " x MAD): " + list(costly));
     f.count = static_cast<int>(costly.size());
     f.threshold = limit;
     summary->findings.push_back(std::move(f));

@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "engine/base/format_numbers.h"
 #include "engine/base/json_number.h"
 #include "engine/base/statistics.h"
 #include "engine/study/partition_study.h"
@@ -61,15 +62,9 @@ std::vector<const PartitionOutcome*> OfMethod(const std::vector<PartitionOutcome
   return selected;
 }
 
-std::string Format(const char* format, double a, double b = 0.0) {
-  char text[96];
-  std::snprintf(text, sizeof(text), format, a, b);
-  return text;
-}
-
 std::string MeanSdText(const MeanSd& s) {
   if (s.n == 0) return "-";
-  return Format("%.4g", s.mean) + (std::isfinite(s.sd) ? Format(" ± %.2g", s.sd) : "");
+  return FormatNumbers("%.4g", s.mean) + (std::isfinite(s.sd) ? FormatNumbers(" ± %.2g", s.sd) : "");
 }
 
 std::string Pad(const std::string& text, size_t width) {
@@ -142,7 +137,7 @@ void FailedSplits(const StudyResult& result, std::vector<std::string>* failures)
   }
   for (const PartitionOutcome& b : result.shares) {
     if (!b.message.empty() && b.usable) {
-      failures->push_back("(b) " + b.method + Format(" share %.2f: ", b.training_share) +
+      failures->push_back("(b) " + b.method + FormatNumbers(" share %.2f: ", b.training_share) +
                           b.message);
     }
   }
@@ -158,10 +153,10 @@ void ParameterTable(const StudyResult& result, std::ostringstream& out) {
     out << Pad(result.parameters[i], 12);
     for (const std::string& method : o.methods) {
       const MeanSd s = ParameterSpread(OfMethod(result.repeated, method), i);
-      std::string cell = result.held[i] ? Format("%.4g (held)", s.mean) : MeanSdText(s);
+      std::string cell = result.held[i] ? FormatNumbers("%.4g (held)", s.mean) : MeanSdText(s);
       if (!result.held[i] && std::isfinite(s.sd)) {  // beyond 100 %: not even the sign
         const double relative = 100.0 * s.sd / std::abs(s.mean);
-        cell += relative < 100.0 ? Format(" (%.1f %%)", relative) : " (>100 %)";
+        cell += relative < 100.0 ? FormatNumbers(" (%.1f %%)", relative) : " (>100 %)";
       }
       out << Pad(cell, 32);
     }
@@ -191,8 +186,8 @@ void LeastSquaresTables(const StudyResult& result, std::ostringstream& out) {
 
   // (a)
   out << "\n(a) " << o.partitions << " random partitions, training "
-      << Format("%.0f %%", 100.0 * (1.0 - o.validation_share)) << " / validation "
-      << Format("%.0f %%", 100.0 * o.validation_share)
+      << FormatNumbers("%.0f %%", 100.0 * (1.0 - o.validation_share)) << " / validation "
+      << FormatNumbers("%.0f %%", 100.0 * o.validation_share)
       << ": validation metrics, mean ± SD over the partitions\n";
   out << Pad("method", 10) << Pad("metric", 13) << Pad("n", 4);
   for (const char* metric : {"MAE", "R2"}) {
@@ -218,7 +213,7 @@ void LeastSquaresTables(const StudyResult& result, std::ostringstream& out) {
   }
 
   // (b)
-  out << "\n(b) training share, validation " << Format("%.0f %%", 100.0 * o.validation_share)
+  out << "\n(b) training share, validation " << FormatNumbers("%.0f %%", 100.0 * o.validation_share)
       << " (seed " << o.seed << "): one-step metrics\n";
   out << Pad("share", 7) << Pad("method", 10) << Pad("part", 12) << Pad("n", 7);
   for (const char* metric : {"MAE", "R2"}) {
@@ -227,7 +222,7 @@ void LeastSquaresTables(const StudyResult& result, std::ostringstream& out) {
   out << "\n";
   for (const PartitionOutcome& b : result.shares) {
     for (const char* part : {"training", "validation"}) {
-      out << Pad(Format("%.2f", b.training_share), 7) << Pad(b.method, 10) << Pad(part, 12);
+      out << Pad(FormatNumbers("%.2f", b.training_share), 7) << Pad(b.method, 10) << Pad(part, 12);
       if (!b.usable) {
         out << "failed: " << b.message << "\n";
         break;
@@ -241,7 +236,7 @@ void LeastSquaresTables(const StudyResult& result, std::ostringstream& out) {
           for (const ChannelMetrics& m : Metrics(b, part)) {
             if (m.output == s) value = MetricValue(m, metric);
           }
-          out << Pad(std::isfinite(value) ? Format("%.4g", value) : "-", 10);
+          out << Pad(std::isfinite(value) ? FormatNumbers("%.4g", value) : "-", 10);
         }
       }
       out << "\n";
@@ -272,8 +267,8 @@ void OutputErrorTables(const StudyResult& result, std::ostringstream& out) {
 
   // (a)
   out << "\n(a) " << o.partitions << " random partitions, training "
-      << Format("%.0f %%", 100.0 * (1.0 - o.validation_share)) << " / validation "
-      << Format("%.0f %%", 100.0 * o.validation_share)
+      << FormatNumbers("%.0f %%", 100.0 * (1.0 - o.validation_share)) << " / validation "
+      << FormatNumbers("%.0f %%", 100.0 * o.validation_share)
       << ": metrics, mean ± SD over the partitions\n";
   out << Pad("method", 10) << Pad("part", 12) << Pad("output", 8) << Pad("n", 4);
   for (const char* header : {"RMSE", "MAE", "R2", "fit %"}) out << Pad(header, 20);
@@ -293,7 +288,7 @@ void OutputErrorTables(const StudyResult& result, std::ostringstream& out) {
   }
 
   // (b)
-  out << "\n(b) training share, validation " << Format("%.0f %%", 100.0 * o.validation_share)
+  out << "\n(b) training share, validation " << FormatNumbers("%.0f %%", 100.0 * o.validation_share)
       << " (seed " << o.seed << ")\n";
   out << Pad("share", 7) << Pad("method", 10) << Pad("part", 12) << Pad("output", 8)
       << Pad("n", 8);
@@ -301,7 +296,7 @@ void OutputErrorTables(const StudyResult& result, std::ostringstream& out) {
   out << "\n";
   for (const PartitionOutcome& b : result.shares) {
     if (!b.usable) {
-      out << Pad(Format("%.2f", b.training_share), 7) << Pad(b.method, 10) << "failed: "
+      out << Pad(FormatNumbers("%.2f", b.training_share), 7) << Pad(b.method, 10) << "failed: "
           << b.message << "\n";
       continue;
     }
@@ -311,11 +306,11 @@ void OutputErrorTables(const StudyResult& result, std::ostringstream& out) {
         for (const ChannelMetrics& m : Metrics(b, part)) {
           if (m.output == c) found = &m;
         }
-        out << Pad(Format("%.2f", b.training_share), 7) << Pad(b.method, 10) << Pad(part, 12)
+        out << Pad(FormatNumbers("%.2f", b.training_share), 7) << Pad(b.method, 10) << Pad(part, 12)
             << Pad(c, 8) << Pad(found != nullptr ? std::to_string(found->samples) : "-", 8);
         for (const char* metric : kOutputErrorMetrics) {
           const double value = found != nullptr ? MetricValue(*found, metric) : kNaN;
-          out << Pad(std::isfinite(value) ? Format("%.4g", value) : "-", 11);
+          out << Pad(std::isfinite(value) ? FormatNumbers("%.4g", value) : "-", 11);
         }
         out << "\n";
       }
@@ -414,7 +409,7 @@ std::string StudyResultToText(const StudyResult& result) {
     out << "\nfailed or incomplete splits:\n";
     for (const std::string& f : failures) out << "  " << f << "\n";
   }
-  out << Format("\ntime %.1f s\n", result.time_seconds);
+  out << FormatNumbers("\ntime %.1f s\n", result.time_seconds);
   return out.str();
 }
 
