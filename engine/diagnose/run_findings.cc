@@ -7,20 +7,19 @@
 #include "engine/diagnose/stage_findings.h"
 
 namespace vesselid {
+namespace {
 
-bool FinalHeldOutFailed(const RunResult& run, std::vector<Finding>* findings) {
+// Appends final_held_out_failed findings: the final values' held-out simulation diverges, or
+// predicts an output worse than holding its first measured value (pooled MAE ratio above 1).
+void AddFinalHeldOutFindings(const RunResult& run, std::vector<Finding>* findings) {
   std::map<std::string, std::pair<double, double>> error_sum;  // output: (sum MAE n, hold)
   std::vector<std::string> order;
-  bool failed = false;
   for (const ExperimentFit& fit : run.final_validation) {
     if (fit.diverged) {
-      failed = true;
-      if (findings != nullptr) {
-        Finding f = MakeFinding(FindingKind::kFinalHeldOutFailed, "diverges: " + fit.message);
-        f.stage = "final";
-        f.experiment = fit.experiment;
-        findings->push_back(std::move(f));
-      }
+      Finding f = MakeFinding(FindingKind::kFinalHeldOutFailed, "diverges: " + fit.message);
+      f.stage = "final";
+      f.experiment = fit.experiment;
+      findings->push_back(std::move(f));
       continue;
     }
     for (const ChannelMetrics& m : fit.channels) {
@@ -32,8 +31,6 @@ bool FinalHeldOutFailed(const RunResult& run, std::vector<Finding>* findings) {
   for (const std::string& output : order) {
     const auto& sums = error_sum[output];
     if (!(sums.first > sums.second)) continue;
-    failed = true;
-    if (findings == nullptr) continue;
     char text[256];
     std::snprintf(text, sizeof(text),
                   "the simulated %s predicts the held-out data worse than holding its first "
@@ -46,10 +43,7 @@ bool FinalHeldOutFailed(const RunResult& run, std::vector<Finding>* findings) {
     f.threshold = 1.0;
     findings->push_back(std::move(f));
   }
-  return failed;
 }
-
-namespace {
 
 // A piece an equation-error stage cut from a record at a gap is named "record~k" inside the
 // engine: a finding names the user's record and the piece as its segment.
@@ -139,7 +133,7 @@ void DiagnoseRun(const RunConfig& config, RunResult* run) {
     findings.push_back(std::move(f));
   }
   AddBoundFindings(info, run->final_held_out_parameters.estimates, "final", &findings);
-  FinalHeldOutFailed(*run, &findings);
+  AddFinalHeldOutFindings(*run, &findings);
   findings = FoldFindings(findings);
   SortFindings(&findings);
   Verdict verdict = VerdictOf(findings);

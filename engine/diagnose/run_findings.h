@@ -27,10 +27,6 @@
 
 namespace vesselid {
 
-// Whether the final values' held-out simulation diverges or predicts an output worse than
-// holding its first measured value; the findings appended to `findings` (may be null).
-bool FinalHeldOutFailed(const RunResult& run, std::vector<Finding>* findings);
-
 // Sets every stage's findings and verdict, and the run's.
 void DiagnoseRun(const RunConfig& config, RunResult* run);
 
