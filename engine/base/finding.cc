@@ -27,6 +27,21 @@ const Row kRows[] = {
      "The screen (`screen:`) or a position fix of exactly 0/0 removed samples of a measured "
      "output; the finding gives the count per kind and channel and the first times.",
      "Check the times it names; loosen `screen:` if real motion was removed."},
+    {K::kBadCells, "bad_cells", S::kWarning,
+     "Cells of a mapped column held text that is not a number (a spreadsheet's mangled cell "
+     "such as `jan.68`, `NaN`, `inf`): each is read as a missing sample. Above the experiment's "
+     "`bad_cells` share (default 5 % of the column's rows) the file is refused instead. Columns "
+     "no experiment maps are not read at all.",
+     "Check the first lines the finding names; fix the logger or export, or accept the gaps."},
+    {K::kColumnsNotRead, "columns_not_read", S::kInfo,
+     "A record's file has columns the experiment does not map (unnamed ones too, such as a "
+     "spreadsheet's index): they are skipped unread, so text in them is no error.",
+     "None; check the list if a mapping was mistyped."},
+    {K::kGaps, "gaps", S::kInfo,
+     "A mapped output has gaps longer than 3 of its median sample intervals (a logger that "
+     "stopped, rows removed). Output error simulates across them; an equation-error stage cuts "
+     "the record there (record_cut).",
+     "None; a long gap in a manoeuvre costs its information."},
     {K::kResampled, "resampled", S::kInfo,
      "A record was resampled to a uniform grid (`resample:`).",
      "None; the grid serves every stage."},
@@ -40,9 +55,10 @@ const Row kRows[] = {
      "out of that stage.",
      "Lengthen the piece, shorten the smoothing window, or accept the loss."},
     {K::kRecordCut, "record_cut", S::kInfo,
-     "An equation-error stage cut a record into pieces at gaps of its output longer than "
-     "max(max_gap, 2) median steps (the rule `resample:` uses too, so a resampled record is "
-     "cut or accepted, never refused).",
+     "An equation-error stage cut a record into pieces at gaps of its grid output: steps "
+     "longer than the stage's max_gap and at least 2 median steps (a missing sample). The same "
+     "rule decides where a piece is built, so a record, resampled or not, is cut or accepted; "
+     "only row jitter beyond max_gap is refused.",
      "None; raise `least_squares: {max_gap: ...}` to bridge the gaps."},
     {K::kUnitSuspect, "unit_suspect", S::kWarning,
      "An angle output not listed under `degrees:` looks like degrees: it swings back and forth "
@@ -55,6 +71,11 @@ const Row kRows[] = {
      "whole degrees, a rudder indicator in 1-degree steps. Its noise is at least step / "
      "sqrt(12).",
      "None needed for output error; expect coloured residuals of about that size."},
+    {K::kStaleRepeats, "stale_repeats", S::kInfo,
+     "A measured output (not quantised) repeats its value exactly in runs of 3 or more samples "
+     "while a mapped input or another output changes, in at least 1 % of its samples: a sensor "
+     "or logger that held its last value. The held samples pull the fit towards a delay.",
+     "Remove them with the experiment's `screen: {stale: 3}`."},
     {K::kAllZeroInput, "all_zero_input", S::kWarning,
      "A mapped input column is exactly 0 in every sample of the window: the parameters it drives "
      "cannot be identified from this record.",

@@ -51,6 +51,13 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
     }
     spec.csv.separator = separator[0];
   }
+  // bad_cells: the share of a mapped column's cells that may be mangled text (read as gaps).
+  spec.csv.max_bad_share = kDefaultBadCellShare;
+  reader.Read(node, path, "bad_cells", &spec.csv.max_bad_share);
+  if (!(spec.csv.max_bad_share >= 0.0 && spec.csv.max_bad_share < 1.0)) {
+    reader.Fail(node["bad_cells"], Child(path, "bad_cells"),
+                "must be a share in [0, 1) of a column's cells (0: refuse any)");
+  }
   bool inputs_required = false;
   for (size_t i = 0; i < info.inputs.size(); ++i) inputs_required |= !info.InputOptional(static_cast<int>(i));
   if (!node["inputs"] && inputs_required) reader.Fail(node, path, "missing key 'inputs'");

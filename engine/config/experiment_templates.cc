@@ -123,7 +123,7 @@ const std::vector<std::string>& ExperimentKeys() {
       "name",           "file",     "files",         "inputs",  "outputs",
       "interpolation",  "weights",  "initial_state", "degrees", "window",
       "segment_length", "segments", "input_range",   "wrap",    "separator",
-      "time",           "position", "screen",        "resample", "input_noise"};
+      "time",           "position", "screen",        "resample", "input_noise", "bad_cells"};
   return keys;
 }
 

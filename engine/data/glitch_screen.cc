@@ -172,6 +172,17 @@ std::vector<GlitchFinding> ScreenGlitches(const GlitchScreenOptions& options, Tr
     s.period = c.period;
     series.push_back(s);
   }
+  const size_t screened = series.size();
+  // References only where no other screened channel can tell (a log of one output).
+  for (const std::string& column : screened == 1 ? options.reference_columns
+                                                 : std::vector<std::string>{}) {
+    const int c = data->Find(column);
+    if (c < 0) continue;
+    Series s;
+    s.name = column;
+    s.columns = {&data->columns[c]};
+    series.push_back(s);
+  }
   std::vector<GlitchFinding> findings;
   auto finish = [&](GlitchFinding f) {
     if (f.count > 0) findings.push_back(std::move(f));
@@ -187,13 +198,14 @@ std::vector<GlitchFinding> ScreenGlitches(const GlitchScreenOptions& options, Tr
     finish(zero);
   }
   if (options.stale >= 2) {
-    for (size_t i = 0; i < series.size(); ++i) {
+    for (size_t i = 0; i < screened; ++i) {
       GlitchFinding stale{"stale repeat", series[i].name};
       ScreenStale(series, i, options.stale, *data, &stale);
       finish(stale);
     }
   }
-  for (const Series& s : series) {
+  for (size_t i = 0; i < screened; ++i) {
+    const Series& s = series[i];
     if (!(s.max_rate > 0.0)) continue;
     GlitchFinding jumps{"jump", s.name}, anchors{"re-anchored", s.name};
     ScreenJumps(s, *data, &jumps, &anchors);

@@ -2,8 +2,8 @@
 // NaN (a gap like any other):
 //   * zero fixes: a position pair exactly 0/0 (a GNSS receiver without a solution);
 //   * stale repeats: a channel repeating its value `stale` or more times in a row while
-//     another screened channel changes (a sensor that stopped updating): the repeats after
-//     the first sample are removed;
+//     another screened channel changes (with one screened channel: a reference column, a
+//     mapped input), a sensor that stopped updating: the repeats after the first are removed;
 //   * jumps: a sample farther from the last kept one than a bound allows,
 //       |y_k - y_last| > max_rate (t_k - t_last) + 7 sigma,
 //     with sigma the channel's noise level (robust, from the median absolute second
@@ -37,6 +37,10 @@ struct GlitchScreenOptions {
   };
   std::vector<Channel> channels;
   int stale = 0;  // a value repeated this many times in a row is stale (0: not checked)
+  // Columns not screened whose change during a repeat marks it stale when only one channel
+  // is screened (the mapped inputs: a heading held while the rudder moves, in a log with one
+  // measured output).
+  std::vector<std::string> reference_columns;
 };
 
 // What the screen removed: per kind and channel, the count and the first times.

@@ -144,11 +144,17 @@ bool ParseMeasurement(std::string_view field, double* value, std::string* why) {
   return true;
 }
 
-// The header row's checks (a time column, named columns, no duplicates): the time column's
-// index and the channel names, or false with the message. `line` is the raw header row (to
-// name another separator it is split by).
+// What the reader does with each field of a row (Header::slot).
+constexpr int kTimeField = -1;
+constexpr int kSkippedField = -2;
+
+// The header row's checks (a time column, no duplicate among the columns read): the slot of
+// each field (kTimeField, kSkippedField or the channel it fills) and the channel names, or
+// false with the message. `line` is the raw header row (to name another separator it is
+// split by).
 bool CheckHeader(const std::vector<std::string>& header, std::string_view line,
-                 const CsvReadOptions& options, int* time_column, std::vector<std::string>* names,
+                 const CsvReadOptions& options, int* time_column, std::vector<int>* slots,
+                 std::vector<std::string>* names, std::vector<std::string>* skipped,
                  std::string* what) {
   auto fail = [&](const std::string& message) {
     *what = message;
@@ -156,8 +162,11 @@ bool CheckHeader(const std::vector<std::string>& header, std::string_view line,
   };
   *time_column = -1;
   names->clear();
+  skipped->clear();
+  slots->assign(header.size(), kSkippedField);
   std::vector<std::string_view> fields;
   std::set<std::string> seen;  // not a pairwise check: that is quadratic in a wide header
+  const std::set<std::string> wanted(options.columns.begin(), options.columns.end());
   const std::string& time_name = options.time_column;
   for (size_t i = 0; i < header.size(); ++i) {
     if (header[i] == time_name) *time_column = static_cast<int>(i);
@@ -178,10 +187,19 @@ bool CheckHeader(const std::vector<std::string>& header, std::string_view line,
     return fail("header has no time column '" + time_name + "'");
   }
   for (size_t i = 0; i < header.size(); ++i) {
-    if (header[i].empty())
-      return fail("empty column name in header (column " + std::to_string(i + 1) + ")");
+    const bool time = static_cast<int>(i) == *time_column;
+    const bool read = time || (!header[i].empty() && (wanted.empty() || wanted.count(header[i])));
+    if (!read) {
+      skipped->push_back(header[i]);
+      continue;
+    }
     if (!seen.insert(header[i]).second) return fail("duplicate column '" + header[i] + "'");
-    if (static_cast<int>(i) != *time_column) names->push_back(header[i]);
+    if (time) {
+      (*slots)[i] = kTimeField;
+    } else {
+      (*slots)[i] = static_cast<int>(names->size());
+      names->push_back(header[i]);
+    }
   }
   return true;
 }
@@ -215,8 +233,8 @@ bool CountRows(RowBlock* block) {
 // of `result` (and of `time_ns` for an epoch record), numbering lines from `first_line`;
 // false at the first thing the sequential reader would reject, which then names it. Times are
 // checked to increase within the block.
-bool ParseRowBlock(const RowBlock& block, const CsvReadOptions& options, size_t fields_per_row,
-                   int time_column, int first_line, Trajectory* result,
+bool ParseRowBlock(const RowBlock& block, const CsvReadOptions& options,
+                   const std::vector<int>& slots, int first_line, Trajectory* result,
                    std::vector<std::int64_t>* time_ns) {
   std::vector<std::string_view> fields;
   std::string why;
@@ -230,13 +248,13 @@ bool ParseRowBlock(const RowBlock& block, const CsvReadOptions& options, size_t 
     p = newline != nullptr ? newline + 1 : end;
     if (Trim(line).empty()) continue;
     SplitFields(line, options.separator, &fields);
-    if (fields.size() != fields_per_row) return false;
-    size_t channel = 0;
+    if (fields.size() != slots.size()) return false;
     for (size_t i = 0; i < fields.size(); ++i) {
+      if (slots[i] == kSkippedField) continue;
       double value;
       if (!ParseMeasurement(fields[i], &value, &why)) return false;
-      if (static_cast<int>(i) != time_column) {
-        result->columns[channel++][row] = value;
+      if (slots[i] != kTimeField) {
+        result->columns[slots[i]][row] = value;
         continue;
       }
       if (fields[i].empty()) return false;
@@ -306,8 +324,12 @@ bool ReadTrajectoryCsvInBlocks(const std::string& path, const CsvReadOptions& op
   Trajectory result;
   result.source = path;
   int time_column = -1;
+  std::vector<int> slots;
   std::string what;
-  if (!CheckHeader(header, line, options, &time_column, &result.names, &what)) return false;
+  if (!CheckHeader(header, line, options, &time_column, &slots, &result.names,
+                   &result.skipped_columns, &what)) {
+    return false;
+  }
   // Epoch or not, from the first row's time.
   {
     size_t at = begin;
@@ -362,8 +384,7 @@ bool ReadTrajectoryCsvInBlocks(const std::string& path, const CsvReadOptions& op
     if (c >= 3) result.columns[c - 3].resize(rows);
   });
   ParallelFor(static_cast<int>(blocks.size()), 0, [&](int b) {
-    blocks[b].ok = ParseRowBlock(blocks[b], options, header.size(), time_column, first_line[b],
-                                 &result, &time_ns);
+    blocks[b].ok = ParseRowBlock(blocks[b], options, slots, first_line[b], &result, &time_ns);
   });
   for (size_t b = 0; b < blocks.size(); ++b) {
     if (!blocks[b].ok) return false;
@@ -441,11 +462,24 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
   }
   if (in.too_long()) return fail("line longer than " + ByteCount(LineReader::kMaxLine));
   if (header.empty()) return fail("empty file, expected a header row");
+  std::vector<int> slots;
   {
     std::string what;
-    if (!CheckHeader(header, line, options, &time_column, &result.names, &what)) return fail(what);
+    if (!CheckHeader(header, line, options, &time_column, &slots, &result.names,
+                     &result.skipped_columns, &what)) {
+      return fail(what);
+    }
   }
   result.columns.resize(result.names.size());
+  // Cells of each read column that are not numbers: count, the first rows and the first text.
+  struct Bad {
+    int count = 0;
+    std::vector<size_t> rows;
+    std::vector<int> lines;
+    std::string first_text, first_why;
+  };
+  std::vector<Bad> bad(result.names.size());
+  constexpr size_t kFirstBadCells = 3;
 
   std::uint64_t values = 0;
   std::vector<std::int64_t> time_ns;  // epoch logs: every time exactly, in nanoseconds
@@ -461,13 +495,28 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
       return fail("expected " + std::to_string(header.size()) + " fields, found " +
                   std::to_string(fields.size()));
     }
-    size_t channel = 0;
+    const size_t row = result.t.size();  // this row's index
     for (size_t i = 0; i < fields.size(); ++i) {
+      if (slots[i] == kSkippedField) continue;
       const std::string_view field = fields[i];
       double value;
       std::string why;
-      if (!ParseMeasurement(field, &value, &why)) return fail("column '" + header[i] + "': " + why);
-      if (static_cast<int>(i) == time_column) {
+      if (!ParseMeasurement(field, &value, &why)) {
+        if (slots[i] == kTimeField || !(options.max_bad_share > 0.0)) {
+          return fail("column '" + header[i] + "': " + why);
+        }
+        Bad& b = bad[slots[i]];
+        if (b.count++ == 0) {
+          b.first_text = std::string(field.substr(0, 40));
+          b.first_why = why;
+        }
+        if (b.rows.size() < kFirstBadCells) {
+          b.rows.push_back(row);
+          b.lines.push_back(line_number);
+        }
+        value = std::numeric_limits<double>::quiet_NaN();  // a missing sample
+      }
+      if (slots[i] == kTimeField) {
         if (field.empty()) return fail("missing time value");
         if (result.t.empty()) result.epoch = std::abs(value) >= kEpochThreshold;
         if (result.epoch) {
@@ -490,7 +539,7 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
         result.t.push_back(value);
         result.line.push_back(line_number);
       } else {
-        result.columns[channel++].push_back(value);
+        result.columns[slots[i]].push_back(value);
       }
     }
   }
@@ -503,6 +552,28 @@ bool ReadTrajectoryCsv(const std::string& path, const CsvReadOptions& options,
     for (size_t k = 0; k < time_ns.size(); ++k) {
       result.t[k] = NanosecondsToSeconds(time_ns[k] - time_ns.front());
     }
+  }
+  const size_t rows = result.t.size();
+  for (size_t c = 0; c < bad.size(); ++c) {
+    const Bad& b = bad[c];
+    if (b.count == 0) continue;
+    if (b.count > options.max_bad_share * static_cast<double>(rows)) {
+      char share[160];
+      std::snprintf(share, sizeof(share),
+                    " (%d of the column's %zu cells are not numbers, more than the %g %% "
+                    "an experiment's bad_cells accepts)",
+                    b.count, rows, 100.0 * options.max_bad_share);
+      line_number = b.lines.front();
+      return fail("column '" + result.names[c] + "': " + b.first_why + share);
+    }
+    Trajectory::BadCells cells;
+    cells.column = result.names[c];
+    cells.count = b.count;
+    cells.cells = static_cast<int>(rows);
+    cells.lines = b.lines;
+    for (size_t row : b.rows) cells.times.push_back(result.t[row]);
+    cells.first_text = b.first_text;
+    result.bad_cells.push_back(std::move(cells));
   }
   *trajectory = std::move(result);
   return true;

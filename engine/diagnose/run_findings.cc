@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <map>
+#include <set>
 #include <tuple>
 
 #include "engine/diagnose/stage_findings.h"
@@ -66,14 +67,16 @@ std::vector<Finding> FoldFindings(const std::vector<Finding>& input) {
   std::vector<Finding> folded;
   std::vector<std::vector<std::string>> also;
   for (const Finding& f : findings) {
-    // Record findings differ in what they say of each record: not folded.
-    const bool foldable = !f.experiment.empty() && f.kind != FindingKind::kSamplesRemoved &&
-                          f.kind != FindingKind::kSegmentSkipped &&
-                          f.kind != FindingKind::kResampled && f.kind != FindingKind::kRecordOrigin &&
-                          f.kind != FindingKind::kRecordCut;
+    // Record findings differ in what they say of each record (counts, times, lines): folded
+    // only where the message is the same.
+    static const std::set<FindingKind> kPerRecord{
+        FindingKind::kSamplesRemoved, FindingKind::kBadCells,     FindingKind::kColumnsNotRead,
+        FindingKind::kGaps,           FindingKind::kSegmentSkipped, FindingKind::kResampled,
+        FindingKind::kRecordOrigin,   FindingKind::kRecordCut,    FindingKind::kStaleRepeats};
+    const bool whole_kind = !f.experiment.empty() && kPerRecord.count(f.kind) == 0;
     const Key key{static_cast<int>(f.kind), static_cast<int>(f.severity), f.stage,
                   f.parameter.substr(0, f.parameter.find('[')), f.output,
-                  foldable ? f.segment : f.experiment + "\n" + f.segment + "\n" + f.message};
+                  whole_kind ? f.segment : f.segment + "\n" + f.message};
     const auto found = first.find(key);
     if (found == first.end()) {
       first[key] = folded.size();
@@ -84,13 +87,16 @@ std::vector<Finding> FoldFindings(const std::vector<Finding>& input) {
     folded[found->second].count += f.count;
     also[found->second].push_back(f.experiment);
   }
-  // "(also in zz2, zz3 and 4 more)": every folded experiment stays findable by name.
+  // "(zz1; also in zz2, zz3 and 4 more)": every folded experiment stays findable by name,
+  // the one whose numbers the message gives first.
   for (size_t i = 0; i < folded.size(); ++i) {
     if (also[i].empty()) continue;
     std::string names;
     for (size_t k = 0; k < also[i].size() && k < 8; ++k) names += (k > 0 ? ", " : "") + also[i][k];
     if (also[i].size() > 8) names += " and " + std::to_string(also[i].size() - 8) + " more";
-    folded[i].message += " (also in " + names + ")";
+    const std::string& first_name = folded[i].experiment;
+    folded[i].message += " (" + (first_name.empty() ? "" : first_name + "; ") + "also in " +
+                         names + ")";
     folded[i].experiment.clear();
   }
   return folded;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/base/format_numbers.h"
 #include "engine/data/glitch_screen.h"
 #include "engine/data/resample.h"
 #include "engine/data/time_base.h"
@@ -65,6 +66,7 @@ bool Screen(const ExperimentSpec& spec, const GnssPositionReport& gnss, Trajecto
       options.zero_fix = d.zero_fix && !d.position;  // `position` took them out already
     }
     options.stale = d.stale;
+    for (const auto& [input, column] : spec.inputs) options.reference_columns.push_back(column);
     for (const auto& [output, column] : spec.outputs) {
       if (pair && (column == north || column == east)) continue;
       const auto rate = d.max_rate.find(output);
@@ -132,10 +134,65 @@ bool ResampleRecord(const ExperimentSpec& spec, Trajectory* data, std::string* e
   return true;
 }
 
+// The columns an experiment reads: its inputs, outputs, degree columns, GNSS fixes and
+// segment column. The others in the file are skipped unread.
+std::vector<std::string> MappedColumns(const ExperimentSpec& spec) {
+  std::vector<std::string> columns = spec.degree_columns;
+  for (const auto& [input, column] : spec.inputs) columns.push_back(column);
+  for (const auto& [output, column] : spec.outputs) columns.push_back(column);
+  if (spec.data.position) {
+    columns.push_back(spec.data.gnss.lat_column);
+    columns.push_back(spec.data.gnss.lon_column);
+  }
+  if (!spec.segments.column.empty()) columns.push_back(spec.segments.column);
+  return columns;
+}
+
+// One bad_cells finding per column whose mangled cells the reader turned into gaps.
+void AddBadCellFindings(const ExperimentSpec& spec, Trajectory* data) {
+  for (const Trajectory::BadCells& bad : data->bad_cells) {
+    std::string where;
+    for (size_t k = 0; k < bad.times.size(); ++k) {
+      where += (k == 0 ? "" : ", ") + FormatNumbers("%g s", bad.times[k]) + " (line " +
+               std::to_string(bad.lines[k]) + ")";
+    }
+    Finding f = MakeFinding(FindingKind::kBadCells,
+                            "column '" + bad.column + "': " + std::to_string(bad.count) + " of " +
+                                std::to_string(bad.cells) + " cells are not numbers (first '" +
+                                bad.first_text + "'), read as missing samples; at t = " + where +
+                                (bad.count > static_cast<int>(bad.times.size()) ? ", ..." : ""));
+    f.experiment = spec.name;
+    for (const auto* map : {&spec.inputs, &spec.outputs}) {
+      for (const auto& [channel, column] : *map) {
+        if (column == bad.column) f.output = channel;
+      }
+    }
+    f.value = bad.count;
+    f.count = 1;
+    f.threshold = spec.csv.max_bad_share * bad.cells;
+    data->findings.push_back(std::move(f));
+  }
+}
+
 }  // namespace
 
 bool LoadExperimentData(const ExperimentSpec& spec, Trajectory* trajectory, std::string* error) {
-  if (!ReadTrajectoryCsv(spec.file, spec.csv, trajectory, error)) return false;
+  CsvReadOptions csv = spec.csv;
+  csv.columns = MappedColumns(spec);
+  if (!ReadTrajectoryCsv(spec.file, csv, trajectory, error)) return false;
+  AddBadCellFindings(spec, trajectory);
+  if (!trajectory->skipped_columns.empty()) {
+    std::string names;
+    for (const std::string& name : trajectory->skipped_columns) {
+      names += (names.empty() ? "" : ", ") + (name.empty() ? "(unnamed)" : "'" + name + "'");
+    }
+    Finding f = MakeFinding(FindingKind::kColumnsNotRead,
+                            std::to_string(trajectory->skipped_columns.size()) +
+                                " column(s) of the file not mapped, not read: " + names);
+    f.experiment = spec.name;
+    f.value = static_cast<double>(trajectory->skipped_columns.size());
+    trajectory->findings.push_back(std::move(f));
+  }
   auto fail = [&](const std::string& what) {
     *error = "experiment '" + spec.name + "': " + what;
     return false;

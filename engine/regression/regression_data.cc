@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <limits>
 
+#include "engine/base/format_numbers.h"
+
 namespace vesselid {
 namespace {
 
@@ -83,16 +85,24 @@ bool BuildRegressionRecord(const ExperimentSpec& spec, const Trajectory& data,
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
   r.dt = sorted[sorted.size() / 2];
   for (int k = 0; k + 1 < n; ++k) {
-    if (steps[k] > options.max_gap * r.dt) {
-      char limit[64];
-      std::snprintf(limit, sizeof(limit), "%g", options.max_gap);
-      return fail("gap of " + std::to_string(steps[k]) + " s at t = " + std::to_string(r.t[k]) +
-                  " in output '" + info.outputs[grid] +
-                  "' (regression data need a uniform grid: a step may be at most max_gap = " +
-                  limit + " median steps; raise the stage's max_gap for row jitter, give the " +
-                  "experiment a resample rate, or cut the record into segments)");
+    const GridStep kind = GridStepOf(steps[k], r.dt, options.max_gap);
+    if (kind == GridStep::kAccepted) continue;
+    char text[160];
+    std::snprintf(text, sizeof(text), "step of %g s (%.3g median steps) at t = %g s", steps[k],
+                  steps[k] / r.dt, r.t[k]);
+    if (kind == GridStep::kJitter) {
+      return fail(std::string(text) + " in output '" + info.outputs[grid] +
+                  "': row jitter beyond the stage's max_gap (" +
+                  FormatNumbers("%g", options.max_gap) +
+                  " median steps); raise max_gap to " +
+                  FormatNumbers("%.2g", std::ceil(10.0 * steps[k] / r.dt) / 10.0) +
+                  " or more");
     }
+    return fail(std::string(text) + " in output '" + info.outputs[grid] +
+                "': a gap of missing samples inside a piece (pieces are cut at gaps before "
+                "they are built; cut the record into segments)");
   }
+
 
   // Inputs held, outputs causal, then smoothed values and rates.
   r.u.resize(n, nu);
@@ -158,6 +168,12 @@ bool BuildRegressionRecord(const ExperimentSpec& spec, const Trajectory& data,
   r.use.assign(n, true);
   *record = std::move(r);
   return true;
+}
+
+GridStep GridStepOf(double step, double median_step, double max_gap) {
+  if (step <= max_gap * median_step * (1.0 + 1e-9)) return GridStep::kAccepted;
+  return step >= kMissingSampleStep * median_step * (1.0 - 1e-9) ? GridStep::kGap
+                                                                  : GridStep::kJitter;
 }
 
 }  // namespace vesselid

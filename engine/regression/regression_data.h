@@ -23,11 +23,22 @@ namespace vesselid {
 struct RegressionDataOptions {
   std::string grid_output;  // output whose sample times are the grid; empty: the sparsest
   SavitzkyGolayOptions smoothing = {4, 2, 0};  // window and degree (derivative is set inside)
-  // Grid intervals longer than this many median intervals are an error (`max_gap` of a
-  // least-squares or step-regression stage); a logger's row jitter of +-30 % of the interval
-  // needs 1.6 or more, a dropped row 2.
+  // Grid intervals up to this many median intervals are accepted (`max_gap` of a
+  // least-squares or step-regression stage); see GridStepOf for longer ones.
   double max_gap = 1.5;
 };
+
+// The one rule for a step between neighbouring samples of the grid output, used both where
+// records are cut into pieces and where a piece is built (so a record, resampled or not, is
+// always cut or accepted):
+//   kAccepted  step <= max_gap median steps;
+//   kGap       longer, and at least 2 median steps: a sample is missing (a resampled
+//              record's holes are whole multiples), the record is cut there;
+//   kJitter    longer than max_gap but under 2 median steps: row jitter, refused with
+//              advice to raise max_gap (cutting there would shred a jittery log).
+enum class GridStep { kAccepted, kGap, kJitter };
+GridStep GridStepOf(double step, double median_step, double max_gap);
+inline constexpr double kMissingSampleStep = 2.0;  // median steps
 
 // Builds the record of `spec` (its window) from `data`. Errors name the experiment.
 bool BuildRegressionRecord(const ExperimentSpec& spec, const Trajectory& data,

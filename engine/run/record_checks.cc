@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace vesselid {
 namespace {
@@ -11,6 +12,9 @@ constexpr double kGridShare = 0.95;       // gaps on the grid
 constexpr double kDistinctShare = 0.2;    // distinct values per sample at most
 constexpr double kMidManoeuvre = 0.4;     // |first sample| / largest |sample| of an angle input
 constexpr size_t kFewestSamples = 20;     // shorter columns are not judged
+constexpr double kGapSteps = 3.0;         // median sample intervals that make a gap
+constexpr size_t kStaleRun = 3;           // equal samples in a row that may be stale
+constexpr double kStaleShare = 0.01;      // held samples per sample that make a finding
 
 bool IsDegrees(const ExperimentSpec& spec, const std::string& column) {
   return std::find(spec.degree_columns.begin(), spec.degree_columns.end(), column) !=
@@ -21,6 +25,43 @@ std::string Number(double value) {
   char text[32];
   std::snprintf(text, sizeof(text), "%.4g", value);
   return text;
+}
+
+// Samples of column `c` held in runs of kStaleRun or more equal values (not 0: a channel at
+// rest) while one of the `others` changes, among its samples in [t0, t1]; *present gets the
+// channel's sample count there.
+int StaleSamples(const Trajectory& data, int c, const std::vector<int>& others, double t0,
+                 double t1, int* present) {
+  std::vector<size_t> rows;
+  for (size_t k = 0; k < data.t.size(); ++k) {
+    if (data.t[k] >= t0 - 1e-9 && data.t[k] <= t1 + 1e-9 && !std::isnan(data.columns[c][k])) {
+      rows.push_back(k);
+    }
+  }
+  *present = static_cast<int>(rows.size());
+  const auto changes = [&](size_t a, size_t b) {
+    for (int o : others) {
+      double first = std::numeric_limits<double>::quiet_NaN();
+      for (size_t k = a; k <= b; ++k) {
+        const double v = data.columns[o][k];
+        if (std::isnan(v)) continue;
+        if (std::isnan(first)) first = v;
+        if (v != first) return true;
+      }
+    }
+    return false;
+  };
+  int held = 0;
+  size_t begin = 0;
+  for (size_t i = 1; i <= rows.size(); ++i) {
+    const double value = data.columns[c][rows[begin]];
+    if (i < rows.size() && data.columns[c][rows[i]] == value) continue;
+    if (i - begin >= kStaleRun && value != 0.0 && changes(rows[begin], rows[i - 1])) {
+      held += static_cast<int>(i - begin - 1);
+    }
+    begin = i;
+  }
+  return held;
 }
 
 }  // namespace
@@ -41,6 +82,64 @@ double QuantisationStep(const std::vector<double>& values) {
     on_grid += std::abs(multiple - std::round(multiple)) <= 1e-3 * multiple;
   }
   return on_grid >= kGridShare * gaps.size() ? q : 0.0;
+}
+
+// stale_repeats for output `name` (column `column`) of `spec`, through `add`.
+template <typename Add>
+void AddStaleFinding(const ExperimentSpec& spec, const std::string& column, const std::string& name,
+                     TrajectoryCache* cache, const Add& add) {
+  std::string error;
+  const Trajectory* data = LoadCachedTrajectory(spec, cache, &error);
+  if (data == nullptr || data->Find(column) < 0) return;
+  std::vector<int> others;
+  for (const auto* map : {&spec.inputs, &spec.outputs}) {
+    for (const auto& [channel, other] : *map) {
+      const int o = data->Find(other);
+      if (other != column && o >= 0) others.push_back(o);
+    }
+  }
+  int present = 0;
+  const int held = StaleSamples(*data, data->Find(column), others, spec.t_begin, spec.t_end, &present);
+  if (held < 3 || held < kStaleShare * present) return;
+  add(FindingKind::kStaleRepeats, name, held,
+      "column '" + column + "' holds its value in " + std::to_string(held) + " of " +
+          std::to_string(present) + " samples (runs of " + std::to_string(kStaleRun) +
+          " or more equal samples while other columns change): a sensor or logger that repeated "
+          "its last value; screen: {stale: " + std::to_string(kStaleRun) + "} removes them");
+}
+
+// gaps for output `name` (column `column`) of `spec`: steps between its samples longer than
+// kGapSteps median steps, through `add`.
+template <typename Add>
+void AddGapFinding(const ExperimentSpec& spec, const std::string& column, const std::string& name,
+                   TrajectoryCache* cache, const Add& add) {
+  std::string error;
+  const Trajectory* data = LoadCachedTrajectory(spec, cache, &error);
+  if (data == nullptr || data->Find(column) < 0) return;
+  const Channel channel = ExtractChannel(*data, data->Find(column));
+  std::vector<double> t;
+  for (double time : channel.t) {
+    if (time >= spec.t_begin - 1e-9 && time <= spec.t_end + 1e-9) t.push_back(time);
+  }
+  if (t.size() < kFewestSamples) return;
+  std::vector<double> steps(t.size() - 1);
+  for (size_t k = 1; k < t.size(); ++k) steps[k - 1] = t[k] - t[k - 1];
+  std::vector<double> sorted = steps;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  int gaps = 0;
+  double longest = 0.0;
+  std::string where;
+  for (size_t k = 0; k < steps.size(); ++k) {
+    if (!(steps[k] > kGapSteps * median)) continue;
+    if (++gaps <= 3) where += (where.empty() ? "" : ", ") + Number(steps[k]) + " s at t = " + Number(t[k]) + " s";
+    longest = std::max(longest, steps[k]);
+  }
+  if (gaps == 0) return;
+  add(FindingKind::kGaps, name, longest,
+      "column '" + column + "' has " + std::to_string(gaps) + " gap(s) longer than " +
+          Number(kGapSteps) + " median sample intervals (" + Number(median) + " s): " + where +
+          (gaps > 3 ? ", ..." : ""));
 }
 
 void AddRecordCheckFindings(const RunConfig& config, TrajectoryCache* cache,
@@ -78,7 +177,10 @@ void AddRecordCheckFindings(const RunConfig& config, TrajectoryCache* cache,
         add(FindingKind::kQuantised, name, q * unit,
             "column '" + column + "' is quantised in steps of " + Number(q * unit) + label +
                 ": its noise is at least " + Number(q * unit / std::sqrt(12.0)) + label);
+      } else if (c >= inputs) {
+        AddStaleFinding(spec, column, name, cache, add);
       }
+      if (c >= inputs) AddGapFinding(spec, column, name, cache, add);
       const int input = info.InputIndex(name);
       if (c < inputs && input >= 0 && info.InputUnit(input) == "rad") {
         const double largest = std::max(std::abs(*low), std::abs(*high));

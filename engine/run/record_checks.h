@@ -8,7 +8,11 @@
 //                         indicator in 1-degree steps;
 //   starts_mid_manoeuvre  an angle input (a rudder) whose first sample is at least 40 % of its
 //                         largest magnitude: the record starts in the middle of a manoeuvre
-//                         (throttles, which cruise at any value, are not judged).
+//                         (throttles, which cruise at any value, are not judged);
+//   stale_repeats         a measured output (not quantised) holding its value in runs of 3 or
+//                         more equal samples (not 0) while another mapped column changes, in
+//                         at least 1 % of its samples;
+//   gaps                  a measured output with steps longer than 3 median sample intervals.
 // Records that cannot be read are passed over (the stages report them).
 #pragma once
 

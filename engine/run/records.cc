@@ -256,9 +256,9 @@ bool PrepareRegressionRecords(const RunConfig& config, const std::vector<std::st
     }
     return fewest;
   };
-  // A gap of missing grid samples (a step over max_gap and over two median steps) cuts a piece
-  // in two, "<piece>~<k>", with a note; a step only irregular (row jitter, up to two median
-  // steps) stays BuildRegressionRecord's error unless max_gap admits it.
+  // A gap of missing grid samples (GridStepOf: kGap) cuts a piece in two, "<piece>~<k>", with a
+  // finding; a step only irregular (row jitter) stays BuildRegressionRecord's error unless
+  // max_gap admits it.
   const auto split = [&](const std::string& record, const ExperimentSpec& s, const Trajectory& data,
                          std::vector<ExperimentSpec>* specs, std::string*) {
     std::string output;
@@ -278,10 +278,11 @@ bool PrepareRegressionRecords(const RunConfig& config, const std::vector<std::st
     for (size_t k = 1; k < t.size(); ++k) steps.push_back(t[k] - t[k - 1]);
     std::vector<double> sorted = steps;
     std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    const double limit = std::max(options.max_gap, 2.0) * sorted[sorted.size() / 2];
+    const double median = sorted[sorted.size() / 2];
+    const double limit = std::max(options.max_gap, kMissingSampleStep) * median;
     std::vector<size_t> cuts;
     for (size_t k = 0; k < steps.size(); ++k) {
-      if (steps[k] > limit) cuts.push_back(k);
+      if (GridStepOf(steps[k], median, options.max_gap) == GridStep::kGap) cuts.push_back(k);
     }
     if (cuts.empty()) {
       specs->push_back(s);

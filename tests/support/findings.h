@@ -57,6 +57,23 @@ inline std::vector<nlohmann::json> JsonFindingsOf(const nlohmann::json& results,
   return found;
 }
 
+// The first results.json finding of `kind` about `experiment`: its own, or one folded over
+// several experiments that names it ("(zz1; also in zz2)"); null when there is none.
+inline nlohmann::json JsonFindingFor(const nlohmann::json& results, const std::string& kind,
+                                     const std::string& experiment) {
+  for (const nlohmann::json& f : JsonFindingsOf(results, kind)) {
+    const std::string message = f.at("message").get<std::string>();
+    const size_t also = message.rfind(" (");
+    if (f.at("experiment") == experiment ||
+        (f.at("experiment") == "" && also != std::string::npos &&
+         message.find("also in", also) != std::string::npos &&
+         message.find(experiment, also) != std::string::npos)) {
+      return f;
+    }
+  }
+  return nullptr;
+}
+
 // All findings of a results.json, one DescribeFinding-like line each, for failure messages.
 inline std::string JsonFindingsText(const nlohmann::json& results) {
   std::string text;

@@ -74,13 +74,34 @@ TEST_F(BadInput, NonIncreasingTime) {
 }
 
 TEST_F(BadInput, NanInData) {
+  EditConfig("file: data.csv", "file: data.csv\n    bad_cells: 0");
   EditDataLine(7, "0.5,0,0,0,nan,0,0,0");
   ExpectRejected("data\\.csv:7: column 'psi': 'nan' is not a finite number");
 }
 
 TEST_F(BadInput, TextInData) {
+  EditConfig("file: data.csv", "file: data.csv\n    bad_cells: 0");
   EditDataLine(7, "0.5,0,0,0,abc,0,0,0");
   ExpectRejected("data\\.csv:7: column 'psi': 'abc' is not a finite number");
+}
+
+// Past the experiment's bad_cells share (default 5 %) the file is refused at the first one,
+// with the count and the key.
+TEST_F(BadInput, MangledCellsAboveTheShareAreRefused) {
+  for (int line = 10; line < 10 + 40; ++line) EditDataLine(line, "x,0,0,0,jan.68,0,0,0");
+  // The time is mangled too on those lines: refused at the first, whatever the share.
+  ExpectRejected("data\\.csv:10: column 't': 'x' is not a finite number");
+  std::ifstream in(dir_ / "data.csv");
+  std::string all, row;
+  for (int n = 1; std::getline(in, row); ++n) {
+    if (n >= 10 && n < 50) row = std::to_string(0.1 * (n - 2)) + ",0,0,0,jan.68,0,0,0";
+    all += row + "\n";
+  }
+  in.close();
+  std::ofstream(dir_ / "data.csv") << all;
+  ExpectRejected("data\\.csv:10: column 'psi': 'jan\\.68' is not a finite number \\(40 of the "
+                 "column's 601 cells are not numbers, more than the 5 % an experiment's "
+                 "bad_cells accepts\\)");
 }
 
 TEST_F(BadInput, WrongFieldCount) {

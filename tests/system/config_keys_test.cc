@@ -297,6 +297,9 @@ const KeyCase kCases[] = {
     {"separator_the_file_does_not_use", V, V.A(", separator: \";\""),
      "the header is separated by ',', not ';'"},
     {"limits", V, V.T("limits: {integration_steps: 100}\n"), "(limits.integration_steps)"},
+    // The data here have no mangled cell: log_as_logged_test.cc shows the key's effect.
+    {"bad_cells", V, V.A(", bad_cells: 1.5"),
+     "config.yaml:3: experiments[0].bad_cells: must be a share in [0, 1)"},
     // Keys for data this template does not have (epoch times, GNSS fixes, positions, row
     // jitter): real_log_test.cc and time_base_test.cc show their effect.
     {"time", V, V.A(", time: {column: r}"), "is not after the previous time"},

@@ -21,6 +21,7 @@
 #include "nlohmann/json.hpp"
 #include "problems/input_gain/campaign.h"
 #include "tests/support/bad_input_fixture.h"
+#include "tests/support/run_command.h"
 
 namespace vesselid {
 namespace {
@@ -137,21 +138,11 @@ experiments:
          least_squares_keys + "}\n" + kParameters;
 }
 
-struct RunOutcome {
-  int status = 0;
-  std::string output;  // stdout and stderr
-};
+using RunOutcome = testing::CommandOutcome;
 
 RunOutcome VesselidRun(const fs::path& dir) {
-  const std::string command = std::string(VESSELID_BINARY) + " run " +
-                              (dir / "config.yaml").string() + " --out " + (dir / "out").string() +
-                              " 2>&1";
-  RunOutcome run;
-  FILE* pipe = popen(command.c_str(), "r");
-  char buffer[512];
-  while (fgets(buffer, sizeof(buffer), pipe) != nullptr) run.output += buffer;
-  run.status = pclose(pipe);
-  return run;
+  return testing::RunCommand(std::string(VESSELID_BINARY) + " run " +
+                             (dir / "config.yaml").string() + " --out " + (dir / "out").string());
 }
 
 class RealLog : public ::testing::Test {
@@ -244,8 +235,9 @@ TEST_F(RealLog, RowJitterPassesTheRegressionGridWithMaxGap) {
   RunOutcome run = VesselidRun(dir_);
   EXPECT_NE(run.status, 0);
   EXPECT_TRUE(std::regex_search(
-      run.output, std::regex("experiment 'log@\\d' .*gap of 0\\.1[3-6]\\d* s at t = .* "
-                             "at most max_gap = 1\\.5 median steps")))
+      run.output, std::regex("experiment 'log@\\d' .*step of 0\\.1[3-9]\\d* s \\(1\\.[5-9]\\d* "
+                             "median steps\\) at t = .*row jitter beyond the stage's max_gap "
+                             "\\(1\\.5 median steps\\); raise max_gap to 1\\.[6-9]")))
       << run.output;
   // The output-error stage before it is a result; the run says where and why it stopped.
   std::ifstream in(dir_ / "out" / "results.json");

@@ -115,6 +115,30 @@ TEST(GlitchScreen, StaleRepeatsWhileOthersChange) {
   EXPECT_TRUE(ScreenGlitches(Options(), &still).empty());
 }
 
+// A log of one screened output (the heading) has no other output to tell a held value from a
+// still vessel: a mapped input that moves (reference column) does. A reference that does not
+// move marks nothing, and with two screened channels the references are not used.
+TEST(GlitchScreen, StaleRepeatsOfASingleOutputAgainstTheInputs) {
+  Trajectory data = Track();
+  data.names.push_back("rudder");
+  data.columns.emplace_back();
+  for (int k = 0; k < kRows; ++k) data.columns[4].push_back(0.2 * std::sin(0.05 * k));
+  for (int k = 301; k < 306; ++k) data.columns[2][k] = data.columns[2][300];
+  GlitchScreenOptions options;
+  options.channels = {{"heading", 0.0, 360.0}};
+  options.stale = 4;
+  Trajectory held = data;
+  EXPECT_TRUE(ScreenGlitches(options, &held).empty());  // no reference: nothing to compare
+  options.reference_columns = {"rpm"};  // constant
+  EXPECT_TRUE(ScreenGlitches(options, &held).empty());
+  options.reference_columns = {"rpm", "rudder"};
+  const std::vector<GlitchFinding> findings = ScreenGlitches(options, &held);
+  ASSERT_EQ(findings.size(), 1u);
+  EXPECT_EQ(findings[0].kind, "stale repeat");
+  EXPECT_EQ(findings[0].count, 5);
+  EXPECT_EQ(Missing(held, 4), 0);  // a reference is never screened
+}
+
 TEST(GlitchScreen, LastingMoveIsKeptAsTheTrack) {
   Trajectory data = Track();
   for (int k = 350; k < kRows; ++k) data.columns[0][k] += 30.0;  // a relocated antenna

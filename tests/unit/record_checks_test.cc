@@ -93,5 +93,53 @@ TEST(RecordChecks, FindingsNameTheExperimentAndChannel) {
   EXPECT_TRUE(findings_of(record(0.0, false, false)).empty());
 }
 
+// A heading held for 4 samples at a time while the rudder moves is stale_repeats; the same
+// heading updated every sample, or held only where the rudder is held too, is not. A hole
+// in the heading is a gap, with its length (10.5 s).
+TEST(RecordChecks, StaleRepeatsAndGapsOfAMeasuredOutput) {
+  RunConfig config;
+  config.model = nomoto::MakeSecondOrderHandle();
+  ExperimentSpec spec;
+  spec.name = "log";
+  spec.inputs = {{"delta", "rudder"}};
+  spec.outputs = {{"psi", "heading"}};
+  config.experiments = {spec};
+  auto record = [](int hold, bool rudder_held, bool gap) {
+    Trajectory t;
+    t.names = {"rudder", "heading"};
+    t.columns.resize(2);
+    for (int k = 0; k < 600; ++k) {
+      if (gap && k >= 300 && k < 320) continue;
+      t.t.push_back(0.5 * k);
+      const int held = k - k % hold;
+      t.columns[0].push_back(0.3 * std::sin(0.05 * (rudder_held ? held : k)));
+      t.columns[1].push_back(0.5 + 0.4 * std::sin(0.011 * held + 0.2));
+    }
+    return t;
+  };
+  auto findings_of = [&](Trajectory t, FindingKind kind) {
+    TrajectoryCache cache;
+    cache["log"] = std::move(t);
+    std::vector<Finding> findings, of_kind;
+    AddRecordCheckFindings(config, &cache, &findings);
+    for (const Finding& f : findings) {
+      if (f.kind == kind) of_kind.push_back(f);
+    }
+    return of_kind;
+  };
+  std::vector<Finding> stale = findings_of(record(4, false, false), FindingKind::kStaleRepeats);
+  ASSERT_EQ(stale.size(), 1u);
+  EXPECT_EQ(stale[0].output, "psi");
+  EXPECT_EQ(stale[0].value, 450.0);  // 3 of every 4 samples
+  EXPECT_NE(stale[0].message.find("screen: {stale: 3}"), std::string::npos) << stale[0].message;
+  EXPECT_TRUE(findings_of(record(1, false, false), FindingKind::kStaleRepeats).empty());
+  EXPECT_TRUE(findings_of(record(4, true, false), FindingKind::kStaleRepeats).empty());
+  EXPECT_TRUE(findings_of(record(1, false, false), FindingKind::kGaps).empty());
+  std::vector<Finding> gaps = findings_of(record(1, false, true), FindingKind::kGaps);
+  ASSERT_EQ(gaps.size(), 1u);
+  EXPECT_DOUBLE_EQ(gaps[0].value, 10.5);
+  EXPECT_NE(gaps[0].message.find("10.5 s at t = 149.5 s"), std::string::npos) << gaps[0].message;
+}
+
 }  // namespace
 }  // namespace vesselid

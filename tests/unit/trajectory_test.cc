@@ -34,6 +34,52 @@ TEST(Trajectory, ReadsMultiRateChannelsWithMissingSamples) {
   EXPECT_EQ(t.Find("missing"), -1);
 }
 
+// Only the columns read must be numbers: unnamed and unlisted columns are skipped unread (a
+// duplicate among them is no error), and a mangled cell of a read column is a missing sample
+// counted with its row's time and line, whichever side of the time column it lies on.
+TEST(Trajectory, ReadsOnlyTheListedColumnsAndCountsMangledCells) {
+  std::string text = ",a,t,stamp,stamp,b\n";
+  for (int k = 0; k < 40; ++k) {
+    const std::string a = k == 7 ? "jan.68" : std::to_string(k);
+    const std::string b = k == 9 || k == 30 ? "#REF!" : std::to_string(2 * k);
+    text += std::to_string(k) + "," + a + "," + std::to_string(0.5 * k) + ",10:00:0" +
+            std::to_string(k % 10) + ",x," + b + "\n";
+  }
+  const std::string path = WriteTemp("vesselid_listed.csv", text);
+  CsvReadOptions options;
+  options.columns = {"a", "b"};
+  options.max_bad_share = 0.06;
+  options.parallel_bytes = 1;  // the block reader too: it hands a mangled file to the sequential
+  Trajectory t;
+  std::string error;
+  ASSERT_TRUE(ReadTrajectoryCsv(path, options, &t, &error)) << error;
+  EXPECT_EQ(t.names, (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(t.skipped_columns, (std::vector<std::string>{"", "stamp", "stamp"}));
+  ASSERT_EQ(t.bad_cells.size(), 2u);
+  EXPECT_EQ(t.bad_cells[0].column, "a");
+  EXPECT_EQ(t.bad_cells[0].count, 1);
+  EXPECT_EQ(t.bad_cells[0].times, (std::vector<double>{3.5}));
+  EXPECT_EQ(t.bad_cells[0].lines, (std::vector<int>{9}));
+  EXPECT_EQ(t.bad_cells[0].first_text, "jan.68");
+  EXPECT_EQ(t.bad_cells[1].count, 2);
+  EXPECT_EQ(t.bad_cells[1].times, (std::vector<double>{4.5, 15.0}));
+  EXPECT_TRUE(std::isnan(t.columns[0][7]));
+  EXPECT_EQ(t.columns[1][8], 16.0);
+  // Above the share, refused at the first mangled cell of the column with the count.
+  options.max_bad_share = 0.04;
+  EXPECT_FALSE(ReadTrajectoryCsv(path, options, &t, &error));
+  EXPECT_NE(error.find(":11: column 'b': '#REF!' is not a finite number (2 of the column's 40 "
+                       "cells"),
+            std::string::npos)
+      << error;
+  // Every column read (none listed): the text column refuses the file, as do any mangled
+  // cells where none are accepted.
+  options.columns.clear();
+  options.max_bad_share = 0.0;
+  EXPECT_FALSE(ReadTrajectoryCsv(path, options, &t, &error));
+  EXPECT_NE(error.find("duplicate column 'stamp'"), std::string::npos) << error;
+}
+
 TEST(Trajectory, RejectsMissingTimeColumnAndDuplicates) {
   Trajectory t;
   std::string error;
