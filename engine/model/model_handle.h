@@ -46,9 +46,11 @@ class ModelHandle {
   virtual void Output(const double* x, const double* u, const double* p, double* y) const = 0;
 
   // Physical admissibility of parameter values (empty when admissible, or when the model
-  // states no conditions). `state_limits` (may be null: unknown): per state the largest |x|
-  // the records take it to (StateLimits), over which a condition on a function of the state
-  // (damping that must not feed the motion) is judged; null judges it for every state.
+  // states no conditions). `state_limits` (may be null: unknown): the operating range of the
+  // records (operating_range.h: per state the largest |x| they take it to, then per input its
+  // smallest and largest value), over which a condition on a function of the state or input
+  // (damping that must not feed the motion, a thrust law monotone in its command) is judged;
+  // null judges it for every value.
   virtual std::vector<std::string> Admissibility(const double* p,
                                                  const double* state_limits = nullptr) const = 0;
 

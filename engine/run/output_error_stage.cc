@@ -13,6 +13,7 @@
 #include "engine/run/continuation.h"
 #include "engine/run/estimate_specs.h"
 #include "engine/run/fit_residuals.h"
+#include "engine/model/operating_range.h"
 #include "engine/model/channel_weights.h"
 #include "engine/run/input_noise_notes.h"
 #include "engine/run/records.h"
@@ -364,11 +365,14 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
   result->residuals = std::move(residuals);
   result->noise_model = std::move(noise);
   result->comparable_cost = comparable_cost;
-  result->state_limits.assign(model.info().states.size(), 0.0);
+  const int nx = static_cast<int>(model.info().states.size());
+  result->state_limits =
+      EmptyOperatingRange(nx, static_cast<int>(model.info().inputs.size()));
   for (size_t e = 0; e < problem->experiments().size(); ++e) {
     const int index = static_cast<int>(e);
     model.StateLimits(problem->experiments()[e], problem->ParametersOf(index).data(),
                       problem->InitialStateOf(index).data(), result->state_limits.data());
+    AddInputRange(problem->experiments()[e], nx, &result->state_limits);
   }
   return true;
 }

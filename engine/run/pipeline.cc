@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "engine/model/operating_range.h"
 #include "engine/run/held_out.h"
 #include "engine/run/held_out_memo.h"
 #include "engine/run/input_noise_findings.h"
@@ -238,12 +239,13 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
   run.parameters = FinalParameters(info, ledger, accepted, config.fusion);
   std::vector<double> final_values;
   for (const FinalParameter& f : run.parameters) final_values.push_back(f.value);
-  // Judged over the largest state values any accepted stage of the run's model reached.
+  // Judged over the operating range any accepted stage of the run's model reached.
+  const int nx = static_cast<int>(info.states.size());
   std::vector<double> limits;
   for (const StageResult& s : accepted) {
-    if (s.state_limits.size() != config.model->info().states.size()) continue;
-    if (limits.empty()) limits.assign(s.state_limits.size(), 0.0);
-    for (size_t i = 0; i < limits.size(); ++i) limits[i] = std::max(limits[i], s.state_limits[i]);
+    if (s.state_limits.size() != static_cast<size_t>(nx) + 2 * info.inputs.size()) continue;
+    if (limits.empty()) limits = EmptyOperatingRange(nx, static_cast<int>(info.inputs.size()));
+    MergeOperatingRange(s.state_limits, nx, &limits);
   }
   run.admissibility =
       config.model->Admissibility(final_values.data(), limits.empty() ? nullptr : limits.data());

@@ -99,9 +99,10 @@ struct StageResult {
   // and tools rank by it; the minimised cost under `weights: noise` is ~N/2 at any end point.
   // NaN where not computed (regression stages: their cost is the regression's).
   double comparable_cost = std::numeric_limits<double>::quiet_NaN();
-  // Output-error stages: per state of the stage's model the largest |x| its simulation of the
-  // stage's records reaches at the estimate, over which admissibility is judged
-  // (ModelHandle::Admissibility); empty elsewhere (judged for every state value).
+  // Output-error stages: the operating range of the stage's records (operating_range.h: per
+  // state the largest |x| the simulation reaches at the estimate, per input its smallest and
+  // largest value), over which admissibility is judged (ModelHandle::Admissibility); empty
+  // elsewhere (judged for every value).
   std::vector<double> state_limits;
   // What the stage's judgement found (diagnose/) and the verdict they make.
   std::vector<Finding> findings;

@@ -211,6 +211,7 @@ class InputGainModel {
       problems.push_back("dead zone d_r > d_f");
     }
     if (kDynamic && !(prop[thrust_.tau_T] > 0)) problems.push_back("tau_T must be > 0");
+    if (state_limits != nullptr) ThrustMonotonicity(p, state_limits + kNumStates, &problems);
     const char* equation[3] = {"u", "v", "r"};
     const int own[3][2] = {{kTermU, kTermAbsUU}, {kTermV, kTermAbsVV}, {kTermR, kTermAbsRR}};
     for (int i = 0; i < 3; ++i) {
@@ -251,6 +252,49 @@ class InputGainModel {
     }
     return problems;
   }
+
+  // The thrust law T_s(x) must not fall as the command x rises, over the commands the records
+  // give (`input_range`: min and max of each input, operating_range.h): an astern branch whose
+  // sign changes (k_r1 < 0) has a harder reverse command push less astern, or ahead. Judged on a grid of 401
+  // commands; a fall below 5 % of the thrust's span over the range (rounding of a branch's
+  // start) is not counted.
+  void ThrustMonotonicity(const double* p, const double* input_range,
+                          std::vector<std::string>* problems) const {
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (int i = 0; i < kNumInputs; ++i) {
+      low = std::min(low, input_range[2 * i]);
+      high = std::max(high, input_range[2 * i + 1]);
+    }
+    if (!(low < high) || !std::isfinite(low) || !std::isfinite(high)) return;
+    constexpr int kPoints = 401;
+    double t_min = std::numeric_limits<double>::infinity(), t_max = -t_min;
+    double best = -std::numeric_limits<double>::infinity(), best_x = low;  // highest T so far
+    double fall = 0.0, fall_from = low, fall_to = low;
+    for (int k = 0; k < kPoints; ++k) {
+      const double x = low + (high - low) * k / (kPoints - 1);
+      const double thrust = StaticThrust(x, p);
+      t_min = std::min(t_min, thrust);
+      t_max = std::max(t_max, thrust);
+      if (thrust > best) {
+        best = thrust;
+        best_x = x;
+      } else if (best - thrust > fall) {
+        fall = best - thrust;
+        fall_from = best_x;
+        fall_to = x;
+      }
+    }
+    if (!(fall > kMonotoneTolerance * (t_max - t_min))) return;
+    char text[320];
+    std::snprintf(text, sizeof(text),
+                  "the thrust law is not monotone in its command: T_s falls by %.3g (%.0f %% of "
+                  "its span) from x = %.3g to x = %.3g as the command rises, within the commands the "
+                  "records give "
+                  "[%.3g, %.3g]",
+                  fall, 100.0 * fall / (t_max - t_min), fall_from, fall_to, low, high);
+    problems->push_back(text);
+  }
+  static constexpr double kMonotoneTolerance = 0.05;
 
   int Region(const double* in) const {
     const bool left = in[0] >= 0.0, right = in[1] >= 0.0;
