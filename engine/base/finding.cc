@@ -168,6 +168,14 @@ const Row kRows[] = {
      "positive definite, damping that feeds energy in at a speed the data reach, a thrust law "
      "not monotone in its input). A failure for the final values.",
      "Bound the offending parameter or fix the structure."},
+    {K::kUnsupportedStructure, "unsupported_structure", S::kWarning,
+     "A structural feature of the estimate that the model family's physics say the data do "
+     "not support, over the commands and speeds the records reach. Input-gain model: a dead "
+     "zone whose branch bends the wrong way beyond it (ahead k_f < 0; astern k_r1 < 0 or "
+     "k_r2 < 0): a propeller's thrust grows at least linearly past its zone, so the zone and "
+     "the bend together stand in for a thrust law the model lacks.",
+     "Try the law the message names (thrust: [\"n|n|\"], dead_zone: false) and compare the "
+     "held-out fits."},
     {K::kStageSetAside, "stage_set_aside", S::kWarning,
      "Under `final: best_validation` a stage predicted its held-out records worse than its "
      "start and its estimates were set aside; the next stage and the final values take the "

@@ -56,6 +56,7 @@ enum class FindingKind {
   kColouredResiduals,
   kInputCorrelatedResiduals,
   kNotAdmissible,
+  kUnsupportedStructure,
   // Held-out data.
   kStageSetAside,
   kHeldOutWorse,

@@ -138,6 +138,11 @@ void DiagnoseRun(const RunConfig& config, RunResult* run) {
     f.severity = FindingSeverity::kFailure;
     findings.push_back(std::move(f));
   }
+  for (const std::string& d : run->structure_doubts) {
+    Finding f = MakeFinding(FindingKind::kUnsupportedStructure, "the final values: " + d);
+    f.stage = "final";
+    findings.push_back(std::move(f));
+  }
   AddBoundFindings(info, run->final_held_out_parameters.estimates, "final", &findings);
   AddFinalHeldOutFindings(*run, &findings);
   findings = FoldFindings(findings);

@@ -236,6 +236,11 @@ void DiagnoseStage(const ModelInfo& info, bool output_error, StageResult* stage)
     f.stage = stage->name;
     findings.push_back(std::move(f));
   }
+  for (const std::string& d : stage->structure_doubts) {
+    Finding f = MakeFinding(FindingKind::kUnsupportedStructure, d);
+    f.stage = stage->name;
+    findings.push_back(std::move(f));
+  }
   AddHeldOutFindings(*stage, &findings);
   SortFindings(&findings);
   stage->findings = std::move(findings);

@@ -54,6 +54,12 @@ class ModelHandle {
   virtual std::vector<std::string> Admissibility(const double* p,
                                                  const double* state_limits = nullptr) const = 0;
 
+  // Doubts the model family's physics raise about the estimate's structure over the operating
+  // range (same layout): a feature the data do not support, e.g. a dead zone whose branch
+  // bends the wrong way beyond it. Empty when none or when the model states none.
+  virtual std::vector<std::string> StructureDoubts(const double* p,
+                                                   const double* operating_range) const = 0;
+
   // Per state the largest |x| of a simulation in double from x0 over the experiment's nodes,
   // folded into `max_abs` (num_states values, max with what it holds). False if it diverges.
   virtual bool StateLimits(const Experiment& experiment, const double* p, const double* x0,
@@ -83,6 +89,14 @@ struct HasAdmissibility : std::false_type {};
 template <class Model>
 struct HasAdmissibility<
     Model, std::void_t<decltype(std::declval<const Model&>().Admissibility(nullptr, nullptr))>>
+    : std::true_type {};
+
+// `std::vector<std::string> StructureDoubts(const double* p, const double* range) const`.
+template <class Model, class = void>
+struct HasStructureDoubts : std::false_type {};
+template <class Model>
+struct HasStructureDoubts<
+    Model, std::void_t<decltype(std::declval<const Model&>().StructureDoubts(nullptr, nullptr))>>
     : std::true_type {};
 
 // Detects a model's optional `void GuessState(const double* y, const double* ydot, double* x)
@@ -162,6 +176,15 @@ class ModelAdapter final : public ModelHandle {
                                          const double* state_limits = nullptr) const override {
     if constexpr (HasAdmissibility<Model>::value) {
       return model_.Admissibility(p, state_limits);
+    } else {
+      return {};
+    }
+  }
+
+  std::vector<std::string> StructureDoubts(const double* p,
+                                           const double* operating_range) const override {
+    if constexpr (HasStructureDoubts<Model>::value) {
+      return model_.StructureDoubts(p, operating_range);
     } else {
       return {};
     }

@@ -182,7 +182,7 @@ namespace {
 // 3: Uncertainty method, hessian_std_errors, method_reason, hac_bandwidth; 4: bootstrap runs,
 // failed, block length; 6: traces' samples as byte strings; 7: typed solver findings,
 // comparable cost, state limits
-constexpr int kArchiveVersion = 7;
+constexpr int kArchiveVersion = 8;
 }  // namespace
 
 nlohmann::json StageResultToArchive(const StageResult& stage) {
@@ -201,6 +201,7 @@ nlohmann::json StageResultToArchive(const StageResult& stage) {
                       {"integration_step", stage.integration_step},
                       {"comparable_cost", stage.comparable_cost},
                       {"state_limits", stage.state_limits},
+                      {"structure_doubts", stage.structure_doubts},
                       {"noise_model", stage.noise_model},
                       {"velocity_validation", stage.velocity_validation},
                       {"residuals", stage.residuals},
@@ -234,6 +235,7 @@ bool StageResultFromArchive(const nlohmann::json& j, StageResult* stage, std::st
     j.at("integration_step").get_to(s.integration_step);
     j.at("comparable_cost").get_to(s.comparable_cost);
     j.at("state_limits").get_to(s.state_limits);
+    j.at("structure_doubts").get_to(s.structure_doubts);
     // Absent from archives written before stages had a noise model (configured weights).
     if (j.contains("noise_model")) j.at("noise_model").get_to(s.noise_model);
     j.at("velocity_validation").get_to(s.velocity_validation);

@@ -134,9 +134,10 @@ bool RunStages(const RunConfig& config, size_t first, size_t count, TrajectoryCa
       return fail(*error);
     }
     const std::vector<double> values = StageParameterValues(model.info(), stage_result);
-    stage_result.admissibility = model.Admissibility(
-        values.data(),
-        stage_result.state_limits.empty() ? nullptr : stage_result.state_limits.data());
+    const double* range =
+        stage_result.state_limits.empty() ? nullptr : stage_result.state_limits.data();
+    stage_result.admissibility = model.Admissibility(values.data(), range);
+    stage_result.structure_doubts = model.StructureDoubts(values.data(), range);
     if (!stage.validation.empty() &&
         !ValidateStage(config, stage, model, velocity_data, start_values, values, &cache, memo,
                        &stage_result, error)) {
@@ -249,6 +250,8 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
   }
   run.admissibility =
       config.model->Admissibility(final_values.data(), limits.empty() ? nullptr : limits.data());
+  run.structure_doubts = config.model->StructureDoubts(final_values.data(),
+                                                       limits.empty() ? nullptr : limits.data());
   if (config.has_final_validation && run.stopped_stage.empty()) {
     const FinalValidationConfig& v = config.final_validation;
     const ModelHandle& model = v.model ? *v.model : *config.model;

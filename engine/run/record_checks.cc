@@ -116,10 +116,23 @@ void AddGapFinding(const ExperimentSpec& spec, const std::string& column, const 
   std::string error;
   const Trajectory* data = LoadCachedTrajectory(spec, cache, &error);
   if (data == nullptr || data->Find(column) < 0) return;
-  const Channel channel = ExtractChannel(*data, data->Find(column));
+  // Rows with a sample in the window; with a segment column, steps between segments (the
+  // logger off between them by design) are not gaps.
+  const int c = data->Find(column),
+            segment = spec.segments.column.empty() ? -1 : data->Find(spec.segments.column);
+  double last_segment = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> t;
-  for (double time : channel.t) {
-    if (time >= spec.t_begin - 1e-9 && time <= spec.t_end + 1e-9) t.push_back(time);
+  std::vector<bool> same_segment;  // per step
+  for (size_t k = 0; k < data->t.size(); ++k) {
+    if (std::isnan(data->columns[c][k]) || data->t[k] < spec.t_begin - 1e-9 ||
+        data->t[k] > spec.t_end + 1e-9) {
+      continue;
+    }
+    if (!t.empty()) {
+      same_segment.push_back(segment < 0 || data->columns[segment][k] == last_segment);
+    }
+    t.push_back(data->t[k]);
+    if (segment >= 0) last_segment = data->columns[segment][k];
   }
   if (t.size() < kFewestSamples) return;
   std::vector<double> steps(t.size() - 1);
@@ -131,8 +144,10 @@ void AddGapFinding(const ExperimentSpec& spec, const std::string& column, const 
   double longest = 0.0;
   std::string where;
   for (size_t k = 0; k < steps.size(); ++k) {
-    if (!(steps[k] > kGapSteps * median)) continue;
-    if (++gaps <= 3) where += (where.empty() ? "" : ", ") + Number(steps[k]) + " s at t = " + Number(t[k]) + " s";
+    if (!(steps[k] > kGapSteps * median) || !same_segment[k]) continue;
+    if (++gaps <= 3) {
+      where += (where.empty() ? "" : ", ") + Number(steps[k]) + " s at t = " + Number(t[k]) + " s";
+    }
     longest = std::max(longest, steps[k]);
   }
   if (gaps == 0) return;

@@ -104,6 +104,8 @@ struct StageResult {
   // largest value), over which admissibility is judged (ModelHandle::Admissibility); empty
   // elsewhere (judged for every value).
   std::vector<double> state_limits;
+  // ModelHandle::StructureDoubts at the stage's estimate over that range.
+  std::vector<std::string> structure_doubts;
   // What the stage's judgement found (diagnose/) and the verdict they make.
   std::vector<Finding> findings;
   Verdict verdict = Verdict::kGood;
@@ -170,6 +172,7 @@ struct RunResult {
   std::string stopped_stage, stop_message;
   std::vector<FinalParameter> parameters;  // model parameter order
   std::vector<std::string> admissibility;  // of the final values
+  std::vector<std::string> structure_doubts;  // ModelHandle::StructureDoubts of the final values
   std::vector<ExperimentFit> final_validation;
   std::vector<ResidualAnalysis> final_validation_residuals;  // reported only
   HeldOutParameters final_held_out_parameters;  // per-experiment parameters of final_validation

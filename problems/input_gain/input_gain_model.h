@@ -296,6 +296,44 @@ class InputGainModel {
   }
   static constexpr double kMonotoneTolerance = 0.05;
 
+  // A dead zone whose branch beyond it bends the wrong way: a propeller's thrust grows at
+  // least linearly past its zone (ahead s + k_f s^2 with k_f >= 0; astern magnitude
+  // k_r1 |s| + k_r2 s^2 with k_r1, k_r2 >= 0), so a zone with k_f < 0 (or k_r1, k_r2 < 0)
+  // is the zone and the bend standing in for a law the model lacks (a purely quadratic
+  // thruster's flat start). Judged for a zone edge wider than 1 % of the commands' span that
+  // the commands reach past.
+  std::vector<std::string> StructureDoubts(const double* p, const double* range) const {
+    std::vector<std::string> doubts;
+    if (!law_.dead_zone || !law_.linear || !law_.quadratic || range == nullptr) return doubts;
+    const double* input = range + kNumStates;
+    const double low = std::min(input[0], input[2]), high = std::max(input[1], input[3]);
+    if (!(low < high)) return doubts;
+    const double* prop = p + PropellerIndex();
+    const double d_f = prop[thrust_.d_f], d_r = prop[thrust_.d_r];
+    const double k_f = prop[thrust_.k_f], k_r1 = prop[thrust_.k_r1], k_r2 = prop[thrust_.k_r2];
+    const double edge = 0.01 * (high - low);
+    char text[400];
+    if (d_f > edge && high > d_f && k_f < 0.0) {
+      std::snprintf(text, sizeof(text),
+                    "the dead zone edge d_f = %.3g comes with an ahead branch that bends down "
+                    "beyond it (k_f = %.3g < 0): a propeller's thrust grows at least linearly "
+                    "past its zone, so the zone and the bend stand in for a law the model lacks; "
+                    "try thrust: [\"n|n|\"], dead_zone: false",
+                    d_f, k_f);
+      doubts.push_back(text);
+    }
+    if (-d_r > edge && low < d_r && (k_r1 < 0.0 || k_r2 < 0.0)) {
+      std::snprintf(text, sizeof(text),
+                    "the dead zone edge d_r = %.3g comes with an astern branch that bends the "
+                    "wrong way beyond it (k_r1 = %.3g, k_r2 = %.3g; both >= 0 for a propeller): "
+                    "the zone and the bend stand in for a law the model lacks; try thrust: "
+                    "[\"n|n|\"], dead_zone: false",
+                    d_r, k_r1, k_r2);
+      doubts.push_back(text);
+    }
+    return doubts;
+  }
+
   int Region(const double* in) const {
     const bool left = in[0] >= 0.0, right = in[1] >= 0.0;
     if (left && right) return kForwardForward;
