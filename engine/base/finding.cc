@@ -178,8 +178,11 @@ const Row kRows[] = {
      "held-out fits."},
     {K::kStageSetAside, "stage_set_aside", S::kWarning,
      "Under `final: best_validation` a stage predicted its held-out records worse than its "
-     "start and its estimates were set aside; the next stage and the final values take the "
-     "best earlier model, never the start of a least-squares stage.",
+     "start (more runs diverged, or a mean MAE ratio above 1.01 on the runs both simulate) and "
+     "its estimates were set aside; the next stage and the final values take its start values. "
+     "More diverging runs do not set a stage aside when its start is far worse (over twice "
+     "its MAE) on the runs both simulate: a guard never falls back to values worse still. "
+     "With no stage kept the final values are the config's start values: a failure.",
      "Look at the stage's held-out fits; the stage may need other records or bounds."},
     {K::kHeldOutWorse, "held_out_worse", S::kWarning,
      "A kept stage predicts its held-out records worse than its start (mean MAE ratio above "

@@ -126,10 +126,18 @@ void DiagnoseRun(const RunConfig& config, RunResult* run) {
     f.stage = run->stopped_stage;
     findings.push_back(std::move(f));
   }
+  // Every stage set aside: the final values are the config's start values, not a model.
+  bool kept = false;
+  for (const StageResult& stage : run->stages) kept |= stage.rejected.empty();
   for (const StageResult& stage : run->stages) {
     if (stage.rejected.empty()) continue;
     Finding f = MakeFinding(FindingKind::kStageSetAside, stage.rejected);
     f.stage = stage.name;
+    if (!kept) {
+      f.severity = FindingSeverity::kFailure;
+      f.message += "; no stage was kept, so the final values are the config's start values, "
+                   "not an estimate";
+    }
     findings.push_back(std::move(f));
   }
   for (const std::string& a : run->admissibility) {

@@ -117,6 +117,7 @@ json HeldOutToJson(const HeldOutCheck& check) {
   return {{"outputs", outputs},
           {"start_diverged", check.start_diverged},
           {"stage_diverged", check.stage_diverged},
+          {"start_far_worse", check.start_far_worse},
           {"worse", check.worse}};
 }
 

@@ -97,7 +97,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ChannelMetrics, experiment, output, samples, 
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ExperimentFit, experiment, diverged, message, rms_cost, channels,
                                    trace)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(HeldOutCheck, done, outputs, start_mae, stage_mae,
-                                   start_diverged, stage_diverged, worse)
+                                   start_diverged, stage_diverged, start_far_worse, worse)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(GlobalStartSummary, run, variables, algorithm, evaluations,
                                    failed_evaluations, abandoned, clusters,
                                    short_iterations_total, best_cost, time_seconds, result,

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
 
 #include "engine/base/parallel_for.h"
 #include "engine/run/fit_residuals.h"
@@ -286,9 +287,10 @@ std::vector<std::string> HeldOutBoundNotes(const HeldOutParameters& parameters) 
 
 namespace {
 
-// Per output: MAE pooled over the runs that did not diverge; the number that did.
-void Pool(const std::vector<ExperimentFit>& fits, std::map<std::string, double>* mae,
-          int* diverged) {
+// Per output: MAE pooled over the runs named in `common` (those neither set of values made
+// diverge); the number of runs that diverged.
+void Pool(const std::vector<ExperimentFit>& fits, const std::set<std::string>& common,
+          std::map<std::string, double>* mae, int* diverged) {
   std::map<std::string, std::pair<double, int>> sums;
   *diverged = 0;
   for (const ExperimentFit& fit : fits) {
@@ -296,6 +298,7 @@ void Pool(const std::vector<ExperimentFit>& fits, std::map<std::string, double>*
       ++*diverged;
       continue;
     }
+    if (common.count(fit.experiment) == 0) continue;
     for (const ChannelMetrics& c : fit.channels) {
       sums[c.output].first += c.mae * c.samples;
       sums[c.output].second += c.samples;
@@ -312,9 +315,17 @@ HeldOutCheck CompareHeldOut(const std::vector<ExperimentFit>& start,
                             const std::vector<ExperimentFit>& stage) {
   HeldOutCheck check;
   check.done = true;
+  // The MAE compares like with like: the runs both sets of values simulate to the end.
+  std::set<std::string> start_ok, common;
+  for (const ExperimentFit& fit : start) {
+    if (!fit.diverged) start_ok.insert(fit.experiment);
+  }
+  for (const ExperimentFit& fit : stage) {
+    if (!fit.diverged && start_ok.count(fit.experiment) > 0) common.insert(fit.experiment);
+  }
   std::map<std::string, double> start_mae, stage_mae;
-  Pool(start, &start_mae, &check.start_diverged);
-  Pool(stage, &stage_mae, &check.stage_diverged);
+  Pool(start, common, &start_mae, &check.start_diverged);
+  Pool(stage, common, &stage_mae, &check.stage_diverged);
   double ratio_sum = 0.0;
   int ratios = 0;
   for (const auto& [output, mae] : stage_mae) {
@@ -328,9 +339,13 @@ HeldOutCheck CompareHeldOut(const std::vector<ExperimentFit>& start,
       ++ratios;
     }
   }
-  check.worse = check.stage_diverged > check.start_diverged ||
-                (check.stage_diverged == check.start_diverged && ratios > 0 &&
-                 ratio_sum / ratios > kHeldOutTolerance);
+  const double ratio = ratios > 0 ? ratio_sum / ratios : 1.0;
+  // More diverging runs make a stage worse unless its start is far worse on the runs both
+  // simulate: a guard never falls back to values that are worse still (the start of a
+  // least-squares stage is the config's guess, not a model).
+  check.start_far_worse = ratios > 0 && ratio < kStartFarWorse;
+  check.worse = (check.stage_diverged > check.start_diverged && !check.start_far_worse) ||
+                (check.stage_diverged == check.start_diverged && ratio > kHeldOutTolerance);
   return check;
 }
 

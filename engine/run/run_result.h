@@ -49,10 +49,14 @@ struct HeldOutCheck {
   std::vector<std::string> outputs;
   std::vector<double> start_mae, stage_mae;
   int start_diverged = 0, stage_diverged = 0;
+  // The start's MAE on the runs both simulate is more than twice the stage's (mean ratio of
+  // the outputs below kStartFarWorse): more diverging runs do not make the stage worse.
+  bool start_far_worse = false;
   bool worse = false;
 };
 
 inline constexpr double kHeldOutTolerance = 1.01;
+inline constexpr double kStartFarWorse = 0.5;
 
 // Per-experiment parameters (a rudder bias per run) on held-out runs (held_out.h). With
 // `fitted` (per_experiment: fit) each held-out run estimates its own values together with its

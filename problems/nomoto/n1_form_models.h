@@ -68,6 +68,10 @@ struct N1Form {
     info.parameters.push_back("delta_0");
     info.parameter_defaults.push_back(0.0);
     info.angle_outputs = {true, false};
+    info.output_units = {"rad", "rad/s"};
+    info.state_units = {"rad", "rad/s"};
+    info.input_units = speed() ? std::vector<std::string>{"rad", "m/s"}
+                               : std::vector<std::string>{"rad"};
     return info;
   }
 

@@ -43,7 +43,10 @@ struct SecondOrderRates {
             {1.0 / 45 + 1.0 / 6, 1.0 / 270, 0.09 / 270, 10.0, 0.0},
             {true, false},
             {},
-            {}};
+            {},
+            {"rad", "rad/s"},
+            {"rad", "rad/s", "rad/s^2"},  // r = eta1 + T3 eta2, eta2 = eta1'
+            {"rad"}};
   }
 
   template <class T, class U>
