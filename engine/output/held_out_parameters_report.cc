@@ -102,7 +102,8 @@ nlohmann::json HeldOutParametersToJson(const HeldOutParameters& parameters,
                                        const std::vector<ExperimentFit>& with) {
   using nlohmann::json;
   json j = {{"per_experiment", parameters.fitted ? "fit" : "hold"},
-            {"parameters", parameters.parameters}};
+            {"parameters", parameters.parameters},
+            {"held_at", "training_mean"}};
   if (!parameters.fitted) return j;
   const Table table = MakeTable(parameters, with);
   json runs = json::array();
@@ -143,11 +144,12 @@ std::string HeldOutParametersText(const HeldOutParameters& parameters,
   const std::string names = Names(parameters);
   if (!parameters.fitted) {
     return indent + "per-experiment parameters (" + names +
-           ") held at their start on the held-out runs (per_experiment: hold)\n";
+           ") held at the training runs' mean on the held-out runs (per_experiment: hold)\n";
   }
   const Table table = MakeTable(parameters, with);
   std::string out = indent + "held-out runs with their own " + names +
-                    " (estimated per run, the other parameters held; per_experiment: fit):\n";
+                    " (estimated per run, the other parameters held; per_experiment: fit); "
+                    "without: " + names + " held at the training runs' mean:\n";
   for (const RunRow& row : table.rows) {
     std::string line = indent + "  " + row.experiment + ":";
     for (const Estimate* e : row.estimates) {
@@ -180,7 +182,7 @@ std::string HeldOutParametersHtml(const HeldOutParameters& parameters,
   const std::string names = Names(parameters);
   if (!parameters.fitted) {
     return "<p>Per-experiment parameters (" + HtmlEscape(names) +
-           ") held at their start on the held-out runs (per_experiment: hold).</p>\n";
+           ") held at the training runs' mean on the held-out runs (per_experiment: hold).</p>\n";
   }
   const Table table = MakeTable(parameters, with);
   std::string header = "<tr>" + Th("held-out run");
@@ -222,7 +224,7 @@ std::string HeldOutParametersHtml(const HeldOutParameters& parameters,
   return "<h4>Per-experiment parameters of the held-out runs</h4>\n<p>Each held-out run "
          "estimates its own " +
          HtmlEscape(names) +
-         " with the other parameters held; fit % without them (held at their start) and "
+         " with the other parameters held; fit % without them (held at the training runs' mean) and "
          "with them.</p>\n" +
          Fold("<table class=\"held-out-parameters\">\n" + header + "</tr>\n" + rows + "</table>\n",
               table.rows.size(), std::to_string(table.rows.size()) + " held-out runs", 24);

@@ -95,9 +95,12 @@ HeldOutPerRun PerRunFromStage(const StageResult& stage, const ModelInfo& model,
     per_run.fit_start[k] += e.value;
     ++runs[k];
   }
+  // Held (without, and per_experiment: hold) and started from at the training runs' mean,
+  // never one training run's value.
   for (size_t k = 0; k < runs.size(); ++k) {
-    const ParameterSpec& spec = per_run.parameters[k];
+    ParameterSpec& spec = per_run.parameters[k];
     per_run.fit_start[k] = std::clamp(per_run.fit_start[k] / runs[k], spec.lower, spec.upper);
+    spec.start = per_run.fit_start[k];
   }
   return per_run;
 }
@@ -178,7 +181,8 @@ bool SimulateHeldOutPasses(const RunConfig& config, const ModelHandle& model,
     return false;
   }
   const bool fit_own = !per_run.parameters.empty() && per_run.mode == HeldOutPerExperiment::kFit;
-  // Held values: the per-experiment parameters at their start.
+  // Held values: the per-experiment parameters at their start (PerRunFromStage: the training
+  // runs' mean).
   const int count = static_cast<int>(experiments.size());
   const int num_passes = static_cast<int>(passes.size());
   std::vector<std::vector<double>> held(num_passes);

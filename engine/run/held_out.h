@@ -45,8 +45,8 @@ struct HeldOutPerRun {
   std::vector<double> fit_start;
 };
 
-// The per-experiment parameters of the estimates of `stage` that `model` has: start and
-// bounds as the stage had them, the fit starting from the stage's mean.
+// The per-experiment parameters of the estimates of `stage` that `model` has: bounds as the
+// stage had them; held ("without") at, and fitted from, the mean of the stage's estimates.
 HeldOutPerRun PerRunFromStage(const StageResult& stage, const ModelInfo& model,
                               HeldOutPerExperiment mode);
 
