@@ -112,7 +112,10 @@ void DiagnoseRun(const RunConfig& config, RunResult* run) {
       model = &config.StageModel(s);
       output_error = s.kind == StageConfig::Kind::kOutputError;
     }
-    DiagnoseStage(model->info(), output_error, &stage);
+    DiagnoseStage(model->info(), output_error, &stage,
+                  [&](const std::string& experiment, const std::string& output) {
+                    return OutputDisplayUnit(config, experiment, output);
+                  });
     stage.findings = FoldFindings(stage.findings);
   }
   std::vector<Finding>& findings = run->findings;

@@ -97,7 +97,8 @@ void AddWeaklyDeterminedFindings(const StageResult& stage, std::vector<Finding>*
   findings->push_back(std::move(f));
 }
 
-void AddHeldOutFindings(const StageResult& stage, std::vector<Finding>* findings) {
+void AddHeldOutFindings(const StageResult& stage, std::vector<Finding>* findings,
+                        const DisplayUnitOf& unit_of) {
   for (const ExperimentFit& fit : stage.validation) {
     if (!fit.diverged) continue;
     Finding f = MakeFinding(FindingKind::kHeldOutDiverged, fit.message);
@@ -107,6 +108,8 @@ void AddHeldOutFindings(const StageResult& stage, std::vector<Finding>* findings
   }
   const HeldOutCheck& h = stage.held_out;
   if (!h.done) return;
+  // Units judged on the first held-out run (a campaign logs its runs alike).
+  const std::string held_out_run = stage.validation.empty() ? "" : stage.validation[0].experiment;
   if (!stage.rejected.empty()) {
     Finding f = MakeFinding(FindingKind::kStageSetAside, stage.rejected);
     f.stage = stage.name;
@@ -115,7 +118,8 @@ void AddHeldOutFindings(const StageResult& stage, std::vector<Finding>* findings
   }
   if (h.worse) {
     Finding f = MakeFinding(FindingKind::kHeldOutWorse,
-                            "worse on held-out data than its start (" + DescribeHeldOut(h) +
+                            "worse on held-out data than its start (" +
+                                DescribeHeldOut(h, unit_of, held_out_run) +
                                 "), kept because of final: last");
     f.stage = stage.name;
     findings->push_back(std::move(f));
@@ -123,11 +127,14 @@ void AddHeldOutFindings(const StageResult& stage, std::vector<Finding>* findings
   }
   for (size_t i = 0; i < h.outputs.size(); ++i) {
     if (!(h.stage_mae[i] > kHeldOutTolerance * h.start_mae[i])) continue;
+    const DisplayUnit unit =
+        unit_of ? unit_of(held_out_run, h.outputs[i]) : DisplayUnit{"", 1.0};
     Finding f = MakeFinding(
         FindingKind::kHeldOutOutputWorse,
         "predicts the held-out " + h.outputs[i] +
-            FormatNumbers(" worse than its start (MAE %.4g -> %.4g), though better over all outputs",
-                   h.start_mae[i], h.stage_mae[i]));
+            FormatNumbers(" worse than its start (MAE %.4g -> %.4g", unit.scale * h.start_mae[i],
+                          unit.scale * h.stage_mae[i]) +
+            (unit.unit.empty() ? "" : " " + unit.unit) + "), though better over all outputs");
     f.stage = stage.name;
     f.output = h.outputs[i];
     f.value = h.stage_mae[i] / h.start_mae[i];
@@ -165,7 +172,7 @@ void AddBoundFindings(const ModelInfo& info, const std::vector<Estimate>& estima
 }
 
 void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& stage,
-                    std::vector<Finding>* findings) {
+                    std::vector<Finding>* findings, const DisplayUnitOf& unit_of) {
   struct Rule {
     FindingKind kind;
     bool (*fires)(const ChannelMetrics&);
@@ -195,10 +202,14 @@ void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& s
         if (i < 8) names += (i > 0 ? ", " : "") + list[i]->experiment;
       }
       if (list.size() > 8) names += ", ...";
-      char figures[160];
+      const DisplayUnit unit =
+          unit_of ? unit_of(worst->experiment, output) : DisplayUnit{"", 1.0};
+      const std::string label = unit.unit.empty() ? "" : " " + unit.unit;
+      char figures[200];
       std::snprintf(figures, sizeof(figures),
-                    ": fit %.3g %%, R2 %.3g, MAE %.3g against %.3g holding its first value",
-                    worst->fit_percent, worst->r2, worst->mae, worst->hold_mae);
+                    ": fit %.3g %%, R2 %.3g, MAE %.3g%s against %.3g%s holding its first value",
+                    worst->fit_percent, worst->r2, unit.scale * worst->mae, label.c_str(),
+                    unit.scale * worst->hold_mae, label.c_str());
       Finding f = MakeFinding(rule.kind, "the simulated " + output + " " + rule.what + " in " +
                                              std::to_string(list.size()) + " of " +
                                              std::to_string(compared[output]) +
@@ -215,7 +226,8 @@ void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& s
   }
 }
 
-void DiagnoseStage(const ModelInfo& info, bool output_error, StageResult* stage) {
+void DiagnoseStage(const ModelInfo& info, bool output_error, StageResult* stage,
+                   const DisplayUnitOf& unit_of) {
   std::vector<Finding> findings;
   for (Finding f : stage->summary.findings) {
     f.stage = stage->name;
@@ -227,7 +239,7 @@ void DiagnoseStage(const ModelInfo& info, bool output_error, StageResult* stage)
     AddWeaklyDeterminedFindings(*stage, &findings);
   }
   AddBoundFindings(info, stage->held_out_parameters.estimates, stage->name, &findings);
-  AddFitFindings(stage->summary.fits, stage->name, &findings);
+  AddFitFindings(stage->summary.fits, stage->name, &findings, unit_of);
   AddResidualFindings(*stage, &findings);
   AddCompensationFindings(info, *stage, &findings);
   AddBootstrapFindings(*stage, &findings);
@@ -241,7 +253,7 @@ void DiagnoseStage(const ModelInfo& info, bool output_error, StageResult* stage)
     f.stage = stage->name;
     findings.push_back(std::move(f));
   }
-  AddHeldOutFindings(*stage, &findings);
+  AddHeldOutFindings(*stage, &findings, unit_of);
   SortFindings(&findings);
   stage->findings = std::move(findings);
   stage->verdict = VerdictOf(stage->findings);

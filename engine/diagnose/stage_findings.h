@@ -15,13 +15,17 @@
 
 #include "engine/base/finding.h"
 #include "engine/model/model.h"
+#include "engine/run/display_units.h"
 #include "engine/run/run_result.h"
 
 namespace vesselid {
 
 // Sets stage->findings and stage->verdict; `output_error`: the stage was solved by Ceres
 // (a regression stage's "solve" is its regression: no solver findings).
-void DiagnoseStage(const ModelInfo& info, bool output_error, StageResult* stage);
+// Values of outputs in messages are in `unit_of`'s units (the data's: degrees where the column
+// was read in degrees); without it in the model's.
+void DiagnoseStage(const ModelInfo& info, bool output_error, StageResult* stage,
+                   const DisplayUnitOf& unit_of = {});
 
 // at_bound findings of `estimates` (free or per-experiment parameters with finite bounds),
 // named for `stage` ("final" for the final validation's held-out runs).
@@ -29,8 +33,8 @@ void AddBoundFindings(const ModelInfo& info, const std::vector<Estimate>& estima
                       const std::string& stage, std::vector<Finding>* findings);
 
 // failed_fit and poor_fit findings of `fits`, one per kind and output with the count of
-// experiments.
+// experiments; the worst run's MAE in `unit_of`'s unit (may be empty: the model's).
 void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& stage,
-                          std::vector<Finding>* findings);
+                    std::vector<Finding>* findings, const DisplayUnitOf& unit_of = {});
 
 }  // namespace vesselid

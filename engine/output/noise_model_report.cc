@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "engine/base/json_number.h"
-#include "engine/output/display_units.h"
+#include "engine/run/display_units.h"
 #include "engine/output/report_tables.h"
 
 namespace vesselid {

@@ -8,7 +8,7 @@
 #include "engine/base/atomic_file.h"
 #include "engine/base/elapsed.h"
 #include "engine/output/base64.h"
-#include "engine/output/display_units.h"
+#include "engine/run/display_units.h"
 #include "engine/output/bootstrap_report.h"
 #include "engine/output/finding_report.h"
 #include "engine/output/held_out_parameters_report.h"

@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "Eigen/Dense"
-#include "engine/output/display_units.h"
+#include "engine/run/display_units.h"
 #include "engine/output/report_figures.h"
 #include "engine/solve/metrics.h"
 #include "engine/solve/stage.h"

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <map>
 
-#include "engine/output/display_units.h"
+#include "engine/run/display_units.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/output/report_table_cells.h"
 

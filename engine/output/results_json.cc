@@ -2,7 +2,7 @@
 
 #include "engine/base/json_number.h"
 #include "engine/data/time_base.h"
-#include "engine/output/display_units.h"
+#include "engine/run/display_units.h"
 #include "engine/output/finding_report.h"
 #include "engine/output/bootstrap_report.h"
 #include "engine/output/held_out_parameters_report.h"

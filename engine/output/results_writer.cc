@@ -6,7 +6,7 @@
 #include "engine/base/atomic_file.h"
 #include "engine/base/parallel_for.h"
 #include "engine/data/trajectory.h"
-#include "engine/output/display_units.h"
+#include "engine/run/display_units.h"
 #include "engine/output/report_html.h"
 #include "engine/output/results_json.h"
 #include "engine/output/results_text.h"

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <map>
 
-#include "engine/output/display_units.h"
+#include "engine/run/display_units.h"
 
 namespace vesselid {
 namespace {

@@ -353,16 +353,20 @@ HeldOutCheck CompareHeldOut(const std::vector<ExperimentFit>& start,
   return check;
 }
 
-std::string DescribeHeldOut(const HeldOutCheck& check) {
+std::string DescribeHeldOut(const HeldOutCheck& check, const DisplayUnitOf& unit_of,
+                            const std::string& experiment) {
   std::string text;
   if (check.stage_diverged > check.start_diverged) {
     text = std::to_string(check.stage_diverged) + " held-out run(s) diverge (" +
            std::to_string(check.start_diverged) + " at its start)";
   }
   for (size_t i = 0; i < check.outputs.size(); ++i) {
-    char item[128];
-    std::snprintf(item, sizeof(item), "%s %.4g -> %.4g", check.outputs[i].c_str(),
-                  check.start_mae[i], check.stage_mae[i]);
+    const DisplayUnit unit =
+        unit_of ? unit_of(experiment, check.outputs[i]) : DisplayUnit{"", 1.0};
+    char item[160];
+    std::snprintf(item, sizeof(item), "%s %.4g -> %.4g%s", check.outputs[i].c_str(),
+                  unit.scale * check.start_mae[i], unit.scale * check.stage_mae[i],
+                  unit.unit.empty() ? "" : (" " + unit.unit).c_str());
     text += (text.empty() ? "held-out MAE "
              : i == 0     ? "; held-out MAE "
                           : ", ") +

@@ -18,6 +18,7 @@
 #include "engine/model/model_handle.h"
 #include "engine/run/records.h"
 #include "engine/run/run_config.h"
+#include "engine/run/display_units.h"
 #include "engine/run/run_result.h"
 #include "engine/solve/local_solve.h"
 #include "engine/solve/metrics.h"
@@ -91,7 +92,10 @@ std::vector<std::string> HeldOutBoundNotes(const HeldOutParameters& parameters);
 HeldOutCheck CompareHeldOut(const std::vector<ExperimentFit>& start,
                             const std::vector<ExperimentFit>& stage);
 
-// "worse on held-out data than its start: MAE psi 0.01 -> 0.03, ...".
-std::string DescribeHeldOut(const HeldOutCheck& check);
+// "worse on held-out data than its start: MAE psi 0.01 -> 0.03, ...", each output's MAE in
+// the unit `unit_of` gives it (empty: the model's; the record the unit is judged on is
+// `experiment`, a held-out run).
+std::string DescribeHeldOut(const HeldOutCheck& check, const DisplayUnitOf& unit_of = {},
+                            const std::string& experiment = "");
 
 }  // namespace vesselid

@@ -114,6 +114,15 @@ TEST(StageFindings, FitJudgedAgainstWhatTheRecordAllows) {
   stage.summary.fits[0].channels[0] = Channel(0.2, 10.0, 0.5, 0.4);
   DiagnoseStage(Info(), true, &stage);
   EXPECT_EQ(Kinds(stage), std::vector<FindingKind>{FindingKind::kFailedFit});
+  EXPECT_NE(stage.findings[0].message.find("MAE 0.5 against 0.4 holding"), std::string::npos)
+      << stage.findings[0].message;
+  // In the unit of the data: a heading logged in degrees.
+  DiagnoseStage(Info(), true, &stage, [](const std::string& experiment, const std::string&) {
+    return experiment == "run" ? DisplayUnit{"deg", 180.0 / M_PI} : DisplayUnit{"rad", 1.0};
+  });
+  EXPECT_NE(stage.findings[0].message.find("MAE 28.6 deg against 22.9 deg holding"),
+            std::string::npos)
+      << stage.findings[0].message;
   // Better than holding, fit 30 %: poor.
   stage = GoodStage();
   stage.summary.fits[0].channels[0] = Channel(0.5, 30.0, 0.2, 0.4);

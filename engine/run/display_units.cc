@@ -1,4 +1,4 @@
-#include "engine/output/display_units.h"
+#include "engine/run/display_units.h"
 
 #include <algorithm>
 #include <cmath>
