@@ -415,6 +415,12 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
     if (fits[i].covariance.rows() == m && fits[i].covariance.allFinite() &&
         llt.info() == Eigen::Success) {
       w = llt.matrixL().solve(Eigen::MatrixXd::Identity(m, m));
+    } else if (fits[i].std_errors.size() == m && fits[i].std_errors.allFinite() &&
+               (fits[i].std_errors.array() > 0.0).all()) {
+      // A covariance not positive definite to rounding: each coefficient at its own standard
+      // error (the residual level alone would give every coefficient the same one, whatever
+      // its regressor's unit).
+      w = fits[i].std_errors.cwiseInverse().asDiagonal();
     } else {  // no covariance (lasso): equal weights at the equation's residual level
       w = Eigen::MatrixXd::Identity(m, m) / std::max(fits[i].residual_rms, 1e-12);
     }

@@ -160,11 +160,15 @@ bool SolveRegression(const Eigen::MatrixXd& x, const Eigen::VectorXd& y,
   if (options.penalty == Penalty::kLasso) {
     r.covariance = Eigen::MatrixXd::Constant(p, p, kNaN);
   } else {
-    Eigen::MatrixXd h = gram;
-    if (options.penalty == Penalty::kRidge) {
-      h.diagonal() += r.lambda * (kept / weight_sum) * scale.cwiseAbs2();
-    }
-    const Eigen::MatrixXd inverse = h.completeOrthogonalDecomposition().pseudoInverse();
+    // Inverted on the scaled columns (x_j / scale_j) and scaled back, so that the standard
+    // errors do not depend on the regressors' units: unscaled, a column in rpm^2 next to one
+    // of order 1 puts the others below the pseudo-inverse's rank threshold.
+    const Eigen::VectorXd inv_scale = scale.cwiseInverse();
+    Eigen::MatrixXd h = inv_scale.asDiagonal() * gram * inv_scale.asDiagonal();
+    if (options.penalty == Penalty::kRidge) h.diagonal().array() += r.lambda * (kept / weight_sum);
+    const Eigen::MatrixXd inverse = inv_scale.asDiagonal() *
+                                    h.completeOrthogonalDecomposition().pseudoInverse() *
+                                    inv_scale.asDiagonal();
     r.covariance = s2 * inverse * gram * inverse;
   }
   r.std_errors = r.covariance.diagonal().cwiseSqrt();

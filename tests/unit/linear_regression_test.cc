@@ -54,6 +54,43 @@ TEST(Regression, RecoversExactDataAndReportsTheLeastSquaresCovariance) {
   }
 }
 
+// Standard errors do not depend on the regressors' units: a propeller command logged in rpm
+// (x 1000, its square x 1e6) gives the same estimates and standard errors, scaled by the same
+// factors, as the +-1 command. Unscaled, the square in rpm^2 put the other columns below the
+// pseudo-inverse's rank threshold and every standard error came out wrong.
+TEST(Regression, StandardErrorsAreInvariantToTheScalingOfTheRegressors) {
+  std::mt19937_64 random(5);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  std::uniform_real_distribution<double> command(-1.0, 1.0);
+  const int n = 800;
+  Eigen::MatrixXd x(n, 4), x_rpm(n, 4);
+  Eigen::VectorXd y(n);
+  for (int i = 0; i < n; ++i) {
+    const double u = 0.3 * unit(random), c = command(random);
+    x.row(i) << u, std::abs(u) * u, c, std::abs(c) * c;
+    y[i] = -0.8 * u - 0.2 * std::abs(u) * u + 0.4 * c + 0.6 * std::abs(c) * c + 0.05 * unit(random);
+    x_rpm.row(i) << x(i, 0), x(i, 1), 1000.0 * c, 1e6 * std::abs(c) * c;
+  }
+  for (Penalty penalty : {Penalty::kNone, Penalty::kRidge}) {
+    RegressionOptions options;
+    options.penalty = penalty;
+    options.lambda = penalty == Penalty::kRidge ? 1e-3 : -1.0;
+    RegressionResult a, b;
+    std::string error;
+    ASSERT_TRUE(SolveRegression(x, y, options, &a, &error)) << error;
+    ASSERT_TRUE(SolveRegression(x_rpm, y, options, &b, &error)) << error;
+    // A covariance the stage can use (least_squares.cc weights the coefficients by its
+    // Cholesky factor; without it every standard error falls back to the residual RMS).
+    EXPECT_EQ(Eigen::LLT<Eigen::MatrixXd>(b.covariance).info(), Eigen::Success);
+    const Eigen::Vector4d factor(1.0, 1.0, 1000.0, 1e6);
+    for (int j = 0; j < 4; ++j) {
+      EXPECT_NEAR(b.theta[j] * factor[j], a.theta[j], 1e-6 * std::abs(a.theta[j])) << j;
+      EXPECT_NEAR(b.std_errors[j] * factor[j], a.std_errors[j], 1e-6 * a.std_errors[j]) << j;
+      if (j != 1) EXPECT_LT(a.std_errors[j], 0.2 * std::abs(a.theta[j])) << j;  // not sigma
+    }
+  }
+}
+
 TEST(Regression, RobustWeightingRejectsGrossOutliers) {
   Data d = Make(1000, 0.1, false, 3);
   for (int i = 0; i < 1000; i += 20) d.y[i] += 25.0;  // 5 % one-sided spikes
