@@ -195,6 +195,12 @@ const Row kRows[] = {
     {K::kHeldOutDiverged, "held_out_diverged", S::kFailure,
      "The simulation of a held-out record diverged with the stage's estimate.",
      "The estimate is unstable outside the training records."},
+    {K::kHeldOutFreeRunFailed, "held_out_free_run_failed", S::kWarning,
+     "The velocity validation of a kept stage (each held-out record simulated whole from the "
+     "data's state) predicts a velocity worse than its mean: free-run R2 < 0. A failure for "
+     "the final values. Good fits of the shipped campaigns reach R2 0.98 and above.",
+     "Read the held-out free-run traces; the model's structure or its thrust law may not hold "
+     "outside the training runs."},
     {K::kFinalHeldOutFailed, "final_held_out_failed", S::kFailure,
      "The final values' simulation of the held-out records diverges, or predicts an output "
      "worse than holding its first measured value (pooled MAE ratio above 1).",

@@ -62,6 +62,7 @@ enum class FindingKind {
   kHeldOutWorse,
   kHeldOutOutputWorse,
   kHeldOutDiverged,
+  kHeldOutFreeRunFailed,
   kFinalHeldOutFailed,
 };
 

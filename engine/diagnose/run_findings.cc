@@ -156,6 +156,8 @@ void DiagnoseRun(const RunConfig& config, RunResult* run) {
   }
   AddBoundFindings(info, run->final_held_out_parameters.estimates, "final", &findings);
   AddFinalHeldOutFindings(*run, &findings);
+  AddFreeRunFindings(run->final_velocity_validation, "final", FindingSeverity::kFailure,
+                     &findings);
   findings = FoldFindings(findings);
   SortFindings(&findings);
   Verdict verdict = VerdictOf(findings);

@@ -226,6 +226,25 @@ void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& s
   }
 }
 
+void AddFreeRunFindings(const std::vector<ChannelMetrics>& metrics, const std::string& stage,
+                        FindingSeverity severity, std::vector<Finding>* findings) {
+  for (const ChannelMetrics& m : metrics) {
+    const size_t free_run = m.experiment.find(" free-run");
+    if (free_run == std::string::npos || !(m.r2 < 0.0)) continue;
+    Finding f = MakeFinding(FindingKind::kHeldOutFreeRunFailed,
+                            "the held-out free run of " + m.experiment.substr(0, free_run) +
+                                " predicts " + m.output +
+                                FormatNumbers(" worse than its mean (R2 %.3g over %g samples)",
+                                              m.r2, m.samples));
+    f.severity = severity;
+    f.stage = stage;
+    f.output = m.output;
+    f.value = m.r2;
+    f.threshold = 0.0;
+    findings->push_back(std::move(f));
+  }
+}
+
 void DiagnoseStage(const ModelInfo& info, bool output_error, StageResult* stage,
                    const DisplayUnitOf& unit_of) {
   std::vector<Finding> findings;
@@ -254,6 +273,10 @@ void DiagnoseStage(const ModelInfo& info, bool output_error, StageResult* stage,
     findings.push_back(std::move(f));
   }
   AddHeldOutFindings(*stage, &findings, unit_of);
+  if (stage->rejected.empty()) {
+    AddFreeRunFindings(stage->velocity_validation, stage->name, FindingSeverity::kWarning,
+                       &findings);
+  }
   SortFindings(&findings);
   stage->findings = std::move(findings);
   stage->verdict = VerdictOf(stage->findings);

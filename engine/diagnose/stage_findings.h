@@ -37,4 +37,10 @@ void AddBoundFindings(const ModelInfo& info, const std::vector<Estimate>& estima
 void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& stage,
                     std::vector<Finding>* findings, const DisplayUnitOf& unit_of = {});
 
+// held_out_free_run_failed findings of velocity-validation `metrics` (free-run R2 < 0), one per
+// held-out record set and state, with `severity` (warning for a stage, failure for the final
+// values).
+void AddFreeRunFindings(const std::vector<ChannelMetrics>& metrics, const std::string& stage,
+                        FindingSeverity severity, std::vector<Finding>* findings);
+
 }  // namespace vesselid

@@ -137,6 +137,39 @@ TEST(StageFindings, FitJudgedAgainstWhatTheRecordAllows) {
   EXPECT_TRUE(stage.findings.empty());
 }
 
+// The velocity validation's free runs: R2 < 0 is named per record set and state (a warning
+// for a stage, a failure for the final values); the shipped campaigns' good fits (R2 0.98)
+// and the one-step predictions are not judged.
+TEST(StageFindings, HeldOutFreeRunWorseThanItsMean) {
+  auto metric = [](const std::string& prediction, const std::string& state, double r2) {
+    ChannelMetrics m;
+    m.experiment = prediction;
+    m.output = state;
+    m.samples = 4786;
+    m.r2 = r2;
+    return m;
+  };
+  StageResult stage = GoodStage();
+  stage.velocity_validation = {metric("validation one-step", "v", -0.5),
+                               metric("validation free-run", "u", 0.98),
+                               metric("validation free-run", "v", -5.2)};
+  DiagnoseStage(Info(), true, &stage);
+  ASSERT_EQ(Kinds(stage), std::vector<FindingKind>{FindingKind::kHeldOutFreeRunFailed});
+  EXPECT_EQ(stage.findings[0].severity, FindingSeverity::kWarning);
+  EXPECT_EQ(stage.findings[0].output, "v");
+  EXPECT_EQ(stage.findings[0].message,
+            "the held-out free run of validation predicts v worse than its mean (R2 -5.2 over "
+            "4786 samples)");
+  std::vector<Finding> final_findings;
+  AddFreeRunFindings(stage.velocity_validation, "final", FindingSeverity::kFailure,
+                     &final_findings);
+  ASSERT_EQ(final_findings.size(), 1u);
+  EXPECT_EQ(final_findings[0].severity, FindingSeverity::kFailure);
+  stage.velocity_validation[2].r2 = 0.98;
+  DiagnoseStage(Info(), true, &stage);
+  EXPECT_TRUE(stage.findings.empty());
+}
+
 TEST(StageFindings, WeaklyDeterminedAndNotAdmissible) {
   StageResult stage = GoodStage();
   stage.estimates[0].std_error = 1.5;  // T = 2 +- 1.5: 75 %
