@@ -104,6 +104,11 @@ std::vector<Finding> FoldFindings(const std::vector<Finding>& input) {
 
 void DiagnoseRun(const RunConfig& config, RunResult* run) {
   const ModelInfo& info = config.model->info();
+  const DisplayUnitOf output_unit_of = [&](const std::string& experiment,
+                                           const std::string& output) {
+    return OutputDisplayUnit(config, experiment, output);
+  };
+  const ParameterUnitOf parameter_unit_of = ParameterUnits(config);
   for (StageResult& stage : run->stages) {
     const ModelHandle* model = &*config.model;
     bool output_error = true;
@@ -112,10 +117,7 @@ void DiagnoseRun(const RunConfig& config, RunResult* run) {
       model = &config.StageModel(s);
       output_error = s.kind == StageConfig::Kind::kOutputError;
     }
-    DiagnoseStage(model->info(), output_error, &stage,
-                  [&](const std::string& experiment, const std::string& output) {
-                    return OutputDisplayUnit(config, experiment, output);
-                  });
+    DiagnoseStage(model->info(), output_error, &stage, output_unit_of, parameter_unit_of);
     stage.findings = FoldFindings(stage.findings);
   }
   std::vector<Finding>& findings = run->findings;
@@ -154,7 +156,8 @@ void DiagnoseRun(const RunConfig& config, RunResult* run) {
     f.stage = "final";
     findings.push_back(std::move(f));
   }
-  AddBoundFindings(info, run->final_held_out_parameters.estimates, "final", &findings);
+  AddBoundFindings(info, run->final_held_out_parameters.estimates, "final", &findings,
+                   parameter_unit_of);
   AddFinalHeldOutFindings(*run, &findings);
   AddFreeRunFindings(run->final_velocity_validation, "final", FindingSeverity::kFailure,
                      &findings);

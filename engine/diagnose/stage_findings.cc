@@ -14,6 +14,10 @@
 namespace vesselid {
 namespace {
 
+DisplayUnit Unit(const ParameterUnitOf& unit_of, const std::string& name) {
+  return unit_of ? unit_of(name) : DisplayUnit{};
+}
+
 bool AnyFitFailed(const std::vector<ExperimentFit>& fits) {
   for (const ExperimentFit& fit : fits) {
     for (const ChannelMetrics& m : fit.channels) {
@@ -60,7 +64,8 @@ void AddSolveFindings(const StageResult& stage, std::vector<Finding>* findings) 
 // poorly (relative standard error above kWeakRelativeError, or undetermined).
 constexpr double kWeakRelativeError = 0.5;
 
-void AddWeaklyDeterminedFindings(const StageResult& stage, std::vector<Finding>* findings) {
+void AddWeaklyDeterminedFindings(const StageResult& stage, std::vector<Finding>* findings,
+                                 const ParameterUnitOf& unit_of) {
   std::string names;
   int count = 0;
   double worst = 0.0;
@@ -82,7 +87,8 @@ void AddWeaklyDeterminedFindings(const StageResult& stage, std::vector<Finding>*
       names += (count > 1 ? ", " : "") + e.name +
                (e.undetermined || !std::isfinite(relative)
                     ? " (undetermined)"
-                    : FormatNumbers(" = %.4g +- %.2g", e.value, e.std_error) +
+                    : ShownValue(e.value, Unit(unit_of, e.name), " = %.4g") +
+                          ShownValue(e.std_error, Unit(unit_of, e.name), " +- %.2g") +
                           FormatNumbers(" (%.0f %%)", 100.0 * relative));
     }
   }
@@ -146,7 +152,8 @@ void AddHeldOutFindings(const StageResult& stage, std::vector<Finding>* findings
 }  // namespace
 
 void AddBoundFindings(const ModelInfo& info, const std::vector<Estimate>& estimates,
-                      const std::string& stage, std::vector<Finding>* findings) {
+                      const std::string& stage, std::vector<Finding>* findings,
+                      const ParameterUnitOf& unit_of) {
   for (const Estimate& e : estimates) {
     if (e.kind != EstimateKind::kParameter || e.role == ParameterRole::kFixed) continue;
     if (!std::isfinite(e.lower) || !std::isfinite(e.upper) || !(e.upper > e.lower)) continue;
@@ -156,10 +163,11 @@ void AddBoundFindings(const ModelInfo& info, const std::vector<Estimate>& estima
     const double bound = at_lower ? e.lower : e.upper;
     // A per-experiment value is named "delta_0[zz1]"; the model's hint is by "delta_0".
     const std::string model_name = e.name.substr(0, e.name.find('['));
+    const DisplayUnit unit = Unit(unit_of, e.name);
     Finding f = MakeFinding(
         FindingKind::kAtBound,
-        e.name + " = " + FormatNumbers("%.6g", e.value) + " is at its " + (at_lower ? "lower" : "upper") +
-            " bound " + FormatNumbers("%g", bound) +
+        e.name + " = " + ShownValue(e.value, unit) + " is at its " +
+            (at_lower ? "lower" : "upper") + " bound " + ShownValue(bound, unit, "%g") +
             ": the data pull it further; its standard error assumes an interior optimum" +
             StructureHint(info, model_name));
     f.stage = stage;
@@ -246,18 +254,19 @@ void AddFreeRunFindings(const std::vector<ChannelMetrics>& metrics, const std::s
 }
 
 void DiagnoseStage(const ModelInfo& info, bool output_error, StageResult* stage,
-                   const DisplayUnitOf& unit_of) {
+                   const DisplayUnitOf& unit_of, const ParameterUnitOf& parameter_unit_of) {
   std::vector<Finding> findings;
   for (Finding f : stage->summary.findings) {
     f.stage = stage->name;
     findings.push_back(std::move(f));
   }
   if (output_error) AddSolveFindings(*stage, &findings);
-  AddBoundFindings(info, stage->estimates, stage->name, &findings);
+  AddBoundFindings(info, stage->estimates, stage->name, &findings, parameter_unit_of);
   if (output_error && stage->summary.uncertainty.available) {
-    AddWeaklyDeterminedFindings(*stage, &findings);
+    AddWeaklyDeterminedFindings(*stage, &findings, parameter_unit_of);
   }
-  AddBoundFindings(info, stage->held_out_parameters.estimates, stage->name, &findings);
+  AddBoundFindings(info, stage->held_out_parameters.estimates, stage->name, &findings,
+                   parameter_unit_of);
   AddFitFindings(stage->summary.fits, stage->name, &findings, unit_of);
   AddResidualFindings(*stage, &findings);
   AddCompensationFindings(info, *stage, &findings);

@@ -24,13 +24,18 @@ namespace vesselid {
 // (a regression stage's "solve" is its regression: no solver findings).
 // Values of outputs in messages are in `unit_of`'s units (the data's: degrees where the column
 // was read in degrees); without it in the model's.
+// Parameter values likewise in `parameter_unit_of`'s (a rudder bias in degrees where the
+// rudder column was).
 void DiagnoseStage(const ModelInfo& info, bool output_error, StageResult* stage,
-                   const DisplayUnitOf& unit_of = {});
+                   const DisplayUnitOf& unit_of = {},
+                   const ParameterUnitOf& parameter_unit_of = {});
 
 // at_bound findings of `estimates` (free or per-experiment parameters with finite bounds),
-// named for `stage` ("final" for the final validation's held-out runs).
+// named for `stage` ("final" for the final validation's held-out runs); values and bounds in
+// `unit_of`'s unit (may be empty: the model's).
 void AddBoundFindings(const ModelInfo& info, const std::vector<Estimate>& estimates,
-                      const std::string& stage, std::vector<Finding>* findings);
+                      const std::string& stage, std::vector<Finding>* findings,
+                      const ParameterUnitOf& unit_of = {});
 
 // failed_fit and poor_fit findings of `fits`, one per kind and output with the count of
 // experiments; the worst run's MAE in `unit_of`'s unit (may be empty: the model's).

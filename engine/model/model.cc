@@ -39,6 +39,8 @@ std::string ModelInfo::StateUnit(int index) const {
 
 std::string ModelInfo::InputUnit(int index) const { return UnitAt(input_units, index); }
 
+std::string ModelInfo::ParameterUnit(int index) const { return UnitAt(parameter_units, index); }
+
 std::pair<int, int> ModelInfo::TrackOutputs() const {
   std::vector<int> metres;
   for (int i = 0; i < static_cast<int>(outputs.size()) && metres.size() < 2; ++i) {

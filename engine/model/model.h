@@ -50,12 +50,19 @@ struct ModelInfo {
   // Units of the outputs, states and inputs as labels show them ("m", "m/s", "rad", "rad/s",
   // "N"; empty: not stated). An angle read in degrees is shown in degrees ("rad" -> "deg").
   std::vector<std::string> output_units = {}, state_units = {}, input_units = {};
+  // Units of the parameters ("s", "1/s", "rad"; empty: not stated), and for a parameter that
+  // is an angle of a channel (a rudder bias is an angle of the rudder), that channel (an
+  // input or output name): the parameter is shown in degrees where that channel's column is
+  // read in degrees (display_units.h).
+  std::vector<std::string> parameter_units = {};
+  std::map<std::string, std::string> parameter_channels = {};
 
   // output_units, else "rad" for an angle output, else "".
   std::string OutputUnit(int index) const;
   // state_units, else the unit of the same-named output.
   std::string StateUnit(int index) const;
   std::string InputUnit(int index) const;
+  std::string ParameterUnit(int index) const;
   // The horizontal position outputs (north, east): the first two outputs in metres; -1 when
   // the model has none (no x-y track in the report).
   std::pair<int, int> TrackOutputs() const;

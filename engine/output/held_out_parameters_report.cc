@@ -139,7 +139,7 @@ nlohmann::json HeldOutParametersToJson(const HeldOutParameters& parameters,
 
 std::string HeldOutParametersText(const HeldOutParameters& parameters,
                                   const std::vector<ExperimentFit>& with,
-                                  const std::string& indent) {
+                                  const std::string& indent, const ParameterUnitOf& unit_of) {
   if (!parameters.active()) return "";
   const std::string names = Names(parameters);
   if (!parameters.fitted) {
@@ -153,8 +153,12 @@ std::string HeldOutParametersText(const HeldOutParameters& parameters,
   for (const RunRow& row : table.rows) {
     std::string line = indent + "  " + row.experiment + ":";
     for (const Estimate* e : row.estimates) {
-      line += " " + e->name.substr(0, e->name.find('[')) + " = " + Format("%.6g", e->value) +
-              (e->undetermined ? " (undetermined)" : " ± " + Format("%.2g", e->std_error)) + ";";
+      const DisplayUnit unit = unit_of ? unit_of(e->name) : DisplayUnit{};
+      line += " " + e->name.substr(0, e->name.find('[')) + " = " +
+              Format("%.6g", unit.scale * e->value) +
+              (e->undetermined ? " (undetermined)"
+                               : " ± " + Format("%.2g", unit.scale * e->std_error)) +
+              (unit.unit.empty() ? "" : " " + unit.unit) + ";";
     }
     for (const std::string& output : table.outputs) {
       const auto at = row.fit.find(output);
@@ -177,7 +181,8 @@ std::string HeldOutParametersText(const HeldOutParameters& parameters,
 }
 
 std::string HeldOutParametersHtml(const HeldOutParameters& parameters,
-                                  const std::vector<ExperimentFit>& with) {
+                                  const std::vector<ExperimentFit>& with,
+                                  const ParameterUnitOf& unit_of) {
   if (!parameters.active()) return "";
   const std::string names = Names(parameters);
   if (!parameters.fitted) {
@@ -186,23 +191,28 @@ std::string HeldOutParametersHtml(const HeldOutParameters& parameters,
   }
   const Table table = MakeTable(parameters, with);
   std::string header = "<tr>" + Th("held-out run");
-  for (const std::string& p : parameters.parameters) header += Th(p) + Th("std. error");
+  std::vector<DisplayUnit> units;  // one per parameter, as for a shared value
+  for (const std::string& p : parameters.parameters) {
+    units.push_back(unit_of ? unit_of(p) : DisplayUnit{});
+    header += Th(WithUnit(p, units.back().unit)) + Th("std. error");
+  }
   for (const std::string& output : table.outputs) {
     header += Th(output + " fit % without") + Th(output + " fit % with");
   }
   std::string rows;
   for (const RunRow& row : table.rows) {
     rows += "<tr>" + Td(row.experiment);
-    for (const std::string& p : parameters.parameters) {
+    for (size_t k = 0; k < parameters.parameters.size(); ++k) {
       const Estimate* found = nullptr;
       for (const Estimate* e : row.estimates) {
-        if (e->name.substr(0, e->name.find('[')) == p) found = e;
+        if (e->name.substr(0, e->name.find('[')) == parameters.parameters[k]) found = e;
       }
+      const double scale = units[k].scale;
       rows += found == nullptr
                   ? "<td></td><td></td>"
-                  : Num(HtmlNumber(found->value, "%.6g")) +
+                  : Num(HtmlNumber(scale * found->value, "%.6g")) +
                         Num(found->undetermined ? "undetermined"
-                                                : HtmlNumber(found->std_error, "%.2g"));
+                                                : HtmlNumber(scale * found->std_error, "%.2g"));
     }
     for (const std::string& output : table.outputs) {
       const auto at = row.fit.find(output);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/run/display_units.h"
 #include "engine/run/run_result.h"
 #include "engine/solve/metrics.h"
 #include "nlohmann/json.hpp"
@@ -22,12 +23,14 @@ nlohmann::json HeldOutParametersToJson(const HeldOutParameters& parameters,
                                        const std::vector<ExperimentFit>& with);
 
 // Lines of report.txt, each starting with `indent`; empty when there are no parameters.
+// Estimates in `unit_of`'s unit (display_units.h; empty: the model's).
 std::string HeldOutParametersText(const HeldOutParameters& parameters,
                                   const std::vector<ExperimentFit>& with,
-                                  const std::string& indent);
+                                  const std::string& indent, const ParameterUnitOf& unit_of = {});
 
 // A table of report.html (estimates, SE, fit % without and with per output, mean row).
 std::string HeldOutParametersHtml(const HeldOutParameters& parameters,
-                                  const std::vector<ExperimentFit>& with);
+                                  const std::vector<ExperimentFit>& with,
+                                  const ParameterUnitOf& unit_of = {});
 
 }  // namespace vesselid

@@ -48,6 +48,20 @@ std::vector<ParameterReport> ReportParameters(const RunResult& result) {
       r.lower = estimates.back()->lower;
       r.upper = estimates.back()->upper;
       r.bound = BoundSide(f.value, r.lower, r.upper);
+    } else if (f.runs > 0 && !f.stages.empty()) {
+      // Per experiment: the bounds its per-run values had in the last stage that estimated it
+      // ("delta_0[zz1]", ...; one set of bounds for every run).
+      for (const StageResult& stage : result.stages) {
+        if (stage.name != f.stages.back()) continue;
+        for (const Estimate& e : stage.estimates) {
+          if (e.kind != EstimateKind::kParameter || e.experiment.empty() ||
+              e.name.compare(0, f.name.size() + 1, f.name + "[") != 0) {
+            continue;
+          }
+          r.lower = e.lower;
+          r.upper = e.upper;
+        }
+      }
     }
     if (std::isfinite(f.std_error) && !f.undetermined && f.role != ParameterRole::kFixed) {
       const double low = f.value - 1.96 * f.std_error, high = f.value + 1.96 * f.std_error;
@@ -78,11 +92,12 @@ std::vector<ParameterReport> ReportParameters(const RunResult& result) {
   return reports;
 }
 
-std::string ParameterFlags(const ParameterReport& report) {
+std::string ParameterFlags(const ParameterReport& report, const std::string& unit) {
   std::string flags;
   if (report.bound != 0) {
     flags = std::string("on its ") + (report.bound < 0 ? "lower" : "upper") + " bound " +
-            Number(report.bound < 0 ? report.lower : report.upper);
+            Number(report.bound < 0 ? report.lower : report.upper) +
+            (unit.empty() ? "" : " " + unit);
   }
   if (report.clipped)
     flags += (flags.empty() ? "" : "; ") + std::string("interval clipped to the bounds");

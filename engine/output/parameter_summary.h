@@ -22,6 +22,7 @@ namespace vesselid {
 
 struct ParameterReport {
   std::string name;
+  // Bounds of the last stage that estimated it (per experiment: those of its per-run values).
   double lower = -std::numeric_limits<double>::infinity();
   double upper = std::numeric_limits<double>::infinity();
   int bound = 0;  // -1 on the lower bound, +1 on the upper, 0 inside (or not estimated)
@@ -38,8 +39,9 @@ int BoundSide(double value, double lower, double upper);
 // One per final parameter, in the order of result.parameters.
 std::vector<ParameterReport> ReportParameters(const RunResult& result);
 
-// "on its lower bound 0.001", "interval clipped to the bounds", both, or "".
-std::string ParameterFlags(const ParameterReport& report);
+// "on its lower bound 0.001", "interval clipped to the bounds", both, or ""; `unit` follows
+// the bound when given ("on its upper bound 5.7 deg").
+std::string ParameterFlags(const ParameterReport& report, const std::string& unit = "");
 
 // Counts of unknowns: parameters by role, and initial states apart.
 struct UnknownCounts {

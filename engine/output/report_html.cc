@@ -271,7 +271,8 @@ void StageSection(const RunConfig& config, const StageResult& stage, size_t numb
   FitFigures(config, key + ".fit", "stage " + stage.name, s.fits, angles, page);
 
   ResidualSection(stage, id, key, page);
-  html << "<h3 id=\"" << id << "-parameters\">Estimates</h3>\n" << EstimatesTables(stage.estimates);
+  html << "<h3 id=\"" << id << "-parameters\">Estimates</h3>\n"
+       << EstimatesTables(stage.estimates, &config);
   html << BootstrapHtml(stage);
   html << NoiseModelHtml(config, stage);
 
@@ -307,7 +308,8 @@ void StageSection(const RunConfig& config, const StageResult& stage, size_t numb
       html << "<h4>Residual analysis of the held-out runs</h4>\n"
            << ResidualTableHtml(stage.validation_residuals);
     }
-    html << HeldOutParametersHtml(stage.held_out_parameters, stage.validation);
+    html << HeldOutParametersHtml(stage.held_out_parameters, stage.validation,
+                                 ParameterUnits(config));
     if (!stage.velocity_validation.empty()) {
       html << "<h4>Velocities (data: Savitzky-Golay reconstruction)</h4>\n"
            << VelocityTable(stage.velocity_validation);
@@ -364,7 +366,8 @@ void FinalSection(const RunConfig& config, const RunResult& result, ReportPage* 
       html << "<h4>Residual analysis of the held-out runs</h4>\n"
            << ResidualTableHtml(result.final_validation_residuals);
     }
-    html << HeldOutParametersHtml(result.final_held_out_parameters, result.final_validation);
+    html << HeldOutParametersHtml(result.final_held_out_parameters, result.final_validation,
+                                 ParameterUnits(config));
     if (!result.final_velocity_validation.empty()) {
       html << "<h4>Velocities</h4>\n" << VelocityTable(result.final_velocity_validation);
     }

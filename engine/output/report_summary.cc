@@ -6,17 +6,10 @@
 #include "engine/output/parameter_summary.h"
 #include "engine/output/report_table_cells.h"
 #include "engine/output/report_tables.h"
+#include "engine/output/shown_parameters.h"
 
 namespace vesselid {
 namespace {
-
-std::string Bounds(double lower, double upper) {
-  auto end = [](double v) {
-    if (std::isinf(v)) return std::string(v < 0 ? "−∞" : "∞");
-    return HtmlNumber(v, "%.6g");
-  };
-  return "[" + end(lower) + ", " + end(upper) + "]";
-}
 
 // The last stage whose estimates were kept and that simulated its runs.
 const StageResult* LastAcceptedStage(const RunResult& result) {
@@ -97,12 +90,13 @@ std::string RunFitTableHtml(const RunFitTable& table) {
   return out;
 }
 
-std::string FinalParametersSummaryHtml(const RunResult& result) {
+std::string FinalParametersSummaryHtml(const RunConfig& config, const RunResult& result) {
   const std::vector<ParameterReport> reports = ReportParameters(result);
   std::string rows;
   for (size_t i = 0; i < result.parameters.size(); ++i) {
-    const FinalParameter& f = result.parameters[i];
-    const ParameterReport& r = reports[i];
+    const DisplayUnit unit = ParameterDisplayUnit(config, result.parameters[i].name);
+    const FinalParameter f = Shown(result.parameters[i], unit);
+    const ParameterReport r = Shown(reports[i], unit);
     const bool fixed = f.role == ParameterRole::kFixed;
     std::string stages;
     for (const std::string& s : f.stages) stages += (stages.empty() ? "" : ", ") + s;
@@ -114,9 +108,9 @@ std::string FinalParametersSummaryHtml(const RunResult& result) {
       interval = "[" + HtmlNumber(r.interval_low, "%.6g") + ", " +
                  HtmlNumber(r.interval_high, "%.6g") + "]";
     }
-    const std::string flags = ParameterFlags(r);
+    const std::string flags = ParameterFlags(r, unit.unit);
     const std::string css = fixed ? " class=\"fixed\"" : !flags.empty() ? " class=\"flagged\"" : "";
-    rows += "<tr" + css + ">" + Td(f.name) +
+    rows += "<tr" + css + ">" + Td(f.name) + Td(unit.unit) +
             Num(f.runs > 0                 ? "per run"
                 : f.undetermined && !fixed ? "undetermined"
                                            : HtmlNumber(f.value, "%.8g")) +
@@ -124,7 +118,8 @@ std::string FinalParametersSummaryHtml(const RunResult& result) {
             Num(fixed ? "—" : Bounds(r.lower, r.upper)) + Td(flags) +
             Td(ParameterRoleToString(f.role)) + Td(stages) + Td(f.rule) + "</tr>\n";
   }
-  std::string out = "<table class=\"estimates\">\n<tr>" + Th("parameter") + Th("value") +
+  std::string out = "<table class=\"estimates\">\n<tr>" + Th("parameter") + Th("unit") +
+                    Th("value") +
                     Th("std. error") + Th("95 % interval (within bounds)") + Th("bounds") +
                     Th("flag") + Th("role") + Th("stages") + Th("rule") + "</tr>\n" + rows +
                     "</table>\n";
@@ -145,7 +140,7 @@ std::string SummarySectionHtml(const RunConfig& config, const RunResult& result)
          HtmlEscape(DescribeCounts(CountUnknowns(result))) +
          "; shared parameters fused by the <strong>" +
          HtmlEscape(FusionRuleToString(config.fusion)) + "</strong> rule.</p>\n" +
-         FinalParametersSummaryHtml(result);
+         FinalParametersSummaryHtml(config, result);
   if (const StageResult* last = LastAcceptedStage(result)) {
     out += "<h3 id=\"summary-fit\">Fit per run: stage " + HtmlEscape(last->name) +
            " (identification data)</h3>\n" +

@@ -17,9 +17,10 @@ namespace vesselid {
 // worst rows below, labelled, kept out of the sort.
 std::string RunFitTableHtml(const RunFitTable& table);
 
-// Final parameters: value, standard error, clipped 95 % interval, bounds, flags, role,
-// stages and rule; a fixed parameter's row muted.
-std::string FinalParametersSummaryHtml(const RunResult& result);
+// Final parameters: unit, value, standard error, clipped 95 % interval, bounds, flags, role,
+// stages and rule, in the unit the data came in (shown_parameters.h); a fixed parameter's row
+// muted.
+std::string FinalParametersSummaryHtml(const RunConfig& config, const RunResult& result);
 
 // The whole summary section (id "summary").
 std::string SummarySectionHtml(const RunConfig& config, const RunResult& result);

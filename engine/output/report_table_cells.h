@@ -1,6 +1,7 @@
 // Cells of the report's HTML tables: text cells are escaped, number cells right-aligned.
 #pragma once
 
+#include <cmath>
 #include <string>
 
 #include "engine/output/report_tables.h"
@@ -12,6 +13,15 @@ inline std::string Td(const std::string& text) { return "<td>" + HtmlEscape(text
 // `text` is a formatted number (no markup).
 inline std::string Num(const std::string& text) {
   return "<td class=\"num\">" + HtmlEscape(text) + "</td>";
+}
+
+// "[lower, upper]" with infinite ends as "−∞" and "∞".
+inline std::string Bounds(double lower, double upper) {
+  auto end = [](double v) {
+    if (std::isinf(v)) return std::string(v < 0 ? "−∞" : "∞");
+    return HtmlNumber(v, "%.6g");
+  };
+  return "[" + end(lower) + ", " + end(upper) + "]";
 }
 
 // The table folded under `summary` when it has more than `open_rows` rows.

@@ -8,19 +8,12 @@
 #include "engine/run/display_units.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/output/report_table_cells.h"
+#include "engine/output/shown_parameters.h"
 
 namespace vesselid {
 namespace {
 
 constexpr size_t kOpenRows = 24;  // longer tables are folded (<details>)
-
-std::string Bounds(double lower, double upper) {
-  auto end = [](double v) {
-    if (std::isinf(v)) return std::string(v < 0 ? "−∞" : "∞");
-    return HtmlNumber(v, "%.6g");
-  };
-  return "[" + end(lower) + ", " + end(upper) + "]";
-}
 
 // value ± 1.96 SE within [lower, upper], or "undetermined".
 std::string Interval(double value, double std_error, bool undetermined, double lower = -INFINITY,
@@ -31,7 +24,7 @@ std::string Interval(double value, double std_error, bool undetermined, double l
 }
 
 // An estimate on its bound, its interval clipped to the bounds (parameter_summary.h).
-std::string EstimateRow(const Estimate& e, bool with_experiment) {
+std::string EstimateRow(const Estimate& e, bool with_experiment, const std::string& unit) {
   const int bound = BoundSide(e.value, e.lower, e.upper);
   const bool clipped =
       std::isfinite(e.std_error) && !e.undetermined &&
@@ -42,7 +35,7 @@ std::string EstimateRow(const Estimate& e, bool with_experiment) {
   if (with_experiment) {
     row += Td(e.experiment) + Td(e.kind == EstimateKind::kInitialState ? "initial state" : "parameter");
   }
-  return row + Td(ParameterRoleToString(e.role)) + Num(HtmlNumber(e.value, "%.8g")) +
+  return row + Td(ParameterRoleToString(e.role)) + Td(unit) + Num(HtmlNumber(e.value, "%.8g")) +
          Num(HtmlNumber(e.std_error, "%.4g")) +
          Num(Interval(e.value, e.std_error, e.undetermined, e.lower, e.upper)) +
          Num(HtmlNumber(e.start, "%.6g")) + Num(Bounds(e.lower, e.upper)) + Td(flag) + "</tr>\n";
@@ -126,21 +119,24 @@ std::string MetricsTable(const std::vector<const ExperimentFit*>& fits, const Ru
   return Fold(table, count, "metrics of " + std::to_string(count) + " channels", kOpenRows);
 }
 
-std::string EstimatesTables(const std::vector<Estimate>& estimates) {
-  const std::string header = Th("role") + Th("value") + Th("std. error") + Th("95 % interval") +
+std::string EstimatesTables(const std::vector<Estimate>& estimates, const RunConfig* config) {
+  const std::string header = Th("role") + Th("unit") + Th("value") + Th("std. error") + Th("95 % interval") +
                              Th("start") + Th("bounds") + Th("flag") + "</tr>\n";
   std::string shared, per_experiment, fixed;
   size_t shared_count = 0, per_experiment_count = 0, fixed_count = 0;
-  for (const Estimate& e : estimates) {
+  for (const Estimate& estimate : estimates) {
+    const DisplayUnit unit =
+        config ? ParameterDisplayUnit(*config, estimate.name) : DisplayUnit{};
+    const Estimate e = Shown(estimate, unit);
     if (e.role == ParameterRole::kFixed) {
-      fixed +=
-          "<tr>" + Td(e.name) + Td(e.experiment) + Num(HtmlNumber(e.value, "%.8g")) + "</tr>\n";
+      fixed += "<tr>" + Td(e.name) + Td(e.experiment) + Td(unit.unit) +
+               Num(HtmlNumber(e.value, "%.8g")) + "</tr>\n";
       ++fixed_count;
     } else if (!e.experiment.empty()) {
-      per_experiment += EstimateRow(e, true);
+      per_experiment += EstimateRow(e, true, unit.unit);
       ++per_experiment_count;
     } else {
-      shared += EstimateRow(e, false);
+      shared += EstimateRow(e, false, unit.unit);
       ++shared_count;
     }
   }
@@ -159,7 +155,8 @@ std::string EstimatesTables(const std::vector<Estimate>& estimates) {
                 12);
   }
   if (fixed_count > 0) {
-    out += Fold("<table>\n<tr>" + Th("held fixed") + Th("experiment") + Th("value") + "</tr>\n" +
+    out += Fold("<table>\n<tr>" + Th("held fixed") + Th("experiment") + Th("unit") + Th("value") +
+                    "</tr>\n" +
                     fixed + "</table>\n",
                 fixed_count, std::to_string(fixed_count) + " held fixed", 0);
   }

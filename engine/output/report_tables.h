@@ -36,8 +36,9 @@ std::string MetricsTable(const std::vector<const ExperimentFit*>& fits,
 
 // A stage's estimates: the estimated shared ones, per-experiment ones (parameters and initial
 // states) and the ones held fixed, each with value, standard error, 95 % interval, start and
-// bounds.
-std::string EstimatesTables(const std::vector<Estimate>& estimates);
+// bounds; with a config in the unit the data came in (shown_parameters.h), named in a column.
+std::string EstimatesTables(const std::vector<Estimate>& estimates,
+                            const RunConfig* config = nullptr);
 
 // One-step and free-run metrics of the regressed states (velocity_validation.h).
 std::string VelocityTable(const std::vector<ChannelMetrics>& metrics);

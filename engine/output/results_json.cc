@@ -18,6 +18,19 @@ namespace {
 
 using nlohmann::json;
 
+// A parameter's "unit": the model's, in which results.json gives every value; where report.txt
+// and report.html show it in another (a rudder bias in degrees where the rudder column was),
+// that one as "shown_unit" with "shown_scale" (shown = scale x value; display_units.h).
+void AddParameterUnit(const RunConfig& config, const std::string& name, json* item) {
+  const std::string unit = ParameterModelUnit(config.model->info(), name);
+  if (unit.empty()) return;
+  (*item)["unit"] = unit;
+  const DisplayUnit shown = ParameterDisplayUnit(config, name);
+  if (shown.unit == unit) return;
+  (*item)["shown_unit"] = shown.unit;
+  (*item)["shown_scale"] = shown.scale;
+}
+
 json VelocityToJson(const std::vector<ChannelMetrics>& metrics) {
   json j = json::array();
   for (const ChannelMetrics& m : metrics) {
@@ -238,6 +251,7 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
                  {"upper", JsonNumber(e.upper)},
                  {"undetermined", e.undetermined}};
     if (!e.experiment.empty()) item["experiment"] = e.experiment;
+    AddParameterUnit(config, e.name, &item);
     // Another method than the Hessian reported: the Hessian's standard error beside it.
     const std::vector<double>& hessian = s.uncertainty.hessian_std_errors;
     for (size_t i = 0; i < hessian.size() && i < stage.correlation_names.size(); ++i) {
@@ -338,7 +352,9 @@ json RunResultToJson(const RunConfig& config, const RunResult& result) {
                  {"rule", f.rule},
                  {"undetermined", f.undetermined},
                  {"interval", {JsonNumber(r.interval_low), JsonNumber(r.interval_high)}},
-                 {"interval_clipped", r.clipped}};
+                 {"interval_clipped", r.clipped},
+                 {"bounds", {JsonNumber(r.lower), JsonNumber(r.upper)}}};
+    AddParameterUnit(config, f.name, &item);
     if (r.bound != 0) item["at_bound"] = r.bound < 0 ? "lower" : "upper";
     if (!r.fusion_note.empty()) item["fusion_note"] = r.fusion_note;
     if (f.runs > 0) {  // per_experiment: one value per run

@@ -10,6 +10,7 @@
 #include "engine/output/noise_model_report.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/output/residual_report.h"
+#include "engine/output/shown_parameters.h"
 #include "engine/output/run_fit_table.h"
 #include "engine/output/zigzag_report.h"
 #include "engine/run/held_out.h"
@@ -133,13 +134,15 @@ std::string StageText(const RunConfig& config, const StageResult& stage) {
   }
   out << "  " << DescribeCounts(CountUnknowns(stage.estimates)) << "\n";
   if (s.global.run) out << "  " << s.global.BriefReport() << "\n";
-  std::snprintf(line, sizeof(line), "  %-24s %-15s %16s %12s %10s\n", "name", "role", "value",
-                "std error", "rel. %");
+  std::snprintf(line, sizeof(line), "  %-24s %-15s %16s %12s %10s  %s\n", "name", "role",
+                "value", "std error", "rel. %", "unit");
   out << line;
-  for (const Estimate& e : stage.estimates) {
-    if (e.role == ParameterRole::kFixed) continue;
+  for (const Estimate& estimate : stage.estimates) {
+    if (estimate.role == ParameterRole::kFixed) continue;
+    const DisplayUnit unit = ParameterDisplayUnit(config, estimate.name);
+    const Estimate e = Shown(estimate, unit);
     out << EstimateLine(e.name, ParameterRoleToString(e.role), e.value, e.std_error, e.undetermined,
-                        "");
+                        unit.unit);
   }
   if (s.uncertainty.available) {
     out << "  uncertainty: " << s.uncertainty.method
@@ -174,7 +177,8 @@ std::string StageText(const RunConfig& config, const StageResult& stage) {
         << MetricsTable(config, stage.validation)
         << ResidualAnalysesText(stage.validation_residuals, "  ");
   }
-  out << HeldOutParametersText(stage.held_out_parameters, stage.validation, "  ");
+  out << HeldOutParametersText(stage.held_out_parameters, stage.validation, "  ",
+                               ParameterUnits(config));
   if (stage.held_out.done) {
     out << "  held-out check against the stage's start: " << DescribeHeldOut(stage.held_out)
         << (stage.held_out.worse ? " (worse)" : " (not worse)") << "\n";
@@ -194,17 +198,18 @@ std::string FinalParametersText(const RunConfig& config, const RunResult& result
   out << "  final parameters (shared: " << FusionRuleToString(config.fusion)
       << " fusion): " << DescribeCounts(CountUnknowns(result)) << "\n";
   char line[512];
-  std::snprintf(line, sizeof(line), "  %-24s %-15s %16s %12s %27s  %s\n", "name", "role", "value",
-                "std error", "95 % interval", "from");
+  std::snprintf(line, sizeof(line), "  %-24s %-15s %16s %12s %27s %-6s %s\n", "name", "role",
+                "value", "std error", "95 % interval", "unit", "from");
   out << line;
   const std::vector<ParameterReport> reports = ReportParameters(result);
   for (size_t i = 0; i < result.parameters.size(); ++i) {
-    const FinalParameter& f = result.parameters[i];
-    const ParameterReport& r = reports[i];
+    const DisplayUnit unit = ParameterDisplayUnit(config, result.parameters[i].name);
+    const FinalParameter f = Shown(result.parameters[i], unit);
+    const ParameterReport r = Shown(reports[i], unit);
     std::string from;
     for (const std::string& stage : f.stages) from += (from.empty() ? "" : ", ") + stage;
     if (f.rule != "stage" && f.rule != "fixed") from += " (" + f.rule + ")";
-    const std::string flags = ParameterFlags(r);
+    const std::string flags = ParameterFlags(r, unit.unit);
     if (!flags.empty()) from += "  ** " + flags;
     const bool fixed = f.role == ParameterRole::kFixed;
     std::string value = "-", error = "-", interval = fixed ? "-" : "undetermined";
@@ -225,9 +230,9 @@ std::string FinalParametersText(const RunConfig& config, const RunResult& result
       std::snprintf(cell, sizeof(cell), "[%.6g, %.6g]", r.interval_low, r.interval_high);
       interval = cell;
     }
-    std::snprintf(line, sizeof(line), "  %-24s %-15s %16s %12s %27s  %s\n", f.name.c_str(),
+    std::snprintf(line, sizeof(line), "  %-24s %-15s %16s %12s %27s %-6s %s\n", f.name.c_str(),
                   ParameterRoleToString(f.role), value.c_str(), error.c_str(), interval.c_str(),
-                  from.c_str());
+                  unit.unit.c_str(), from.c_str());
     out << line;
   }
   for (const ParameterReport& r : reports) {
@@ -281,7 +286,8 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
     out << "\nfinal validation\n"
         << MetricsTable(config, result.final_validation)
         << ResidualAnalysesText(result.final_validation_residuals, "  ")
-        << HeldOutParametersText(result.final_held_out_parameters, result.final_validation, "  ");
+        << HeldOutParametersText(result.final_held_out_parameters, result.final_validation, "  ",
+                                 ParameterUnits(config));
   }
   if (!result.final_velocity_validation.empty()) {
     out << "final validation of the velocities\n"

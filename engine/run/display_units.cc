@@ -2,8 +2,29 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <optional>
 
 namespace vesselid {
+
+namespace {
+
+// Whether `spec` reads model channel `channel` (an input or an output) from a column listed in
+// its `degrees:`; nullopt when it does not map the channel.
+std::optional<bool> ReadInDegrees(const ExperimentSpec& spec, const std::string& channel) {
+  const std::map<std::string, std::string>& map =
+      spec.outputs.count(channel) ? spec.outputs : spec.inputs;
+  const auto column = map.find(channel);
+  if (column == map.end()) return std::nullopt;
+  const std::vector<std::string>& degrees = spec.degree_columns;
+  return std::find(degrees.begin(), degrees.end(), column->second) != degrees.end();
+}
+
+DisplayUnit InDegrees(const std::string& unit) { return {"deg" + unit.substr(3), 180.0 / M_PI}; }
+
+bool IsRadians(const std::string& unit) { return unit.compare(0, 3, "rad") == 0; }
+
+}  // namespace
 
 DisplayUnit OutputDisplayUnit(const RunConfig& config, const std::string& experiment,
                               const std::string& output) {
@@ -11,12 +32,56 @@ DisplayUnit OutputDisplayUnit(const RunConfig& config, const std::string& experi
   DisplayUnit shown{info.OutputUnit(info.OutputIndex(output)), 1.0};
   const ExperimentSpec* spec =
       config.FindExperiment(RecordName(experiment));
-  if (spec == nullptr || shown.unit.compare(0, 3, "rad") != 0) return shown;
-  const auto column = spec->outputs.find(output);
-  if (column == spec->outputs.end()) return shown;
-  const std::vector<std::string>& degrees = spec->degree_columns;
-  if (std::find(degrees.begin(), degrees.end(), column->second) == degrees.end()) return shown;
-  return {"deg" + shown.unit.substr(3), 180.0 / M_PI};
+  if (spec == nullptr || !IsRadians(shown.unit) || !spec->outputs.count(output)) return shown;
+  return ReadInDegrees(*spec, output).value_or(false) ? InDegrees(shown.unit) : shown;
+}
+
+std::string ParameterModelUnit(const ModelInfo& info, const std::string& name,
+                               std::string* channel) {
+  std::string base = name.substr(0, name.find('['));
+  std::string follows;
+  std::string unit;
+  if (base.compare(0, 3, "x0.") == 0) {
+    base = base.substr(3);
+    unit = info.StateUnit(info.StateIndex(base));
+    if (info.OutputIndex(base) >= 0) follows = base;
+  } else {
+    unit = info.ParameterUnit(info.ParameterIndex(base));
+    const auto at = info.parameter_channels.find(base);
+    if (at != info.parameter_channels.end()) follows = at->second;
+  }
+  if (channel != nullptr) *channel = follows;
+  return unit;
+}
+
+DisplayUnit ParameterDisplayUnit(const RunConfig& config, const std::string& name) {
+  const size_t open = name.find('[');
+  const std::string experiment =
+      open == std::string::npos ? "" : name.substr(open + 1, name.size() - open - 2);
+  std::string channel;
+  const DisplayUnit shown{ParameterModelUnit(config.model->info(), name, &channel), 1.0};
+  if (channel.empty() || !IsRadians(shown.unit)) return shown;
+  if (!experiment.empty()) {
+    const ExperimentSpec* spec = config.FindExperiment(RecordName(experiment));
+    return spec && ReadInDegrees(*spec, channel).value_or(false) ? InDegrees(shown.unit) : shown;
+  }
+  bool mapped = false;
+  for (const ExperimentSpec& spec : config.experiments) {
+    const std::optional<bool> degrees = ReadInDegrees(spec, channel);
+    if (degrees && !*degrees) return shown;
+    mapped = mapped || degrees.has_value();
+  }
+  return mapped ? InDegrees(shown.unit) : shown;
+}
+
+ParameterUnitOf ParameterUnits(const RunConfig& config) {
+  return [&config](const std::string& name) { return ParameterDisplayUnit(config, name); };
+}
+
+std::string ShownValue(double value, const DisplayUnit& unit, const char* format) {
+  char text[64];
+  std::snprintf(text, sizeof(text), format, unit.scale * value);
+  return unit.unit.empty() ? std::string(text) : std::string(text) + " " + unit.unit;
 }
 
 std::string WithUnit(const std::string& label, const std::string& unit) {

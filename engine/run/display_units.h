@@ -24,9 +24,31 @@ struct DisplayUnit {
 DisplayUnit OutputDisplayUnit(const RunConfig& config, const std::string& experiment,
                               const std::string& output);
 
+// Parameter `name` as the outputs name it: "delta_0" (shared), "delta_0[zz1]" (per
+// experiment) or "x0.psi[zz1]" (an initial state). Its model unit (ModelInfo::ParameterUnit,
+// StateUnit for an initial state), "rad" -> "deg" with scale 180/pi where the channel it is an
+// angle of (ModelInfo::parameter_channels; an initial state: its same-named output) is read in
+// degrees: in the named experiment, or, for a shared value, in every experiment that maps the
+// channel. Not stated: {"", 1}.
+DisplayUnit ParameterDisplayUnit(const RunConfig& config, const std::string& name);
+
+// The model's unit of parameter `name` (named as above; "" when not stated) and in `channel`
+// (may be null) the channel it is an angle of ("" for none).
+std::string ParameterModelUnit(const ModelInfo& info, const std::string& name,
+                               std::string* channel = nullptr);
+
 // The display unit of an output of an experiment (OutputDisplayUnit bound to a config).
 using DisplayUnitOf =
     std::function<DisplayUnit(const std::string& experiment, const std::string& output)>;
+
+// The display unit of a parameter (ParameterDisplayUnit bound to a config).
+using ParameterUnitOf = std::function<DisplayUnit(const std::string& name)>;
+
+// value x scale printed with `format`, then " unit" when the unit is stated: "2.5 deg".
+std::string ShownValue(double value, const DisplayUnit& unit, const char* format = "%.6g");
+
+// ParameterDisplayUnit bound to `config` (which must outlive it).
+ParameterUnitOf ParameterUnits(const RunConfig& config);
 
 // "psi [deg]", or the label alone without a unit.
 std::string WithUnit(const std::string& label, const std::string& unit);

@@ -72,7 +72,12 @@ struct N1Form {
     info.state_units = {"rad", "rad/s"};
     info.input_units = speed() ? std::vector<std::string>{"rad", "m/s"}
                                : std::vector<std::string>{"rad"};
-    return info;
+    // Non-dimensional with a length: T' = T U/L, K' = K L/U, n3' = n3 (U/L)^2.
+    std::vector<std::string> units = speed() ? std::vector<std::string>{"", "", ""}
+                                             : std::vector<std::string>{"s", "1/s", ""};
+    if (cubic) units.push_back(speed() ? "" : "s^2/rad^2");
+    units.push_back("rad");
+    return WithParameterUnits(info, units);
   }
 
   // s = U/L, or 1 without a length; NaN when the speed is not a positive number.

@@ -42,6 +42,14 @@ inline void YawRateRegressors(bool cubic, RegressionRecord* record,
   }
 }
 
+// Units of a Nomoto model's parameters (ModelInfo::parameter_units), and delta_0 as an angle
+// of the rudder: shown in degrees where the rudder column is read in degrees.
+inline ModelInfo WithParameterUnits(ModelInfo info, std::vector<std::string> units) {
+  info.parameter_units = std::move(units);
+  info.parameter_channels = {{"delta_0", "delta"}};
+  return info;
+}
+
 // Start value of the yaw rate r (state 1) from the measured heading rate when r itself is not
 // measured (first-order and Norrbin models; y = [psi, r]).
 inline void GuessYawRate(const double* y, const double* ydot, double* x) {
@@ -54,9 +62,10 @@ struct FirstOrder {
   static constexpr int kNumOutputs = 2;  // psi, r
 
   ModelInfo Info() const {
-    return {"nomoto_first_order", {"psi", "r"},  {"delta"}, {"psi", "r"}, {"T", "K", "delta_0"},
-            {10.0, 0.1, 0.0},     {true, false}, {},        {},           {"rad", "rad/s"},
-            {"rad", "rad/s"},     {"rad"}};
+    return WithParameterUnits({"nomoto_first_order", {"psi", "r"}, {"delta"}, {"psi", "r"},
+                               {"T", "K", "delta_0"}, {10.0, 0.1, 0.0}, {true, false}, {}, {},
+                               {"rad", "rad/s"}, {"rad", "rad/s"}, {"rad"}},
+                              {"s", "1/s", "rad"});
   }
 
   template <class T, class U>
@@ -97,18 +106,19 @@ struct Norrbin {
   static constexpr int kNumOutputs = 2;
 
   ModelInfo Info() const {
-    return {"nomoto_norrbin",
-            {"psi", "r"},
-            {"delta"},
-            {"psi", "r"},
-            {"T", "K", "alpha", "delta_0"},
-            {10.0, 0.1, 0.0, 0.0},
-            {true, false},
-            {},
-            {},
-            {"rad", "rad/s"},
-            {"rad", "rad/s"},
-            {"rad"}};
+    return WithParameterUnits({"nomoto_norrbin",
+                               {"psi", "r"},
+                               {"delta"},
+                               {"psi", "r"},
+                               {"T", "K", "alpha", "delta_0"},
+                               {10.0, 0.1, 0.0, 0.0},
+                               {true, false},
+                               {},
+                               {},
+                               {"rad", "rad/s"},
+                               {"rad", "rad/s"},
+                               {"rad"}},
+                              {"s", "1/s", "s^2/rad^2", "rad"});
   }
 
   template <class T, class U>
@@ -164,7 +174,7 @@ struct SecondOrder {
                    {"rad", "rad", "rad/s"},  // xi1, xi2 carry the rudder angle's unit
                    {"rad"}};
     info.positive_parameters = {true, true, true, false, false};  // the time constants
-    return info;
+    return WithParameterUnits(info, {"s", "s", "s", "1/s", "rad"});
   }
 
   template <class T, class U>

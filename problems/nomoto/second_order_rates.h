@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "engine/model/model.h"
+#include "problems/nomoto/nomoto_models.h"
 
 namespace vesselid::nomoto {
 
@@ -35,18 +36,19 @@ struct SecondOrderRates {
 
   ModelInfo Info() const {
     // Default: the seed 003 cargo vessel (T1 45 s, T2 6 s, K 0.09 1/s).
-    return {"nomoto_second_order_rates",
-            {"psi", "eta1", "eta2"},
-            {"delta"},
-            {"psi", "r"},
-            {"a1", "a0", "b", "T3", "delta_0"},
-            {1.0 / 45 + 1.0 / 6, 1.0 / 270, 0.09 / 270, 10.0, 0.0},
-            {true, false},
-            {},
-            {},
-            {"rad", "rad/s"},
-            {"rad", "rad/s", "rad/s^2"},  // r = eta1 + T3 eta2, eta2 = eta1'
-            {"rad"}};
+    return WithParameterUnits({"nomoto_second_order_rates",
+                               {"psi", "eta1", "eta2"},
+                               {"delta"},
+                               {"psi", "r"},
+                               {"a1", "a0", "b", "T3", "delta_0"},
+                               {1.0 / 45 + 1.0 / 6, 1.0 / 270, 0.09 / 270, 10.0, 0.0},
+                               {true, false},
+                               {},
+                               {},
+                               {"rad", "rad/s"},
+                               {"rad", "rad/s", "rad/s^2"},  // r = eta1 + T3 eta2, eta2 = eta1'
+                               {"rad"}},
+                              {"1/s", "1/s^2", "1/s^3", "s", "rad"});
   }
 
   template <class T, class U>

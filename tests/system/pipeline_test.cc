@@ -179,7 +179,7 @@ TEST_F(PipelineTest, EstimateOnItsBoundIsReported) {
   EXPECT_EQ(findings[0].kind, FindingKind::kAtBound);
   EXPECT_EQ(findings[0].parameter, "T");
   EXPECT_EQ(findings[0].threshold, 1.5);
-  EXPECT_NE(findings[0].message.find(" is at its upper bound 1.5: the data pull it further"),
+  EXPECT_NE(findings[0].message.find(" is at its upper bound 1.5 s: the data pull it further"),
             std::string::npos)
       << findings[0].message;
 }

@@ -171,7 +171,7 @@ TEST_F(ReportSummaryTest, HtmlSummaryIsSortableAndNamed) {
   EXPECT_NE(head.find("<th>worst of 20 runs</th>"), std::string::npos);
   EXPECT_NE(head.find("-30.40 (held7)"), std::string::npos);
   EXPECT_LT(head.find("<td>held7</td>"), head.find("<td>held1</td>"));
-  EXPECT_NE(head.find("on its upper bound -0.001; interval clipped to the bounds"),
+  EXPECT_NE(head.find("on its upper bound -0.001 1/s; interval clipped to the bounds"),
             std::string::npos);
   EXPECT_NE(head.find("lies outside every stage&#39;s estimate"), std::string::npos);
   EXPECT_NE(html.find("table.sortable"), std::string::npos);  // the sorting script

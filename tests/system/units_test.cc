@@ -3,7 +3,8 @@
 // the first-order Nomoto model is identified from it. With `degrees: [psi, r, delta]` every
 // trace, table and plot label says deg (deg/s for r) and shows degrees; with psi forgotten in
 // `degrees:` the run warns, naming the experiment and the column, in results, report.txt and
-// report.html; the correct config gets no such warning.
+// report.html; the correct config gets no such warning. The rudder bias follows the rudder's
+// unit.
 #include <unistd.h>
 
 #include <cmath>
@@ -14,6 +15,7 @@
 #include "engine/config/config.h"
 #include "engine/output/results_writer.h"
 #include "engine/diagnose/run_findings.h"
+#include "engine/run/display_units.h"
 #include "engine/run/pipeline.h"
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
@@ -156,6 +158,56 @@ TEST_F(UnitsTest, DegreesAreShownInDegrees) {
   const std::string html = ReadText(*dir_ / "deg" / "report.html");
   EXPECT_NE(html.find("<th>RMSE psi [deg]</th>"), std::string::npos);
   EXPECT_NE(html.find("<td>deg/s</td>"), std::string::npos);
+}
+
+// The rudder bias is an angle of the rudder: shown in degrees where the rudder column is read
+// in degrees (value, standard error, interval and bounds alike), kept in radians in
+// results.json with both units stated; in radians where the rudder column is.
+TEST_F(UnitsTest, RudderBiasIsShownInTheRuddersUnit) {
+  const RunResult result = Run("degrees: [psi, r, delta]", "bias");
+  ASSERT_FALSE(result.parameters.empty());
+  double bias = NAN;  // [rad]
+  for (const FinalParameter& f : result.parameters) {
+    if (f.name == "delta_0") bias = f.value;
+  }
+  // Truth 1.5 deg; the first-order model (no cubic damping) gets it within a degree.
+  EXPECT_NEAR(bias * kDeg, 1.5, 1.0);
+  const std::string text = ReadText(*dir_ / "bias" / "report.txt");
+  const size_t row = text.find("\n  delta_0 ");
+  ASSERT_NE(row, std::string::npos) << text;
+  const std::string line = text.substr(row + 1, text.find('\n', row + 1) - row - 1);
+  char shown[32];
+  std::snprintf(shown, sizeof(shown), "%.8g", bias * kDeg);
+  EXPECT_NE(line.find(shown), std::string::npos) << line;
+  EXPECT_NE(line.find(" deg "), std::string::npos) << line;
+  const std::string html = ReadText(*dir_ / "bias" / "report.html");
+  // Bounds +-0.5 rad as configured, shown in degrees.
+  EXPECT_NE(html.find("[-28.6479, 28.6479]"), std::string::npos);
+  const nlohmann::json results = nlohmann::json::parse(ReadText(*dir_ / "bias" / "results.json"));
+  bool stated = false;
+  for (const nlohmann::json& p : results.at("parameters")) {
+    if (p.at("name") != "delta_0") continue;
+    stated = true;
+    EXPECT_DOUBLE_EQ(p.at("value").get<double>(), bias);
+    EXPECT_EQ(p.at("unit"), "rad");
+    EXPECT_EQ(p.at("shown_unit"), "deg");
+    EXPECT_DOUBLE_EQ(p.at("shown_scale").get<double>(), kDeg);
+    EXPECT_EQ(p.at("bounds"), nlohmann::json::parse("[-0.5, 0.5]"));
+  }
+  EXPECT_TRUE(stated);
+  // Where the rudder is read in radians the bias is shown in radians; T keeps its seconds.
+  std::string config_text = kConfig;
+  config_text.replace(config_text.find("DEGREES"), 7, "degrees: [psi, r]");
+  std::ofstream(*dir_ / "radian_rudder.yaml") << config_text;
+  RunConfig config;
+  std::string error;
+  ASSERT_TRUE(LoadRunConfig((*dir_ / "radian_rudder.yaml").string(), "", DefaultRegistry(),
+                            &config, &error))
+      << error;
+  EXPECT_EQ(ParameterDisplayUnit(config, "delta_0").unit, "rad");
+  EXPECT_EQ(ParameterDisplayUnit(config, "delta_0").scale, 1.0);
+  EXPECT_EQ(ParameterDisplayUnit(config, "T").unit, "s");
+  EXPECT_EQ(ParameterDisplayUnit(config, "x0.psi[zz]").unit, "deg");
 }
 
 TEST_F(UnitsTest, HeadingInDegreesReadAsRadiansIsNamed) {
