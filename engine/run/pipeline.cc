@@ -4,6 +4,7 @@
 
 #include "engine/model/operating_range.h"
 #include "engine/run/display_units.h"
+#include "engine/run/integration_step.h"
 #include "engine/run/held_out.h"
 #include "engine/run/held_out_memo.h"
 #include "engine/run/input_noise_findings.h"
@@ -49,7 +50,8 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
                    TrajectoryCache* cache, HeldOutMemo* memo, StageResult* result,
                    std::string* error) {
   ExperimentOptions options = stage.experiment;
-  if (result->integration_step > 0.0) options.max_step = result->integration_step;
+  options.max_step =
+      IntegrationStep(StepUse::kStageValidation, stage.experiment.max_step, {result});
   // The stage and its start are validated alike: held-out runs estimate their own
   // per-experiment parameters in both (or hold them in both).
   HeldOutRequest request;
@@ -88,6 +90,7 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
     std::vector<std::string> diverged;
     std::string why;
     if (!ValidateVelocities(config, model, stage.validation, velocity_data, values, cache,
+                            VelocitySteps{stage.experiment.max_step, {result}},
                             &result->velocity_validation, &diverged, &why,
                             stage.options.local.num_threads)) {
       // An optional check: the run goes on without it.
@@ -259,14 +262,11 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
   if (config.has_final_validation && run.stopped_stage.empty()) {
     const FinalValidationConfig& v = config.final_validation;
     const ModelHandle& model = v.model ? *v.model : *config.model;
-    // The shortest step a stage needed for its estimate's dynamics serves the final values.
+    std::vector<const StageResult*> accepted_stages;
+    for (const StageResult& s : accepted) accepted_stages.push_back(&s);
     ExperimentOptions options = v.experiment;
-    for (const StageResult& s : accepted) {
-      if (s.integration_step > 0.0 &&
-          (options.max_step <= 0.0 || s.integration_step < options.max_step)) {
-        options.max_step = s.integration_step;
-      }
-    }
+    options.max_step =
+        IntegrationStep(StepUse::kFinalValidation, v.experiment.max_step, accepted_stages);
     // Per-experiment parameters come from the last accepted stage that estimated them.
     HeldOutPerRun per_run;
     for (const StageResult& s : accepted) {
@@ -294,6 +294,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
       std::vector<std::string> diverged;
       std::string why;
       if (!ValidateVelocities(config, model, v.experiments, velocity_data, final_values, &cache,
+                              VelocitySteps{v.experiment.max_step, accepted_stages},
                               &run.final_velocity_validation, &diverged, &why)) {
         run.final_velocity_validation.clear();
         diverged.clear();

@@ -3,13 +3,14 @@
 #include <cmath>
 
 #include "engine/base/parallel_for.h"
+#include "engine/run/integration_step.h"
 
 namespace vesselid {
 
 bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model, const std::vector<double>& p,
-                    const TrajectoryCache& cache, std::vector<RegressionRecord>* records,
-                    std::vector<ChannelMetrics>* metrics, std::vector<std::string>* diverged,
-                    std::string* error) {
+                    const TrajectoryCache& cache, const VelocitySteps& steps,
+                    std::vector<RegressionRecord>* records, std::vector<ChannelMetrics>* metrics,
+                    std::vector<std::string>* diverged, std::string* error) {
   const ModelInfo& info = model.info();
   const RegressionForm& form = *model.regression_form();
   const int ny = static_cast<int>(info.outputs.size());
@@ -26,9 +27,8 @@ bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model, const std
     spec.t_end = record.t.back();
     ExperimentOptions options;
     options.outputs = {info.outputs[record.grid_output]};
-    // Ten RK4 steps per grid interval: the grid may be slow (GNSS) next to fast internal
-    // dynamics (a propeller lag), and a step beyond ~2.8 time constants is unstable.
-    options.max_step = record.dt / 10.0;
+    options.max_step =
+        IntegrationStep(StepUse::kVelocityValidation, steps.configured, steps.stages, record.dt);
     Experiment experiment;
     const Trajectory& data = cache.at(record.record);
     RecordChannels& channels = record_channels.try_emplace(&data, data).first->second;
@@ -65,8 +65,8 @@ bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model, const std
 bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
                         const std::vector<std::string>& names, const RegressionDataOptions& data,
                         const std::vector<double>& p, TrajectoryCache* cache,
-                        std::vector<ChannelMetrics>* metrics, std::vector<std::string>* diverged,
-                        std::string* error, int threads) {
+                        const VelocitySteps& steps, std::vector<ChannelMetrics>* metrics,
+                        std::vector<std::string>* diverged, std::string* error, int threads) {
   metrics->clear();
   // The records are prepared in turn (preparing notes skipped segments in the cache), then
   // measured in parallel, each into its own slot, collected in the given order.
@@ -89,7 +89,8 @@ bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
     m.ok =
         OneStepMetrics(model, p, LeastSquaresOptions(), &records[i], "one-step", &m.one_step,
                        &m.error) &&
-        FreeRunMetrics(config, model, p, *cache, &records[i], &m.free_run, &m.diverged, &m.error);
+        FreeRunMetrics(config, model, p, *cache, steps, &records[i], &m.free_run, &m.diverged,
+                       &m.error);
   });
   for (int i = 0; i < count; ++i) {
     Measured& m = measured[i];

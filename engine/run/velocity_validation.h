@@ -13,6 +13,7 @@
 #include "engine/regression/least_squares.h"
 #include "engine/run/records.h"
 #include "engine/run/run_config.h"
+#include "engine/run/run_result.h"
 #include "engine/solve/metrics.h"
 
 namespace vesselid {
@@ -21,16 +22,24 @@ namespace vesselid {
 // fitted on), labelled "<experiment> one-step" and "<experiment> free-run". A record whose
 // free run diverges is left out of the free-run metrics with a line in `diverged`. The records
 // are measured on `threads` (0: the machine's cores) with the same results on any number.
+// What the free runs' integration step follows (integration_step.h, kVelocityValidation):
+// the configured `integration.max_step` and the stages whose values are validated.
+struct VelocitySteps {
+  double configured = 0.0;
+  std::vector<const StageResult*> stages;
+};
+
 bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
                         const std::vector<std::string>& names, const RegressionDataOptions& data,
                         const std::vector<double>& p, TrajectoryCache* cache,
-                        std::vector<ChannelMetrics>* metrics, std::vector<std::string>* diverged,
-                        std::string* error, int threads = 0);
+                        const VelocitySteps& steps, std::vector<ChannelMetrics>* metrics,
+                        std::vector<std::string>* diverged, std::string* error,
+                        int threads = 0);
 
 // Free-run part on prepared records (which get the model's internal states at p).
 bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model, const std::vector<double>& p,
-                    const TrajectoryCache& cache, std::vector<RegressionRecord>* records,
-                    std::vector<ChannelMetrics>* metrics, std::vector<std::string>* diverged,
-                    std::string* error);
+                    const TrajectoryCache& cache, const VelocitySteps& steps,
+                    std::vector<RegressionRecord>* records, std::vector<ChannelMetrics>* metrics,
+                    std::vector<std::string>* diverged, std::string* error);
 
 }  // namespace vesselid

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/run/integration_step.h"
+
 namespace vesselid {
 namespace {
 
@@ -44,7 +46,8 @@ bool CheckWorkSize(const RunConfig& config, TrajectoryCache* cache, std::string*
       if (!RecordSpecs(*spec, *data, 0.0, &pieces, error)) return false;
       double step = 0.0, steps = 0.0;
       for (const ExperimentSpec& piece : pieces) {
-        steps += StepsOver(data->t, piece.t_begin, piece.t_end, stage.experiment.max_step, &step);
+        steps += StepsOver(data->t, piece.t_begin, piece.t_end,
+                           IntegrationStep(StepUse::kStageFit, stage.experiment.max_step), &step);
       }
       if (!(steps > limit)) continue;
       char text[600];

@@ -93,9 +93,10 @@ class LeastSquaresPartitionPool : public PartitionPool {
     outcome.usable = true;
     // Free run of whole held-out records; a diverging one leaves the split's one-step metrics.
     std::vector<std::string> diverged;
-    if (method == "segments" && (!FreeRunMetrics(*config, *model, ls.values, cache, &validation,
-                                                 &outcome.free_run, &diverged, &error) ||
-                                 !diverged.empty())) {
+    if (method == "segments" &&
+        (!FreeRunMetrics(*config, *model, ls.values, cache, VelocitySteps{}, &validation,
+                         &outcome.free_run, &diverged, &error) ||
+         !diverged.empty())) {
       outcome.free_run.clear();
       outcome.message = diverged.empty() ? "free run: " + error : diverged.front();
     }
