@@ -57,10 +57,10 @@
 #include "engine/diagnose/run_findings.h"
 
 // Studies and outputs.
-#include "engine/output/report_html.h"
+#include "engine/report/report_html.h"
 #include "engine/output/results_json.h"
 #include "engine/output/results_text.h"
-#include "engine/output/results_writer.h"
+#include "engine/report/results_writer.h"
 #include "engine/study/study.h"
 
 // Config files and model families.

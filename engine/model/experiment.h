@@ -130,6 +130,15 @@ struct ExperimentOptions {
   std::uint64_t max_steps = WorkLimits().integration_steps;
 };
 
+// Whether two option sets build the same simulations (a state guess is the model's: set in
+// both or in neither counts as the same).
+inline bool SameSimulation(const ExperimentOptions& x, const ExperimentOptions& y) {
+  return x.outputs == y.outputs && x.max_step == y.max_step &&
+         x.normalize_by_length == y.normalize_by_length &&
+         static_cast<bool>(x.state_guess) == static_cast<bool>(y.state_guess) &&
+         x.rate_window == y.rate_window && x.max_steps == y.max_steps;
+}
+
 // Largest change of an unwrapped angle output between two samples: beyond it the direction
 // of the turn is ambiguous, and BuildExperiment refuses the record (or its `wrap` is needed).
 inline constexpr double kMaxAngleStep = M_PI / 2;

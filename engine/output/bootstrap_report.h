@@ -1,5 +1,5 @@
 // A regression stage's bootstrap (BootstrapSummary, group_bootstrap.h) as results.json,
-// report.txt and report.html show it: per parameter the estimate, bootstrap SE and percentile
+// report.txt and report.html (report/bootstrap_html.h) show it: per parameter the estimate, bootstrap SE and percentile
 // 95 % interval, per lasso coefficient the share of replicates where it is exactly zero.
 #pragma once
 
@@ -15,11 +15,11 @@ namespace vesselid {
 // or {"runs": 0, "message"} when it could not run.
 nlohmann::json BootstrapToJson(const BootstrapSummary& bootstrap);
 
+// The stage's estimate of parameter `name` (NaN when it has none).
+double EstimateValue(const StageResult& stage, const std::string& name);
+
 // Lines of report.txt ("  bootstrap: ...", one per parameter and per unstable coefficient);
 // empty without a bootstrap.
 std::string BootstrapText(const StageResult& stage);
-
-// report.html: a paragraph and two tables; empty without a bootstrap.
-std::string BootstrapHtml(const StageResult& stage);
 
 }  // namespace vesselid

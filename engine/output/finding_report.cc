@@ -1,7 +1,6 @@
 #include "engine/output/finding_report.h"
 
 #include "engine/base/json_number.h"
-#include "engine/output/report_table_cells.h"
 
 namespace vesselid {
 
@@ -34,18 +33,13 @@ std::vector<Finding> AllFindings(const RunResult& result) {
   return all;
 }
 
-namespace {
-
 int CountOf(const std::vector<Finding>& findings, FindingSeverity severity) {
   int n = 0;
   for (const Finding& f : findings) n += f.severity == severity;
   return n;
 }
 
-const FindingSeverity kOrder[] = {FindingSeverity::kFailure, FindingSeverity::kWarning,
-                                  FindingSeverity::kInfo};
-
-const char* Heading(FindingSeverity severity) {
+const char* SeverityHeading(FindingSeverity severity) {
   switch (severity) {
     case FindingSeverity::kFailure: return "failures";
     case FindingSeverity::kWarning: return "warnings";
@@ -53,8 +47,6 @@ const char* Heading(FindingSeverity severity) {
   }
   return "";
 }
-
-}  // namespace
 
 std::string VerdictLine(Verdict verdict, const std::vector<Finding>& findings) {
   return std::string("verdict: ") + VerdictToString(verdict) + " (" +
@@ -66,37 +58,14 @@ std::string VerdictLine(Verdict verdict, const std::vector<Finding>& findings) {
 std::string FindingsText(const std::vector<Finding>& findings, bool info,
                          const std::string& indent) {
   std::string out;
-  for (FindingSeverity severity : kOrder) {
+  for (FindingSeverity severity : kSeverityOrder) {
     if (severity == FindingSeverity::kInfo && !info) continue;
     const int n = CountOf(findings, severity);
     if (n == 0) continue;
-    out += indent + Heading(severity) + " (" + std::to_string(n) + ")\n";
+    out += indent + SeverityHeading(severity) + " (" + std::to_string(n) + ")\n";
     for (const Finding& f : findings) {
       if (f.severity == severity) out += indent + "  " + DescribeFinding(f) + "\n";
     }
-  }
-  return out;
-}
-
-std::string FindingsHtml(const std::vector<Finding>& findings) {
-  std::string out;
-  for (FindingSeverity severity : kOrder) {
-    const int n = CountOf(findings, severity);
-    if (n == 0) continue;
-    out += "<h4>" + std::string(Heading(severity)) + " (" + std::to_string(n) +
-           ")</h4>\n<ul class=\"findings " + FindingSeverityToString(severity) + "\">\n";
-    for (const Finding& f : findings) {
-      if (f.severity != severity) continue;
-      std::string where;
-      if (!f.stage.empty()) where += f.stage == "final" ? "final" : "stage " + f.stage;
-      if (!f.experiment.empty()) where += (where.empty() ? "" : ", ") + f.experiment;
-      if (!f.parameter.empty()) where += (where.empty() ? "" : ", ") + f.parameter;
-      if (!f.output.empty()) where += (where.empty() ? "" : ", ") + f.output;
-      out += "<li><code>" + std::string(FindingKindToString(f.kind)) + "</code> " +
-             (where.empty() ? "" : "<em>" + HtmlEscape(where) + "</em>: ") + HtmlEscape(f.message) +
-             (f.count > 1 ? " (x" + std::to_string(f.count) + ")" : "") + "</li>\n";
-    }
-    out += "</ul>\n";
   }
   return out;
 }

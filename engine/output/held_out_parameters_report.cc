@@ -6,29 +6,11 @@
 #include <map>
 
 #include "engine/base/json_number.h"
-#include "engine/output/report_table_cells.h"
 
 namespace vesselid {
 namespace {
 
 constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
-
-// One held-out run: its estimates and, per output, fit % and MAE with and without them
-// (NaN where that simulation diverged).
-struct RunRow {
-  std::string experiment;
-  std::vector<const Estimate*> estimates;
-  std::string diverged_with, diverged_without;
-  std::map<std::string, std::pair<double, double>> fit, mae;  // output: (with, without)
-};
-
-struct Table {
-  std::vector<std::string> outputs;  // order of first appearance
-  std::vector<RunRow> rows;
-  // Per output the mean fit % over the runs where both simulations ran, and their count.
-  std::map<std::string, std::pair<double, double>> mean_fit;
-  std::map<std::string, int> counted;
-};
 
 const ExperimentFit* FindFit(const std::vector<ExperimentFit>& fits, const std::string& name) {
   for (const ExperimentFit& fit : fits) {
@@ -37,10 +19,26 @@ const ExperimentFit* FindFit(const std::vector<ExperimentFit>& fits, const std::
   return nullptr;
 }
 
-Table MakeTable(const HeldOutParameters& parameters, const std::vector<ExperimentFit>& with) {
-  Table table;
+std::string Format(const char* format, double value) {
+  if (!std::isfinite(value)) return "-";
+  char text[64];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
+}
+
+// "psi fit 15.5 % without delta_0, 94.8 % with"
+std::string FitPhrase(const std::string& output, double with, double without,
+                      const std::string& names) {
+  return output + " fit " + Format("%.1f", without) + " % without " + names + ", " +
+         Format("%.1f", with) + " % with";
+}
+
+}  // namespace
+
+HeldOutParametersTable MakeHeldOutParametersTable(const HeldOutParameters& parameters, const std::vector<ExperimentFit>& with) {
+  HeldOutParametersTable table;
   for (const ExperimentFit& fit : with) {
-    RunRow row;
+    HeldOutRunRow row;
     row.experiment = fit.experiment;
     for (const Estimate& e : parameters.estimates) {
       if (e.experiment == fit.experiment) row.estimates.push_back(&e);
@@ -76,27 +74,11 @@ Table MakeTable(const HeldOutParameters& parameters, const std::vector<Experimen
   return table;
 }
 
-std::string Names(const HeldOutParameters& parameters) {
+std::string HeldOutParameterNames(const HeldOutParameters& parameters) {
   std::string names;
   for (const std::string& p : parameters.parameters) names += (names.empty() ? "" : ", ") + p;
   return names;
 }
-
-std::string Format(const char* format, double value) {
-  if (!std::isfinite(value)) return "-";
-  char text[64];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
-}
-
-// "psi fit 15.5 % without delta_0, 94.8 % with"
-std::string FitPhrase(const std::string& output, double with, double without,
-                      const std::string& names) {
-  return output + " fit " + Format("%.1f", without) + " % without " + names + ", " +
-         Format("%.1f", with) + " % with";
-}
-
-}  // namespace
 
 nlohmann::json HeldOutParametersToJson(const HeldOutParameters& parameters,
                                        const std::vector<ExperimentFit>& with) {
@@ -105,7 +87,7 @@ nlohmann::json HeldOutParametersToJson(const HeldOutParameters& parameters,
             {"parameters", parameters.parameters},
             {"held_at", "training_mean"}};
   if (!parameters.fitted) return j;
-  const Table table = MakeTable(parameters, with);
+  const HeldOutParametersTable table = MakeHeldOutParametersTable(parameters, with);
   json runs = json::array();
   auto pairs = [](const std::map<std::string, std::pair<double, double>>& values) {
     json out = json::object();
@@ -114,7 +96,7 @@ nlohmann::json HeldOutParametersToJson(const HeldOutParameters& parameters,
     }
     return out;
   };
-  for (const RunRow& row : table.rows) {
+  for (const HeldOutRunRow& row : table.rows) {
     json estimates = json::object();
     for (const Estimate* e : row.estimates) {
       estimates[e->name.substr(0, e->name.find('['))] = {{"value", e->value},
@@ -141,16 +123,16 @@ std::string HeldOutParametersText(const HeldOutParameters& parameters,
                                   const std::vector<ExperimentFit>& with,
                                   const std::string& indent, const ParameterUnitOf& unit_of) {
   if (!parameters.active()) return "";
-  const std::string names = Names(parameters);
+  const std::string names = HeldOutParameterNames(parameters);
   if (!parameters.fitted) {
     return indent + "per-experiment parameters (" + names +
            ") held at the training runs' mean on the held-out runs (per_experiment: hold)\n";
   }
-  const Table table = MakeTable(parameters, with);
+  const HeldOutParametersTable table = MakeHeldOutParametersTable(parameters, with);
   std::string out = indent + "held-out runs with their own " + names +
                     " (estimated per run, the other parameters held; per_experiment: fit); "
                     "without: " + names + " held at the training runs' mean:\n";
-  for (const RunRow& row : table.rows) {
+  for (const HeldOutRunRow& row : table.rows) {
     std::string line = indent + "  " + row.experiment + ":";
     for (const Estimate* e : row.estimates) {
       const DisplayUnit unit = unit_of ? unit_of(e->name) : DisplayUnit{};
@@ -178,66 +160,6 @@ std::string HeldOutParametersText(const HeldOutParameters& parameters,
            "\n";
   }
   return out;
-}
-
-std::string HeldOutParametersHtml(const HeldOutParameters& parameters,
-                                  const std::vector<ExperimentFit>& with,
-                                  const ParameterUnitOf& unit_of) {
-  if (!parameters.active()) return "";
-  const std::string names = Names(parameters);
-  if (!parameters.fitted) {
-    return "<p>Per-experiment parameters (" + HtmlEscape(names) +
-           ") held at the training runs' mean on the held-out runs (per_experiment: hold).</p>\n";
-  }
-  const Table table = MakeTable(parameters, with);
-  std::string header = "<tr>" + Th("held-out run");
-  std::vector<DisplayUnit> units;  // one per parameter, as for a shared value
-  for (const std::string& p : parameters.parameters) {
-    units.push_back(unit_of ? unit_of(p) : DisplayUnit{});
-    header += Th(WithUnit(p, units.back().unit)) + Th("std. error");
-  }
-  for (const std::string& output : table.outputs) {
-    header += Th(output + " fit % without") + Th(output + " fit % with");
-  }
-  std::string rows;
-  for (const RunRow& row : table.rows) {
-    rows += "<tr>" + Td(row.experiment);
-    for (size_t k = 0; k < parameters.parameters.size(); ++k) {
-      const Estimate* found = nullptr;
-      for (const Estimate* e : row.estimates) {
-        if (e->name.substr(0, e->name.find('[')) == parameters.parameters[k]) found = e;
-      }
-      const double scale = units[k].scale;
-      rows += found == nullptr
-                  ? "<td></td><td></td>"
-                  : Num(HtmlNumber(scale * found->value, "%.6g")) +
-                        Num(found->undetermined ? "undetermined"
-                                                : HtmlNumber(scale * found->std_error, "%.2g"));
-    }
-    for (const std::string& output : table.outputs) {
-      const auto at = row.fit.find(output);
-      const bool known = at != row.fit.end();
-      rows += Num(known ? HtmlNumber(at->second.second, "%.2f") : "") +
-              Num(known ? HtmlNumber(at->second.first, "%.2f") : "");
-    }
-    rows += "</tr>\n";
-  }
-  rows += "<tr>" + Td("mean");
-  for (size_t k = 0; k < parameters.parameters.size(); ++k) rows += "<td></td><td></td>";
-  for (const std::string& output : table.outputs) {
-    const auto at = table.mean_fit.find(output);
-    const bool known = at != table.mean_fit.end();
-    rows += Num(known ? HtmlNumber(at->second.second, "%.2f") : "") +
-            Num(known ? HtmlNumber(at->second.first, "%.2f") : "");
-  }
-  rows += "</tr>\n";
-  return "<h4>Per-experiment parameters of the held-out runs</h4>\n<p>Each held-out run "
-         "estimates its own " +
-         HtmlEscape(names) +
-         " with the other parameters held; fit % without them (held at the training runs' mean) and "
-         "with them.</p>\n" +
-         Fold("<table class=\"held-out-parameters\">\n" + header + "</tr>\n" + rows + "</table>\n",
-              table.rows.size(), std::to_string(table.rows.size()) + " held-out runs", 24);
 }
 
 }  // namespace vesselid

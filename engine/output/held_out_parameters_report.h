@@ -1,11 +1,13 @@
 // The per-experiment parameters of held-out runs (HeldOutParameters, held_out.h) as
-// results.json, report.txt and report.html show them: per held-out run each parameter's
-// estimate with its standard error, and per output the fit % without them (held at their
-// start) beside the fit with them, so that the user sees what, e.g., a rudder bias per run
+// results.json and report.txt show them (report.html: report/held_out_parameters_html.h): per
+// held-out run each parameter's estimate with its standard error, and per output the fit %
+// without them (held at the training runs' mean) beside the fit with them, so that the user sees what, e.g., a rudder bias per run
 // buys: "zz3: delta_0 = 0.041 ± 0.0003; psi fit 15.5 % without delta_0, 94.8 % with".
 #pragma once
 
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/run/display_units.h"
@@ -14,6 +16,29 @@
 #include "nlohmann/json.hpp"
 
 namespace vesselid {
+
+// One held-out run: its estimates and, per output, fit % and MAE with and without them
+// (NaN where that simulation diverged).
+struct HeldOutRunRow {
+  std::string experiment;
+  std::vector<const Estimate*> estimates;
+  std::string diverged_with, diverged_without;
+  std::map<std::string, std::pair<double, double>> fit, mae;  // output: (with, without)
+};
+
+struct HeldOutParametersTable {
+  std::vector<std::string> outputs;  // order of first appearance
+  std::vector<HeldOutRunRow> rows;
+  // Per output the mean fit % over the runs where both simulations ran, and their count.
+  std::map<std::string, std::pair<double, double>> mean_fit;
+  std::map<std::string, int> counted;
+};
+
+HeldOutParametersTable MakeHeldOutParametersTable(const HeldOutParameters& parameters,
+                                                  const std::vector<ExperimentFit>& with);
+
+// "delta_0, x_0": the per-experiment parameters' names.
+std::string HeldOutParameterNames(const HeldOutParameters& parameters);
 
 // {"per_experiment": "fit" | "hold", "parameters": [...], "runs": [{"experiment",
 // "estimates": {name: {value, std_error, start, lower, upper, undetermined}},
@@ -27,10 +52,5 @@ nlohmann::json HeldOutParametersToJson(const HeldOutParameters& parameters,
 std::string HeldOutParametersText(const HeldOutParameters& parameters,
                                   const std::vector<ExperimentFit>& with,
                                   const std::string& indent, const ParameterUnitOf& unit_of = {});
-
-// A table of report.html (estimates, SE, fit % without and with per output, mean row).
-std::string HeldOutParametersHtml(const HeldOutParameters& parameters,
-                                  const std::vector<ExperimentFit>& with,
-                                  const ParameterUnitOf& unit_of = {});
 
 }  // namespace vesselid

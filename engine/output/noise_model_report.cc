@@ -5,13 +5,10 @@
 
 #include "engine/base/json_number.h"
 #include "engine/run/display_units.h"
-#include "engine/output/report_tables.h"
 
 namespace vesselid {
-namespace {
-
 // The unit of output `output` as the stage's first experiment comparing it reads it.
-DisplayUnit UnitOf(const RunConfig& config, const StageResult& stage, const std::string& output) {
+DisplayUnit NoiseUnitOf(const RunConfig& config, const StageResult& stage, const std::string& output) {
   for (const ExperimentFit& fit : stage.summary.fits) {
     for (const ChannelMetrics& m : fit.channels) {
       if (m.output == output) return OutputDisplayUnit(config, fit.experiment, output);
@@ -20,12 +17,10 @@ DisplayUnit UnitOf(const RunConfig& config, const StageResult& stage, const std:
   return OutputDisplayUnit(config, "", output);
 }
 
-std::string Settling(const NoiseModel& noise) {
+std::string NoiseSettling(const NoiseModel& noise) {
   return std::to_string(noise.iterations) + " re-solve" + (noise.iterations == 1 ? "" : "s") +
          (noise.converged ? ", settled" : ", did not settle");
 }
-
-}  // namespace
 
 nlohmann::json NoiseModelToJson(const RunConfig& config, const StageResult& stage) {
   const NoiseModel& noise = stage.noise_model;
@@ -33,7 +28,7 @@ nlohmann::json NoiseModelToJson(const RunConfig& config, const StageResult& stag
   nlohmann::json sigma = nlohmann::json::object(), units = nlohmann::json::object(),
                  samples = nlohmann::json::object();
   for (size_t k = 0; k < noise.outputs.size(); ++k) {
-    const DisplayUnit unit = UnitOf(config, stage, noise.outputs[k]);
+    const DisplayUnit unit = NoiseUnitOf(config, stage, noise.outputs[k]);
     sigma[noise.outputs[k]] = JsonNumber(noise.sigma[k] * unit.scale);
     units[noise.outputs[k]] = unit.unit;
     samples[noise.outputs[k]] = noise.samples[k];
@@ -48,34 +43,14 @@ std::string NoiseModelText(const RunConfig& config, const StageResult& stage) {
   if (!noise.active()) return "";
   std::string text = "  noise model: sigma";
   for (size_t k = 0; k < noise.outputs.size(); ++k) {
-    const DisplayUnit unit = UnitOf(config, stage, noise.outputs[k]);
+    const DisplayUnit unit = NoiseUnitOf(config, stage, noise.outputs[k]);
     char item[160];
     std::snprintf(item, sizeof(item), "%s %s %.4g%s%s", k == 0 ? "" : ",",
                   noise.outputs[k].c_str(), noise.sigma[k] * unit.scale,
                   unit.unit.empty() ? "" : " ", unit.unit.c_str());
     text += item;
   }
-  return text + " (weights 1/sigma; " + Settling(noise) + ")\n";
-}
-
-std::string NoiseModelHtml(const RunConfig& config, const StageResult& stage) {
-  const NoiseModel& noise = stage.noise_model;
-  if (!noise.active()) return "";
-  std::ostringstream html;
-  html << "<h3>Noise model (weights 1/&sigma; per channel)</h3>\n<p>Maximum likelihood for "
-          "Gaussian noise of unknown variance per output channel: "
-       << HtmlEscape(Settling(noise))
-       << ". The standard errors use these weights.</p>\n<table>\n<tr><th>output</th>"
-          "<th>&sigma;</th><th>unit</th><th>samples</th></tr>\n";
-  for (size_t k = 0; k < noise.outputs.size(); ++k) {
-    const DisplayUnit unit = UnitOf(config, stage, noise.outputs[k]);
-    html << "<tr><td>" << HtmlEscape(noise.outputs[k]) << "</td><td class=\"num\">"
-         << HtmlNumber(noise.sigma[k] * unit.scale, "%.4g") << "</td><td>"
-         << HtmlEscape(unit.unit) << "</td><td class=\"num\">" << noise.samples[k]
-         << "</td></tr>\n";
-  }
-  html << "</table>\n";
-  return html.str();
+  return text + " (weights 1/sigma; " + NoiseSettling(noise) + ")\n";
 }
 
 }  // namespace vesselid

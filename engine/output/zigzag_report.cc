@@ -4,19 +4,22 @@
 #include <cstdio>
 
 #include "engine/base/json_number.h"
-#include "engine/output/report_table_cells.h"
 
 namespace vesselid {
 namespace {
 
 constexpr double kToDegrees = 180.0 / M_PI;
 
-constexpr char kDefinitions[] =
+}  // namespace
+
+const char kZigzagDefinitions[] =
     "IMO MSC.137(76): overshoot = largest heading change beyond psi_z after a rudder reversal "
     "(first: after the first reversal, second: after the second); time to the first check = "
     "first rudder execute to the heading change reaching psi_z; period = mean time between "
     "executes of the same sign. Simulated: the simulated heading under the recorded rudder, "
     "its executes where it reaches +-psi_z.";
+
+namespace {
 
 nlohmann::json FiguresToJson(const ZigzagFigures& f) {
   return {{"first_overshoot_deg", JsonNumber(f.first_overshoot * kToDegrees)},
@@ -33,12 +36,12 @@ std::string Number(double value, const char* format) {
   return text;
 }
 
-std::string Test(const ZigzagRun& run) {
+}  // namespace
+
+std::string ZigzagTestLabel(const ZigzagRun& run) {
   return Number(run.test.rudder * kToDegrees, "%.1f") + "/" +
          Number(run.test.heading * kToDegrees, "%.1f");
 }
-
-}  // namespace
 
 nlohmann::json ZigzagRunsToJson(const std::vector<ZigzagRun>& runs) {
   nlohmann::json j = nlohmann::json::array();
@@ -56,7 +59,7 @@ nlohmann::json ZigzagRunsToJson(const std::vector<ZigzagRun>& runs) {
 
 std::string ZigzagRunsText(const std::vector<ZigzagRun>& runs) {
   if (runs.empty()) return "";
-  std::string out = "\nzigzag figures, measured / simulated (" + std::string(kDefinitions) + ")\n";
+  std::string out = "\nzigzag figures, measured / simulated (" + std::string(kZigzagDefinitions) + ")\n";
   char line[320];
   std::snprintf(line, sizeof(line), "  %-12s %-20s %-9s %-11s %17s %17s %17s %17s\n", "stage",
                 "experiment", "data", "test [deg]", "1st overshoot deg", "2nd overshoot deg",
@@ -68,7 +71,7 @@ std::string ZigzagRunsText(const std::vector<ZigzagRun>& runs) {
     };
     std::snprintf(
         line, sizeof(line), "  %-12s %-20s %-9s %-11s %17s %17s %17s %17s\n", run.stage.c_str(),
-        run.experiment.c_str(), run.held_out ? "held out" : "training", Test(run).c_str(),
+        run.experiment.c_str(), run.held_out ? "held out" : "training", ZigzagTestLabel(run).c_str(),
         pair(run.measured.first_overshoot, run.simulated.first_overshoot, kToDegrees, "%.2f")
             .c_str(),
         pair(run.measured.second_overshoot, run.simulated.second_overshoot, kToDegrees, "%.2f")
@@ -79,33 +82,6 @@ std::string ZigzagRunsText(const std::vector<ZigzagRun>& runs) {
     out += line;
   }
   return out;
-}
-
-std::string ZigzagRunsHtml(const std::vector<ZigzagRun>& runs) {
-  if (runs.empty()) return "";
-  std::string rows;
-  for (const ZigzagRun& run : runs) {
-    rows += "<tr>" + Td(run.stage) + Td(run.experiment) +
-            Td(run.held_out ? "held out" : "training") + Td(Test(run)) +
-            Num(HtmlNumber(run.measured.first_overshoot * kToDegrees, "%.2f")) +
-            Num(HtmlNumber(run.simulated.first_overshoot * kToDegrees, "%.2f")) +
-            Num(HtmlNumber(run.measured.second_overshoot * kToDegrees, "%.2f")) +
-            Num(HtmlNumber(run.simulated.second_overshoot * kToDegrees, "%.2f")) +
-            Num(HtmlNumber(run.measured.time_to_first_check, "%.1f")) +
-            Num(HtmlNumber(run.simulated.time_to_first_check, "%.1f")) +
-            Num(HtmlNumber(run.measured.period, "%.1f")) +
-            Num(HtmlNumber(run.simulated.period, "%.1f")) + "</tr>\n";
-  }
-  const std::string table =
-      "<div class=\"scroll\"><table class=\"zigzag\">\n<tr>" + Th("stage") + Th("experiment") +
-      Th("data") + Th("δz/ψz [deg]") + Th("1st overshoot measured [deg]") +
-      Th("1st overshoot simulated [deg]") + Th("2nd overshoot measured [deg]") +
-      Th("2nd overshoot simulated [deg]") + Th("time to 1st check measured [s]") +
-      Th("time to 1st check simulated [s]") + Th("period measured [s]") +
-      Th("period simulated [s]") + "</tr>\n" + rows + "</table></div>\n";
-  return "<section id=\"zigzag\">\n<h2>Zigzag figures</h2>\n<p>" + HtmlEscape(kDefinitions) +
-         "</p>\n" + Fold(table, runs.size(), std::to_string(runs.size()) + " zigzag fits", 24) +
-         "</section>\n";
 }
 
 }  // namespace vesselid

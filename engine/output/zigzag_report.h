@@ -1,5 +1,5 @@
 // Zigzag figures of a run (RunResult::zigzags, zigzag_figures.h) as results.json, report.txt
-// and report.html show them: per zigzag record the test (delta_z/psi_z), and measured against
+// and report.html show them (report/zigzag_html.h): per zigzag record the test (delta_z/psi_z), and measured against
 // simulated the first and second overshoot angles (deg), the time to the first heading check
 // and the period (s), IMO MSC.137(76) definitions.
 #pragma once
@@ -17,10 +17,13 @@ namespace vesselid {
 //   "period_s", "executes_s"}}]; unknown figures are null.
 nlohmann::json ZigzagRunsToJson(const std::vector<ZigzagRun>& runs);
 
+// The figures' definitions (IMO MSC.137(76)), as the reports state them.
+extern const char kZigzagDefinitions[];
+
+// The test as flown, "20.0/5.2" (delta_z/psi_z in degrees).
+std::string ZigzagTestLabel(const ZigzagRun& run);
+
 // A report.txt section; empty without zigzags.
 std::string ZigzagRunsText(const std::vector<ZigzagRun>& runs);
-
-// A report.html section with its table; empty without zigzags.
-std::string ZigzagRunsHtml(const std::vector<ZigzagRun>& runs);
 
 }  // namespace vesselid

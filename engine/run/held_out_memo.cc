@@ -11,13 +11,8 @@ namespace {
 // model's: set in both or in neither), and the same solver settings for the runs' own
 // unknowns (threads aside: results do not depend on them).
 bool SameSettings(const HeldOutRequest& a, const HeldOutRequest& b) {
-  const ExperimentOptions &x = a.options, &y = b.options;
   const LocalSolveOptions &lx = a.local, &ly = b.local;
-  return x.outputs == y.outputs && x.max_step == y.max_step &&
-         x.normalize_by_length == y.normalize_by_length &&
-         static_cast<bool>(x.state_guess) == static_cast<bool>(y.state_guess) &&
-         x.rate_window == y.rate_window && x.max_steps == y.max_steps &&
-         lx.trust_region == ly.trust_region && lx.linear_solver == ly.linear_solver &&
+  return SameSimulation(a.options, b.options) && lx.trust_region == ly.trust_region && lx.linear_solver == ly.linear_solver &&
          lx.max_iterations == ly.max_iterations && lx.function_tolerance == ly.function_tolerance &&
          lx.gradient_tolerance == ly.gradient_tolerance &&
          lx.parameter_tolerance == ly.parameter_tolerance &&

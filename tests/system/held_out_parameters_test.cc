@@ -12,7 +12,7 @@
 #include <string>
 
 #include "engine/config/config.h"
-#include "engine/output/report_html.h"
+#include "engine/report/report_html.h"
 #include "engine/output/results_json.h"
 #include "engine/output/results_text.h"
 #include "engine/output/stage_result_archive.h"

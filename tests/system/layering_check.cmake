@@ -1,9 +1,10 @@
 # The layering rule of engine/: a file includes only its own folder and the folders below it.
 #
 #   base < data < model < solve < regression < step_regression < run < diagnose < {study, output}
-#        < config < engine/vesselid.h (the public API) < problems < cli
+#        < report < config < engine/vesselid.h (the public API) < problems < cli
 #
-# study and output are siblings (neither includes the other). Only the command line may
+# study and output are siblings (neither includes the other); output holds the result files
+# (results.json, report.txt, traces, checkpoints), report the HTML report above them. Only the command line may
 # include problems/. Run as `cmake -DROOT=<source tree> -P layering_check.cmake`; every
 # upward include is listed as file:line and the script fails if there is one.
 if(NOT ROOT)
@@ -20,10 +21,11 @@ set(rank_run 6)
 set(rank_diagnose 7)
 set(rank_study 8)
 set(rank_output 8)
-set(rank_config 9)
-set(rank_api 10)       # engine/vesselid.h
-set(rank_problems 11)
-set(rank_cli 12)
+set(rank_report 9)
+set(rank_config 10)
+set(rank_api 11)       # engine/vesselid.h
+set(rank_problems 12)
+set(rank_cli 13)
 
 # The layer of a path relative to ROOT ("" when it belongs to none).
 function(layer_of path out)

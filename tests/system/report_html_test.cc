@@ -2,7 +2,7 @@
 // awkward names (with and without gnuplot), and the shipped Erunsal hierarchy end to end: every
 // plot results.json implies is in report.html and renders in headless Chromium.
 #include "engine/config/config.h"
-#include "engine/output/report_html.h"
+#include "engine/report/report_html.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -12,11 +12,11 @@
 #include <random>
 #include <set>
 
-#include "engine/output/base64.h"
-#include "engine/output/decimation.h"
+#include "engine/report/base64.h"
+#include "engine/report/decimation.h"
 #include "engine/base/parallel_for.h"
-#include "engine/output/report_figures.h"
-#include "engine/output/started_gnuplots.h"
+#include "engine/report/report_figures.h"
+#include "engine/report/started_gnuplots.h"
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
 #include "problems/registry.h"

@@ -13,8 +13,8 @@
 #include <sstream>
 
 #include "engine/config/config.h"
-#include "engine/output/report_html.h"
-#include "engine/output/report_plots.h"
+#include "engine/report/report_html.h"
+#include "engine/report/report_plots.h"
 #include "engine/output/results_json.h"
 #include "engine/output/results_text.h"
 #include "engine/output/run_fit_table.h"

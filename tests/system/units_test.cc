@@ -13,7 +13,7 @@
 #include <iterator>
 
 #include "engine/config/config.h"
-#include "engine/output/results_writer.h"
+#include "engine/report/results_writer.h"
 #include "engine/diagnose/run_findings.h"
 #include "engine/run/display_units.h"
 #include "engine/run/pipeline.h"

@@ -4,6 +4,7 @@
 // the coloured-residual warning (not for noise-free data or failed fits), and report.txt's
 // summary of many segments.
 #include "engine/output/residual_report.h"
+#include "engine/report/residual_html.h"
 
 #include <cmath>
 #include <random>

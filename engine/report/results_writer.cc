@@ -1,4 +1,4 @@
-#include "engine/output/results_writer.h"
+#include "engine/report/results_writer.h"
 
 #include <filesystem>
 #include <future>
@@ -7,7 +7,7 @@
 #include "engine/base/parallel_for.h"
 #include "engine/data/trajectory.h"
 #include "engine/run/display_units.h"
-#include "engine/output/report_html.h"
+#include "engine/report/report_html.h"
 #include "engine/output/results_json.h"
 #include "engine/output/results_text.h"
 #include "engine/output/step_regression_writer.h"

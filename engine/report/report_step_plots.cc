@@ -4,7 +4,7 @@
 #include <limits>
 #include <sstream>
 
-#include "engine/output/report_plots.h"
+#include "engine/report/report_plots.h"
 
 namespace vesselid {
 namespace {

@@ -1,12 +1,13 @@
-#include "engine/output/report_summary.h"
+#include "engine/report/report_summary.h"
 
 #include <cmath>
 
 #include "engine/output/finding_report.h"
 #include "engine/output/parameter_summary.h"
-#include "engine/output/report_table_cells.h"
-#include "engine/output/report_tables.h"
 #include "engine/output/shown_parameters.h"
+#include "engine/report/finding_html.h"
+#include "engine/report/report_table_cells.h"
+#include "engine/report/report_tables.h"
 
 namespace vesselid {
 namespace {

@@ -6,8 +6,8 @@
 #include <map>
 #include <set>
 
-#include "engine/output/report_table_cells.h"
-#include "engine/output/report_tables.h"
+#include "engine/report/report_table_cells.h"
+#include "engine/report/report_tables.h"
 
 namespace vesselid {
 namespace {

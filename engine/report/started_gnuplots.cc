@@ -1,4 +1,4 @@
-#include "engine/output/started_gnuplots.h"
+#include "engine/report/started_gnuplots.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -13,7 +13,7 @@
 #include <mutex>
 #include <vector>
 
-#include "engine/output/report_figures.h"
+#include "engine/report/report_figures.h"
 
 extern char** environ;
 

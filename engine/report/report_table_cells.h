@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "engine/output/report_tables.h"
+#include "engine/report/report_tables.h"
 
 namespace vesselid {
 

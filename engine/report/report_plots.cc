@@ -1,4 +1,4 @@
-#include "engine/output/report_plots.h"
+#include "engine/report/report_plots.h"
 
 #include <algorithm>
 #include <cmath>

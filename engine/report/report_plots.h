@@ -25,7 +25,7 @@
 
 #include "Eigen/Dense"
 #include "engine/run/display_units.h"
-#include "engine/output/report_figures.h"
+#include "engine/report/report_figures.h"
 #include "engine/solve/metrics.h"
 #include "engine/solve/stage.h"
 #include "engine/step_regression/step_regression.h"

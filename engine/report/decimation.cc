@@ -1,4 +1,4 @@
-#include "engine/output/decimation.h"
+#include "engine/report/decimation.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "engine/output/report_html.h"
+#include "engine/report/report_html.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,19 +7,20 @@
 
 #include "engine/base/atomic_file.h"
 #include "engine/base/elapsed.h"
-#include "engine/output/base64.h"
-#include "engine/run/display_units.h"
-#include "engine/output/bootstrap_report.h"
 #include "engine/output/finding_report.h"
-#include "engine/output/held_out_parameters_report.h"
-#include "engine/output/noise_model_report.h"
 #include "engine/output/parameter_summary.h"
-#include "engine/output/report_figures.h"
-#include "engine/output/report_plots.h"
-#include "engine/output/report_summary.h"
-#include "engine/output/report_tables.h"
-#include "engine/output/residual_report.h"
-#include "engine/output/zigzag_report.h"
+#include "engine/report/base64.h"
+#include "engine/report/bootstrap_html.h"
+#include "engine/report/finding_html.h"
+#include "engine/report/held_out_parameters_html.h"
+#include "engine/report/noise_model_html.h"
+#include "engine/report/report_figures.h"
+#include "engine/report/report_plots.h"
+#include "engine/report/report_summary.h"
+#include "engine/report/report_tables.h"
+#include "engine/report/residual_html.h"
+#include "engine/report/zigzag_html.h"
+#include "engine/run/display_units.h"
 #include "engine/run/held_out.h"
 
 namespace vesselid {

@@ -1,4 +1,4 @@
-#include "engine/output/report_figures.h"
+#include "engine/report/report_figures.h"
 
 #include <stdlib.h>
 #include <sys/wait.h>
@@ -14,8 +14,8 @@
 #include <sstream>
 
 #include "engine/base/parallel_for.h"
-#include "engine/output/decimation.h"
-#include "engine/output/started_gnuplots.h"
+#include "engine/report/decimation.h"
+#include "engine/report/started_gnuplots.h"
 
 namespace vesselid {
 namespace {

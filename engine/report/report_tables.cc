@@ -1,4 +1,4 @@
-#include "engine/output/report_tables.h"
+#include "engine/report/report_tables.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "engine/run/display_units.h"
 #include "engine/output/parameter_summary.h"
-#include "engine/output/report_table_cells.h"
+#include "engine/report/report_table_cells.h"
 #include "engine/output/shown_parameters.h"
 
 namespace vesselid {
