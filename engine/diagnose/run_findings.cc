@@ -5,7 +5,10 @@
 #include <set>
 #include <tuple>
 
+#include "engine/diagnose/input_noise_findings.h"
+#include "engine/diagnose/record_checks.h"
 #include "engine/diagnose/stage_findings.h"
+#include "engine/diagnose/unit_findings.h"
 
 namespace vesselid {
 namespace {
@@ -102,8 +105,15 @@ std::vector<Finding> FoldFindings(const std::vector<Finding>& input) {
   return folded;
 }
 
-void DiagnoseRun(const RunConfig& config, RunResult* run) {
+void DiagnoseRun(const RunConfig& config, RunResult* run, TrajectoryCache* records) {
   const ModelInfo& info = config.model->info();
+  if (records != nullptr) {  // what the records say, first among the run's findings
+    std::vector<Finding> data_findings;
+    AddUnitFindings(config, records, &data_findings);
+    AddRecordCheckFindings(config, records, &data_findings);
+    AddInputNoiseFindings(config, *run, records, &data_findings);
+    run->findings.insert(run->findings.begin(), data_findings.begin(), data_findings.end());
+  }
   const DisplayUnitOf output_unit_of = [&](const std::string& experiment,
                                            const std::string& output) {
     return OutputDisplayUnit(config, experiment, output);
@@ -174,8 +184,10 @@ void DiagnoseRun(const RunConfig& config, RunResult* run) {
 
 bool Identify(const RunConfig& config, RunResult* result, std::string* error,
               const RunObserver& observer, std::vector<StageResult> finished) {
-  const bool ok = RunIdentification(config, result, error, observer, std::move(finished));
-  if (ok || !result->stopped_stage.empty()) DiagnoseRun(config, result);
+  TrajectoryCache records;
+  const bool ok =
+      RunIdentification(config, result, error, observer, std::move(finished), &records);
+  if (ok || !result->stopped_stage.empty()) DiagnoseRun(config, result, &records);
   return ok;
 }
 

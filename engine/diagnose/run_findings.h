@@ -22,13 +22,15 @@
 #include "engine/base/finding.h"
 #include "engine/run/held_out.h"
 #include "engine/run/pipeline.h"
+#include "engine/run/records.h"
 #include "engine/run/run_config.h"
 #include "engine/run/run_result.h"
 
 namespace vesselid {
 
-// Sets every stage's findings and verdict, and the run's.
-void DiagnoseRun(const RunConfig& config, RunResult* run);
+// Sets every stage's findings and verdict, and the run's; with the run's `records` (may be
+// null) also what the records say: units, record checks, noise on inputs.
+void DiagnoseRun(const RunConfig& config, RunResult* run, TrajectoryCache* records = nullptr);
 
 // RunIdentification (pipeline.h), then DiagnoseRun on whatever it returned (also when the run
 // stopped in a stage); the same return value and error.

@@ -7,15 +7,12 @@
 #include "engine/run/integration_step.h"
 #include "engine/run/held_out.h"
 #include "engine/run/held_out_memo.h"
-#include "engine/run/input_noise_findings.h"
 #include "engine/run/least_squares_stage.h"
 #include "engine/run/output_error_stage.h"
 #include "engine/run/parameter_ledger.h"
-#include "engine/run/record_checks.h"
 #include "engine/run/record_notes.h"
 #include "engine/run/records.h"
 #include "engine/run/step_regression_stage.h"
-#include "engine/run/unit_findings.h"
 #include "engine/run/velocity_validation.h"
 #include "engine/run/work_size.h"
 #include "engine/run/zigzag_runs.h"
@@ -208,10 +205,12 @@ bool ResolveStage(const RunConfig& config, size_t index, std::vector<ParameterSp
 }
 
 bool RunIdentification(const RunConfig& config, RunResult* result, std::string* error,
-                       const RunObserver& observer, std::vector<StageResult> finished) {
+                       const RunObserver& observer, std::vector<StageResult> finished,
+                       TrajectoryCache* records) {
   const auto start_time = std::chrono::steady_clock::now();
   RunResult run;
-  TrajectoryCache cache;
+  TrajectoryCache own_cache;
+  TrajectoryCache& cache = records != nullptr ? *records : own_cache;
   ParameterLedger ledger;
   if (finished.size() > config.stages.size()) {
     *error = "the resumed run has more stages than the config";
@@ -310,13 +309,8 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     }
   }
   run.zigzags = FindZigzagRuns(config, run, &cache);
-  // What the records say (the judgement of the stages and final values is diagnose/'s).
-  std::vector<Finding> data_findings;
-  AddUnitFindings(config, &cache, &data_findings);
-  AddRecordCheckFindings(config, &cache, &data_findings);
-  AddInputNoiseFindings(config, run, &cache, &data_findings);
+  // What preparing the records did (what they say is diagnose/'s judgement).
   AddRecordNotes(config, cache, &run);
-  run.findings.insert(run.findings.begin(), data_findings.begin(), data_findings.end());
   run.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   *result = std::move(run);

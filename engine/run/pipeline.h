@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/run/records.h"
 #include "engine/run/run_config.h"
 #include "engine/run/run_result.h"
 #include "engine/solve/parameter.h"
@@ -29,9 +30,11 @@ struct RunObserver {
 // Runs every stage. On failure nothing is returned but the message naming the stage and cause.
 // `finished` resumes a run: the results of its first stages, as an earlier run of the same
 // config and data produced them (checkpoint.h); the run goes on from the next stage.
+// `records` (optional) receives the records the run read, for the judgement (diagnose/).
 bool RunIdentification(const RunConfig& config, RunResult* result, std::string* error,
                        const RunObserver& observer = {},
-                       std::vector<StageResult> finished = {});
+                       std::vector<StageResult> finished = {},
+                       TrajectoryCache* records = nullptr);
 
 // The parameter specs stage `index` is solved with after stages [0, index) ran as a run
 // runs them (starts carried, unlisted parameters held at their latest estimates); `before`

@@ -1,7 +1,7 @@
-// The test behind the noisy-input finding (engine/run/input_noise_findings.h): white noise on
+// The test behind the noisy-input finding (engine/diagnose/input_noise_findings.h): white noise on
 // a measured rudder is found with its SD, clean, held (zigzag) and quantised (PWM) inputs are
 // passed over, and slow residuals are told from white ones.
-#include "engine/run/input_noise_findings.h"
+#include "engine/diagnose/input_noise_findings.h"
 
 #include <algorithm>
 #include <cmath>

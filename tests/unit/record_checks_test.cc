@@ -1,7 +1,7 @@
 // The quantisation rule of record_checks.h: a compass in whole degrees and a rudder in 1-degree
 // steps are quantised, with their step; a smooth or noisy channel and a held two-level input
 // are not.
-#include "engine/run/record_checks.h"
+#include "engine/diagnose/record_checks.h"
 
 #include <cmath>
 #include <random>

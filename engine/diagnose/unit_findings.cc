@@ -1,4 +1,4 @@
-#include "engine/run/unit_findings.h"
+#include "engine/diagnose/unit_findings.h"
 
 #include <algorithm>
 #include <cmath>

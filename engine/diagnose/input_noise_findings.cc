@@ -1,4 +1,4 @@
-#include "engine/run/input_noise_findings.h"
+#include "engine/diagnose/input_noise_findings.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "engine/run/record_checks.h"
+#include "engine/diagnose/record_checks.h"
 
 #include <algorithm>
 #include <cmath>
