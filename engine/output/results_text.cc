@@ -18,14 +18,6 @@
 namespace vesselid {
 namespace {
 
-// Whether a fit is a simulation's (a regression's reports RMS and R2 only, no MAE).
-bool Simulated(const ExperimentFit& fit) {
-  for (const ChannelMetrics& m : fit.channels) {
-    if (m.samples > 0 && std::isfinite(m.mae)) return true;
-  }
-  return fit.diverged;
-}
-
 // An equation-error fit: per regressed equation its samples, RMS residual and R2.
 std::string RegressionTable(const std::vector<ExperimentFit>& fits) {
   std::string out;
@@ -47,7 +39,7 @@ std::string RegressionTable(const std::vector<ExperimentFit>& fits) {
 // equation-error fit as its regression table.
 std::string MetricsTable(const RunConfig& config, const std::vector<ExperimentFit>& fits) {
   for (const ExperimentFit& fit : fits) {
-    if (Simulated(fit)) return RunFitTableText(PerRunFits(config, fits));
+    if (IsSimulationFit(fit) || fit.diverged) return RunFitTableText(PerRunFits(config, fits));
   }
   return fits.empty() ? "" : RegressionTable(fits);
 }
@@ -240,18 +232,6 @@ std::string FinalParametersText(const RunConfig& config, const RunResult& result
   }
   for (const std::string& a : result.admissibility) out << "  not admissible: " << a << "\n";
   return out.str();
-}
-
-// The last stage whose estimates were kept and that simulated its runs (its fit is the
-// training fit of the summary).
-const StageResult* LastAcceptedStage(const RunResult& result) {
-  for (auto it = result.stages.rbegin(); it != result.stages.rend(); ++it) {
-    if (!it->rejected.empty()) continue;
-    for (const ExperimentFit& fit : it->summary.fits) {
-      if (Simulated(fit)) return &*it;
-    }
-  }
-  return nullptr;
 }
 
 }  // namespace

@@ -214,4 +214,21 @@ std::string RunFitTableText(const RunFitTable& table) {
   return out;
 }
 
+bool IsSimulationFit(const ExperimentFit& fit) {
+  for (const ChannelMetrics& m : fit.channels) {
+    if (m.samples > 0 && std::isfinite(m.mae)) return true;
+  }
+  return false;
+}
+
+const StageResult* LastAcceptedStage(const RunResult& result) {
+  for (auto it = result.stages.rbegin(); it != result.stages.rend(); ++it) {
+    if (!it->rejected.empty()) continue;
+    for (const ExperimentFit& fit : it->summary.fits) {
+      if (IsSimulationFit(fit) || fit.diverged) return &*it;
+    }
+  }
+  return nullptr;
+}
+
 }  // namespace vesselid

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "engine/run/run_config.h"
+#include "engine/run/run_result.h"
 #include "engine/solve/metrics.h"
 
 namespace vesselid {
@@ -50,5 +51,12 @@ RunFitTable PerRunFits(const RunConfig& config, const std::vector<ExperimentFit>
 
 // The table as report.txt prints it (each line indented by two spaces).
 std::string RunFitTableText(const RunFitTable& table);
+
+// Whether a fit is a simulation's (regression stages report RMS and R2 only, no MAE).
+bool IsSimulationFit(const ExperimentFit& fit);
+
+// The stage whose fit the summaries show: the last one whose estimates were kept and that
+// simulated its runs (a run of it that diverged counts); null when none did.
+const StageResult* LastAcceptedStage(const RunResult& result);
 
 }  // namespace vesselid

@@ -10,20 +10,6 @@
 #include "engine/report/report_tables.h"
 
 namespace vesselid {
-namespace {
-
-// The last stage whose estimates were kept and that simulated its runs.
-const StageResult* LastAcceptedStage(const RunResult& result) {
-  for (auto it = result.stages.rbegin(); it != result.stages.rend(); ++it) {
-    if (!it->rejected.empty()) continue;
-    for (const ExperimentFit& fit : it->summary.fits) {
-      if (IsSimulationFit(fit)) return &*it;
-    }
-  }
-  return nullptr;
-}
-
-}  // namespace
 
 const char kSortScript[] = R"(<script>
 document.querySelectorAll('table.sortable').forEach(function (table) {

@@ -89,13 +89,6 @@ std::vector<std::vector<const ExperimentFit*>> GroupByRecord(
   return groups;
 }
 
-bool IsSimulationFit(const ExperimentFit& fit) {
-  for (const ChannelMetrics& m : fit.channels) {
-    if (m.samples > 0 && std::isfinite(m.mae)) return true;
-  }
-  return false;
-}
-
 std::string MetricsTable(const std::vector<const ExperimentFit*>& fits, const RunConfig* config) {
   std::string rows;
   size_t count = 0;

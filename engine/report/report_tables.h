@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/output/run_fit_table.h"
 #include "engine/run/records.h"
 #include "engine/run/run_config.h"
 #include "engine/run/run_result.h"
@@ -25,8 +26,6 @@ std::string HtmlNumber(double value, const char* format = "%.6g");
 std::vector<std::vector<const ExperimentFit*>> GroupByRecord(
     const std::vector<ExperimentFit>& fits);
 
-// Whether a fit is a simulation's (regression stages report RMS and R2 only, no MAE).
-bool IsSimulationFit(const ExperimentFit& fit);
 
 // Per experiment and channel: samples, RMSE, MAE, R2, fit %, and the experiment's
 // sqrt(mean e^2); with a config, RMSE and MAE in the unit the user reads, named in a column
