@@ -1,6 +1,7 @@
 // Seed 002's hierarchy end to end through the command line: configs/erunsal_hierarchy.yaml
 // simulated (the reference tugboat's campaign) and identified from starts 30 % off. Every
 // estimated parameter lies within three reported standard errors of the reference value,
+// those errors capped (at 10 % of the reference where the campaign determines it),
 // every stage's estimates are admissible, and the final parameters reproduce the held-out
 // random-motion runs (R^2 >= 0.99 for x, y, psi).
 #include <algorithm>
@@ -35,6 +36,15 @@ void RecoversEveryEstimatedParameterWithinThreeStandardErrors(const json& result
     EXPECT_LT(std::abs(p["value"].get<double>() - truth), 3 * se)
         << name << " = " << p["value"] << " +- " << se << ", reference " << truth;
     EXPECT_GT(se, 0.0) << name;
+    // Nor an inflated error: SE at most 10 % of the reference (measured at most 4.6 %, Mq),
+    // except where the campaign determines a parameter poorly: the heave decays (7 cm under
+    // 2 cm noise; Zw 38 %, Zww 83 % measured), Mqq (25 %) and Yr, whose reference is -0.0001
+    // (SE 0.0027 measured).
+    const std::map<std::string, double> loose = {{"Zw", 1.0}, {"Zww", 1.5}, {"Mqq", 0.5}};
+    const double cap = name == "Yr"           ? 0.01
+                       : loose.count(name) > 0 ? loose.at(name) * std::abs(truth)
+                                               : 0.1 * std::abs(truth);
+    EXPECT_LT(se, cap) << name << " = " << p["value"] << " +- " << se << ", reference " << truth;
   }
   EXPECT_EQ(estimated, 24);  // 30 less Ixz, Nrdot, Zwdot, Kpdot, Mqdot, C_DA
   EXPECT_EQ(results["fusion"], "information");
@@ -61,6 +71,7 @@ void EveryStageIsAdmissibleAndValidatedOnItsHeldOutTest(const json& results) {
   for (size_t i = 0; i < order.size(); ++i) {
     const json& stage = results["stages"][i];
     EXPECT_EQ(stage["name"], order[i]);
+    ASSERT_TRUE(stage["admissibility"].is_array()) << order[i];  // present, and empty
     EXPECT_TRUE(stage["admissibility"].empty()) << order[i];
     ASSERT_FALSE(stage["validation"]["metrics"].empty()) << order[i];
     for (const json& m : stage["validation"]["metrics"]) {
@@ -71,6 +82,7 @@ void EveryStageIsAdmissibleAndValidatedOnItsHeldOutTest(const json& results) {
                                               << m["output"];
     }
   }
+  ASSERT_TRUE(results["admissibility"].is_array());
   EXPECT_TRUE(results["admissibility"].empty());
 }
 

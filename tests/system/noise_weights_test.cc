@@ -120,10 +120,15 @@ TEST_F(NoiseWeights, MonteCarloRecoversTheChannelNoiseAndCoversTheTruth) {
     EXPECT_NEAR(o["mean_over_truth"].get<double>(), 1.0, 0.1) << o.dump();
   }
   for (const json& c : mc["cases"]) EXPECT_TRUE(c.contains("noise_sigma")) << c.dump();
+  // Nominal 95 % intervals over 20 runs: the binomial SE of the coverage is 4.9 %, so 3 SE
+  // below is 0.80 (measured 0.90-0.95). The SD of 20 estimates is itself uncertain by
+  // 1/sqrt(2*19) = 16 %, so SE/SD within [0.65, 1.5] (measured 1.02-1.32): a standard error
+  // half or twice the estimates' spread fails. Coverage cannot be bounded above with 20 runs
+  // (all 20 covered has probability 0.36 at 95 %): the SE/SD cap catches inflated errors.
   for (const json& p : mc["summary"]["parameters"]) {
-    EXPECT_GE(p["coverage"].get<double>(), 0.75) << p.dump();
-    EXPECT_GT(p["std_error_over_sd"].get<double>(), 0.5) << p.dump();
-    EXPECT_LT(p["std_error_over_sd"].get<double>(), 2.0) << p.dump();
+    EXPECT_GE(p["coverage"].get<double>(), 0.80) << p.dump();
+    EXPECT_GT(p["std_error_over_sd"].get<double>(), 0.65) << p.dump();
+    EXPECT_LT(p["std_error_over_sd"].get<double>(), 1.5) << p.dump();
   }
 }
 
@@ -150,6 +155,7 @@ TEST_F(NoiseWeights, LongHundredRunAcceptance) {
     EXPECT_LE(p["coverage"].get<double>(), 0.99) << p.dump();
   }
   const json given_mc = folder_->Load("given100")["monte_carlo"];
+  ASSERT_TRUE(given_mc.contains("noise_model"));  // stated, as null: no noise model
   EXPECT_TRUE(given_mc["noise_model"].is_null());
   for (size_t k = 0; k < mc["summary"]["parameters"].size(); ++k) {
     const json& a = given_mc["summary"]["parameters"][k];
@@ -174,14 +180,19 @@ TEST_F(NoiseWeights, RunOnThePhysicalCatamaranReportsTheNoiseModel) {
   EXPECT_TRUE(noise["converged"].get<bool>());
   EXPECT_GE(noise["iterations"].get<int>(), 1);
   EXPECT_LE(noise["iterations"].get<int>(), 5);
-  // The model does not have the simulator's structure: residuals are at least the noise.
+  // The model does not have the simulator's structure: the residuals are at least the noise
+  // (0.02 m, 0.3 deg) and hold the structure's misfit besides. Measured sigma n 0.184 m,
+  // e 0.069 m, psi 0.0072 rad (0.41 deg); the upper bounds (1.5x those) fail a noise model
+  // that has not settled on the residuals or a fit that went wrong. (The weighted residual
+  // variance is 1 by construction once sigma settles, which `converged` checks.)
   EXPECT_GT(noise["sigma"]["n"].get<double>(), 0.9 * 0.02);
+  EXPECT_LT(noise["sigma"]["n"].get<double>(), 0.28);
   EXPECT_GT(noise["sigma"]["e"].get<double>(), 0.9 * 0.02);
+  EXPECT_LT(noise["sigma"]["e"].get<double>(), 0.105);
   EXPECT_GT(noise["sigma"]["psi"].get<double>(), 0.9 * 0.3 * M_PI / 180.0);
+  EXPECT_LT(noise["sigma"]["psi"].get<double>(), 0.011);
   EXPECT_EQ(noise["units"]["psi"], "rad");
   EXPECT_EQ(noise["samples"]["psi"].get<int>(), 10 * noise["samples"]["n"].get<int>());
-  // Weighted by 1/sigma the residuals have unit variance (the covariance's s^2).
-  EXPECT_NEAR(stage["uncertainty"]["residual_variance"].get<double>(), 1.0, 0.1);
   std::ifstream text(folder_->dir() / "run" / "report.txt");
   std::stringstream report;
   report << text.rdbuf();
@@ -199,7 +210,9 @@ TEST_F(NoiseWeights, SingleOutputStageKeepsTheConfiguredWeights) {
   std::ifstream a(folder_->dir() / "single" / "results.json");
   std::ifstream b(folder_->dir() / "single_given" / "results.json");
   const json by_default = json::parse(a)["stages"][0], given = json::parse(b)["stages"][0];
+  // Absent as in any stage with the configured weights (a noise stage has it: the test above).
   EXPECT_FALSE(by_default.contains("noise_model"));
+  ASSERT_TRUE(by_default.contains("estimates"));
   EXPECT_EQ(by_default["estimates"], given["estimates"]);
 }
 
