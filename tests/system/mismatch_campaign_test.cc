@@ -1,10 +1,10 @@
 // The shipped input-gain configs on data whose structure is not the model's: a campaign of
 // the quadratic-thrust USV (problems/input_gain/quadratic_usv.h; purely quadratic thrust,
 // propeller lag, cross-flow drag, Munk moment), shortened to 24 segments, with a segment that
-// starts mid-manoeuvre and one GNSS fix 12 m off. Whatever the fit makes of it, the run must
-// say so: no finished stage lost, a refinement worse on held-out data than its start either
-// set aside (default) or named, every held-out output the refinement predicts worse named,
-// and the glitched segment named as an outlier when it is a training segment.
+// starts mid-manoeuvre and one GNSS fix 12 m off. The run must reach the held-out accuracy
+// measured (with a margin the tests state), improve every held-out output on its start, and
+// say what the model lacks: a verdict "failed" with the finding that names it.
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -68,7 +68,16 @@ bool Found(const json& results, const std::string& kind, const std::string& text
   return !testing::JsonFindingsOf(results, kind, text).empty();
 }
 
-void CheckRun(const std::string& kind) {
+// What a run of the shortened campaign must reach and say: the refinement's held-out MAE per
+// output below `max_mae` (e, n [m], psi [rad]; measured values times 1.5, see the tests),
+// every held-out output better than the refinement's start, the verdict "failed" with a
+// finding of `failure_kind` naming `failure_text` (the model lacks the simulator's structure).
+struct Expected {
+  std::map<std::string, double> max_mae;
+  std::string failure_kind, failure_text;
+};
+
+void CheckRun(const std::string& kind, const Expected& expected) {
   const json results = RunMismatch(kind);
   ASSERT_FALSE(results.is_discarded());
   EXPECT_FALSE(results.contains("stopped"));
@@ -76,30 +85,52 @@ void CheckRun(const std::string& kind) {
   const json& refinement = results["stages"][1];
   ASSERT_TRUE(refinement.contains("held_out_check"));
   const json& check = refinement["held_out_check"];
-  if (check["worse"].get<bool>()) {
-    EXPECT_TRUE(refinement.contains("rejected"));
-    EXPECT_TRUE(Found(results, "stage_set_aside", "worse on held-out data than its start"));
-  } else {
-    for (const json& o : check["outputs"]) {
-      if (o["stage_mae"].get<double>() <= 1.01 * o["start_mae"].get<double>()) continue;
-      EXPECT_TRUE(Found(results, "held_out_output_worse",
-                        "predicts the held-out " + o["output"].get<std::string>() +
-                            " worse than its start"))
-          << o.dump();
+  EXPECT_FALSE(check["worse"].get<bool>()) << check.dump();
+  EXPECT_FALSE(refinement.contains("rejected"));
+  ASSERT_EQ(check["outputs"].size(), expected.max_mae.size()) << check.dump();
+  for (const json& o : check["outputs"]) {
+    const std::string output = o["output"];
+    ASSERT_EQ(expected.max_mae.count(output), 1u) << output;
+    EXPECT_LT(o["stage_mae"].get<double>(), expected.max_mae.at(output)) << o.dump();
+    EXPECT_LT(o["stage_mae"].get<double>(), o["start_mae"].get<double>()) << o.dump();
+  }
+  EXPECT_EQ(results["verdict"], "failed");
+  EXPECT_TRUE(Found(results, expected.failure_kind, expected.failure_text))
+      << testing::JsonFindingsText(results);
+  // The glitched fix (12 m off) falls in a held-out segment of this campaign: its north fit is
+  // the worst of the final validation's.
+  const std::string glitched = "validation_truth@" + std::to_string(kGlitchSegment);
+  double glitched_fit = NAN, others_worst = INFINITY;
+  for (const json& m : results["final_validation"]["metrics"]) {
+    if (m["output"] != "n") continue;
+    const double fit = m["fit_percent"].get<double>();
+    if (m["experiment"] == glitched) {
+      glitched_fit = fit;
+    } else {
+      others_worst = std::min(others_worst, fit);
     }
   }
-  // The glitched fix makes its segment's cost stand out, when it is fitted.
-  const std::string glitched = "training@" + std::to_string(kGlitchSegment);
-  bool trained = false;
-  for (const json& m : refinement["fit"]["metrics"]) trained |= m["experiment"] == glitched;
-  if (trained) {
-    EXPECT_TRUE(Found(results, "outliers", glitched)) << testing::JsonFindingsText(results);
-  }
+  ASSERT_TRUE(std::isfinite(glitched_fit)) << glitched << " not in the final validation";
+  if (kind == "static") EXPECT_LT(glitched_fit, others_worst);
 }
 
-TEST(MismatchCampaign, StaticConfigSaysWhatItKept) { CheckRun("static"); }
+// Measured held-out MAE 0.062 m (e), 0.050 m (n), 0.0134 rad (psi), against 0.31, 0.26, 0.076
+// at its start; the final values fit the held-out segments at 71-99.8 %, but their sway
+// damping -1.54 v + 4.15 |v|v feeds the motion within the speeds the records reach.
+TEST(MismatchCampaign, StaticConfigSaysWhatItKept) {
+  CheckRun("static", {{{"e", 0.093}, {"n", 0.075}, {"psi", 0.02}},
+                      "not_admissible",
+                      "v.|v|v"});
+}
 
-TEST(MismatchCampaign, DynamicConfigSaysWhatItKept) { CheckRun("dynamic"); }
+// 30 refinement iterations (not converged): held-out MAE 2.04 m, 1.92 m, 1.56 rad, against
+// 2.78, 2.43, 12.7 at its start; the final free run of the velocity validation misses v
+// (R2 -100), a failure.
+TEST(MismatchCampaign, DynamicConfigSaysWhatItKept) {
+  CheckRun("dynamic", {{{"e", 3.05}, {"n", 2.9}, {"psi", 2.35}},
+                       "held_out_free_run_failed",
+                       "predicts v worse than its mean"});
+}
 
 // The shipped dynamic config whole, on the purely quadratic thruster (which has no dead zone):
 // its default law ends with a dead zone d_f of about 0.12 and an ahead branch that bends down
