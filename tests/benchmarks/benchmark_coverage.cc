@@ -156,8 +156,10 @@ bool RunCase(const Case& c, const Options& options, const fs::path& dir) {
   }
   std::printf("  %-10s %12s %10s %9s %8s %16s %s\n", "parameter", "truth", "bias %", "bias/SE",
               "SD/SE", "coverage %", "90-99 %");
+  bool in_band = true;
   for (const json& p : mc["summary"]["parameters"]) {
     const double coverage = 100.0 * Number(p["coverage"]);
+    in_band &= coverage >= 90.0 && coverage <= 99.0;
     std::printf("  %-10s %12.6g %10.3f %9.2f %8.2f %8.1f +- %4.1f %s\n",
                 p["name"].get<std::string>().c_str(), Number(p["truth"]), Number(p["bias_percent"]),
                 Number(p["bias_over_std_error"]), 1.0 / Number(p["std_error_over_sd"]), coverage,
@@ -165,7 +167,9 @@ bool RunCase(const Case& c, const Options& options, const fs::path& dir) {
                 coverage >= 90.0 && coverage <= 99.0 ? "yes" : "NO");
   }
   for (const json& note : mc["notes"]) std::printf("  note: %s\n", note.get<std::string>().c_str());
-  return true;
+  // The acceptance: a parameter whose coverage is outside 90-99 % (a NO above) fails the case.
+  if (!in_band) std::printf("  FAILED: a coverage outside 90-99 %%\n");
+  return in_band;
 }
 
 }  // namespace

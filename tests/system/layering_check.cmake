@@ -74,6 +74,10 @@ foreach(file IN LISTS sources)
 endforeach()
 
 list(LENGTH sources files)
+if(files EQUAL 0)
+  message(FATAL_ERROR "layering: no engine/ or problems/ sources under ${ROOT} (pass an "
+                      "absolute -DROOT)")
+endif()
 if(violations GREATER 0)
   message(FATAL_ERROR "layering: ${violations} upward includes in ${files} files")
 endif()

@@ -76,12 +76,6 @@ class UsvLog : public ::testing::Test {
 
 fs::path* UsvLog::dir_ = nullptr;
 
-std::string Lower(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
-
 int CompensationWarnings(const json& results, const std::string& naming) {
   return static_cast<int>(testing::JsonFindingsOf(results, "compensation", naming).size());
 }

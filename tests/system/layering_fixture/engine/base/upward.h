@@ -1,4 +1,4 @@
-// Fixture of layering_test_catches_upward: a base file including the run layer.
+// Fixture of the layering_catches_upward_include test: a base file including the run layer.
 #pragma once
 
 #include "engine/run/below.h"
