@@ -70,6 +70,7 @@ void ReadScreen(const YamlReader& reader, const YAML::Node& n, const std::string
   reader.Read(n, key, "stale", &d.stale);
   if (n["stale"] && d.stale < 2) reader.Fail(n["stale"], Child(key, "stale"), "must be >= 2");
   reader.Read(n, key, "zero_fix", &d.zero_fix);
+  d.zero_fix_given = static_cast<bool>(n["zero_fix"]);
 }
 
 void ReadResample(const YamlReader& reader, const YAML::Node& n, const std::string& key,

@@ -55,8 +55,9 @@ bool Screen(const ExperimentSpec& spec, const GnssPositionReport& gnss, Trajecto
     GlitchScreenOptions options;
     std::string north, east;
     const bool pair = PositionPair(spec, &north, &east);
-    if (!pair && d.max_speed > 0.0) {
-      *error = "screen.max_speed needs positions: a `position` map or outputs x, y (or n, e)";
+    if (!pair && (d.max_speed > 0.0 || d.zero_fix_given)) {
+      *error = std::string(d.max_speed > 0.0 ? "screen.max_speed" : "screen.zero_fix") +
+               " needs positions: a `position` map or outputs x, y (or n, e)";
       return false;
     }
     if (pair) {

@@ -24,6 +24,7 @@ struct ExperimentDataSpec {
   std::map<std::string, double> max_rate;  // model output -> its column's unit per second
   int stale = 0;                           // repeats in a row that are stale, 0: not checked
   bool zero_fix = true;
+  bool zero_fix_given = false;  // the key was in the config (it needs positions to act on)
   std::string screen_key;  // config key, for messages
   // resample: {rate, max_gap}
   double resample_rate = 0.0;  // Hz, 0: the record's own times

@@ -10,6 +10,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
+#include <utility>
+#include <regex>
+#include <set>
+#include <sstream>
 #include <string>
 
 #include "engine/config/config.h"
@@ -90,6 +96,8 @@ struct KeyCase {
   Variant base, with;
   std::string refusal = {};  // non-empty: `with` must be refused (by the reader or before the first
                         // stage) with this in the message
+  // Non-empty: the key changes what the run says (findings, notes), not its numbers; why.
+  std::string words_only = {};
 };
 
 void PrintTo(const KeyCase& c, std::ostream* os) { *os << c.name; }
@@ -117,6 +125,11 @@ const Variant V;
 const Variant kLeastSquares = V.K("    type: least_squares\n    least_squares: {grid: psi}");
 const Variant kPerRun =
     V.P("      delta_0: {start: 0.0, lower: -0.1, upper: 0.1, role: per_experiment}");
+
+// A second segmented experiment whose `segments` map a case completes.
+const std::string kS2 =
+    "  - {name: s2, file: segmented.csv, inputs: {delta: delta}, outputs: {psi: psi, r: r},\n"
+    "     segments: {column: segment";
 
 const KeyCase kCases[] = {
     {"interpolation", V, V.A(", interpolation: {delta: zero_order_hold}")},
@@ -185,7 +198,9 @@ const KeyCase kCases[] = {
          .K("    uncertainty: {method: experiment_bootstrap, runs: 10}")},
     // Three segments: known only from the data, a warning and auto's figures.
     {"uncertainty_experiment_bootstrap_three_segments", V.E("[s]"),
-     V.E("[s]").K("    uncertainty: {method: experiment_bootstrap, runs: 10}")},
+     V.E("[s]").K("    uncertainty: {method: experiment_bootstrap, runs: 10}"), "",
+     "three segments are too few to resample: the stage keeps auto's standard errors and says "
+     "why"},
     {"uncertainty_experiment_bootstrap_few", V,
      V.K("    uncertainty: {method: experiment_bootstrap}"),
      "config.yaml:12: stages[0].uncertainty.method: experiment_bootstrap in stage 'fit' needs at "
@@ -307,6 +322,47 @@ const KeyCase kCases[] = {
      "no column 'lat' (experiments[0].position.lat)"},
     {"screen_max_speed_without_positions", V, V.A(", screen: {max_speed: 5}"),
      "screen.max_speed needs positions"},
+    {"screen_zero_fix_without_positions", V, V.A(", screen: {zero_fix: true}"),
+     "screen.zero_fix needs positions"},
+    // A stale sensor: experiment a's heading column holds no repeats, so a stale screen of
+    // 2 samples has no run to remove but is read (an invalid count is refused).
+    {"screen_stale", V, V.A(", screen: {stale: 1}"), "stale: must be >= 2"},
+    // The local solver's settings.
+    {"local_function_tolerance", V, V.K("    local: {function_tolerance: 1e-2}")},
+    // The linear solver changes the path, not the optimum (results equal to 12 digits with
+    // cgnr): it is shown read by refusing an unknown one.
+    {"local_linear_solver", V, V.K("    local: {linear_solver: cholmod}"),
+     "unknown linear solver 'cholmod'"},
+    // The multistart's settings (under `weights: given`, as global_points).
+    {"global_candidates",
+     V.K("    weights: given\n    global: {points: 8, short_iterations: 2}"),
+     V.K("    weights: given\n    global: {points: 8, short_iterations: 2, candidates: 1}")},
+    {"global_min_separation",
+     V.K("    weights: given\n    global: {points: 8, short_iterations: 2}"),
+     V.K("    weights: given\n    global: {points: 8, short_iterations: 2, min_separation: 0.9}")},
+    {"global_max_time",
+     V.K("    weights: given\n    global: {points: 8, short_iterations: 2}"),
+     V.K("    weights: given\n    global: {points: 8, short_iterations: 2, max_time: 1e-9}")},
+    // The least-squares stage's regression settings.
+    {"least_squares_penalty", kLeastSquares,
+     V.K("    type: least_squares\n    least_squares: {grid: psi, penalty: ridge, lambda: 0.5}")},
+    {"least_squares_folds",
+     V.K("    type: least_squares\n    least_squares: {grid: psi, penalty: ridge, lambda: -1}"),
+     V.K("    type: least_squares\n    least_squares: {grid: psi, penalty: ridge, lambda: -1,\n"
+         "                    folds: 2}")},
+    {"least_squares_robust", kLeastSquares,
+     V.K("    type: least_squares\n    least_squares: {grid: psi, robust: true}")},
+    {"least_squares_smoothing", kLeastSquares,
+     V.K("    type: least_squares\n    least_squares: {grid: psi, smoothing: {half_width: 3, "
+         "order: 2}}")},
+    // Segments of a record: the share and pick of validation segments.
+    {"segments_take", V.E("[s2]").X(kS2 + "}}"),
+     V.E("[s2]").X(kS2 + ", take: training, validation_share: 0.34, seed: 1}}")},
+    {"initial_state_prior_bounds", V.E("[s]"),
+     V.E("[s]").K("    initial_state_prior: {apply: segments, bounds: 0.05}")},
+    {"step_regression_of_a_model_without_its_form", V,
+     V.K("    type: step_regression\n    step_regression: {bootstrap: 0}"),
+     "has no damping-inertia form for a step-regression stage"},
     {"bootstrap_runs", kLeastSquares,
      V.K("    type: least_squares\n    least_squares: {grid: psi, bootstrap: 20}")},
     {"bootstrap_blocks", V.K("    type: least_squares\n    least_squares: {grid: psi, bootstrap: 20}"),
@@ -326,6 +382,28 @@ const KeyCase kCases[] = {
      V.T("limits: {study_cases: 5}\nstudy: {monte_carlo: {runs: 6, noise: {psi: 0.01}}}\n"),
      "study.monte_carlo.runs: 6 is more than the limit of 5 (limits.study_cases)"},
 };
+
+// The config of a case's side: the template with the variant's keys put in.
+std::string ConfigKeysText(const Variant& v) {
+  std::string text = kTemplate;
+  auto put = [&](const std::string& mark, const std::string& value) {
+    text.replace(text.find(mark), mark.size(), value);
+  };
+  put("A_KEYS", v.a_keys);
+  put("S_KEYS", v.s_keys);
+  put("EXPERIMENTS", v.experiments);
+  put("FREE", v.free);
+  put("STAGE_KEYS\n", v.stage.empty() ? "" : v.stage + "\n");
+  put("TOP_KEYS", v.top);
+  put("MORE_ENTRIES\n", v.extra.empty() ? "" : v.extra + "\n");
+  put("MODEL_KEYS", v.model);
+  if (!v.parameters.empty()) {  // replaces the listed line of the same parameter
+    const std::string head = v.parameters.substr(0, v.parameters.find(':') + 1);
+    const size_t at = text.find(head);
+    text.replace(at, text.find('\n', at) - at, v.parameters);
+  }
+  return text;
+}
 
 class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
  protected:
@@ -362,28 +440,9 @@ class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
     delete dir_;
   }
 
-  static std::string Text(const Variant& v) {
-    std::string text = kTemplate;
-    auto put = [&](const std::string& mark, const std::string& value) {
-      text.replace(text.find(mark), mark.size(), value);
-    };
-    put("A_KEYS", v.a_keys);
-    put("S_KEYS", v.s_keys);
-    put("EXPERIMENTS", v.experiments);
-    put("FREE", v.free);
-    put("STAGE_KEYS\n", v.stage.empty() ? "" : v.stage + "\n");
-    put("TOP_KEYS", v.top);
-    put("MORE_ENTRIES\n", v.extra.empty() ? "" : v.extra + "\n");
-    put("MODEL_KEYS", v.model);
-    if (!v.parameters.empty()) {  // replaces the listed line of the same parameter
-      const std::string head = v.parameters.substr(0, v.parameters.find(':') + 1);
-      const size_t at = text.find(head);
-      text.replace(at, text.find('\n', at) - at, v.parameters);
-    }
-    return text;
-  }
+  static std::string Text(const Variant& v) { return ConfigKeysText(v); }
 
-  // Everything a key could change, as text.
+  // Every number a key could change, and the counts of what was fitted and validated.
   static std::string Signature(const RunResult& r) {
     std::string s;
     char line[160];
@@ -396,7 +455,7 @@ class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
            std::to_string(stage.summary.refinements.size()) + " refinements, " +
            std::to_string(stage.validation.size()) + " validation, " +
            std::to_string(stage.velocity_validation.size()) + " velocity metrics;";
-      for (const std::string& note : stage.summary.notes) s += note + ";";
+      if (stage.summary.global.run) s += stage.summary.global.BriefReport() + ";";
       for (size_t k = 0; k < stage.bootstrap.names.size(); ++k) {
         std::snprintf(line, sizeof(line), "%s SE %.6g;", stage.bootstrap.names[k].c_str(),
                       stage.bootstrap.std_error[k]);
@@ -415,9 +474,18 @@ class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
       std::snprintf(line, sizeof(line), "%s=%.12g;", f.name.c_str(), f.value);
       s += line;
     }
-    for (const Finding& f : AllFindings(r)) s += DescribeFinding(f) + ";";
     return s + std::to_string(r.final_validation.size()) + " final validation, " +
            std::to_string(r.final_velocity_validation.size()) + " velocity metrics";
+  }
+
+  // What the run says of itself: its findings and the stages' notes.
+  static std::string Words(const RunResult& r) {
+    std::string s;
+    for (const StageResult& stage : r.stages) {
+      for (const std::string& note : stage.summary.notes) s += note + ";";
+    }
+    for (const Finding& f : AllFindings(r)) s += DescribeFinding(f) + ";";
+    return s;
   }
 
   static bool Load(const std::string& text, RunConfig* config, std::string* error) {
@@ -426,13 +494,14 @@ class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
     return LoadRunConfig((*dir_ / "config.yaml").string(), "", registry, config, error);
   }
 
-  static std::string Run(const std::string& text) {
+  // The run's numbers (Signature) and its words (Words).
+  static std::pair<std::string, std::string> Run(const std::string& text) {
     RunConfig config;
     RunResult result;
     std::string error;
     EXPECT_TRUE(Load(text, &config, &error)) << error << "\n" << text;
     EXPECT_TRUE(Identify(config, &result, &error)) << error << "\n" << text;
-    return Signature(result);
+    return {Signature(result), Words(result)};
   }
 
   static fs::path* dir_;
@@ -453,10 +522,97 @@ TEST_P(ConfigKeys, HasAnEffectOrIsRefused) {
     EXPECT_NE(error.find(c.refusal), std::string::npos) << error;
     return;
   }
-  EXPECT_NE(Run(Text(c.base)), Run(Text(c.with))) << Text(c.with);
+  const auto base = Run(Text(c.base)), with = Run(Text(c.with));
+  if (c.words_only.empty()) {
+    // A key changes what the run computes, not only what it says.
+    EXPECT_NE(base.first, with.first) << Text(c.with) << "\nwords:\n"
+                                      << base.second << "\n" << with.second;
+  } else {
+    EXPECT_EQ(base.first, with.first) << c.words_only;
+    EXPECT_NE(base.second, with.second) << c.words_only;
+  }
 }
 
 std::string CaseName(const ::testing::TestParamInfo<KeyCase>& info) { return info.param.name; }
+
+// The keys the README's config reference (the indented block under "## Configs") names: every
+// `word:` in it, comments included ("min_separation: 0.05").
+std::set<std::string> DocumentedKeys() {
+  std::ifstream in(std::string(VESSELID_SOURCE_DIR) + "/README.md");
+  std::string line;
+  while (std::getline(in, line) && line != "## Configs") {
+  }
+  std::getline(in, line);  // the blank line before the block
+  std::set<std::string> keys;
+  const std::regex key(R"((^|[^A-Za-z0-9_.-])([a-z_][a-z0-9_]*):)");
+  while (std::getline(in, line) && line.rfind("    ", 0) == 0) {
+    for (std::sregex_iterator it(line.begin(), line.end(), key), end; it != end; ++it) {
+      keys.insert((*it)[2]);
+    }
+  }
+  return keys;
+}
+
+// How many times `key:` occurs in `text`.
+int Occurrences(const std::string& text, const std::string& key) {
+  const std::regex pattern("(^|[^A-Za-z0-9_.-])" + key + ":");
+  return static_cast<int>(std::distance(
+      std::sregex_iterator(text.begin(), text.end(), pattern), std::sregex_iterator()));
+}
+
+// Words of the block followed by a colon that are not keys: the example's channel, parameter
+// and set names, and prose in its comments ("default: all", "| hold: ...").
+const std::set<std::string> kNotKeys = {
+    "delta", "delta_0", "psi", "xi1", "u", "held_out", "training",               // names
+    "it", "jitter", "default", "false", "true", "given", "hold", "last", "selected",  // prose
+    "set", "bootstraps"};
+
+// Keys every case's config holds (the template's skeleton): each run exercises them.
+const std::set<std::string> kSkeleton = {
+    "model",  "family", "type",       "experiments", "name",  "file",
+    "inputs", "outputs", "stages",    "parameters",  "start", "lower",
+    "upper",  "role",    "free_initial_states", "column", "segments"};
+
+// Keys whose effect needs data or a model this template does not have, and the test (or the
+// shipped config a test runs) that shows it; the file must name the key.
+const std::map<std::string, std::string> kShownElsewhere = {
+    {"active_dofs", "tests/models/erunsal_identifiability_test.cc"},
+    {"regions", "tests/system/thrust_law_fit_test.cc"},
+    {"origin", "tests/system/real_log_test.cc"},
+    // The shipped config EriksenConfig.RegressionThenRefinementImprovesTheValidationFit runs.
+    {"step_regression", "configs/eriksen_2dof.yaml"},
+    {"simulation", "tests/system/mismatch_campaign_test.cc"},
+    {"file_mb", "tests/system/hostile_input_test.cc"},
+    // Results are the same on any number of threads (by design): the test shows that.
+    {"num_threads", "tests/system/thread_count_test.cc"},
+};
+// Every documented key has a case here that adds it (more occurrences in `with` than in
+// `base`), is the template's skeleton, or is shown by a named test that names it.
+TEST(ConfigKeysDocumented, EveryDocumentedKeyHasACase) {
+  const std::set<std::string> documented = DocumentedKeys();
+  ASSERT_GT(documented.size(), 80u) << "the README's config block was not found";
+  std::string missing;
+  for (const std::string& key : documented) {
+    if (kNotKeys.count(key) || kSkeleton.count(key)) continue;
+    bool covered = false;
+    for (const KeyCase& c : kCases) {
+      covered |= Occurrences(ConfigKeysText(c.with), key) !=
+                 Occurrences(ConfigKeysText(c.base), key);
+    }
+    if (covered) continue;
+    const auto elsewhere = kShownElsewhere.find(key);
+    if (elsewhere == kShownElsewhere.end()) {
+      missing += " " + key;
+      continue;
+    }
+    std::ifstream file(std::string(VESSELID_SOURCE_DIR) + "/" + elsewhere->second);
+    std::stringstream text;
+    text << file.rdbuf();
+    EXPECT_TRUE(file.good() && Occurrences(text.str(), key) > 0)
+        << key << ": " << elsewhere->second << " does not name it";
+  }
+  EXPECT_TRUE(missing.empty()) << "documented keys without a case:" << missing;
+}
 
 INSTANTIATE_TEST_SUITE_P(Readme, ConfigKeys, ::testing::ValuesIn(kCases), CaseName);
 
