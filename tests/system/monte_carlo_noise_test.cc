@@ -115,9 +115,12 @@ TEST_F(MonteCarloNoise, InputNoiseWidensTheSpreadAndEveryCoverageIsCounted) {
             testing::ComparableStudy(folder_->Load("inputs")));
   // With the HAC (measured: coverage 95, 95, 95, 90 % over these 20 runs; SE / SD 0.84-1.24)
   // the intervals are honest where the Hessian's covered K in 35 % of the runs.
+  // Two-sided: 3 binomial SE below 95 % over 20 runs is 0.80; SE/SD within [0.65, 1.5]
+  // (the SD of 20 estimates is uncertain by 16 %): an inflated standard error fails too.
   for (const json& p : with["summary"]["parameters"]) {
     EXPECT_GE(p["coverage"].get<double>(), 0.8) << p["name"];
-    EXPECT_GT(p["std_error_over_sd"].get<double>(), 0.6) << p["name"];
+    EXPECT_GT(p["std_error_over_sd"].get<double>(), 0.65) << p["name"];
+    EXPECT_LT(p["std_error_over_sd"].get<double>(), 1.5) << p["name"];
   }
 }
 

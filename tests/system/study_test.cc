@@ -68,9 +68,12 @@ TEST_F(Study, EveryPartMeasuresTheMultiSineIdentification) {
     EXPECT_DOUBLE_EQ(p["truth"].get<double>(), kTruth[k]);
     EXPECT_LT(std::abs(p["bias"].get<double>()), 4.0 * p["bias_std_error"].get<double>())
         << p["name"];
-    EXPECT_GE(p["coverage"].get<double>(), 0.75) << p["name"];
-    EXPECT_GT(p["std_error_over_sd"].get<double>(), 0.5) << p["name"];
-    EXPECT_LT(p["std_error_over_sd"].get<double>(), 2.0) << p["name"];
+    // 16 runs: the coverage's binomial SE at 95 % is 5.4 %, so 3 SE below is 0.79 (measured
+    // 0.875-1.0); the SD of 16 estimates is uncertain by 1/sqrt(30) = 18 %, so SE/SD within
+    // [0.6, 1.55] (measured 0.82-1.01): half or twice the spread fails.
+    EXPECT_GE(p["coverage"].get<double>(), 0.79) << p["name"];
+    EXPECT_GT(p["std_error_over_sd"].get<double>(), 0.6) << p["name"];
+    EXPECT_LT(p["std_error_over_sd"].get<double>(), 1.55) << p["name"];
   }
 
   // Profile: closed intervals around the estimate, close to the linearised ones for data
