@@ -72,6 +72,9 @@ TEST(NomotoConfigs, PatrolNoiseSingleSineReportsPoorDetermination) {
   }
   ASSERT_GE(t2, 0);
   ASSERT_GE(t3, 0);
+  // Measured |corr| 0.973 with the HAC covariance the rudder noise makes the default (the
+  // Hessian's is above 0.99): 0.95 keeps the T2/T3 ridge named and fails a covariance that
+  // loses it.
   EXPECT_GT(std::abs(correlation["matrix"][t2][t3].get<double>()), 0.95);
   for (const auto& [name, value] : kPatrol) {
     const double error = std::abs(multisine[name]["value"].get<double>() - value);

@@ -269,7 +269,10 @@ TEST(Multistart, LeavesTheExchangeRidgeWhereTheLocalSolveStays) {
   StageSummary summary;
   ASSERT_TRUE(RunStage(options, problem.get(), &summary)) << summary.message;
   EXPECT_GT(summary.chosen, 0);  // a global candidate won
-  EXPECT_LT(summary.local().final_cost, 0.95 * local.local().final_cost);
+  // Measured 0.849: on noisy, quantised patrol data the ridge's cost is only 18 % above the
+  // optimum's (the 0.5 this test once asked assumed clean data); 0.9 leaves a margin and fails
+  // a multistart that ends on the ridge too.
+  EXPECT_LT(summary.local().final_cost, 0.9 * local.local().final_cost);
   EXPECT_NEAR(ValueOf(*problem, "T1"), 2.0875, 0.05 * 2.0875);
   EXPECT_NEAR(ValueOf(*problem, "T2"), 0.3179, 0.2 * 0.3179);
   EXPECT_NEAR(ValueOf(*problem, "K"), -0.1724, 0.02 * 0.1724);

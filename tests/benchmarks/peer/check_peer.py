@@ -106,6 +106,10 @@ def main():
         engine_cost = json.load(f)["stages"][0]["cost"]
     peer_cost = json.loads(run(peer + [second, "--data", tanker], env))["solves"][0]["cost"]
     print("tanker, 4 zigzags, second order: engine cost %.6g, peer %.6g" % (engine_cost, peer_cost))
+    # Measured 1.10x (0.000963558 against 0.000875096): from this far start the engine ends
+    # on the T2 = T3 ridge short of the peer's optimum (estimates 3.9e-2 apart). That is a
+    # shortfall of the engine, not of the peer, tracked by the far-start issue ("Reach the
+    # optimum from far"); the bound only keeps it from growing. Restore 1.01 when it is fixed.
     if not engine_cost <= 1.15 * peer_cost:
         failures.append("tanker, second order: cost %.6g (engine) is %.2fx the peer's %.6g" %
                         (engine_cost, engine_cost / peer_cost, peer_cost))
