@@ -5,13 +5,17 @@
 // coverage of the nominal 95 % intervals (accepted: 90-99 %).
 //
 //   build/tests/benchmarks/benchmark_coverage [--config <yaml> --stage <name>]
-//       [--runs N] [--noise <name>=<sd>]... [--stage-option <key>=<yaml>]... [--threads N]
+//       [--runs N] [--noise <name>=<sd>]... [--stage-option <key>=<yaml>]...
+//       [--experiment-option <key>=<yaml>]... [--threads N]
 //
 // Defaults: configs/nomoto_cargo_noise.yaml and configs/nomoto_patrol_noise.yaml, stage
 // multisine, 100 runs, noise delta = psi = 0.001745 rad. --stage-option sets a key of the
 // studied stage as the stage is configured, e.g. --stage-option 'uncertainty={method:
 // sandwich_hac}', so that the same harness measures each uncertainty method or input
-// treatment. The config's data are simulated first into a temporary folder.
+// treatment; --experiment-option sets a key of every experiment the stage uses, e.g.
+// --experiment-option 'input_noise={delta: auto}' (the latent input). The config's data are
+// simulated first into a temporary folder.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -40,6 +44,8 @@ struct Options {
   int threads = 0;
   std::map<std::string, double> noise;
   std::vector<std::pair<std::string, std::string>> stage_options;  // key, YAML value
+  // Keys set on every experiment the studied stage uses (e.g. input_noise).
+  std::vector<std::pair<std::string, std::string>> experiment_options;
 };
 
 // "<key>=<value>" split at the first '='; false if there is none.
@@ -73,6 +79,8 @@ bool Parse(int argc, char** argv, Options* options) {
       options->noise[key] = std::atof(text.c_str());
     } else if (arg == "--stage-option" && Split(value, &key, &text)) {
       options->stage_options.emplace_back(key, text);
+    } else if (arg == "--experiment-option" && Split(value, &key, &text)) {
+      options->experiment_options.emplace_back(key, text);
     } else {
       std::fprintf(stderr, "unknown or malformed option %s %s\n", arg.c_str(), value.c_str());
       return false;
@@ -94,10 +102,19 @@ bool Parse(int argc, char** argv, Options* options) {
 bool Variant(const Case& c, const Options& options, YAML::Node* config) {
   *config = YAML::LoadFile(c.config);
   bool found = false;
+  std::vector<std::string> used;
   for (YAML::Node stage : (*config)["stages"]) {
     if (stage["name"].as<std::string>() != c.stage) continue;
     found = true;
     for (const auto& [key, value] : options.stage_options) stage[key] = YAML::Load(value);
+    if (stage["experiments"]) used = stage["experiments"].as<std::vector<std::string>>();
+  }
+  for (YAML::Node experiment : (*config)["experiments"]) {
+    const std::string name = experiment["name"] ? experiment["name"].as<std::string>() : "";
+    if (!used.empty() && std::find(used.begin(), used.end(), name) == used.end()) continue;
+    for (const auto& [key, value] : options.experiment_options) {
+      experiment[key] = YAML::Load(value);
+    }
   }
   YAML::Node mc;
   mc["stage"] = c.stage;
@@ -154,15 +171,19 @@ bool RunCase(const Case& c, const Options& options, const fs::path& dir) {
   for (const auto& [key, value] : options.stage_options) {
     std::printf("  stage option %s: %s\n", key.c_str(), value.c_str());
   }
-  std::printf("  %-10s %12s %10s %9s %8s %16s %s\n", "parameter", "truth", "bias %", "bias/SE",
-              "SD/SE", "coverage %", "90-99 %");
+  for (const auto& [key, value] : options.experiment_options) {
+    std::printf("  experiment option %s: %s\n", key.c_str(), value.c_str());
+  }
+  // t = bias / (SD / sqrt(runs)): whether the bias is more than the runs' scatter.
+  std::printf("  %-10s %12s %10s %7s %9s %8s %16s %s\n", "parameter", "truth", "bias %", "t",
+              "bias/SE", "SD/SE", "coverage %", "90-99 %");
   bool in_band = true;
   for (const json& p : mc["summary"]["parameters"]) {
     const double coverage = 100.0 * Number(p["coverage"]);
     in_band &= coverage >= 90.0 && coverage <= 99.0;
-    std::printf("  %-10s %12.6g %10.3f %9.2f %8.2f %8.1f +- %4.1f %s\n",
+    std::printf("  %-10s %12.6g %10.3f %7.2f %9.2f %8.2f %8.1f +- %4.1f %s\n",
                 p["name"].get<std::string>().c_str(), Number(p["truth"]), Number(p["bias_percent"]),
-                Number(p["bias_over_std_error"]), 1.0 / Number(p["std_error_over_sd"]), coverage,
+                Number(p["bias"]) / Number(p["bias_std_error"]), Number(p["bias_over_std_error"]), 1.0 / Number(p["std_error_over_sd"]), coverage,
                 100.0 * Number(p["coverage_std_error"]),
                 coverage >= 90.0 && coverage <= 99.0 ? "yes" : "NO");
   }
