@@ -95,7 +95,13 @@ std::string GlobalStartSummary::BriefReport() const {
                   "global start (multistart): %d points (%d diverged, %d abandoned), %d distinct "
                   "end points, best cost %.6e, %.3f s",
                   evaluations, failed_evaluations, abandoned, clusters, best_cost, time_seconds);
-    return text;
+    std::string report = text;
+    if (!around_start.empty()) {
+      std::string names;
+      for (const std::string& n : around_start) names += (names.empty() ? "" : ", ") + n;
+      report += "; searched within a factor 3 of their start (one-sided or no bounds): " + names;
+    }
+    return report;
   }
   std::snprintf(text, sizeof(text),
                 "global start: %d evaluations (%d diverged), best cost %.6e, %.3f s, %s",

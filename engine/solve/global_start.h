@@ -42,6 +42,8 @@ struct GlobalStartOptions {
 struct GlobalStartSummary {
   bool run = false;
   std::vector<std::string> variables;  // names of the searched variables
+  // multistart: those searched around their start (one-sided or no bounds, search_box.h)
+  std::vector<std::string> around_start;
   std::string algorithm;
   int evaluations = 0;         // NLopt: cost evaluations; multistart: points screened
   int failed_evaluations = 0;  // diverging simulations (multistart: points)

@@ -98,8 +98,11 @@ bool RunMultistart(const GlobalStartOptions& options, OutputErrorProblem* proble
   *summary = GlobalStartSummary();
   const SearchBox box(*problem);
   summary->variables = box.names();
+  for (int k = 0; k < box.dimension(); ++k) {
+    if (box.around_start(k)) summary->around_start.push_back(box.names()[k]);
+  }
   if (box.dimension() == 0) {
-    summary->message = "no free parameter has finite lower and upper bounds to search";
+    summary->message = "no free parameter to search";
     return false;
   }
   const std::vector<double> base = problem->Values();

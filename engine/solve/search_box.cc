@@ -7,21 +7,42 @@ namespace vesselid {
 
 SearchBox::SearchBox(const OutputErrorProblem& problem) {
   const std::vector<Variable>& variables = problem.variables();
+  const ModelInfo& info = problem.model().info();
   for (size_t i = 0; i < variables.size(); ++i) {
     const Variable& v = variables[i];
-    if (!v.free || !v.bounded() || v.kind != Variable::Kind::kParameter || !(v.upper > v.lower))
-      continue;
+    if (!v.free || v.kind != Variable::Kind::kParameter || !(v.upper > v.lower)) continue;
+    double lower = v.lower, upper = v.upper;
+    bool log = false;
+    if (v.bounded()) {
+      // A positive parameter bounded below by 0 is searched over the top decades of its box.
+      const bool positive = info.ParameterPositive(v.index) && v.lower == 0.0 && v.upper > 0.0;
+      if (positive) lower = kPositiveFloor * v.upper;
+      log = positive || v.lower > 0.0 || v.upper < 0.0;
+    } else {
+      // Around the start, cut to the bound it has.
+      const double start = v.value();
+      const bool positive = start > 0.0 && (v.lower >= 0.0 || info.ParameterPositive(v.index));
+      const bool negative = start < 0.0 && v.upper <= 0.0;
+      if (positive || negative) {
+        lower = std::max(v.lower, positive ? start / kOpenSearchFactor : start * kOpenSearchFactor);
+        upper = std::min(v.upper, positive ? start * kOpenSearchFactor : start / kOpenSearchFactor);
+        log = true;
+      } else {
+        const double span = kOpenSearchFactor * std::abs(v.scale);
+        lower = std::max(v.lower, start - span);
+        upper = std::min(v.upper, start + span);
+      }
+      if (!(upper > lower) || !std::isfinite(lower) || !std::isfinite(upper)) continue;
+    }
     searched_.push_back(static_cast<int>(i));
     names_.push_back(v.name);
-    // A positive parameter bounded below by 0 is searched over the top decades of its box.
-    const bool positive = problem.model().info().ParameterPositive(v.index) &&
-                          v.lower == 0.0 && v.upper > 0.0;
-    lower_.push_back(positive ? kPositiveFloor * v.upper : v.lower);
-    upper_.push_back(v.upper);
-    log_.push_back(positive || (v.lower > 0.0) || (v.upper < 0.0));
+    lower_.push_back(lower);
+    upper_.push_back(upper);
+    log_.push_back(log);
+    around_start_.push_back(!v.bounded());
   }
   // Shared parameters only: per-experiment copies are separate unknowns.
-  for (const auto& [first, second] : problem.model().info().exchangeable) {
+  for (const auto& [first, second] : info.exchangeable) {
     int a = -1, b = -1;
     for (int k = 0; k < dimension(); ++k) {
       const Variable& v = variables[searched_[k]];

@@ -9,6 +9,14 @@
 // in log coordinates over [kPositiveFloor u, u] (its solves may still go below). Exchangeable
 // parameter pairs (the model is symmetric in them, ModelInfo::exchangeable) are folded into
 // the ordered half first >= second: the other half holds the same simulations again.
+//
+// A parameter with a one-sided bound or none is searched around its start s (its value when
+// the box is made), cut to the bounds it has: in log coordinates over [s / F, s F] when its
+// sign is fixed (a bound at 0 or beyond on the other side, or the model declares it positive),
+// else linearly over s +- F scale (Variable::scale: |start|, or as configured), F =
+// kOpenSearchFactor. A parameter with no bounds and a start of 0 and scale 1 is still searched
+// (over [-F, F]); give it a scale or bounds to say its size. The solves keep the parameter's
+// own bounds: the box only places the points.
 #pragma once
 
 #include <string>
@@ -20,6 +28,7 @@
 namespace vesselid {
 
 constexpr double kPositiveFloor = 1e-3;
+constexpr double kOpenSearchFactor = 3.0;
 
 class SearchBox {
  public:
@@ -30,6 +39,10 @@ class SearchBox {
   int dimension() const { return static_cast<int>(searched_.size()); }
   const std::vector<std::string>& names() const { return names_; }
   bool logarithmic(int k) const { return log_[k]; }
+  // Whether coordinate k's range comes from its start (a one-sided or missing bound).
+  bool around_start(int k) const { return around_start_[k]; }
+  double lower(int k) const { return lower_[k]; }
+  double upper(int k) const { return upper_[k]; }
   // Searched coordinates (indices into dimension()) of each exchangeable pair.
   const std::vector<std::pair<int, int>>& exchangeable() const { return pairs_; }
 
@@ -46,6 +59,7 @@ class SearchBox {
   std::vector<std::string> names_;
   std::vector<double> lower_, upper_;
   std::vector<bool> log_;
+  std::vector<bool> around_start_;
   std::vector<std::pair<int, int>> pairs_;
 };
 

@@ -5,6 +5,7 @@
 #include "engine/solve/multistart.h"
 
 #include <cmath>
+#include <limits>
 
 #include "engine/solve/halton_sequence.h"
 #include "engine/solve/search_box.h"
@@ -108,6 +109,46 @@ TEST(SearchBox, SignFreeParametersStayLinear) {
   EXPECT_NEAR(box.Values({0, 0, 0, 0, 0}, problem->Values())[2], 0.05, 1e-15);
   EXPECT_FALSE(box.logarithmic(3));
   EXPECT_FALSE(box.logarithmic(4));
+}
+
+TEST(SearchBox, OneSidedAndMissingBoundsAreSearchedAroundTheStart) {
+  // T1 in [0, inf): log over [start / 3, 3 start]; T2 with no bounds but declared positive:
+  // the same; K in (-inf, -0.001] with a negative start: log over [3 start, start / 3] cut at
+  // -0.001; delta_0 with no bounds: linear over start +- 3 scale (scale 0.01 given).
+  auto model = nomoto::MakeSecondOrderHandle();
+  Experiment e = RealisticPatrol(*model);
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<ParameterSpec> specs = {Spec("T1", 2.0, 0.0, inf), Spec("T2", 0.3, -inf, inf),
+                                      Spec("T3", 0.2, 0.0, 5.0), Spec("K", -0.2, -inf, -0.001)};
+  ParameterSpec bias = Spec("delta_0", 0.001, -inf, inf);
+  bias.scale = 0.01;
+  specs.push_back(bias);
+  auto problem = Problem(*model, e, specs);
+  const SearchBox box(*problem);
+  ASSERT_EQ(box.dimension(), 5);
+  const std::vector<double> base = problem->Values();
+  const std::vector<double> low = box.Values({0, 0, 0, 0, 0}, base);
+  const std::vector<double> high = box.Values({1, 1, 1, 1, 1}, base);
+  // (coordinate, value in `values`) of parameter `name`.
+  auto at = [&](const std::vector<double>& values, const std::string& name) {
+    int k = 0;
+    while (k < box.dimension() && box.names()[k] != name) ++k;
+    size_t i = 0;
+    while (i < problem->variables().size() && problem->variables()[i].name != name) ++i;
+    return std::pair<int, double>{k, values.at(i)};
+  };
+  EXPECT_NEAR(at(low, "T1").second, 2.0 / 3.0, 1e-12);
+  EXPECT_NEAR(at(high, "T1").second, 6.0, 1e-12);
+  EXPECT_TRUE(box.logarithmic(at(low, "T1").first));
+  EXPECT_TRUE(box.around_start(at(low, "T1").first));
+  EXPECT_NEAR(at(low, "T2").second, 0.1, 1e-12);  // positive by the model
+  EXPECT_NEAR(at(high, "T2").second, 0.9, 1e-12);
+  EXPECT_FALSE(box.around_start(at(low, "T3").first));  // bounded: its own box
+  EXPECT_NEAR(at(low, "K").second, -0.6, 1e-12);
+  EXPECT_NEAR(at(high, "K").second, -0.2 / 3.0, 1e-12);
+  EXPECT_FALSE(box.logarithmic(at(low, "delta_0").first));
+  EXPECT_NEAR(at(low, "delta_0").second, 0.001 - 0.03, 1e-12);
+  EXPECT_NEAR(at(high, "delta_0").second, 0.001 + 0.03, 1e-12);
 }
 
 TEST(Multistart, ShortSolvesFromTheBestScreenedPoints) {
