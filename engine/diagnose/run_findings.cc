@@ -114,10 +114,7 @@ void DiagnoseRun(const RunConfig& config, RunResult* run, TrajectoryCache* recor
     AddInputNoiseFindings(config, *run, records, &data_findings);
     run->findings.insert(run->findings.begin(), data_findings.begin(), data_findings.end());
   }
-  const DisplayUnitOf output_unit_of = [&](const std::string& experiment,
-                                           const std::string& output) {
-    return OutputDisplayUnit(config, experiment, output);
-  };
+  const DisplayUnitOf output_unit_of = OutputUnits(config);
   const ParameterUnitOf parameter_unit_of = ParameterUnits(config);
   for (StageResult& stage : run->stages) {
     const ModelHandle* model = &*config.model;

@@ -1,6 +1,6 @@
 #include "engine/output/shown_parameters.h"
 
-#include <algorithm>
+#include <initializer_list>
 
 namespace vesselid {
 namespace {

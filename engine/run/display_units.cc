@@ -74,6 +74,12 @@ DisplayUnit ParameterDisplayUnit(const RunConfig& config, const std::string& nam
   return mapped ? InDegrees(shown.unit) : shown;
 }
 
+DisplayUnitOf OutputUnits(const RunConfig& config) {
+  return [&config](const std::string& experiment, const std::string& output) {
+    return OutputDisplayUnit(config, experiment, output);
+  };
+}
+
 ParameterUnitOf ParameterUnits(const RunConfig& config) {
   return [&config](const std::string& name) { return ParameterDisplayUnit(config, name); };
 }

@@ -47,7 +47,8 @@ using ParameterUnitOf = std::function<DisplayUnit(const std::string& name)>;
 // value x scale printed with `format`, then " unit" when the unit is stated: "2.5 deg".
 std::string ShownValue(double value, const DisplayUnit& unit, const char* format = "%.6g");
 
-// ParameterDisplayUnit bound to `config` (which must outlive it).
+// OutputDisplayUnit and ParameterDisplayUnit bound to `config` (which must outlive them).
+DisplayUnitOf OutputUnits(const RunConfig& config);
 ParameterUnitOf ParameterUnits(const RunConfig& config);
 
 // "psi [deg]", or the label alone without a unit.

@@ -75,11 +75,9 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
   const std::vector<ExperimentFit>& at_start = answers[1].fits;
   result->held_out = CompareHeldOut(at_start, result->validation);
   if (result->held_out.worse && config.final_choice == FinalChoice::kBestValidation) {
-    const DisplayUnitOf unit_of = [&](const std::string& experiment, const std::string& output) {
-      return OutputDisplayUnit(config, experiment, output);
-    };
     result->rejected = "worse on held-out data than its start (" +
-                       DescribeHeldOut(result->held_out, unit_of, stage.validation.front()) +
+                       DescribeHeldOut(result->held_out, OutputUnits(config),
+                                       stage.validation.front()) +
                        "): its estimates are set aside and later stages and the final values "
                        "take its start values (final: last would keep them)";
   }
