@@ -491,7 +491,12 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
   }
   if (node["global"]) {
     stage.options.use_global_start = true;
-    ReadGlobal(reader, node["global"], Child(path, "global"), &stage.options.global);
+    ReadGlobal(reader, node["global"], Child(path, "global"), &stage.options.global,
+               &stage.search_horizons);
+    if (node["global"]["horizons"] && !stage.continuation.empty()) {
+      reader.Fail(node["global"]["horizons"], Child(Child(path, "global"), "horizons"),
+                  "the stage's continuation sets the segments its global start searches on");
+    }
   }
   if (node["local"]) ReadLocal(reader, node["local"], Child(path, "local"), &stage.options.local);
   if (const YAML::Node n = node["uncertainty"]) {

@@ -5,11 +5,41 @@
 
 namespace vesselid {
 
+namespace {
+
+// `horizons: auto | none | [lengths]` of a stage's global start.
+void ReadHorizons(const YamlReader& reader, const YAML::Node& node, const std::string& key,
+                  SearchHorizons* horizons) {
+  if (node.IsScalar()) {
+    const std::string text = reader.String(node, key);
+    if (text == "auto") {
+      horizons->mode = SearchHorizons::Mode::kAuto;
+    } else if (text == "none") {
+      horizons->mode = SearchHorizons::Mode::kNone;
+    } else {
+      reader.Fail(node, key, "auto, none or a list of segment lengths in s, not '" + text + "'");
+    }
+    return;
+  }
+  horizons->mode = SearchHorizons::Mode::kGiven;
+  horizons->lengths = reader.Doubles(node, key);
+  if (horizons->lengths.empty()) reader.Fail(node, key, "at least one segment length (or none)");
+  for (size_t i = 0; i < horizons->lengths.size(); ++i) {
+    const bool increasing = i == 0 || horizons->lengths[i] > horizons->lengths[i - 1];
+    if (!(horizons->lengths[i] > 0.0) || !increasing) {
+      reader.Fail(node[i], Child(key, i), "segment lengths must be > 0 and increasing");
+    }
+  }
+}
+
+}  // namespace
+
 void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
-                GlobalStartOptions* global) {
+                GlobalStartOptions* global, SearchHorizons* horizons) {
   reader.CheckMap(node, path,
                   {"algorithm", "points", "short_iterations", "threads", "max_evaluations",
-                   "max_time", "seed", "population", "candidates", "min_separation"});
+                   "max_time", "seed", "population", "candidates", "min_separation",
+                   "horizons"});
   reader.Read(node, path, "algorithm", &global->algorithm);
   reader.Read(node, path, "points", &global->points);
   reader.CheckLimit(node["points"], Child(path, "points"), global->points,
@@ -35,7 +65,13 @@ void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::str
                                      "and short_iterations");
     }
   }
-  for (const char* key : {"points", "short_iterations", "threads"}) {
+  if (const YAML::Node h = node["horizons"]) {
+    if (horizons == nullptr) {
+      reader.Fail(h, Child(path, "horizons"), "horizons applies to a stage's global start");
+    }
+    ReadHorizons(reader, h, Child(path, "horizons"), horizons);
+  }
+  for (const char* key : {"points", "short_iterations", "threads", "horizons"}) {
     if (!multistart && node[key]) {
       reader.Fail(node[key], Child(path, key),
                   std::string(key) + " applies to the multistart, not to NLopt's " +

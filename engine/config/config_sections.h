@@ -13,10 +13,11 @@
 
 namespace vesselid {
 
-// `global: {algorithm, max_evaluations, max_time, seed, population, candidates,
-// min_separation}` over the values already in `global`.
+// `global: {algorithm, points, short_iterations, threads, max_evaluations, max_time, seed,
+// population, candidates, min_separation, horizons}` over the values already in `global`.
+// `horizons` (auto | none | [lengths]) only where `horizons` is given (a stage's global start).
 void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
-                GlobalStartOptions* global);
+                GlobalStartOptions* global, SearchHorizons* horizons = nullptr);
 
 // A stage's `uncertainty`: true | false, or {method, bandwidth, kernel, prewhiten}
 // (uncertainty_config.cc) over the values already in `options`.

@@ -211,6 +211,7 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
   if (s.global.run) {
     j["global_start"] = {{"algorithm", s.global.algorithm},
                          {"variables", s.global.variables},
+                         {"horizon_seconds", s.global.horizon_seconds},
                          {"evaluations", s.global.evaluations},
                          {"diverged_evaluations", s.global.failed_evaluations},
                          {"abandoned", s.global.abandoned},

@@ -56,7 +56,8 @@ void SetCarriedStates(const std::vector<StateAt>& states, OutputErrorProblem* pr
 bool RunContinuation(const RunConfig& config, const StageConfig& stage, const ModelHandle& model,
                      TrajectoryCache* cache, const ProgressCallback& progress,
                      std::vector<ParameterSpec>* specs, std::vector<StateAt>* states,
-                     std::vector<std::string>* notes, std::string* error) {
+                     std::vector<std::string>* notes, StageSummary* first_phase,
+                     std::string* error) {
   for (size_t phase = 0; phase < stage.continuation.size(); ++phase) {
     const double length = stage.continuation[phase];
     std::vector<Experiment> experiments;
@@ -64,8 +65,13 @@ bool RunContinuation(const RunConfig& config, const StageConfig& stage, const Mo
                             &experiments, error, length)) {
       return false;
     }
+    OutputErrorOptions phase_problem = stage.problem;
+    for (const std::string& name : stage.continuation_free_states) {
+      std::vector<std::string>& free = phase_problem.free_initial_states;
+      if (std::find(free.begin(), free.end(), name) == free.end()) free.push_back(name);
+    }
     std::unique_ptr<OutputErrorProblem> problem = OutputErrorProblem::Create(
-        &model, std::move(experiments), *specs, stage.problem, error);
+        &model, std::move(experiments), *specs, phase_problem, error);
     if (problem == nullptr) return false;
     SetCarriedStates(*states, problem.get());
     StageOptions options = stage.options;
@@ -91,6 +97,7 @@ bool RunContinuation(const RunConfig& config, const StageConfig& stage, const Mo
                   local.final_cost, local.iterations, summary.time_seconds);
     notes->push_back(text);
     CarryForward(*problem, specs, states);
+    if (phase == 0 && first_phase != nullptr) *first_phase = std::move(summary);
   }
   return true;
 }

@@ -23,11 +23,13 @@ struct StateAt {
 
 // Runs the stage's continuation phases (none if it has none). `specs` leave with the last
 // phase's estimates as starts (within their bounds), `states` with its segments' initial
-// states; `notes` get one line per phase. `progress` (may be empty) hears every phase's solves.
+// states; `notes` get one line per phase, `first_phase` (may be null) the first phase's
+// summary (its global start's). `progress` (may be empty) hears every phase's solves.
 bool RunContinuation(const RunConfig& config, const StageConfig& stage, const ModelHandle& model,
                      TrajectoryCache* cache, const ProgressCallback& progress,
                      std::vector<ParameterSpec>* specs, std::vector<StateAt>* states,
-                     std::vector<std::string>* notes, std::string* error);
+                     std::vector<std::string>* notes, StageSummary* first_phase,
+                     std::string* error);
 
 // Free initial states of the problem's experiments take the carried values of segments that
 // begin where one of `states` began.

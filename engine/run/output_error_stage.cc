@@ -270,6 +270,68 @@ bool HandleOutliers(const StageConfig& stage, const StageOptions& options,
   return true;
 }
 
+// The multistart's search horizons (search_horizons.h) become the stage's continuation
+// when it has none of its own; `on_pieces` says whether they did.
+bool SetSearchHorizons(const RunConfig& config, const ModelHandle& model, TrajectoryCache* cache,
+                       StageConfig* stage, bool* on_pieces, std::string* error) {
+  *on_pieces = false;
+  const SearchHorizons& horizons = stage->search_horizons;
+  if (!stage->options.use_global_start || stage->options.global.algorithm != "multistart" ||
+      !stage->continuation.empty() || horizons.mode == SearchHorizons::Mode::kNone) {
+    return true;
+  }
+  std::vector<Experiment> experiments;
+  if (!PrepareExperiments(config, stage->experiments, model, stage->experiment, cache,
+                          &experiments, error)) {
+    return false;
+  }
+  stage->continuation =
+      horizons.mode == SearchHorizons::Mode::kAuto ? AutomaticHorizons(experiments) : horizons.lengths;
+  *on_pieces = !stage->continuation.empty();
+  // A piece begins mid-record, where the data give the measured states but only a guess of
+  // the others (velocities from differenced positions): those are estimated per piece. A
+  // state the model never moves (an inactive degree of freedom) keeps a zero Jacobian column,
+  // which the damped steps leave alone.
+  const ModelInfo& info = model.info();
+  for (size_t i = 0; i < info.states.size(); ++i) {
+    const int output = info.OutputIndex(info.states[i]);
+    bool measured = false;
+    for (const Experiment& e : experiments) {
+      measured = measured || (output >= 0 && e.output_sample_count[output] > 0);
+    }
+    if (!measured) stage->continuation_free_states.push_back(info.states[i]);
+  }
+  return true;
+}
+
+// After a search on pieces: the first phase's global start, its notes and findings, are the
+// stage's, and a note says which start the whole experiments' refinement kept (refinement 0
+// and 1 from the search's end point, the last from the configured start).
+void CarrySearch(StageSummary searched, double horizon, StageSummary* summary) {
+  summary->global = std::move(searched.global);
+  summary->global.horizon_seconds = horizon;
+  char text[256];
+  std::snprintf(text, sizeof(text), "global start on %.3g s pieces", horizon);
+  const std::string prefix = "global start";
+  for (const std::string& note : searched.notes) {
+    if (note.rfind(prefix, 0) != 0) continue;
+    summary->notes.push_back(text + note.substr(prefix.size()));
+  }
+  summary->findings.insert(summary->findings.end(), searched.findings.begin(),
+                           searched.findings.end());
+  const int from_start = static_cast<int>(summary->refinements.size()) - 1;
+  const LocalSolveSummary& start = summary->refinements[from_start];
+  char start_cost[64] = "failed";
+  if (start.usable) std::snprintf(start_cost, sizeof(start_cost), "%.6e", start.final_cost);
+  std::snprintf(text, sizeof(text),
+                "global start, whole experiments: the %s kept, cost %.6e (refined from the "
+                "configured start: %s)",
+                summary->chosen == from_start ? "refinement from the configured start"
+                                              : "refinement of the search's end point",
+                summary->local().final_cost, start_cost);
+  summary->notes.push_back(text);
+}
+
 }  // namespace
 
 bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_stage,
@@ -285,8 +347,11 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
   std::vector<StateAt> states;
   std::vector<std::string> continuation_notes;
   const auto stage_start = std::chrono::steady_clock::now();
-  if (!RunContinuation(config, stage, model, cache, progress, &specs, &states, &continuation_notes,
-                       error)) {
+  bool on_pieces = false;
+  StageSummary searched;
+  if (!SetSearchHorizons(config, model, cache, &stage, &on_pieces, error) ||
+      !RunContinuation(config, stage, model, cache, progress, &specs, &states, &continuation_notes,
+                       on_pieces ? &searched : nullptr, error)) {
     return false;
   }
   std::vector<Experiment> experiments;
@@ -301,11 +366,8 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
   // segments estimated, and from the data's guess (the latter sometimes finds the lower
   // of two nearby minima; both cost one refinement).
   std::vector<std::vector<double>> extra_starts;
-  if (!states.empty()) {
-    extra_starts.push_back(problem->Values());
-    SetCarriedStates(states, problem.get());
-  }
-  // Reported starts are the configured ones, not those continuation handed on.
+  // The configured start (the data's initial states): reported as the start, and after a
+  // search on pieces refined too, so that the search is never worse than a local solve.
   std::vector<double> starts = problem->Values();
   for (size_t i = 0; i < starts.size(); ++i) {
     const Variable& v = problem->variables()[i];
@@ -313,6 +375,11 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
       starts[i] = configured[v.index].start;
     }
   }
+  if (!states.empty()) {
+    extra_starts.push_back(problem->Values());
+    SetCarriedStates(states, problem.get());
+  }
+  if (on_pieces) extra_starts.push_back(starts);
   StageOptions options = stage.options;
   options.use_global_start = options.use_global_start && stage.continuation.empty();
   options.local.progress = progress;
@@ -328,6 +395,7 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
     *error = summary.message;
     return false;
   }
+  if (on_pieces) CarrySearch(std::move(searched), stage.continuation.front(), &summary);
   NoiseModel noise;
   if (noise_weights && !IterateNoiseWeights(options, problem.get(), &summary, &noise)) {
     *error = summary.message;

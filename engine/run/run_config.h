@@ -20,6 +20,7 @@
 #include "engine/regression/least_squares.h"
 #include "engine/regression/regression_data.h"
 #include "engine/run/fusion.h"
+#include "engine/run/search_horizons.h"
 #include "engine/solve/output_error_problem.h"
 #include "engine/solve/parameter.h"
 #include "engine/solve/stage.h"
@@ -76,6 +77,12 @@ struct StageConfig {
   // Segment lengths (s, increasing) the stage is solved with first, each phase starting the
   // next; empty: the stage is solved once on its experiments as configured.
   std::vector<double> continuation;
+  // Segment lengths the multistart global start searches on when the stage has no
+  // continuation of its own (`global: {horizons: ...}`, search_horizons.h).
+  SearchHorizons search_horizons;
+  // Initial states the continuation phases estimate besides the stage's own
+  // (free_initial_states): a search on pieces frees those the data do not measure.
+  std::vector<std::string> continuation_free_states;
   OutlierOptions outliers;
   // One-step-ahead and free-run velocity metrics of the held-out runs (velocity_validation.h)
   // for a model with an equation-error form; `velocity_validation: false` leaves them out.

@@ -96,6 +96,11 @@ std::string GlobalStartSummary::BriefReport() const {
                   "end points, best cost %.6e, %.3f s",
                   evaluations, failed_evaluations, abandoned, clusters, best_cost, time_seconds);
     std::string report = text;
+    if (horizon_seconds > 0.0) {
+      std::snprintf(text, sizeof(text), "; searched on %.3g s pieces of the experiments",
+                    horizon_seconds);
+      report += text;
+    }
     if (!around_start.empty()) {
       std::string names;
       for (const std::string& n : around_start) names += (names.empty() ? "" : ", ") + n;

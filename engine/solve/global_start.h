@@ -45,6 +45,8 @@ struct GlobalStartSummary {
   // multistart: those searched around their start (one-sided or no bounds, search_box.h)
   std::vector<std::string> around_start;
   std::string algorithm;
+  // Segment length (s) the search ran on (search_horizons.h); 0: the whole experiments.
+  double horizon_seconds = 0.0;
   int evaluations = 0;         // NLopt: cost evaluations; multistart: points screened
   int failed_evaluations = 0;  // diverging simulations (multistart: points)
   int abandoned = 0;           // multistart: short solves abandoned as clearly worse
