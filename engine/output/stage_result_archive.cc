@@ -98,10 +98,11 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ExperimentFit, experiment, diverged, message,
                                    trace)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(HeldOutCheck, done, outputs, start_mae, stage_mae,
                                    start_diverged, stage_diverged, start_far_worse, worse)
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(GlobalStartSummary, run, variables, algorithm, evaluations,
-                                   failed_evaluations, abandoned, clusters,
-                                   short_iterations_total, best_cost, time_seconds, result,
-                                   message, candidates, candidate_costs, best_cost_history)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(GlobalStartSummary, run, variables, around_start, algorithm,
+                                   horizon_seconds, evaluations, failed_evaluations, abandoned,
+                                   short_solves, known_joined, clusters, short_iterations_total,
+                                   best_cost, time_seconds, result, message, candidates,
+                                   candidate_costs, best_cost_history)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LocalSolveSummary, run, usable, initial_cost, final_cost,
                                    iterations, successful_steps, unsuccessful_steps, time_seconds,
                                    termination, message, cost_history, residual_seconds,
