@@ -1,7 +1,6 @@
 #include "engine/run/search_horizons.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <limits>
 
 namespace vesselid {
@@ -30,18 +29,6 @@ std::vector<double> AutomaticHorizons(const std::vector<Experiment>& experiments
   if (length >= 0.5 * shortest) return lengths;
   for (; length < 0.5 * longest; length *= kGrowth) lengths.push_back(length);
   return lengths;
-}
-
-std::string DescribeHorizons(const SearchHorizons& horizons) {
-  if (horizons.mode == SearchHorizons::Mode::kAuto) return "auto";
-  if (horizons.mode == SearchHorizons::Mode::kNone) return "none";
-  std::string text;
-  for (double l : horizons.lengths) {
-    char number[32];
-    std::snprintf(number, sizeof(number), "%g s", l);
-    text += (text.empty() ? "" : ", ") + std::string(number);
-  }
-  return text;
 }
 
 }  // namespace vesselid

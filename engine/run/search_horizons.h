@@ -5,7 +5,6 @@
 // whole experiments (a continuation whose first phase takes the global start, continuation.h).
 #pragma once
 
-#include <string>
 #include <vector>
 
 #include "engine/model/experiment.h"
@@ -24,8 +23,5 @@ struct SearchHorizons {
 // then three times longer while below half the longest; empty when even the first would
 // not be shorter than half the shortest experiment (the experiments are short already).
 std::vector<double> AutomaticHorizons(const std::vector<Experiment>& experiments);
-
-// "auto", "none" or the lengths ("10 s, 30 s").
-std::string DescribeHorizons(const SearchHorizons& horizons);
 
 }  // namespace vesselid
