@@ -115,74 +115,6 @@ std::string InEngineWords(const ceres::Solver::Summary& summary) {
   return summary.message;
 }
 
-// Free unknowns Ceres left on a bound (within round-off), whose blocks are not held.
-std::vector<const Variable*> AtBound(OutputErrorProblem* problem) {
-  std::vector<const Variable*> at;
-  for (const Variable& v : problem->variables()) {
-    if (!v.free || problem->problem()->IsParameterBlockConstant(v.block)) continue;
-    const double x = v.value();
-    auto on = [x](double bound) {
-      return std::isfinite(bound) && std::abs(x - bound) <= 1e-9 * std::max(1.0, std::abs(bound));
-    };
-    if (on(v.lower) || on(v.upper)) at.push_back(&v);
-  }
-  return at;
-}
-
-// Ceres projects its trust-region steps onto the bounds, and with an unknown on its bound
-// the projected steps can stall short of the optimum: the tanker's second order stopped at
-// 1.10x the cost it reaches with T2 held on its 2 s bound (the cost SciPy's reflective
-// trust region reaches). So a solve that ends with unknowns on their bounds is continued
-// with them held there, and the continuation is kept when it lowers the cost (the problem's
-// own summation order, as the reported costs).
-void ContinueWithBoundsHeld(ceres::Solver::Options options, int stall_window,
-                            double stall_tolerance, OutputErrorProblem* problem,
-                            LocalSolveSummary* summary) {
-  const std::vector<const Variable*> held = AtBound(problem);
-  int free = 0;
-  for (const Variable& v : problem->variables()) {
-    free += v.free && !problem->problem()->IsParameterBlockConstant(v.block);
-  }
-  if (held.empty() || static_cast<int>(held.size()) == free) return;
-  const std::vector<double> before = problem->Values();
-  double before_cost = 0.0;
-  if (!problem->Cost(&before_cost)) return;
-  // A fresh stall check (the first solve's holds its own history); the progress reporter
-  // (first callback when present) goes on reporting.
-  StallCheck stall(stall_window, stall_tolerance);
-  std::vector<ceres::IterationCallback*> callbacks;
-  if (!options.callbacks.empty() && dynamic_cast<ProgressReporter*>(options.callbacks[0])) {
-    callbacks.push_back(options.callbacks[0]);
-  }
-  if (stall_window > 0) callbacks.push_back(&stall);
-  options.callbacks = callbacks;
-  for (const Variable* v : held) problem->problem()->SetParameterBlockConstant(v->block);
-  ceres::Solver::Summary again;
-  ceres::Solve(options, problem->problem(), &again);
-  for (const Variable* v : held) problem->problem()->SetParameterBlockVariable(v->block);
-  double after_cost = 0.0;
-  if (!again.IsSolutionUsable() || !problem->Cost(&after_cost) || !(after_cost < before_cost)) {
-    problem->SetValues(before);
-    return;
-  }
-  summary->final_cost = after_cost;
-  summary->iterations += static_cast<int>(again.iterations.size()) - 1;
-  summary->successful_steps += again.num_successful_steps;
-  summary->unsuccessful_steps += again.num_unsuccessful_steps;
-  summary->time_seconds += again.total_time_in_seconds;
-  summary->residual_seconds += again.residual_evaluation_time_in_seconds;
-  summary->jacobian_seconds += again.jacobian_evaluation_time_in_seconds;
-  summary->linear_solver_seconds += again.linear_solver_time_in_seconds;
-  summary->residual_evaluations += again.num_residual_evaluations;
-  summary->jacobian_evaluations += again.num_jacobian_evaluations;
-  summary->termination = ceres::TerminationTypeToString(again.termination_type);
-  summary->message = again.message;
-  for (size_t i = 1; i < again.iterations.size(); ++i) {
-    summary->cost_history.push_back(again.iterations[i].cost);
-  }
-  summary->cost_history.back() = after_cost;
-}
-
 }  // namespace
 
 bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem,
@@ -251,12 +183,6 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   summary->message = ceres_summary.message;
   for (const ceres::IterationSummary& it : ceres_summary.iterations) {
     summary->cost_history.push_back(it.cost);
-  }
-  // Not after an abandoned solve (keep_going: its caller wants it stopped).
-  if (summary->usable && std::isfinite(summary->final_cost) &&
-      ceres_summary.termination_type != ceres::USER_FAILURE) {
-    ContinueWithBoundsHeld(ceres_options, options.stall_window, options.stall_tolerance, problem,
-                           summary);
   }
   if (!summary->usable && ceres_summary.initial_cost < 0) {
     // Name the experiment, time, outputs and inputs (the values are still the start values).
