@@ -449,14 +449,7 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
     }
   }
   if (const YAML::Node continuation = node["continuation"]) {
-    const std::string key = Child(path, "continuation");
-    stage.continuation = reader.Doubles(continuation, key);
-    for (size_t i = 0; i < stage.continuation.size(); ++i) {
-      const bool increasing = i == 0 || stage.continuation[i] > stage.continuation[i - 1];
-      if (!(stage.continuation[i] > 0.0) || !increasing) {
-        reader.Fail(continuation[i], Child(key, i), "segment lengths must be > 0 and increasing");
-      }
-    }
+    stage.continuation = ReadSegmentLengths(reader, continuation, Child(path, "continuation"));
   }
   if (const YAML::Node loss = node["loss"]) {
     reader.CheckMap(loss, Child(path, "loss"), {"type", "scale"});

@@ -22,17 +22,23 @@ void ReadHorizons(const YamlReader& reader, const YAML::Node& node, const std::s
     return;
   }
   horizons->mode = SearchHorizons::Mode::kGiven;
-  horizons->lengths = reader.Doubles(node, key);
+  horizons->lengths = ReadSegmentLengths(reader, node, key);
   if (horizons->lengths.empty()) reader.Fail(node, key, "at least one segment length (or none)");
-  for (size_t i = 0; i < horizons->lengths.size(); ++i) {
-    const bool increasing = i == 0 || horizons->lengths[i] > horizons->lengths[i - 1];
-    if (!(horizons->lengths[i] > 0.0) || !increasing) {
-      reader.Fail(node[i], Child(key, i), "segment lengths must be > 0 and increasing");
-    }
-  }
 }
 
 }  // namespace
+
+std::vector<double> ReadSegmentLengths(const YamlReader& reader, const YAML::Node& node,
+                                       const std::string& key) {
+  std::vector<double> lengths = reader.Doubles(node, key);
+  for (size_t i = 0; i < lengths.size(); ++i) {
+    const bool increasing = i == 0 || lengths[i] > lengths[i - 1];
+    if (!(lengths[i] > 0.0) || !increasing) {
+      reader.Fail(node[i], Child(key, i), "segment lengths must be > 0 and increasing");
+    }
+  }
+  return lengths;
+}
 
 void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                 GlobalStartOptions* global, SearchHorizons* horizons) {

@@ -19,6 +19,10 @@ namespace vesselid {
 void ReadGlobal(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                 GlobalStartOptions* global, SearchHorizons* horizons = nullptr);
 
+// Segment lengths in s, > 0 and increasing (a stage's `continuation`, `global.horizons`).
+std::vector<double> ReadSegmentLengths(const YamlReader& reader, const YAML::Node& node,
+                                       const std::string& key);
+
 // A stage's `uncertainty`: true | false, or {method, bandwidth, kernel, prewhiten}
 // (uncertainty_config.cc) over the values already in `options`.
 void ReadUncertainty(const YamlReader& reader, const YAML::Node& node, const std::string& path,
