@@ -8,9 +8,10 @@
 // and, with a per-sample robust loss rho, r~_i = sign(r_i) sqrt(rho(r_i^2)) so that
 // 1/2 sum r~^2 = 1/2 sum rho(r^2) (Ceres applies losses per block, not per sample).
 //
-// Derivatives: the whole experiment is simulated once on Jets whose dimension is the number
-// of blocks Ceres asks a Jacobian for (constant blocks cost nothing), chosen from a fixed list
-// of sizes.
+// Derivatives: the whole experiment is simulated on Jets carrying the derivatives along the
+// blocks Ceres asks a Jacobian for (constant blocks cost nothing): once, on the smallest
+// compiled Jet size that holds them all, or, beyond kMaxJetSize directions, in as few passes
+// as it takes, each seeding an equal share of the directions.
 //
 // With a cache (ExperimentCostOptions), an evaluation at the values of the previous one of
 // its kind is copied from it (evaluation_cache.h).
@@ -29,13 +30,19 @@
 
 namespace vesselid {
 
-// Jet sizes compiled for each model; a problem with more free directions is refused. Even
-// sizes only: a Jet's derivative vector is then whole SSE2 packets of two doubles, and an odd
-// width is slower than the next even one (cargo, 300 001 samples, residual + Jacobian:
-// 1 direction 75 ms vs 2: 72 ms, 3: 102 vs 4: 95, 5: 123 vs 6: 112, 7: 133 vs 8: 121;
-// tests/benchmarks/benchmark_solve_cost). The unused directions carry zero derivatives.
-using JetSizes = std::integer_sequence<int, 2, 4, 6, 8, 10, 12, 16, 20, 24, 32, 48, 64, 80>;
-inline constexpr int kMaxJetSize = 80;
+// Jet sizes compiled for each model. Even sizes only: a Jet's derivative vector is then whole
+// SSE2 packets of two doubles, and an odd width is slower than the next even one (cargo,
+// 300 001 samples, residual + Jacobian: 1 direction 75 ms vs 2: 72 ms, 3: 102 vs 4: 95,
+// 5: 123 vs 6: 112, 7: 133 vs 8: 121; tests/benchmarks/benchmark_solve_cost). The unused
+// directions carry zero derivatives. Every size is a whole simulation compiled per model (the
+// 6-DOF family's handle took 397 s of CPU with sizes up to 80); beyond 32 directions a second
+// pass costs little more than the wider Jet would, since the derivative arithmetic grows with
+// the width either way and only the scalar part is repeated.
+using JetSizes = std::integer_sequence<int, 2, 4, 6, 8, 12, 16, 24, 32>;
+inline constexpr int kMaxJetSize = 32;
+// Experiments with input corrections have a direction per knot (32 for a minute of record
+// at the default spacing): fewer sizes suffice.
+using CorrectedJetSizes = std::integer_sequence<int, 8, 16, 24, 32>;
 
 struct ExperimentCostOptions {
   // Keeps the last evaluation of each kind; null: every evaluation simulates. Sized by the
@@ -83,10 +90,24 @@ class ExperimentCost final : public ceres::CostFunction {
       if (counts_ != nullptr) ++counts_->hits;
       return true;
     }
-    if (counts_ != nullptr) ++(directions == 0 ? counts_->simulations : counts_->jet_simulations);
-    const bool ok = directions == 0
-                        ? EvaluateScalar<double>(parameters, residuals, nullptr)
-                        : Dispatch(JetSizes{}, directions, parameters, residuals, jacobians);
+    bool ok = true;
+    if (directions == 0) {
+      if (counts_ != nullptr) ++counts_->simulations;
+      ok = num_corrections_ == 0
+               ? EvaluateScalar<double, false>(parameters, residuals, nullptr, 0, 0)
+               : EvaluateScalar<double, true>(parameters, residuals, nullptr, 0, 0);
+    } else {
+      // passes of equal width: 40 directions as 2 x 20 (on Jets of 24), not 32 + 8
+      const int passes = (directions + kMaxJetSize - 1) / kMaxJetSize;
+      const int width = (directions + passes - 1) / passes;
+      for (int first = 0; ok && first < directions; first += width) {
+        if (counts_ != nullptr) ++counts_->jet_simulations;
+        ok = num_corrections_ == 0 ? Dispatch<false>(JetSizes{}, width, first, parameters,
+                                                     residuals, jacobians)
+                                   : Dispatch<true>(CorrectedJetSizes{}, width, first,
+                                                    parameters, residuals, jacobians);
+      }
+    }
     if (ok && cache_ != nullptr) cache_->Store(parameters, revision, residuals, jacobians);
     return ok;
   }
@@ -95,15 +116,18 @@ class ExperimentCost final : public ceres::CostFunction {
  private:
   int NumBlocks() const { return num_parameters_ + Model::kNumStates + num_corrections_; }
 
-  template <int... Sizes>
-  bool Dispatch(std::integer_sequence<int, Sizes...>, int directions,
+  // Simulates on the smallest Jet of at least `width` directions, seeding the directions
+  // first, first + 1, ... of the blocks asked for (in block order).
+  template <bool kCorrected, int... Sizes>
+  bool Dispatch(std::integer_sequence<int, Sizes...>, int width, int first,
                 double const* const* parameters, double* residuals, double** jacobians) const {
     bool ok = false, done = false;
-    ((!done && Sizes >= directions ? (done = true, ok = EvaluateScalar<ceres::Jet<double, Sizes>>(
-                                                       parameters, residuals, jacobians))
-                                   : false),
+    ((!done && Sizes >= width ? (done = true, ok = EvaluateScalar<ceres::Jet<double, Sizes>, kCorrected>(
+                                                  parameters, residuals, jacobians, first,
+                                                  width))
+                              : false),
      ...);
-    VESSELID_CHECK(done);  // the problem builder refuses more than kMaxJetSize directions
+    VESSELID_CHECK(done);  // width <= kMaxJetSize by construction
     return ok;
   }
 
@@ -118,15 +142,21 @@ class ExperimentCost final : public ceres::CostFunction {
     }
   }
 
-  template <class T>
-  bool EvaluateScalar(double const* const* parameters, double* residuals,
-                      double** jacobians) const {
+  // On Jets: the blocks asked for whose rank among them is in [first_direction,
+  // first_direction + width) carry a direction; the others' Jacobians are left to the other
+  // passes. kCorrected: the experiment has input corrections (num_corrections_ > 0).
+  template <class T, bool kCorrected>
+  bool EvaluateScalar(double const* const* parameters, double* residuals, double** jacobians,
+                      int first_direction, int width) const {
     constexpr int n = Model::kNumStates;
     std::vector<int> direction(NumBlocks(), -1);
     int count = 0;
-    if (jacobians != nullptr) {
+    if constexpr (!std::is_same_v<T, double>) {
+      int rank = 0;
       for (int b = 0; b < NumBlocks(); ++b) {
-        if (jacobians[b] != nullptr) direction[b] = count++;
+        if (jacobians[b] == nullptr) continue;
+        if (rank >= first_direction && rank < first_direction + width) direction[b] = count++;
+        ++rank;
       }
     }
     std::vector<T> p(num_parameters_);
@@ -160,9 +190,12 @@ class ExperimentCost final : public ceres::CostFunction {
         StoreResidual(r, i, direction, count, residuals, jacobians);
       }
     };
-    const bool simulated = num_corrections_ == 0
-                               ? SimulateExperiment(model_, e, p.data(), x.data(), visit)
-                               : SimulateCorrected(c.data(), p.data(), x.data(), visit);
+    bool simulated = false;
+    if constexpr (kCorrected) {
+      simulated = SimulateCorrected(c.data(), p.data(), x.data(), visit);
+    } else {
+      simulated = SimulateExperiment(model_, e, p.data(), x.data(), visit);
+    }
     if (!simulated) return false;
     for (int i = 0; i < e.num_samples(); ++i) {
       if (!std::isfinite(residuals[i])) return false;

@@ -260,17 +260,8 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
   std::vector<double> scales(specs.size());
   for (size_t i = 0; i < specs.size(); ++i) scales[i] = specs[i].EffectiveScale();
   for (int e = 0; e < num_experiments; ++e) {
-    int directions = 0;
     std::vector<double*> blocks;
-    for (int index : p->block_of_[e]) {
-      blocks.push_back(p->variables_[index].block);
-      directions += p->variables_[index].free;
-    }
-    if (directions > kMaxJetSize) {
-      *error = "experiment '" + p->experiments_[e].name + "' has " + std::to_string(directions) +
-               " free quantities; at most " + std::to_string(kMaxJetSize) + " are supported";
-      return nullptr;
-    }
+    for (int index : p->block_of_[e]) blocks.push_back(p->variables_[index].block);
     ExperimentCostOptions cost_options;
     cost_options.counts = p->counts_.get();
     if (options.evaluation_cache && bounded) {
