@@ -77,6 +77,7 @@ bool RunContinuation(const RunConfig& config, const StageConfig& stage, const Mo
     StageOptions options = stage.options;
     options.use_global_start = options.use_global_start && phase == 0;
     options.compute_uncertainty = false;
+    options.local.hold_bounds_at_end = false;  // the whole records' refinement does that
     if (progress) {
       options.local.progress = options.global.progress = [&progress, length](SolveProgress p) {
         p.segment_length = length;

@@ -36,6 +36,10 @@ struct LocalSolveOptions {
   // does not end. 0: off.
   int stall_window = 0;
   double stall_tolerance = 0.0;
+  // A solve that ends with free unknowns on a bound goes on, within what is left of
+  // max_iterations and max_time_seconds, with them held there, and keeps that when it lowers
+  // the cost (local_solve.cc). Off for the short solves of searches and continuations.
+  bool hold_bounds_at_end = true;
 
   bool IsValid(std::string* error) const;
 };

@@ -59,6 +59,7 @@ PointResult ShortSolve(const GlobalStartOptions& options, const SearchBox& box,
   LocalSolveOptions local;
   local.max_iterations = options.short_iterations;
   local.num_threads = 1;
+  local.hold_bounds_at_end = false;  // a short solve: its refinement does that
   bool abandoned = false;
   if (std::isfinite(best_before)) {
     local.keep_going = [&](int iteration, double c) {

@@ -133,22 +133,24 @@ TEST(MismatchCampaign, DynamicConfigSaysWhatItKept) {
 }
 
 // The shipped dynamic config whole, on the purely quadratic thruster (which has no dead zone):
-// its default law ends with a dead zone d_f of about 0.12 and an ahead branch that bends down
-// beyond it, and an astern branch whose sign changes. Both are named: the zone as a structure
-// the data do not support, the law as not monotone (a failure of the final values).
+// its default law ends with dead zones of about 0.15 ahead and astern (both near their
+// bounds), and an astern branch that bends the wrong way beyond its edge; the damping that
+// compensates feeds the motion. The zone is named as a structure the data do not support,
+// the damping as not admissible (a failure of the final values). With the refinement's
+// unknowns held once on their bounds the cost is 3.9e-3 (0.65 when the projected steps
+// stalled with d_r on its bound; the spurious zone was then d_f, with a non-monotone law).
 TEST(MismatchCampaign, DynamicDefaultLawsSpuriousDeadZoneIsNamed) {
   const json results = RunMismatch("dynamic", false);
   ASSERT_FALSE(results.is_discarded());
   std::map<std::string, double> value;
   for (const json& p : results["parameters"]) value[p["name"]] = p["value"].get<double>();
   EXPECT_GT(value["d_f"], 0.05);
-  EXPECT_LT(value["k_f"], 0.0);
+  EXPECT_LT(value["d_r"], -0.05);
   const std::vector<json> zone =
-      testing::JsonFindingsOf(results, "unsupported_structure", "the dead zone edge d_f");
+      testing::JsonFindingsOf(results, "unsupported_structure", "the dead zone edge d_");
   ASSERT_GE(zone.size(), 1u) << testing::JsonFindingsText(results);
   EXPECT_EQ(zone[0]["severity"], "warning");
-  EXPECT_TRUE(Found(results, "not_admissible", "the thrust law is not monotone in its command"))
-      << testing::JsonFindingsText(results);
+  EXPECT_TRUE(Found(results, "not_admissible", "damping")) << testing::JsonFindingsText(results);
   EXPECT_EQ(results["verdict"], "failed");
 }
 

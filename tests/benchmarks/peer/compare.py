@@ -3,6 +3,7 @@
 
   /usr/bin/python3 tests/benchmarks/peer/compare.py --build build [--cases cargo,patrol,...]
       [--repeats 3] [--patrol-starts 40] [--work DIR] [--json FILE]
+      [--peer-tolerances ftol,xtol,gtol]
 
 For every case the engine (`vesselid run`) and the peer run on the same data (simulated once by
 `vesselid simulate` from the shipped config; the peer never simulates), one after the other,
@@ -21,6 +22,9 @@ and ratios engine/peer (< 1: the engine is faster). Cases:
   cargo          configs/nomoto_cargo.yaml as shipped: second-order Nomoto, 300 001 samples,
                  noise-free, from 50 % off every parameter, initial state fixed
   cargo_free_psi the same with the initial heading estimated (free_initial_states: [psi])
+  cargo_multisine the same vessel, start and length on a noise-free multi-sine (periods 600 to
+                 20 s, as nomoto_cargo_noise.yaml): a near start from which both need about
+                 as many iterations, so that the cost per iteration decides
   patrol         configs/nomoto_patrol.yaml, noise-free sine: --patrol-starts starts drawn
                  log-uniform in [truth/5, truth*5] (seed 22), each solved locally by the
                  engine (`global:` removed), by the engine with the shipped global start, and
@@ -54,7 +58,8 @@ import yaml
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.abspath(os.path.join(HERE, "..", "..", ".."))
 PEER = os.path.join(HERE, "nomoto_peer.py")
-CASES = ["cargo", "cargo_free_psi", "patrol", "tanker4_first", "tanker4_second"]
+CASES = ["cargo", "cargo_free_psi", "cargo_multisine", "patrol", "tanker4_first",
+         "tanker4_second"]
 
 
 def load(path):
@@ -126,7 +131,8 @@ class Bench:
                 "termination": [r["termination"] for r in stage["refinements"]]}
 
     def peer(self, config, data, starts=None, tag="peer"):
-        command = [self.python, PEER, config, "--data", data]
+        command = [self.python, PEER, config, "--data", data, "--tolerances",
+                   self.peer_tolerances]
         if starts is not None:
             path = os.path.join(self.work, tag + "_starts.json")
             with open(path, "w") as f:
@@ -141,6 +147,7 @@ class Bench:
                 "setup": result["setup_seconds"], "backend": result["backend"],
                 "tolerances": result["tolerances"],
                 "evaluations": sum(s["evaluations"] for s in solves),
+                "jacobians": sum(s["jacobians"] for s in solves),
                 "cost": solves[0]["cost"], "estimates": solves[0]["estimates"],
                 "solves": solves}
 
@@ -176,6 +183,15 @@ def prepare(bench, case):
             config["stages"][0]["free_initial_states"] = ["psi"]
         path = dump(config, os.path.join(cfg, case + ".yaml"))
         return [path], path, bench.data(shipped), config["simulation"]["truth"], None
+    if case == "cargo_multisine":
+        config = load(os.path.join(ROOT, "configs", "nomoto_cargo.yaml"))
+        run = config["simulation"]["experiments"][0]
+        run.update(file="cargo_multisine.csv",
+                   excitation={"type": "multisine", "amplitude_deg": 20,
+                               "periods": [600, 300, 150, 75, 40, 20]})
+        config["experiments"][0].update(name="multisine", file="cargo_multisine.csv")
+        path = dump(config, os.path.join(cfg, case + ".yaml"))
+        return [path], path, bench.data(path), config["simulation"]["truth"], None
     if case == "patrol":
         shipped = os.path.join(ROOT, "configs", "nomoto_patrol.yaml")
         config = load(shipped)
@@ -245,7 +261,8 @@ def summarise(case, rows, truth):
         out[who] = {k: median(rows, who, k) for k in keys + ("solve_cpu", "setup")
                     if median(rows, who, k) is not None}
     peer = rows[-1]["peer"]
-    out["peer"].update(backend=peer["backend"], evaluations=peer["evaluations"])
+    out["peer"].update(backend=peer["backend"], evaluations=peer["evaluations"],
+                       jacobians=peer["jacobians"])
     if case == "patrol":
         out["starts"] = len(peer["solves"])
         for who in rows[0]:
@@ -291,6 +308,11 @@ def table(results):
             else:
                 outcome = "cost %.4g vs %.4g, est. diff %.1e" % (e["cost"], p["cost"],
                                                                  res["estimate_difference"])
+            if res["case"] != "patrol":
+                # iterations: the engine's; the peer's Jacobians (one per accepted iteration)
+                # and function evaluations (the 2-point Jacobian costs n more each)
+                outcome += "; %d it. vs %d jac. + %d ev." % (e["iterations"], p["jacobians"],
+                                                               p["evaluations"])
             fmt = lambda d, k: ("%7.2f" % d[k]) if d.get(k) else "%7s" % "-"  # noqa: E731
             lines.append("%-22s %s %s %s %s %s | %s %s %s %s | %s" % (
                 label, fmt(r, "wall"), fmt(r, "cpu"), fmt(r, "rss_mb"), fmt(r, "solve"),
@@ -308,8 +330,12 @@ def main():
     parser.add_argument("--work", help="configs, data and runs (default BUILD/peer_benchmark)")
     parser.add_argument("--json", help="the results (default WORK/compare.json)")
     parser.add_argument("--python", default="/usr/bin/python3", help="runs the peer")
+    parser.add_argument("--peer-tolerances", default="1e-12,1e-12,1e-14",
+                        help="the peer's ftol,xtol,gtol (default: the engine's Ceres "
+                        "tolerances; SciPy's own are 1e-8,1e-8,1e-8)")
     args = parser.parse_args()
     bench = Bench(args)
+    bench.peer_tolerances = args.peer_tolerances
     bench.patrol_count = args.patrol_starts
     # Untimed warm-up: numba compiles the integrator into its cache once.
     _, peer_config, data, _, _ = prepare(bench, "tanker4_first")

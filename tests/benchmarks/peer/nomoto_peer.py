@@ -273,6 +273,17 @@ class Problem:
             out.append(e.weight * (e.psi_sim[e.mask] - e.psi))
         return np.concatenate(out)
 
+    def initial_states(self, z):
+        """Per experiment {state: value} at the unknowns z (the free ones from z)."""
+        nf, ns = len(self.free), len(self.free_states)
+        out = []
+        for j, e in enumerate(self.experiments):
+            x0 = e.x0.copy()
+            sbase = nf + len(self.per_exp) * len(self.experiments) + j * ns
+            x0[self.free_states] = z[sbase:sbase + ns]
+            out.append({s: float(v) for s, v in zip(self.states, x0)})
+        return out
+
     def solve(self, starts, tolerances=(1e-12, 1e-12, 1e-14)):
         z0, bounds = self.layout(starts)
         z0 = np.clip(z0, bounds[0], bounds[1])
@@ -287,6 +298,7 @@ class Problem:
                 "per_experiment": {n: [float(fit.x[nf + j * len(self.per_exp) + i])
                                        for j in range(len(self.experiments))]
                                    for i, n in enumerate(self.per_exp)},
+                "initial_states": self.initial_states(fit.x),
                 "cost": float(fit.cost), "evaluations": int(fit.nfev),
                 "jacobians": int(fit.njev or 0), "status": int(fit.status),
                 "message": fit.message, "solve_seconds": wall, "solve_cpu_seconds": cpu}
