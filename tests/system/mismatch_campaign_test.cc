@@ -70,11 +70,12 @@ bool Found(const json& results, const std::string& kind, const std::string& text
 
 // What a run of the shortened campaign must reach and say: the refinement's held-out MAE per
 // output below `max_mae` (e, n [m], psi [rad]; measured values times 1.5, see the tests),
-// every held-out output better than the refinement's start, the verdict "failed" with a
+// every held-out output better than the refinement's start, the verdict `verdict` with a
 // finding of `failure_kind` naming `failure_text` (the model lacks the simulator's structure).
 struct Expected {
   std::map<std::string, double> max_mae;
   std::string failure_kind, failure_text;
+  std::string verdict = "failed";
 };
 
 void CheckRun(const std::string& kind, const Expected& expected) {
@@ -94,7 +95,7 @@ void CheckRun(const std::string& kind, const Expected& expected) {
     EXPECT_LT(o["stage_mae"].get<double>(), expected.max_mae.at(output)) << o.dump();
     EXPECT_LT(o["stage_mae"].get<double>(), o["start_mae"].get<double>()) << o.dump();
   }
-  EXPECT_EQ(results["verdict"], "failed");
+  EXPECT_EQ(results["verdict"], expected.verdict);
   EXPECT_TRUE(Found(results, expected.failure_kind, expected.failure_text))
       << testing::JsonFindingsText(results);
   // The glitched fix (12 m off) falls in a held-out segment of this campaign: its north fit is
@@ -123,13 +124,15 @@ TEST(MismatchCampaign, StaticConfigSaysWhatItKept) {
                       "v.|v|v"});
 }
 
-// 30 refinement iterations (not converged): held-out MAE 2.04 m, 1.92 m, 1.56 rad, against
-// 2.78, 2.43, 12.7 at its start; the final free run of the velocity validation misses v
-// (R2 -100), a failure.
+// 30 refinement iterations (not converged): the propeller lag tau_T ends on its 20 ms bound
+// (the simulator's thruster has none) and d_f on its 0.15 bound, both named; the run is
+// doubtful, not failed. (With tau_T unbounded it went on toward 0 and the final free run of
+// the velocity validation missed v, R2 -100.)
 TEST(MismatchCampaign, DynamicConfigSaysWhatItKept) {
   CheckRun("dynamic", {{{"e", 3.05}, {"n", 2.9}, {"psi", 2.35}},
-                       "held_out_free_run_failed",
-                       "predicts v worse than its mean"});
+                       "at_bound",
+                       "tau_T = 0.02 is at its lower bound",
+                       "doubtful"});
 }
 
 // The shipped dynamic config whole, on the purely quadratic thruster (which has no dead zone):
