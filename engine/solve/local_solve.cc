@@ -115,6 +115,25 @@ std::string InEngineWords(const ceres::Solver::Summary& summary) {
   return summary.message;
 }
 
+// Adds a Ceres solve's iterations, work and costs after its start (cost_history holds the
+// cost it started from) to `summary`; its termination becomes the summary's.
+void AddSolve(const ceres::Solver::Summary& solve, LocalSolveSummary* summary) {
+  summary->iterations += static_cast<int>(solve.iterations.size()) - 1;
+  summary->successful_steps += solve.num_successful_steps;
+  summary->unsuccessful_steps += solve.num_unsuccessful_steps;
+  summary->time_seconds += solve.total_time_in_seconds;
+  summary->residual_seconds += solve.residual_evaluation_time_in_seconds;
+  summary->jacobian_seconds += solve.jacobian_evaluation_time_in_seconds;
+  summary->linear_solver_seconds += solve.linear_solver_time_in_seconds;
+  summary->residual_evaluations += solve.num_residual_evaluations;
+  summary->jacobian_evaluations += solve.num_jacobian_evaluations;
+  summary->termination = ceres::TerminationTypeToString(solve.termination_type);
+  summary->message = solve.message;
+  for (size_t i = 1; i < solve.iterations.size(); ++i) {
+    summary->cost_history.push_back(solve.iterations[i].cost);
+  }
+}
+
 // The held continuation stops when 5 iterations gained less than 1e-4 of the cost.
 constexpr int kHeldStallWindow = 5;
 constexpr double kHeldStallTolerance = 1e-4;
@@ -140,7 +159,7 @@ std::vector<const Variable*> AtBound(OutputErrorProblem* problem) {
 // with them held there, within the iterations and time the first solve left, and that is
 // kept when it lowers the cost (summed in the problem's own order, as the reported costs).
 void ContinueWithBoundsHeld(ceres::Solver::Options options, const LocalSolveOptions& local,
-                            const ProgressReporter* reporter, OutputErrorProblem* problem,
+                            ProgressReporter* reporter, OutputErrorProblem* problem,
                             LocalSolveSummary* summary) {
   options.max_num_iterations = local.max_iterations - summary->iterations;
   options.max_solver_time_in_seconds = local.max_time_seconds - summary->time_seconds;
@@ -158,7 +177,7 @@ void ContinueWithBoundsHeld(ceres::Solver::Options options, const LocalSolveOpti
   StallCheck stall(local.stall_window > 0 ? local.stall_window : kHeldStallWindow,
                    local.stall_window > 0 ? local.stall_tolerance : kHeldStallTolerance);
   options.callbacks.clear();
-  if (reporter != nullptr) options.callbacks.push_back(const_cast<ProgressReporter*>(reporter));
+  if (reporter != nullptr) options.callbacks.push_back(reporter);
   options.callbacks.push_back(&stall);
   for (const Variable* v : held) problem->problem()->SetParameterBlockConstant(v->block);
   ceres::Solver::Summary again;
@@ -171,20 +190,7 @@ void ContinueWithBoundsHeld(ceres::Solver::Options options, const LocalSolveOpti
     return;
   }
   summary->final_cost = after_cost;
-  summary->iterations += static_cast<int>(again.iterations.size()) - 1;
-  summary->successful_steps += again.num_successful_steps;
-  summary->unsuccessful_steps += again.num_unsuccessful_steps;
-  summary->time_seconds += again.total_time_in_seconds;
-  summary->residual_seconds += again.residual_evaluation_time_in_seconds;
-  summary->jacobian_seconds += again.jacobian_evaluation_time_in_seconds;
-  summary->linear_solver_seconds += again.linear_solver_time_in_seconds;
-  summary->residual_evaluations += again.num_residual_evaluations;
-  summary->jacobian_evaluations += again.num_jacobian_evaluations;
-  summary->termination = ceres::TerminationTypeToString(again.termination_type);
-  summary->message = again.message;
-  for (size_t i = 1; i < again.iterations.size(); ++i) {
-    summary->cost_history.push_back(again.iterations[i].cost);
-  }
+  AddSolve(again, summary);
   summary->cost_history.back() = after_cost;
 }
 
@@ -243,20 +249,10 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   summary->usable = ceres_summary.IsSolutionUsable();
   summary->initial_cost = ceres_summary.initial_cost;
   summary->final_cost = ceres_summary.final_cost;
-  summary->iterations = static_cast<int>(ceres_summary.iterations.size()) - 1;
-  summary->successful_steps = ceres_summary.num_successful_steps;
-  summary->unsuccessful_steps = ceres_summary.num_unsuccessful_steps;
-  summary->time_seconds = ceres_summary.total_time_in_seconds;
-  summary->residual_seconds = ceres_summary.residual_evaluation_time_in_seconds;
-  summary->jacobian_seconds = ceres_summary.jacobian_evaluation_time_in_seconds;
-  summary->linear_solver_seconds = ceres_summary.linear_solver_time_in_seconds;
-  summary->residual_evaluations = ceres_summary.num_residual_evaluations;
-  summary->jacobian_evaluations = ceres_summary.num_jacobian_evaluations;
-  summary->termination = ceres::TerminationTypeToString(ceres_summary.termination_type);
-  summary->message = ceres_summary.message;
-  for (const ceres::IterationSummary& it : ceres_summary.iterations) {
-    summary->cost_history.push_back(it.cost);
+  if (!ceres_summary.iterations.empty()) {
+    summary->cost_history.push_back(ceres_summary.iterations.front().cost);
   }
+  AddSolve(ceres_summary, summary);
   // Not after an abandoned solve (keep_going: its caller wants it stopped).
   if (options.hold_bounds_at_end && summary->usable && std::isfinite(summary->final_cost) &&
       ceres_summary.termination_type != ceres::USER_FAILURE) {
