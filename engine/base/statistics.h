@@ -1,6 +1,7 @@
-// Small statistics the studies need: normal and chi-square(1) quantiles, mean and SD.
+// Small statistics: normal and chi-square(1) quantiles, mean and SD, medians.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -48,6 +49,28 @@ inline MeanSd Summarise(const std::vector<double>& values) {
   }
   s.sd = s.n > 1 ? std::sqrt(ss / (s.n - 1)) : NAN;
   return s;
+}
+
+// The median of values already in ascending order (the mean of the middle two for an even
+// count); `if_empty` for none.
+inline double SortedMedian(const std::vector<double>& values, double if_empty = NAN) {
+  const size_t n = values.size();
+  if (n == 0) return if_empty;
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// The median (the mean of the middle two for an even count); `if_empty` for none.
+inline double Median(std::vector<double> values, double if_empty = NAN) {
+  std::sort(values.begin(), values.end());
+  return SortedMedian(values, if_empty);
+}
+
+// The upper median: the element at n/2 of the sorted values, always one of them; `if_empty`
+// for none.
+inline double UpperMedian(std::vector<double> values, double if_empty = NAN) {
+  if (values.empty()) return if_empty;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
 }
 
 }  // namespace vesselid

@@ -5,10 +5,11 @@
 #include <cstdio>
 #include <limits>
 
+#include "engine/base/nan.h"
+
 namespace vesselid {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kNoiseAllowance = 7.0;  // sigmas of noise a step may carry beyond the rate
 constexpr int kRelock = 5;               // consistent rejected samples in a row that are the track
 

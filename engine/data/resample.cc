@@ -5,10 +5,10 @@
 #include <cstdio>
 #include <limits>
 
+#include "engine/base/nan.h"
+
 namespace vesselid {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double MedianInterval(const std::vector<double>& t) {
   if (t.size() < 2) return 0.0;

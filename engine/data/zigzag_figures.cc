@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/base/statistics.h"
+
 namespace vesselid {
 namespace {
 
@@ -11,17 +13,6 @@ constexpr double kLeaveShare = 0.1;       // the rudder has left a plateau by th
 constexpr double kHeldShare = 0.8;        // 80 % of the plateau samples above this x delta_z
 constexpr double kCheckTolerance = 0.25;  // heading changes at the reversals within 25 %
 constexpr double kSmallestCheck = 0.5 * M_PI / 180.0;
-
-// The median of values already in ascending order.
-double SortedMedian(const std::vector<double>& values) {
-  const size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-double Median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return SortedMedian(values);
-}
 
 // The finite value of `psi` nearest to index i (searching both ways); NaN if none.
 double NearestFinite(const std::vector<double>& psi, size_t i) {

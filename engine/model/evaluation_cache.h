@@ -5,16 +5,23 @@
 // search asks for the gradient there (cubic interpolation: residuals and Jacobian, a Jet
 // simulation), the candidate's cost is evaluated again (residuals only), and an accepted step
 // asks for residuals and Jacobian at the same point once more. The cache holds one slot per
-// kind of evaluation, because a residual-only evaluation runs on doubles and a Jacobian
-// evaluation on Jets, and their residuals differ in the last bits (a Jet divides as
-// a * (1 / b)): a request is answered only from an evaluation of the same kind with the same
-// constant blocks, so that every result is bit-identical to a new simulation.
+// kind of evaluation (a residual-only evaluation runs on doubles, a Jacobian evaluation on
+// Jets). A Jacobian request is answered only from an evaluation on Jets with the same constant
+// blocks; a residual-only request from the last evaluation of either kind at those values,
+// the Jet one first. So an accepted candidate costs one Jet simulation, not a Jet and a double
+// one. Residuals on Jets may differ from those on doubles in the last bits (a Jet divides as
+// a * (1 / b)), so a solve with the cache ends within rounding of one without it, not bit for
+// bit; with the cache, every solve is reproducible bit for bit. The Jet slot answers first
+// because only a solve's own Jacobian requests fill it, while the double slot may hold an
+// evaluation made for another purpose (a multistart screens points on whichever of its
+// problems a thread borrows), whose answer is bit-identical to a new double simulation: what
+// a solve is answered then never depends on threads or timing.
 //
 // An entry is keyed by the values of every parameter block (bit patterns) and a revision of
 // the data the residuals depend on (Experiment::weights_revision). Lookups and stores lock a
 // mutex (never held during a simulation), so that a cost function evaluated from several
-// threads at once stays correct; as the cache only returns what a simulation would compute,
-// results do not depend on the order of those threads.
+// threads at once stays correct; as each block has its own cache, results do not depend on
+// the order of those threads.
 #pragma once
 
 #include <atomic>
@@ -41,12 +48,21 @@ class EvaluationCache {
   int num_blocks() const { return num_blocks_; }
 
   // Copies a stored evaluation matching the request into `residuals` (and `jacobians`, whose
-  // non-null entries say which columns are asked for); false if there is none.
+  // non-null entries say which columns are asked for); false if there is none. Residuals
+  // alone come from the Jet slot or, failing that, from the residual-only one.
   bool Lookup(double const* const* parameters, long revision, double* residuals,
               double** jacobians) const {
     std::lock_guard<std::mutex> lock(mutex_);
-    const Slot& slot = slots_[jacobians != nullptr];
-    if (!Matches(slot, parameters, revision, jacobians)) return false;
+    const Slot* match = nullptr;
+    if (jacobians != nullptr) {
+      if (Matches(slots_[1], parameters, revision, jacobians)) match = &slots_[1];
+    } else if (Matches(slots_[1], parameters, revision, nullptr)) {
+      match = &slots_[1];
+    } else if (Matches(slots_[0], parameters, revision, nullptr)) {
+      match = &slots_[0];
+    }
+    if (match == nullptr) return false;
+    const Slot& slot = *match;
     std::memcpy(residuals, slot.residuals.data(), sizeof(double) * num_residuals_);
     if (jacobians == nullptr) return true;
     const double* column = slot.jacobian.data();

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "engine/base/angle.h"
+#include "engine/base/statistics.h"
 #include "engine/data/angle_units.h"
 #include "engine/data/latent_input.h"
 #include "engine/data/noise_level.h"
@@ -64,18 +65,6 @@ std::pair<size_t, size_t> InWindow(const std::vector<double>& t, double t0, doub
   return {static_cast<size_t>(first - t.begin()), static_cast<size_t>(last - t.begin())};
 }
 
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
-}
-
-
-bool IsDegreeColumn(const ExperimentSpec& spec, const std::string& column) {
-  return std::find(spec.degree_columns.begin(), spec.degree_columns.end(), column) !=
-         spec.degree_columns.end();
-}
-
 // The latent input of model input `index` (input_noise.h): the spline fitted to the samples
 // in the window (and a few beyond it, so that its ends are held by data) evaluated at the step
 // times, and the grid of its corrections.
@@ -94,7 +83,7 @@ bool FitLatentInput(const ExperimentSpec& spec, const std::string& input,
   Channel window;
   window.t.assign(channel.t.begin() + lo, channel.t.begin() + hi);
   window.value.assign(channel.value.begin() + lo, channel.value.begin() + hi);
-  const bool degrees = IsDegreeColumn(spec, column);
+  const bool degrees = spec.IsDegreeColumn(column);
   const double unit = degrees ? M_PI / 180.0 : 1.0;
   LatentInputSpline spline;
   if (!spline.Fit(window, {noise.sigma * unit, noise.knots}, error)) return false;
@@ -264,7 +253,7 @@ bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* record_channels
   // Step sizes.
   std::vector<double> intervals;
   for (int k = 0; k + 1 < nodes; ++k) intervals.push_back(e.node_time[k + 1] - e.node_time[k]);
-  const double max_step = options.max_step > 0 ? options.max_step : Median(intervals);
+  const double max_step = options.max_step > 0 ? options.max_step : UpperMedian(intervals, 0.0);
   // Equal steps of at most max_step per interval (in double: counted before anything is
   // allocated for them, and before a count overflows int).
   std::vector<double> substeps;

@@ -34,6 +34,12 @@ struct ExperimentSpec {
   std::map<std::string, double> output_weights;  // per model output, default 1
   std::map<std::string, double> initial_state;   // per state; absent: see BuildExperiment
   std::vector<std::string> degree_columns;       // columns recorded in degrees
+  bool IsDegreeColumn(const std::string& column) const {
+    for (const std::string& c : degree_columns) {
+      if (c == column) return true;
+    }
+    return false;
+  }
   // Angle outputs compared modulo one turn (residual wrapped to (-pi, pi]) instead of
   // unwrapped: for a sensor whose jumps the sampling cannot resolve.
   std::vector<std::string> wrapped_outputs;

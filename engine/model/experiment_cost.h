@@ -44,6 +44,29 @@ inline constexpr int kMaxJetSize = 32;
 // at the default spacing): fewer sizes suffice.
 using CorrectedJetSizes = std::integer_sequence<int, 8, 16, 24, 32>;
 
+// The most directions an experiment without input corrections can ask for: every parameter
+// and state of the model. A model whose parameter count has a ceiling states it as
+// `static constexpr int kMaxParameters` (ModelAdapter checks it against ModelInfo); the Jet
+// sizes above the first one that holds them all are then never compiled for it (a Nomoto
+// model needs 6 or 8 directions at most: half the sizes, half its handle's compile time).
+template <class Model, class = void>
+struct MaxPlainDirections : std::integral_constant<int, kMaxJetSize> {
+  static constexpr bool kStated = false;
+};
+template <class Model>
+struct MaxPlainDirections<Model, std::void_t<decltype(Model::kMaxParameters)>>
+    : std::integral_constant<int, Model::kMaxParameters + Model::kNumStates> {
+  static constexpr bool kStated = true;
+};
+
+// The smallest of `Sizes` holding `directions` (the largest if none does).
+template <int... Sizes>
+constexpr int SmallestJetSizeFor(int directions, std::integer_sequence<int, Sizes...>) {
+  int size = 0;
+  ((size == 0 && Sizes >= directions ? size = Sizes : 0), ...);
+  return size == 0 ? kMaxJetSize : size;
+}
+
 struct ExperimentCostOptions {
   // Keeps the last evaluation of each kind; null: every evaluation simulates. Sized by the
   // caller for the experiment's samples and blocks; must outlive the cost function.
@@ -122,13 +145,23 @@ class ExperimentCost final : public ceres::CostFunction {
   bool Dispatch(std::integer_sequence<int, Sizes...>, int width, int first,
                 double const* const* parameters, double* residuals, double** jacobians) const {
     bool ok = false, done = false;
-    ((!done && Sizes >= width ? (done = true, ok = EvaluateScalar<ceres::Jet<double, Sizes>, kCorrected>(
-                                                  parameters, residuals, jacobians, first,
-                                                  width))
-                              : false),
+    (EvaluateOnJet<kCorrected, Sizes>(width, first, parameters, residuals, jacobians, &done, &ok),
      ...);
-    VESSELID_CHECK(done);  // width <= kMaxJetSize by construction
+    VESSELID_CHECK(done);  // width <= kMaxJetSize (and the model's ceiling) by construction
     return ok;
+  }
+
+  // One size of Dispatch's: evaluates if no smaller size did and this one holds `width`.
+  template <bool kCorrected, int kSize>
+  void EvaluateOnJet(int width, int first, double const* const* parameters, double* residuals,
+                     double** jacobians, bool* done, bool* ok) const {
+    constexpr int kLargest = SmallestJetSizeFor(MaxPlainDirections<Model>::value, JetSizes{});
+    if constexpr (kCorrected || kSize <= kLargest) {
+      if (*done || kSize < width) return;
+      *done = true;
+      *ok = EvaluateScalar<ceres::Jet<double, kSize>, kCorrected>(parameters, residuals, jacobians,
+                                                                  first, width);
+    }
   }
 
   // Seeds block b with derivative `slope` in its direction (if it has one).

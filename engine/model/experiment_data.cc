@@ -14,11 +14,6 @@
 namespace vesselid {
 namespace {
 
-bool IsDegreeColumn(const ExperimentSpec& spec, const std::string& column) {
-  return std::find(spec.degree_columns.begin(), spec.degree_columns.end(), column) !=
-         spec.degree_columns.end();
-}
-
 bool IsAngleOutput(const ExperimentSpec& spec, const std::string& output) {
   const std::vector<std::string>& angles = spec.data.angle_outputs;
   return std::find(angles.begin(), angles.end(), output) != angles.end();
@@ -72,7 +67,7 @@ bool Screen(const ExperimentSpec& spec, const GnssPositionReport& gnss, Trajecto
       if (pair && (column == north || column == east)) continue;
       const auto rate = d.max_rate.find(output);
       double period = 0.0;
-      if (IsAngleOutput(spec, output)) period = IsDegreeColumn(spec, column) ? 360.0 : 2.0 * M_PI;
+      if (IsAngleOutput(spec, output)) period = spec.IsDegreeColumn(column) ? 360.0 : 2.0 * M_PI;
       options.channels.push_back({column, rate == d.max_rate.end() ? 0.0 : rate->second, period});
     }
     std::vector<std::string> columns{options.north_column, options.east_column};

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "ceres/ceres.h"
+#include "engine/base/check.h"
 #include "engine/model/damping_inertia_form.h"
 #include "engine/model/experiment.h"
 #include "engine/model/experiment_cost.h"
@@ -127,6 +128,11 @@ template <class Model>
 class ModelAdapter final : public ModelHandle {
  public:
   explicit ModelAdapter(Model model) : model_(std::move(model)), info_(model_.Info()) {
+    // Jets are compiled up to the model's stated ceiling only (experiment_cost.h).
+    if constexpr (MaxPlainDirections<Model>::kStated) {
+      VESSELID_CHECK(static_cast<int>(info_.parameters.size()) + Model::kNumStates <=
+                     MaxPlainDirections<Model>::value);
+    }
     if constexpr (HasRegression<Model>::value) {
       form_ = model_.Regression();
       has_form_ = true;

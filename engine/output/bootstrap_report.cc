@@ -14,17 +14,6 @@ double EstimateValue(const StageResult& stage, const std::string& name) {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-namespace {
-
-std::string Format(const char* format, double value) {
-  if (!std::isfinite(value)) return "-";
-  char text[64];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
-}
-
-}  // namespace
-
 nlohmann::json BootstrapToJson(const BootstrapSummary& b) {
   if (!b.done()) return {{"runs", 0}, {"message", b.message}};
   nlohmann::json se = nlohmann::json::object(), interval = nlohmann::json::object(),

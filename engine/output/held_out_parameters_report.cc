@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 
+#include "engine/base/format_numbers.h"
 #include "engine/base/json_number.h"
 
 namespace vesselid {
@@ -19,18 +20,11 @@ const ExperimentFit* FindFit(const std::vector<ExperimentFit>& fits, const std::
   return nullptr;
 }
 
-std::string Format(const char* format, double value) {
-  if (!std::isfinite(value)) return "-";
-  char text[64];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
-}
-
 // "psi fit 15.5 % without delta_0, 94.8 % with"
 std::string FitPhrase(const std::string& output, double with, double without,
                       const std::string& names) {
-  return output + " fit " + Format("%.1f", without) + " % without " + names + ", " +
-         Format("%.1f", with) + " % with";
+  return output + " fit " + FormatFinite("%.1f", without) + " % without " + names + ", " +
+         FormatFinite("%.1f", with) + " % with";
 }
 
 }  // namespace
@@ -137,9 +131,9 @@ std::string HeldOutParametersText(const HeldOutParameters& parameters,
     for (const Estimate* e : row.estimates) {
       const DisplayUnit unit = unit_of ? unit_of(e->name) : DisplayUnit{};
       line += " " + e->name.substr(0, e->name.find('[')) + " = " +
-              Format("%.6g", unit.scale * e->value) +
+              FormatFinite("%.6g", unit.scale * e->value) +
               (e->undetermined ? " (undetermined)"
-                               : " ± " + Format("%.2g", unit.scale * e->std_error)) +
+                               : " ± " + FormatFinite("%.2g", unit.scale * e->std_error)) +
               (unit.unit.empty() ? "" : " " + unit.unit) + ";";
     }
     for (const std::string& output : table.outputs) {

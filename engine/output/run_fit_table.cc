@@ -5,12 +5,13 @@
 #include <cstdio>
 #include <map>
 
+#include "engine/base/format_numbers.h"
+#include "engine/base/nan.h"
+#include "engine/base/statistics.h"
 #include "engine/run/display_units.h"
 
 namespace vesselid {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Sums of one run and output over its segments.
 struct ChannelSums {
@@ -18,20 +19,6 @@ struct ChannelSums {
   double sse = 0.0, sae = 0.0, sst = 0.0, hold_sae = 0.0;
   bool spread_known = false;
 };
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return kNaN;
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-std::string Number(double value, const char* format) {
-  if (!std::isfinite(value)) return "-";
-  char text[64];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
-}
 
 }  // namespace
 
@@ -184,11 +171,11 @@ std::string RunFitTableText(const RunFitTable& table) {
     std::snprintf(cell, sizeof(cell), "  %-24s %8s", row.run.c_str(), segments.c_str());
     out += cell;
     for (const ChannelMetrics& m : row.channels) {
-      std::snprintf(cell, sizeof(cell), " %10s %14s", Number(m.fit_percent, "%.2f").c_str(),
-                    Number(m.rmse, "%.4g").c_str());
+      std::snprintf(cell, sizeof(cell), " %10s %14s", FormatFinite("%.2f", m.fit_percent).c_str(),
+                    FormatFinite("%.4g", m.rmse).c_str());
       out += cell;
     }
-    std::snprintf(cell, sizeof(cell), " %12s\n", Number(row.rms_cost, "%.4e").c_str());
+    std::snprintf(cell, sizeof(cell), " %12s\n", FormatFinite("%.4e", row.rms_cost).c_str());
     out += cell;
   }
   for (const RunFitSummary& s : table.summary) {
@@ -196,8 +183,9 @@ std::string RunFitTableText(const RunFitTable& table) {
     std::snprintf(cell, sizeof(cell), "  %-33s", label.c_str());
     out += cell;
     for (size_t o = 0; o < table.outputs.size(); ++o) {
-      std::snprintf(cell, sizeof(cell), " %10s %14s", Number(s.fit_percent[o], "%.2f").c_str(),
-                    Number(s.rmse[o], "%.4g").c_str());
+      std::snprintf(cell, sizeof(cell), " %10s %14s",
+                    FormatFinite("%.2f", s.fit_percent[o]).c_str(),
+                    FormatFinite("%.4g", s.rmse[o]).c_str());
       out += cell;
     }
     out += "\n";

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/base/format_numbers.h"
 #include "engine/base/json_number.h"
 
 namespace vesselid {
@@ -29,18 +30,11 @@ nlohmann::json FiguresToJson(const ZigzagFigures& f) {
           {"executes_s", f.executes}};
 }
 
-std::string Number(double value, const char* format) {
-  if (!std::isfinite(value)) return "-";
-  char text[32];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
-}
-
 }  // namespace
 
 std::string ZigzagTestLabel(const ZigzagRun& run) {
-  return Number(run.test.rudder * kToDegrees, "%.1f") + "/" +
-         Number(run.test.heading * kToDegrees, "%.1f");
+  return FormatFinite("%.1f", run.test.rudder * kToDegrees) + "/" +
+         FormatFinite("%.1f", run.test.heading * kToDegrees);
 }
 
 nlohmann::json ZigzagRunsToJson(const std::vector<ZigzagRun>& runs) {
@@ -59,7 +53,8 @@ nlohmann::json ZigzagRunsToJson(const std::vector<ZigzagRun>& runs) {
 
 std::string ZigzagRunsText(const std::vector<ZigzagRun>& runs) {
   if (runs.empty()) return "";
-  std::string out = "\nzigzag figures, measured / simulated (" + std::string(kZigzagDefinitions) + ")\n";
+  std::string out =
+      "\nzigzag figures, measured / simulated (" + std::string(kZigzagDefinitions) + ")\n";
   char line[320];
   std::snprintf(line, sizeof(line), "  %-12s %-20s %-9s %-11s %17s %17s %17s %17s\n", "stage",
                 "experiment", "data", "test [deg]", "1st overshoot deg", "2nd overshoot deg",
@@ -67,11 +62,13 @@ std::string ZigzagRunsText(const std::vector<ZigzagRun>& runs) {
   out += line;
   for (const ZigzagRun& run : runs) {
     auto pair = [](double measured, double simulated, double scale, const char* format) {
-      return Number(measured * scale, format) + " / " + Number(simulated * scale, format);
+      return FormatFinite(format, measured * scale) + " / " +
+             FormatFinite(format, simulated * scale);
     };
     std::snprintf(
         line, sizeof(line), "  %-12s %-20s %-9s %-11s %17s %17s %17s %17s\n", run.stage.c_str(),
-        run.experiment.c_str(), run.held_out ? "held out" : "training", ZigzagTestLabel(run).c_str(),
+        run.experiment.c_str(), run.held_out ? "held out" : "training",
+        ZigzagTestLabel(run).c_str(),
         pair(run.measured.first_overshoot, run.simulated.first_overshoot, kToDegrees, "%.2f")
             .c_str(),
         pair(run.measured.second_overshoot, run.simulated.second_overshoot, kToDegrees, "%.2f")

@@ -7,12 +7,11 @@
 #include <limits>
 
 #include "ceres/ceres.h"
+#include "engine/base/nan.h"
 #include "nlopt.hpp"
 
 namespace vesselid {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Which parameters a regression coefficient depends on, found by perturbation about a point
 // where every parameter is distinct and non-zero (products with a zero would hide it).

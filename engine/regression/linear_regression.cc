@@ -4,21 +4,12 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/base/nan.h"
+#include "engine/base/statistics.h"
 #include "engine/regression/lasso.h"
 
 namespace vesselid {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const size_t n = v.size();
-  std::nth_element(v.begin(), v.begin() + n / 2, v.end());
-  const double upper = v[n / 2];
-  if (n % 2 == 1) return upper;
-  return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + n / 2));
-}
 
 // Weighted penalised fit on columns scaled by `scale` (theta = theta~ / scale).
 Eigen::VectorXd Fit(const Eigen::MatrixXd& x, const Eigen::VectorXd& y, const Eigen::VectorXd& w,
@@ -108,10 +99,10 @@ bool SolveRegression(const Eigen::MatrixXd& x, const Eigen::VectorXd& y,
   if (options.robust) {
     Eigen::VectorXd e = y - x * r.theta;
     std::vector<double> residuals(e.data(), e.data() + n);
-    const double median = Median(residuals);
+    const double median = Median(residuals, 0.0);
     std::vector<double> deviation(n);
     for (int i = 0; i < n; ++i) deviation[i] = std::abs(e[i] - median);
-    const double s_mad = 1.4826 * Median(deviation);
+    const double s_mad = 1.4826 * Median(deviation, 0.0);
     for (int i = 0; i < n; ++i) {
       if (deviation[i] > 3.0 * s_mad) {
         r.weights[i] = 0.0;
@@ -127,8 +118,8 @@ bool SolveRegression(const Eigen::MatrixXd& x, const Eigen::VectorXd& y,
       }
       std::sort(kept.begin(), kept.end());
       const size_t m = kept.size();
-      const double t1 = Median({kept.begin() + m / 4, kept.begin() + m / 2});
-      const double t2 = Median({kept.begin() + m / 2, kept.begin() + 3 * m / 4});
+      const double t1 = Median({kept.begin() + m / 4, kept.begin() + m / 2}, 0.0);
+      const double t2 = Median({kept.begin() + m / 2, kept.begin() + 3 * m / 4}, 0.0);
       const double t = 0.5 * (t1 + t2);
       if (!(t > 0.0)) break;
       for (int i = 0; i < n; ++i) {

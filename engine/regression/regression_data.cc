@@ -6,11 +6,11 @@
 #include <limits>
 
 #include "engine/base/format_numbers.h"
+#include "engine/base/nan.h"
 
 namespace vesselid {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kTimeTolerance = 1e-9;
 
 // Index of the last sample at or before t, or -1.

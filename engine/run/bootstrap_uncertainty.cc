@@ -8,13 +8,12 @@
 #include <random>
 
 #include "engine/base/case_seed.h"
+#include "engine/base/nan.h"
 #include "engine/base/parallel_for.h"
 #include "engine/run/estimate_specs.h"
 
 namespace vesselid {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Per sample of experiment e: simulated minus measured at the estimate (d_i = r_i / w_i,
 // wrapped as the residual is); NaN where the sample has no weight.

@@ -9,12 +9,13 @@
 #include <memory>
 
 #include "engine/base/format_numbers.h"
+#include "engine/base/statistics.h"
+#include "engine/model/channel_weights.h"
+#include "engine/model/operating_range.h"
 #include "engine/run/bootstrap_uncertainty.h"
 #include "engine/run/continuation.h"
 #include "engine/run/estimate_specs.h"
 #include "engine/run/fit_residuals.h"
-#include "engine/model/operating_range.h"
-#include "engine/model/channel_weights.h"
 #include "engine/run/input_noise_notes.h"
 #include "engine/run/records.h"
 #include "engine/run/stage_weights.h"
@@ -171,11 +172,6 @@ bool FollowTheDynamics(const RunConfig& config, const StageConfig& stage, const 
   }
 }
 
-double Median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values.empty() ? 0.0 : values[values.size() / 2];
-}
-
 // Names the experiments the fit does not serve (OutlierOptions) and, if asked, refines again
 // with them down-weighted or dropped.
 bool HandleOutliers(const StageConfig& stage, const StageOptions& options,
@@ -186,10 +182,10 @@ bool HandleOutliers(const StageConfig& stage, const StageOptions& options,
   if (count < 3 || static_cast<int>(summary->fits.size()) != count) return true;
   std::vector<double> rms;
   for (const ExperimentFit& fit : summary->fits) rms.push_back(fit.rms_cost);
-  const double median = Median(rms);
+  const double median = UpperMedian(rms, 0.0);
   std::vector<double> deviations;
   for (double r : rms) deviations.push_back(std::abs(r - median));
-  const double limit = median + stage.outliers.threshold * 1.4826 * Median(deviations);
+  const double limit = median + stage.outliers.threshold * 1.4826 * UpperMedian(deviations, 0.0);
   std::vector<double> factor(count, 1.0);  // weight scale per experiment
   std::vector<std::pair<double, std::string>> costly, far;
   for (int e = 0; e < count; ++e) {

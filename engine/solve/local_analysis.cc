@@ -7,12 +7,12 @@
 #include <limits>
 
 #include "engine/base/check.h"
+#include "engine/base/nan.h"
 
 namespace vesselid {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Eigenvalues of an experiment's normalised I_ss below this fraction of its largest are
 // dropped from the pseudo-inverse (rounding level: only truly undetermined local unknowns).
 constexpr double kLocalRankTolerance = 1e-14;

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "engine/base/check.h"
+#include "engine/base/statistics.h"
 #include "engine/model/channel_weights.h"
 
 namespace vesselid {
@@ -56,11 +57,6 @@ class PriorCost final : public ceres::SizedCostFunction<1, 1> {
   double factor_, guess_, scale_;
 };
 
-double Median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values.empty() ? std::nan("") : values[values.size() / 2];
-}
-
 }  // namespace
 
 void OutputErrorProblem::AddInitialStatePriors(const InitialStatePrior& prior,
@@ -86,13 +82,13 @@ void OutputErrorProblem::AddInitialStatePriors(const InitialStatePrior& prior,
       sigmas.push_back(sigma);
     }
     if (states.empty()) continue;
-    const double median = Median(guesses);
+    const double median = UpperMedian(guesses);
     std::vector<double> deviations;
     for (double g : guesses) deviations.push_back(std::abs(g - median));
     const double reach =
-        prior.bounds * std::max({1.4826 * Median(deviations),
+        prior.bounds * std::max({1.4826 * UpperMedian(deviations),
                                  0.5 * *std::max_element(magnitudes.begin(), magnitudes.end()),
-                                 10.0 * Median(sigmas)});
+                                 10.0 * UpperMedian(sigmas)});
     for (size_t i = 0; i < states.size(); ++i) {
       Variable& v = *states[i];
       const Experiment& e = p->experiments_[v.experiment];

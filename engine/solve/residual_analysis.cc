@@ -4,12 +4,11 @@
 #include <cmath>
 
 #include "engine/base/chi_square.h"
+#include "engine/base/nan.h"
 #include "engine/base/parallel_for.h"
 
 namespace vesselid {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double Mean(const std::vector<double>& x) {
   double sum = 0.0;

@@ -5,11 +5,10 @@
 #include <limits>
 
 #include "engine/base/check.h"
+#include "engine/base/nan.h"
 
 namespace vesselid {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 bool IsFiniteNonNegative(double x) { return std::isfinite(x) && x >= 0.0; }
 

@@ -7,6 +7,7 @@
 
 #include "engine/base/format_numbers.h"
 #include "engine/base/json_number.h"
+#include "engine/base/nan.h"
 #include "engine/base/statistics.h"
 #include "engine/study/partition_study.h"
 
@@ -14,7 +15,6 @@ namespace vesselid {
 namespace {
 
 using nlohmann::json;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 bool OutputError(const StudyResult& result) { return result.kind == "output_error"; }
 

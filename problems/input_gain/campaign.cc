@@ -5,13 +5,13 @@
 #include <random>
 #include <vector>
 
+#include "engine/base/nan.h"
 #include "engine/model/rk4.h"
 
 namespace vesselid::input_gain {
 namespace {
 
 using Random = std::mt19937;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 enum class Manoeuvre {
   kForwardConstant,

@@ -5,15 +5,16 @@
 #include <limits>
 #include <random>
 
+#include "engine/base/nan.h"
+
 namespace vesselid::input_gain {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kDegree = M_PI / 180.0;
 constexpr int kZeroFix = 10;    // the zero fix is a segment's 11th (2 s in at 5 Hz)
 constexpr int kStaleFrom = 20;  // the stale fixes follow a segment's 20th (4 s in)
 
-enum Column { kSegment, kNorth, kEast, kHeading, kPwmL, kPwmR };
+enum TrackColumn { kTrackSegment, kTrackNorth, kTrackEast, kTrackHeading, kTrackPwmL, kTrackPwmR };
 const char* const kCampaignNames[] = {"segment", "n", "e", "heading", "pwm_L", "pwm_R"};
 enum LogColumn { kLogSegment, kLat, kLon, kLogHeading, kLogPwmL, kLogPwmR, kLogColumns };
 const char* const kLogNames[] = {"segment", "lat", "lon", "heading", "pwm_L", "pwm_R"};
@@ -87,18 +88,18 @@ bool MakeFieldLog(const Trajectory& campaign, const FieldLogOptions& options, un
   const size_t rows = campaign.t.size();
   for (size_t begin = 0; begin < rows;) {
     size_t end = begin;
-    while (end < rows && at(kSegment, end) == at(kSegment, begin)) ++end;
+    while (end < rows && at(kTrackSegment, end) == at(kTrackSegment, begin)) ++end;
     for (size_t i = begin + 1; i < end; ++i) {
       if (std::abs(campaign.t[i] - campaign.t[i - 1] - step) > 1e-6 ||
-          !std::isfinite(at(kNorth, i)) || !std::isfinite(at(kHeading, i))) {
+          !std::isfinite(at(kTrackNorth, i)) || !std::isfinite(at(kTrackHeading, i))) {
         *error = "field log: the campaign is not sampled every " + std::to_string(step) +
                  " s with positions and heading (t = " + std::to_string(campaign.t[i]) + ")";
         return false;
       }
     }
-    const int segment = static_cast<int>(at(kSegment, begin));
+    const int segment = static_cast<int>(at(kTrackSegment, begin));
     size_t first = begin;  // the segment's first command: the log starts there
-    while (first < end && !std::isfinite(at(kPwmL, first))) ++first;
+    while (first < end && !std::isfinite(at(kTrackPwmL, first))) ++first;
     const double length = segment == options.short_segment ? options.short_s : 1e300;
     int fixes = 0;
     double last_lat = kNaN, last_lon = kNaN;
@@ -108,13 +109,13 @@ bool MakeFieldLog(const Trajectory& campaign, const FieldLogOptions& options, un
       const long row = std::clamp<long>(tick + jitter(random), static_cast<long>(first),
                                         static_cast<long>(end) - 1);
       long command = row;  // the last command at or before the row
-      while (!std::isfinite(at(kPwmL, command))) --command;
+      while (!std::isfinite(at(kTrackPwmL, command))) --command;
       double value[kLogColumns];
       value[kLogSegment] = segment;
       value[kLat] = value[kLon] = kNaN;
       if (j % 2 == 0) {  // GNSS at half the logger's rate
-        LocalToGeodetic(options.origin_lat, options.origin_lon, at(kNorth, row), at(kEast, row),
-                        &value[kLat], &value[kLon]);
+        LocalToGeodetic(options.origin_lat, options.origin_lon, at(kTrackNorth, row),
+                        at(kTrackEast, row), &value[kLat], &value[kLon]);
         if (segment == options.zero_fix_segment && fixes == kZeroFix) {
           value[kLat] = value[kLon] = 0.0;
         } else if (segment == options.stale_segment && fixes >= kStaleFrom &&
@@ -127,11 +128,11 @@ bool MakeFieldLog(const Trajectory& campaign, const FieldLogOptions& options, un
         }
         ++fixes;
       }
-      double heading = std::fmod(at(kHeading, row) / kDegree, 360.0);
+      double heading = std::fmod(at(kTrackHeading, row) / kDegree, 360.0);
       if (heading < 0.0) heading += 360.0;
       value[kLogHeading] = heading;
-      value[kLogPwmL] = at(kPwmL, command);
-      value[kLogPwmR] = at(kPwmR, command);
+      value[kLogPwmL] = at(kTrackPwmL, command);
+      value[kLogPwmR] = at(kTrackPwmR, command);
       out.t.push_back(std::round(campaign.t[row] * 1e6) / 1e6);
       for (int c = 0; c < kLogColumns; ++c) out.columns[c].push_back(value[c]);
     }

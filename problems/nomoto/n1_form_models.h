@@ -36,6 +36,7 @@ namespace vesselid::nomoto {
 
 struct N1Form {
   static constexpr int kNumStates = 2;   // psi, r
+  static constexpr int kMaxParameters = 5;  // T, K, n1 (, n3), delta_0
   static constexpr int kNumInputs = 2;   // delta (, U with a length)
   static constexpr int kNumOutputs = 2;  // psi, r
 

@@ -58,6 +58,7 @@ inline void GuessYawRate(const double* y, const double* ydot, double* x) {
 
 struct FirstOrder {
   static constexpr int kNumStates = 2;   // psi, r
+  static constexpr int kMaxParameters = 3;  // T, K, delta_0
   static constexpr int kNumInputs = 1;   // delta
   static constexpr int kNumOutputs = 2;  // psi, r
 
@@ -102,6 +103,7 @@ struct FirstOrder {
 
 struct Norrbin {
   static constexpr int kNumStates = 2;
+  static constexpr int kMaxParameters = 4;  // T, K, alpha, delta_0
   static constexpr int kNumInputs = 1;
   static constexpr int kNumOutputs = 2;
 
@@ -157,6 +159,7 @@ struct Norrbin {
 
 struct SecondOrder {
   static constexpr int kNumStates = 3;  // psi, xi1, xi2
+  static constexpr int kMaxParameters = 5;  // T1, T2, T3, K, delta_0
   static constexpr int kNumInputs = 1;
   static constexpr int kNumOutputs = 2;
 

@@ -31,6 +31,7 @@ namespace vesselid::nomoto {
 
 struct SecondOrderRates {
   static constexpr int kNumStates = 3;  // psi, eta1, eta2
+  static constexpr int kMaxParameters = 5;  // a1, a0, b, T3, delta_0
   static constexpr int kNumInputs = 1;  // delta
   static constexpr int kNumOutputs = 2;
 

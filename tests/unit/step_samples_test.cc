@@ -8,6 +8,7 @@
 #include <limits>
 #include <random>
 
+#include "engine/base/nan.h"
 #include "engine/step_regression/first_order_step.h"
 #include "engine/step_regression/steady_state.h"
 #include "gtest/gtest.h"
@@ -16,7 +17,6 @@ namespace vesselid {
 namespace {
 
 constexpr double kDt = 0.2;  // 5 Hz
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kPi = 3.14159265358979323846;
 
 struct Plant {
