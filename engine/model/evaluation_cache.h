@@ -4,18 +4,17 @@
 // Ceres 2.1's bounded trust region evaluates each candidate three times: the projected line
 // search asks for the gradient there (cubic interpolation: residuals and Jacobian, a Jet
 // simulation), the candidate's cost is evaluated again (residuals only), and an accepted step
-// asks for residuals and Jacobian at the same point once more. The cache holds one slot per
-// kind of evaluation (a residual-only evaluation runs on doubles, a Jacobian evaluation on
-// Jets). A Jacobian request is answered only from an evaluation on Jets with the same constant
-// blocks; a residual-only request from the last evaluation of either kind at those values,
-// the Jet one first. So an accepted candidate costs one Jet simulation, not a Jet and a double
-// one. Residuals on Jets may differ from those on doubles in the last bits (a Jet divides as
-// a * (1 / b)), so a solve with the cache ends within rounding of one without it, not bit for
-// bit; with the cache, every solve is reproducible bit for bit. The Jet slot answers first
-// because only a solve's own Jacobian requests fill it, while the double slot may hold an
-// evaluation made for another purpose (a multistart screens points on whichever of its
-// problems a thread borrows), whose answer is bit-identical to a new double simulation: what
-// a solve is answered then never depends on threads or timing.
+// asks for residuals and Jacobian at the same point once more. The cache holds the last
+// residual-only evaluation (on doubles) and the last two with a Jacobian (on Jets). A Jacobian
+// request is answered only from an evaluation on Jets with the same constant blocks; a
+// residual-only request from the last evaluation of either kind at those values, the Jet one first.
+// So an accepted candidate costs one Jet simulation, not a Jet and a double one. Residuals on Jets
+// may differ from those on doubles in the last bits (a Jet divides as a * (1 / b)), so a solve with
+// the cache ends within rounding of one without it, not bit for bit; with the cache, every solve is
+// reproducible bit for bit. The Jet slot answers first because only a solve's own Jacobian requests
+// fill it, while the double slot may hold an evaluation made for another purpose (a multistart
+// screens points on whichever of its problems a thread borrows), whose answer is bit-identical to a
+// new double simulation: what a solve is answered then never depends on threads or timing.
 //
 // An entry is keyed by the values of every parameter block (bit patterns) and a revision of
 // the data the residuals depend on (Experiment::weights_revision). Lookups and stores lock a
@@ -27,6 +26,7 @@
 #include <atomic>
 #include <cstring>
 #include <mutex>
+#include <utility>
 #include <vector>
 
 namespace vesselid {
@@ -54,12 +54,9 @@ class EvaluationCache {
               double** jacobians) const {
     std::lock_guard<std::mutex> lock(mutex_);
     const Slot* match = nullptr;
-    if (jacobians != nullptr) {
-      if (Matches(slots_[1], parameters, revision, jacobians)) match = &slots_[1];
-    } else if (Matches(slots_[1], parameters, revision, nullptr)) {
-      match = &slots_[1];
-    } else if (Matches(slots_[0], parameters, revision, nullptr)) {
-      match = &slots_[0];
+    for (int k : {1, 2, 0}) {  // the Jet slots, newest first, then (residuals only) doubles
+      if (match != nullptr || (k == 0 && jacobians != nullptr)) continue;
+      if (Matches(slots_[k], parameters, revision, jacobians)) match = &slots_[k];
     }
     if (match == nullptr) return false;
     const Slot& slot = *match;
@@ -74,11 +71,13 @@ class EvaluationCache {
     return true;
   }
 
-  // Keeps a successful evaluation (the arguments as Lookup's), replacing the previous one of
-  // its kind.
+  // Keeps a successful evaluation (the arguments as Lookup's): a residual-only one replaces
+  // the previous residual-only one, a Jet one the older of the two Jet ones (whose memory it
+  // reuses).
   void Store(double const* const* parameters, long revision, const double* residuals,
              double** jacobians) {
     std::lock_guard<std::mutex> lock(mutex_);
+    if (jacobians != nullptr) std::swap(slots_[1], slots_[2]);
     Slot& slot = slots_[jacobians != nullptr];
     slot.valid = true;
     slot.revision = revision;
@@ -95,7 +94,7 @@ class EvaluationCache {
     }
   }
 
-  // Frees both slots (their memory too).
+  // Frees every slot (their memory too).
   void Clear() {
     std::lock_guard<std::mutex> lock(mutex_);
     for (Slot& slot : slots_) slot = Slot();
@@ -124,7 +123,10 @@ class EvaluationCache {
 
   const int num_residuals_, num_blocks_;
   mutable std::mutex mutex_;
-  Slot slots_[2];  // [0]: residuals only, [1]: with Jacobian
+  // [0]: residuals only; [1], [2]: with Jacobian, the newest first. Two Jet slots, because
+  // a solve that stops on a rejected candidate has had the line search's Jacobian there after
+  // the one at its end point, which the stage's uncertainty analysis asks for next.
+  Slot slots_[3];
 };
 
 }  // namespace vesselid

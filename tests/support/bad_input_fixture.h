@@ -40,9 +40,11 @@ struct Outcome {
 class BadInput : public ::testing::Test {
  protected:
   void SetUp() override {
+    // Suite and test name: BadInput and BadSpeedInput (two programs ctest may run at once)
+    // share test names.
+    const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
     dir_ = fs::temp_directory_path() /
-           ("vesselid_bad_input_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("vesselid_bad_input_" + std::string(test->test_suite_name()) + "_" + test->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     auto model = nomoto::MakeFirstOrderHandle();

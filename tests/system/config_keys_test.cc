@@ -157,18 +157,19 @@ const KeyCase kCases[] = {
      V.K("    weights: given\n    normalize_by_length: false")},
     {"normalize_by_length_under_noise_weights", V, V.K("    normalize_by_length: true")},
     {"global", V, V.K("    global: {algorithm: GN_CRS2_LM, max_evaluations: 40, seed: 1}")},
-    {"global_multistart", V, V.K("    global: {points: 8, short_iterations: 2}")},
+    {"global_multistart", V, V.K("    global: {threads: 1, points: 8, short_iterations: 2}")},
     // (under `weights: given`: the noise-weight iterations re-solve without the global start)
-    {"global_points", V.K("    weights: given\n    global: {points: 8, short_iterations: 2}"),
+    {"global_points",
+     V.K("    weights: given\n    global: {threads: 1, points: 8, short_iterations: 2}"),
      V.K("    weights: given\n    global: {points: 16, short_iterations: 2}")},
     {"global_short_iterations",
-     V.K("    weights: given\n    global: {points: 8, short_iterations: 2}"),
-     V.K("    weights: given\n    global: {points: 8, short_iterations: 3}")},
+     V.K("    weights: given\n    global: {threads: 1, points: 8, short_iterations: 2}"),
+     V.K("    weights: given\n    global: {threads: 1, points: 8, short_iterations: 3}")},
     {"global_threads", V, V.K("    global: {points: 8, threads: -1}"), "threads must be >= 0"},
     {"global_nlopt_key_in_multistart", V, V.K("    global: {max_evaluations: 40}"),
      "max_evaluations applies to NLopt algorithms"},
-    {"global_multistart_key_in_nlopt", V,
-     V.K("    global: {algorithm: GN_CRS2_LM, points: 8}"), "points applies to the multistart"},
+    {"global_multistart_key_in_nlopt", V, V.K("    global: {algorithm: GN_CRS2_LM, points: 8}"),
+     "points applies to the multistart"},
     {"local", V, V.K("    local: {max_iterations: 2}")},
     {"continuation", V, V.K("    continuation: [20]")},
     {"continuation_on_segments", V.E("[s]"), V.E("[s]").K("    continuation: [20]")},
@@ -194,7 +195,8 @@ const KeyCase kCases[] = {
      V.E("[a, b, c, s]").K("    uncertainty: {method: experiment_bootstrap, runs: 10}")},
     // Six segments of 20 s cut from a's 120 s.
     {"uncertainty_experiment_bootstrap_segment_length", V.E("[a]").A(", segment_length: 20"),
-     V.E("[a]").A(", segment_length: 20")
+     V.E("[a]")
+         .A(", segment_length: 20")
          .K("    uncertainty: {method: experiment_bootstrap, runs: 10}")},
     // Three segments: known only from the data, a warning and auto's figures.
     {"uncertainty_experiment_bootstrap_three_segments", V.E("[s]"),
@@ -208,7 +210,8 @@ const KeyCase kCases[] = {
      "`segment_length`"},
     {"uncertainty_few_runs", V, V.K("    uncertainty: {method: block_bootstrap, runs: 5}"),
      "config.yaml:12: stages[0].uncertainty.runs: must be >= 10"},
-    {"uncertainty_bad_block_length", V, V.K("    uncertainty: {method: block_bootstrap, block_length: 0}"),
+    {"uncertainty_bad_block_length", V,
+     V.K("    uncertainty: {method: block_bootstrap, block_length: 0}"),
      "config.yaml:12: stages[0].uncertainty.block_length: must be auto or > 0 (seconds)"},
     {"uncertainty_unknown_method", V, V.K("    uncertainty: {method: jackknife}"),
      "config.yaml:12: stages[0].uncertainty.method: unknown method 'jackknife' (auto, hessian, "
@@ -333,26 +336,34 @@ const KeyCase kCases[] = {
     // cgnr): it is shown read by refusing an unknown one.
     {"local_linear_solver", V, V.K("    local: {linear_solver: cholmod}"),
      "unknown linear solver 'cholmod'"},
-    // The multistart's settings (under `weights: given`, as global_points).
+    // The multistart's settings (under `weights: given`, as global_points), on one thread: on
+    // two, its search on pieces ends at 1 or 2 distinct points from run to run (a defect of
+    // the multistart's thread pool, reported in issue 34's notes), which made these cases
+    // fail at random.
     {"global_candidates",
-     V.K("    weights: given\n    global: {points: 8, short_iterations: 2}"),
-     V.K("    weights: given\n    global: {points: 8, short_iterations: 2, candidates: 1}")},
+     V.K("    weights: given\n    global: {threads: 1, points: 8, short_iterations: 2}"),
+     V.K("    weights: given\n    global: {threads: 1, points: 8, short_iterations: 2, candidates: "
+         "1}")},
     {"global_min_separation",
-     V.K("    weights: given\n    global: {points: 8, short_iterations: 2}"),
-     V.K("    weights: given\n    global: {points: 8, short_iterations: 2, min_separation: 0.9}")},
+     V.K("    weights: given\n    global: {threads: 1, points: 8, short_iterations: 2}"),
+     V.K("    weights: given\n    global: {threads: 1, points: 8, short_iterations: 2, "
+         "min_separation: 0.9}")},
     // The multistart searches on pieces of the records by default (search_horizons.h).
     {"global_horizons",
-     V.K("    weights: given\n    global: {points: 8, short_iterations: 2}"),
-     V.K("    weights: given\n    global: {points: 8, short_iterations: 2, horizons: none}")},
+     V.K("    weights: given\n    global: {threads: 1, points: 8, short_iterations: 2}"),
+     V.K("    weights: given\n    global: {threads: 1, points: 8, short_iterations: 2, horizons: "
+         "none}")},
     {"global_horizons_given",
-     V.K("    weights: given\n    global: {points: 8, short_iterations: 2}"),
-     V.K("    weights: given\n    global: {points: 8, short_iterations: 2, horizons: [10]}")},
+     V.K("    weights: given\n    global: {threads: 1, points: 8, short_iterations: 2}"),
+     V.K("    weights: given\n    global: {threads: 1, points: 8, short_iterations: 2, horizons: "
+         "[10]}")},
     {"global_horizons_with_continuation", V,
      V.K("    continuation: [20]\n    global: {horizons: [10]}"),
      "the stage's continuation sets the segments its global start searches on"},
     {"global_max_time",
-     V.K("    weights: given\n    global: {points: 8, short_iterations: 2}"),
-     V.K("    weights: given\n    global: {points: 8, short_iterations: 2, max_time: 1e-9}")},
+     V.K("    weights: given\n    global: {threads: 1, points: 8, short_iterations: 2}"),
+     V.K("    weights: given\n    global: {threads: 1, points: 8, short_iterations: 2, max_time: "
+         "1e-9}")},
     // The least-squares stage's regression settings.
     {"least_squares_penalty", kLeastSquares,
      V.K("    type: least_squares\n    least_squares: {grid: psi, penalty: ridge, lambda: 0.5}")},
@@ -375,10 +386,14 @@ const KeyCase kCases[] = {
      "has no damping-inertia form for a step-regression stage"},
     {"bootstrap_runs", kLeastSquares,
      V.K("    type: least_squares\n    least_squares: {grid: psi, bootstrap: 20}")},
-    {"bootstrap_blocks", V.K("    type: least_squares\n    least_squares: {grid: psi, bootstrap: 20}"),
-     V.K("    type: least_squares\n    least_squares: {grid: psi, bootstrap: {runs: 20, blocks: 8}}")},
-    {"bootstrap_seed", V.K("    type: least_squares\n    least_squares: {grid: psi, bootstrap: 20}"),
-     V.K("    type: least_squares\n    least_squares: {grid: psi, bootstrap: {runs: 20, seed: 2}}")},
+    {"bootstrap_blocks",
+     V.K("    type: least_squares\n    least_squares: {grid: psi, bootstrap: 20}"),
+     V.K("    type: least_squares\n    least_squares: {grid: psi, bootstrap: {runs: 20, blocks: "
+         "8}}")},
+    {"bootstrap_seed",
+     V.K("    type: least_squares\n    least_squares: {grid: psi, bootstrap: 20}"),
+     V.K("    type: least_squares\n    least_squares: {grid: psi, bootstrap: {runs: 20, seed: "
+         "2}}")},
     {"bootstrap_lambda",
      V.K("    type: least_squares\n    least_squares: {grid: psi, penalty: lasso, bootstrap: 20}"),
      V.K("    type: least_squares\n    least_squares: {grid: psi, penalty: lasso,\n"
