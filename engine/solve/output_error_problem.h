@@ -36,7 +36,12 @@ struct Variable {
   double* block = nullptr;  // holds value / scale
 
   double value() const { return *block * scale; }
-  void set_value(double v) const { *block = v / scale; }
+  // The block is left as it is when it already gives v: v / scale need not give the block's
+  // bits back, and setting the values a solve ended at must not move it (the evaluation
+  // cache answers at bit-identical blocks only).
+  void set_value(double v) const {
+    if (value() != v) *block = v / scale;
+  }
   bool bounded() const { return std::isfinite(lower) && std::isfinite(upper); }
 };
 
