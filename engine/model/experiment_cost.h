@@ -13,8 +13,8 @@
 // compiled Jet size that holds them all, or, beyond kMaxJetSize directions, in as few passes
 // as it takes, each seeding an equal share of the directions.
 //
-// With a cache (ExperimentCostOptions), an evaluation at the values of the previous one of
-// its kind is copied from it (evaluation_cache.h).
+// With a cache (ExperimentCostOptions), an evaluation at the values of a recent one is copied
+// from it (evaluation_cache.h: residuals alone from either kind, a Jacobian from a Jet one).
 #pragma once
 
 #include <array>
@@ -68,8 +68,8 @@ constexpr int SmallestJetSizeFor(int directions, std::integer_sequence<int, Size
 }
 
 struct ExperimentCostOptions {
-  // Keeps the last evaluation of each kind; null: every evaluation simulates. Sized by the
-  // caller for the experiment's samples and blocks; must outlive the cost function.
+  // Keeps the recent evaluations (evaluation_cache.h); null: every evaluation simulates. Sized
+  // by the caller for the experiment's samples and blocks; must outlive the cost function.
   EvaluationCache* cache = nullptr;
   EvaluationCounts* counts = nullptr;  // counts evaluations (may be null)
 };

@@ -246,9 +246,9 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
 
   p->problem_ = std::make_unique<ceres::Problem>();
   // Only Ceres' bounded trust region asks twice at one point on Jets (its projected line
-  // search, evaluation_cache.h); without bounds a cache would hold a Jacobian per experiment
-  // for nothing but the final cost. (Bounds the initial-state priors add below do not count:
-  // a missed copy, not a wrong one.)
+  // search, evaluation_cache.h); without bounds a cache would hold Jacobians per experiment
+  // to save only the stage's last Jacobian (its uncertainty analysis). (Bounds the
+  // initial-state priors add below do not count: a missed copy, not a wrong one.)
   bool bounded = false;
   for (const Variable& v : p->variables_) {
     bounded |= v.free && (std::isfinite(v.lower) || std::isfinite(v.upper));
