@@ -12,7 +12,7 @@
 namespace vesselid {
 namespace {
 
-constexpr size_t kOpenRows = 60;
+constexpr size_t kPaperOpenRows = 60;
 
 std::string ValueWithError(double value, double std_error, bool undetermined) {
   std::string text = HtmlNumber(value, "%.5g");
@@ -151,7 +151,7 @@ std::string ParametersByStage(const RunConfig& config, const RunResult& result) 
       HtmlEscape(FusionRuleToString(config.fusion)) + ").</p>\n";
   out +=
       Fold("<div class=\"scroll\"><table class=\"paper\">\n" + header + rows + "</table></div>\n",
-           count, std::to_string(count) + " parameters", kOpenRows);
+           count, std::to_string(count) + " parameters", kPaperOpenRows);
   if (never_count > 0) {
     out +=
         "<p>Held fixed in every stage (" + std::to_string(never_count) + "): " + never + ".</p>\n";
@@ -178,7 +178,7 @@ std::string CostPerTest(const RunResult& result) {
       "<p>Per identification experiment: the stage that fits it, the cost "
       "√(mean e²) over all compared samples, and the fit % per output.</p>\n";
   return out + Fold(table.Html("experiment", "stage"), table.rows.size(),
-                    std::to_string(table.rows.size()) + " experiments", kOpenRows);
+                    std::to_string(table.rows.size()) + " experiments", kPaperOpenRows);
 }
 
 std::string ValidationFit(const RunResult& result) {
@@ -199,7 +199,7 @@ std::string ValidationFit(const RunResult& result) {
       "<p>Fit % of the held-out experiments, simulated with each stage's estimates and with "
       "the final values.</p>\n";
   return out + Fold(table.Html("experiment", "output"), table.rows.size(),
-                    std::to_string(table.rows.size()) + " rows", kOpenRows);
+                    std::to_string(table.rows.size()) + " rows", kPaperOpenRows);
 }
 
 }  // namespace
