@@ -123,9 +123,11 @@ class EvaluationCache {
 
   const int num_residuals_, num_blocks_;
   mutable std::mutex mutex_;
-  // [0]: residuals only; [1], [2]: with Jacobian, the newest first. Two Jet slots, because
-  // a solve that stops on a rejected candidate has had the line search's Jacobian there after
-  // the one at its end point, which the stage's uncertainty analysis asks for next.
+  // [0]: residuals only; [1], [2]: with Jacobian, the newest first. The second Jet slot was
+  // added for the stage's uncertainty analysis, asked after a solve that stopped on a rejected
+  // candidate; the miss there turned out to be Variable::set_value rewriting the blocks (fixed
+  // since), and whether the second slot still saves simulations is not measured: a candidate
+  // for removal (it holds one more Jacobian per experiment).
   Slot slots_[3];
 };
 
