@@ -7,5 +7,7 @@
 namespace vesselid {
 
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// An estimate, standard error or figure that is not known.
+inline constexpr double kUnknown = kNaN;
 
 }  // namespace vesselid

@@ -33,16 +33,23 @@ Interpolation ReadInterpolation(const YamlReader& reader, const YAML::Node& node
   return interpolation;
 }
 
+// `in_memory`: the names of the experiments whose records the caller hands over (their
+// `file` may be absent).
 ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
-                              const std::string& path, const fs::path& base,
-                              const ModelInfo& info) {
+                              const std::string& path, const fs::path& base, const ModelInfo& info,
+                              const std::set<std::string>& in_memory) {
   reader.CheckMap(node, path, ExperimentKeys());
   ExperimentSpec spec;
   if (!node["name"]) reader.Fail(node, path, "missing key 'name'");
-  if (!node["file"]) reader.Fail(node, path, "missing key 'file' (or 'files', a pattern)");
   spec.name = reader.String(node["name"], Child(path, "name"));
-  const std::string file = reader.String(node["file"], Child(path, "file"));
-  spec.file = fs::path(file).is_absolute() ? file : (base / file).lexically_normal().string();
+  if (node["file"]) {
+    const std::string file = reader.String(node["file"], Child(path, "file"));
+    spec.file = fs::path(file).is_absolute() ? file : (base / file).lexically_normal().string();
+  } else if (in_memory.count(spec.name) == 0) {
+    reader.Fail(node, path,
+                "missing key 'file' (or 'files', a pattern)" +
+                    std::string(in_memory.empty() ? "" : ", and no data given for it"));
+  }
   if (const YAML::Node n = node["separator"]) {
     const std::string separator = reader.String(n, Child(path, "separator"));
     if (separator != "," && separator != ";" && separator != "\t") {
@@ -552,7 +559,17 @@ WorkLimits ReadLimits(const YamlReader& reader, const YAML::Node& node) {
 
 bool LoadConfigFile(const std::string& path, const std::string& data_dir,
                     const ModelRegistry& registry, ConfigFile* config, std::string* error) {
-  YamlReader reader(path);
+  ConfigSource source;
+  source.path = path;
+  source.data_dir = data_dir;
+  return LoadConfig(source, registry, config, error);
+}
+
+bool LoadConfig(const ConfigSource& source, const ModelRegistry& registry, ConfigFile* config,
+                std::string* error) {
+  const std::string& path = source.path;
+  const std::string& data_dir = source.data_dir;
+  YamlReader reader = source.text.empty() ? YamlReader(path) : YamlReader(path, source.text);
   try {
     const YAML::Node root = reader.Load();
     reader.CheckMap(root, "",
@@ -583,7 +600,8 @@ bool LoadConfigFile(const std::string& path, const std::string& data_dir,
 
     const fs::path base = data_dir.empty() ? fs::path(path).parent_path() : fs::path(data_dir);
     for (const ExperimentEntry& entry : ExpandExperiments(&reader, root, base.string())) {
-      ExperimentSpec spec = ReadExperiment(reader, entry.node, entry.path, base, info);
+      ExperimentSpec spec =
+          ReadExperiment(reader, entry.node, entry.path, base, info, source.in_memory);
       if (result.FindExperiment(spec.name) != nullptr) {
         reader.Fail(entry.node["name"], Child(entry.path, "name"),
                     "duplicate experiment name '" + spec.name + "'");

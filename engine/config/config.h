@@ -26,6 +26,7 @@
 // an error naming file, line and key.
 #pragma once
 
+#include <set>
 #include <string>
 
 #include "engine/config/model_registry.h"
@@ -41,6 +42,21 @@ struct ConfigFile {
   const ModelFamily* family = nullptr;  // the registry's entry for run.family
   YAML::Node simulation;                // the family's `simulation` map (may be null)
 };
+
+// Where a config comes from.
+struct ConfigSource {
+  std::string path;  // the config file; with `text`, the name messages give it
+  std::string text;  // the config itself (YAML or JSON); empty: read from `path`
+  // Experiment files are resolved against it when it is not empty, else against the folder
+  // of `path` (the working folder for a config given as text without a path).
+  std::string data_dir;
+  // Experiments whose records the caller hands over in memory (ExperimentSpec::table, as
+  // the Python package does): their `file` key may be absent.
+  std::set<std::string> in_memory;
+};
+
+bool LoadConfig(const ConfigSource& source, const ModelRegistry& registry, ConfigFile* config,
+                std::string* error);
 
 // Experiment files are resolved against data_dir when it is not empty, else against the
 // config file's folder. The registry must outlive `config` (config->family points into it).

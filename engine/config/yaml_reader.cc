@@ -46,12 +46,16 @@ void CheckUniqueKeys(const YamlReader& reader, const YAML::Node& node, const std
 
 YAML::Node YamlReader::Load() const {
   std::string error;
-  if (!CheckInputFile(file_, "config file", kMaxConfigBytes, "", &error)) {
+  if (from_text_ && text_.size() > kMaxConfigBytes) {
+    throw ConfigError(file_ + ": a config of " + std::to_string(text_.size()) + " bytes; at most " +
+                      std::to_string(kMaxConfigBytes) + " are read");
+  }
+  if (!from_text_ && !CheckInputFile(file_, "config file", kMaxConfigBytes, "", &error)) {
     throw ConfigError(error);
   }
   YAML::Node root;
   try {
-    root = YAML::LoadFile(file_);
+    root = from_text_ ? YAML::Load(text_) : YAML::LoadFile(file_);
   } catch (const YAML::BadFile&) {
     throw ConfigError(file_ + ": cannot open file");
   } catch (const YAML::DeepRecursion& e) {

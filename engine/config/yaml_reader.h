@@ -22,9 +22,13 @@ class ConfigError : public std::runtime_error {
 class YamlReader {
  public:
   explicit YamlReader(std::string file) : file_(std::move(file)) {}
+  // A config given as text (YAML, or JSON, which is YAML too); `name` stands for the file
+  // in messages.
+  YamlReader(std::string name, std::string text)
+      : file_(std::move(name)), text_(std::move(text)), from_text_(true) {}
 
-  // Loads the file; throws ConfigError on a missing file, one that is not a regular file or
-  // larger than kMaxConfigBytes, a syntax error or a map with a key given twice. A UTF-8
+  // Loads the file (or the text); throws ConfigError on a missing file, one that is not a regular
+  // file or larger than kMaxConfigBytes, a syntax error or a map with a key given twice. A UTF-8
   // byte-order mark is skipped. Merge keys (`<<: *defaults`) are resolved (yaml_merge.h).
   YAML::Node Load() const;
 
@@ -78,6 +82,8 @@ class YamlReader {
 
  private:
   std::string file_;
+  std::string text_;
+  bool from_text_ = false;
   WorkLimits limits_;
   std::vector<std::pair<YAML::Node, YAML::Mark>> placed_;  // built node -> where written
 };

@@ -10,7 +10,7 @@ namespace {
 
 constexpr double kPlateauShare = 0.5;     // |delta| above this share of its largest: a plateau
 constexpr double kLeaveShare = 0.1;       // the rudder has left a plateau by this share of delta_z
-constexpr double kHeldShare = 0.8;        // 80 % of the plateau samples above this x delta_z
+constexpr double kHoldShare = 0.8;        // 80 % of the plateau samples above this x delta_z
 constexpr double kCheckTolerance = 0.25;  // heading changes at the reversals within 25 %
 constexpr double kSmallestCheck = 0.5 * M_PI / 180.0;
 
@@ -46,7 +46,7 @@ bool DetectZigzag(const std::vector<double>& t, const std::vector<double>& delta
   std::sort(plateau.begin(), plateau.end());
   const double rudder = SortedMedian(plateau);
   // Held, not swept: most plateau samples sit at delta_z (a sine's spread down to half).
-  if (plateau[plateau.size() / 5] < kHeldShare * rudder) return fail("the rudder is not held");
+  if (plateau[plateau.size() / 5] < kHoldShare * rudder) return fail("the rudder is not held");
   // Plateau sides in order: the first one's start, then each reversal's first sample.
   std::vector<size_t> sides;
   double side = 0.0;

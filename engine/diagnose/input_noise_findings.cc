@@ -11,7 +11,7 @@ namespace {
 
 constexpr double kRatio = 1e-3;          // noise SD / signal SD below which noise is ignored
 constexpr double kWhiteCorrelation = -0.3;  // lag-1 correlation of first differences
-constexpr double kHeldShare = 0.2;       // share of exact repeats that marks a held input
+constexpr double kRepeatShare = 0.2;        // share of exact repeats that marks a held input
 constexpr int kBlock = 20;               // samples per block mean
 constexpr double kColouredRatio = 2.0;
 
@@ -28,7 +28,7 @@ double WhiteInputNoise(const std::vector<double>& values) {
     mean += values[k];
     if (k > 0 && values[k] == values[k - 1]) ++repeats;
   }
-  if (repeats > kHeldShare * (n - 1)) return 0.0;
+  if (repeats > kRepeatShare * (n - 1)) return 0.0;
   mean /= n;
   double variance = 0.0;
   for (double v : values) variance += (v - mean) * (v - mean);

@@ -21,7 +21,7 @@ bool IsDegrees(const ExperimentSpec& spec, const std::string& column) {
          spec.degree_columns.end();
 }
 
-std::string Number(double value) {
+std::string Number4(double value) {
   char text[32];
   std::snprintf(text, sizeof(text), "%.4g", value);
   return text;
@@ -146,14 +146,15 @@ void AddGapFinding(const ExperimentSpec& spec, const std::string& column, const 
   for (size_t k = 0; k < steps.size(); ++k) {
     if (!(steps[k] > kGapSteps * median) || !same_segment[k]) continue;
     if (++gaps <= 3) {
-      where += (where.empty() ? "" : ", ") + Number(steps[k]) + " s at t = " + Number(t[k]) + " s";
+      where +=
+          (where.empty() ? "" : ", ") + Number4(steps[k]) + " s at t = " + Number4(t[k]) + " s";
     }
     longest = std::max(longest, steps[k]);
   }
   if (gaps == 0) return;
   add(FindingKind::kGaps, name, longest,
       "column '" + column + "' has " + std::to_string(gaps) + " gap(s) longer than " +
-          Number(kGapSteps) + " median sample intervals (" + Number(median) + " s): " + where +
+          Number4(kGapSteps) + " median sample intervals (" + Number4(median) + " s): " + where +
           (gaps > 3 ? ", ..." : ""));
 }
 
@@ -190,8 +191,8 @@ void AddRecordCheckFindings(const RunConfig& config, TrajectoryCache* cache,
       const double q = QuantisationStep(values);
       if (q > 0.0) {
         add(FindingKind::kQuantised, name, q * unit,
-            "column '" + column + "' is quantised in steps of " + Number(q * unit) + label +
-                ": its noise is at least " + Number(q * unit / std::sqrt(12.0)) + label);
+            "column '" + column + "' is quantised in steps of " + Number4(q * unit) + label +
+                ": its noise is at least " + Number4(q * unit / std::sqrt(12.0)) + label);
       } else if (c >= inputs) {
         AddStaleFinding(spec, column, name, cache, add);
       }
@@ -202,9 +203,9 @@ void AddRecordCheckFindings(const RunConfig& config, TrajectoryCache* cache,
         const double share = std::abs(values.front()) / largest;
         if (share >= kMidManoeuvre) {
           add(FindingKind::kStartsMidManoeuvre, name, values.front() * unit,
-              "column '" + column + "' starts at " + Number(values.front() * unit) + label +
-                  ", " + Number(100.0 * share) + " % of its largest magnitude " +
-                  Number(largest * unit) + label + ": the record starts mid-manoeuvre");
+              "column '" + column + "' starts at " + Number4(values.front() * unit) + label + ", " +
+                  Number4(100.0 * share) + " % of its largest magnitude " +
+                  Number4(largest * unit) + label + ": the record starts mid-manoeuvre");
         }
       }
     }

@@ -16,7 +16,7 @@
 namespace vesselid {
 namespace {
 
-constexpr double kTimeTolerance = 1e-9;
+constexpr double kNodeTimeTolerance = 1e-9;
 
 // An output's column as a channel; an angle output not compared modulo one turn is unwrapped,
 // and refused where two samples inside [t0, t_end] are too far apart to tell which way it
@@ -37,7 +37,7 @@ bool OutputChannelOf(RecordChannels* channels, int column, const ModelInfo& info
   const std::vector<double>& t = (*channel)->t;
   for (size_t k = 1; k < raw.size(); ++k) {
     const double step = WrapAngle(raw[k] - raw[k - 1]);
-    const bool inside = t[k - 1] >= t0 - kTimeTolerance && t[k] <= t_end + kTimeTolerance;
+    const bool inside = t[k - 1] >= t0 - kNodeTimeTolerance && t[k] <= t_end + kNodeTimeTolerance;
     if (!inside || std::abs(step) <= kMaxAngleStep) continue;
     char text[400];
     std::snprintf(text, sizeof(text),
@@ -58,10 +58,10 @@ bool OutputChannelOf(RecordChannels* channels, int column, const ModelInfo& info
 // The samples [first, last) of sorted times `t` with t0 - tol <= t <= t_end + tol: the same
 // tests as a scan, found by bisection (a segment of a long record is a short window of it).
 std::pair<size_t, size_t> InWindow(const std::vector<double>& t, double t0, double t_end) {
-  const auto first = std::partition_point(t.begin(), t.end(),
-                                          [&](double x) { return !(x >= t0 - kTimeTolerance); });
-  const auto last =
-      std::partition_point(first, t.end(), [&](double x) { return x <= t_end + kTimeTolerance; });
+  const auto first = std::partition_point(
+      t.begin(), t.end(), [&](double x) { return !(x >= t0 - kNodeTimeTolerance); });
+  const auto last = std::partition_point(first, t.end(),
+                                         [&](double x) { return x <= t_end + kNodeTimeTolerance; });
   return {static_cast<size_t>(first - t.begin()), static_cast<size_t>(last - t.begin())};
 }
 
@@ -75,8 +75,9 @@ bool FitLatentInput(const ExperimentSpec& spec, const std::string& input,
                     std::vector<double>* right, std::vector<double>* end, std::string* error) {
   const InputNoiseSpec& noise = spec.input_noise.at(input);
   constexpr int kPad = 20;
-  const auto first = std::lower_bound(channel.t.begin(), channel.t.end(), t0 - kTimeTolerance);
-  const auto last = std::upper_bound(channel.t.begin(), channel.t.end(), t_end + kTimeTolerance);
+  const auto first = std::lower_bound(channel.t.begin(), channel.t.end(), t0 - kNodeTimeTolerance);
+  const auto last =
+      std::upper_bound(channel.t.begin(), channel.t.end(), t_end + kNodeTimeTolerance);
   const long lo = std::max(0L, static_cast<long>(first - channel.t.begin()) - kPad);
   const long hi = std::min(static_cast<long>(channel.t.size()),
                            static_cast<long>(last - channel.t.begin()) + kPad);
@@ -204,7 +205,8 @@ bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* record_channels
   }
   if (!std::is_sorted(times.begin(), times.end())) std::sort(times.begin(), times.end());
   for (double t : times) {
-    if (e.node_time.empty() || t - e.node_time.back() > kTimeTolerance) e.node_time.push_back(t);
+    if (e.node_time.empty() || t - e.node_time.back() > kNodeTimeTolerance)
+      e.node_time.push_back(t);
   }
   const int nodes = e.num_nodes();
   if (nodes < 2) return fail("fewer than two sample times in the window");
@@ -219,7 +221,7 @@ bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* record_channels
     const auto [first, last] = InWindow(oc.channel->t, t0, t_end);
     for (size_t i = first; i < last; ++i) {
       const double t = oc.channel->t[i];
-      while (e.node_time[k] < t - kTimeTolerance) ++k;
+      while (e.node_time[k] < t - kNodeTimeTolerance) ++k;
       by_node[k].push_back({oc.output, oc.channel->value[i], oc.weight});
       ++e.output_sample_count[oc.output];
     }

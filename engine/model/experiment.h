@@ -9,6 +9,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -16,9 +17,9 @@
 #include "engine/data/segments.h"
 #include "engine/data/trajectory.h"
 #include "engine/model/experiment_data.h"
-#include "engine/model/record_channels.h"
 #include "engine/model/input_noise.h"
 #include "engine/model/model.h"
+#include "engine/model/record_channels.h"
 
 namespace vesselid {
 
@@ -26,6 +27,9 @@ namespace vesselid {
 struct ExperimentSpec {
   std::string name;
   std::string file;                                    // CSV path as resolved by the config
+  // The record in memory (a program's arrays, a DataFrame from Python: trajectory_table.h);
+  // when set it is used instead of `file`, which may then be empty.
+  std::shared_ptr<const Trajectory> table;
   CsvReadOptions csv;                                  // separator and size limits
   std::map<std::string, std::string> inputs;           // model input -> column
   std::map<std::string, std::string> outputs;          // model output -> column

@@ -9,6 +9,7 @@
 #include "engine/data/glitch_screen.h"
 #include "engine/data/resample.h"
 #include "engine/data/time_base.h"
+#include "engine/data/trajectory_table.h"
 #include "engine/model/experiment.h"
 
 namespace vesselid {
@@ -175,7 +176,11 @@ void AddBadCellFindings(const ExperimentSpec& spec, Trajectory* data) {
 bool LoadExperimentData(const ExperimentSpec& spec, Trajectory* trajectory, std::string* error) {
   CsvReadOptions csv = spec.csv;
   csv.columns = MappedColumns(spec);
-  if (!ReadTrajectoryCsv(spec.file, csv, trajectory, error)) return false;
+  if (spec.table != nullptr) {
+    if (!TrajectoryFromTable(*spec.table, csv, trajectory, error)) return false;
+  } else if (!ReadTrajectoryCsv(spec.file, csv, trajectory, error)) {
+    return false;
+  }
   AddBadCellFindings(spec, trajectory);
   if (!trajectory->skipped_columns.empty()) {
     std::string names;
@@ -215,8 +220,8 @@ bool LoadExperimentData(const ExperimentSpec& spec, Trajectory* trajectory, std:
   for (const std::string& column : spec.degree_columns) {
     int c = trajectory->Find(column);
     if (c < 0) {
-      *error = spec.file + ": no column '" + column + "' (listed in experiment '" + spec.name +
-               "' degrees)";
+      *error = trajectory->source + ": no column '" + column + "' (listed in experiment '" +
+               spec.name + "' degrees)";
       return false;
     }
     for (double& v : trajectory->columns[c]) v *= M_PI / 180.0;

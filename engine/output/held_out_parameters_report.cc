@@ -7,11 +7,10 @@
 
 #include "engine/base/format_numbers.h"
 #include "engine/base/json_number.h"
+#include "engine/base/nan.h"
 
 namespace vesselid {
 namespace {
-
-constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
 
 const ExperimentFit* FindFit(const std::vector<ExperimentFit>& fits, const std::string& name) {
   for (const ExperimentFit& fit : fits) {

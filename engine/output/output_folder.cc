@@ -12,6 +12,7 @@
 #include <filesystem>
 
 #include "engine/base/input_file.h"
+#include "engine/base/text_match.h"
 
 namespace vesselid {
 namespace {
@@ -32,11 +33,6 @@ std::string LockHolder(int fd) {
 
 bool StartsWith(const std::string& text, const std::string& prefix) {
   return text.compare(0, prefix.size(), prefix) == 0;
-}
-
-bool EndsWith(const std::string& text, const std::string& suffix) {
-  return text.size() >= suffix.size() &&
-         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 }  // namespace

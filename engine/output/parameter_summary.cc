@@ -8,7 +8,7 @@
 namespace vesselid {
 namespace {
 
-std::string Number(double value) {
+std::string Number6(double value) {
   char text[48];
   std::snprintf(text, sizeof(text), "%.6g", value);
   return text;
@@ -79,9 +79,9 @@ std::vector<ParameterReport> ReportParameters(const RunResult& result) {
       if (f.value < low - slack || f.value > high + slack) {
         std::string list;
         for (size_t k = 0; k < estimates.size(); ++k) {
-          list += (k ? ", " : "") + Number(estimates[k]->value) + " in " + stage_names[k];
+          list += (k ? ", " : "") + Number6(estimates[k]->value) + " in " + stage_names[k];
         }
-        r.fusion_note = f.name + " = " + Number(f.value) +
+        r.fusion_note = f.name + " = " + Number6(f.value) +
                         " lies outside every stage's estimate (" + list + "): " + f.rule +
                         " fusion solves for all shared parameters at once with each stage's "
                         "covariance, so it moves with the parameters it is correlated with";
@@ -96,7 +96,7 @@ std::string ParameterFlags(const ParameterReport& report, const std::string& uni
   std::string flags;
   if (report.bound != 0) {
     flags = std::string("on its ") + (report.bound < 0 ? "lower" : "upper") + " bound " +
-            Number(report.bound < 0 ? report.lower : report.upper) +
+            Number6(report.bound < 0 ? report.lower : report.upper) +
             (unit.empty() ? "" : " " + unit);
   }
   if (report.clipped)

@@ -37,7 +37,7 @@ std::string RegressionTable(const std::vector<ExperimentFit>& fits) {
 
 // One row per run, its segments folded in, with mean / median / worst (run_fit_table.h); an
 // equation-error fit as its regression table.
-std::string MetricsTable(const RunConfig& config, const std::vector<ExperimentFit>& fits) {
+std::string TextMetricsTable(const RunConfig& config, const std::vector<ExperimentFit>& fits) {
   for (const ExperimentFit& fit : fits) {
     if (IsSimulationFit(fit) || fit.diverged) return RunFitTableText(PerRunFits(config, fits));
   }
@@ -45,7 +45,7 @@ std::string MetricsTable(const RunConfig& config, const std::vector<ExperimentFi
 }
 
 // One-step and free-run metrics of the regressed states.
-std::string VelocityTable(const std::vector<ChannelMetrics>& metrics) {
+std::string TextVelocityTable(const std::vector<ChannelMetrics>& metrics) {
   std::string out;
   char line[256];
   std::snprintf(line, sizeof(line), "  %-30s %-6s %8s %12s %12s %10s\n", "prediction", "state",
@@ -162,11 +162,11 @@ std::string StageText(const RunConfig& config, const StageResult& stage) {
   }
   if (s.analysis.available) out << LocalAnalysisText(s.analysis);
   out << BootstrapText(stage);
-  out << MetricsTable(config, s.fits);
+  out << TextMetricsTable(config, s.fits);
   out << ResidualAnalysesText(stage.residuals, "  ");
   if (!stage.validation.empty()) {
     out << "  local validation:\n"
-        << MetricsTable(config, stage.validation)
+        << TextMetricsTable(config, stage.validation)
         << ResidualAnalysesText(stage.validation_residuals, "  ");
   }
   out << HeldOutParametersText(stage.held_out_parameters, stage.validation, "  ",
@@ -178,7 +178,7 @@ std::string StageText(const RunConfig& config, const StageResult& stage) {
   if (!stage.rejected.empty()) out << "  set aside: " << stage.rejected << "\n";
   if (!stage.velocity_validation.empty()) {
     out << "  local validation of the velocities (data: Savitzky-Golay reconstruction):\n"
-        << VelocityTable(stage.velocity_validation);
+        << TextVelocityTable(stage.velocity_validation);
   }
   return out.str();
 }
@@ -249,11 +249,11 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
   out << "\nsummary\n" << FinalParametersText(config, result);
   if (const StageResult* last = LastAcceptedStage(result)) {
     out << "\n  fit per run, stage '" << last->name << "' (identification data):\n"
-        << MetricsTable(config, last->summary.fits);
+        << TextMetricsTable(config, last->summary.fits);
   }
   if (config.has_final_validation && !result.final_validation.empty()) {
     out << "\n  fit per run, final values on held-out data:\n"
-        << MetricsTable(config, result.final_validation);
+        << TextMetricsTable(config, result.final_validation);
   }
   if (all.empty()) {
     out << "\nfindings: none\n";
@@ -264,14 +264,14 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
   for (const StageResult& stage : result.stages) out << StageText(config, stage);
   if (config.has_final_validation) {
     out << "\nfinal validation\n"
-        << MetricsTable(config, result.final_validation)
+        << TextMetricsTable(config, result.final_validation)
         << ResidualAnalysesText(result.final_validation_residuals, "  ")
         << HeldOutParametersText(result.final_held_out_parameters, result.final_validation, "  ",
                                  ParameterUnits(config));
   }
   if (!result.final_velocity_validation.empty()) {
     out << "final validation of the velocities\n"
-        << VelocityTable(result.final_velocity_validation);
+        << TextVelocityTable(result.final_velocity_validation);
   }
   out << ZigzagRunsText(result.zigzags);
   return out.str();

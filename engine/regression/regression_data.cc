@@ -11,18 +11,18 @@
 namespace vesselid {
 namespace {
 
-constexpr double kTimeTolerance = 1e-9;
+constexpr double kSampleTimeTolerance = 1e-9;
 
 // Index of the last sample at or before t, or -1.
 int LastAtOrBefore(const std::vector<double>& times, double t) {
-  auto it = std::upper_bound(times.begin(), times.end(), t + kTimeTolerance);
+  auto it = std::upper_bound(times.begin(), times.end(), t + kSampleTimeTolerance);
   return static_cast<int>(it - times.begin()) - 1;
 }
 
 double CausalValue(const Channel& c, double t) {
   const int j = LastAtOrBefore(c.t, t);
   if (j < 0) return c.value.front();  // before the first sample: its value
-  if (std::abs(c.t[j] - t) <= kTimeTolerance || j == 0) return c.value[j];
+  if (std::abs(c.t[j] - t) <= kSampleTimeTolerance || j == 0) return c.value[j];
   const double slope = (c.value[j] - c.value[j - 1]) / (c.t[j] - c.t[j - 1]);
   return c.value[j] + slope * (t - c.t[j]);
 }
@@ -30,7 +30,7 @@ double CausalValue(const Channel& c, double t) {
 Channel Window(const Channel& c, double t0, double t1) {
   Channel w;
   for (size_t k = 0; k < c.t.size(); ++k) {
-    if (c.t[k] >= t0 - kTimeTolerance && c.t[k] <= t1 + kTimeTolerance) {
+    if (c.t[k] >= t0 - kSampleTimeTolerance && c.t[k] <= t1 + kSampleTimeTolerance) {
       w.t.push_back(c.t[k]);
       w.value.push_back(c.value[k]);
     }

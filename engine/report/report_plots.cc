@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "engine/base/text_match.h"
 #include "engine/model/model.h"
 
 namespace vesselid {
@@ -23,11 +24,6 @@ struct ChannelSeries {
   std::vector<SeriesPiece> measured, simulated, residual;
   bool any_measured = false;
 };
-
-bool EndsWith(const std::string& text, const std::string& tail) {
-  return text.size() >= tail.size() &&
-         text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
-}
 
 ChannelSeries* FindChannel(std::vector<ChannelSeries>* channels, const std::string& output) {
   for (ChannelSeries& c : *channels) {

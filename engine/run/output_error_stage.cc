@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "engine/base/format_numbers.h"
+#include "engine/base/nan.h"
 #include "engine/base/statistics.h"
 #include "engine/model/channel_weights.h"
 #include "engine/model/operating_range.h"
@@ -24,8 +25,6 @@
 
 namespace vesselid {
 namespace {
-
-constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
 
 // The stage's result from its solved problem; `starts` are the reported start values.
 StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>& starts,

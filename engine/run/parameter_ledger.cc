@@ -5,10 +5,10 @@
 #include <limits>
 #include <tuple>
 
+#include "engine/base/nan.h"
+
 namespace vesselid {
 namespace {
-
-constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
 
 // Information fusion of every parameter that is shared in its last estimating stage and
 // determined by at least one stage, with each stage's covariance block of the shared

@@ -16,7 +16,7 @@ namespace {
 
 using nlohmann::json;
 
-constexpr int kPart = 1;            // CaseSeed part of the output noise
+constexpr int kMonteCarloPart = 1;  // CaseSeed part of the output noise
 constexpr int kInputNoisePart = 5;  // and of the input noise (its own stream: adding input
                                     // noise leaves each run's output noise as it was)
 
@@ -153,7 +153,7 @@ bool RunMonteCarloStudy(const RunConfig& config, const MonteCarloOptions& option
       return {{"run", r}, {"usable", false}, {"message", "input noise: " + message}};
     }
     if (!noise.any_input()) experiments = stage.experiments;
-    std::mt19937_64 random(CaseSeed(seed, kPart, r));
+    std::mt19937_64 random(CaseSeed(seed, kMonteCarloPart, r));
     std::normal_distribution<double> normal(0.0, 1.0);
     for (size_t e = 0; e < experiments.size(); ++e) {
       for (size_t i = 0; i < experiments[e].samples.size(); ++i) {

@@ -14,7 +14,7 @@ namespace {
 
 using nlohmann::json;
 
-constexpr int kPart = 2;  // CaseSeed part of this study
+constexpr int kStartPointPart = 2;  // CaseSeed part of this study
 const char* const kModes[] = {"local", "global"};
 
 std::string SpreadText(double spread) {
@@ -135,7 +135,7 @@ bool RunStartPointStudy(const RunConfig& config, const StartPointOptions& option
     const auto case_start = std::chrono::steady_clock::now();
     const int r = index % options.runs;
     const bool with_global = index >= options.runs;
-    std::mt19937_64 random(CaseSeed(seed, kPart, r));
+    std::mt19937_64 random(CaseSeed(seed, kStartPointPart, r));
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
     std::vector<ParameterSpec> specs = stage.specs;
     json start = json::array();

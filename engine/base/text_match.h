@@ -1,0 +1,13 @@
+// Small string tests the library needs in several places (C++17 has no ends_with).
+#pragma once
+
+#include <string>
+
+namespace vesselid {
+
+inline bool EndsWith(const std::string& text, const std::string& tail) {
+  return text.size() >= tail.size() &&
+         text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+}  // namespace vesselid

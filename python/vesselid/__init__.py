@@ -1,0 +1,18 @@
+"""vesselid from Python: identify ship and small-craft motion models from recorded runs.
+
+    import vesselid
+    result = vesselid.run("configs/nomoto_tanker.yaml", data={"zz10s_a": frame, ...})
+    result.parameters          # DataFrame: value, std_error, lower, upper, role, ...
+    result.verdict, result.findings
+
+The config is a path or a dict (the YAML schema as Python data); records are pandas
+DataFrames (or dicts of numpy columns) keyed by experiment name, with a time column (`t`
+unless the experiment's `time` key names another) and the columns the experiment maps, NaN
+for a missing sample. Experiments without data are read from their files as the CLI does.
+"""
+from ._errors import ConfigError, DataError, RunError, VesselidError
+from ._run import load_config, run
+from ._result import Finding, Result
+
+__all__ = ["run", "load_config", "Result", "Finding", "VesselidError", "ConfigError",
+           "DataError", "RunError"]

@@ -1,0 +1,129 @@
+"""Result: a run's results.json as Python objects and pandas DataFrames."""
+import dataclasses
+import html
+import json
+import math
+
+
+@dataclasses.dataclass(frozen=True)
+class Finding:
+    """One typed finding of the run (see `vesselid findings` for the kinds)."""
+    kind: str
+    severity: str  # "info", "warning" or "failure"
+    message: str
+    stage: str = ""
+    experiment: str = ""
+    segment: str = ""
+    parameter: str = ""
+    output: str = ""
+    value: float = math.nan
+    threshold: float = math.nan
+    count: int = 0
+
+    @staticmethod
+    def from_json(item):
+        number = lambda v: math.nan if v is None else float(v)
+        return Finding(kind=item["kind"], severity=item["severity"], message=item["message"],
+                       stage=item.get("stage", ""), experiment=item.get("experiment", ""),
+                       segment=item.get("segment", ""), parameter=item.get("parameter", ""),
+                       output=item.get("output", ""), value=number(item.get("value")),
+                       threshold=number(item.get("threshold")), count=item.get("count", 0))
+
+
+def _number(value):
+    return math.nan if value is None else value
+
+
+class Result:
+    """What `vesselid run` writes, from Python.
+
+    parameters  DataFrame indexed by parameter name: value, std_error, lower, upper,
+                interval_low, interval_high, role, unit, undetermined, at_bound, stages
+    verdict     "good", "doubtful" or "failed"
+    findings    list of Finding (the run's and every stage's); find(kind=, severity=) filters
+    stages      DataFrame, one row per stage: verdict, cost, comparable_cost, iterations
+    fits        DataFrame of the fit metrics per stage, experiment and output ("fit" on the
+                training runs, "validation" on held-out runs, "final_validation")
+    json        results.json as a dict; to_json() its text
+    summary     report.txt's text
+    """
+
+    def __init__(self, results, text, summary):
+        self.json = results
+        self._text = text
+        self.summary = summary
+        self.verdict = results["verdict"]
+        findings = list(results.get("findings", []))
+        for stage in results.get("stages", []):
+            findings.extend(stage.get("findings", []))
+        self.findings = [Finding.from_json(f) for f in findings]
+
+    def to_json(self):
+        """results.json's text (the same bytes as `vesselid run` writes, before indentation)."""
+        return self._text
+
+    def find(self, kind=None, severity=None):
+        """The findings of one kind and/or severity."""
+        return [f for f in self.findings
+                if (kind is None or f.kind == kind) and (severity is None or f.severity == severity)]
+
+    @property
+    def parameters(self):
+        import pandas as pd
+        rows = []
+        for p in self.json.get("parameters", []):
+            bounds = p.get("bounds", [None, None])
+            interval = p.get("interval", [None, None])
+            rows.append({"name": p["name"], "value": p["value"],
+                         "std_error": _number(p.get("std_error")),
+                         "lower": _number(bounds[0]), "upper": _number(bounds[1]),
+                         "interval_low": _number(interval[0]),
+                         "interval_high": _number(interval[1]),
+                         "role": p.get("role", ""), "unit": p.get("unit", ""),
+                         "undetermined": p.get("undetermined", False),
+                         "at_bound": p.get("at_bound", ""),
+                         "stages": ", ".join(p.get("stages", []))})
+        columns = ["name", "value", "std_error", "lower", "upper", "interval_low",
+                   "interval_high", "role", "unit", "undetermined", "at_bound", "stages"]
+        return pd.DataFrame(rows, columns=columns).set_index("name")
+
+    @property
+    def stages(self):
+        import pandas as pd
+        rows = [{"stage": s["name"], "verdict": s.get("verdict", ""),
+                 "cost": _number(s.get("cost")),
+                 "comparable_cost": _number(s.get("comparable_cost")),
+                 "iterations": s.get("iterations", 0)}
+                for s in self.json.get("stages", [])]
+        return pd.DataFrame(rows, columns=["stage", "verdict", "cost", "comparable_cost",
+                                           "iterations"]).set_index("stage")
+
+    @property
+    def fits(self):
+        import pandas as pd
+        rows = []
+        def add(stage, role, fits):
+            for m in (fits or {}).get("metrics", []):
+                row = {"stage": stage, "role": role}
+                row.update({k: _number(v) if k not in ("experiment", "output", "unit") else v
+                            for k, v in m.items()})
+                rows.append(row)
+        for s in self.json.get("stages", []):
+            add(s["name"], "fit", s.get("fit"))
+            add(s["name"], "validation", s.get("validation"))
+        add("", "final_validation", self.json.get("final_validation"))
+        return pd.DataFrame(rows)
+
+    def __repr__(self):
+        return "<vesselid.Result verdict=%s, %d parameters, %d findings>" % (
+            self.verdict, len(self.json.get("parameters", [])), len(self.findings))
+
+    def _repr_html_(self):
+        colour = {"good": "#1a7f37", "doubtful": "#9a6700", "failed": "#cf222e"}
+        head = "<p><b>vesselid run</b>: verdict <b style='color:%s'>%s</b></p>" % (
+            colour.get(self.verdict, "black"), html.escape(self.verdict))
+        shown = [f for f in self.findings if f.severity != "info"]
+        items = "".join("<li>%s: %s</li>" % (html.escape(f.severity), html.escape(f.message))
+                        for f in shown[:20])
+        return (head + self.parameters.to_html(float_format=lambda v: "%.6g" % v)
+                + ("<ul>%s</ul>" % items if items else ""))

@@ -1,0 +1,82 @@
+"""vesselid.run and vesselid.load_config."""
+import json
+import os
+
+import numpy as np
+
+from . import _core
+from ._errors import raise_for
+from ._result import Result
+
+
+def _config_arguments(config):
+    """(config text or path, is_text, name) for the engine."""
+    if isinstance(config, dict):
+        # JSON is YAML: the dict is read by the same reader as a file, keys and lines checked.
+        return json.dumps(config, indent=1, allow_nan=False), True, "config"
+    if isinstance(config, (str, os.PathLike)):
+        return os.fspath(config), False, os.fspath(config)
+    raise TypeError("config must be a path or a dict, not %s" % type(config).__name__)
+
+
+def _columns(name, frame):
+    """A record as {column: float64 array}: a DataFrame, or a dict of array-likes."""
+    try:
+        import pandas as pd
+    except ImportError:  # numpy columns only
+        pd = None
+    if pd is not None and isinstance(frame, pd.DataFrame):
+        columns = {}
+        for column in frame.columns:
+            series = frame[column]
+            if pd.api.types.is_datetime64_any_dtype(series):
+                # Epoch times: seconds since 1970 (the engine makes them relative).
+                values = series.dt.tz_localize(None) if series.dt.tz is not None else series
+                columns[str(column)] = values.astype("int64").to_numpy() / 1e9
+            elif pd.api.types.is_numeric_dtype(series) or pd.api.types.is_bool_dtype(series):
+                columns[str(column)] = series.to_numpy(dtype=np.float64, na_value=np.nan)
+            # Text columns (a timestamp string, a note) are left out, as the CSV reader skips
+            # columns it does not map.
+        return columns
+    if isinstance(frame, dict):
+        return {str(k): np.asarray(v, dtype=np.float64) for k, v in frame.items()}
+    raise TypeError("data['%s'] must be a pandas DataFrame or a dict of columns, not %s"
+                    % (name, type(frame).__name__))
+
+
+def run(config, data=None, out=None, report=True, progress=None):
+    """Runs a staged identification and returns its Result.
+
+    config:   a config file's path, or the same schema as a dict.
+    data:     {experiment name: DataFrame or dict of numpy columns}, or a folder the
+              experiments' files are resolved against (as `vesselid run --data`); experiments
+              without data are read from their `file` as the CLI does.
+    out:      a folder to write results.json, report.txt, report.html (report=True) and the
+              traces into, as `vesselid run --out`; None writes nothing.
+    progress: called with {"phase", "iteration", "cost"} after each solver iteration.
+    Raises ConfigError, DataError or RunError with the CLI's message; Ctrl-C stops the run
+    after the current stage (KeyboardInterrupt).
+    """
+    text, is_text, name = _config_arguments(config)
+    data_dir = ""
+    tables = {}
+    if isinstance(data, (str, os.PathLike)):
+        data_dir = os.fspath(data)
+    elif data is not None:
+        tables = {str(k): _columns(k, v) for k, v in data.items()}
+    ok, kind, message, payload = _core.run(
+        text, is_text, name, data_dir, tables, "" if out is None else os.fspath(out), report,
+        progress)
+    if not ok:
+        raise_for(kind, message)
+    return Result(json.loads(payload), payload, message)
+
+
+def load_config(path):
+    """A config file as a dict (merge keys resolved), after checking it as a run would."""
+    import yaml
+    ok, kind, message, _ = _core.check_config(os.fspath(path))
+    if not ok:
+        raise_for(kind, message)
+    with open(path, encoding="utf-8") as f:
+        return yaml.safe_load(f)

@@ -1,0 +1,205 @@
+// vesselid._core: the engine's entry points for the Python package (python/vesselid/).
+// The package passes configs as text or paths and records as columns of float64 arrays; the
+// results come back as results.json's text, so Result.to_json() is results.json exactly.
+// Every entry point returns (ok, kind, message, payload): kind names the error class the
+// package raises ("config", "data", "run", "interrupted").
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <string>
+#include <tuple>
+
+#include "engine/config/config.h"
+#include "engine/data/trajectory_table.h"
+#include "engine/diagnose/run_findings.h"
+#include "engine/output/output_folder.h"
+#include "engine/output/results_json.h"
+#include "engine/output/results_text.h"
+#include "engine/report/results_writer.h"
+#include "engine/run/pipeline.h"
+#include "problems/registry.h"
+#include "yaml-cpp/yaml.h"
+
+namespace py = pybind11;
+
+namespace vesselid {
+namespace {
+
+using Outcome = std::tuple<bool, std::string, std::string, std::string>;
+
+Outcome Failure(const std::string& kind, const std::string& message) {
+  return {false, kind, message, ""};
+}
+
+const ModelRegistry& Registry() {
+  static const ModelRegistry registry = DefaultRegistry();
+  return registry;
+}
+
+// A record's columns: {name: float64 array}; the arrays are copied (the engine keeps its
+// own record while the run lasts, and the caller's frame may change meanwhile).
+std::shared_ptr<Trajectory> TableFromColumns(const std::string& experiment,
+                                             const py::dict& columns) {
+  auto table = std::make_shared<Trajectory>();
+  table->source = "experiment '" + experiment + "' (data given)";
+  for (const auto& [key, value] : columns) {
+    table->names.push_back(py::cast<std::string>(key));
+    const auto array =
+        py::cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(value);
+    if (array.ndim() != 1) {
+      throw std::invalid_argument(table->source + ": column '" + table->names.back() +
+                                  "' is not one-dimensional");
+    }
+    table->columns.emplace_back(array.data(), array.data() + array.shape(0));
+  }
+  return table;
+}
+
+// Loads a config (text or path) with the given records attached; kind "config" or "data" on
+// failure.
+Outcome LoadWithData(const std::string& config, bool is_text, const std::string& name,
+                     const std::string& data_dir, const py::dict& data, ConfigFile* file) {
+  ConfigSource source;
+  source.path = is_text ? name : config;
+  if (is_text) source.text = config;
+  source.data_dir = data_dir;
+  for (const auto& [key, value] : data) source.in_memory.insert(py::cast<std::string>(key));
+  std::string error;
+  if (!LoadConfig(source, Registry(), file, &error)) return Failure("config", error);
+  for (const auto& [key, value] : data) {
+    const std::string experiment = py::cast<std::string>(key);
+    ExperimentSpec* spec = nullptr;
+    for (ExperimentSpec& s : file->run.experiments) {
+      if (s.name == experiment) spec = &s;
+    }
+    if (spec == nullptr) {
+      return Failure(
+          "data", "data given for '" + experiment + "', which is not an experiment of the config");
+    }
+    try {
+      spec->table = TableFromColumns(experiment, py::cast<py::dict>(value));
+    } catch (const std::exception& e) {
+      return Failure("data", e.what());
+    }
+    // The table's own checks now, so that a bad frame is a data error before any stage.
+    Trajectory checked;
+    CsvReadOptions options = spec->csv;
+    options.columns.clear();
+    if (!TrajectoryFromTable(*spec->table, options, &checked, &error)) {
+      return Failure("data", error);
+    }
+  }
+  return {true, "", "", ""};
+}
+
+// Whether a run's error is about its data: it names a record (a file or a given table).
+bool AboutData(const RunConfig& config, const std::string& error) {
+  for (const ExperimentSpec& spec : config.experiments) {
+    if (!spec.file.empty() && error.find(spec.file) != std::string::npos) return true;
+    if (spec.table && error.find(spec.table->source) != std::string::npos) return true;
+  }
+  return false;
+}
+
+Outcome Run(const std::string& config, bool is_text, const std::string& name,
+            const std::string& data_dir, const py::dict& data, const std::string& out_dir,
+            bool write_report, const py::object& progress) {
+  ConfigFile file;
+  const Outcome loaded = LoadWithData(config, is_text, name, data_dir, data, &file);
+  if (!std::get<0>(loaded)) return loaded;
+  const RunConfig& run = file.run;
+  std::string error;
+  std::unique_ptr<OutputFolder> folder;
+  if (!out_dir.empty()) {
+    std::vector<std::string> inputs;
+    if (!is_text) inputs.push_back(config);
+    for (const ExperimentSpec& spec : run.experiments) {
+      if (!spec.file.empty()) inputs.push_back(spec.file);
+    }
+    if (!CheckInputsSurvive(out_dir, RunOutputs(run), inputs, &error)) return Failure("run", error);
+    folder = OutputFolder::Open(out_dir, &error);
+    if (folder == nullptr) return Failure("run", error);
+  }
+  bool interrupted = false;
+  RunObserver observer;
+  // Python is called with the GIL held; a pending Ctrl-C stops the run after the stage.
+  observer.progress = [&](const SolveProgress& p) {
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) {
+      PyErr_Clear();
+      interrupted = true;
+      return;
+    }
+    if (progress.is_none()) return;
+    try {
+      progress(
+          py::dict(py::arg("phase") = p.phase == SolveProgress::Phase::kGlobal ? "global" : "local",
+                   py::arg("iteration") = p.iteration, py::arg("cost") = p.cost));
+    } catch (const py::error_already_set&) {
+      interrupted = true;
+    }
+  };
+  observer.stage_finished = [&](size_t, const StageResult&, std::string* message) {
+    if (!interrupted) {
+      py::gil_scoped_acquire gil;
+      if (PyErr_CheckSignals() != 0) {
+        PyErr_Clear();
+        interrupted = true;
+      }
+    }
+    if (interrupted) *message = "interrupted";
+    return !interrupted;
+  };
+  RunResult result;
+  bool complete = false;
+  {
+    py::gil_scoped_release release;
+    complete = Identify(run, &result, &error, observer);
+  }
+  if (interrupted) return Failure("interrupted", "the run was interrupted");
+  if (!complete && result.stages.empty()) {
+    return Failure(AboutData(run, error) ? "data" : "run", error);
+  }
+  if (folder != nullptr && !WriteRunResults(run, result, out_dir, &error, write_report)) {
+    return Failure("run", error);
+  }
+  if (!complete) {
+    return Failure("run", "the run stopped in stage '" + result.stopped_stage + "': " + error);
+  }
+  return {true, "", RunResultToText(run, result), RunResultToJson(run, result).dump()};
+}
+
+// Checks a config file as a run would (every key, names, bounds) without its records, which
+// a notebook may pass as frames.
+Outcome CheckConfig(const std::string& path) {
+  ConfigSource source;
+  source.path = path;
+  try {
+    const YAML::Node root = YAML::LoadFile(path);
+    if (root["experiments"] && root["experiments"].IsSequence()) {
+      for (const YAML::Node& e : root["experiments"]) {
+        if (e.IsMap() && e["name"] && e["name"].IsScalar())
+          source.in_memory.insert(e["name"].Scalar());
+      }
+    }
+  } catch (const YAML::Exception&) {
+    // LoadConfig names the syntax error with its line.
+  }
+  ConfigFile file;
+  std::string error;
+  if (!LoadConfig(source, Registry(), &file, &error)) return Failure("config", error);
+  return {true, "", "", ""};
+}
+
+}  // namespace
+}  // namespace vesselid
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "vesselid engine entry points (use the vesselid package)";
+  m.def("run", &vesselid::Run, py::arg("config"), py::arg("is_text"), py::arg("name"),
+        py::arg("data_dir"), py::arg("data"), py::arg("out_dir"), py::arg("write_report"),
+        py::arg("progress"));
+  m.def("check_config", &vesselid::CheckConfig, py::arg("path"));
+}

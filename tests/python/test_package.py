@@ -1,0 +1,147 @@
+"""The Python package against the CLI, on data the identified model did not make.
+
+The shipped tanker campaign (configs/nomoto_tanker.yaml, simulated by `vesselid simulate`: a
+Norrbin ship with a rate-limited steering gear, a slow yaw disturbance and a quantised
+compass, logged in degrees, with per-run rudder biases) cut to three training runs and one
+held-out run. The CSVs are read into DataFrames with round-trip float parsing (the doubles the
+engine's reader makes of the same text) and passed to vesselid.run; results.json must equal
+`vesselid run`'s on the files, timings and the config's name apart.
+"""
+import copy
+import json
+import os
+import subprocess
+
+import numpy as np
+import pandas as pd
+import pytest
+import yaml
+
+import vesselid
+
+SOURCE = os.environ["VESSELID_SOURCE_DIR"]
+BINARY = os.environ["VESSELID_BINARY"]
+TRAINING = ["zz10s_a", "zz20s_a", "zz35p_a"]
+HELD_OUT = ["zz20s_b"]
+
+
+def drop_times(value):
+    if isinstance(value, dict):
+        return {k: drop_times(v) for k, v in value.items() if k not in ("time_seconds", "config")}
+    if isinstance(value, list):
+        return [drop_times(v) for v in value]
+    return value
+
+
+@pytest.fixture(scope="module")
+def campaign(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("tanker")
+    shipped = os.path.join(SOURCE, "configs", "nomoto_tanker.yaml")
+    subprocess.run([BINARY, "simulate", shipped, "--out", str(folder)], check=True,
+                   stdout=subprocess.DEVNULL)
+    with open(shipped, encoding="utf-8") as f:
+        config = yaml.safe_load(f)
+    config.pop("simulation")
+    config["sets"] = {"training": TRAINING, "held_out": HELD_OUT}
+    # Only the runs used: the record checks read every configured experiment.
+    config["experiments"] = [e for e in config["experiments"] if e["name"] in TRAINING + HELD_OUT]
+    path = folder / "config.yaml"
+    path.write_text(yaml.safe_dump(config))
+    frames = {name: pd.read_csv(folder / (name + ".csv"), float_precision="round_trip")
+              for name in TRAINING + HELD_OUT}
+    cli = folder / "cli"
+    subprocess.run([BINARY, "run", str(path), "--out", str(cli), "--quiet", "--no-report"],
+                   check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    with open(cli / "results.json", encoding="utf-8") as f:
+        expected = json.load(f)
+    return {"folder": folder, "config": config, "path": path, "frames": frames,
+            "expected": expected}
+
+
+def test_frames_give_the_cli_run(campaign):
+    config = copy.deepcopy(campaign["config"])
+    for experiment in config["experiments"]:
+        experiment.pop("file")
+    result = vesselid.run(config, data=campaign["frames"])
+    assert drop_times(result.json) == drop_times(campaign["expected"])
+    assert result.verdict == campaign["expected"]["verdict"]
+
+
+def test_result_tables(campaign):
+    result = vesselid.run(campaign["path"], data=campaign["frames"])
+    parameters = result.parameters
+    names = [p["name"] for p in campaign["expected"]["parameters"]]
+    assert list(parameters.index) == names
+    assert {"value", "std_error", "lower", "upper", "role", "unit"} <= set(parameters.columns)
+    for p in campaign["expected"]["parameters"]:
+        assert parameters.loc[p["name"], "value"] == p["value"]
+    assert list(result.stages.index) == [s["name"] for s in campaign["expected"]["stages"]]
+    fits = result.fits
+    assert set(fits["role"]) >= {"fit", "validation"}
+    assert set(fits["experiment"]) >= set(TRAINING + HELD_OUT)
+    assert json.loads(result.to_json()) == result.json
+    html = result._repr_html_()
+    assert result.verdict in html and "<table" in html
+    for finding in result.findings:
+        assert result.find(kind=finding.kind) and finding.severity in ("info", "warning", "failure")
+
+
+def test_out_writes_the_cli_files(campaign, tmp_path):
+    vesselid.run(campaign["path"], data=campaign["frames"], out=tmp_path / "run", report=False)
+    with open(tmp_path / "run" / "results.json", encoding="utf-8") as f:
+        written = json.load(f)
+    assert drop_times(written) == drop_times(campaign["expected"])
+    assert (tmp_path / "run" / "report.txt").exists()
+
+
+def test_numpy_columns_and_a_data_folder(campaign):
+    frames = {name: {c: frame[c].to_numpy() for c in frame.columns}
+              for name, frame in campaign["frames"].items()}
+    from_arrays = vesselid.run(campaign["path"], data=frames)
+    from_folder = vesselid.run(campaign["path"], data=campaign["folder"])
+    assert drop_times(from_arrays.json) == drop_times(campaign["expected"])
+    assert drop_times(from_folder.json) == drop_times(campaign["expected"])
+
+
+def test_progress_is_called(campaign):
+    seen = []
+    vesselid.run(campaign["path"], data=campaign["frames"], progress=seen.append)
+    assert seen and {"phase", "iteration", "cost"} <= set(seen[0])
+
+
+def test_errors_carry_the_cli_messages(campaign):
+    config = copy.deepcopy(campaign["config"])
+    config["stages"][0]["colour"] = "red"
+    with pytest.raises(vesselid.ConfigError, match=r"config:\d+: .*colour"):
+        vesselid.run(config, data=campaign["frames"])
+    frames = dict(campaign["frames"])
+    broken = frames["zz10s_a"].copy()
+    broken.loc[5, "t"] = broken.loc[4, "t"]
+    frames["zz10s_a"] = broken
+    with pytest.raises(vesselid.DataError, match="experiment 'zz10s_a' .*row 5: time"):
+        vesselid.run(campaign["path"], data=frames)
+    with pytest.raises(vesselid.DataError, match="'nowhere', which is not an experiment"):
+        vesselid.run(campaign["path"], data={"nowhere": campaign["frames"]["zz10s_a"]})
+    config = copy.deepcopy(campaign["config"])
+    for experiment in config["experiments"]:
+        experiment.pop("file")
+    with pytest.raises(vesselid.ConfigError, match="no data given for it"):
+        vesselid.run(config, data={"zz10s_a": campaign["frames"]["zz10s_a"]})
+
+
+def test_load_config_returns_the_schema_as_data(campaign):
+    config = vesselid.load_config(campaign["path"])
+    assert config["model"]["family"] == "nomoto"
+    assert config["sets"]["training"] == TRAINING
+    bad = campaign["folder"] / "bad.yaml"
+    bad.write_text(campaign["path"].read_text().replace("stages:", "stagez:"))
+    with pytest.raises(vesselid.ConfigError, match="bad.yaml"):
+        vesselid.load_config(bad)
+
+
+def test_example_script_runs(campaign):
+    script = os.path.join(SOURCE, "examples", "python", "identify_from_frames.py")
+    env = dict(os.environ)
+    done = subprocess.run(["/usr/bin/python3", script, str(campaign["folder"])], cwd=SOURCE,
+                          env=env, capture_output=True, text=True, check=True)
+    assert "verdict:" in done.stdout and "fit_percent" in done.stdout, done.stdout

@@ -1,0 +1,7 @@
+namespace vesselid {
+namespace {
+
+constexpr double kShared = 1.0;
+
+}  // namespace
+}  // namespace vesselid
