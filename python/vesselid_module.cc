@@ -14,6 +14,7 @@
 #include "engine/config/config.h"
 #include "engine/data/trajectory_table.h"
 #include "engine/diagnose/run_findings.h"
+#include "engine/model/open_loop_simulation.h"
 #include "engine/output/output_folder.h"
 #include "engine/output/results_json.h"
 #include "engine/output/results_text.h"
@@ -193,6 +194,103 @@ Outcome CheckConfig(const std::string& path) {
   return {true, "", "", ""};
 }
 
+// The run's model (the config's `model` map) with its records not needed.
+bool LoadModelOnly(const std::string& config, bool is_text, const std::string& name,
+                   ConfigFile* file, std::string* error) {
+  ConfigSource source;
+  source.path = is_text ? name : config;
+  if (is_text) source.text = config;
+  try {
+    const YAML::Node root = is_text ? YAML::Load(config) : YAML::LoadFile(config);
+    if (root["experiments"] && root["experiments"].IsSequence()) {
+      for (const YAML::Node& e : root["experiments"]) {
+        if (e.IsMap() && e["name"] && e["name"].IsScalar())
+          source.in_memory.insert(e["name"].Scalar());
+      }
+    }
+  } catch (const YAML::Exception&) {
+    // LoadConfig names the syntax error with its line.
+  }
+  return LoadConfig(source, Registry(), file, error);
+}
+
+// The model's names, units and default parameters, as a dict.
+py::tuple ModelInfoOf(const std::string& config, bool is_text, const std::string& name) {
+  ConfigFile file;
+  std::string error;
+  if (!LoadModelOnly(config, is_text, name, &file, &error)) {
+    return py::make_tuple(false, "config", error, py::none());
+  }
+  const ModelInfo& info = file.run.model->info();
+  std::vector<std::string> input_units, output_units, state_units, parameter_units;
+  for (size_t i = 0; i < info.inputs.size(); ++i) input_units.push_back(info.InputUnit(i));
+  for (size_t i = 0; i < info.outputs.size(); ++i) output_units.push_back(info.OutputUnit(i));
+  for (size_t i = 0; i < info.states.size(); ++i) state_units.push_back(info.StateUnit(i));
+  for (size_t i = 0; i < info.parameters.size(); ++i) {
+    parameter_units.push_back(info.ParameterUnit(i));
+  }
+  py::dict d;
+  d["name"] = info.name;
+  d["family"] = file.run.family;
+  d["inputs"] = info.inputs;
+  d["outputs"] = info.outputs;
+  d["states"] = info.states;
+  d["parameters"] = info.parameters;
+  d["defaults"] = info.parameter_defaults;
+  d["input_units"] = input_units;
+  d["output_units"] = output_units;
+  d["state_units"] = state_units;
+  d["parameter_units"] = parameter_units;
+  return py::make_tuple(true, "", "", d);
+}
+
+// The run's model simulated open loop (open_loop_simulation.h) under `inputs` ({"t": times,
+// input: values}, SI units), from `initial_state` with `parameters` (model order, SI).
+py::tuple SimulateModel(const std::string& config, bool is_text, const std::string& name,
+                        const std::vector<double>& parameters,
+                        const std::vector<double>& initial_state, const py::dict& inputs,
+                        int substeps, const std::string& interpolation) {
+  ConfigFile file;
+  std::string error;
+  if (!LoadModelOnly(config, is_text, name, &file, &error)) {
+    return py::make_tuple(false, "config", error, py::none());
+  }
+  std::shared_ptr<Trajectory> table;
+  try {
+    table = TableFromColumns("inputs", inputs);
+  } catch (const std::exception& e) {
+    return py::make_tuple(false, "data", e.what(), py::none());
+  }
+  table->source = "inputs";
+  Trajectory record;
+  if (!TrajectoryFromTable(*table, CsvReadOptions(), &record, &error)) {
+    return py::make_tuple(false, "data", error, py::none());
+  }
+  OpenLoopOptions options;
+  options.substeps = substeps;
+  if (!StringToInterpolation(interpolation, &options.interpolation)) {
+    return py::make_tuple(
+        false, "data",
+        "unknown interpolation '" + interpolation + "' (zero_order_hold, linear, cubic)",
+        py::none());
+  }
+  Trajectory result;
+  bool ok = false;
+  {
+    py::gil_scoped_release release;
+    ok = SimulateOpenLoop(*file.run.model, parameters, initial_state, record, options, &result,
+                          &error);
+  }
+  if (!ok) return py::make_tuple(false, "run", error, py::none());
+  py::dict columns;
+  columns["t"] = py::array_t<double>(result.t.size(), result.t.data());
+  for (size_t c = 0; c < result.names.size(); ++c) {
+    columns[py::str(result.names[c])] =
+        py::array_t<double>(result.columns[c].size(), result.columns[c].data());
+  }
+  return py::make_tuple(true, "", "", columns);
+}
+
 }  // namespace
 }  // namespace vesselid
 
@@ -202,4 +300,9 @@ PYBIND11_MODULE(_core, m) {
         py::arg("data_dir"), py::arg("data"), py::arg("out_dir"), py::arg("write_report"),
         py::arg("progress"));
   m.def("check_config", &vesselid::CheckConfig, py::arg("path"));
+  m.def("model_info", &vesselid::ModelInfoOf, py::arg("config"), py::arg("is_text"),
+        py::arg("name"));
+  m.def("simulate_model", &vesselid::SimulateModel, py::arg("config"), py::arg("is_text"),
+        py::arg("name"), py::arg("parameters"), py::arg("initial_state"), py::arg("inputs"),
+        py::arg("substeps"), py::arg("interpolation"));
 }

@@ -12,7 +12,8 @@ for a missing sample. Experiments without data are read from their files as the 
 """
 from ._errors import ConfigError, DataError, RunError, VesselidError
 from ._run import load_config, run
+from ._model import Model
 from ._result import Finding, Result
 
-__all__ = ["run", "load_config", "Result", "Finding", "VesselidError", "ConfigError",
+__all__ = ["run", "load_config", "Result", "Finding", "Model", "VesselidError", "ConfigError",
            "DataError", "RunError"]

@@ -4,6 +4,8 @@ import html
 import json
 import math
 
+import numpy as np
+
 
 @dataclasses.dataclass(frozen=True)
 class Finding:
@@ -48,7 +50,9 @@ class Result:
     summary     report.txt's text
     """
 
-    def __init__(self, results, text, summary):
+    def __init__(self, results, text, summary, config_arguments=None, config=None):
+        self._config_arguments = config_arguments
+        self._config = config
         self.json = results
         self._text = text
         self.summary = summary
@@ -57,6 +61,26 @@ class Result:
         for stage in results.get("stages", []):
             findings.extend(stage.get("findings", []))
         self.findings = [Finding.from_json(f) for f in findings]
+
+    @property
+    def model(self):
+        """The run's model with its final parameters (a Model, for simulation)."""
+        from ._model import Model, degree_names
+        import pandas as pd
+        estimates = {p["name"]: p["value"] for p in self.json.get("parameters", [])}
+        covariance = None
+        for stage in reversed(self.json.get("stages", [])):
+            correlation = stage.get("correlation")
+            if not correlation:
+                continue
+            errors = {e["name"]: _number(e.get("std_error")) for e in stage.get("estimates", [])}
+            names = correlation["names"]
+            sd = np.array([errors.get(n, math.nan) for n in names])
+            matrix = np.array([[_number(v) for v in row] for row in correlation["matrix"]])
+            covariance = pd.DataFrame(matrix * np.outer(sd, sd), index=names, columns=names)
+            break
+        return Model(self._config_arguments, degree_names(self._config or {}), estimates,
+                     covariance)
 
     def to_json(self):
         """results.json's text (the same bytes as `vesselid run` writes, before indentation)."""

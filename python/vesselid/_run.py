@@ -69,7 +69,13 @@ def run(config, data=None, out=None, report=True, progress=None):
         progress)
     if not ok:
         raise_for(kind, message)
-    return Result(json.loads(payload), payload, message)
+    if isinstance(config, dict):
+        config_data = config
+    else:
+        import yaml
+        with open(text, encoding="utf-8") as f:
+            config_data = yaml.safe_load(f)
+    return Result(json.loads(payload), payload, message, (text, is_text, name), config_data)
 
 
 def load_config(path):

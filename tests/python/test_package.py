@@ -145,3 +145,31 @@ def test_example_script_runs(campaign):
     done = subprocess.run(["/usr/bin/python3", script, str(campaign["folder"])], cwd=SOURCE,
                           env=env, capture_output=True, text=True, check=True)
     assert "verdict:" in done.stdout and "fit_percent" in done.stdout, done.stdout
+
+
+def test_model_simulates_in_the_configs_units(campaign):
+    result = vesselid.run(campaign["path"], data=campaign["frames"])
+    model = result.model
+    assert model.info["inputs"] == ["delta", "U"]
+    values = {p["name"]: p["value"] for p in campaign["expected"]["parameters"]}
+    for name in model.parameters.index:
+        if name in values:
+            assert model.parameters[name] == values[name]
+    estimated = [n for n in model.covariance.index if n in model.parameters.index]
+    assert estimated and all(model.covariance.loc[n, n] > 0 for n in estimated)
+    frame = campaign["frames"]["zz20s_b"][["t", "delta", "U"]]
+    # Without rudder, from rest at 30 degrees: the heading stays at 30 degrees.
+    still = frame.assign(delta=0.0)
+    out = model.simulate(still, initial_state={"psi": 30.0}, parameters={"delta_0": 0.0})
+    assert list(out.columns) == ["t", "delta", "U", "psi", "r"]
+    assert np.allclose(out["psi"], 30.0, atol=1e-9) and np.allclose(out["r"], 0.0, atol=1e-12)
+    # The rudder (degrees in and out): a mirrored rudder mirrors the heading (an odd model).
+    ahead = model.simulate(frame, parameters={"delta_0": 0.0})
+    mirrored = model.simulate(frame.assign(delta=-frame["delta"]), parameters={"delta_0": 0.0})
+    assert np.allclose(ahead["delta"], frame["delta"])
+    assert np.allclose(ahead["psi"], -mirrored["psi"], atol=1e-9)
+    assert np.abs(ahead["psi"]).max() > 5.0  # degrees: a 20 degree zigzag turns the ship
+    with pytest.raises(KeyError, match="no parameter 'T9'"):
+        model.simulate(frame, parameters={"T9": 1.0})
+    with pytest.raises(vesselid.DataError, match="row 3: time"):
+        model.simulate(frame.assign(t=[0.0, 1.0, 2.0, 2.0] + list(frame["t"][4:])))
