@@ -1,0 +1,67 @@
+"""Every shipped config through Python on DataFrames equals `vesselid run` on its files.
+
+For each config in configs/: `vesselid simulate` writes its records (each family's own
+simulator: closed-loop steering with disturbances and quantised sensors, the catamaran and
+USV campaigns with their thrust laws, the 6-DOF hierarchy's runs), `vesselid run` identifies
+from the files, and vesselid.run from the same records read into DataFrames (round-trip
+float parsing: the doubles the engine's reader makes of the text) with the config passed as
+a dict without `file` keys. results.json must be equal: every estimate, standard error,
+cost, fit and finding to the last bit, timings and the config's name apart.
+(Label system_long: the whole campaigns take minutes.)
+"""
+import copy
+import json
+import os
+import re
+import subprocess
+
+import pandas as pd
+import pytest
+import yaml
+
+import vesselid
+
+SOURCE = os.environ["VESSELID_SOURCE_DIR"]
+BINARY = os.environ["VESSELID_BINARY"]
+CONFIGS = sorted(f for f in os.listdir(os.path.join(SOURCE, "configs")) if f.endswith(".yaml"))
+
+
+NOTE_TIME = re.compile(r", [0-9]+\.[0-9]{3} s($|[;,)])")
+
+
+def drop_times(value):
+    """results.json without what differs between two runs of the same data: the wall times
+    ("time_seconds", "seconds", a note's ", 4.969 s") and the config's name."""
+    if isinstance(value, str):
+        return NOTE_TIME.sub(r", <time> s\1", value)
+    if isinstance(value, dict):
+        return {k: drop_times(v) for k, v in value.items()
+                if k not in ("time_seconds", "seconds", "config")}
+    if isinstance(value, list):
+        return [drop_times(v) for v in value]
+    return value
+
+
+@pytest.mark.parametrize("name", CONFIGS)
+def test_shipped_config_from_frames_equals_the_cli(name, tmp_path):
+    shipped = os.path.join(SOURCE, "configs", name)
+    subprocess.run([BINARY, "simulate", shipped, "--out", str(tmp_path)], check=True,
+                   stdout=subprocess.DEVNULL)
+    subprocess.run([BINARY, "run", shipped, "--data", str(tmp_path), "--out",
+                    str(tmp_path / "cli"), "--quiet", "--no-report"], check=True,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    with open(tmp_path / "cli" / "results.json", encoding="utf-8") as f:
+        expected = json.load(f)
+    with open(shipped, encoding="utf-8") as f:
+        config = yaml.safe_load(f)
+    frames, read = {}, {}
+    shared = (config.get("experiment_defaults") or {}).pop("file", None)
+    for experiment in config["experiments"]:
+        file = experiment.pop("file", shared)  # runs cut from one log share its frame
+        if file not in read:
+            read[file] = pd.read_csv(tmp_path / file, float_precision="round_trip")
+        frames[experiment["name"]] = read[file]
+    if "experiment_defaults" in config and not config["experiment_defaults"]:
+        del config["experiment_defaults"]
+    result = vesselid.run(copy.deepcopy(config), data=frames)
+    assert drop_times(result.json) == drop_times(expected)
