@@ -20,6 +20,7 @@
 #include "engine/output/results_text.h"
 #include "engine/report/results_writer.h"
 #include "engine/run/pipeline.h"
+#include "engine/study/study.h"
 #include "problems/registry.h"
 #include "yaml-cpp/yaml.h"
 
@@ -291,6 +292,50 @@ py::tuple SimulateModel(const std::string& config, bool is_text, const std::stri
   return py::make_tuple(true, "", "", columns);
 }
 
+// `vesselid simulate`: the config's synthetic experiments written into out_dir.
+Outcome Simulate(const std::string& config, bool is_text, const std::string& name,
+                 const std::string& out_dir) {
+  ConfigFile file;
+  std::string error;
+  if (!LoadModelOnly(config, is_text, name, &file, &error)) return Failure("config", error);
+  bool ok = false;
+  {
+    py::gil_scoped_release release;
+    ok = SimulateConfig(file, out_dir, &error);
+  }
+  if (!ok) return Failure(error.find(name) == 0 ? "config" : "run", error);
+  return {true, "", "", ""};
+}
+
+// `vesselid study`: the config's study section on its records (files or given tables);
+// payload: study.json's text, message: study.txt's.
+Outcome Study(const std::string& config, bool is_text, const std::string& name,
+              const std::string& data_dir, const py::dict& data,
+              const std::vector<std::string>& only, int threads, const py::object& progress) {
+  ConfigFile file;
+  const Outcome loaded = LoadWithData(config, is_text, name, data_dir, data, &file);
+  if (!std::get<0>(loaded)) return loaded;
+  if (threads > 0) file.study.execution.threads = threads;
+  nlohmann::json result;
+  std::string text, error;
+  auto line = [&](const std::string& message) {
+    if (progress.is_none()) return;
+    py::gil_scoped_acquire gil;
+    try {
+      progress(message);
+    } catch (const py::error_already_set&) {
+      // A failing callback does not stop the study.
+    }
+  };
+  bool ok = false;
+  {
+    py::gil_scoped_release release;
+    ok = RunStudy(file.run, file.study, only, &result, &text, &error, line);
+  }
+  if (!ok) return Failure(AboutData(file.run, error) ? "data" : "run", error);
+  return {true, "", text, result.dump()};
+}
+
 }  // namespace
 }  // namespace vesselid
 
@@ -300,6 +345,11 @@ PYBIND11_MODULE(_core, m) {
         py::arg("data_dir"), py::arg("data"), py::arg("out_dir"), py::arg("write_report"),
         py::arg("progress"));
   m.def("check_config", &vesselid::CheckConfig, py::arg("path"));
+  m.def("simulate", &vesselid::Simulate, py::arg("config"), py::arg("is_text"), py::arg("name"),
+        py::arg("out_dir"));
+  m.def("study", &vesselid::Study, py::arg("config"), py::arg("is_text"), py::arg("name"),
+        py::arg("data_dir"), py::arg("data"), py::arg("only"), py::arg("threads"),
+        py::arg("progress"));
   m.def("model_info", &vesselid::ModelInfoOf, py::arg("config"), py::arg("is_text"),
         py::arg("name"));
   m.def("simulate_model", &vesselid::SimulateModel, py::arg("config"), py::arg("is_text"),

@@ -11,9 +11,9 @@ unless the experiment's `time` key names another) and the columns the experiment
 for a missing sample. Experiments without data are read from their files as the CLI does.
 """
 from ._errors import ConfigError, DataError, RunError, VesselidError
-from ._run import load_config, run
+from ._run import load_config, run, simulate, study
 from ._model import Model
 from ._result import Finding, Result
 
-__all__ = ["run", "load_config", "Result", "Finding", "Model", "VesselidError", "ConfigError",
+__all__ = ["run", "simulate", "study", "load_config", "Result", "Finding", "Model", "VesselidError", "ConfigError",
            "DataError", "RunError"]

@@ -86,3 +86,49 @@ def load_config(path):
         raise_for(kind, message)
     with open(path, encoding="utf-8") as f:
         return yaml.safe_load(f)
+
+
+def simulate(config):
+    """A config's synthetic experiments (its `simulation` section, as `vesselid simulate`):
+    {file name without .csv: DataFrame}, read back with round-trip float parsing so that
+    the frames hold the numbers the engine would read from the files."""
+    import tempfile
+
+    import pandas as pd
+    text, is_text, name = _config_arguments(config)
+    with tempfile.TemporaryDirectory(prefix="vesselid_simulate_") as folder:
+        ok, kind, message, _ = _core.simulate(text, is_text, name, folder)
+        if not ok:
+            raise_for(kind, message)
+        frames = {}
+        for file in sorted(os.listdir(folder)):
+            if file.endswith(".csv"):
+                frames[file[:-4]] = pd.read_csv(os.path.join(folder, file),
+                                                float_precision="round_trip")
+        return frames
+
+
+def study(config, data=None, only=None, threads=0, out=None, progress=None):
+    """The config's `study` section (as `vesselid study`): returns study.json as a dict (its
+    text report under the key "text"); `out` also writes study.json and study.txt there.
+    `data` as for run(); `progress` gets one line per finished case."""
+    text, is_text, name = _config_arguments(config)
+    data_dir, tables = "", {}
+    if isinstance(data, (str, os.PathLike)):
+        data_dir = os.fspath(data)
+    elif data is not None:
+        tables = {str(k): _columns(k, v) for k, v in data.items()}
+    ok, kind, message, payload = _core.study(text, is_text, name, data_dir, tables,
+                                             list(only or []), int(threads), progress)
+    if not ok:
+        raise_for(kind, message)
+    result = json.loads(payload)
+    if out is not None:
+        os.makedirs(out, exist_ok=True)
+        with open(os.path.join(out, "study.json"), "w", encoding="utf-8") as f:
+            json.dump(result, f, indent=2)
+            f.write("\n")
+        with open(os.path.join(out, "study.txt"), "w", encoding="utf-8") as f:
+            f.write(message)
+    result["text"] = message
+    return result

@@ -182,3 +182,25 @@ def test_model_simulates_in_the_configs_units(campaign):
         model.simulate(frame, parameters={"T9": 1.0})
     with pytest.raises(vesselid.DataError, match="row 3: time"):
         model.simulate(frame.assign(t=[0.0, 1.0, 2.0, 2.0] + list(frame["t"][4:])))
+
+
+def test_simulate_gives_the_cli_records_as_frames(campaign):
+    config = vesselid.load_config(os.path.join(SOURCE, "configs", "nomoto_tanker.yaml"))
+    frames = vesselid.simulate(config)
+    assert set(frames) >= set(TRAINING + HELD_OUT)
+    for name in TRAINING + HELD_OUT:
+        pd.testing.assert_frame_equal(frames[name], campaign["frames"][name])
+
+
+def test_study_on_frames(campaign, tmp_path):
+    config = copy.deepcopy(campaign["config"])
+    for experiment in config["experiments"]:
+        experiment.pop("file")
+    config["study"] = {"seed": 1, "starts": {"runs": 2}}
+    lines = []
+    study = vesselid.study(config, data=campaign["frames"], out=tmp_path / "study",
+                           progress=lines.append)
+    assert "starts" in study and "Start-point study" in study["text"]
+    assert len(lines) >= 2
+    with open(tmp_path / "study" / "study.json", encoding="utf-8") as f:
+        assert "starts" in json.load(f)
