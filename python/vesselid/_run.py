@@ -53,7 +53,8 @@ def run(config, data=None, out=None, report=True, progress=None):
               without data are read from their `file` as the CLI does.
     out:      a folder to write results.json, report.txt, report.html (report=True) and the
               traces into, as `vesselid run --out`; None writes nothing.
-    progress: called with {"phase", "iteration", "cost"} after each solver iteration.
+    progress: called with {"phase", "iteration", "cost"} after each solver iteration; True
+              shows a tqdm bar (python3-tqdm).
     Raises ConfigError, DataError or RunError with the CLI's message; Ctrl-C stops the run
     after the current stage (KeyboardInterrupt).
     """
@@ -64,9 +65,24 @@ def run(config, data=None, out=None, report=True, progress=None):
         data_dir = os.fspath(data)
     elif data is not None:
         tables = {str(k): _columns(k, v) for k, v in data.items()}
-    ok, kind, message, payload = _core.run(
-        text, is_text, name, data_dir, tables, "" if out is None else os.fspath(out), report,
-        progress)
+    bar = None
+    if progress is True:  # a tqdm bar when python3-tqdm is there, else none
+        try:
+            from tqdm.auto import tqdm
+            bar = tqdm(desc="vesselid", unit=" iterations")
+            progress = lambda p: (bar.update(1), bar.set_postfix(phase=p["phase"],
+                                                                 cost="%.4g" % p["cost"]))
+        except ImportError:
+            progress = None
+    elif progress is False:
+        progress = None
+    try:
+        ok, kind, message, payload = _core.run(
+            text, is_text, name, data_dir, tables, "" if out is None else os.fspath(out), report,
+            progress)
+    finally:
+        if bar is not None:
+            bar.close()
     if not ok:
         raise_for(kind, message)
     if isinstance(config, dict):

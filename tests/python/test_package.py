@@ -204,3 +204,26 @@ def test_study_on_frames(campaign, tmp_path):
     assert len(lines) >= 2
     with open(tmp_path / "study" / "study.json", encoding="utf-8") as f:
         assert "starts" in json.load(f)
+
+
+def test_notebook_runs_top_to_bottom(tmp_path):
+    nbformat = pytest.importorskip("nbformat")
+    nbclient = pytest.importorskip("nbclient")
+    notebook = nbformat.read(os.path.join(SOURCE, "examples", "python", "identify_nomoto.ipynb"),
+                             as_version=4)
+    client = nbclient.NotebookClient(notebook, timeout=300, kernel_name="python3",
+                                     resources={"metadata": {"path": str(tmp_path)}})
+    client.execute()
+    outputs = [o for cell in notebook.cells if cell.cell_type == "code" for o in cell.outputs]
+    assert not [o for o in outputs if o.output_type == "error"]
+    html = [o["data"]["text/html"] for o in outputs
+            if o.output_type == "execute_result" and "text/html" in o.get("data", {})]
+    assert any("verdict" in h for h in html), "the Result's summary is shown"
+    assert (tmp_path / "predicted_zigzag.png").exists()
+    nbformat.write(notebook, str(tmp_path / "identify_nomoto.executed.ipynb"))
+
+
+def test_progress_bar(campaign, capsys):
+    pytest.importorskip("tqdm")
+    vesselid.run(campaign["path"], data=campaign["frames"], progress=True)
+    assert "vesselid" in capsys.readouterr().err
