@@ -4,7 +4,8 @@
 //
 //   1. a model: a plain struct with a templated right-hand side (model/model.h), wrapped by
 //      MakeModelHandle (model/model_handle.h); problems/ holds the shipped families;
-//   2. experiments: recorded data (data/trajectory.h) mapped onto the model's inputs and
+//   2. experiments: recorded data (data/trajectory.h), from a CSV file or in memory
+//      (ExperimentSpec::table, data/trajectory_table.h), mapped onto the model's inputs and
 //      outputs by an ExperimentSpec and BuildExperiment (model/experiment.h);
 //   3. one stage: OutputErrorProblem::Create (solve/output_error_problem.h) and RunStage
 //      (solve/stage.h), or RunLeastSquares (regression/least_squares.h) and RunStepRegression
@@ -29,6 +30,7 @@
 
 // Recorded experiments.
 #include "engine/data/trajectory.h"
+#include "engine/data/trajectory_table.h"
 #include "engine/model/experiment.h"
 
 // One output-error stage: the problem, its solvers and what they report.

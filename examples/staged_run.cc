@@ -1,12 +1,13 @@
 // A staged run assembled in C++, no YAML: a least-squares start refined by output error.
-// Three zigzags of a first-order Nomoto vessel are recorded to CSV, as a logger would write
-// them (rudder and heading with noise, yaw rate from a gyro). Stage 1 regresses the yaw
+// Three zigzags of a first-order Nomoto vessel are recorded in memory, as a program holding a
+// logger's arrays would pass them (rudder and heading with noise, yaw rate from a gyro): an
+// experiment takes its record as a table (ExperimentSpec::table) instead of a file. Stage 1 regresses the yaw
 // equation r' = K/T delta + K delta_0/T - 1/T r on Savitzky-Golay derivatives; stage 2 takes
 // its estimates as starts and fits the heading by output error; a held-out 10/10 zigzag is
 // simulated with the final values. Prints the run's text report.
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
+#include <memory>
 
 #include "engine/vesselid.h"
 #include "problems/nomoto/closed_loop_simulator.h"
@@ -14,10 +15,7 @@
 
 int main() {
   using namespace vesselid;
-  namespace fs = std::filesystem;
   const double kDeg = M_PI / 180.0;
-  const fs::path folder = fs::temp_directory_path() / "vesselid_staged_run";
-  fs::create_directories(folder);
 
   // The recorded experiments: zigzags rudder/heading 20/20, 30/30 and (held out) 10/10.
   std::shared_ptr<const ModelHandle> model = nomoto::MakeFirstOrderHandle();
@@ -34,16 +32,16 @@ int main() {
     zigzag.heading_noise = 0.1 * kDeg;
     zigzag.rudder_noise = 0.1 * kDeg;
     zigzag.seed = i + 1;
-    Trajectory data;
+    auto data = std::make_shared<Trajectory>();
     std::string error;
     ExperimentSpec spec;
     spec.name = "zigzag" + std::to_string(static_cast<int>(zigzags[i]));
-    spec.file = (folder / (spec.name + ".csv")).string();
-    if (!nomoto::SimulateClosedLoop(*model, {8.0, 0.12, 0.002}, zigzag, &data, &error) ||
-        !WriteTrajectoryCsv(spec.file, data, &error)) {
+    if (!nomoto::SimulateClosedLoop(*model, {8.0, 0.12, 0.002}, zigzag, data.get(), &error)) {
       std::fprintf(stderr, "%s\n", error.c_str());
       return 1;
     }
+    data->source = "experiment '" + spec.name + "' (in memory)";
+    spec.table = data;  // t, delta, psi, r: the columns mapped below
     spec.inputs = {{"delta", "delta"}};
     spec.outputs = {{"psi", "psi"}, {"r", "r"}};
     config.experiments.push_back(spec);
