@@ -10,7 +10,6 @@ engine's reader makes of the same text) and passed to vesselid.run; results.json
 import copy
 import json
 import os
-import re
 import subprocess
 
 import numpy as np
@@ -19,27 +18,12 @@ import pytest
 import yaml
 
 import vesselid
+from results_compare import drop_times
 
 SOURCE = os.environ["VESSELID_SOURCE_DIR"]
 BINARY = os.environ["VESSELID_BINARY"]
 TRAINING = ["zz10s_a", "zz20s_a", "zz35p_a"]
 HELD_OUT = ["zz20s_b"]
-
-
-NOTE_TIME = re.compile(r", [0-9]+\.[0-9]{3} s($|[;,)])")
-
-
-def drop_times(value):
-    """results.json without what differs between two runs of the same data: the wall times
-    ("time_seconds", "seconds", a note's ", 4.969 s") and the config's name."""
-    if isinstance(value, str):
-        return NOTE_TIME.sub(r", <time> s\1", value)
-    if isinstance(value, dict):
-        return {k: drop_times(v) for k, v in value.items()
-                if k not in ("time_seconds", "seconds", "config")}
-    if isinstance(value, list):
-        return [drop_times(v) for v in value]
-    return value
 
 
 @pytest.fixture(scope="module")

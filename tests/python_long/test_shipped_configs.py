@@ -12,8 +12,8 @@ cost, fit and finding to the last bit, timings and the config's name apart.
 import copy
 import json
 import os
-import re
 import subprocess
+import sys
 
 import pandas as pd
 import pytest
@@ -21,25 +21,12 @@ import yaml
 
 import vesselid
 
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "python"))
+from results_compare import drop_times  # noqa: E402
+
 SOURCE = os.environ["VESSELID_SOURCE_DIR"]
 BINARY = os.environ["VESSELID_BINARY"]
 CONFIGS = sorted(f for f in os.listdir(os.path.join(SOURCE, "configs")) if f.endswith(".yaml"))
-
-
-NOTE_TIME = re.compile(r", [0-9]+\.[0-9]{3} s($|[;,)])")
-
-
-def drop_times(value):
-    """results.json without what differs between two runs of the same data: the wall times
-    ("time_seconds", "seconds", a note's ", 4.969 s") and the config's name."""
-    if isinstance(value, str):
-        return NOTE_TIME.sub(r", <time> s\1", value)
-    if isinstance(value, dict):
-        return {k: drop_times(v) for k, v in value.items()
-                if k not in ("time_seconds", "seconds", "config")}
-    if isinstance(value, list):
-        return [drop_times(v) for v in value]
-    return value
 
 
 @pytest.mark.parametrize("name", CONFIGS)

@@ -25,22 +25,15 @@
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
 #include "problems/registry.h"
+#include "tests/support/results_json_times.h"
 #include "yaml-cpp/yaml.h"
 
 namespace vesselid {
 namespace {
 
 using nlohmann::json;
+using testing::DropTimes;
 namespace fs = std::filesystem;
-
-void DropTimes(json* j) {
-  if (j->is_object()) {
-    j->erase("time_seconds");
-    for (auto& [key, value] : j->items()) DropTimes(&value);
-  } else if (j->is_array()) {
-    for (json& value : *j) DropTimes(&value);
-  }
-}
 
 class InMemoryRecords : public ::testing::Test {
  protected:

@@ -20,32 +20,19 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <string>
 
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
+#include "tests/support/results_json_times.h"
 #include "yaml-cpp/yaml.h"
 
 namespace vesselid {
 namespace {
 
 using nlohmann::json;
+using testing::DropTimes;
 namespace fs = std::filesystem;
-
-// Every "time_seconds" removed, and the wall times the notes end with (", 0.077 s"): what may
-// differ between the runs.
-void DropTimes(json* j) {
-  if (j->is_string()) {
-    static const std::regex kNoteTime(", [0-9]+\\.[0-9]{3} s($|[;,)])");
-    *j = std::regex_replace(j->get<std::string>(), kNoteTime, ", <time> s$1");
-  } else if (j->is_object()) {
-    j->erase("time_seconds");
-    for (auto& [key, value] : j->items()) DropTimes(&value);
-  } else if (j->is_array()) {
-    for (json& value : *j) DropTimes(&value);
-  }
-}
 
 // Where a and b differ ("/stages/1/cost: 0.1 vs 0.1000001"), at most `limit` places.
 void Differences(const json& a, const json& b, const std::string& at, std::string* out,
