@@ -40,7 +40,9 @@ class Result:
     """What `vesselid run` writes, from Python.
 
     parameters  DataFrame indexed by parameter name: value, std_error, lower, upper,
-                interval_low, interval_high, role, unit, undetermined, at_bound, stages
+                interval_low, interval_high, role, unit, undetermined, at_bound, stages (SI
+                units), and shown_unit / shown_scale: the unit the data came in (an angle
+                read in degrees: "deg", 57.3) by which the reports show the value
     verdict     "good", "doubtful" or "failed"
     findings    list of Finding (the run's and every stage's); find(kind=, severity=) filters
     stages      DataFrame, one row per stage: verdict, cost, comparable_cost, iterations
@@ -106,9 +108,12 @@ class Result:
                          "role": p.get("role", ""), "unit": p.get("unit", ""),
                          "undetermined": p.get("undetermined", False),
                          "at_bound": p.get("at_bound", ""),
+                         "shown_unit": p.get("shown_unit", p.get("unit", "")),
+                         "shown_scale": p.get("shown_scale", 1.0),
                          "stages": ", ".join(p.get("stages", []))})
         columns = ["name", "value", "std_error", "lower", "upper", "interval_low",
-                   "interval_high", "role", "unit", "undetermined", "at_bound", "stages"]
+                   "interval_high", "role", "unit", "undetermined", "at_bound", "shown_unit",
+                   "shown_scale", "stages"]
         return pd.DataFrame(rows, columns=columns).set_index("name")
 
     @property
@@ -143,11 +148,19 @@ class Result:
             self.verdict, len(self.json.get("parameters", [])), len(self.findings))
 
     def _repr_html_(self):
+        """The verdict, the parameters in the units the data came in, and the warnings."""
         colour = {"good": "#1a7f37", "doubtful": "#9a6700", "failed": "#cf222e"}
         head = "<p><b>vesselid run</b>: verdict <b style='color:%s'>%s</b></p>" % (
             colour.get(self.verdict, "black"), html.escape(self.verdict))
-        shown = [f for f in self.findings if f.severity != "info"]
+        p = self.parameters
+        scale = p["shown_scale"]
+        shown = p.assign(value=p["value"] * scale, std_error=p["std_error"] * scale,
+                         interval_low=p["interval_low"] * scale,
+                         interval_high=p["interval_high"] * scale, unit=p["shown_unit"])
+        table = shown[["value", "std_error", "interval_low", "interval_high", "unit", "role",
+                       "at_bound"]].to_html(float_format=lambda v: "%.6g" % v, na_rep="")
+        warnings = [f for f in self.findings if f.severity != "info"]
         items = "".join("<li>%s: %s</li>" % (html.escape(f.severity), html.escape(f.message))
-                        for f in shown[:20])
-        return (head + self.parameters.to_html(float_format=lambda v: "%.6g" % v)
-                + ("<ul>%s</ul>" % items if items else ""))
+                        for f in warnings[:20])
+        tail = "<ul>%s</ul>" % items if items else "<p>no warnings</p>"
+        return head + table + tail

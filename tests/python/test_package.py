@@ -75,6 +75,10 @@ def test_result_tables(campaign):
     assert json.loads(result.to_json()) == result.json
     html = result._repr_html_()
     assert result.verdict in html and "<table" in html
+    # The rudder bias in the unit the rudder was logged in (degrees), not radians.
+    bias = parameters.loc["delta_0"]
+    assert bias["unit"] == "rad" and bias["shown_unit"] == "deg"
+    assert ("%.6g" % (bias["value"] * bias["shown_scale"])) in html and ">deg<" in html
     for finding in result.findings:
         assert result.find(kind=finding.kind) and finding.severity in ("info", "warning", "failure")
 
