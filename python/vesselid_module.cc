@@ -11,6 +11,7 @@
 #include <string>
 #include <tuple>
 
+#include "engine/base/stop_request.h"
 #include "engine/config/config.h"
 #include "engine/data/trajectory_table.h"
 #include "engine/diagnose/run_findings.h"
@@ -127,11 +128,14 @@ Outcome Run(const std::string& config, bool is_text, const std::string& name,
   bool interrupted = false;
   RunObserver observer;
   // Python is called with the GIL held; a pending Ctrl-C stops the run after the stage.
+  // Ctrl-C reaches Python's handler on the main thread, which runs the solves' callbacks:
+  // the request ends the current solve after its iteration (stop_request.h).
   observer.progress = [&](const SolveProgress& p) {
     py::gil_scoped_acquire gil;
     if (PyErr_CheckSignals() != 0) {
       PyErr_Clear();
       interrupted = true;
+      RequestStop();
       return;
     }
     if (progress.is_none()) return;
@@ -141,6 +145,7 @@ Outcome Run(const std::string& config, bool is_text, const std::string& name,
                    py::arg("iteration") = p.iteration, py::arg("cost") = p.cost));
     } catch (const py::error_already_set&) {
       interrupted = true;
+      RequestStop();
     }
   };
   observer.stage_finished = [&](size_t, const StageResult&, std::string* message) {
@@ -156,10 +161,12 @@ Outcome Run(const std::string& config, bool is_text, const std::string& name,
   };
   RunResult result;
   bool complete = false;
+  ClearStopRequest();
   {
     py::gil_scoped_release release;
     complete = Identify(run, &result, &error, observer);
   }
+  ClearStopRequest();
   if (interrupted) return Failure("interrupted", "the run was interrupted");
   if (!complete && result.stages.empty()) {
     return Failure(AboutData(run, error) ? "data" : "run", error);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/base/parallel_for.h"
+#include "engine/base/stop_request.h"
 #include "engine/solve/metrics.h"
 #include "engine/solve/start_failure.h"
 
@@ -22,7 +23,8 @@ class ProgressReporter : public ceres::IterationCallback {
     p.iteration = summary.iteration;
     p.cost = summary.cost;
     progress_(p);
-    return ceres::SOLVER_CONTINUE;
+    // The progress callback is where a caller notices an interruption (stop_request.h).
+    return StopRequested() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
   }
 
  private:

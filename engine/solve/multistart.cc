@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "engine/base/parallel_for.h"
+#include "engine/base/stop_request.h"
 #include "engine/solve/halton_sequence.h"
 #include "engine/solve/local_solve.h"
 #include "engine/solve/search_box.h"
@@ -151,6 +152,10 @@ bool RunMultistart(const GlobalStartOptions& options, OutputErrorProblem* proble
   for (int first = 0; first < count_all; first += kMultistartBatch) {
     if (first > 0 && elapsed() > options.max_time_seconds) {
       summary->result = "stopped at max_time";
+      break;
+    }
+    if (first > 0 && StopRequested()) {
+      summary->result = "stopped on request";
       break;
     }
     const int count = std::min(kMultistartBatch, count_all - first);

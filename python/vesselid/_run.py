@@ -55,8 +55,8 @@ def run(config, data=None, out=None, report=True, progress=None):
               traces into, as `vesselid run --out`; None writes nothing.
     progress: called with {"phase", "iteration", "cost"} after each solver iteration; True
               shows a tqdm bar (python3-tqdm).
-    Raises ConfigError, DataError or RunError with the CLI's message; Ctrl-C stops the run
-    after the current stage (KeyboardInterrupt).
+    Raises ConfigError, DataError or RunError with the CLI's message; Ctrl-C ends the current
+    solve after its iteration and raises KeyboardInterrupt.
     """
     text, is_text, name = _config_arguments(config)
     data_dir = ""

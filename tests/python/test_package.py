@@ -215,3 +215,41 @@ def test_progress_bar(campaign, capsys):
     pytest.importorskip("tqdm")
     vesselid.run(campaign["path"], data=campaign["frames"], progress=True)
     assert "vesselid" in capsys.readouterr().err
+
+
+INTERRUPTED_RUN = r"""
+import sys, time
+import vesselid
+config = vesselid.load_config(sys.argv[1])
+records = vesselid.simulate(config)
+data = {e["name"]: records[e.pop("file")[:-4]] for e in config["experiments"]}
+config.pop("simulation")
+config.pop("study", None)
+print("started", flush=True)
+begin = time.time()
+try:
+    vesselid.run(config, data=data)
+except KeyboardInterrupt:
+    print("interrupted after %.1f s" % (time.time() - begin), flush=True)
+    sys.exit(0)
+print("finished after %.1f s" % (time.time() - begin), flush=True)
+sys.exit(1)
+"""
+
+
+def test_ctrl_c_stops_a_run(tmp_path):
+    # The patrol run's global start and refinements take several seconds: Ctrl-C after one
+    # ends the current solve after its iteration and the run after its stage.
+    import signal
+    import time
+    script = tmp_path / "interrupted.py"
+    script.write_text(INTERRUPTED_RUN)
+    child = subprocess.Popen(["/usr/bin/python3", str(script),
+                              os.path.join(SOURCE, "configs", "nomoto_patrol.yaml")],
+                             stdout=subprocess.PIPE, text=True)
+    assert child.stdout.readline().strip() == "started"
+    time.sleep(1.0)
+    child.send_signal(signal.SIGINT)
+    out, _ = child.communicate(timeout=120)
+    assert child.returncode == 0, out
+    assert out.startswith("interrupted after"), out
