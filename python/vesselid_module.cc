@@ -276,6 +276,7 @@ py::tuple SimulateModel(const std::string& config, bool is_text, const std::stri
   }
   OpenLoopOptions options;
   options.substeps = substeps;
+  options.record_states = true;
   if (!StringToInterpolation(interpolation, &options.interpolation)) {
     return py::make_tuple(
         false, "data",

@@ -59,7 +59,14 @@ bool SimulateOpenLoop(const ModelHandle& model, const std::vector<double>& param
     out.names.push_back(name);
     out.columns.emplace_back();
   }
+  if (options.record_states) {
+    for (const std::string& name : info.states) {
+      out.names.push_back("x." + name);
+      out.columns.emplace_back();
+    }
+  }
   const size_t first_output = inputs.names.size();
+  const size_t first_state = first_output + info.outputs.size();
   std::vector<double> x = initial_state, k1(nx), k2(nx), k3(nx), k4(nx), xs(nx), y(ny), ut(nu);
   std::vector<double> ue(nu);
   auto input_at = [&](size_t j) {
@@ -74,6 +81,9 @@ bool SimulateOpenLoop(const ModelHandle& model, const std::vector<double>& param
   for (size_t k = 0; k < samples; ++k) {
     model.Output(x.data(), input_at(j), parameters.data(), y.data());
     for (int i = 0; i < ny; ++i) out.columns[first_output + i].push_back(y[i]);
+    if (options.record_states) {
+      for (int i = 0; i < nx; ++i) out.columns[first_state + i].push_back(x[i]);
+    }
     if (k + 1 == samples) break;
     const double h = (inputs.t[k + 1] - inputs.t[k]) / m;
     for (int s = 0; s < m; ++s, j += 2) {

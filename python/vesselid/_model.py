@@ -33,7 +33,8 @@ class Model:
                 estimated them), or None
     simulate(inputs, initial_state=None, parameters=None, substeps=4, interpolation="linear")
                 open-loop simulation under `inputs` (a DataFrame with a time column `t` and a
-                column per model input) -> DataFrame of t, the inputs and the outputs. Angles
+                column per model input) -> DataFrame of t, the inputs, the outputs and the
+                states ("x.<state>", the state at each sample time). Angles
                 the config reads in degrees are taken and given in degrees (initial states
                 of those names too); `parameters` overrides values by name (SI units).
     """
@@ -83,6 +84,7 @@ class Model:
             raise_for(kind, message)
         frame = pd.DataFrame(out)
         for name in frame.columns:
-            if name in self.degrees:
+            # outputs by name, states as "x.<state>"
+            if name in self.degrees or (name.startswith("x.") and name[2:] in self.degrees):
                 frame[name] = frame[name] / scale
         return frame

@@ -158,7 +158,8 @@ def test_model_simulates_in_the_configs_units(campaign):
     # Without rudder, from rest at 30 degrees: the heading stays at 30 degrees.
     still = frame.assign(delta=0.0)
     out = model.simulate(still, initial_state={"psi": 30.0}, parameters={"delta_0": 0.0})
-    assert list(out.columns) == ["t", "delta", "U", "psi", "r"]
+    assert list(out.columns) == ["t", "delta", "U", "psi", "r"] + ["x." + s for s in model.info["states"]]
+    assert np.array_equal(out["x.psi"], out["psi"])  # the heading state is the heading output
     assert np.allclose(out["psi"], 30.0, atol=1e-9) and np.allclose(out["r"], 0.0, atol=1e-12)
     # The rudder (degrees in and out): a mirrored rudder mirrors the heading (an odd model).
     ahead = model.simulate(frame, parameters={"delta_0": 0.0})
