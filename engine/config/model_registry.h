@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,6 +34,14 @@ class ModelRegistry {
   void Register(ModelFamily family) { families_.push_back(std::move(family)); }
   const ModelFamily* Find(const std::string& name) const;
   std::vector<std::string> Names() const;
+
+  // The model of family `family` with the options of its config map as plain text, e.g.
+  // MakeModel("nomoto", {{"type", "second_order"}}) or {{"dofs", "[surge, sway, yaw]"}}
+  // (each value is read as the config would read it). Null with the config's message
+  // ("model.type: unknown type ...") in `error` when the family or an option is wrong.
+  std::shared_ptr<const ModelHandle> MakeModel(const std::string& family,
+                                               const std::map<std::string, std::string>& options,
+                                               std::string* error) const;
 
  private:
   std::vector<ModelFamily> families_;

@@ -1,6 +1,6 @@
-// Records handed over in memory (ExperimentSpec::table, trajectory_table.h) and configs given
-// as text (ConfigSource): the same run as from the files, and bad tables refused by row and
-// column.
+// Records handed over in memory (ExperimentSpec::table, trajectory_table.h), configs given
+// as text (ConfigSource) and models made from plain options (ModelRegistry::MakeModel): the
+// same run as from the files, and bad tables refused by row and column.
 //
 // The run: the shipped tanker campaign (configs/nomoto_tanker.yaml, simulated by `vesselid
 // simulate`: a Norrbin ship with a rate-limited steering gear, a slow yaw disturbance and a
@@ -129,6 +129,22 @@ TEST_F(InMemoryRecords, AnExperimentWithoutFileOrDataIsRefusedWithItsLine) {
   EXPECT_NE(error.find("missing key 'file' (or 'files', a pattern), and no data given for it"),
             std::string::npos)
       << error;
+}
+
+// A model from its family's name and plain options, no YAML in the caller's hands.
+TEST(ModelFromOptions, BuildsTheFamilysModelOrSaysWhatIsWrong) {
+  const ModelRegistry registry = DefaultRegistry();
+  std::string error;
+  const auto second = registry.MakeModel("nomoto", {{"type", "second_order"}}, &error);
+  ASSERT_NE(second, nullptr) << error;
+  EXPECT_EQ(second->info().name, "nomoto_second_order");
+  EXPECT_EQ(second->info().parameters,
+            (std::vector<std::string>{"T1", "T2", "T3", "K", "delta_0"}));
+  EXPECT_EQ(registry.MakeModel("nomotto", {}, &error), nullptr);
+  EXPECT_NE(error.find("unknown model family 'nomotto' ("), std::string::npos) << error;
+  EXPECT_EQ(registry.MakeModel("nomoto", {{"type", "third_order"}}, &error), nullptr);
+  EXPECT_NE(error.find("model.type"), std::string::npos) << error;
+  EXPECT_NE(error.find("third_order"), std::string::npos) << error;
 }
 
 // A table of t, a, b with `edit` applied; the message TrajectoryFromTable gives, "" if none.
