@@ -180,29 +180,8 @@ Outcome Run(const std::string& config, bool is_text, const std::string& name,
   return {true, "", RunResultToText(run, result), RunResultToJson(run, result).dump()};
 }
 
-// Checks a config file as a run would (every key, names, bounds) without its records, which
-// a notebook may pass as frames.
-Outcome CheckConfig(const std::string& path) {
-  ConfigSource source;
-  source.path = path;
-  try {
-    const YAML::Node root = YAML::LoadFile(path);
-    if (root["experiments"] && root["experiments"].IsSequence()) {
-      for (const YAML::Node& e : root["experiments"]) {
-        if (e.IsMap() && e["name"] && e["name"].IsScalar())
-          source.in_memory.insert(e["name"].Scalar());
-      }
-    }
-  } catch (const YAML::Exception&) {
-    // LoadConfig names the syntax error with its line.
-  }
-  ConfigFile file;
-  std::string error;
-  if (!LoadConfig(source, Registry(), &file, &error)) return Failure("config", error);
-  return {true, "", "", ""};
-}
-
-// The run's model (the config's `model` map) with its records not needed.
+// A config loaded without its records (every experiment may come as a frame): the run's
+// model and every check a run makes of the config.
 bool LoadModelOnly(const std::string& config, bool is_text, const std::string& name,
                    ConfigFile* file, std::string* error) {
   ConfigSource source;
@@ -220,6 +199,15 @@ bool LoadModelOnly(const std::string& config, bool is_text, const std::string& n
     // LoadConfig names the syntax error with its line.
   }
   return LoadConfig(source, Registry(), file, error);
+}
+
+// Checks a config file as a run would (every key, names, bounds) without its records, which
+// a notebook may pass as frames.
+Outcome CheckConfig(const std::string& path) {
+  ConfigFile file;
+  std::string error;
+  if (!LoadModelOnly(path, false, path, &file, &error)) return Failure("config", error);
+  return {true, "", "", ""};
 }
 
 // The model's names, units and default parameters, as a dict.
