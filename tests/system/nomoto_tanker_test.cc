@@ -160,7 +160,9 @@ TEST_F(NomotoTanker, HeldOutHeadingFitWithOwnBiasAtLeast80Percent) {
     EXPECT_GE(fit[run], 80.0) << run;
   }
   for (const json& m : results["final_validation"]["metrics"]) {
-    if (m["output"] == "psi") EXPECT_GE(m["fit_percent"].get<double>(), 80.0) << m["experiment"];
+    if (m["output"] == "psi") {
+      EXPECT_GE(m["fit_percent"].get<double>(), 80.0) << m["experiment"];
+    }
   }
 }
 

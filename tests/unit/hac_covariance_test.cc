@@ -96,7 +96,9 @@ TEST(HacCovariance, WhiteScoresKeepTheirVariance) {
       double bandwidth = 0.0;
       omega += LongRunCovariance(options, scores, &bandwidth);
       gram += scores.transpose() * scores;
-      if (aggregation == 1) EXPECT_LT(bandwidth, 5.0);
+      if (aggregation == 1) {
+        EXPECT_LT(bandwidth, 5.0);
+      }
     }
     EXPECT_NEAR(omega(0, 0) / gram(0, 0), 1.0, 0.05);
     EXPECT_NEAR(omega(1, 1) / gram(1, 1), 1.0, 0.05);

@@ -86,7 +86,9 @@ TEST(Regression, StandardErrorsAreInvariantToTheScalingOfTheRegressors) {
     for (int j = 0; j < 4; ++j) {
       EXPECT_NEAR(b.theta[j] * factor[j], a.theta[j], 1e-6 * std::abs(a.theta[j])) << j;
       EXPECT_NEAR(b.std_errors[j] * factor[j], a.std_errors[j], 1e-6 * a.std_errors[j]) << j;
-      if (j != 1) EXPECT_LT(a.std_errors[j], 0.2 * std::abs(a.theta[j])) << j;  // not sigma
+      if (j != 1) {  // not sigma
+        EXPECT_LT(a.std_errors[j], 0.2 * std::abs(a.theta[j])) << j;
+      }
     }
   }
 }
