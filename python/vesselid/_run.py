@@ -44,6 +44,16 @@ def _columns(name, frame):
                     % (name, type(frame).__name__))
 
 
+def _data_arguments(data):
+    """(data folder, {experiment: columns}) for the engine: `data` is a folder, or frames or
+    column dicts by experiment name, or None."""
+    if isinstance(data, (str, os.PathLike)):
+        return os.fspath(data), {}
+    if data is None:
+        return "", {}
+    return "", {str(k): _columns(k, v) for k, v in data.items()}
+
+
 def run(config, data=None, out=None, report=True, progress=None):
     """Runs a staged identification and returns its Result.
 
@@ -59,12 +69,7 @@ def run(config, data=None, out=None, report=True, progress=None):
     solve after its iteration and raises KeyboardInterrupt.
     """
     text, is_text, name = _config_arguments(config)
-    data_dir = ""
-    tables = {}
-    if isinstance(data, (str, os.PathLike)):
-        data_dir = os.fspath(data)
-    elif data is not None:
-        tables = {str(k): _columns(k, v) for k, v in data.items()}
+    data_dir, tables = _data_arguments(data)
     bar = None
     if progress is True:  # a tqdm bar when python3-tqdm is there, else none
         try:
@@ -129,11 +134,7 @@ def study(config, data=None, only=None, threads=0, out=None, progress=None):
     text report under the key "text"); `out` also writes study.json and study.txt there.
     `data` as for run(); `progress` gets one line per finished case."""
     text, is_text, name = _config_arguments(config)
-    data_dir, tables = "", {}
-    if isinstance(data, (str, os.PathLike)):
-        data_dir = os.fspath(data)
-    elif data is not None:
-        tables = {str(k): _columns(k, v) for k, v in data.items()}
+    data_dir, tables = _data_arguments(data)
     ok, kind, message, payload = _core.study(text, is_text, name, data_dir, tables,
                                              list(only or []), int(threads), progress)
     if not ok:
