@@ -13,7 +13,8 @@
 //   4. a staged run: a RunConfig (run/run_config.h), filled in C++ or loaded from YAML
 //      (config/config.h), run and judged by Identify (diagnose/run_findings.h) into a
 //      RunResult (run/run_result.h) with its findings and verdict, written by WriteRunResults
-//      (output/results_writer.h);
+//      (report/results_writer.h) or taken as results.json's text (output/results_json_text.h)
+//      and traces (output/run_traces.h);
 //   5. studies of a stage (study/study.h).
 //
 // examples/identify_zigzag.cc runs one stage, examples/staged_run.cc a staged run without
@@ -60,8 +61,9 @@
 
 // Studies and outputs.
 #include "engine/report/report_html.h"
-#include "engine/output/results_json.h"
+#include "engine/output/results_json_text.h"
 #include "engine/output/results_text.h"
+#include "engine/output/run_traces.h"
 #include "engine/report/results_writer.h"
 #include "engine/study/study.h"
 

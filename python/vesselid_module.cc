@@ -17,8 +17,9 @@
 #include "engine/diagnose/run_findings.h"
 #include "engine/model/open_loop_simulation.h"
 #include "engine/output/output_folder.h"
-#include "engine/output/results_json.h"
+#include "engine/output/results_json_text.h"
 #include "engine/output/results_text.h"
+#include "engine/output/run_traces.h"
 #include "engine/report/results_writer.h"
 #include "engine/run/pipeline.h"
 #include "engine/study/study.h"
@@ -58,6 +59,17 @@ std::shared_ptr<Trajectory> TableFromColumns(const std::string& experiment,
     table->columns.emplace_back(array.data(), array.data() + array.shape(0));
   }
   return table;
+}
+
+// A record as {name: float64 array}, time first as "t" (the arrays copied).
+py::dict ColumnsOf(const Trajectory& record) {
+  py::dict columns;
+  columns["t"] = py::array_t<double>(record.t.size(), record.t.data());
+  for (size_t c = 0; c < record.names.size(); ++c) {
+    columns[py::str(record.names[c])] =
+        py::array_t<double>(record.columns[c].size(), record.columns[c].data());
+  }
+  return columns;
 }
 
 // Loads a config (text or path) with the given records attached; kind "config" or "data" on
@@ -106,12 +118,21 @@ bool AboutData(const RunConfig& config, const std::string& error) {
   return false;
 }
 
-Outcome Run(const std::string& config, bool is_text, const std::string& name,
-            const std::string& data_dir, const py::dict& data, const std::string& out_dir,
-            bool write_report, const py::object& progress) {
+// The run's outcome, and on success its traces: {"<stage>.<experiment>": columns}
+// (run_traces.h).
+Outcome RunStages(const std::string& config, bool is_text, const std::string& name,
+                  const std::string& data_dir, const py::dict& data, const std::string& out_dir,
+                  bool write_report, int threads, const py::object& progress, py::dict* traces) {
   ConfigFile file;
   const Outcome loaded = LoadWithData(config, is_text, name, data_dir, data, &file);
   if (!std::get<0>(loaded)) return loaded;
+  // The same results on any number of threads (thread_count_test.cc); 0 keeps the config's.
+  if (threads > 0) {
+    for (StageConfig& stage : file.run.stages) {
+      stage.options.local.num_threads = threads;
+      stage.options.global.threads = threads;
+    }
+  }
   const RunConfig& run = file.run;
   std::string error;
   std::unique_ptr<OutputFolder> folder;
@@ -177,7 +198,20 @@ Outcome Run(const std::string& config, bool is_text, const std::string& name,
   if (!complete) {
     return Failure("run", "the run stopped in stage '" + result.stopped_stage + "': " + error);
   }
-  return {true, "", RunResultToText(run, result), RunResultToJson(run, result).dump()};
+  for (const NamedTrace& trace : RunTraces(run, result)) {
+    (*traces)[py::str(trace.name)] = ColumnsOf(trace.trace);
+  }
+  return {true, "", RunResultToText(run, result), RunResultJsonText(run, result, -1)};
+}
+
+py::tuple Run(const std::string& config, bool is_text, const std::string& name,
+              const std::string& data_dir, const py::dict& data, const std::string& out_dir,
+              bool write_report, int threads, const py::object& progress) {
+  py::dict traces;
+  const auto [ok, kind, message, payload] = RunStages(config, is_text, name, data_dir, data,
+                                                      out_dir, write_report, threads, progress,
+                                                      &traces);
+  return py::make_tuple(ok, kind, message, payload, traces);
 }
 
 // A config loaded without its records (every experiment may come as a frame): the run's
@@ -279,13 +313,7 @@ py::tuple SimulateModel(const std::string& config, bool is_text, const std::stri
                           &error);
   }
   if (!ok) return py::make_tuple(false, "run", error, py::none());
-  py::dict columns;
-  columns["t"] = py::array_t<double>(result.t.size(), result.t.data());
-  for (size_t c = 0; c < result.names.size(); ++c) {
-    columns[py::str(result.names[c])] =
-        py::array_t<double>(result.columns[c].size(), result.columns[c].data());
-  }
-  return py::make_tuple(true, "", "", columns);
+  return py::make_tuple(true, "", "", ColumnsOf(result));
 }
 
 // `vesselid simulate`: the config's synthetic experiments written into out_dir.
@@ -312,8 +340,7 @@ Outcome Study(const std::string& config, bool is_text, const std::string& name,
   const Outcome loaded = LoadWithData(config, is_text, name, data_dir, data, &file);
   if (!std::get<0>(loaded)) return loaded;
   if (threads > 0) file.study.execution.threads = threads;
-  nlohmann::json result;
-  std::string text, error;
+  std::string result, text, error;
   auto line = [&](const std::string& message) {
     if (progress.is_none()) return;
     py::gil_scoped_acquire gil;
@@ -329,7 +356,7 @@ Outcome Study(const std::string& config, bool is_text, const std::string& name,
     ok = RunStudy(file.run, file.study, only, &result, &text, &error, line);
   }
   if (!ok) return Failure(AboutData(file.run, error) ? "data" : "run", error);
-  return {true, "", text, result.dump()};
+  return {true, "", text, result};
 }
 
 }  // namespace
@@ -339,7 +366,7 @@ PYBIND11_MODULE(_core, m) {
   m.doc() = "vesselid engine entry points (use the vesselid package)";
   m.def("run", &vesselid::Run, py::arg("config"), py::arg("is_text"), py::arg("name"),
         py::arg("data_dir"), py::arg("data"), py::arg("out_dir"), py::arg("write_report"),
-        py::arg("progress"));
+        py::arg("threads"), py::arg("progress"));
   m.def("check_config", &vesselid::CheckConfig, py::arg("path"));
   m.def("simulate", &vesselid::Simulate, py::arg("config"), py::arg("is_text"), py::arg("name"),
         py::arg("out_dir"));

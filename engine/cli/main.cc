@@ -25,7 +25,7 @@
 #include "engine/report/results_writer.h"
 #include "engine/report/started_gnuplots.h"
 #include "engine/run/pipeline.h"
-#include "engine/study/study.h"
+#include "engine/study/study_json.h"
 #include "engine/study/study_runner.h"
 #include "glog/logging.h"
 #include "problems/registry.h"

@@ -9,12 +9,20 @@
 #include "engine/config/experiment_data_config.h"
 #include "engine/config/experiment_templates.h"
 #include "engine/config/input_noise_config.h"
+#include "engine/config/model_family.h"
+#include "engine/config/simulation_section.h"
 
 namespace vesselid {
 
 namespace {
 
 namespace fs = std::filesystem;
+
+// The config's `simulation` map, or a null node when it has none (what the family's and the
+// study's readers refuse, naming the key).
+YAML::Node SimulationNode(const ConfigFile& config) {
+  return config.simulation ? config.simulation->node : YAML::Node();
+}
 
 template <class V>
 std::vector<std::string> Keys(const std::map<std::string, V>& map) {
@@ -596,7 +604,9 @@ bool LoadConfig(const ConfigSource& source, const ModelRegistry& registry, Confi
     }
     result.model = file.family->make_model(reader, model, "model");
     const ModelInfo& info = result.model->info();
-    if (root["simulation"]) file.simulation = root["simulation"];
+    if (root["simulation"]) {
+      file.simulation = std::make_shared<const SimulationSection>(SimulationSection{root["simulation"]});
+    }
 
     const fs::path base = data_dir.empty() ? fs::path(path).parent_path() : fs::path(data_dir);
     for (const ExperimentEntry& entry : ExpandExperiments(&reader, root, base.string())) {
@@ -668,7 +678,7 @@ bool LoadConfig(const ConfigSource& source, const ModelRegistry& registry, Confi
       result.surfaces = ReadSurfaces(reader, surfaces, *result.model);
     }
     if (const YAML::Node study = root["study"]) {
-      file.study = ReadStudy(reader, study, result, file.simulation);
+      file.study = ReadStudy(reader, study, result, SimulationNode(file));
     }
     *config = std::move(file);
     return true;
@@ -694,7 +704,7 @@ bool SimulateConfig(const ConfigFile& config, const std::string& out_dir, std::s
   try {
     YamlReader reader(config.run.path);
     reader.set_limits(config.run.limits);
-    return config.family->simulate(reader, config.simulation, *config.run.model, out_dir,
+    return config.family->simulate(reader, SimulationNode(config), *config.run.model, out_dir,
                                    check_only, error);
   } catch (const ConfigError& e) {
     *error = e.what();

@@ -26,21 +26,24 @@
 // an error naming file, line and key.
 #pragma once
 
+#include <memory>
 #include <set>
 #include <string>
 
 #include "engine/config/model_registry.h"
 #include "engine/run/run_config.h"
 #include "engine/study/study_options.h"
-#include "yaml-cpp/yaml.h"
 
 namespace vesselid {
+
+struct SimulationSection;
 
 struct ConfigFile {
   RunConfig run;
   StudyConfig study;                   // empty when the config has no study section
   const ModelFamily* family = nullptr;  // the registry's entry for run.family
-  YAML::Node simulation;                // the family's `simulation` map (may be null)
+  // The family's `simulation` map (simulation_section.h); null when the config has none.
+  std::shared_ptr<const SimulationSection> simulation;
 };
 
 // Where a config comes from.

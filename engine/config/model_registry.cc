@@ -1,17 +1,23 @@
 #include "engine/config/model_registry.h"
 
+#include "engine/config/model_family.h"
+
 namespace vesselid {
 
+void ModelRegistry::Register(ModelFamily family) {
+  families_.push_back(std::make_shared<const ModelFamily>(std::move(family)));
+}
+
 const ModelFamily* ModelRegistry::Find(const std::string& name) const {
-  for (const ModelFamily& family : families_) {
-    if (family.name == name) return &family;
+  for (const auto& family : families_) {
+    if (family->name == name) return family.get();
   }
   return nullptr;
 }
 
 std::vector<std::string> ModelRegistry::Names() const {
   std::vector<std::string> names;
-  for (const ModelFamily& family : families_) names.push_back(family.name);
+  for (const auto& family : families_) names.push_back(family->name);
   return names;
 }
 

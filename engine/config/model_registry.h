@@ -1,37 +1,23 @@
-// The model families a run can name in its `model.family` key. Each family builds its model
-// from the config's `model` map and can simulate the experiments of its `simulation` map.
+// The model families a run can name in its `model.family` key (problems/registry.h holds the
+// shipped ones). A family builds its model from the config's `model` map and simulates the
+// experiments of its `simulation` map (model_family.h, for the families themselves).
 #pragma once
 
-#include <functional>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "engine/config/yaml_reader.h"
 #include "engine/model/model_handle.h"
 
 namespace vesselid {
 
-struct ModelFamily {
-  std::string name;
-  std::string description;
-  // Builds the model from the `model` map at `path`; config errors are thrown as ConfigError.
-  std::function<std::unique_ptr<ModelHandle>(const YamlReader& reader, const YAML::Node& model,
-                                             const std::string& path)>
-      make_model;
-  // Writes the experiments described by the `simulation` map as CSV files into out_dir, or
-  // with `check_only` reads and checks the map (its work against reader.limits() included)
-  // and writes nothing. Config errors are thrown as ConfigError; I/O errors are returned.
-  std::function<bool(const YamlReader& reader, const YAML::Node& simulation,
-                     const ModelHandle& model, const std::string& out_dir, bool check_only,
-                     std::string* error)>
-      simulate;
-};
+struct ModelFamily;
 
 class ModelRegistry {
  public:
-  void Register(ModelFamily family) { families_.push_back(std::move(family)); }
+  void Register(ModelFamily family);
+  // Null when no family has that name.
   const ModelFamily* Find(const std::string& name) const;
   std::vector<std::string> Names() const;
 
@@ -44,7 +30,8 @@ class ModelRegistry {
                                                std::string* error) const;
 
  private:
-  std::vector<ModelFamily> families_;
+  // Shared: the registry copies and moves where the families' type is not known.
+  std::vector<std::shared_ptr<const ModelFamily>> families_;
 };
 
 }  // namespace vesselid

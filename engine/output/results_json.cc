@@ -1,5 +1,7 @@
 #include "engine/output/results_json.h"
 
+#include "engine/output/results_json_text.h"
+
 #include "engine/base/json_number.h"
 #include "engine/data/time_base.h"
 #include "engine/run/display_units.h"
@@ -383,6 +385,10 @@ json RunResultToJson(const RunConfig& config, const RunResult& result) {
   }
   if (!result.zigzags.empty()) j["zigzags"] = ZigzagRunsToJson(result.zigzags);
   return j;
+}
+
+std::string RunResultJsonText(const RunConfig& config, const RunResult& result, int indent) {
+  return RunResultToJson(config, result).dump(indent);
 }
 
 }  // namespace vesselid

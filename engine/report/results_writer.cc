@@ -6,10 +6,10 @@
 #include "engine/base/atomic_file.h"
 #include "engine/base/parallel_for.h"
 #include "engine/data/trajectory.h"
-#include "engine/run/display_units.h"
 #include "engine/report/report_html.h"
-#include "engine/output/results_json.h"
+#include "engine/output/results_json_text.h"
 #include "engine/output/results_text.h"
+#include "engine/output/run_traces.h"
 #include "engine/output/step_regression_writer.h"
 
 namespace vesselid {
@@ -17,36 +17,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string TraceFileName(const std::string& prefix, const std::string& experiment) {
-  std::string name = prefix + "." + experiment + ".csv";
-  for (char& c : name) {
-    if (c == '/' || c == ' ') c = '_';
-  }
-  return name;
-}
-
-// The trace in the units the user reads (display_units.h), each column's unit in its header:
-// "psi_measured [deg]".
-Trajectory TraceInDisplayUnits(const RunConfig& config, const ExperimentFit& fit) {
-  Trajectory trace = fit.trace;
-  for (size_t c = 0; c < trace.names.size(); ++c) {
-    const std::string& name = trace.names[c];
-    const size_t cut = name.rfind('_');
-    const DisplayUnit unit = OutputDisplayUnit(config, fit.experiment, name.substr(0, cut));
-    for (double& v : trace.columns[c]) v *= unit.scale;
-    trace.names[c] = WithUnit(name, unit.unit);
-  }
-  return trace;
-}
-
-// One file per experiment, written in parallel; the first failure in the fits' order reported.
-bool WriteTraces(const RunConfig& config, const std::string& folder, const std::string& prefix,
-                 const std::vector<ExperimentFit>& fits, std::string* error) {
-  std::vector<std::string> errors(fits.size());
-  ParallelFor(static_cast<int>(fits.size()), 0, [&](int i) {
-    const std::string path =
-        (fs::path(folder) / TraceFileName(prefix, fits[i].experiment)).string();
-    WriteTrajectoryCsv(path, TraceInDisplayUnits(config, fits[i]), &errors[i]);
+// One file per trace, written in parallel; the first failure in the traces' order reported.
+bool WriteTraces(const std::string& folder, const std::vector<NamedTrace>& traces,
+                 std::string* error) {
+  std::vector<std::string> errors(traces.size());
+  ParallelFor(static_cast<int>(traces.size()), 0, [&](int i) {
+    const std::string path = (fs::path(folder) / TraceFileName(traces[i].name)).string();
+    WriteTrajectoryCsv(path, traces[i].trace, &errors[i]);
   });
   for (const std::string& e : errors) {
     if (e.empty()) continue;
@@ -76,14 +53,8 @@ bool WriteRunResults(const RunConfig& config, const RunResult& result, const std
       return WriteRunReport(config, result, out_dir, &html_error);
     });
   }
-  bool written = true;
-  for (const StageResult& stage : result.stages) {
-    if (!written) break;
-    written = WriteTraces(config, traces, stage.name, stage.summary.fits, error) &&
-              WriteTraces(config, traces, stage.name + ".validation", stage.validation, error);
-  }
-  written = written &&
-            WriteTraces(config, traces, "final_validation", result.final_validation, error) &&
+  const bool written =
+            WriteTraces(traces, RunTraces(config, result), error) &&
             WriteStepRegressionFiles(config, result, out_dir, error) &&
             WriteFileAtomically((fs::path(out_dir) / "report.txt").string(),
                                 RunResultToText(config, result), error);
@@ -101,7 +72,7 @@ bool WriteRunResults(const RunConfig& config, const RunResult& result, const std
     }
   }
   return WriteFileAtomically((fs::path(out_dir) / "results.json").string(),
-                             RunResultToJson(config, result).dump(2) + "\n", error);
+                             RunResultJsonText(config, result) + "\n", error);
 }
 
 }  // namespace vesselid

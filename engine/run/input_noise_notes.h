@@ -3,7 +3,7 @@
 // spacing, RMS and range (not one line per value); and, when any experiment has a latent input,
 // a narrow_intervals finding: the stage's standard errors hold the latent spline as
 // exact, so they miss the part of the input noise the spline passes (measured: 1.5-2.3x too
-// narrow on the cargo multi-sine, README "Noisy inputs"); a parametric bootstrap that adds the
+// narrow on the cargo multi-sine, docs/configs.md "Noisy inputs"); a parametric bootstrap that adds the
 // noise to the logged input and fits the spline again each run does not.
 #pragma once
 

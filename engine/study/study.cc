@@ -1,5 +1,7 @@
 #include "engine/study/study.h"
 
+#include "engine/study/study_json.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -111,6 +113,15 @@ bool RunStudy(const RunConfig& config, const StudyConfig& study,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   *result = std::move(merged);
   *text = report;
+  return true;
+}
+
+bool RunStudy(const RunConfig& config, const StudyConfig& study,
+              const std::vector<std::string>& only, std::string* json_text, std::string* text,
+              std::string* error, const std::function<void(const std::string&)>& progress) {
+  json result;
+  if (!RunStudy(config, study, only, &result, text, error, progress)) return false;
+  *json_text = result.is_null() ? std::string() : result.dump(2);
   return true;
 }
 

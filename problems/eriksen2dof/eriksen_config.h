@@ -3,7 +3,7 @@
 // the physical planing craft (craft.h, campaign.h).
 #pragma once
 
-#include "engine/config/model_registry.h"
+#include "engine/config/model_family.h"
 
 namespace vesselid::eriksen2dof {
 

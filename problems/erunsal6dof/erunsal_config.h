@@ -2,7 +2,7 @@
 // active DOF set from the config, and the seed 002 test campaign simulator.
 #pragma once
 
-#include "engine/config/model_registry.h"
+#include "engine/config/model_family.h"
 
 namespace vesselid::erunsal6dof {
 

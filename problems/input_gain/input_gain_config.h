@@ -2,7 +2,7 @@
 // configured bases, and seed 000's campaign simulated with the physical catamaran.
 #pragma once
 
-#include "engine/config/model_registry.h"
+#include "engine/config/model_family.h"
 
 namespace vesselid::input_gain {
 

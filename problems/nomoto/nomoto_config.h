@@ -2,7 +2,7 @@
 // norrbin, and the seed 003 closed-loop experiment simulator.
 #pragma once
 
-#include "engine/config/model_registry.h"
+#include "engine/config/model_family.h"
 
 namespace vesselid::nomoto {
 

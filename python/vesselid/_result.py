@@ -48,12 +48,18 @@ class Result:
     stages      DataFrame, one row per stage: verdict, cost, comparable_cost, iterations
     fits        DataFrame of the fit metrics per stage, experiment and output ("fit" on the
                 training runs, "validation" on held-out runs, "final_validation")
+    traces      {"<stage>.<experiment>": DataFrame of t and each compared output measured
+                and simulated ("psi_measured [deg]"), in the units the data came in}: the
+                CLI's traces/ files ("<stage>.validation.<run>" for held-out runs,
+                "final_validation.<run>")
     json        results.json as a dict; to_json() its text
     summary     report.txt's text
     """
 
-    def __init__(self, results, text, summary, config_arguments=None, config=None):
+    def __init__(self, results, text, summary, config_arguments=None, config=None,
+                 traces=None):
         self._config_arguments = config_arguments
+        self._traces = traces or {}
         self._config = config
         self.json = results
         self._text = text
@@ -115,6 +121,11 @@ class Result:
                    "interval_high", "role", "unit", "undetermined", "at_bound", "shown_unit",
                    "shown_scale", "stages"]
         return pd.DataFrame(rows, columns=columns).set_index("name")
+
+    @property
+    def traces(self):
+        import pandas as pd
+        return {name: pd.DataFrame(columns) for name, columns in self._traces.items()}
 
     @property
     def stages(self):

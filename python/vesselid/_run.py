@@ -54,7 +54,7 @@ def _data_arguments(data):
     return "", {str(k): _columns(k, v) for k, v in data.items()}
 
 
-def run(config, data=None, out=None, report=True, progress=None):
+def run(config, data=None, out=None, threads=0, report=True, progress=None):
     """Runs a staged identification and returns its Result.
 
     config:   a config file's path, or the same schema as a dict.
@@ -63,6 +63,8 @@ def run(config, data=None, out=None, report=True, progress=None):
               without data are read from their `file` as the CLI does.
     out:      a folder to write results.json, report.txt, report.html (report=True) and the
               traces into, as `vesselid run --out`; None writes nothing.
+    threads:  threads of every stage's solves and global start (0: the config's, by default
+              the machine's cores); the results are the same on any number.
     progress: called with {"phase", "iteration", "cost"} after each solver iteration; True
               shows a tqdm bar (python3-tqdm).
     Raises ConfigError, DataError or RunError with the CLI's message; Ctrl-C ends the current
@@ -82,9 +84,9 @@ def run(config, data=None, out=None, report=True, progress=None):
     elif progress is False:
         progress = None
     try:
-        ok, kind, message, payload = _core.run(
+        ok, kind, message, payload, traces = _core.run(
             text, is_text, name, data_dir, tables, "" if out is None else os.fspath(out), report,
-            progress)
+            int(threads), progress)
     finally:
         if bar is not None:
             bar.close()
@@ -96,7 +98,8 @@ def run(config, data=None, out=None, report=True, progress=None):
         import yaml
         with open(text, encoding="utf-8") as f:
             config_data = yaml.safe_load(f)
-    return Result(json.loads(payload), payload, message, (text, is_text, name), config_data)
+    return Result(json.loads(payload), payload, message, (text, is_text, name), config_data,
+                  traces)
 
 
 def load_config(path):

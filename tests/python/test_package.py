@@ -91,6 +91,28 @@ def test_out_writes_the_cli_files(campaign, tmp_path):
     assert (tmp_path / "run" / "report.txt").exists()
 
 
+def test_traces_are_the_cli_trace_files(campaign):
+    """Result.traces holds the CLI's traces/ files as frames: every one, the same columns (in
+    degrees where the tanker logs degrees) and numbers (to the files' printed precision)."""
+    result = vesselid.run(campaign["path"], data=campaign["frames"], threads=1)
+    folder = campaign["folder"] / "cli" / "traces"
+    files = sorted(os.listdir(folder))
+    assert sorted(name.replace("/", "_").replace(" ", "_") + ".csv"
+                  for name in result.traces) == files
+    assert any(".validation." in name for name in result.traces)
+    for name, frame in result.traces.items():
+        written = pd.read_csv(folder / (name + ".csv"), float_precision="round_trip")
+        assert list(frame.columns) == list(written.columns)
+        assert "psi_measured [deg]" in frame.columns
+        np.testing.assert_allclose(frame.to_numpy(), written.to_numpy(), rtol=1e-12, atol=1e-12)
+
+
+def test_threads_do_not_change_the_numbers(campaign):
+    one = vesselid.run(campaign["path"], data=campaign["frames"], threads=1)
+    two = vesselid.run(campaign["path"], data=campaign["frames"], threads=2)
+    assert drop_times(one.json) == drop_times(two.json) == drop_times(campaign["expected"])
+
+
 def test_numpy_columns_and_a_data_folder(campaign):
     frames = {name: {c: frame[c].to_numpy() for c in frame.columns}
               for name, frame in campaign["frames"].items()}

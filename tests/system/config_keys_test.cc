@@ -1,4 +1,4 @@
-// Every key the README's config documents has an effect, or is refused where it cannot have
+// Every key docs/config_reference.md documents has an effect, or is refused where it cannot have
 // one: each case runs a small config with and without the key and requires the results to
 // differ (estimates, fits, notes, validation, final values), or requires the reader to refuse
 // it naming the key. Data: three closed-loop first-order Nomoto runs (T 2 s, K -0.17) with
@@ -241,7 +241,7 @@ const KeyCase kCases[] = {
      V.P("      T: {start: 3.0, lower: 0.1, upper: 20, role: shared}")
          .T("  - name: again\n    experiments: [c]\n    parameters:\n"
             "      T: {role: shared}\nfusion: mean\n")},
-    // Templates (README "Templates"): experiment_defaults, merge keys, files, sets.
+    // Templates (docs/configs.md "Templates"): experiment_defaults, merge keys, files, sets.
     {"experiment_defaults", V, V.T("experiment_defaults: {weights: {psi: 3.0}}\n")},
     {"merge_key", V, V.K("    <<: {loss: {type: cauchy, scale: 0.001}}")},
     {"merge_key_own_key_wins", V.K("    uncertainty: false"),
@@ -577,12 +577,12 @@ TEST_P(ConfigKeys, HasAnEffectOrIsRefused) {
 
 std::string CaseName(const ::testing::TestParamInfo<KeyCase>& info) { return info.param.name; }
 
-// The keys the README's config reference (the indented block under "## Configs") names: every
-// `word:` in it, comments included ("min_separation: 0.05").
+// The keys the first block of docs/config_reference.md (a staged run's) names: every `word:`
+// in it, comments included ("min_separation: 0.05").
 std::set<std::string> DocumentedKeys() {
-  std::ifstream in(std::string(VESSELID_SOURCE_DIR) + "/README.md");
+  std::ifstream in(std::string(VESSELID_SOURCE_DIR) + "/docs/config_reference.md");
   std::string line;
-  while (std::getline(in, line) && line != "## Configs") {
+  while (std::getline(in, line) && line != "## A staged run") {
   }
   std::getline(in, line);  // the blank line before the block
   std::set<std::string> keys;
@@ -632,7 +632,7 @@ const std::map<std::string, std::string> kShownElsewhere = {
 // `base`), is the template's skeleton, or is shown by a named test that names it.
 TEST(ConfigKeysDocumented, EveryDocumentedKeyHasACase) {
   const std::set<std::string> documented = DocumentedKeys();
-  ASSERT_GT(documented.size(), 80u) << "the README's config block was not found";
+  ASSERT_GT(documented.size(), 80u) << "docs/config_reference.md's first block was not found";
   std::string missing;
   for (const std::string& key : documented) {
     if (kNotKeys.count(key) || kSkeleton.count(key)) continue;
@@ -656,7 +656,7 @@ TEST(ConfigKeysDocumented, EveryDocumentedKeyHasACase) {
   EXPECT_TRUE(missing.empty()) << "documented keys without a case:" << missing;
 }
 
-INSTANTIATE_TEST_SUITE_P(Readme, ConfigKeys, ::testing::ValuesIn(kCases), CaseName);
+INSTANTIATE_TEST_SUITE_P(Reference, ConfigKeys, ::testing::ValuesIn(kCases), CaseName);
 
 }  // namespace
 }  // namespace vesselid

@@ -48,7 +48,7 @@ foreach(file IN LISTS sources)
   layer_of(${file} from)
   if(from STREQUAL "" OR NOT DEFINED rank_${from})
     message(SEND_ERROR "${file}: not in a layer folder of engine/ (add the folder to "
-                       "layering_check.cmake and the README)")
+                       "layering_check.cmake and docs/development.md)")
     math(EXPR violations "${violations} + 1")
     continue()
   endif()

@@ -148,7 +148,7 @@ TEST_F(NoiseWeights, LongHundredRunAcceptance) {
       << messages;
   const json mc = folder_->Load("mc100")["monte_carlo"];
   for (const json& o : mc["noise_model"]["outputs"]) {
-    // README "Channel weights" quotes these lines.
+    // docs/configs.md "Channel weights" quotes these lines.
     std::printf("sigma %s: mean over truth %.4f\n", o.value("output", std::string()).c_str(),
                 o["mean_over_truth"].get<double>());
     EXPECT_NEAR(o["mean_over_truth"].get<double>(), 1.0, 0.1) << o.dump();

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """SciPy reference peer for the Nomoto cases of the paired benchmark (compare.py).
 
-Written from the model equations (../shared/spec/MODELS.md section 2) and the README's data
-conventions, not from the engine's code. It reads a vesselid config (the subset these cases
+Written from the model equations (../shared/spec/MODELS.md section 2) and the data
+conventions of docs/data.md, not from the engine's code. It reads a vesselid config (the subset these cases
 use) and the CSV files `vesselid simulate` writes, and identifies the stage by output error:
 
   * models: nomoto first_order   (psi' = r,  T r' + r = K (delta + delta_0))

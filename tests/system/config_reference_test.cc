@@ -1,0 +1,224 @@
+// docs/config_reference.md names every key the config readers accept, and no key they refuse.
+// The readers are asked, not read: every map of every shipped config is handed to them with
+// one key they cannot know, and each names the keys it allows ("unknown key (allowed: ...)");
+// every allowed key missing from the map is then given a map (or a list of one map) holding
+// such a key, which names the keys below it, and so on down the whole tree. Maps keyed by
+// the model's names (parameters, inputs, outputs, states) are left out: their keys are the
+// model's, listed by `vesselid findings`'s models in docs/models.md.
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "engine/config/config.h"
+#include "gtest/gtest.h"
+#include "problems/registry.h"
+#include "yaml-cpp/yaml.h"
+
+namespace vesselid {
+namespace {
+
+constexpr char kProbe[] = "zz_probe";
+
+// A place in a YAML tree: map keys and sequence indices.
+struct Step {
+  std::string key;
+  int index = -1;
+};
+using Path = std::vector<Step>;
+
+YAML::Node At(YAML::Node node, const Path& path) {
+  for (const Step& s : path) node = s.index >= 0 ? node[s.index] : node[s.key];
+  return node;
+}
+
+// The path with indices left out ("stages.global"): where in the schema a key sits.
+std::string SchemaPath(const Path& path) {
+  std::string text;
+  for (const Step& s : path) {
+    if (s.index < 0) text += (text.empty() ? "" : ".") + s.key;
+  }
+  return text.empty() ? "(top level)" : text;
+}
+
+std::string Emit(const YAML::Node& root) {
+  YAML::Emitter out;
+  out << root;
+  return out.c_str();
+}
+
+class KeyTree {
+ public:
+  KeyTree(std::string name, const std::set<std::string>& in_memory)
+      : name_(std::move(name)), in_memory_(in_memory) {}
+
+  // The keys allowed anywhere below `path` of `root`, by schema path.
+  void Explore(const YAML::Node& root, const Path& path) {
+    const YAML::Node node = At(root, path);
+    if (node.IsSequence()) {
+      for (size_t i = 0; i < node.size(); ++i) {
+        Path child = path;
+        child.push_back({"", static_cast<int>(i)});
+        Explore(root, child);
+      }
+      return;
+    }
+    if (!node.IsMap()) return;
+    const std::string schema = SchemaPath(path);
+    std::vector<std::string> present;
+    for (const auto& item : node) present.push_back(item.first.as<std::string>());
+    if (!visited_.insert(schema + "|" + Join(present)).second) return;
+
+    YAML::Node probed = YAML::Clone(root);
+    At(probed, path)[kProbe] = 1;
+    const std::vector<std::string> allowed = Allowed(probed);
+    if (!IsNameMap(allowed)) allowed_[schema].insert(allowed.begin(), allowed.end());
+    for (const std::string& key : present) {
+      Path child = path;
+      child.push_back({key});
+      Explore(root, child);
+    }
+    if (IsNameMap(allowed)) return;
+    for (const std::string& key : allowed) {
+      if (node[key] || tried_.count(schema + "." + key)) continue;
+      tried_.insert(schema + "." + key);
+      // A map below the key, or a list of maps.
+      for (int list = 0; list < 2; ++list) {
+        YAML::Node grown = YAML::Clone(root);
+        YAML::Node inner(YAML::NodeType::Map);
+        inner[kProbe] = 1;
+        if (list) {
+          YAML::Node sequence(YAML::NodeType::Sequence);
+          sequence.push_back(inner);
+          At(grown, path)[key] = sequence;
+        } else {
+          At(grown, path)[key] = inner;
+        }
+        Path child = path;
+        child.push_back({key});
+        if (list) child.push_back({"", 0});
+        const std::vector<std::string> below = Allowed(grown);
+        if (below.empty()) continue;
+        // The probe key named keys of the new map: explore it with a valid map in place.
+        YAML::Node valid = YAML::Clone(grown);
+        At(valid, child).remove(kProbe);
+        if (!IsNameMap(below)) Explore(valid, child);
+        break;
+      }
+    }
+  }
+
+  const std::map<std::string, std::set<std::string>>& allowed() const { return allowed_; }
+  void set_model_names(std::set<std::string> names) { model_names_ = std::move(names); }
+
+ private:
+  static std::string Join(const std::vector<std::string>& v) {
+    std::string s;
+    for (const std::string& x : v) s += x + ",";
+    return s;
+  }
+
+  bool IsNameMap(const std::vector<std::string>& keys) const {
+    if (keys.empty()) return true;
+    for (const std::string& k : keys) {
+      if (!model_names_.count(k)) return false;
+    }
+    return true;
+  }
+
+  // The keys the reader names when it meets the probe key in `root`, or none.
+  std::vector<std::string> Allowed(const YAML::Node& root) const {
+    ConfigSource source;
+    source.path = name_;
+    source.text = Emit(root);
+    source.in_memory = in_memory_;
+    const ModelRegistry registry = DefaultRegistry();
+    ConfigFile config;
+    std::string error;
+    if (LoadConfig(source, registry, &config, &error)) {
+      SimulateConfig(config, "", &error, /*check_only=*/true);
+    }
+    static const std::regex unknown(std::string(kProbe) + R"(: unknown key \(allowed: ([^)]*)\))");
+    std::smatch match;
+    if (!std::regex_search(error, match, unknown)) return {};
+    std::vector<std::string> keys;
+    std::stringstream list(match[1].str());
+    std::string key;
+    while (std::getline(list, key, ',')) {
+      const size_t first = key.find_first_not_of(' ');
+      keys.push_back(key.substr(first));
+    }
+    return keys;
+  }
+
+  std::string name_;
+  std::set<std::string> in_memory_;
+  std::set<std::string> model_names_;
+  std::set<std::string> visited_, tried_;
+  std::map<std::string, std::set<std::string>> allowed_;
+};
+
+// Every `word:` in the indented blocks of docs/config_reference.md, comments included.
+std::set<std::string> DocumentedKeys() {
+  std::ifstream in(std::string(VESSELID_SOURCE_DIR) + "/docs/config_reference.md");
+  std::set<std::string> keys;
+  const std::regex key(R"((^|[^A-Za-z0-9_.-])([A-Za-z_][A-Za-z0-9_]*):)");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("    ", 0) != 0) continue;
+    for (std::sregex_iterator it(line.begin(), line.end(), key), end; it != end; ++it) {
+      keys.insert((*it)[2]);
+    }
+  }
+  return keys;
+}
+
+const char* const kShippedConfigs[] = {
+    "nomoto_cargo.yaml",        "nomoto_cargo_noise.yaml", "nomoto_patrol.yaml",
+    "nomoto_patrol_noise.yaml", "nomoto_tanker.yaml",      "input_gain_static.yaml",
+    "input_gain_dynamic.yaml",  "input_gain_usv_log.yaml", "erunsal_hierarchy.yaml",
+    "eriksen_2dof.yaml"};
+
+// The allowed keys of every shipped config's tree, by schema path.
+std::map<std::string, std::set<std::string>> ReaderKeys() {
+  std::map<std::string, std::set<std::string>> all;
+  const ModelRegistry registry = DefaultRegistry();
+  for (const char* file : kShippedConfigs) {
+    const std::string path = std::string(VESSELID_SOURCE_DIR) + "/configs/" + file;
+    ConfigFile config;
+    std::string error;
+    EXPECT_TRUE(LoadConfigFile(path, "", registry, &config, &error)) << error;
+    std::set<std::string> names, experiments;
+    const ModelInfo& info = config.run.model->info();
+    for (const auto* list : {&info.parameters, &info.inputs, &info.outputs, &info.states}) {
+      names.insert(list->begin(), list->end());
+    }
+    for (const auto& e : config.run.experiments) experiments.insert(e.name);
+    KeyTree tree(path, experiments);
+    tree.set_model_names(names);
+    tree.Explore(YAML::LoadFile(path), {});
+    for (const auto& [schema, keys] : tree.allowed()) all[schema].insert(keys.begin(), keys.end());
+  }
+  return all;
+}
+
+TEST(ConfigReference, NamesEveryKeyTheReadersAccept) {
+  const std::set<std::string> documented = DocumentedKeys();
+  ASSERT_GT(documented.size(), 100u) << "docs/config_reference.md's blocks were not found";
+  const auto reader = ReaderKeys();
+  ASSERT_GT(reader.size(), 40u) << "the probe reached too few maps";
+  std::string missing;
+  for (const auto& [schema, keys] : reader) {
+    for (const std::string& key : keys) {
+      if (!documented.count(key)) missing += "\n  " + schema + "." + key;
+    }
+  }
+  EXPECT_TRUE(missing.empty()) << "keys the readers accept that docs/config_reference.md does "
+                                  "not name:" << missing;
+}
+
+}  // namespace
+}  // namespace vesselid
