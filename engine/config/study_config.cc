@@ -2,6 +2,7 @@
 #include <algorithm>
 
 #include "engine/config/config_sections.h"
+#include "engine/study/partition_study.h"
 
 namespace vesselid {
 namespace {

@@ -14,6 +14,7 @@
 
 #include "engine/run/run_config.h"
 #include "engine/study/study_options.h"
+#include "engine/study/study_runner.h"
 #include "nlohmann/json.hpp"
 
 namespace vesselid {

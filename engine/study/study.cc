@@ -1,14 +1,14 @@
 #include "engine/study/study.h"
 
-#include "engine/study/study_json.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 
 #include "engine/study/monte_carlo_study.h"
+#include "engine/study/partition_study.h"
 #include "engine/study/profile_likelihood.h"
 #include "engine/study/start_point_study.h"
+#include "engine/study/study_json.h"
 #include "engine/study/study_runner.h"
 
 namespace vesselid {

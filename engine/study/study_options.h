@@ -23,8 +23,8 @@
 #include <vector>
 
 #include "engine/solve/global_start.h"
-#include "engine/study/partition_study.h"
-#include "engine/study/study_runner.h"
+#include "engine/study/case_options.h"
+#include "engine/study/partition_options.h"
 
 namespace vesselid {
 

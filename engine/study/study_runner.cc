@@ -40,7 +40,9 @@ const ProcessGroup* current_group = nullptr;
 #ifdef VESSELID_LEAK_CHECKED
 using OpenMpiAllocations = __lsan::ScopedDisabler;
 #else
-struct OpenMpiAllocations {};
+struct OpenMpiAllocations {
+  OpenMpiAllocations() {}  // user-provided: a guard object, not an unused variable
+};
 #endif
 
 // Gathers every rank's (index, result) pairs on rank 0 as one JSON text per rank.

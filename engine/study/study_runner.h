@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "engine/base/case_seed.h"
+#include "engine/study/case_options.h"
 #include "nlohmann/json.hpp"
 
 namespace vesselid {
@@ -47,10 +48,6 @@ class ProcessGroup {
 
 // CaseSeed (engine/base/case_seed.h): the seed of case `index` of a study part.
 
-struct CaseOptions {
-  // Worker threads per process; 0: the machine's cores divided by the processes on it.
-  int threads = 0;
-};
 
 using CaseFunction = std::function<nlohmann::json(int index)>;
 // Told on the calling rank after each of its cases ends (progress output; serialised).

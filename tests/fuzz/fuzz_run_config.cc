@@ -7,6 +7,8 @@
 #include <string>
 
 #include "engine/config/config.h"
+#include "engine/config/model_family.h"
+#include "engine/study/partition_study.h"
 #include "problems/registry.h"
 #include "tests/fuzz/fuzz_input_file.h"
 
