@@ -93,7 +93,7 @@ def test_out_writes_the_cli_files(campaign, tmp_path):
 
 def test_traces_are_the_cli_trace_files(campaign):
     """Result.traces holds the CLI's traces/ files as frames: every one, the same columns (in
-    degrees where the tanker logs degrees) and numbers (to the files' printed precision)."""
+    degrees where the tanker logs degrees) and numbers (to the 12 digits the files hold)."""
     result = vesselid.run(campaign["path"], data=campaign["frames"], threads=1)
     folder = campaign["folder"] / "cli" / "traces"
     files = sorted(os.listdir(folder))
@@ -103,8 +103,13 @@ def test_traces_are_the_cli_trace_files(campaign):
     for name, frame in result.traces.items():
         written = pd.read_csv(folder / (name + ".csv"), float_precision="round_trip")
         assert list(frame.columns) == list(written.columns)
-        assert "psi_measured [deg]" in frame.columns
-        np.testing.assert_allclose(frame.to_numpy(), written.to_numpy(), rtol=1e-12, atol=1e-12)
+        assert len(frame) == len(written)
+        if len(frame):  # (a least-squares stage's trace holds no samples)
+            np.testing.assert_allclose(frame.to_numpy(), written.to_numpy(dtype=float),
+                                       rtol=1e-11, atol=1e-10)  # 12 digits written
+    # The output-error stage's: the heading measured and simulated, in degrees as logged.
+    heading = result.traces["output_error.zz10s_a"]
+    assert {"t", "psi_measured [deg]", "psi_simulated [deg]"} <= set(heading.columns)
 
 
 def test_threads_do_not_change_the_numbers(campaign):

@@ -332,6 +332,21 @@ const KeyCase kCases[] = {
     {"screen_stale", V, V.A(", screen: {stale: 1}"), "stale: must be >= 2"},
     // The local solver's settings.
     {"local_function_tolerance", V, V.K("    local: {function_tolerance: 1e-2}")},
+    {"local_gradient_tolerance", V, V.K("    local: {gradient_tolerance: 1e-1}")},
+    {"local_parameter_tolerance", V, V.K("    local: {parameter_tolerance: 1e-1}")},
+    {"local_trust_region", V, V.K("    local: {trust_region: dogleg}")},
+    {"global_population", V.K("    global: {algorithm: GN_CRS2_LM, max_evaluations: 40, seed: 1}"),
+     V.K("    global: {algorithm: GN_CRS2_LM, max_evaluations: 40, seed: 1, population: 50}")},
+    {"limits_evaluations", V.K("    global: {algorithm: GN_CRS2_LM, max_evaluations: 40}"),
+     V.K("    global: {algorithm: GN_CRS2_LM, max_evaluations: 40}")
+         .T("limits: {evaluations: 10}\n"),
+     "(limits.evaluations)"},
+    {"limits_data_values", V, V.T("limits: {data_values: 100}\n"), "values"},
+    // Experiment a's rudder leaves [-0.25, 0.25] rad now and then: stretches of 1 s or more.
+    {"input_range_skip", V.A(", input_range: {delta: [-0.25, 0.25], min_duration: 1}"),
+     V.A(", input_range: {delta: [-0.25, 0.25], min_duration: 1, skip: 0.5}")},
+    {"input_range_min_duration", V.A(", input_range: {delta: [-0.25, 0.25]}"),
+     V.A(", input_range: {delta: [-0.25, 0.25], min_duration: 30}")},
     // The linear solver changes the path, not the optimum (results equal to 12 digits with
     // cgnr): it is shown read by refusing an unknown one.
     {"local_linear_solver", V, V.K("    local: {linear_solver: cholmod}"),
@@ -605,9 +620,10 @@ int Occurrences(const std::string& text, const std::string& key) {
 // Words of the block followed by a colon that are not keys: the example's channel, parameter
 // and set names, and prose in its comments ("default: all", "| hold: ...").
 const std::set<std::string> kNotKeys = {
-    "delta", "delta_0", "psi", "xi1", "u", "held_out", "training",               // names
-    "it", "jitter", "default", "false", "true", "given", "hold", "last", "selected",  // prose
-    "set", "bootstraps"};
+    // names
+    "delta", "delta_0", "psi", "xi1", "u", "tau_m", "held_out", "training",
+    // prose
+    "default", "false", "true", "given", "hold", "last", "selected"};
 
 // Keys every case's config holds (the template's skeleton): each run exercises them.
 const std::set<std::string> kSkeleton = {
@@ -627,6 +643,8 @@ const std::map<std::string, std::string> kShownElsewhere = {
     {"file_mb", "tests/system/hostile_input_test.cc"},
     // Results are the same on any number of threads (by design): the test shows that.
     {"num_threads", "tests/system/thread_count_test.cc"},
+    {"description", "tests/system/report_html_test.cc"},
+    {"max_profile_evaluations", "tests/system/thrust_law_fit_test.cc"},
 };
 // Every documented key has a case here that adds it (more occurrences in `with` than in
 // `base`), is the template's skeleton, or is shown by a named test that names it.

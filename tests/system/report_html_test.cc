@@ -164,7 +164,8 @@ class HandMadeReportTest : public ::testing::Test {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     std::ofstream(dir_ / "run.csv") << "t,delta,psi\n0,0,0\n1,0.1,0.01\n2,0.1,0.03\n";
-    std::ofstream(dir_ / "run.yaml") << R"(model: {family: nomoto, type: first_order}
+    std::ofstream(dir_ / "run.yaml") << R"(description: "tug <trials> & co"
+model: {family: nomoto, type: first_order}
 experiments:
   - {name: "it's <b>_1", file: run.csv, inputs: {delta: delta}, outputs: {psi: psi}}
 stages:
@@ -227,6 +228,8 @@ TEST_F(HandMadeReportTest, EscapesNamesAndDrawsEveryPlot) {
   EXPECT_EQ(html.find("<b>_1"), std::string::npos);
   EXPECT_NE(html.find("it&#39;s &lt;b&gt;_1"), std::string::npos);
   EXPECT_NE(html.find("stage &quot;one&quot; &amp; co"), std::string::npos);
+  // The config's `description` heads the run's table.
+  EXPECT_NE(html.find("<td>tug &lt;trials&gt; &amp; co</td>"), std::string::npos);
   EXPECT_NE(html.find("undetermined"), std::string::npos);
   EXPECT_EQ(html.find("class=\"notice\""), std::string::npos);
 }

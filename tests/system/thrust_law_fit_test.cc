@@ -148,5 +148,27 @@ TEST_F(ThrustLawFit, DeadZoneAtItsBoundIsNamed) {
   EXPECT_TRUE(named) << testing::JsonFindingsText(results);
 }
 
+// least_squares.max_profile_evaluations bounds the search of the parameters inside the
+// regressors (the dynamic variant's propeller lag tau_T and dead zones); the stage reports
+// its evaluations as its iterations.
+TEST_F(ThrustLawFit, ProfileSearchKeepsToMaxProfileEvaluations) {
+  std::string config = Config("",
+                              "k_f: 0.5, k_r1: 1.0, k_r2: 0.0, "
+                              "d_f: {start: 0.0, lower: 0.0, upper: 0.15}, "
+                              "d_r: {start: 0.0, lower: -0.15, upper: 0.0}, "
+                              "tau_T: {start: 0.3, lower: 0.02, upper: 2.0}",
+                              "");
+  config.replace(config.find("type: static"), 12, "type: dynamic");
+  config.erase(config.find("  - name: refinement"));
+  const json free = Run("profile_free", config);
+  const std::string robust = "      robust: true\n";
+  config.replace(config.find(robust), robust.size(), robust + "      max_profile_evaluations: 4\n");
+  const json capped = Run("profile_capped", config);
+  ASSERT_FALSE(free.is_discarded() || capped.is_discarded());
+  EXPECT_GT(free["stages"][0]["iterations"].get<int>(), 4);
+  EXPECT_LE(capped["stages"][0]["iterations"].get<int>(), 4);
+  EXPECT_NE(free["parameters"], capped["parameters"]);
+}
+
 }  // namespace
 }  // namespace vesselid
