@@ -1,6 +1,8 @@
 // The one number syntax of vesselid's inputs (CSV fields and YAML scalars): a decimal or
 // exponent form as std::from_chars reads it, with at most one leading '+'. Subnormal values
-// are numbers like any other; nan, inf, hexadecimal and surrounding spaces are not.
+// are numbers like any other, and a value below the smallest subnormal (1e-999) is zero of its
+// sign, the nearest double; one beyond the largest double (1e999), nan, inf, hexadecimal and
+// surrounding spaces are not numbers.
 #pragma once
 
 #include <string_view>

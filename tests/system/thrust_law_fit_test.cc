@@ -126,7 +126,9 @@ TEST_F(ThrustLawFit, DefaultLawWarnsThatTheGainsAndKfCompensate) {
   EXPECT_TRUE(named) << testing::JsonFindingsText(results);
 }
 
-TEST_F(ThrustLawFit, DeadZoneAtItsBoundIsNamed) {
+// The dynamic variant (dead zones and a propeller lag searched inside the regressors) by its
+// least-squares stage alone.
+std::string DynamicLeastSquaresConfig() {
   std::string config = Config("",
                               "k_f: 0.5, k_r1: 1.0, k_r2: 0.0, "
                               "d_f: {start: 0.0, lower: 0.0, upper: 0.15}, "
@@ -135,6 +137,11 @@ TEST_F(ThrustLawFit, DeadZoneAtItsBoundIsNamed) {
                               "");
   config.replace(config.find("type: static"), 12, "type: dynamic");
   config.erase(config.find("  - name: refinement"));
+  return config;
+}
+
+TEST_F(ThrustLawFit, DeadZoneAtItsBoundIsNamed) {
+  std::string config = DynamicLeastSquaresConfig();
   const json results = Run("dead_zone", config);
   ASSERT_FALSE(results.is_discarded());
   bool named = false;
@@ -152,14 +159,7 @@ TEST_F(ThrustLawFit, DeadZoneAtItsBoundIsNamed) {
 // regressors (the dynamic variant's propeller lag tau_T and dead zones); the stage reports
 // its evaluations as its iterations.
 TEST_F(ThrustLawFit, ProfileSearchKeepsToMaxProfileEvaluations) {
-  std::string config = Config("",
-                              "k_f: 0.5, k_r1: 1.0, k_r2: 0.0, "
-                              "d_f: {start: 0.0, lower: 0.0, upper: 0.15}, "
-                              "d_r: {start: 0.0, lower: -0.15, upper: 0.0}, "
-                              "tau_T: {start: 0.3, lower: 0.02, upper: 2.0}",
-                              "");
-  config.replace(config.find("type: static"), 12, "type: dynamic");
-  config.erase(config.find("  - name: refinement"));
+  std::string config = DynamicLeastSquaresConfig();
   const json free = Run("profile_free", config);
   const std::string robust = "      robust: true\n";
   config.replace(config.find(robust), robust.size(), robust + "      max_profile_evaluations: 4\n");

@@ -36,6 +36,22 @@ TEST(NumberText, SubnormalValuesAreNumbers) {
   EXPECT_TRUE(Parses("-2.2250738585072e-310", -2.2250738585072e-310));
 }
 
+// A value below the smallest subnormal reads as the nearest double, zero of its sign; one
+// beyond the largest double is not a finite number (1e-999 was refused as "not finite").
+TEST(NumberText, UnderflowIsZeroOverflowIsNotANumber) {
+  for (const char* text : {"1e-999", "+1e-999", "0.000001e-330", "123e-400", "2e-325",
+                           "1e-99999999999999999999"}) {
+    double value = -7.0;
+    EXPECT_TRUE(ParseFiniteNumber(text, &value) && value == 0.0 && !std::signbit(value)) << text;
+  }
+  double value = 7.0;
+  EXPECT_TRUE(ParseFiniteNumber("-1e-999", &value) && value == 0.0 && std::signbit(value));
+  for (const char* text : {"1e999", "-1e999", "1000e306", "0.0001e313", "1e99999999999999999999",
+                           "1e-999x", "1e-"}) {
+    EXPECT_TRUE(Rejects(text)) << "'" << text << "'";
+  }
+}
+
 TEST(NumberText, RejectsWhatIsNotOneFiniteNumber) {
   for (const char* text : {"", "+", "-", "+-1", "-+1", "++1", "1e", "1e400", "-1e400", "nan",
                            "inf", "-inf", "0x10", " 1", "1 ", "1,5", "1.5.2", "one"}) {
