@@ -49,7 +49,7 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
   reader.CheckMap(node, path, ExperimentKeys());
   ExperimentSpec spec;
   if (!node["name"]) reader.Fail(node, path, "missing key 'name'");
-  spec.name = reader.String(node["name"], Child(path, "name"));
+  spec.name = reader.Name(node["name"], Child(path, "name"));
   if (node["file"]) {
     const std::string file = reader.String(node["file"], Child(path, "file"));
     spec.file = fs::path(file).is_absolute() ? file : (base / file).lexically_normal().string();
@@ -360,7 +360,7 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
   }
   const ModelInfo& info = stage.model ? stage.model->info() : config.model->info();
   stage.options.name = "stage" + std::to_string(index + 1);
-  reader.Read(node, path, "name", &stage.options.name);
+  if (node["name"]) stage.options.name = reader.Name(node["name"], Child(path, "name"));
   stage.velocity_validation = config.velocity_validation;
   reader.Read(node, path, "velocity_validation", &stage.velocity_validation);
   if (node["experiments"]) {

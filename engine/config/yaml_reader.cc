@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <set>
 
+#include "engine/base/file_name.h"
 #include "engine/base/input_file.h"
 #include "engine/base/number_text.h"
 #include "engine/config/yaml_merge.h"
@@ -168,6 +169,13 @@ bool YamlReader::Bool(const YAML::Node& node, const std::string& key) const {
 std::string YamlReader::String(const YAML::Node& node, const std::string& key) const {
   if (!node.IsScalar()) Fail(node, key, "expected a string");
   return node.Scalar();
+}
+
+std::string YamlReader::Name(const YAML::Node& node, const std::string& key) const {
+  const std::string name = String(node, key);
+  const std::string problem = NameProblem(name);
+  if (!problem.empty()) Fail(node, key, "the name " + problem);
+  return name;
 }
 
 std::vector<std::string> YamlReader::Strings(const YAML::Node& node, const std::string& key) const {

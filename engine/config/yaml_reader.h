@@ -64,6 +64,9 @@ class YamlReader {
   int Int(const YAML::Node& node, const std::string& key) const;
   bool Bool(const YAML::Node& node, const std::string& key) const;
   std::string String(const YAML::Node& node, const std::string& key) const;
+  // A string that names output files (an experiment's or a stage's name): refused when it is
+  // empty, holds a control character or is too long (base/file_name.h).
+  std::string Name(const YAML::Node& node, const std::string& key) const;
   std::vector<std::string> Strings(const YAML::Node& node, const std::string& key) const;
   std::vector<double> Doubles(const YAML::Node& node, const std::string& key) const;
   std::map<std::string, std::string> StringMap(const YAML::Node& node,

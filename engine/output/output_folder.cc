@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "engine/base/file_name.h"
 #include "engine/base/input_file.h"
 #include "engine/base/text_match.h"
 
@@ -107,7 +108,7 @@ PlannedOutputs RunOutputs(const RunConfig& config) {
   planned.folders = {"traces", "checkpoint", "surfaces"};
   for (const StageConfig& stage : config.stages) {
     if (stage.kind == StageConfig::Kind::kStepRegression) {
-      planned.csv_prefixes.push_back(stage.options.name + ".");
+      planned.csv_prefixes.push_back(FileNameOf(stage.options.name) + ".");
     }
   }
   return planned;

@@ -1,5 +1,6 @@
 #include "engine/output/run_traces.h"
 
+#include "engine/base/file_name.h"
 #include "engine/run/display_units.h"
 
 namespace vesselid {
@@ -19,10 +20,17 @@ Trajectory TraceInDisplayUnits(const RunConfig& config, const ExperimentFit& fit
   return trace;
 }
 
-void AddTraces(const RunConfig& config, const std::string& prefix,
+// `parts` joined by '.', as they are (the trace's name) or escaped (its file).
+void AddTraces(const RunConfig& config, const std::vector<std::string>& parts,
                const std::vector<ExperimentFit>& fits, std::vector<NamedTrace>* traces) {
+  std::string name, file;
+  for (const std::string& part : parts) {
+    name += part + ".";
+    file += FileNameOf(part) + ".";
+  }
   for (const ExperimentFit& fit : fits) {
-    traces->push_back({prefix + "." + fit.experiment, TraceInDisplayUnits(config, fit)});
+    traces->push_back({name + fit.experiment, file + FileNameOf(fit.experiment) + ".csv",
+                       TraceInDisplayUnits(config, fit)});
   }
 }
 
@@ -31,19 +39,11 @@ void AddTraces(const RunConfig& config, const std::string& prefix,
 std::vector<NamedTrace> RunTraces(const RunConfig& config, const RunResult& result) {
   std::vector<NamedTrace> traces;
   for (const StageResult& stage : result.stages) {
-    AddTraces(config, stage.name, stage.summary.fits, &traces);
-    AddTraces(config, stage.name + ".validation", stage.validation, &traces);
+    AddTraces(config, {stage.name}, stage.summary.fits, &traces);
+    AddTraces(config, {stage.name, "validation"}, stage.validation, &traces);
   }
-  AddTraces(config, "final_validation", result.final_validation, &traces);
+  AddTraces(config, {"final_validation"}, result.final_validation, &traces);
   return traces;
-}
-
-std::string TraceFileName(const std::string& name) {
-  std::string file = name + ".csv";
-  for (char& c : file) {
-    if (c == '/' || c == ' ') c = '_';
-  }
-  return file;
 }
 
 }  // namespace vesselid

@@ -13,8 +13,11 @@ namespace vesselid {
 
 struct NamedTrace {
   // "<stage>.<experiment>", "<stage>.validation.<experiment>" (held-out runs) or
-  // "final_validation.<experiment>"; traces/<name>.csv with '/' and ' ' made '_'.
+  // "final_validation.<experiment>".
   std::string name;
+  // Its file in traces/: the same with each name escaped (FileNameOf, base/file_name.h),
+  // ".csv" added; distinct for distinct names.
+  std::string file;
   // t and per compared output "<output>_measured [unit]", "<output>_simulated [unit]", in
   // the unit the data came in (degrees where the experiment reads the column in degrees).
   Trajectory trace;
@@ -23,8 +26,5 @@ struct NamedTrace {
 // Every trace of the run: each stage's experiments and held-out runs, then the final
 // validation.
 std::vector<NamedTrace> RunTraces(const RunConfig& config, const RunResult& result);
-
-// The file name of a trace in traces/.
-std::string TraceFileName(const std::string& name);
 
 }  // namespace vesselid

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "engine/base/atomic_file.h"
+#include "engine/base/file_name.h"
 #include "engine/base/json_number.h"
 
 namespace vesselid {
@@ -149,14 +150,15 @@ bool WriteStepRegressionFiles(const RunConfig& config, const RunResult& result,
   for (const StageResult& stage : result.stages) {
     if (!stage.step_regression) continue;
     const StepRegressionReport& r = *stage.step_regression;
-    if (!write(stage.name + ".damping_samples.csv", DampingCsv(r.samples, names)) ||
-        !write(stage.name + ".inertia_samples.csv", InertiaCsv(r.samples, names))) {
+    const std::string prefix = FileNameOf(stage.name);
+    if (!write(prefix + ".damping_samples.csv", DampingCsv(r.samples, names)) ||
+        !write(prefix + ".inertia_samples.csv", InertiaCsv(r.samples, names))) {
       return false;
     }
     for (const TermRegression& t : r.terms) {
-      if (!write(stage.name + ".lasso_" + t.name + ".csv", PathCsv(t))) return false;
+      if (!write(prefix + ".lasso_" + t.name + ".csv", PathCsv(t))) return false;
       if (!t.asymptote_grid.empty() &&
-          !write(stage.name + ".asymptote_" + t.name + ".csv", AsymptoteCsv(t))) {
+          !write(prefix + ".asymptote_" + t.name + ".csv", AsymptoteCsv(t))) {
         return false;
       }
     }
@@ -171,7 +173,7 @@ bool WriteStepRegressionFiles(const RunConfig& config, const RunResult& result,
   for (const StageResult& stage : result.stages) {
     const std::vector<double> values = StageParameterValues(info, stage);
     if (values.size() != info.parameters.size()) continue;
-    if (!write("surfaces/" + stage.name + ".csv",
+    if (!write("surfaces/" + FileNameOf(stage.name) + ".csv",
                SurfacesCsv(*form, names, values.data(), config.surfaces))) {
       return false;
     }

@@ -22,7 +22,7 @@ bool WriteTraces(const std::string& folder, const std::vector<NamedTrace>& trace
                  std::string* error) {
   std::vector<std::string> errors(traces.size());
   ParallelFor(static_cast<int>(traces.size()), 0, [&](int i) {
-    const std::string path = (fs::path(folder) / TraceFileName(traces[i].name)).string();
+    const std::string path = (fs::path(folder) / traces[i].file).string();
     WriteTrajectoryCsv(path, traces[i].trace, &errors[i]);
   });
   for (const std::string& e : errors) {

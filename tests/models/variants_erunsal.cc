@@ -68,7 +68,7 @@ Rk4Case Rk4(const erunsal6dof::Model& model, const ModelHandle& handle, double s
     data.columns[0].assign(data.t.size(), 0.8);
     data.columns[1].assign(data.t.size(), 0.3);
   }
-  for (const std::string& column : {"x", "y", "z", "phi", "theta", "psi", "F_L"}) {
+  for (const char* column : {"x", "y", "z", "phi", "theta", "psi", "F_L"}) {
     data.names.push_back(column);
     data.columns.emplace_back(data.t.size(), 0.0);
   }

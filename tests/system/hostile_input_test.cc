@@ -10,6 +10,7 @@
 
 #include <csignal>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "engine/base/atomic_file.h"
@@ -230,6 +231,41 @@ TEST_F(HostileInput, DuplicateNestedKey) {
   ExpectRejected(
       "config\\.yaml:11: stages\\[0\\]\\.parameters\\.T: given twice \\(lines 10 "
       "and 11\\)");
+}
+
+// --- Names that become file names ---------------------------------------------------------
+
+// Experiments "a/b" and "a_b" each get their own trace (both were written to fit.a_b.csv, one
+// overwriting the other): names are escaped reversibly in file names.
+TEST_F(HostileInput, NamesThatLookAlikeInFileNamesKeepTheirOwnFiles) {
+  std::string text = kGoodConfig;
+  text.replace(text.find("name: run"), 9, "name: a/b");
+  text.replace(text.find("stages:"), 7,
+               "  - {name: a_b, file: data.csv, inputs: {delta: delta}, outputs: {psi: psi}}\n"
+               "stages:");
+  WriteConfig(text);
+  const Outcome outcome = Run();
+  ASSERT_EQ(outcome.status, 0) << outcome.output;
+  std::set<std::string> traces;
+  for (const auto& entry : fs::directory_iterator(dir_ / "out" / "traces")) {
+    traces.insert(entry.path().filename().string());
+  }
+  EXPECT_EQ(traces, (std::set<std::string>{"fit.a%2Fb.csv", "fit.a_b.csv"}));
+}
+
+TEST_F(HostileInput, NameWithANewlineIsRefused) {
+  EditConfig("  - name: run\n", "  - name: \"ru\\nn\"\n");
+  ExpectRejected(
+      "config\\.yaml:3: experiments\\[0\\]\\.name: the name holds a control "
+      "character \\(0x0a\\)");
+}
+
+// A 5 000-byte name was computed, then failed at its trace with "cannot write file".
+TEST_F(HostileInput, NameTooLongForAFileNameIsRefused) {
+  EditConfig("  - name: fit\n", "  - name: " + std::string(5000, 'f') + "\n");
+  ExpectRejected(
+      "config\\.yaml:8: stages\\[0\\]\\.name: the name has 5000 bytes \\(5000 in a "
+      "file name\\), more than the 115 a name may have");
 }
 
 TEST_F(HostileInput, ByteOrderMarksAreAccepted) {
