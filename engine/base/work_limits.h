@@ -16,6 +16,11 @@ struct WorkLimits {
   std::uint64_t integration_steps = 20'000'000;
   std::uint64_t study_cases = 100'000;     // solves of a study part (runs x stages, points)
   std::uint64_t evaluations = 10'000'000;  // global-start evaluations of one stage
+  std::uint64_t files = 10'000;            // files matched by the `files` patterns together
+  std::uint64_t experiments = 10'000;      // experiments of the config, `files` expanded
+  // Data files may lie outside the data folder (--data, else the config's folder): an
+  // absolute `file`, a `../` path or pattern (limits.outside_data).
+  bool outside_data = false;
 };
 
 // A config file is read whole by the YAML parser: no limit key, it is never large.

@@ -6,6 +6,7 @@
 
 #include "ceres/types.h"
 #include "engine/config/config_sections.h"
+#include "engine/config/data_folder.h"
 #include "engine/config/experiment_data_config.h"
 #include "engine/config/experiment_templates.h"
 #include "engine/config/input_noise_config.h"
@@ -53,6 +54,8 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
   if (node["file"]) {
     const std::string file = reader.String(node["file"], Child(path, "file"));
     spec.file = fs::path(file).is_absolute() ? file : (base / file).lexically_normal().string();
+    const std::string outside = OutsideDataFolder(file, base.string(), reader.limits());
+    if (!outside.empty()) reader.Fail(node["file"], Child(path, "file"), outside);
   } else if (in_memory.count(spec.name) == 0) {
     reader.Fail(node, path,
                 "missing key 'file' (or 'files', a pattern)" +
@@ -545,7 +548,8 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
 WorkLimits ReadLimits(const YamlReader& reader, const YAML::Node& node) {
   const std::string path = "limits";
   reader.CheckMap(node, path,
-                  {"file_mb", "data_values", "integration_steps", "study_cases", "evaluations"});
+                  {"file_mb", "data_values", "integration_steps", "study_cases", "evaluations",
+                   "files", "experiments", "outside_data"});
   WorkLimits limits;
   auto read = [&](const char* key, double scale, std::uint64_t* value) {
     if (!node[key]) return;
@@ -560,6 +564,9 @@ WorkLimits ReadLimits(const YamlReader& reader, const YAML::Node& node) {
   read("integration_steps", 1.0, &limits.integration_steps);
   read("study_cases", 1.0, &limits.study_cases);
   read("evaluations", 1.0, &limits.evaluations);
+  read("files", 1.0, &limits.files);
+  read("experiments", 1.0, &limits.experiments);
+  reader.Read(node, path, "outside_data", &limits.outside_data);
   return limits;
 }
 
@@ -615,6 +622,11 @@ bool LoadConfig(const ConfigSource& source, const ModelRegistry& registry, Confi
       if (result.FindExperiment(spec.name) != nullptr) {
         reader.Fail(entry.node["name"], Child(entry.path, "name"),
                     "duplicate experiment name '" + spec.name + "'");
+      }
+      if (result.experiments.size() >= result.limits.experiments) {
+        reader.Fail(entry.node, entry.path,
+                    "more than " + std::to_string(result.limits.experiments) +
+                        " experiments, the limit (limits.experiments)");
       }
       spec.csv.max_bytes = result.limits.file_bytes;
       spec.csv.max_values = result.limits.data_values;

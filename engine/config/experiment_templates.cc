@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "engine/config/data_folder.h"
+
 namespace vesselid {
 
 namespace {
@@ -63,7 +65,13 @@ std::vector<std::string> MatchingFiles(const YamlReader& reader, const YAML::Nod
                                                  : match.lexically_relative(folder).string());
     }
   }
+  const size_t matched = status == 0 ? found.gl_pathc : 0;
   globfree(&found);
+  if (matched > reader.limits().files) {
+    reader.Fail(node, key,
+                "'" + pattern + "' matches " + std::to_string(matched) + " files, more than the " +
+                    std::to_string(reader.limits().files) + " a run may read (limits.files)");
+  }
   const std::string where =
       absolute ? "" : " in " + (folder.empty() ? std::string("the current folder") : folder);
   if (status == GLOB_NOMATCH || (status == 0 && files.empty())) {
@@ -97,7 +105,12 @@ void ExpandFiles(YamlReader* reader, const YAML::Node& node, const std::string& 
     }
   }
   const YAML::Node& name_at = name_node.IsDefined() ? name_node : files;
-  for (const std::string& file : MatchingFiles(*reader, files, key, pattern, data_folder)) {
+  const std::vector<std::string> matches = MatchingFiles(*reader, files, key, pattern, data_folder);
+  for (const std::string& file : matches) {
+    const std::string outside = OutsideDataFolder(file, data_folder, reader->limits());
+    if (!outside.empty()) reader->Fail(files, key, "'" + pattern + "' matches " + outside);
+  }
+  for (const std::string& file : matches) {
     std::string experiment = name;
     const std::string stem = fs::path(file).stem().string();
     for (size_t at = experiment.find("{stem}"); at != std::string::npos;
@@ -150,6 +163,7 @@ std::vector<ExperimentEntry> ExpandExperiments(YamlReader* reader, const YAML::N
     reader->CheckMap(defaults, key, allowed);
   }
   std::vector<ExperimentEntry> entries;
+  size_t matched = 0;  // files of the `files` patterns so far
   for (size_t i = 0; i < experiments.size(); ++i) {
     const std::string path = Child("experiments", i);
     if (!experiments[i].IsMap()) reader->Fail(experiments[i], path, "expected a map");
@@ -157,7 +171,15 @@ std::vector<ExperimentEntry> ExpandExperiments(YamlReader* reader, const YAML::N
                                 ? WithDefaults(reader, experiments[i], defaults, true)
                                 : experiments[i];
     if (node["files"].IsDefined()) {
+      const size_t before = entries.size();
       ExpandFiles(reader, node, path, data_folder, &entries);
+      matched += entries.size() - before;
+      if (matched > reader->limits().files) {
+        reader->Fail(node["files"], Child(path, "files"),
+                     "the files patterns match " + std::to_string(matched) +
+                         " files together, more than the " +
+                         std::to_string(reader->limits().files) + " a run may read (limits.files)");
+      }
     } else {
       entries.push_back({node, path});
     }

@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include "engine/base/file_name.h"
 #include "engine/base/input_file.h"
@@ -21,6 +22,9 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr char kLockFile[] = ".vesselid.lock";
+// Left in every folder vesselid has written into: what makes a non-empty folder an earlier
+// output, which a later command may write into again.
+constexpr char kMarkerFile[] = ".vesselid";
 constexpr char kTemporarySuffix[] = ".tmp";
 
 // The pid written into a lock file, or "" when it cannot be read.
@@ -36,10 +40,38 @@ bool StartsWith(const std::string& text, const std::string& prefix) {
   return text.compare(0, prefix.size(), prefix) == 0;
 }
 
+// False, saying why, when `path` names no folder of its own: empty, or the root folder.
+bool OutNamed(const std::string& path, std::string* error) {
+  std::error_code ec;
+  if (path.empty()) {
+    *error = "--out is empty: name a folder for the results";
+    return false;
+  }
+  if (fs::weakly_canonical(path, ec) == fs::path("/")) {
+    *error = path + ": --out is the root folder: name a folder of its own for the results";
+    return false;
+  }
+  return true;
+}
+
+// An entry of the existing folder `path` when it is neither empty nor an earlier output of
+// vesselid (its marker, or, from versions before the marker, results.json, study.json or a
+// checkpoint); "" otherwise.
+std::string ForeignEntry(const std::string& path) {
+  std::error_code ec;
+  for (const char* earlier : {kMarkerFile, kLockFile, "results.json", "study.json", "checkpoint"}) {
+    if (fs::exists(fs::path(path) / earlier, ec)) return "";
+  }
+  fs::directory_iterator it(path, ec);
+  if (ec || it == fs::directory_iterator()) return "";
+  return it->path().filename().string();
+}
+
 }  // namespace
 
 std::unique_ptr<OutputFolder> OutputFolder::Open(const std::string& path, std::string* error) {
   std::error_code ec;
+  if (!OutNamed(path, error)) return nullptr;
   const bool existed = fs::exists(path, ec);
   if (existed && !fs::is_directory(path, ec)) {
     *error = path + ": --out names a file, not a folder";
@@ -83,6 +115,10 @@ std::unique_ptr<OutputFolder> OutputFolder::Open(const std::string& path, std::s
                   " is writing into this folder; wait for it or choose another --out");
   }
   auto folder = std::unique_ptr<OutputFolder>(new OutputFolder(path, fd));
+  if (!fs::exists(fs::path(path) / kMarkerFile, ec)) {
+    std::ofstream marker(fs::path(path) / kMarkerFile);
+    marker << "written by vesselid: a later vesselid command may write into this folder\n";
+  }
   const std::string pid = std::to_string(::getpid()) + "\n";
   if (::ftruncate(fd, 0) != 0 ||
       ::pwrite(fd, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size())) {
@@ -116,6 +152,7 @@ PlannedOutputs RunOutputs(const RunConfig& config) {
 
 bool CheckInputsSurvive(const std::string& out_dir, const PlannedOutputs& planned,
                         const std::vector<std::string>& inputs, std::string* error) {
+  if (!OutNamed(out_dir, error)) return false;
   std::error_code ec;
   const fs::path out = fs::weakly_canonical(out_dir, ec);
   if (ec) return true;  // nothing there to overwrite
@@ -125,6 +162,14 @@ bool CheckInputsSurvive(const std::string& out_dir, const PlannedOutputs& planne
     const fs::path relative = file.lexically_relative(out);
     if (relative.empty() || *relative.begin() == "..") continue;
     const std::string first = relative.begin()->string();
+    // An input in a subfolder of --out (not one vesselid writes): --out is a parent of the
+    // data, and its outputs would mix with the data's tree.
+    if (std::next(relative.begin()) != relative.end() &&
+        std::find(planned.folders.begin(), planned.folders.end(), first) == planned.folders.end()) {
+      *error = out_dir + ": --out holds the inputs' folder " + file.parent_path().string() + " (" +
+               input + "): choose a folder beside or inside it";
+      return false;
+    }
     bool written = false;
     if (std::next(relative.begin()) != relative.end()) {
       written =
@@ -140,6 +185,20 @@ bool CheckInputsSurvive(const std::string& out_dir, const PlannedOutputs& planne
     if (written) {
       *error = input + ": this input is where the output " + (out / relative).string() +
                " would be written; choose another --out";
+      return false;
+    }
+  }
+  // A folder of other files is not written into, unless the command's inputs lie in it (the
+  // user writes beside them on purpose).
+  if (fs::is_directory(out, ec)) {
+    const std::string other = ForeignEntry(out.string());
+    bool holds_input = false;
+    for (const std::string& input : inputs) {
+      holds_input |= fs::weakly_canonical(input, ec).parent_path() == out;
+    }
+    if (!other.empty() && !holds_input) {
+      *error = out_dir + ": --out holds other files ('" + other +
+               "') and no earlier vesselid output: choose an empty or new folder";
       return false;
     }
   }

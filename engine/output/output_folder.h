@@ -1,9 +1,9 @@
 // The folder a command writes into (`--out`), checked and locked before any work starts:
-// it must be a folder (created if missing), writable, on a file system with room for the
-// first files and under a file-size limit that admits them; and no other vesselid process may
-// be writing into it. A second run into the same folder is refused with the first one's pid;
-// the lock (an flock on OUT/.vesselid.lock) is released when the process ends, however it
-// ends, so a killed run never blocks the next.
+// it must be named (not empty, not the root folder), a folder (created if missing), writable, on a
+// file system with room for the first files and under a file-size limit that admits them; and no
+// other vesselid process may be writing into it. A second run into the same folder is refused with
+// the first one's pid; the lock (an flock on OUT/.vesselid.lock) is released when the process ends,
+// however it ends, so a killed run never blocks the next.
 #pragma once
 
 #include <memory>
@@ -46,7 +46,10 @@ struct PlannedOutputs {
 PlannedOutputs RunOutputs(const RunConfig& config);
 
 // False, naming both, when one of `inputs` is a file the command would write (or its
-// temporary) in `out_dir`: an output never replaces an input.
+// temporary) in `out_dir` (an output never replaces an input), or lies in a subfolder of
+// `out_dir` the command does not write (--out is a parent of the data); or when `out_dir`
+// holds other files and is neither an earlier vesselid output (its marker OUT/.vesselid) nor
+// the folder of one of `inputs`.
 bool CheckInputsSurvive(const std::string& out_dir, const PlannedOutputs& planned,
                         const std::vector<std::string>& inputs, std::string* error);
 

@@ -268,6 +268,102 @@ TEST_F(HostileInput, NameTooLongForAFileNameIsRefused) {
       "file name\\), more than the 115 a name may have");
 }
 
+// --- Many files, many experiments, files elsewhere ------------------------------------------
+
+// A pattern matching more files than limits.files (default 10 000) is refused while it is
+// expanded, before any file is read (100 000 matching logs took 8.2 GB and a SIGABRT).
+TEST_F(HostileInput, PatternMatchingTooManyFilesIsRefusedBeforeReadingThem) {
+  fs::create_directories(dir_ / "logs");
+  for (int i = 0; i <= 10000; ++i)
+    std::ofstream(dir_ / "logs" / ("f_" + std::to_string(i) + ".csv"));
+  EditConfig("  - name: run\n    file: data.csv\n", "  - files: \"logs/f_*.csv\"\n");
+  ExpectRejected(
+      "config\\.yaml:3: experiments\\[0\\]\\.files: 'logs/f_\\*\\.csv' matches 10001 "
+      "files, more than the 10000 a run may read \\(limits\\.files\\)");
+  EXPECT_LT(ChildPeakMiB(), 200.0);
+}
+
+TEST_F(HostileInput, MoreExperimentsThanTheLimit) {
+  std::string entries;
+  for (int i = 0; i < 5; ++i) {
+    entries += "  - {name: w" + std::to_string(i) + ", file: data.csv, window: [0, " +
+               std::to_string(10 + i) + "], inputs: {delta: delta}, outputs: {psi: psi}}\n";
+  }
+  std::string text = kGoodConfig;
+  text.replace(text.find("stages:"), 7, entries + "stages:");
+  WriteConfig(text + "limits: {experiments: 4}\n");
+  ExpectRejected(
+      "experiments\\[4\\]: more than 4 experiments, the limit \\(limits\\.experiments\\)");
+}
+
+// Data files stay in the data folder unless the config allows otherwise: a copy of the data
+// beside the test's folder, named by a path and by a pattern.
+TEST_F(HostileInput, DataFilesOutsideTheDataFolderNeedOutsideData) {
+  const std::string name = dir_.filename().string() + "_outside.csv";
+  fs::copy_file(dir_ / "data.csv", dir_.parent_path() / name, fs::copy_options::overwrite_existing);
+  EditConfig("file: data.csv", "file: ../" + name);
+  ExpectRejected("experiments\\[0\\]\\.file: '\\.\\./" + name +
+                 "' is outside the data folder .*limits: \\{outside_data: true\\}");
+  EditConfig("  - name: run\n    file: data.csv\n",
+             "  - files: \"../" + dir_.filename().string() + "_outside*.csv\"\n");
+  ExpectRejected("experiments\\[0\\]\\.files: '\\.\\./.*_outside\\*\\.csv' matches '\\.\\./" +
+                 name + "' is outside the data folder");
+  std::string text = kGoodConfig;
+  text.replace(text.find("file: data.csv"), 14, "file: ../" + name);
+  WriteConfig(text + "limits: {outside_data: true}\n");
+  const Outcome outcome = Run();
+  EXPECT_EQ(outcome.status, 0) << outcome.output;
+  fs::remove(dir_.parent_path() / name);
+}
+
+// --- Where the results go ----------------------------------------------------------------
+
+TEST_F(HostileInput, OutEmptyOrTheRootFolderIsRefused) {
+  ExpectRejected("--out is empty: name a folder for the results", "", "''");
+  const Outcome root = Run("", "/");
+  EXPECT_NE(root.status, 0);
+  EXPECT_NE(root.output.find("/: --out is the root folder: name a folder of its own for the "
+                             "results"),
+            std::string::npos)
+      << root.output;
+  EXPECT_FALSE(fs::exists("/results.json") || fs::exists("/.vesselid"));
+}
+
+// A folder of other files is not an output folder; an earlier output is (its marker).
+TEST_F(HostileInput, OutHoldingOtherFilesIsRefusedAnEarlierOutputIsNot) {
+  fs::create_directories(dir_ / "out");
+  std::ofstream(dir_ / "out" / "notes.txt") << "field notes\n";
+  ExpectRejected("--out holds other files \\('notes\\.txt'\\) and no earlier vesselid output");
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "notes.txt"));
+  fs::remove(dir_ / "out" / "notes.txt");
+  Outcome outcome = Run();
+  ASSERT_EQ(outcome.status, 0) << outcome.output;
+  EXPECT_TRUE(fs::exists(dir_ / "out" / ".vesselid"));
+  std::ofstream(dir_ / "out" / "notes.txt") << "field notes\n";
+  outcome = Run();
+  EXPECT_EQ(outcome.status, 0) << outcome.output;
+}
+
+// --out a parent of the config's (and data's) folder: its outputs would mix with them.
+TEST_F(HostileInput, OutAParentOfTheDataIsRefused) {
+  fs::create_directories(dir_ / "campaign");
+  for (const char* file : {"config.yaml", "data.csv"})
+    fs::rename(dir_ / file, dir_ / "campaign" / file);
+  const std::string command = std::string(VESSELID_BINARY) + " run " +
+                              (dir_ / "campaign" / "config.yaml").string() + " --out " +
+                              dir_.string() + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  char buffer[512];
+  while (fgets(buffer, sizeof(buffer), pipe) != nullptr) output += buffer;
+  EXPECT_NE(pclose(pipe), 0);
+  EXPECT_TRUE(std::regex_search(
+      output, std::regex("--out holds the inputs' folder .*campaign .*: choose a folder beside "
+                         "or inside it")))
+      << output;
+  EXPECT_FALSE(fs::exists(dir_ / "results.json") || fs::exists(dir_ / ".vesselid"));
+}
+
 TEST_F(HostileInput, ByteOrderMarksAreAccepted) {
   WriteConfig("\xEF\xBB\xBF" + std::string(kGoodConfig));
   WriteData("\xEF\xBB\xBF" + ReadData());
