@@ -55,11 +55,12 @@ bool OutNamed(const std::string& path, std::string* error) {
 }
 
 // An entry of the existing folder `path` when it is neither empty nor an earlier output of
-// vesselid (its marker, or, from versions before the marker, results.json, study.json or a
-// checkpoint); "" otherwise.
+// vesselid (its marker, or, from versions before the marker, one of the files and folders
+// `run` and `study` write); "" otherwise.
 std::string ForeignEntry(const std::string& path) {
   std::error_code ec;
-  for (const char* earlier : {kMarkerFile, kLockFile, "results.json", "study.json", "checkpoint"}) {
+  for (const char* earlier : {kMarkerFile, kLockFile, "results.json", "report.txt", "report.html",
+                              "study.json", "study.txt", "checkpoint", "traces"}) {
     if (fs::exists(fs::path(path) / earlier, ec)) return "";
   }
   fs::directory_iterator it(path, ec);

@@ -22,6 +22,7 @@ Exit 0 when all hold; otherwise the differences on stderr and exit 1.
 import argparse
 import json
 import os
+import shutil
 import subprocess
 import sys
 
@@ -70,6 +71,10 @@ def main():
     parser.add_argument("--vesselid", required=True)
     parser.add_argument("--work", required=True)
     args = parser.parse_args()
+    # A fresh work folder: vesselid writes only into empty folders or its own earlier output.
+    for folder in os.listdir(args.work) if os.path.isdir(args.work) else []:
+        if folder != "numba_cache":
+            shutil.rmtree(os.path.join(args.work, folder), ignore_errors=True)
     env = dict(os.environ, NUMBA_CACHE_DIR=os.path.join(args.work, "numba_cache"))
     peer = [sys.executable, os.path.join(HERE, "nomoto_peer.py")]
     failures = []
