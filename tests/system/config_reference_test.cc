@@ -159,7 +159,7 @@ class KeyTree {
     source.path = name_;
     source.text = Emit(root);
     source.in_memory = in_memory_;
-    const ModelRegistry registry = DefaultRegistry();
+    static const ModelRegistry registry = DefaultRegistry();  // once, not per probe
     ConfigFile config;
     std::string error;
     if (LoadConfig(source, registry, &config, &error)) {
