@@ -21,6 +21,8 @@ struct WorkLimits {
   // Data files may lie outside the data folder (--data, else the config's folder): an
   // absolute `file`, a `../` path or pattern (limits.outside_data).
   bool outside_data = false;
+  // The run's memory budget (limits.memory_mb; memory_budget.h), 0: half the machine's memory.
+  std::uint64_t memory_bytes = 0;
 };
 
 // A config file is read whole by the YAML parser: no limit key, it is never large.

@@ -544,12 +544,13 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
   return stage;
 }
 
-//   limits: {file_mb, data_values, integration_steps, study_cases, evaluations}
+//   limits: {file_mb, data_values, integration_steps, study_cases, evaluations, files,
+//            experiments, outside_data, memory_mb}
 WorkLimits ReadLimits(const YamlReader& reader, const YAML::Node& node) {
   const std::string path = "limits";
   reader.CheckMap(node, path,
                   {"file_mb", "data_values", "integration_steps", "study_cases", "evaluations",
-                   "files", "experiments", "outside_data"});
+                   "files", "experiments", "outside_data", "memory_mb"});
   WorkLimits limits;
   auto read = [&](const char* key, double scale, std::uint64_t* value) {
     if (!node[key]) return;
@@ -566,6 +567,7 @@ WorkLimits ReadLimits(const YamlReader& reader, const YAML::Node& node) {
   read("evaluations", 1.0, &limits.evaluations);
   read("files", 1.0, &limits.files);
   read("experiments", 1.0, &limits.experiments);
+  read("memory_mb", 1024.0 * 1024.0, &limits.memory_bytes);
   reader.Read(node, path, "outside_data", &limits.outside_data);
   return limits;
 }

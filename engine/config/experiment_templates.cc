@@ -15,6 +15,23 @@ namespace fs = std::filesystem;
 
 std::string KeyText(const YAML::Node& key) { return key.IsScalar() ? key.Scalar() : ""; }
 
+// New maps made inside one yaml-cpp memory that the document's joins. Inserting a document
+// node into a map of its own fresh memory copies the set of every node the document holds
+// into that memory (yaml-cpp's memory merge), so a fresh map per experiment costs the
+// document's size each and a config of n experiments n^2 (10 000 experiments: over 20 GB).
+// Here the first insertion moves the document into the arena's memory once; later ones find
+// it there.
+class NodeArena {
+ public:
+  YAML::Node NewMap() {
+    maps_.push_back(YAML::Node(YAML::NodeType::Map));
+    return static_cast<const YAML::Node&>(maps_)[maps_.size() - 1];
+  }
+
+ private:
+  YAML::Node maps_{YAML::NodeType::Sequence};
+};
+
 // A new scalar, placed at `written` for messages.
 YAML::Node Scalar(YamlReader* reader, const std::string& text, const YAML::Node& written) {
   YAML::Node node(text);
@@ -25,15 +42,15 @@ YAML::Node Scalar(YamlReader* reader, const std::string& text, const YAML::Node&
 // `own` over `defaults`: a new map placed at `own`. Maps on both sides merge recursively,
 // anything else of `own` replaces the default, and an own null drops it. `top`: the
 // experiment's map itself, whose own `file` or `files` replaces a default `file`.
-YAML::Node WithDefaults(YamlReader* reader, const YAML::Node& own, const YAML::Node& defaults,
-                        bool top) {
-  YAML::Node merged(YAML::NodeType::Map);
+YAML::Node WithDefaults(YamlReader* reader, NodeArena* arena, const YAML::Node& own,
+                        const YAML::Node& defaults, bool top) {
+  YAML::Node merged = arena->NewMap();
   reader->Place(merged, own);
   for (const auto& item : own) {
     if (item.second.IsNull()) continue;
     const YAML::Node base = defaults[KeyText(item.first)];
     if (item.second.IsMap() && base.IsDefined() && base.IsMap()) {
-      merged.force_insert(item.first, WithDefaults(reader, item.second, base, false));
+      merged.force_insert(item.first, WithDefaults(reader, arena, item.second, base, false));
     } else {
       merged.force_insert(item.first, item.second);
     }
@@ -84,8 +101,9 @@ std::vector<std::string> MatchingFiles(const YamlReader& reader, const YAML::Nod
 }
 
 // One experiment per file matching the entry's `files`, named by its `name` pattern.
-void ExpandFiles(YamlReader* reader, const YAML::Node& node, const std::string& path,
-                 const std::string& data_folder, std::vector<ExperimentEntry>* entries) {
+void ExpandFiles(YamlReader* reader, NodeArena* arena, const YAML::Node& node,
+                 const std::string& path, const std::string& data_folder,
+                 std::vector<ExperimentEntry>* entries) {
   const YAML::Node files = node["files"];
   const std::string key = Child(path, "files");
   if (node["file"].IsDefined()) {
@@ -117,7 +135,7 @@ void ExpandFiles(YamlReader* reader, const YAML::Node& node, const std::string& 
          at = experiment.find("{stem}", at + stem.size())) {
       experiment.replace(at, 6, stem);
     }
-    YAML::Node entry(YAML::NodeType::Map);
+    YAML::Node entry = arena->NewMap();
     reader->Place(entry, node);
     entry.force_insert(Scalar(reader, "name", name_at), Scalar(reader, experiment, name_at));
     entry.force_insert(Scalar(reader, "file", files), Scalar(reader, file, files));
@@ -163,16 +181,17 @@ std::vector<ExperimentEntry> ExpandExperiments(YamlReader* reader, const YAML::N
     reader->CheckMap(defaults, key, allowed);
   }
   std::vector<ExperimentEntry> entries;
+  NodeArena arena;
   size_t matched = 0;  // files of the `files` patterns so far
   for (size_t i = 0; i < experiments.size(); ++i) {
     const std::string path = Child("experiments", i);
     if (!experiments[i].IsMap()) reader->Fail(experiments[i], path, "expected a map");
     const YAML::Node node = defaults.IsDefined()
-                                ? WithDefaults(reader, experiments[i], defaults, true)
+                                ? WithDefaults(reader, &arena, experiments[i], defaults, true)
                                 : experiments[i];
     if (node["files"].IsDefined()) {
       const size_t before = entries.size();
-      ExpandFiles(reader, node, path, data_folder, &entries);
+      ExpandFiles(reader, &arena, node, path, data_folder, &entries);
       matched += entries.size() - before;
       if (matched > reader->limits().files) {
         reader->Fail(node["files"], Child(path, "files"),

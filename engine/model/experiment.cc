@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "engine/base/angle.h"
+#include "engine/base/memory_budget.h"
 #include "engine/base/statistics.h"
 #include "engine/data/angle_units.h"
 #include "engine/data/latent_input.h"
@@ -273,6 +274,16 @@ bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* record_channels
                   e.node_time.back() - e.node_time.front(), max_step, total_steps,
                   static_cast<double>(options.max_steps));
     return fail(text);
+  }
+  // The steps' times and input cache (3 rows per step), counted before they are allocated.
+  const double step_bytes = (3.0 * total_steps + 1.0) * (e.num_inputs + 1.0) * sizeof(double);
+  if (step_bytes > static_cast<double>(MemoryBudget())) {
+    char text[120];
+    std::snprintf(text, sizeof(text),
+                  "%.3g integration steps (the step is integration.max_step, "
+                  "else the median sample interval)",
+                  total_steps);
+    return fail(OverBudget(text, step_bytes));
   }
   // Per step: start and midpoint (right limits), end (left limit); then the last node.
   std::vector<double> right_times, end_times;

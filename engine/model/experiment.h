@@ -172,4 +172,8 @@ bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* channels,
 // file and line or the config key.
 bool LoadExperimentData(const ExperimentSpec& spec, Trajectory* trajectory, std::string* error);
 
+// What LoadExperimentData reads of `spec` but its name, as text: experiments with the same
+// key (windows or segments of one log) read the same Trajectory (trajectory_cache.h).
+std::string ReadKey(const ExperimentSpec& spec);
+
 }  // namespace vesselid

@@ -173,6 +173,61 @@ void AddBadCellFindings(const ExperimentSpec& spec, Trajectory* data) {
 
 }  // namespace
 
+std::string ReadKey(const ExperimentSpec& spec) {
+  // Every field LoadExperimentData and the steps it calls read (but for names in messages):
+  // a field added to them belongs here too.
+  std::string key;
+  const auto add = [&key](const std::string& text) {
+    key += std::to_string(text.size()) + ':' + text + ';';  // length-prefixed: unambiguous
+  };
+  const auto number = [&add](double value) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.17g", value);
+    add(text);
+  };
+  add(spec.file);
+  char table[32];
+  std::snprintf(table, sizeof(table), "%p", static_cast<const void*>(spec.table.get()));
+  add(table);
+  add(std::string(1, spec.csv.separator));
+  add(spec.csv.time_column);
+  number(static_cast<double>(spec.csv.max_bytes));
+  number(static_cast<double>(spec.csv.max_values));
+  number(spec.csv.max_bad_share);
+  number(static_cast<double>(spec.csv.parallel_bytes));
+  for (const std::string& column : MappedColumns(spec)) add(column);
+  add("|");
+  for (const auto* map : {&spec.inputs, &spec.outputs}) {
+    for (const auto& [channel, column] : *map) add(channel + '=' + column);
+    add("|");
+  }
+  for (const std::string& column : spec.degree_columns) add(column);
+  add("|");
+  const ExperimentDataSpec& d = spec.data;
+  add(d.position ? "position" : "");
+  for (const std::string* text :
+       {&d.gnss.lat_column, &d.gnss.lon_column, &d.gnss.north_column, &d.gnss.east_column}) {
+    add(*text);
+  }
+  add(d.gnss.origin_first ? "first" : "given");
+  number(d.gnss.origin_lat);
+  number(d.gnss.origin_lon);
+  add(d.screen ? "screen" : "");
+  number(d.max_speed);
+  for (const auto& [output, rate] : d.max_rate) {
+    add(output);
+    number(rate);
+  }
+  add("|");
+  number(d.stale);
+  add(d.zero_fix ? "zero_fix" : "");
+  add(d.zero_fix_given ? "given" : "");
+  number(d.resample_rate);
+  number(d.resample_max_gap);
+  for (const std::string& output : d.angle_outputs) add(output);
+  return key;
+}
+
 bool LoadExperimentData(const ExperimentSpec& spec, Trajectory* trajectory, std::string* error) {
   CsvReadOptions csv = spec.csv;
   csv.columns = MappedColumns(spec);

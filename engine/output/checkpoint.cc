@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <set>
 
 #include "engine/base/atomic_file.h"
 #include "engine/base/content_hash.h"
@@ -96,14 +97,17 @@ bool ReadManifest(const fs::path& folder, json* manifest, std::string* error) {
 bool RunFingerprint(const RunConfig& config, std::string* fingerprint, std::string* error) {
   ContentHash hash;
   if (!HashFile(config.path, "config file", kMaxConfigBytes, "", &hash, error)) return false;
+  std::set<std::string> hashed;  // each file once (windows of one log name it 10 000 times)
   for (const ExperimentSpec& spec : config.experiments) {
     AddPiece(spec.name, &hash);
+    AddPiece(spec.file, &hash);
     // A missing file counts as absent: the run itself reports it when it needs the data.
     std::error_code ec;
     if (!fs::exists(spec.file, ec)) {
       AddPiece("absent", &hash);
       continue;
     }
+    if (!hashed.insert(spec.file).second) continue;
     if (!HashFile(spec.file, "data file", spec.csv.max_bytes, "limits.file_mb", &hash, error)) return false;
   }
   char hex[20];

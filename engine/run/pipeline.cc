@@ -2,11 +2,12 @@
 
 #include <chrono>
 
+#include "engine/base/memory_budget.h"
 #include "engine/model/operating_range.h"
 #include "engine/run/display_units.h"
-#include "engine/run/integration_step.h"
 #include "engine/run/held_out.h"
 #include "engine/run/held_out_memo.h"
+#include "engine/run/integration_step.h"
 #include "engine/run/least_squares_stage.h"
 #include "engine/run/output_error_stage.h"
 #include "engine/run/parameter_ledger.h"
@@ -206,6 +207,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
                        const RunObserver& observer, std::vector<StageResult> finished,
                        TrajectoryCache* records) {
   const auto start_time = std::chrono::steady_clock::now();
+  const ScopedMemoryBudget budget(config.limits.memory_bytes);
   RunResult run;
   TrajectoryCache own_cache;
   TrajectoryCache& cache = records != nullptr ? *records : own_cache;

@@ -3,12 +3,13 @@
 namespace vesselid {
 
 void AddRecordNotes(const RunConfig& config, const TrajectoryCache& cache, RunResult* run) {
-  std::vector<Finding> findings;
+  std::vector<std::string> names;
+  for (const ExperimentSpec& spec : config.experiments) names.push_back(spec.name);
+  const std::vector<Finding> findings = cache.Findings(names);
   for (const ExperimentSpec& spec : config.experiments) {
-    const auto cached = cache.find(spec.name);
-    if (cached == cache.end()) continue;
-    const Trajectory& data = cached->second;
-    findings.insert(findings.end(), data.findings.begin(), data.findings.end());
+    const Trajectory* cached = cache.Find(spec.name);
+    if (cached == nullptr) continue;
+    const Trajectory& data = *cached;
     if (!data.epoch && !data.position_origin) continue;
     RecordOrigin origin;
     origin.experiment = spec.name;

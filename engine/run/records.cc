@@ -113,7 +113,7 @@ void NoteSkipped(TrajectoryCache* cache, const std::string& record, const Experi
                                                                    ": " + why);
   skipped.experiment = record;
   skipped.segment = piece.name;
-  AddFindingOnce(std::move(skipped), &(*cache)[record].findings);
+  cache->AddNote(record, std::move(skipped));
 }
 
 // Calls `build` with every experiment spec the records `names` are cut into, and its data.
@@ -156,17 +156,6 @@ bool ForEachRecordSpec(const RunConfig& config, const std::vector<std::string>& 
 }
 
 }  // namespace
-
-const Trajectory* LoadCachedTrajectory(const ExperimentSpec& spec, TrajectoryCache* cache,
-                                       std::string* error) {
-  auto cached = cache->find(spec.name);
-  if (cached == cache->end()) {
-    Trajectory trajectory;
-    if (!LoadExperimentData(spec, &trajectory, error)) return nullptr;
-    cached = cache->emplace(spec.name, std::move(trajectory)).first;
-  }
-  return &cached->second;
-}
 
 bool WindowSamples(const ExperimentSpec& spec, const std::string& column, TrajectoryCache* cache,
                    std::vector<double>* values) {
@@ -313,7 +302,7 @@ bool PrepareRegressionRecords(const RunConfig& config, const std::vector<std::st
                   cuts.size(), output.c_str(), limit / sorted[sorted.size() / 2]);
     Finding cut = MakeFinding(FindingKind::kRecordCut, "'" + s.name + text + where);
     cut.experiment = record;
-    AddFindingOnce(std::move(cut), &(*cache)[record].findings);
+    cache->AddNote(record, std::move(cut));
     return true;
   };
   // The Savitzky-Golay window must fit in the samples of the grid output.

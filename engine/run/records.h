@@ -13,6 +13,7 @@
 #include "engine/model/model_handle.h"
 #include "engine/regression/regression_data.h"
 #include "engine/run/run_config.h"
+#include "engine/run/trajectory_cache.h"
 
 namespace vesselid {
 
@@ -22,12 +23,11 @@ inline std::string RecordName(const std::string& experiment) {
   return experiment.substr(0, experiment.find_first_of("@#"));
 }
 
-// Recorded data by experiment, so that stages sharing an experiment read it once.
-using TrajectoryCache = std::map<std::string, Trajectory>;
-
 // The data of `spec` from the cache, read (LoadExperimentData) on first use; null on error.
-const Trajectory* LoadCachedTrajectory(const ExperimentSpec& spec, TrajectoryCache* cache,
-                                       std::string* error);
+inline const Trajectory* LoadCachedTrajectory(const ExperimentSpec& spec, TrajectoryCache* cache,
+                                              std::string* error) {
+  return cache->Load(spec, error);
+}
 
 // The finite samples of `column` within the experiment's time window [t_begin, t_end], read
 // through the cache; false when the data cannot be read or have no such column (checks that

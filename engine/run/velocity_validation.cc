@@ -30,7 +30,7 @@ bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model, const std
     options.max_step =
         IntegrationStep(StepUse::kVelocityValidation, steps.configured, steps.stages, record.dt);
     Experiment experiment;
-    const Trajectory& data = cache.at(record.record);
+    const Trajectory& data = *cache.Find(record.record);
     RecordChannels& channels = record_channels.try_emplace(&data, data).first->second;
     if (!BuildExperiment(spec, &channels, info, options, &experiment, error)) {
       return false;

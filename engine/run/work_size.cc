@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <set>
 
+#include "engine/base/memory_budget.h"
 #include "engine/run/integration_step.h"
 
 namespace vesselid {
@@ -27,19 +29,33 @@ double StepsOver(const std::vector<double>& t, double begin, double end, double 
   return (*(last - 1) - *first) / *step;
 }
 
+// Samples of `t` in [begin, end].
+double SamplesIn(const std::vector<double>& t, double begin, double end) {
+  return static_cast<double>(std::upper_bound(t.begin(), t.end(), end) -
+                             std::lower_bound(t.begin(), t.end(), begin));
+}
+
 }  // namespace
 
 bool CheckWorkSize(const RunConfig& config, TrajectoryCache* cache, std::string* error) {
   const double limit = static_cast<double>(config.limits.integration_steps);
+  const double inputs = static_cast<double>(config.model->info().inputs.size());
+  std::set<const Trajectory*> records;  // read once however many experiments share them
+  double record_bytes = 0.0;
   for (size_t s = 0; s < config.stages.size(); ++s) {
     const StageConfig& stage = config.stages[s];
     std::vector<std::string> names = stage.experiments;
     names.insert(names.end(), stage.validation.begin(), stage.validation.end());
+    double stage_steps = 0.0, stage_samples = 0.0;
     for (const std::string& name : names) {
       const ExperimentSpec* spec = config.FindExperiment(name);
       if (spec == nullptr) continue;  // the stage itself reports it
       const Trajectory* data = LoadCachedTrajectory(*spec, cache, error);
       if (data == nullptr) return false;
+      if (records.insert(data).second) {
+        record_bytes += sizeof(double) * static_cast<double>(data->t.size()) *
+                        static_cast<double>(1 + data->columns.size());
+      }
       // The pieces the record is identified as (segments, input ranges): gaps between them
       // are not integrated.
       std::vector<ExperimentSpec> pieces;
@@ -48,7 +64,10 @@ bool CheckWorkSize(const RunConfig& config, TrajectoryCache* cache, std::string*
       for (const ExperimentSpec& piece : pieces) {
         steps += StepsOver(data->t, piece.t_begin, piece.t_end,
                            IntegrationStep(StepUse::kStageFit, stage.experiment.max_step), &step);
+        stage_samples += SamplesIn(data->t, piece.t_begin, piece.t_end) *
+                         static_cast<double>(spec->outputs.size());
       }
+      stage_steps += steps;
       if (!(steps > limit)) continue;
       char text[600];
       std::snprintf(text, sizeof(text),
@@ -62,6 +81,23 @@ bool CheckWorkSize(const RunConfig& config, TrajectoryCache* cache, std::string*
                         : "the median sample interval; check the file's t column",
                     steps, limit);
       *error = text;
+      return false;
+    }
+    // What the stage holds at once: every experiment's input cache (3 rows of the inputs per
+    // step, experiment.h) and samples (output, value, weight), beside the records read.
+    const double cache_bytes = stage_steps * (3.0 * inputs + 1.0) * sizeof(double);
+    const double sample_bytes = stage_samples * 3.0 * sizeof(double);
+    const double total = record_bytes + cache_bytes + sample_bytes;
+    if (total > static_cast<double>(MemoryBudget())) {
+      char text[400];
+      std::snprintf(text, sizeof(text),
+                    " (the records read %s, input caches of %.3g integration steps %s, %.3g "
+                    "samples %s); the step is stages[%zu].integration.max_step, else the "
+                    "median sample interval",
+                    FormatBytes(record_bytes).c_str(), stage_steps,
+                    FormatBytes(cache_bytes).c_str(), stage_samples,
+                    FormatBytes(sample_bytes).c_str(), s);
+      *error = OverBudget("stage '" + stage.options.name + "': its experiments", total) + text;
       return false;
     }
   }

@@ -1,6 +1,7 @@
 // The work a run's config implies, checked before its first stage: the integration steps of
 // every record each stage simulates, its validation runs included, summed over the pieces the
-// record is identified as (segments, input ranges), against limits.integration_steps. A step
+// record is identified as (segments, input ranges), against limits.integration_steps, and
+// what the stage then holds (records, input caches, samples) against limits.memory_mb. A step
 // bound typed a few orders too small, or a time column with one absurd value, is refused with
 // the number and the key that caused it instead of exhausting memory hours into the run.
 #pragma once

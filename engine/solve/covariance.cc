@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "engine/base/check.h"
+#include "engine/base/memory_budget.h"
 #include "engine/solve/arrow_qr.h"
 
 namespace vesselid {
@@ -67,7 +68,8 @@ void NameUndetermined(const OutputErrorProblem& problem, const Eigen::VectorXd& 
 
 double Uncertainty::StdError(int index) const {
   for (size_t i = 0; i < variables.size(); ++i) {
-    if (variables[i] == index) return std_errors[i];
+    if (variables[i] == index)
+      return i < std_errors.size() ? std_errors[i] : std::numeric_limits<double>::quiet_NaN();
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
@@ -106,6 +108,18 @@ bool ComputeUncertainty(OutputErrorProblem* problem, double final_cost, Uncertai
   }
   if (m <= n) {
     u->message = "fewer residuals than free variables";
+    return false;
+  }
+  // Dense n x n matrices below: R D^-1, the SVD's V and its work, the pseudo-inverse, C, the
+  // covariance and the correlation.
+  const double dense = 8.0 * sizeof(double) * static_cast<double>(n) * n;
+  if (dense > static_cast<double>(MemoryBudget())) {
+    int own = 0;  // free variables of one experiment (initial states, per-experiment values)
+    for (int v : u->variables) own += variables[v].experiment >= 0 ? 1 : 0;
+    u->message = "not computed: " +
+                 OverBudget("the covariance of " + std::to_string(n) + " free variables (" +
+                                std::to_string(own) + " of them per experiment)",
+                            dense);
     return false;
   }
   SolutionJacobian evaluated;

@@ -86,16 +86,16 @@ bool NoisyInputExperiments(const StudyStage& stage, const std::vector<double>& i
   const ModelInfo& info = stage.model->info();
   std::mt19937_64 random(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
-  TrajectoryCache records;
   for (const std::string& name : stage.stage->experiments) {
-    const ExperimentSpec* spec = config.FindExperiment(name);
-    const auto found = stage.records.find(spec->name);
-    if (found == stage.records.end()) {
+    if (stage.records.Find(name) == nullptr) {
       *error = "experiment '" + name + "' was not read";
       return false;
     }
-    if (records.count(spec->name) > 0) continue;
-    Trajectory& data = records[spec->name] = found->second;
+  }
+  // A record shared by experiments (windows of one log) gets one noise draw.
+  const auto add_noise = [&](const std::string& name, Trajectory* record) {
+    const ExperimentSpec* spec = config.FindExperiment(name);
+    Trajectory& data = *record;
     std::set<int> noisy;  // a column read by two inputs gets its noise once
     for (size_t u = 0; u < info.inputs.size(); ++u) {
       const auto column = spec->inputs.find(info.inputs[u]);
@@ -106,7 +106,8 @@ bool NoisyInputExperiments(const StudyStage& stage, const std::vector<double>& i
         if (!std::isnan(value)) value += input_sigma[u] * normal(random);
       }
     }
-  }
+  };
+  TrajectoryCache records = stage.records.EditedCopy(stage.stage->experiments, add_noise);
   if (!PrepareExperiments(config, stage.stage->experiments, *stage.model,
                           StageExperimentOptions(config, *stage.stage), &records, experiments,
                           error)) {

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "engine/base/memory_budget.h"
 #include "engine/study/monte_carlo_study.h"
 #include "engine/study/partition_study.h"
 #include "engine/study/profile_likelihood.h"
@@ -26,6 +27,7 @@ bool RunStudy(const RunConfig& config, const StudyConfig& study,
               std::string* text, std::string* error,
               const std::function<void(const std::string&)>& progress) {
   const auto start_time = std::chrono::steady_clock::now();
+  const ScopedMemoryBudget budget(config.limits.memory_bytes);
   auto configured = [&](const std::string& part) {
     if (part == "profile") return study.profile.has_value();
     if (part == "monte_carlo") return study.monte_carlo.has_value();

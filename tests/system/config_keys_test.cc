@@ -645,6 +645,7 @@ const std::map<std::string, std::string> kShownElsewhere = {
     {"num_threads", "tests/system/thread_count_test.cc"},
     {"description", "tests/system/report_html_test.cc"},
     {"outside_data", "tests/system/hostile_input_test.cc"},
+    {"memory_mb", "tests/system/hostile_input_test.cc"},
     {"max_profile_evaluations", "tests/system/thrust_law_fit_test.cc"},
 };
 // Every documented key has a case here that adds it (more occurrences in `with` than in

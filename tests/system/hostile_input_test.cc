@@ -145,6 +145,28 @@ TEST_F(HostileInput, IntegrationStepTooSmall) {
       "\\(limits\\.integration_steps\\)");
 }
 
+// Raising limits.integration_steps does not remove the guard: the memory budget refuses the
+// steps' input caches before they are allocated, on any machine (2.9 TB).
+TEST_F(HostileInput, RaisedStepLimitIsStillBoundedByTheMemoryBudget) {
+  EditConfig("    free_initial_states: [psi]\n",
+             "    free_initial_states: [psi]\n    integration: {max_step: 1.0e-9}\n"
+             "limits: {integration_steps: 1e15}\n");
+  ExpectRejected(
+      "stage 'fit': its experiments need [0-9.]+ TiB, more than the memory budget of "
+      "[0-9.]+ [GT]iB \\(limits\\.memory_mb\\) \\(the records read [0-9.]+ KiB, input caches of "
+      "6e\\+10 integration steps [0-9.]+ TiB.*stages\\[0\\]\\.integration\\.max_step");
+  EXPECT_LT(ChildPeakMiB(), 200.0);
+}
+
+// limits.memory_mb is the budget: 1 MiB refuses 6e6 steps (183 MiB of input caches) that
+// the default budget and limits.integration_steps (2e7) admit.
+TEST_F(HostileInput, MemoryBudgetIsTheConfigs) {
+  EditConfig("    free_initial_states: [psi]\n",
+             "    free_initial_states: [psi]\n    integration: {max_step: 1.0e-5}\n"
+             "limits: {memory_mb: 1}\n");
+  ExpectRejected("more than the memory budget of 1 MiB \\(limits\\.memory_mb\\)");
+}
+
 TEST_F(HostileInput, AbsurdLastTimeIsRefusedBeforeTheRun) {
   const std::string text = ReadData();
   const std::string row = text.substr(text.rfind('\n', text.size() - 2) + 1);

@@ -70,7 +70,7 @@ TEST(RecordChecks, FindingsNameTheExperimentAndChannel) {
   };
   auto findings_of = [&](Trajectory t) {
     TrajectoryCache cache;
-    cache["zz"] = std::move(t);
+    cache.Put("zz", std::move(t));
     std::vector<Finding> findings;
     AddRecordCheckFindings(config, &cache, &findings);
     return findings;
@@ -119,7 +119,7 @@ TEST(RecordChecks, StaleRepeatsAndGapsOfAMeasuredOutput) {
   };
   auto findings_of = [&](Trajectory t, FindingKind kind) {
     TrajectoryCache cache;
-    cache["log"] = std::move(t);
+    cache.Put("log", std::move(t));
     std::vector<Finding> findings, of_kind;
     AddRecordCheckFindings(config, &cache, &findings);
     for (const Finding& f : findings) {
