@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <map>
 #include <memory>
 #include <string>
 #include <tuple>
@@ -83,6 +84,8 @@ Outcome LoadWithData(const std::string& config, bool is_text, const std::string&
   for (const auto& [key, value] : data) source.in_memory.insert(py::cast<std::string>(key));
   std::string error;
   if (!LoadConfig(source, Registry(), file, &error)) return Failure("config", error);
+  // One table per columns object: experiments given the same one share its record.
+  std::map<const PyObject*, std::shared_ptr<const Trajectory>> tables;
   for (const auto& [key, value] : data) {
     const std::string experiment = py::cast<std::string>(key);
     ExperimentSpec* spec = nullptr;
@@ -93,11 +96,13 @@ Outcome LoadWithData(const std::string& config, bool is_text, const std::string&
       return Failure(
           "data", "data given for '" + experiment + "', which is not an experiment of the config");
     }
+    std::shared_ptr<const Trajectory>& table = tables[value.ptr()];
     try {
-      spec->table = TableFromColumns(experiment, py::cast<py::dict>(value));
+      if (table == nullptr) table = TableFromColumns(experiment, py::cast<py::dict>(value));
     } catch (const std::exception& e) {
       return Failure("data", e.what());
     }
+    spec->table = table;
     // The table's own checks now, so that a bad frame is a data error before any stage.
     Trajectory checked;
     CsvReadOptions options = spec->csv;

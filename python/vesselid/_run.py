@@ -51,7 +51,13 @@ def _data_arguments(data):
         return os.fspath(data), {}
     if data is None:
         return "", {}
-    return "", {str(k): _columns(k, v) for k, v in data.items()}
+    # A frame given for several experiments (windows of one log) is converted once, so that
+    # the engine reads it as one record, as it reads one file once.
+    converted = {}
+    for k, v in data.items():
+        if id(v) not in converted:
+            converted[id(v)] = _columns(k, v)
+    return "", {str(k): converted[id(v)] for k, v in data.items()}
 
 
 def run(config, data=None, out=None, threads=0, report=True, progress=None):
