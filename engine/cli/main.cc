@@ -7,6 +7,8 @@
 //   vesselid study    <config.yaml> [--data <dir>] --out <dir>  sensitivity studies (the
 //                     [--only part...] [--threads n]             config's `study` section;
 //                                                                also under mpirun -np K)
+#include <unistd.h>
+
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -15,12 +17,14 @@
 #include "CLI/CLI.hpp"
 #include "engine/base/atomic_file.h"
 #include "engine/base/parallel_for.h"
+#include "engine/base/stop_request.h"
 #include "engine/cli/terminal_progress.h"
 #include "engine/config/config.h"
 #include "engine/diagnose/run_findings.h"
 #include "engine/output/checkpoint.h"
 #include "engine/output/finding_report.h"
 #include "engine/output/output_folder.h"
+#include "engine/output/output_staging.h"
 #include "engine/output/results_text.h"
 #include "engine/report/results_writer.h"
 #include "engine/report/started_gnuplots.h"
@@ -81,6 +85,30 @@ int Simulate(const std::string& config_path, const std::string& out_dir) {
   return 0;
 }
 
+// SIGINT (Ctrl-C) or SIGTERM during a run: the solves end after their current iteration
+// (stop_request.h), the stage cut short is not saved and no output is published; the run
+// says where it stopped and how to go on. A second signal ends the process at once (the
+// checkpoint still holds every finished stage).
+volatile std::sig_atomic_t stop_signal = 0;
+
+extern "C" void OnStopSignal(int signal) {
+  stop_signal = signal;
+  vesselid::RequestStop();  // a lock-free atomic store: safe in a handler
+  static const char kLine[] =
+      "\nvesselid: stopping after the current solver iteration (again to end at once)\n";
+  const ssize_t ignored = ::write(STDERR_FILENO, kLine, sizeof(kLine) - 1);
+  (void)ignored;
+}
+
+void CatchStopSignals() {
+  struct sigaction action = {};
+  action.sa_handler = OnStopSignal;
+  action.sa_flags = SA_RESETHAND;  // the second signal takes its default action
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
 struct RunFlags {
   bool quiet = false;
   bool verbose = false;
@@ -92,6 +120,33 @@ struct RunFlags {
 // Exit codes of a finished run under --strict (0 otherwise, whatever the verdict).
 constexpr int kExitDoubtful = 3;
 constexpr int kExitFailed = 4;
+
+// The line a run stopped by a signal ends with: where it stopped, what the checkpoint holds and
+// the command that goes on from there; exit status 128 + the signal, as the shell's.
+int Interrupted(const std::string& config_path, const std::string& data_dir,
+                const std::string& out_dir, const vesselid::RunConfig& config, size_t stage) {
+  const int signal = stop_signal;
+  const std::string name = signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal";
+  const std::string resume = "vesselid run " + config_path +
+                             (data_dir.empty() ? "" : " --data " + data_dir) + " --out " + out_dir +
+                             " --resume";
+  const size_t total = config.stages.size();
+  std::string where;
+  if (stage < total) {
+    where = "in stage '" + config.stages[stage].options.name + "' (" + std::to_string(stage + 1) +
+            " of " + std::to_string(total) + "); " +
+            (stage == 0
+                 ? std::string("no stage finished")
+                 : std::to_string(stage) + " finished stage(s) are in " + out_dir + "/checkpoint") +
+            ": `" + resume + "` goes on from stage '" + config.stages[stage].options.name + "'";
+  } else {
+    where = "before its results were published; its stages are in " + out_dir + "/checkpoint: `" +
+            resume + "` writes them without solving again";
+  }
+  std::fprintf(stderr, "vesselid: interrupted by %s %s (no results published: %s is as before)\n",
+               name.c_str(), where.c_str(), out_dir.c_str());
+  return 128 + signal;
+}
 
 // A staged run: progress on stderr, a checkpoint in out_dir after each stage; with --resume,
 // the stages an earlier run of the same config and data finished are loaded, not rerun.
@@ -125,24 +180,40 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
                                          " stages from the checkpoint)");
   }
   vesselid::RunObserver observer;
+  size_t interrupted_stage = config.stages.size();  // the stage a signal cut short
   observer.stage_started = [&](size_t index, const std::string& name) {
     progress.StageStarted(index, name);
   };
   observer.progress = [&](const vesselid::SolveProgress& p) { progress.Iteration(p); };
   observer.stage_finished = [&](size_t index, const vesselid::StageResult& stage,
                                 std::string* error) {
+    if (stop_signal != 0) {
+      interrupted_stage = index;
+      *error = "interrupted";
+      return false;
+    }
     progress.StageFinished(stage);
     // A fresh run replaces an earlier checkpoint once its first stage is done.
     if (index == 0 && !vesselid::StartCheckpoint(out_dir, fingerprint, error)) return false;
     return vesselid::SaveStageCheckpoint(out_dir, fingerprint, index, stage, error);
   };
   vesselid::RunResult result;
+  CatchStopSignals();
   const bool complete =
       vesselid::Identify(config, &result, &error, observer, std::move(finished));
+  if (stop_signal != 0) {
+    // A solve the stop request ended fails its stage, which never reaches stage_finished.
+    if (!complete && interrupted_stage == config.stages.size()) {
+      interrupted_stage = result.stages.size();
+    }
+    return Interrupted(config_path, data_dir, out_dir, config, interrupted_stage);
+  }
   // A run that stopped after finishing a stage still writes what it finished.
   if (!complete && result.stages.empty()) return Fail(error);
   std::string write_error;
   if (!vesselid::WriteRunResults(config, result, out_dir, &write_error, !flags.no_report)) {
+    if (stop_signal != 0)
+      return Interrupted(config_path, data_dir, out_dir, config, interrupted_stage);
     return Fail(write_error);
   }
   if (!flags.quiet) std::cout << vesselid::RunResultToText(config, result);
@@ -194,10 +265,15 @@ int Study(const std::string& config_path, const std::string& data_dir, const std
   }
   if (!group.root()) return 0;
   if (folder == nullptr && !open_output()) return Fail(error);
-  const std::filesystem::path out(out_dir);
+  // study.txt and study.json appear together (output_staging.h).
+  const auto staging =
+      vesselid::OutputStaging::Begin(out_dir, "study", {"study.txt", "study.json"}, &error);
+  if (staging == nullptr) return Fail(error);
+  const std::filesystem::path out(staging->folder());
   if (!vesselid::WriteFileAtomically((out / "study.txt").string(), text, &error) ||
       !vesselid::WriteFileAtomically((out / "study.json").string(), result.dump(2) + "\n",
-                                     &error)) {
+                                     &error) ||
+      !staging->Publish("study.json", &error)) {
     return Fail(error);
   }
   if (!quiet) std::cout << text;

@@ -15,6 +15,7 @@
 #include "engine/base/file_name.h"
 #include "engine/base/input_file.h"
 #include "engine/base/text_match.h"
+#include "engine/output/output_staging.h"
 
 namespace vesselid {
 namespace {
@@ -127,6 +128,9 @@ std::unique_ptr<OutputFolder> OutputFolder::Open(const std::string& path, std::s
     folder.reset();  // unlocks and removes the lock file
     return refuse("cannot write into the output folder: " + reason);
   }
+  // A command killed while publishing its outputs left them half moved: finished now, so the
+  // folder holds one whole set before anything else reads or writes it (output_staging.h).
+  if (!FinishPublication(path, error)) return nullptr;
   return folder;
 }
 

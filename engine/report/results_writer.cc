@@ -5,12 +5,14 @@
 
 #include "engine/base/atomic_file.h"
 #include "engine/base/parallel_for.h"
+#include "engine/base/stop_request.h"
 #include "engine/data/trajectory.h"
-#include "engine/report/report_html.h"
+#include "engine/output/output_staging.h"
 #include "engine/output/results_json_text.h"
 #include "engine/output/results_text.h"
 #include "engine/output/run_traces.h"
 #include "engine/output/step_regression_writer.h"
+#include "engine/report/report_html.h"
 
 namespace vesselid {
 namespace {
@@ -37,11 +39,15 @@ bool WriteTraces(const std::string& folder, const std::vector<NamedTrace>& trace
 
 bool WriteRunResults(const RunConfig& config, const RunResult& result, const std::string& out_dir,
                      std::string* error, bool html_report) {
+  const std::unique_ptr<OutputStaging> staging =
+      OutputStaging::Begin(out_dir, "run", RunSetEntries(), error);
+  if (staging == nullptr) return false;
+  const std::string folder = staging->folder();
   std::error_code ec;
-  const std::string traces = (fs::path(out_dir) / "traces").string();
+  const std::string traces = (fs::path(folder) / "traces").string();
   fs::create_directories(traces, ec);
   if (ec) {
-    *error = out_dir + ": cannot create folder: " + ec.message();
+    *error = traces + ": cannot create folder: " + ec.message();
     return false;
   }
   // report.html (its plots drawn by gnuplot processes) is formed while the traces and
@@ -49,30 +55,31 @@ bool WriteRunResults(const RunConfig& config, const RunResult& result, const std
   std::string html_error;
   std::future<bool> html;
   if (html_report) {
-    html = std::async(std::launch::async, [&]() {
-      return WriteRunReport(config, result, out_dir, &html_error);
-    });
+    html = std::async(std::launch::async,
+                      [&]() { return WriteRunReport(config, result, folder, &html_error); });
   }
-  const bool written =
-            WriteTraces(traces, RunTraces(config, result), error) &&
-            WriteStepRegressionFiles(config, result, out_dir, error) &&
-            WriteFileAtomically((fs::path(out_dir) / "report.txt").string(),
-                                RunResultToText(config, result), error);
+  const bool written = WriteTraces(traces, RunTraces(config, result), error) &&
+                       WriteStepRegressionFiles(config, result, folder, error) &&
+                       WriteFileAtomically((fs::path(folder) / "report.txt").string(),
+                                           RunResultToText(config, result), error);
   if (html_report && !html.get() && written) {
     *error = html_error;
     return false;
   }
-  if (!written) return false;
-  if (!html_report) {
-    const fs::path stale = fs::path(out_dir) / "report.html";
-    fs::remove(stale, ec);
-    if (ec) {
-      *error = stale.string() + ": cannot remove the earlier run's report: " + ec.message();
-      return false;
-    }
+  if (!written || !WriteFileAtomically((fs::path(folder) / "results.json").string(),
+                                       RunResultJsonText(config, result) + "\n", error)) {
+    return false;
   }
-  return WriteFileAtomically((fs::path(out_dir) / "results.json").string(),
-                             RunResultJsonText(config, result) + "\n", error);
+  // A stop asked for while the files were formed (Ctrl-C) leaves the previous set.
+  if (StopRequested()) {
+    *error = "stopped before the results were published";
+    return false;
+  }
+  return staging->Publish("results.json", error);
+}
+
+std::vector<std::string> RunSetEntries() {
+  return {"results.json", "report.txt", "report.html", "traces", "surfaces"};
 }
 
 }  // namespace vesselid

@@ -1,13 +1,15 @@
 // Writing a run's outputs into its folder: traces/<stage>.<experiment>.csv (measured vs
 // simulated outputs), the step-regression files, report.txt (results_text.h), report.html
-// (report_html.h) and results.json (results_json.h). Everything is formed in memory first and
-// each file is written to a temporary name and renamed, results.json last, so a failed run
-// never leaves a partial results file. Without `html_report` (`vesselid run --no-report`, batch
-// use) report.html and its plots are not formed, and an earlier run's report.html in the folder
-// is removed so that it cannot be mistaken for this run's.
+// (report_html.h) and results.json (results_json.h). Everything is written into the folder's
+// staging folder first and published as one set, results.json last (output_staging.h): a run
+// that fails while writing (a full disk, a name, a stop request) leaves the previous set
+// whole, and a folder with results.json holds one whole set. Without `html_report`
+// (`vesselid run --no-report`, batch use) report.html and its plots are not formed, and an
+// earlier run's report.html leaves the folder with the rest of the earlier set.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "engine/run/run_config.h"
 #include "engine/run/run_result.h"
@@ -16,5 +18,9 @@ namespace vesselid {
 
 bool WriteRunResults(const RunConfig& config, const RunResult& result, const std::string& out_dir,
                      std::string* error, bool html_report = true);
+
+// The entries a run's set may hold (removed with the previous set when this one lacks them;
+// its step-regression tables come from the manifest the previous publication wrote).
+std::vector<std::string> RunSetEntries();
 
 }  // namespace vesselid

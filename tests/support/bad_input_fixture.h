@@ -49,7 +49,7 @@ class BadInput : public ::testing::Test {
     fs::create_directories(dir_);
     auto model = nomoto::MakeFirstOrderHandle();
     nomoto::ClosedLoopOptions loop;
-    loop.duration = 60.0;
+    loop.duration = RecordSeconds();
     loop.sample_time = 0.1;
     loop.controller_gain = 0.7;
     loop.excitation.amplitude = 0.3;
@@ -61,6 +61,8 @@ class BadInput : public ::testing::Test {
     WriteConfig(kGoodConfig);
   }
   void TearDown() override { fs::remove_all(dir_); }
+  // The length of data.csv (0.1 s samples).
+  virtual double RecordSeconds() const { return 60.0; }
 
   void WriteConfig(const std::string& text) { std::ofstream(dir_ / "config.yaml") << text; }
 
