@@ -49,6 +49,11 @@ const Row kRows[] = {
      "Times were Unix epoch seconds (t = 0 is the first time), or positions were GNSS fixes "
      "mapped to north/east metres about an origin.",
      "None; results.json's `record_origins` gives the origin."},
+    {K::kOutsideDataFolder, "outside_data_folder", S::kInfo,
+     "A data file lies outside the data folder (--data, else the config's folder): an "
+     "absolute `file:`, a `../` path or a pattern that leaves the folder, read because the "
+     "config allows it (`limits: {outside_data: true}`).",
+     "None if the file is the one meant; else give --data the folder that holds the data."},
     {K::kSegmentSkipped, "segment_skipped", S::kWarning,
      "A piece of a record has fewer samples than a stage needs (a least-squares stage: its "
      "Savitzky-Golay window; an output-error stage: the model's number of states) and is left "
@@ -135,7 +140,9 @@ const Row kRows[] = {
      "Read the message; more runs or blocks may help."},
     {K::kCompensation, "compensation", S::kWarning,
      "Two estimates of a stage correlate beyond 0.999 (per-experiment values included) while "
-     "either has a relative standard error of 30 % or more (pairs determined to 8-20 % at correlation 0.999 fit well in the verdict corpus; the USV log's b_u and k_f, 40 % at -0.9994, are a real trade-off): the data determine only their "
+     "either has a relative standard error of 30 % or more (pairs determined to 8-20 % at "
+     "correlation 0.999 fit well in the verdict corpus; the USV log's b_u and k_f, 40 % at "
+     "-0.9994, are a real trade-off): the data determine only their "
      "combination.",
      "Fix or drop the one the finding names."},
     {K::kInputNoise, "input_noise", S::kWarning,

@@ -29,6 +29,7 @@ enum class FindingKind {
   kGaps,
   kResampled,
   kRecordOrigin,
+  kOutsideDataFolder,
   kSegmentSkipped,
   kRecordCut,
   kUnitSuspect,

@@ -56,6 +56,7 @@ ExperimentSpec ReadExperiment(const YamlReader& reader, const YAML::Node& node,
     spec.file = fs::path(file).is_absolute() ? file : (base / file).lexically_normal().string();
     const std::string outside = OutsideDataFolder(file, base.string(), reader.limits());
     if (!outside.empty()) reader.Fail(node["file"], Child(path, "file"), outside);
+    spec.outside_data_folder = DataFolderLeft(file, base.string());
   } else if (in_memory.count(spec.name) == 0) {
     reader.Fail(node, path,
                 "missing key 'file' (or 'files', a pattern)" +

@@ -73,9 +73,11 @@ std::vector<Finding> FoldFindings(const std::vector<Finding>& input) {
     // Record findings differ in what they say of each record (counts, times, lines): folded
     // only where the message is the same.
     static const std::set<FindingKind> kPerRecord{
-        FindingKind::kSamplesRemoved, FindingKind::kBadCells,     FindingKind::kColumnsNotRead,
-        FindingKind::kGaps,           FindingKind::kSegmentSkipped, FindingKind::kResampled,
-        FindingKind::kRecordOrigin,   FindingKind::kRecordCut,    FindingKind::kStaleRepeats};
+        FindingKind::kSamplesRemoved, FindingKind::kBadCells,
+        FindingKind::kColumnsNotRead, FindingKind::kGaps,
+        FindingKind::kSegmentSkipped, FindingKind::kResampled,
+        FindingKind::kRecordOrigin,   FindingKind::kRecordCut,
+        FindingKind::kStaleRepeats,   FindingKind::kOutsideDataFolder};
     const bool whole_kind = !f.experiment.empty() && kPerRecord.count(f.kind) == 0;
     const Key key{static_cast<int>(f.kind), static_cast<int>(f.severity), f.stage,
                   f.parameter.substr(0, f.parameter.find('[')), f.output,

@@ -275,8 +275,7 @@ bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* record_channels
                   static_cast<double>(options.max_steps));
     return fail(text);
   }
-  // The steps' times and input cache (3 rows per step), counted before they are allocated.
-  const double step_bytes = (3.0 * total_steps + 1.0) * (e.num_inputs + 1.0) * sizeof(double);
+  const double step_bytes = IntegrationStepBytes(total_steps, e.num_inputs);
   if (step_bytes > static_cast<double>(MemoryBudget())) {
     char text[120];
     std::snprintf(text, sizeof(text),

@@ -27,6 +27,8 @@ namespace vesselid {
 struct ExperimentSpec {
   std::string name;
   std::string file;                                    // CSV path as resolved by the config
+  // The data folder `file` lies outside of (read under limits.outside_data), else empty.
+  std::string outside_data_folder;
   // The record in memory (a program's arrays, a DataFrame from Python: trajectory_table.h);
   // when set it is used instead of `file`, which may then be empty.
   std::shared_ptr<const Trajectory> table;
@@ -152,6 +154,13 @@ inline bool SameSimulation(const ExperimentOptions& x, const ExperimentOptions& 
 // Largest change of an unwrapped angle output between two samples: beyond it the direction
 // of the turn is ambiguous, and BuildExperiment refuses the record (or its `wrap` is needed).
 inline constexpr double kMaxAngleStep = M_PI / 2;
+
+// The bytes an experiment holds for `steps` integration steps of `inputs` model inputs, counted
+// before BuildExperiment allocates them (and by the run's memory budget, work_size.h): the
+// input cache and the steps' times, 3 rows per step (start, midpoint, end) and the last node.
+inline double IntegrationStepBytes(double steps, double inputs) {
+  return (3.0 * steps + 1.0) * (inputs + 1.0) * sizeof(double);
+}
 
 // Builds the simulation grid, input cache and samples. Initial-state values come from
 // spec.initial_state, else from the output of the same name measured at t0, else 0; the start

@@ -186,6 +186,7 @@ std::string ReadKey(const ExperimentSpec& spec) {
     add(text);
   };
   add(spec.file);
+  add(spec.outside_data_folder);
   char table[32];
   std::snprintf(table, sizeof(table), "%p", static_cast<const void*>(spec.table.get()));
   add(table);
@@ -253,6 +254,14 @@ bool LoadExperimentData(const ExperimentSpec& spec, Trajectory* trajectory, std:
     *error = "experiment '" + spec.name + "': " + what;
     return false;
   };
+  if (!spec.outside_data_folder.empty()) {
+    Finding outside =
+        MakeFinding(FindingKind::kOutsideDataFolder,
+                    "read '" + spec.file + "', outside the data folder " +
+                        spec.outside_data_folder + " (allowed by limits: {outside_data: true})");
+    outside.experiment = spec.name;
+    trajectory->findings.push_back(std::move(outside));
+  }
   if (trajectory->epoch) {
     Finding origin = MakeFinding(FindingKind::kRecordOrigin,
                                  "times are Unix epoch seconds; t = 0 is " +

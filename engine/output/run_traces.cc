@@ -21,28 +21,39 @@ Trajectory TraceInDisplayUnits(const RunConfig& config, const ExperimentFit& fit
 }
 
 // `parts` joined by '.', as they are (the trace's name) or escaped (its file).
-void AddTraces(const RunConfig& config, const std::vector<std::string>& parts,
-               const std::vector<ExperimentFit>& fits, std::vector<NamedTrace>* traces) {
+void AddSources(const std::vector<std::string>& parts, const std::vector<ExperimentFit>& fits,
+                std::vector<TraceSource>* sources) {
   std::string name, file;
   for (const std::string& part : parts) {
     name += part + ".";
     file += FileNameOf(part) + ".";
   }
   for (const ExperimentFit& fit : fits) {
-    traces->push_back({name + fit.experiment, file + FileNameOf(fit.experiment) + ".csv",
-                       TraceInDisplayUnits(config, fit)});
+    sources->push_back({name + fit.experiment, file + FileNameOf(fit.experiment) + ".csv", &fit});
   }
 }
 
 }  // namespace
 
+std::vector<TraceSource> RunTraceSources(const RunResult& result) {
+  std::vector<TraceSource> sources;
+  for (const StageResult& stage : result.stages) {
+    AddSources({stage.name}, stage.summary.fits, &sources);
+    AddSources({stage.name, "validation"}, stage.validation, &sources);
+  }
+  AddSources({"final_validation"}, result.final_validation, &sources);
+  return sources;
+}
+
+NamedTrace TraceOf(const RunConfig& config, const TraceSource& source) {
+  return {source.name, source.file, TraceInDisplayUnits(config, *source.fit)};
+}
+
 std::vector<NamedTrace> RunTraces(const RunConfig& config, const RunResult& result) {
   std::vector<NamedTrace> traces;
-  for (const StageResult& stage : result.stages) {
-    AddTraces(config, {stage.name}, stage.summary.fits, &traces);
-    AddTraces(config, {stage.name, "validation"}, stage.validation, &traces);
+  for (const TraceSource& source : RunTraceSources(result)) {
+    traces.push_back(TraceOf(config, source));
   }
-  AddTraces(config, {"final_validation"}, result.final_validation, &traces);
   return traces;
 }
 

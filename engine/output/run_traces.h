@@ -23,8 +23,19 @@ struct NamedTrace {
   Trajectory trace;
 };
 
-// Every trace of the run: each stage's experiments and held-out runs, then the final
-// validation.
+// A trace named but not yet formed: its fit in `result`.
+struct TraceSource {
+  std::string name, file;  // as NamedTrace's
+  const ExperimentFit* fit;
+};
+
+// Every trace of the run, in order: each stage's experiments and held-out runs, then the
+// final validation. Formed one at a time (TraceOf), a run's traces are written without a
+// second copy of them all in memory.
+std::vector<TraceSource> RunTraceSources(const RunResult& result);
+NamedTrace TraceOf(const RunConfig& config, const TraceSource& source);
+
+// Every trace of the run, formed (the Python package's Result.traces).
 std::vector<NamedTrace> RunTraces(const RunConfig& config, const RunResult& result);
 
 }  // namespace vesselid

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 
 #include "engine/base/atomic_file.h"
@@ -159,6 +160,32 @@ std::vector<std::string> AngleOutputs(const RunConfig& config) {
   return angles;
 }
 
+// Records of one list of fits drawn as figures at most: a campaign of thousands of records
+// draws those that fit worst (each figure is a gnuplot run and an image in the page); every
+// record keeps its table, and its trace in traces/.
+constexpr size_t kMaxRecordFigures = 12;
+
+// The records of `groups` to draw: all, or the kMaxRecordFigures whose worst piece has the
+// largest rms cost (a diverged one first).
+std::vector<bool> RecordsToDraw(const std::vector<std::vector<const ExperimentFit*>>& groups) {
+  std::vector<bool> draw(groups.size(), groups.size() <= kMaxRecordFigures);
+  if (groups.size() <= kMaxRecordFigures) return draw;
+  std::vector<double> worst(groups.size(), 0.0);
+  for (size_t g = 0; g < groups.size(); ++g) {
+    for (const ExperimentFit* fit : groups[g]) {
+      worst[g] = std::max(worst[g], fit->diverged || !std::isfinite(fit->rms_cost)
+                                        ? std::numeric_limits<double>::infinity()
+                                        : fit->rms_cost);
+    }
+  }
+  std::vector<size_t> order(groups.size());
+  for (size_t g = 0; g < order.size(); ++g) order[g] = g;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return worst[a] > worst[b]; });
+  for (size_t k = 0; k < kMaxRecordFigures; ++k) draw[order[k]] = true;
+  return draw;
+}
+
 // A figure and metrics table per record of `fits`, in the units the user reads
 // (display_units.h), and its x-y track where the model has horizontal positions; regression
 // fits get their table only.
@@ -167,7 +194,16 @@ void FitFigures(const RunConfig& config, const std::string& key, const std::stri
                 ReportPage* page) {
   const ModelInfo& info = config.model->info();
   const std::pair<int, int> track = info.TrackOutputs();
-  for (const std::vector<const ExperimentFit*>& group : GroupByRecord(fits)) {
+  const std::vector<std::vector<const ExperimentFit*>> groups = GroupByRecord(fits);
+  const std::vector<bool> draw = RecordsToDraw(groups);
+  if (groups.size() > kMaxRecordFigures) {
+    page->html << "<p class=\"muted\">" << groups.size() << " records: figures for the "
+               << kMaxRecordFigures
+               << " that fit worst (largest rms cost); every record's table below, and its "
+                  "measured and simulated outputs in traces/.</p>\n";
+  }
+  for (size_t g = 0; g < groups.size(); ++g) {
+    const std::vector<const ExperimentFit*>& group = groups[g];
     const std::string record = RecordName(group.front()->experiment);
     page->html << "<h4>" << HtmlEscape(record);
     if (group.size() > 1) {
@@ -179,11 +215,11 @@ void FitFigures(const RunConfig& config, const std::string& key, const std::stri
       units[output] = OutputDisplayUnit(config, record, output);
     }
     Figure figure;
-    if (IsSimulationFit(*group.front()) &&
+    if (draw[g] && IsSimulationFit(*group.front()) &&
         TraceFigure(key + "." + record, group, angles, units, &figure)) {
       page->AddFigure(std::move(figure), record + ": measured and simulated outputs, " + what);
     }
-    if (track.first >= 0 && IsSimulationFit(*group.front()) &&
+    if (draw[g] && track.first >= 0 && IsSimulationFit(*group.front()) &&
         TrackFigure(key + "." + record + ".track", group, info.outputs[track.first],
                     info.outputs[track.second], &figure)) {
       page->AddFigure(std::move(figure), record + ": x-y track, measured and simulated, " + what);

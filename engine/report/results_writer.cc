@@ -19,13 +19,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// One file per trace, written in parallel; the first failure in the traces' order reported.
-bool WriteTraces(const std::string& folder, const std::vector<NamedTrace>& traces,
+// One file per trace, formed and written in parallel, one at a time per thread (no copy of
+// every trace at once); the first failure in the traces' order reported.
+bool WriteTraces(const std::string& folder, const RunConfig& config, const RunResult& result,
                  std::string* error) {
-  std::vector<std::string> errors(traces.size());
-  ParallelFor(static_cast<int>(traces.size()), 0, [&](int i) {
-    const std::string path = (fs::path(folder) / traces[i].file).string();
-    WriteTrajectoryCsv(path, traces[i].trace, &errors[i]);
+  const std::vector<TraceSource> sources = RunTraceSources(result);
+  std::vector<std::string> errors(sources.size());
+  ParallelFor(static_cast<int>(sources.size()), 0, [&](int i) {
+    if (StopRequested()) return;
+    const NamedTrace trace = TraceOf(config, sources[i]);
+    WriteTrajectoryCsv((fs::path(folder) / trace.file).string(), trace.trace, &errors[i]);
   });
   for (const std::string& e : errors) {
     if (e.empty()) continue;
@@ -58,7 +61,7 @@ bool WriteRunResults(const RunConfig& config, const RunResult& result, const std
     html = std::async(std::launch::async,
                       [&]() { return WriteRunReport(config, result, folder, &html_error); });
   }
-  const bool written = WriteTraces(traces, RunTraces(config, result), error) &&
+  const bool written = WriteTraces(traces, config, result, error) &&
                        WriteStepRegressionFiles(config, result, folder, error) &&
                        WriteFileAtomically((fs::path(folder) / "report.txt").string(),
                                            RunResultToText(config, result), error);

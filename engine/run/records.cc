@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "engine/data/segments.h"
 #include "engine/model/input_range.h"
@@ -66,17 +67,20 @@ bool WholeRecordSpecs(const ExperimentSpec& spec, const Trajectory& data, double
   return true;
 }
 
+// The rows of `data` inside [begin, end] (its times increase): [first, last).
+std::pair<size_t, size_t> RowsIn(const Trajectory& data, double begin, double end) {
+  const auto first = std::lower_bound(data.t.begin(), data.t.end(), begin - 1e-9);
+  const auto last = std::upper_bound(first, data.t.end(), end + 1e-9);
+  return {static_cast<size_t>(first - data.t.begin()), static_cast<size_t>(last - data.t.begin())};
+}
+
 // Rows of `data` inside the window of `s` where the column `column` has a sample.
 int SamplesInWindow(const Trajectory& data, const ExperimentSpec& s, const std::string& column) {
   const int c = data.Find(column);
   if (c < 0) return -1;
+  const auto [first, last] = RowsIn(data, s.t_begin, s.t_end);
   int count = 0;
-  for (size_t k = 0; k < data.t.size(); ++k) {
-    if (data.t[k] >= s.t_begin - 1e-9 && data.t[k] <= s.t_end + 1e-9 &&
-        !std::isnan(data.columns[c][k])) {
-      ++count;
-    }
-  }
+  for (size_t k = first; k < last; ++k) count += !std::isnan(data.columns[c][k]);
   return count;
 }
 
@@ -90,9 +94,9 @@ int SampleTimes(const Trajectory& data, const ExperimentSpec& s,
       columns.push_back(data.Find(mapped->second));
     }
   }
+  const auto [first, last] = RowsIn(data, s.t_begin, s.t_end);
   int count = 0;
-  for (size_t k = 0; k < data.t.size(); ++k) {
-    if (data.t[k] < s.t_begin - 1e-9 || data.t[k] > s.t_end + 1e-9) continue;
+  for (size_t k = first; k < last; ++k) {
     for (int c : columns) {
       if (std::isnan(data.columns[c][k])) continue;
       ++count;
@@ -165,11 +169,11 @@ bool WindowSamples(const ExperimentSpec& spec, const std::string& column, Trajec
   const int c = data->Find(column);
   if (c < 0) return false;
   values->clear();
-  for (size_t k = 0; k < data->t.size(); ++k) {
+  const auto first = std::lower_bound(data->t.begin(), data->t.end(), spec.t_begin);
+  const auto last = std::upper_bound(first, data->t.end(), spec.t_end);
+  for (size_t k = first - data->t.begin(); k < static_cast<size_t>(last - data->t.begin()); ++k) {
     const double v = data->columns[c][k];
-    if (data->t[k] >= spec.t_begin && data->t[k] <= spec.t_end && std::isfinite(v)) {
-      values->push_back(v);
-    }
+    if (std::isfinite(v)) values->push_back(v);
   }
   return true;
 }

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "engine/base/memory_budget.h"
+#include "engine/model/experiment.h"
 #include "engine/run/integration_step.h"
 
 namespace vesselid {
@@ -41,7 +42,7 @@ bool CheckWorkSize(const RunConfig& config, TrajectoryCache* cache, std::string*
   const double limit = static_cast<double>(config.limits.integration_steps);
   const double inputs = static_cast<double>(config.model->info().inputs.size());
   std::set<const Trajectory*> records;  // read once however many experiments share them
-  double record_bytes = 0.0;
+  double record_bytes = 0.0, trace_bytes = 0.0;
   for (size_t s = 0; s < config.stages.size(); ++s) {
     const StageConfig& stage = config.stages[s];
     std::vector<std::string> names = stage.experiments;
@@ -83,20 +84,23 @@ bool CheckWorkSize(const RunConfig& config, TrajectoryCache* cache, std::string*
       *error = text;
       return false;
     }
-    // What the stage holds at once: every experiment's input cache (3 rows of the inputs per
-    // step, experiment.h) and samples (output, value, weight), beside the records read.
-    const double cache_bytes = stage_steps * (3.0 * inputs + 1.0) * sizeof(double);
+    // What the stage holds at once: every experiment's input cache and step times
+    // (experiment.h) and samples (output, value, weight), beside the records read and the
+    // traces of this and the earlier stages (time, measured and simulated per sample), which
+    // the run keeps for its report.
+    const double cache_bytes = IntegrationStepBytes(stage_steps, inputs);
     const double sample_bytes = stage_samples * 3.0 * sizeof(double);
-    const double total = record_bytes + cache_bytes + sample_bytes;
+    trace_bytes += stage_samples * 3.0 * sizeof(double);
+    const double total = record_bytes + cache_bytes + sample_bytes + trace_bytes;
     if (total > static_cast<double>(MemoryBudget())) {
-      char text[400];
+      char text[480];
       std::snprintf(text, sizeof(text),
                     " (the records read %s, input caches of %.3g integration steps %s, %.3g "
-                    "samples %s); the step is stages[%zu].integration.max_step, else the "
-                    "median sample interval",
+                    "samples %s, the traces kept for the report %s); the step is "
+                    "stages[%zu].integration.max_step, else the median sample interval",
                     FormatBytes(record_bytes).c_str(), stage_steps,
                     FormatBytes(cache_bytes).c_str(), stage_samples,
-                    FormatBytes(sample_bytes).c_str(), s);
+                    FormatBytes(sample_bytes).c_str(), FormatBytes(trace_bytes).c_str(), s);
       *error = OverBudget("stage '" + stage.options.name + "': its experiments", total) + text;
       return false;
     }

@@ -61,7 +61,8 @@ int Root(std::vector<int>* parent, int g) {
 
 }  // namespace
 
-ArrowR ArrowQr(const ceres::CRSMatrix& jacobian, const std::vector<int>& group, int rows) {
+ArrowBlocks ArrowQrBlocks(const ceres::CRSMatrix& jacobian, const std::vector<int>& group,
+                          int rows) {
   const int n = jacobian.num_cols;
   if (rows < 0) rows = jacobian.num_rows;
   // Dense group ids, merged where a row joins two.
@@ -113,10 +114,8 @@ ArrowR ArrowQr(const ceres::CRSMatrix& jacobian, const std::vector<int>& group, 
   std::vector<int> position(n, -1);
   for (int i = 0; i < ns; ++i) position[shared_columns[i]] = i;
 
-  ArrowR out;
-  out.r = Eigen::MatrixXd::Zero(n, n);
+  ArrowBlocks out;
   RowReducer shared(ns);
-  int at = 0;  // R's next row/column
   for (int b = 0; b < num_blocks_max; ++b) {
     const std::vector<int>& own = block_columns[b];
     if (own.empty()) continue;
@@ -131,12 +130,9 @@ ArrowR ArrowQr(const ceres::CRSMatrix& jacobian, const std::vector<int>& group, 
       }
     }
     const Eigen::MatrixXd rb = reducer.R();
-    out.r.block(at, at, nl, nl) = rb.topLeftCorner(nl, nl);
-    out.r.block(at, n - ns, nl, ns) = rb.topRightCorner(nl, ns);
+    out.blocks.push_back({own, rb.topLeftCorner(nl, nl), rb.topRightCorner(nl, ns)});
     for (int i = 0; i < ns; ++i) shared.NextRow() = rb.row(nl + i).tail(ns);
-    for (int c : own) out.order.push_back(c);
     for (int i = 0; i < nl; ++i) position[own[i]] = -1;
-    at += nl;
   }
   for (int r : shared_rows) {
     auto row = shared.NextRow();
@@ -144,8 +140,26 @@ ArrowR ArrowQr(const ceres::CRSMatrix& jacobian, const std::vector<int>& group, 
       row(position[jacobian.cols[k]]) = jacobian.values[k];
     }
   }
-  if (ns > 0) out.r.bottomRightCorner(ns, ns) = shared.R();
-  for (int c : shared_columns) out.order.push_back(c);
+  out.shared_columns = shared_columns;
+  out.shared = ns > 0 ? shared.R() : Eigen::MatrixXd(0, 0);
+  return out;
+}
+
+ArrowR ArrowQr(const ceres::CRSMatrix& jacobian, const std::vector<int>& group, int rows) {
+  const ArrowBlocks blocks = ArrowQrBlocks(jacobian, group, rows);
+  const int n = jacobian.num_cols, ns = static_cast<int>(blocks.shared_columns.size());
+  ArrowR out;
+  out.r = Eigen::MatrixXd::Zero(n, n);
+  int at = 0;  // R's next row/column
+  for (const ArrowBlocks::Block& b : blocks.blocks) {
+    const int nl = static_cast<int>(b.columns.size());
+    out.r.block(at, at, nl, nl) = b.own;
+    out.r.block(at, n - ns, nl, ns) = b.shared;
+    for (int c : b.columns) out.order.push_back(c);
+    at += nl;
+  }
+  if (ns > 0) out.r.bottomRightCorner(ns, ns) = blocks.shared;
+  for (int c : blocks.shared_columns) out.order.push_back(c);
   return out;
 }
 

@@ -24,6 +24,19 @@
 
 namespace vesselid {
 
+// R by blocks: each group's R_gg and R_gp, and R_pp, in n (own + shared) numbers per row of
+// a group instead of n.
+struct ArrowBlocks {
+  struct Block {
+    std::vector<int> columns;  // the Jacobian columns of the group, in R's order
+    Eigen::MatrixXd own;       // R_gg, upper triangular
+    Eigen::MatrixXd shared;    // R_gp
+  };
+  std::vector<Block> blocks;
+  std::vector<int> shared_columns;  // in R's order
+  Eigen::MatrixXd shared;           // R_pp, upper triangular
+};
+
 struct ArrowR {
   Eigen::MatrixXd r;       // n x n upper triangular, in `order`
   std::vector<int> order;  // order[k]: the Jacobian column held in R's column k
@@ -32,5 +45,8 @@ struct ArrowR {
 // `group[c]`: column c's group (< 0: shared). Rows [0, rows) of `jacobian` are used
 // (rows < 0: all).
 ArrowR ArrowQr(const ceres::CRSMatrix& jacobian, const std::vector<int>& group, int rows = -1);
+// The same R by blocks (memory linear in the number of groups).
+ArrowBlocks ArrowQrBlocks(const ceres::CRSMatrix& jacobian, const std::vector<int>& group,
+                          int rows = -1);
 
 }  // namespace vesselid

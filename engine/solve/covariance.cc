@@ -12,6 +12,10 @@
 namespace vesselid {
 namespace {
 
+// More free variables than this, some of them per experiment: the covariance by blocks
+// (covariance.h), whatever the budget. The dense SVD is O(n^3) (seconds at 1 000, hours at
+// 20 000), and nobody reads the correlations of thousands of initial states.
+constexpr int kDenseVariables = 1000;
 // Singular values below this fraction of the largest are treated as zero.
 constexpr double kRankTolerance = 1e-8;
 // A variable takes part in an undetermined direction when its component in the unit
@@ -64,12 +68,114 @@ void NameUndetermined(const OutputErrorProblem& problem, const Eigen::VectorXd& 
   }
 }
 
+// The covariance by blocks (covariance.h): the shared variables' covariance and correlation,
+// each per-experiment variable's standard error. `n` and `m`: free variables and residuals.
+bool BlockUncertainty(const OutputErrorProblem& problem, double final_cost,
+                      const SolutionJacobian& solution, int m, int n, Uncertainty* u) {
+  const std::vector<Variable>& variables = problem.variables();
+  std::vector<int> group(n);
+  for (int i = 0; i < n; ++i) group[i] = variables[solution.variables[i]].experiment;
+  const ArrowBlocks arrow = ArrowQrBlocks(solution.jacobian, group);
+  const int ns = static_cast<int>(arrow.shared_columns.size());
+  const double decision = RankDecisionTolerance(m, n);
+  const double tolerance = std::max(kRankTolerance, decision);
+  // Shared block: column norms of J (every block's R_gp rows and R_pp), R_pp D^-1's SVD.
+  Eigen::VectorXd norms = Eigen::VectorXd::Zero(ns);
+  for (const ArrowBlocks::Block& b : arrow.blocks) {
+    norms += b.shared.colwise().squaredNorm().transpose();
+  }
+  if (ns > 0) norms += arrow.shared.colwise().squaredNorm().transpose();
+  norms = norms.cwiseSqrt();
+  for (int j = 0; j < ns; ++j) {
+    if (!(norms[j] > 0)) norms[j] = 1.0;
+  }
+  u->variables.clear();
+  for (int c : arrow.shared_columns) u->variables.push_back(solution.variables[c]);
+  Eigen::MatrixXd c_pp = Eigen::MatrixXd::Zero(ns, ns);  // (R_pp^T R_pp)^+, normalised back
+  if (ns > 0) {
+    const Eigen::MatrixXd rn = arrow.shared * norms.cwiseInverse().asDiagonal();
+    Eigen::BDCSVD<Eigen::MatrixXd> svd(rn, Eigen::ComputeThinV);
+    const Eigen::VectorXd& sigma = svd.singularValues();
+    const Eigen::MatrixXd& v = svd.matrixV();
+    const bool deficient = !(sigma[ns - 1] > decision * sigma[0]);
+    Eigen::MatrixXd pseudo = Eigen::MatrixXd::Zero(ns, ns);
+    for (int k = 0; k < ns; ++k) {
+      if (deficient && !(sigma[k] > tolerance * sigma[0])) continue;
+      pseudo += v.col(k) * v.col(k).transpose() / (sigma[k] * sigma[k]);
+    }
+    if (deficient) NameUndetermined(problem, sigma, v, norms, tolerance, u);
+    c_pp = norms.cwiseInverse().asDiagonal() * pseudo * norms.cwiseInverse().asDiagonal();
+  }
+  u->residual_variance = 2.0 * final_cost / (m - n);
+  Eigen::VectorXd scales(ns);
+  for (int j = 0; j < ns; ++j) scales[j] = variables[u->variables[j]].scale;
+  u->covariance = u->residual_variance * scales.asDiagonal() * c_pp * scales.asDiagonal();
+  SetStdErrorsAndCorrelation(u);
+  // Each group's variances: rows of R_gg^-1 and of B = R_gg^-1 R_gp through C_pp. A group
+  // whose own block is singular (a diagonal of R_gg below the rank tolerance of its column)
+  // leaves its variables undetermined.
+  int undetermined_groups = 0;
+  for (const ArrowBlocks::Block& b : arrow.blocks) {
+    const int nl = static_cast<int>(b.columns.size());
+    bool singular = false;
+    for (int k = 0; k < nl; ++k) {
+      const double column = b.own.col(k).norm() + b.shared.row(k).norm();
+      singular |= !(std::abs(b.own(k, k)) > tolerance * column);
+    }
+    Eigen::VectorXd variance =
+        Eigen::VectorXd::Constant(nl, std::numeric_limits<double>::quiet_NaN());
+    if (!singular) {
+      const auto r = b.own.triangularView<Eigen::Upper>();
+      const Eigen::MatrixXd a = r.solve(Eigen::MatrixXd::Identity(nl, nl));
+      const Eigen::MatrixXd bp = r.solve(b.shared);
+      variance = a.rowwise().squaredNorm() + (bp * c_pp).cwiseProduct(bp).rowwise().sum();
+    } else {
+      ++undetermined_groups;
+    }
+    for (int i = 0; i < nl; ++i) {
+      const int index = solution.variables[b.columns[i]];
+      const double scale = variables[index].scale;
+      u->block_variables.push_back(index);
+      u->block_std_errors.push_back(
+          singular ? std::numeric_limits<double>::quiet_NaN()
+                   : std::sqrt(std::max(0.0, u->residual_variance * variance[i])) * scale);
+      if (singular) u->undetermined_variables.push_back(index);
+    }
+  }
+  char text[300];
+  std::snprintf(text, sizeof(text),
+                "the covariance of the %d shared variable(s) only, with the standard errors of "
+                "the %zu per-experiment ones without their correlations (all of them at once: ",
+                ns, u->block_variables.size());
+  const double dense = 8.0 * sizeof(double) * n * static_cast<double>(n);
+  u->message =
+      text +
+      (dense > static_cast<double>(MemoryBudget())
+           ? OverBudget("the covariance of " + std::to_string(n) + " free variables", dense)
+           : "the covariance of " + std::to_string(n) + " free variables, more than " +
+                 std::to_string(kDenseVariables) + ", is not formed") +
+      ")";
+  if (!u->undetermined.empty()) {
+    u->message += "; the Jacobian is rank deficient: the data do not determine " +
+                  std::to_string(u->undetermined.size()) +
+                  " combination(s) of the shared variables";
+  }
+  if (undetermined_groups > 0) {
+    u->message += "; " + std::to_string(undetermined_groups) +
+                  " experiment(s) do not determine their own variables";
+  }
+  return true;
+}
+
 }  // namespace
 
 double Uncertainty::StdError(int index) const {
   for (size_t i = 0; i < variables.size(); ++i) {
     if (variables[i] == index)
       return i < std_errors.size() ? std_errors[i] : std::numeric_limits<double>::quiet_NaN();
+  }
+  for (size_t i = 0; i < block_variables.size(); ++i) {
+    if (block_variables[i] == index) return block_std_errors[i];
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
@@ -111,16 +217,23 @@ bool ComputeUncertainty(OutputErrorProblem* problem, double final_cost, Uncertai
     return false;
   }
   // Dense n x n matrices below: R D^-1, the SVD's V and its work, the pseudo-inverse, C, the
-  // covariance and the correlation.
+  // covariance and the correlation. Over the budget: by blocks, in the shared variables'
+  // s x s matrices and each group's (own + s) numbers per own variable.
   const double dense = 8.0 * sizeof(double) * static_cast<double>(n) * n;
-  if (dense > static_cast<double>(MemoryBudget())) {
-    int own = 0;  // free variables of one experiment (initial states, per-experiment values)
-    for (int v : u->variables) own += variables[v].experiment >= 0 ? 1 : 0;
-    u->message = "not computed: " +
-                 OverBudget("the covariance of " + std::to_string(n) + " free variables (" +
-                                std::to_string(own) + " of them per experiment)",
-                            dense);
-    return false;
+  int own = 0;  // free variables of one experiment (initial states, per-experiment values)
+  for (int v : u->variables) own += variables[v].experiment >= 0 ? 1 : 0;
+  const bool by_blocks =
+      dense > static_cast<double>(MemoryBudget()) || (own > 0 && n > kDenseVariables);
+  if (by_blocks) {
+    const double shared = n - own;
+    const double blocks = sizeof(double) * (8.0 * shared * shared + 4.0 * own * (shared + 8.0));
+    if (blocks > static_cast<double>(MemoryBudget())) {
+      u->message = "not computed: " +
+                   OverBudget("the covariance of " + std::to_string(n) + " free variables (" +
+                                  std::to_string(own) + " of them per experiment)",
+                              blocks);
+      return false;
+    }
   }
   SolutionJacobian evaluated;
   if (solution == nullptr) {
@@ -131,6 +244,11 @@ bool ComputeUncertainty(OutputErrorProblem* problem, double final_cost, Uncertai
     solution = &evaluated;
   }
   VESSELID_CHECK(solution->variables == u->variables);
+  if (by_blocks) {
+    const bool done = BlockUncertainty(*problem, final_cost, *solution, m, n, u);
+    u->available = done;
+    return done;
+  }
   // R of J (every residual block: data and priors), in normalised coordinates.
   std::vector<int> group(n);
   for (int i = 0; i < n; ++i) group[i] = variables[u->variables[i]].experiment;

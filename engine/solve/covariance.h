@@ -6,6 +6,11 @@
 // the Jacobian however many samples there are.
 // A rank-deficient Jacobian is reported, with the combinations that are undetermined; the
 // covariance is then the pseudo-inverse over the determined subspace.
+// When the dense n x n matrices exceed the memory budget, or n exceeds 1 000 with free
+// initial states or per-experiment values among them, R is kept by blocks (ArrowQrBlocks) and the
+// covariance is the shared variables' alone, (R_pp^T R_pp)^-1 (the inverse of the Schur complement:
+// exact), with each per-experiment variable's standard error from its rows of R^-1:
+//   Cov_gg = R_gg^-1 R_gg^-T + B C_pp B^T,  B = R_gg^-1 R_gp.
 #pragma once
 
 #include <string>
@@ -41,6 +46,11 @@ struct Uncertainty {
   // Bootstrap methods: replicates run and failed; block_bootstrap: the longest block, s.
   int bootstrap_runs = 0, bootstrap_failed = 0;
   double block_length = 0.0;
+
+  // Per-experiment variables whose standard errors come without their covariances (the
+  // block-structured case above); `variables` then holds the shared variables only.
+  std::vector<int> block_variables;
+  std::vector<double> block_std_errors;
 
   // Standard error of variable `index`, or NaN if unknown.
   double StdError(int index) const;

@@ -116,6 +116,10 @@ bool ComputeHacCovariance(const HacOptions& options, OutputErrorProblem* problem
     hac->message = "the Hessian covariance is not available: " + hessian.message;
     return false;
   }
+  if (!hessian.block_variables.empty()) {
+    hac->message = "the Hessian covariance is by blocks (over the memory budget)";
+    return false;
+  }
   if (!(hessian.residual_variance > 0.0)) {
     hac->message = "the residuals are zero";
     return false;

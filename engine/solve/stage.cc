@@ -308,7 +308,8 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
     // standard errors must not (a small cost beside the solve).
     uncertainty.hac.num_threads = 1;
     if (!ComputeStageUncertainty(uncertainty, problem, best_cost, &summary->uncertainty,
-                                 &summary->notes, &summary->findings, &solution)) {
+                                 &summary->notes, &summary->findings, &solution) ||
+        !summary->uncertainty.block_variables.empty()) {
       summary->notes.push_back("uncertainty: " + summary->uncertainty.message);
     }
     LocalAnalysisOptions analysis;

@@ -319,7 +319,7 @@ TEST_F(HostileInput, MoreExperimentsThanTheLimit) {
 }
 
 // Data files stay in the data folder unless the config allows otherwise: a copy of the data
-// beside the test's folder, named by a path and by a pattern.
+// beside the test's folder, named by a path and by a pattern; allowed, each is a finding.
 TEST_F(HostileInput, DataFilesOutsideTheDataFolderNeedOutsideData) {
   const std::string name = dir_.filename().string() + "_outside.csv";
   fs::copy_file(dir_ / "data.csv", dir_.parent_path() / name, fs::copy_options::overwrite_existing);
@@ -335,6 +335,18 @@ TEST_F(HostileInput, DataFilesOutsideTheDataFolderNeedOutsideData) {
   WriteConfig(text + "limits: {outside_data: true}\n");
   const Outcome outcome = Run();
   EXPECT_EQ(outcome.status, 0) << outcome.output;
+  // Allowed, and said: a finding names the file and the folder it left.
+  const std::string results = ReadFile(dir_ / "out" / "results.json");
+  EXPECT_NE(results.find("outside_data_folder"), std::string::npos);
+  EXPECT_NE(results.find("read '" + (dir_.parent_path() / name).string() +
+                         "', outside the data folder " + dir_.string()),
+            std::string::npos)
+      << results;
+  EXPECT_NE(ReadFile(dir_ / "out" / "report.txt").find("outside_data_folder"), std::string::npos);
+  // A file inside the folder under the same limits is not one.
+  WriteConfig(std::string(kGoodConfig) + "limits: {outside_data: true}\n");
+  ASSERT_EQ(Run().status, 0);
+  EXPECT_EQ(ReadFile(dir_ / "out" / "results.json").find("outside_data_folder"), std::string::npos);
   fs::remove(dir_.parent_path() / name);
 }
 

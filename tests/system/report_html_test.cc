@@ -234,6 +234,31 @@ TEST_F(HandMadeReportTest, EscapesNamesAndDrawsEveryPlot) {
   EXPECT_EQ(html.find("class=\"notice\""), std::string::npos);
 }
 
+// A stage of 20 records draws the 12 that fit worst, says so, and keeps every record's table.
+TEST_F(HandMadeReportTest, ManyRecordsDrawTheWorstTwelve) {
+  ASSERT_TRUE(HaveProgram("gnuplot")) << kNoGnuplot;
+  const ExperimentFit fit = result_.stages[0].summary.fits[0];
+  std::vector<ExperimentFit>& fits = result_.stages[0].summary.fits;
+  fits.clear();
+  for (int i = 0; i < 20; ++i) {
+    ExperimentFit f = fit;
+    f.experiment = "run" + std::to_string(i);
+    f.rms_cost = 0.01 * (1 + (i * 7) % 20);  // every cost once, in shuffled order
+    for (ChannelMetrics& c : f.channels) c.experiment = f.experiment;
+    fits.push_back(f);
+  }
+  const std::string html = RunReportHtml(config_, result_);
+  EXPECT_EQ(Count(html, "<img class=\"plot\""), 14u);  // 12 traces, correlation, cost history
+  EXPECT_NE(html.find("20 records: figures for the 12 that fit worst"), std::string::npos);
+  for (int i = 0; i < 20; ++i) {
+    const std::string name = "run" + std::to_string(i);
+    const bool worst = 1 + (i * 7) % 20 > 8;  // costs 0.09 to 0.20
+    EXPECT_EQ(html.find(name + ": measured and simulated outputs") != std::string::npos, worst)
+        << name;
+    EXPECT_NE(html.find("<h4>" + name + "</h4>"), std::string::npos) << name;
+  }
+}
+
 TEST_F(HandMadeReportTest, WithoutGnuplotKeepsTablesAndSaysWhy) {
   const char* path = std::getenv("PATH");
   const std::string saved = path ? path : "";

@@ -7,7 +7,8 @@
 #include <cmath>
 
 #include "ceres/covariance.h"
-
+#include "engine/base/memory_budget.h"
+#include "engine/solve/covariance.h"
 #include "engine/solve/stage.h"
 #include "gtest/gtest.h"
 #include "problems/nomoto/handles.h"
@@ -140,6 +141,60 @@ TEST_F(SolutionJacobianTest, HessianCovarianceMatchesCeresSparseQr) {
       const double size = std::sqrt(hessian.covariance(a, a) * hessian.covariance(b, b));
       EXPECT_NEAR(hessian.covariance(a, b), expected, 1e-8 * size) << a << "," << b;
     }
+  }
+}
+
+// Over the memory budget for the dense covariance, the covariance by blocks gives the shared
+// parameters' covariance and each experiment's initial heading's standard error exactly as the
+// dense one does (the inverse of the Schur complement; the rows of R^-1).
+TEST_F(SolutionJacobianTest, CovarianceByBlocksMatchesTheDenseOne) {
+  OutputErrorProblem* problem = problem_.get();
+  StageSummary summary;
+  ASSERT_TRUE(RunStage(StageOptions(), problem, &summary)) << summary.message;
+  SolutionJacobian solution;
+  ASSERT_TRUE(EvaluateSolutionJacobian(problem, 1, &solution));
+  const double cost = summary.local().final_cost;
+  Uncertainty dense, blocks;
+  ASSERT_TRUE(ComputeUncertainty(problem, cost, &dense, &solution));
+  ASSERT_EQ(dense.variables.size(), 4u);  // T, K, two initial headings
+  ASSERT_TRUE(dense.block_variables.empty());
+  {
+    // 4 free variables: dense 1 KiB, by blocks 896 bytes.
+    ScopedMemoryBudget budget(1000);
+    ASSERT_TRUE(ComputeUncertainty(problem, cost, &blocks, &solution)) << blocks.message;
+  }
+  ASSERT_EQ(blocks.variables.size(), 2u) << blocks.message;
+  ASSERT_EQ(blocks.block_variables.size(), 2u);
+  EXPECT_NE(blocks.message.find("the covariance of the 2 shared variable(s) only"),
+            std::string::npos)
+      << blocks.message;
+  EXPECT_DOUBLE_EQ(blocks.residual_variance, dense.residual_variance);
+  for (int index : dense.variables) {
+    const double expected = dense.StdError(index);
+    EXPECT_NEAR(blocks.StdError(index), expected, 1e-9 * expected)
+        << problem->variables()[index].name;
+  }
+  // The shared block of the covariance and its correlation.
+  for (size_t a = 0; a < blocks.variables.size(); ++a) {
+    for (size_t b = 0; b < blocks.variables.size(); ++b) {
+      int da = -1, db = -1;
+      for (size_t k = 0; k < dense.variables.size(); ++k) {
+        if (dense.variables[k] == blocks.variables[a]) da = static_cast<int>(k);
+        if (dense.variables[k] == blocks.variables[b]) db = static_cast<int>(k);
+      }
+      ASSERT_GE(da, 0);
+      ASSERT_GE(db, 0);
+      const double size = std::sqrt(dense.covariance(da, da) * dense.covariance(db, db));
+      EXPECT_NEAR(blocks.covariance(a, b), dense.covariance(da, db), 1e-9 * size);
+      EXPECT_NEAR(blocks.correlation(a, b), dense.correlation(da, db), 1e-9);
+    }
+  }
+  // Less than the blocks need: not computed, and the message says so.
+  {
+    ScopedMemoryBudget budget(100);
+    Uncertainty none;
+    EXPECT_FALSE(ComputeUncertainty(problem, cost, &none, &solution));
+    EXPECT_NE(none.message.find("not computed"), std::string::npos) << none.message;
   }
 }
 
