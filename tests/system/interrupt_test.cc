@@ -28,19 +28,7 @@ using testing::Outcome;
 
 // A quick first stage and a long second one (a multistart of many candidates), so that the
 // signal lands while a stage runs.
-constexpr char kTwoStages[] = R"(model: {family: nomoto, type: first_order}
-experiments:
-  - name: run
-    file: data.csv
-    inputs: {delta: delta}
-    outputs: {psi: psi}
-stages:
-  - name: fit
-    parameters:
-      T: {start: 3.0, lower: 0.1, upper: 50.0}
-      K: {start: -0.1, lower: -1.0, upper: -0.001}
-    free_initial_states: [psi]
-  - name: search
+const std::string kTwoStages = std::string(testing::kGoodConfig) + R"(  - name: search
     global: {points: 4000, short_iterations: 30, candidates: 400, seed: 1}
     parameters:
       T: {lower: 0.1, upper: 50.0}
@@ -104,12 +92,8 @@ TEST_F(Interrupt, SignalStopsTheRunSaysWhereAndPublishesNothing) {
     SCOPED_TRACE(signal);
     const fs::path out = dir_ / ("out" + std::to_string(signal));
     // A whole earlier set in the folder (one stage), which the stopped run must leave as is.
-    {
-      std::string first_stage_only = kTwoStages;
-      first_stage_only.resize(first_stage_only.find("  - name: search"));
-      WriteConfig(first_stage_only);
-      ASSERT_EQ(Run("", out).status, 0);
-    }
+    WriteConfig(testing::kGoodConfig);
+    ASSERT_EQ(Run("", out).status, 0);
     const std::string earlier_results = ReadFile(out / "results.json");
     const std::string earlier_report = ReadFile(out / "report.txt");
     WriteConfig(kTwoStages);
