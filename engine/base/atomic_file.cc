@@ -10,11 +10,23 @@ namespace vesselid {
 namespace fs = std::filesystem;
 
 bool WriteFileAtomically(const std::string& path, const std::string& content, std::string* error) {
+  return WriteFileAtomically(path, [&content](std::ostream& out) { out << content; }, error);
+}
+
+bool WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,
+                         std::string* error) {
   const std::string temporary = path + ".tmp";
   {
     errno = 0;
     std::ofstream out(temporary, std::ios::binary);
-    out << content;
+    try {
+      write(out);
+    } catch (...) {
+      out.close();
+      std::error_code ignored;
+      fs::remove(temporary, ignored);
+      throw;
+    }
     out.flush();
     if (!out) {
       const int code = errno;

@@ -38,38 +38,38 @@ std::vector<const ResidualAnalysis*> ResidualsWorstFirst(
   return list;
 }
 
-json ResidualAnalysesToJson(const std::vector<ResidualAnalysis>& analyses) {
-  json j = json::array();
-  for (const ResidualAnalysis& a : analyses) {
-    json cross = json::object();
-    for (const ResidualCrossCorrelation& c : a.cross_correlation) {
-      std::vector<int> lags;
-      for (int k = -a.lags; k <= a.lags; ++k) lags.push_back(k);
-      cross[c.input] = {{"lags", lags},
-                        {"values", Numbers(c.values)},
-                        {"band_99", JsonNumber(c.band_99)},
-                        {"correlated", c.correlated}};
-    }
-    j.push_back(
-        {{"experiment", a.experiment},
-         {"output", a.output},
-         {"samples", a.samples},
-         {"lags", a.lags},
-         {"tested", a.tested()},
-         {"autocorrelation", Numbers(a.autocorrelation)},
-         {"band_99", JsonNumber(a.band_99)},
-         {"band_95", JsonNumber(a.band_95)},
-         {"ljung_box",
-          {{"q", JsonNumber(a.ljung_box_q)}, {"dof", a.lags}, {"p", JsonNumber(a.ljung_box_p)}}},
-         {"lag1", JsonNumber(a.lag1)},
-         {"white", a.white},
-         {"cross_correlation", cross},
-         {"input_correlated", a.input_correlated},
-         {"interval_spread", JsonNumber(a.interval_spread)},
-         {"irregular_sampling", a.irregular()},
-         {"noise_free", a.noise_free}});
+json ResidualAnalysisToJson(const ResidualAnalysis& a) {
+  json cross = json::object();
+  for (const ResidualCrossCorrelation& c : a.cross_correlation) {
+    std::vector<int> lags;
+    for (int k = -a.lags; k <= a.lags; ++k) lags.push_back(k);
+    cross[c.input] = {{"lags", lags},
+                      {"values", Numbers(c.values)},
+                      {"band_99", JsonNumber(c.band_99)},
+                      {"correlated", c.correlated}};
   }
-  return j;
+  return {{"experiment", a.experiment},
+          {"output", a.output},
+          {"samples", a.samples},
+          {"lags", a.lags},
+          {"tested", a.tested()},
+          {"autocorrelation", Numbers(a.autocorrelation)},
+          {"band_99", JsonNumber(a.band_99)},
+          {"band_95", JsonNumber(a.band_95)},
+          {"ljung_box",
+           {{"q", JsonNumber(a.ljung_box_q)}, {"dof", a.lags}, {"p", JsonNumber(a.ljung_box_p)}}},
+          {"lag1", JsonNumber(a.lag1)},
+          {"white", a.white},
+          {"cross_correlation", cross},
+          {"input_correlated", a.input_correlated},
+          {"interval_spread", JsonNumber(a.interval_spread)},
+          {"irregular_sampling", a.irregular()},
+          {"noise_free", a.noise_free}};
+}
+
+json ResidualAnalysesToJson(const std::vector<ResidualAnalysis>& analyses, JsonSplices* splices) {
+  return JsonSplices::ArrayIn(splices, analyses.size(),
+                              [&analyses](size_t i) { return ResidualAnalysisToJson(analyses[i]); });
 }
 
 std::string ResidualAnalysesText(const std::vector<ResidualAnalysis>& analyses,

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/output/json_splices.h"
 #include "engine/solve/residual_analysis.h"
 #include "nlohmann/json.hpp"
 
@@ -15,8 +16,10 @@ namespace vesselid {
 
 // [{experiment, output, samples, lags, autocorrelation, band_99, band_95,
 //   ljung_box: {q, dof, p}, lag1, white, cross_correlation: {<input>: {lags, values, band_99,
-//   correlated}}, input_correlated, interval_spread, irregular_sampling}]
-nlohmann::json ResidualAnalysesToJson(const std::vector<ResidualAnalysis>& analyses);
+//   correlated}}, input_correlated, interval_spread, irregular_sampling}]; with `splices`
+// its placeholder there (json_splices.h).
+nlohmann::json ResidualAnalysesToJson(const std::vector<ResidualAnalysis>& analyses,
+                                      JsonSplices* splices = nullptr);
 
 // Channels worst first: coloured (largest |lag-1| first), then input-correlated, then white,
 // then untested.

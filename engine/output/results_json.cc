@@ -2,12 +2,16 @@
 
 #include "engine/output/results_json_text.h"
 
+#include <map>
+#include <sstream>
+
 #include "engine/base/json_number.h"
 #include "engine/data/time_base.h"
 #include "engine/run/display_units.h"
 #include "engine/output/finding_report.h"
 #include "engine/output/bootstrap_report.h"
 #include "engine/output/held_out_parameters_report.h"
+#include "engine/output/json_splices.h"
 #include "engine/output/noise_model_report.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/output/residual_report.h"
@@ -47,24 +51,26 @@ json VelocityToJson(const std::vector<ChannelMetrics>& metrics) {
 }
 
 // RMSE, MAE, hold MAE and noise in `unit` (display_units.h: degrees where the data were).
-json MetricsToJson(const RunConfig& config, const std::vector<ExperimentFit>& fits) {
-  json metrics = json::array();
+json MetricsToJson(const RunConfig& config, const std::vector<ExperimentFit>& fits,
+                   JsonSplices* splices) {
+  std::vector<const ChannelMetrics*> channels;
   for (const ExperimentFit& fit : fits) {
-    for (const ChannelMetrics& m : fit.channels) {
-      const DisplayUnit unit = OutputDisplayUnit(config, m.experiment, m.output);
-      metrics.push_back({{"experiment", m.experiment},
-                         {"output", m.output},
-                         {"unit", unit.unit},
-                         {"samples", m.samples},
-                         {"rmse", JsonNumber(unit.scale * m.rmse)},
-                         {"mae", JsonNumber(unit.scale * m.mae)},
-                         {"r2", JsonNumber(m.r2)},
-                         {"fit_percent", JsonNumber(m.fit_percent)},
-                         {"hold_mae", JsonNumber(unit.scale * m.hold_mae)},
-                         {"noise", JsonNumber(unit.scale * m.noise)}});
-    }
+    for (const ChannelMetrics& m : fit.channels) channels.push_back(&m);
   }
-  return metrics;
+  return JsonSplices::ArrayIn(splices, channels.size(), [&config, channels](size_t i) -> json {
+    const ChannelMetrics& m = *channels[i];
+    const DisplayUnit unit = OutputDisplayUnit(config, m.experiment, m.output);
+    return {{"experiment", m.experiment},
+            {"output", m.output},
+            {"unit", unit.unit},
+            {"samples", m.samples},
+            {"rmse", JsonNumber(unit.scale * m.rmse)},
+            {"mae", JsonNumber(unit.scale * m.mae)},
+            {"r2", JsonNumber(m.r2)},
+            {"fit_percent", JsonNumber(m.fit_percent)},
+            {"hold_mae", JsonNumber(unit.scale * m.hold_mae)},
+            {"noise", JsonNumber(unit.scale * m.noise)}};
+  });
 }
 
 // One row per run with its segments folded in, and the mean / median / worst (run_fit_table.h).
@@ -82,12 +88,11 @@ json RunsToJson(const RunConfig& config, const std::vector<ExperimentFit>& fits)
                            {"r2", JsonNumber(m.r2)},
                            {"fit_percent", JsonNumber(m.fit_percent)}};
     }
-    json item = {{"run", row.run},
-                 {"segments", row.segments},
-                 {"diverged", row.diverged},
-                 {"rms_cost", JsonNumber(row.rms_cost)},
-                 {"outputs", outputs}};
-    runs.push_back(item);
+    runs.push_back({{"run", row.run},
+                    {"segments", row.segments},
+                    {"diverged", row.diverged},
+                    {"rms_cost", JsonNumber(row.rms_cost)},
+                    {"outputs", outputs}});
   }
   json summary = json::object();
   for (const RunFitSummary& s : table.summary) {
@@ -137,15 +142,18 @@ json HeldOutToJson(const HeldOutCheck& check) {
 }
 
 // Seed 002's per-test cost sqrt(mean e^2), by experiment.
-json RmsCostToJson(const std::vector<ExperimentFit>& fits) {
-  json rms = json::object();
-  for (const ExperimentFit& fit : fits) rms[fit.experiment] = JsonNumber(fit.rms_cost);
-  return rms;
+json RmsCostToJson(const std::vector<ExperimentFit>& fits, JsonSplices* splices) {
+  std::vector<std::string> names;
+  names.reserve(fits.size());
+  for (const ExperimentFit& fit : fits) names.push_back(fit.experiment);
+  return JsonSplices::ObjectIn(splices, std::move(names),
+                               [&fits](size_t i) { return JsonNumber(fits[i].rms_cost); });
 }
 
-json FitsToJson(const RunConfig& config, const std::vector<ExperimentFit>& fits) {
-  json j = {{"metrics", MetricsToJson(config, fits)},
-            {"rms_cost", RmsCostToJson(fits)},
+json FitsToJson(const RunConfig& config, const std::vector<ExperimentFit>& fits,
+                JsonSplices* splices) {
+  json j = {{"metrics", MetricsToJson(config, fits, splices)},
+            {"rms_cost", RmsCostToJson(fits, splices)},
             {"runs", RunsToJson(config, fits)}};
   const json diverged = DivergedToJson(fits);
   if (!diverged.empty()) j["diverged"] = diverged;
@@ -202,7 +210,7 @@ json LocalAnalysisToJson(const LocalAnalysis& a) {
   return j;
 }
 
-json StageToJson(const RunConfig& config, const StageResult& stage) {
+json StageToJson(const RunConfig& config, const StageResult& stage, JsonSplices* splices) {
   const StageSummary& s = stage.summary;
   json j;
   j["name"] = stage.name;
@@ -242,8 +250,14 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
   j["iterations"] = s.local().iterations;
   j["notes"] = s.notes;
   j["counts"] = CountsToJson(CountUnknowns(stage.estimates));
-  json estimates = json::array();
-  for (const Estimate& e : stage.estimates) {
+  // Another method than the Hessian reported: the Hessian's standard error beside it.
+  std::map<std::string, double> hessian;
+  const std::vector<double>& hessian_std_errors = s.uncertainty.hessian_std_errors;
+  for (size_t i = 0; i < hessian_std_errors.size() && i < stage.correlation_names.size(); ++i) {
+    hessian[stage.correlation_names[i]] = hessian_std_errors[i];
+  }
+  auto estimate = [&config, &stage, hessian = std::move(hessian)](size_t i) {
+    const Estimate& e = stage.estimates[i];
     json item = {{"name", e.name},
                  {"kind", EstimateKindToString(e.kind)},
                  {"role", ParameterRoleToString(e.role)},
@@ -255,14 +269,11 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
                  {"undetermined", e.undetermined}};
     if (!e.experiment.empty()) item["experiment"] = e.experiment;
     AddParameterUnit(config, e.name, &item);
-    // Another method than the Hessian reported: the Hessian's standard error beside it.
-    const std::vector<double>& hessian = s.uncertainty.hessian_std_errors;
-    for (size_t i = 0; i < hessian.size() && i < stage.correlation_names.size(); ++i) {
-      if (stage.correlation_names[i] == e.name) item["std_error_hessian"] = JsonNumber(hessian[i]);
-    }
-    estimates.push_back(item);
-  }
-  j["estimates"] = estimates;
+    const auto found = hessian.find(e.name);
+    if (found != hessian.end()) item["std_error_hessian"] = JsonNumber(found->second);
+    return item;
+  };
+  j["estimates"] = JsonSplices::ArrayIn(splices, stage.estimates.size(), estimate);
   const Uncertainty& u = s.uncertainty;
   j["uncertainty"] = {{"available", u.available},
                       {"message", u.message},
@@ -290,11 +301,12 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
   if (s.analysis.available || !s.analysis.message.empty()) {
     j["local_analysis"] = LocalAnalysisToJson(s.analysis);
   }
-  j["fit"] = FitsToJson(config, s.fits);
+  j["fit"] = FitsToJson(config, s.fits, splices);
   j["admissibility"] = stage.admissibility;
-  if (!stage.validation.empty()) j["validation"] = FitsToJson(config, stage.validation);
+  if (!stage.validation.empty()) j["validation"] = FitsToJson(config, stage.validation, splices);
   if (!stage.validation_residuals.empty()) {
-    j["validation"]["residual_analysis"] = ResidualAnalysesToJson(stage.validation_residuals);
+    j["validation"]["residual_analysis"] =
+        ResidualAnalysesToJson(stage.validation_residuals, splices);
   }
   if (stage.held_out.done) j["held_out_check"] = HeldOutToJson(stage.held_out);
   if (stage.held_out_parameters.active()) {
@@ -307,16 +319,18 @@ json StageToJson(const RunConfig& config, const StageResult& stage) {
     j["velocity_validation"] = VelocityToJson(stage.velocity_validation);
   }
   if (stage.step_regression) j["step_regression"] = StepRegressionToJson(*stage.step_regression);
-  if (!stage.residuals.empty()) j["residual_analysis"] = ResidualAnalysesToJson(stage.residuals);
+  if (!stage.residuals.empty()) {
+    j["residual_analysis"] = ResidualAnalysesToJson(stage.residuals, splices);
+  }
   if (stage.bootstrap.done() || !stage.bootstrap.message.empty()) {
     j["bootstrap"] = BootstrapToJson(stage.bootstrap);
   }
   return j;
 }
 
-}  // namespace
-
-json RunResultToJson(const RunConfig& config, const RunResult& result) {
+// The document, its per-experiment arrays in `splices` when given (RunResultToJson,
+// WriteRunResultJson).
+json RunResultDocument(const RunConfig& config, const RunResult& result, JsonSplices* splices) {
   json j;
   j["vesselid_version"] = "0.1.0";
   // The verdict first: a reader (or a script) sees it before anything else.
@@ -339,7 +353,9 @@ json RunResultToJson(const RunConfig& config, const RunResult& result) {
   }
   j["final"] = FinalChoiceToString(config.final_choice);
   json stages = json::array();
-  for (const StageResult& stage : result.stages) stages.push_back(StageToJson(config, stage));
+  for (const StageResult& stage : result.stages) {
+    stages.push_back(StageToJson(config, stage, splices));
+  }
   j["stages"] = stages;
   j["fusion"] = FusionRuleToString(config.fusion);
   json parameters = json::array();
@@ -370,10 +386,10 @@ json RunResultToJson(const RunConfig& config, const RunResult& result) {
   j["counts"] = CountsToJson(CountUnknowns(result));
   j["admissibility"] = result.admissibility;
   if (config.has_final_validation) {
-    j["final_validation"] = FitsToJson(config, result.final_validation);
+    j["final_validation"] = FitsToJson(config, result.final_validation, splices);
     if (!result.final_validation_residuals.empty()) {
       j["final_validation"]["residual_analysis"] =
-          ResidualAnalysesToJson(result.final_validation_residuals);
+          ResidualAnalysesToJson(result.final_validation_residuals, splices);
     }
   }
   if (result.final_held_out_parameters.active()) {
@@ -387,8 +403,23 @@ json RunResultToJson(const RunConfig& config, const RunResult& result) {
   return j;
 }
 
+}  // namespace
+
+json RunResultToJson(const RunConfig& config, const RunResult& result) {
+  return RunResultDocument(config, result, nullptr);
+}
+
+void WriteRunResultJson(const RunConfig& config, const RunResult& result, int indent,
+                        std::ostream* out) {
+  JsonSplices splices;
+  const json document = RunResultDocument(config, result, &splices);
+  splices.Write(document, indent, out);
+}
+
 std::string RunResultJsonText(const RunConfig& config, const RunResult& result, int indent) {
-  return RunResultToJson(config, result).dump(indent);
+  std::ostringstream text;
+  WriteRunResultJson(config, result, indent, &text);
+  return text.str();
 }
 
 }  // namespace vesselid

@@ -69,8 +69,12 @@ bool WriteRunResults(const RunConfig& config, const RunResult& result, const std
     *error = html_error;
     return false;
   }
-  if (!written || !WriteFileAtomically((fs::path(folder) / "results.json").string(),
-                                       RunResultJsonText(config, result) + "\n", error)) {
+  const auto results_json = [&](std::ostream& out) {
+    WriteRunResultJson(config, result, 2, &out);
+    out << '\n';
+  };
+  if (!written ||
+      !WriteFileAtomically((fs::path(folder) / "results.json").string(), results_json, error)) {
     return false;
   }
   // A stop asked for while the files were formed (Ctrl-C) leaves the previous set.

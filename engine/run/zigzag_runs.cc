@@ -1,6 +1,9 @@
 #include "engine/run/zigzag_runs.h"
 
+#include <map>
+
 #include "engine/data/interpolation.h"
+#include "engine/model/record_channels.h"
 
 namespace vesselid {
 namespace {
@@ -23,6 +26,7 @@ std::string RudderColumn(const ExperimentSpec& spec) {
 
 void Examine(const RunConfig& config, const std::string& stage, bool held_out,
              const std::vector<ExperimentFit>& fits, TrajectoryCache* cache,
+             std::map<const Trajectory*, RecordChannels>* channels,
              std::vector<ZigzagRun>* runs) {
   for (const ExperimentFit& fit : fits) {
     if (fit.diverged) continue;
@@ -35,8 +39,10 @@ void Examine(const RunConfig& config, const std::string& stage, bool held_out,
     std::string error;
     const Trajectory* data = LoadCachedTrajectory(*spec, cache, &error);
     if (data == nullptr || data->Find(rudder) < 0) continue;
-    const std::vector<double> delta = InterpolateAt(ExtractChannel(*data, data->Find(rudder)),
-                                                    Interpolation::kLinear, fit.trace.t);
+    // The rudder column extracted once per record, not once per segment cut from it.
+    const Channel& channel =
+        channels->try_emplace(data, *data).first->second.Extracted(data->Find(rudder));
+    const std::vector<double> delta = InterpolateAt(channel, Interpolation::kLinear, fit.trace.t);
     ZigzagRun run;
     if (!DetectZigzag(fit.trace.t, delta, fit.trace.columns[measured], &run.test)) continue;
     run.stage = stage;
@@ -53,11 +59,12 @@ void Examine(const RunConfig& config, const std::string& stage, bool held_out,
 std::vector<ZigzagRun> FindZigzagRuns(const RunConfig& config, const RunResult& run,
                                       TrajectoryCache* cache) {
   std::vector<ZigzagRun> runs;
+  std::map<const Trajectory*, RecordChannels> channels;
   for (const StageResult& stage : run.stages) {
-    Examine(config, stage.name, false, stage.summary.fits, cache, &runs);
-    Examine(config, stage.name, true, stage.validation, cache, &runs);
+    Examine(config, stage.name, false, stage.summary.fits, cache, &channels, &runs);
+    Examine(config, stage.name, true, stage.validation, cache, &channels, &runs);
   }
-  Examine(config, "final", true, run.final_validation, cache, &runs);
+  Examine(config, "final", true, run.final_validation, cache, &channels, &runs);
   return runs;
 }
 
