@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 // every trace at once); the first failure in the traces' order reported.
 bool WriteTraces(const std::string& folder, const RunConfig& config, const RunResult& result,
                  std::string* error) {
-  const std::vector<TraceSource> sources = RunTraceSources(result);
+  const std::vector<TraceSource> sources = RunTraceSources(config, result);
   std::vector<std::string> errors(sources.size());
   ParallelFor(static_cast<int>(sources.size()), 0, [&](int i) {
     if (StopRequested()) return;

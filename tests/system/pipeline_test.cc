@@ -8,6 +8,7 @@
 
 #include "engine/config/config.h"
 #include "engine/diagnose/run_findings.h"
+#include "engine/output/run_traces.h"
 #include "engine/run/records.h"
 #include "engine/solve/step_stability.h"
 #include "gtest/gtest.h"
@@ -397,6 +398,31 @@ stages:
   EXPECT_NEAR(Find(result.stages[0], "T").value, 2.0, 0.05);
   ASSERT_EQ(result.stages[0].validation.size(), 1u);
   EXPECT_FALSE(result.stages[0].validation[0].diverged);
+  // One trace per record, its segments one after another with their ids in `segment`: each
+  // segment's rows are its fit's trace.
+  const std::vector<NamedTrace> traces = RunTraces(config, result);
+  ASSERT_EQ(traces.size(), 2u);
+  EXPECT_EQ(traces[0].name, "fit.train");
+  EXPECT_EQ(traces[0].file, "fit.train.csv");
+  EXPECT_EQ(traces[1].name, "fit.validation.held");
+  const Trajectory& joined = traces[0].trace;
+  ASSERT_EQ(joined.names[0], "segment");
+  const std::vector<ExperimentFit>& fits = result.stages[0].summary.fits;
+  ASSERT_EQ(fits.size(), 2u);
+  size_t row = 0;
+  for (const ExperimentFit& fit : fits) {
+    const double id = std::stod(fit.experiment.substr(fit.experiment.find('@') + 1));
+    const int simulated = joined.Find("psi_simulated [rad]");
+    ASSERT_GE(simulated, 0);
+    for (size_t k = 0; k < fit.trace.t.size(); ++k, ++row) {
+      ASSERT_LT(row, joined.t.size());
+      EXPECT_EQ(joined.t[row], fit.trace.t[k]);
+      EXPECT_EQ(joined.columns[0][row], id);
+      EXPECT_EQ(joined.columns[simulated][row],
+                fit.trace.columns[fit.trace.Find("psi_simulated")][k]);
+    }
+  }
+  EXPECT_EQ(row, joined.t.size());
 }
 
 // A model that is stable on the small manoeuvres it was fitted to and diverges on a larger
