@@ -16,6 +16,7 @@
 
 #include "CLI/CLI.hpp"
 #include "engine/base/atomic_file.h"
+#include "engine/base/file_name.h"
 #include "engine/base/parallel_for.h"
 #include "engine/base/stop_request.h"
 #include "engine/cli/terminal_progress.h"
@@ -78,7 +79,18 @@ int Simulate(const std::string& config_path, const std::string& out_dir) {
     planned.files.push_back(std::filesystem::path(spec.file).filename().string());
   }
   const auto folder = OpenOutput(out_dir, planned, {config_path}, &error);
-  if (folder == nullptr || !vesselid::SimulateConfig(config, out_dir, &error)) {
+  if (folder == nullptr) return Fail(error);
+  // Staged and published as one set (output_staging.h): the files appear together, or the
+  // earlier ones stay as they were. The set is the config's: simulating it again replaces
+  // what it wrote before; other configs' files in the folder stay.
+  const std::string set =
+      "simulate." + vesselid::FileNameOf(std::filesystem::path(config_path).stem().string());
+  const auto staging = vesselid::OutputStaging::Begin(out_dir, set, {}, &error);
+  if (staging == nullptr || !vesselid::SimulateConfig(config, staging->folder(), &error)) {
+    return Fail(error);
+  }
+  if (vesselid::StopRequested()) return Fail("stopped before the simulated files were published");
+  if (!planned.files.empty() && !staging->Publish(planned.files.back(), &error)) {
     return Fail(error);
   }
   std::printf("simulated experiments of %s into %s\n", config_path.c_str(), out_dir.c_str());

@@ -10,10 +10,12 @@
 
 #include <csignal>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 
 #include "engine/base/atomic_file.h"
+#include "engine/output/output_staging.h"
 #include "tests/support/bad_input_fixture.h"
 
 namespace vesselid {
@@ -239,6 +241,50 @@ stages:
       "s; .*u.* not finite at t = 0\\.05 s \\(inputs at t = 0 s: c_L = .*, c_R = "
       "[^,]*\\); at these values M is not positive definite .*: m - Xudot = 11 - 20 "
       "<= 0");
+}
+
+// `vesselid simulate` publishes its files as one set (output_staging.h): no staging folder is
+// left, the set's manifest lists them, simulating the config again replaces what it wrote
+// (a file it no longer writes goes), and another config's files in the folder stay.
+TEST_F(HostileInput, SimulatedFilesArePublishedAsOneSetPerConfig) {
+  auto write = [&](const std::string& name, const std::vector<std::string>& files) {
+    std::string text = "model: {family: nomoto, type: second_order}\nsimulation:\n"
+                       "  truth: {T1: 45.0, T2: 6.0, T3: 10.0, K: 0.09}\n"
+                       "  steering_gear: {Tm: 5.0, kp: 0.12, rudder_limit_deg: 35}\n"
+                       "  sample_time: 0.5\n  experiments:\n";
+    for (const std::string& f : files) {
+      text += "    - {file: " + f + ", duration: 60, excitation: {type: sine, amplitude_deg: "
+              "20, period: 30}}\n";
+    }
+    text += "experiments:\n";
+    for (const std::string& f : files) {
+      text += "  - {name: " + f.substr(0, f.size() - 4) + ", file: " + f +
+              ", inputs: {delta: delta}, outputs: {psi: psi}}\n";
+    }
+    text += "stages:\n  - name: fit\n    parameters:\n      K: {start: 0.1, lower: 0.01, upper: 1}\n";
+    std::ofstream(dir_ / name) << text;
+  };
+  const fs::path out = dir_ / "sim";
+  auto simulate = [&](const std::string& config) {
+    const std::string command = std::string(VESSELID_BINARY) + " simulate " +
+                                (dir_ / config).string() + " --out " + out.string() +
+                                " > /dev/null 2>&1";
+    return std::system(command.c_str());
+  };
+  write("first.yaml", {"a.csv", "b.csv"});
+  write("second.yaml", {"c.csv"});
+  ASSERT_EQ(simulate("first.yaml"), 0);
+  ASSERT_EQ(simulate("second.yaml"), 0);
+  EXPECT_TRUE(fs::exists(out / "a.csv") && fs::exists(out / "b.csv") && fs::exists(out / "c.csv"));
+  EXPECT_FALSE(fs::exists(out / kStagingFolder));
+  std::ifstream manifest(out / ".vesselid-simulate.first.set");
+  const std::string listed((std::istreambuf_iterator<char>(manifest)), {});
+  EXPECT_EQ(listed, "a.csv\nb.csv\n");
+  write("first.yaml", {"a.csv"});
+  ASSERT_EQ(simulate("first.yaml"), 0);
+  EXPECT_TRUE(fs::exists(out / "a.csv"));
+  EXPECT_FALSE(fs::exists(out / "b.csv"));
+  EXPECT_TRUE(fs::exists(out / "c.csv"));
 }
 
 // --- YAML and CSV dialects ----------------------------------------------------------------
