@@ -7,6 +7,8 @@
 //   vesselid study    <config.yaml> [--data <dir>] --out <dir>  sensitivity studies (the
 //                     [--only part...] [--threads n]             config's `study` section;
 //                                                                also under mpirun -np K)
+//   vesselid export   <run-out> [--format fmu|json] [--out <dir>]  the model taken out
+//                     [--members n] [--seed s]
 #include <unistd.h>
 
 #include <csignal>
@@ -22,6 +24,8 @@
 #include "engine/cli/terminal_progress.h"
 #include "engine/config/config.h"
 #include "engine/diagnose/run_findings.h"
+#include "engine/export/exported_model.h"
+#include "engine/export/fmu_package.h"
 #include "engine/output/checkpoint.h"
 #include "engine/output/finding_report.h"
 #include "engine/output/output_folder.h"
@@ -42,11 +46,15 @@ int Fail(const std::string& message) {
   return 1;
 }
 
-// The registry outlives every config (a config points at its model family).
+// Every model family the program knows; outlives every config (a config points at its family).
+const vesselid::ModelRegistry& Registry() {
+  static const vesselid::ModelRegistry registry = vesselid::DefaultRegistry();
+  return registry;
+}
+
 bool Load(const std::string& config_path, const std::string& data_dir,
           vesselid::ConfigFile* config, std::string* error) {
-  static const vesselid::ModelRegistry registry = vesselid::DefaultRegistry();
-  return vesselid::LoadConfigFile(config_path, data_dir, registry, config, error);
+  return vesselid::LoadConfigFile(config_path, data_dir, Registry(), config, error);
 }
 
 // The config and every data file it names: what no output may replace.
@@ -94,6 +102,39 @@ int Simulate(const std::string& config_path, const std::string& out_dir) {
     return Fail(error);
   }
   std::printf("simulated experiments of %s into %s\n", config_path.c_str(), out_dir.c_str());
+  return 0;
+}
+
+// The model of the run in `run_dir` taken out as `format` (json: model.json; fmu: an FMI 2.0
+// co-simulation FMU) into `out_dir` (default <run_dir>/export), published as one set.
+int Export(const std::string& run_dir, const std::string& format, std::string out_dir,
+           int members, unsigned seed) {
+  if (out_dir.empty()) out_dir = (std::filesystem::path(run_dir) / "export").string();
+  vesselid::ExportedModel model;
+  std::string error;
+  if (members < 0) return Fail("--members must be >= 0");
+  if (!vesselid::ReadExportedModel(run_dir, Registry(), members, seed, &model, &error)) {
+    return Fail(error);
+  }
+  std::string runtime;
+  if (format == "fmu" && (runtime = vesselid::FindFmuRuntime(&error)).empty()) return Fail(error);
+  const std::string name = vesselid::FileNameOf(model.model) + "." + format;
+  vesselid::PlannedOutputs planned;
+  planned.files = {name};
+  const auto folder = OpenOutput(out_dir, planned, {model.results}, &error);
+  if (folder == nullptr) return Fail(error);
+  const auto staging = vesselid::OutputStaging::Begin(out_dir, "export." + format, {}, &error);
+  if (staging == nullptr) return Fail(error);
+  const std::string path = (std::filesystem::path(staging->folder()) / name).string();
+  const bool written =
+      format == "fmu"
+          ? vesselid::WriteFmu(model, runtime, path, &error)
+          : vesselid::WriteFileAtomically(path, vesselid::ExportedModelToJson(model).dump(2) + "\n",
+                                          &error);
+  if (!written || !staging->Publish(name, &error)) return Fail(error);
+  std::printf("%s model of %s (%zu parameters, %zu ensemble members) written to %s\n",
+              model.model.c_str(), model.results.c_str(), model.parameters.size(),
+              model.ensemble.size(), (std::filesystem::path(out_dir) / name).string().c_str());
   return 0;
 }
 
@@ -319,6 +360,19 @@ int main(int argc, char** argv) {
   simulate->add_option("config", config_path, "run configuration (YAML)")->required();
   simulate->add_option("--out", out_dir, "folder for the CSV files")->required();
 
+  CLI::App* export_model =
+      app.add_subcommand("export", "take a run's model out: model.json or an FMI 2.0 FMU");
+  std::string run_dir, format = "fmu";
+  int members = 100;
+  unsigned seed = 1;
+  export_model->add_option("run", run_dir, "the --out folder of a finished run")->required();
+  export_model->add_option("--format", format, "json (model.json) or fmu (FMI 2.0 co-simulation)")
+      ->check(CLI::IsMember({"json", "fmu"}));
+  export_model->add_option("--out", out_dir, "folder for the export (default <run>/export)");
+  export_model->add_option("--members", members,
+                           "parameter draws from the covariance (ensemble_member 1..N)");
+  export_model->add_option("--seed", seed, "seed of the draws");
+
   CLI::App* run = app.add_subcommand("run", "staged identification");
   run->add_option("config", config_path, "run configuration (YAML)")->required();
   run->add_option("--data", data_dir,
@@ -363,6 +417,7 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   if (simulate->parsed()) return Simulate(config_path, out_dir);
+  if (export_model->parsed()) return Export(run_dir, format, out_dir, members, seed);
   if (findings->parsed()) {
     std::cout << vesselid::FindingCatalogueMarkdown();
     return 0;

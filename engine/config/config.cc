@@ -320,12 +320,26 @@ void ReadLeastSquares(const YamlReader& reader, const YAML::Node& node, const st
   ReadRegressionData(reader, node, path, info, &stage->regression_data);
 }
 
-// The run's model map with the keys of `override` replaced, built by the family.
+// The `model` map's keys but family, each value in YAML flow style.
+ModelOptions OptionsText(const YAML::Node& model) {
+  ModelOptions options;
+  for (const auto& item : model) {
+    const std::string key = item.first.as<std::string>();
+    if (key == "family") continue;
+    YAML::Emitter text;
+    text << YAML::Flow << item.second;
+    options[key] = text.c_str();
+  }
+  return options;
+}
+
+// The run's model map with the keys of `override` replaced, built by the family; `options`
+// gets the merged map's (OptionsText).
 std::shared_ptr<const ModelHandle> OverrideModel(const YamlReader& reader,
                                                  const ModelFamily& family,
                                                  const YAML::Node& base,
                                                  const YAML::Node& override,
-                                                 const std::string& path) {
+                                                 const std::string& path, ModelOptions* options) {
   if (!override.IsMap()) reader.Fail(override, path, "expected a map of model keys");
   YAML::Node merged = YAML::Clone(base);
   for (const auto& item : override) {
@@ -333,6 +347,7 @@ std::shared_ptr<const ModelHandle> OverrideModel(const YamlReader& reader,
     if (key == "family") reader.Fail(item.first, Child(path, key), "a stage cannot change the family");
     merged[key] = item.second;
   }
+  *options = OptionsText(merged);
   return family.make_model(reader, merged, path);
 }
 
@@ -360,7 +375,8 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
        "initial_state_prior", "outliers", "velocity_validation", "weights"});
   StageConfig stage;
   if (node["model"]) {
-    stage.model = OverrideModel(reader, family, model_node, node["model"], Child(path, "model"));
+    stage.model = OverrideModel(reader, family, model_node, node["model"], Child(path, "model"),
+                                &stage.model_options);
   }
   const ModelInfo& info = stage.model ? stage.model->info() : config.model->info();
   stage.options.name = "stage" + std::to_string(index + 1);
@@ -613,6 +629,7 @@ bool LoadConfig(const ConfigSource& source, const ModelRegistry& registry, Confi
           "unknown model family '" + result.family + "' (" + JoinNames(registry.Names()) + ")");
     }
     result.model = file.family->make_model(reader, model, "model");
+    result.model_options = OptionsText(model);
     const ModelInfo& info = result.model->info();
     if (root["simulation"]) {
       file.simulation = std::make_shared<const SimulationSection>(SimulationSection{root["simulation"]});
@@ -667,7 +684,9 @@ bool LoadConfig(const ConfigSource& source, const ModelRegistry& registry, Confi
       FinalValidationConfig& v = result.final_validation;
       result.has_final_validation = true;
       if (final["model"]) {
-        v.model = OverrideModel(reader, *file.family, model, final["model"], "final_validation.model");
+        ModelOptions ignored;
+        v.model = OverrideModel(reader, *file.family, model, final["model"],
+                                "final_validation.model", &ignored);
       }
       const ModelInfo& final_info = v.model ? v.model->info() : info;
       if (!final["experiments"]) reader.Fail(final, "final_validation", "missing key 'experiments'");

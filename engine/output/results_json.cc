@@ -217,6 +217,13 @@ json StageToJson(const RunConfig& config, const StageResult& stage, JsonSplices*
   j["verdict"] = VerdictToString(stage.verdict);
   j["findings"] = FindingsToJson(stage.findings);
   j["model"] = stage.model;
+  for (const StageConfig& configured : config.stages) {
+    if (configured.options.name != stage.name) continue;
+    if (configured.model) j["model_options"] = configured.model_options;  // its restriction
+    // The configured bound on the RK4 step (0: the median sample interval);
+    // integration_step below when the stage had to shorten it.
+    j["max_step"] = configured.experiment.max_step;
+  }
   j["time_seconds"] = s.time_seconds;
   if (s.global.run) {
     j["global_start"] = {{"algorithm", s.global.algorithm},
@@ -335,7 +342,10 @@ json RunResultDocument(const RunConfig& config, const RunResult& result, JsonSpl
   j["vesselid_version"] = "0.1.0";
   // The verdict first: a reader (or a script) sees it before anything else.
   j["config"] = config.path;
-  j["model"] = {{"family", config.family}, {"name", config.model->info().name}};
+  // Enough to make the model again (ModelRegistry::MakeModel): `vesselid export`.
+  j["model"] = {{"family", config.family},
+                {"name", config.model->info().name},
+                {"options", config.model_options}};
   j["time_seconds"] = result.time_seconds;
   j["verdict"] = VerdictToString(result.verdict);
   j["findings"] = FindingsToJson(result.findings);

@@ -46,6 +46,11 @@ enum class HeldOutPerExperiment { kFit, kHold };
 const char* HeldOutPerExperimentToString(HeldOutPerExperiment mode);  // "fit", "hold"
 bool StringToHeldOutPerExperiment(const std::string& text, HeldOutPerExperiment* mode);
 
+// A model's options as a config gives them: each key of the `model` map but `family`, its value
+// as YAML text ("second_order", "[surge, sway, yaw]"), so that the model can be made again
+// (ModelRegistry::MakeModel) from results.json alone.
+using ModelOptions = std::map<std::string, std::string>;
+
 struct StageConfig {
   // output_error: simulate and compare (the default); least_squares: equation-error regression
   // of the model's derivative form (least_squares.h), its estimate starting the next stage;
@@ -61,6 +66,8 @@ struct StageConfig {
   RegressionDataOptions regression_data;
   // The stage's own restriction of the model (e.g. active DOFs); null: the run's model.
   std::shared_ptr<const ModelHandle> model;
+  // With `model`: its options (ModelOptions), the run's with the stage's keys replaced.
+  ModelOptions model_options;
   std::vector<std::string> experiments;  // names from RunConfig::experiments
   // Held-out experiments simulated after the stage (its free initial states estimated first).
   std::vector<std::string> validation;
@@ -115,6 +122,7 @@ struct RunConfig {
   std::string description;
   std::string family;  // the model family's name, as reported
   std::shared_ptr<const ModelHandle> model;
+  ModelOptions model_options;  // the `model` map's keys but family, each value as YAML text
   std::vector<ExperimentSpec> experiments;  // files resolved to paths
   std::vector<StageConfig> stages;
   FusionRule fusion = FusionRule::kInverseVariance;
@@ -135,6 +143,9 @@ struct RunConfig {
   // The model a stage is solved with: its own restriction, else the run's.
   const ModelHandle& StageModel(const StageConfig& stage) const {
     return stage.model ? *stage.model : *model;
+  }
+  const ModelOptions& StageModelOptions(const StageConfig& stage) const {
+    return stage.model ? stage.model_options : model_options;
   }
 };
 

@@ -1,11 +1,13 @@
 # The layering rule of engine/: a file includes only its own folder and the folders below it.
 #
 #   base < data < model < solve < regression < step_regression < run < diagnose < {study, output}
-#        < report < config < engine/vesselid.h (the public API) < problems < cli
+#        < report < config < export < engine/vesselid.h (the public API) < problems
+#        < {cli, fmu}
 #
 # study and output are siblings (neither includes the other); output holds the result files
-# (results.json, report.txt, traces, checkpoints), report the HTML report above them. Only the command line may
-# include problems/. Run as `cmake -DROOT=<source tree> -P layering_check.cmake`; every
+# (results.json, report.txt, traces, checkpoints), report the HTML report above them; export
+# turns a run's results into a model to take out (model.json, C, FMU). Only the command line
+# and the FMU's runtime library (fmu, siblings) may include problems/. Run as `cmake -DROOT=<source tree> -P layering_check.cmake`; every
 # upward include is listed as file:line and the script fails if there is one.
 if(NOT ROOT)
   message(FATAL_ERROR "layering_check: pass -DROOT=<source tree>")
@@ -23,9 +25,11 @@ set(rank_study 8)
 set(rank_output 8)
 set(rank_report 9)
 set(rank_config 10)
-set(rank_api 11)       # engine/vesselid.h
-set(rank_problems 12)
-set(rank_cli 13)
+set(rank_export 11)
+set(rank_api 12)       # engine/vesselid.h
+set(rank_problems 13)
+set(rank_cli 14)
+set(rank_fmu 14)
 
 # The layer of a path relative to ROOT ("" when it belongs to none).
 function(layer_of path out)

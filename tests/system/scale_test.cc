@@ -46,21 +46,28 @@ int RunCommand(const std::string& command, std::string* output) {
   return pclose(pipe);
 }
 
-TEST(Scale, TenThousandWindowsOfOneLogRunWithinTheBudget) {
-  const fs::path dir = fs::temp_directory_path() / "vesselid_scale_windows";
+// A first-order Nomoto ship (T 2 s, K -0.17 1/s) under a heading controller, logged at 10 Hz
+// for `duration` seconds into `dir` (emptied first).
+void SimulateLog(const fs::path& dir, double duration, Trajectory* data) {
   fs::remove_all(dir);
   fs::create_directories(dir);
-  // One log of the whole campaign: a first-order Nomoto ship under a heading controller, 10 Hz.
   auto model = nomoto::MakeFirstOrderHandle();
   nomoto::ClosedLoopOptions loop;
-  loop.duration = kExperiments * kWindow;
+  loop.duration = duration;
   loop.sample_time = 0.1;
   loop.controller_gain = 0.7;
   loop.excitation.amplitude = 0.3;
   loop.excitation.periods = {20.0};
-  Trajectory data;
   std::string error;
-  ASSERT_TRUE(nomoto::SimulateClosedLoop(*model, {2.0, -0.17, 0.0}, loop, &data, &error)) << error;
+  ASSERT_TRUE(nomoto::SimulateClosedLoop(*model, {2.0, -0.17, 0.0}, loop, data, &error)) << error;
+}
+
+TEST(Scale, TenThousandWindowsOfOneLogRunWithinTheBudget) {
+  const fs::path dir = fs::temp_directory_path() / "vesselid_scale_windows";
+  // One log of the whole campaign.
+  Trajectory data;
+  SimulateLog(dir, kExperiments * kWindow, &data);
+  std::string error;
   ASSERT_TRUE(WriteTrajectoryCsv((dir / "log.csv").string(), data, &error)) << error;
   std::ofstream config(dir / "config.yaml");
   config << "model: {family: nomoto, type: first_order}\n"
@@ -109,18 +116,9 @@ TEST(Scale, TenThousandWindowsOfOneLogRunWithinTheBudget) {
 // A first-order Nomoto log of `segments` segments of `rows` samples (10 Hz) with their ids in
 // the column `segment`, and a config fitting T and K over them (each segment's psi and r free).
 void WriteSegmentedCampaign(const fs::path& dir, int segments, int rows, int memory_mb) {
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  auto model = nomoto::MakeFirstOrderHandle();
-  nomoto::ClosedLoopOptions loop;
-  loop.duration = segments * rows * 0.1;
-  loop.sample_time = 0.1;
-  loop.controller_gain = 0.7;
-  loop.excitation.amplitude = 0.3;
-  loop.excitation.periods = {20.0};
   Trajectory data;
+  SimulateLog(dir, segments * rows * 0.1, &data);
   std::string error;
-  ASSERT_TRUE(nomoto::SimulateClosedLoop(*model, {2.0, -0.17, 0.0}, loop, &data, &error)) << error;
   data.t.resize(static_cast<size_t>(segments) * rows);
   for (std::vector<double>& column : data.columns) column.resize(data.t.size());
   std::vector<double> segment(data.t.size());

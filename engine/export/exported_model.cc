@@ -1,0 +1,264 @@
+#include "engine/export/exported_model.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <map>
+#include <random>
+
+#include "Eigen/Cholesky"
+#include "engine/base/json_number.h"
+
+namespace vesselid {
+namespace {
+
+using nlohmann::json;
+
+constexpr int kFormatVersion = 1;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::vector<ExportedVariable> Variables(const std::vector<std::string>& names,
+                                        const std::function<std::string(int)>& unit) {
+  std::vector<ExportedVariable> variables;
+  for (size_t i = 0; i < names.size(); ++i) {
+    variables.push_back({names[i], unit(static_cast<int>(i))});
+  }
+  return variables;
+}
+
+json VariablesToJson(const std::vector<ExportedVariable>& variables) {
+  json list = json::array();
+  for (const ExportedVariable& v : variables) list.push_back({{"name", v.name}, {"unit", v.unit}});
+  return list;
+}
+
+std::vector<ExportedVariable> VariablesFromJson(const json& list) {
+  std::vector<ExportedVariable> variables;
+  for (const json& v : list) variables.push_back({v.at("name"), v.at("unit")});
+  return variables;
+}
+
+// The last output-error stage (one with estimates and a model): the model the final values
+// were estimated with.
+const json* LastModelStage(const json& results) {
+  const json* last = nullptr;
+  for (const json& stage : results.at("stages")) {
+    if (stage.contains("estimates") && stage.contains("model")) last = &stage;
+  }
+  return last;
+}
+
+}  // namespace
+
+std::vector<std::vector<double>> DrawEnsemble(const ExportedModel& model, int members,
+                                              unsigned seed) {
+  const int n = static_cast<int>(model.covariance_names.size());
+  std::vector<int> index(n);
+  for (int i = 0; i < n; ++i) {
+    for (size_t k = 0; k < model.parameters.size(); ++k) {
+      if (model.parameters[k].name == model.covariance_names[i]) index[i] = static_cast<int>(k);
+    }
+  }
+  // C = L D L^T; a draw is values + L sqrt(max(D, 0)) z (a semidefinite covariance, e.g. an
+  // undetermined direction of zero variance, keeps its zero directions).
+  Eigen::LDLT<Eigen::MatrixXd> ldlt(model.covariance);
+  Eigen::MatrixXd factor = Eigen::MatrixXd::Zero(n, n);
+  if (n > 0) {
+    const Eigen::VectorXd d = ldlt.vectorD().cwiseMax(0.0).cwiseSqrt();
+    const Eigen::MatrixXd l = ldlt.matrixL();
+    factor = ldlt.transpositionsP().transpose() * (l * d.asDiagonal());
+  }
+  std::mt19937_64 random(seed);
+  std::normal_distribution<double> normal;
+  std::vector<std::vector<double>> ensemble;
+  for (int m = 0; m < members; ++m) {
+    Eigen::VectorXd z(n);
+    for (int i = 0; i < n; ++i) z[i] = normal(random);
+    const Eigen::VectorXd offset = factor * z;
+    std::vector<double> member = model.values;
+    for (int i = 0; i < n; ++i) member[index[i]] += offset[i];
+    ensemble.push_back(std::move(member));
+  }
+  return ensemble;
+}
+
+std::shared_ptr<const ModelHandle> MakeExportedModel(const ModelRegistry& registry,
+                                                     const std::string& family,
+                                                     const ModelOptions& options,
+                                                     ExportedModel* m, std::string* error) {
+  std::shared_ptr<const ModelHandle> handle = registry.MakeModel(family, options, error);
+  if (handle == nullptr) return nullptr;
+  const ModelInfo& info = handle->info();
+  m->family = family;
+  m->options = options;
+  m->model = info.name;
+  m->states = Variables(info.states, [&](int i) { return info.StateUnit(i); });
+  m->inputs = Variables(info.inputs, [&](int i) { return info.InputUnit(i); });
+  m->outputs = Variables(info.outputs, [&](int i) { return info.OutputUnit(i); });
+  m->parameters = Variables(info.parameters, [&](int i) { return info.ParameterUnit(i); });
+  m->values = info.parameter_defaults;
+  m->std_errors.assign(info.parameters.size(), kNaN);
+  m->covariance_names.clear();
+  m->covariance.resize(0, 0);
+  m->ensemble.clear();
+  return handle;
+}
+
+bool ReadExportedModel(const std::string& out_folder, const ModelRegistry& registry, int members,
+                       unsigned seed, ExportedModel* model, std::string* error) {
+  const std::string path = (std::filesystem::path(out_folder) / "results.json").string();
+  std::ifstream in(path);
+  if (!in) {
+    *error = path + ": cannot open (the folder of a finished `vesselid run`?)";
+    return false;
+  }
+  json results;
+  try {
+    results = json::parse(in);
+    ExportedModel m;
+    m.results = path;
+    const json& run_model = results.at("model");
+    m.family = run_model.at("family");
+    if (!run_model.contains("options")) {
+      *error = path + ": model.options: missing (results of a vesselid older than `export`; "
+                      "run the config again)";
+      return false;
+    }
+    m.options = run_model.at("options").get<ModelOptions>();
+    const json* stage = LastModelStage(results);
+    if (stage != nullptr && stage->contains("model_options")) {
+      m.options = stage->at("model_options").get<ModelOptions>();
+    }
+    const std::shared_ptr<const ModelHandle> handle =
+        MakeExportedModel(registry, m.family, m.options, &m, error);
+    if (handle == nullptr) {
+      *error = path + ": model: " + *error;
+      return false;
+    }
+    const ModelInfo& info = handle->info();
+    std::map<std::string, int> index;
+    for (size_t i = 0; i < info.parameters.size(); ++i) index[info.parameters[i]] = static_cast<int>(i);
+    for (const json& p : results.at("parameters")) {
+      const auto found = index.find(p.at("name").get<std::string>());
+      if (found == index.end()) continue;  // a per-experiment value, an initial state
+      m.values[found->second] = p.at("value").get<double>();
+      if (p.at("role") == "free") m.std_errors[found->second] = NumberOr(p.at("std_error"), kNaN);
+    }
+    // The correlation of the last stage that has one, over the parameters with final SEs.
+    const json* correlated = nullptr;
+    for (const json& s : results.at("stages")) {
+      if (s.contains("correlation")) correlated = &s;
+    }
+    for (size_t i = 0; i < info.parameters.size(); ++i) {
+      if (std::isfinite(m.std_errors[i])) m.covariance_names.push_back(info.parameters[i]);
+    }
+    const int n = static_cast<int>(m.covariance_names.size());
+    m.covariance = Eigen::MatrixXd::Zero(n, n);
+    std::map<std::string, int> row;
+    if (correlated != nullptr) {
+      const std::vector<std::string> names = correlated->at("correlation").at("names");
+      for (size_t r = 0; r < names.size(); ++r) row[names[r]] = static_cast<int>(r);
+    }
+    for (int a = 0; a < n; ++a) {
+      for (int b = 0; b < n; ++b) {
+        const double sa = m.std_errors[index[m.covariance_names[a]]];
+        const double sb = m.std_errors[index[m.covariance_names[b]]];
+        double r = a == b ? 1.0 : 0.0;
+        const auto ra = row.find(m.covariance_names[a]), rb = row.find(m.covariance_names[b]);
+        if (a != b && ra != row.end() && rb != row.end()) {
+          r = NumberOr(correlated->at("correlation").at("matrix").at(ra->second).at(rb->second),
+                       0.0);
+        }
+        m.covariance(a, b) = r * sa * sb;
+      }
+    }
+    if (stage != nullptr) {
+      m.max_step = NumberOr(stage->value("integration_step", json()), 0.0);
+      if (!(m.max_step > 0.0)) m.max_step = NumberOr(stage->value("max_step", json()), 0.0);
+    }
+    m.ensemble_seed = seed;
+    m.ensemble = DrawEnsemble(m, members, seed);
+    *model = std::move(m);
+    return true;
+  } catch (const json::exception& e) {
+    *error = path + ": " + e.what();
+    return false;
+  }
+}
+
+json ExportedModelToJson(const ExportedModel& m) {
+  json parameters = json::array();
+  for (size_t i = 0; i < m.parameters.size(); ++i) {
+    parameters.push_back({{"name", m.parameters[i].name},
+                          {"unit", m.parameters[i].unit},
+                          {"value", m.values[i]},
+                          {"std_error", JsonNumber(m.std_errors[i])}});
+  }
+  json matrix = json::array();
+  for (int r = 0; r < m.covariance.rows(); ++r) {
+    json line = json::array();
+    for (int c = 0; c < m.covariance.cols(); ++c) line.push_back(m.covariance(r, c));
+    matrix.push_back(line);
+  }
+  return {{"format", "vesselid-model"},
+          {"version", kFormatVersion},
+          {"family", m.family},
+          {"model", m.model},
+          {"options", m.options},
+          {"states", VariablesToJson(m.states)},
+          {"inputs", VariablesToJson(m.inputs)},
+          {"outputs", VariablesToJson(m.outputs)},
+          {"parameters", parameters},
+          {"covariance", {{"names", m.covariance_names}, {"matrix", matrix}}},
+          {"ensemble", {{"source", "covariance"}, {"seed", m.ensemble_seed}, {"members", m.ensemble}}},
+          {"max_step", m.max_step},
+          {"results", m.results}};
+}
+
+bool ExportedModelFromJson(const json& j, ExportedModel* model, std::string* error) {
+  try {
+    if (j.at("format") != "vesselid-model" || j.at("version") != kFormatVersion) {
+      *error = "not a vesselid model.json of version " + std::to_string(kFormatVersion);
+      return false;
+    }
+    ExportedModel m;
+    m.family = j.at("family");
+    m.model = j.at("model");
+    m.options = j.at("options").get<ModelOptions>();
+    m.states = VariablesFromJson(j.at("states"));
+    m.inputs = VariablesFromJson(j.at("inputs"));
+    m.outputs = VariablesFromJson(j.at("outputs"));
+    for (const json& p : j.at("parameters")) {
+      m.parameters.push_back({p.at("name"), p.at("unit")});
+      m.values.push_back(p.at("value"));
+      m.std_errors.push_back(NumberOr(p.at("std_error"), kNaN));
+    }
+    m.covariance_names = j.at("covariance").at("names").get<std::vector<std::string>>();
+    const json& matrix = j.at("covariance").at("matrix");
+    const int n = static_cast<int>(m.covariance_names.size());
+    m.covariance.resize(n, n);
+    for (int r = 0; r < n; ++r) {
+      for (int c = 0; c < n; ++c) m.covariance(r, c) = matrix.at(r).at(c);
+    }
+    m.ensemble = j.at("ensemble").at("members").get<std::vector<std::vector<double>>>();
+    m.ensemble_seed = j.at("ensemble").at("seed");
+    for (const std::vector<double>& member : m.ensemble) {
+      if (member.size() != m.values.size()) {
+        *error = "ensemble member of " + std::to_string(member.size()) + " values, expected " +
+                 std::to_string(m.values.size());
+        return false;
+      }
+    }
+    m.max_step = j.at("max_step");
+    m.results = j.value("results", "");
+    *model = std::move(m);
+    return true;
+  } catch (const json::exception& e) {
+    *error = std::string("model.json: ") + e.what();
+    return false;
+  }
+}
+
+}  // namespace vesselid

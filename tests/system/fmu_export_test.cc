@@ -1,0 +1,213 @@
+// The exported FMU of every shipped config's model, loaded by a test master (dlopen, the fmi2*
+// functions) and driven over the config's first simulated record as a co-simulation would
+// (inputs and their slopes set at each sample, one fmi2DoStep per sample interval):
+// its outputs equal the engine's own simulation of the record (ModelHandle::SimulateOutputs,
+// the path every fit takes) to 1e-10 relative. modelDescription.xml is checked for the FMI 2.0
+// rules that matter (unique value references per type, causality/variability combinations,
+// start values where required), and ensemble_member selects its draw.
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <filesystem>
+#include <map>
+#include <regex>
+#include <set>
+#include <string>
+
+#include "Eigen/Dense"
+#include "engine/config/config.h"
+#include "engine/export/exported_model.h"
+#include "engine/export/fmu_package.h"
+#include "engine/run/records.h"
+#include "gtest/gtest.h"
+#include "problems/registry.h"
+#include "tests/support/fmu_loader.h"
+
+namespace vesselid {
+namespace {
+
+namespace fs = std::filesystem;
+
+class FmuExport : public ::testing::TestWithParam<std::string> {};
+
+// The FMI 2.0 combinations of causality and variability (table in section 2.2.7) this export
+// uses, each allowed, and a start value on every input and parameter.
+void CheckDescription(const testing::FmuLoader& fmu) {
+  std::set<std::pair<std::string, unsigned>> references;
+  std::set<std::string> names;
+  for (const testing::FmuVariable& v : fmu.variables()) {
+    EXPECT_TRUE(references.insert({v.type, v.reference}).second)
+        << v.type << " value reference " << v.reference << " used twice";
+    EXPECT_TRUE(names.insert(v.name).second) << v.name << " named twice";
+    const std::string pair = v.causality + "/" + v.variability;
+    EXPECT_TRUE(pair == "input/continuous" || pair == "output/continuous" ||
+                pair == "parameter/tunable" || pair == "parameter/fixed")
+        << v.name << ": " << pair;
+  }
+  const std::string& xml = fmu.description();
+  EXPECT_NE(xml.find("fmiVersion=\"2.0\""), std::string::npos);
+  EXPECT_NE(xml.find("<InitialUnknowns>"), std::string::npos);
+  // Every input and parameter carries a start value.
+  const std::regex needs_start(
+      "causality=\"(input|parameter)\"[^>]*>\\s*<(Real|Integer)(?![^>]*start=)");
+  EXPECT_FALSE(std::regex_search(xml, needs_start)) << xml;
+}
+
+TEST_P(FmuExport, ReproducesTheEnginesSimulationOfTheFirstRecord) {
+  const std::string name = GetParam();
+  const fs::path dir = fs::temp_directory_path() / ("vesselid_fmu_" + name);
+  fs::remove_all(dir);
+  const std::string config_path = std::string(VESSELID_SOURCE_DIR) + "/configs/" + name + ".yaml";
+  const std::string simulate = std::string(VESSELID_BINARY) + " simulate " + config_path +
+                               " --out " + (dir / "data").string() + " > /dev/null";
+  ASSERT_EQ(std::system(simulate.c_str()), 0) << simulate;
+  const ModelRegistry registry = DefaultRegistry();
+  RunConfig config;
+  std::string error;
+  ASSERT_TRUE(LoadRunConfig(config_path, (dir / "data").string(), registry, &config, &error))
+      << error;
+  // The model of the first output-error stage, at its parameters' starts.
+  const StageConfig* stage = nullptr;
+  for (const StageConfig& s : config.stages) {
+    if (stage == nullptr && s.kind == StageConfig::Kind::kOutputError) stage = &s;
+  }
+  ASSERT_NE(stage, nullptr);
+  ExportedModel exported;
+  const std::shared_ptr<const ModelHandle> model = MakeExportedModel(
+      registry, config.family, config.StageModelOptions(*stage), &exported, &error);
+  ASSERT_NE(model, nullptr) << error;
+  const ModelInfo& info = model->info();
+  for (const ParameterSpec& p : stage->parameters) {
+    for (size_t i = 0; i < info.parameters.size(); ++i) {
+      if (info.parameters[i] == p.name) exported.values[i] = p.start;
+    }
+  }
+  exported.max_step = stage->experiment.max_step;
+  // Two draws of 1 % spread in every parameter.
+  exported.covariance_names = info.parameters;
+  exported.covariance = Eigen::MatrixXd::Zero(info.parameters.size(), info.parameters.size());
+  for (size_t i = 0; i < info.parameters.size(); ++i) {
+    exported.covariance(i, i) = std::pow(0.01 * exported.values[i], 2);
+  }
+  exported.ensemble = DrawEnsemble(exported, 2, 7);
+
+  // The engine's simulation of the stage's first record.
+  TrajectoryCache cache;
+  std::vector<Experiment> experiments;
+  ASSERT_TRUE(PrepareExperiments(config, {stage->experiments.front()}, *model, stage->experiment,
+                                 &cache, &experiments, &error))
+      << error;
+  const Experiment& e = experiments.front();
+  // The same record in steps of a third of its shortest sample interval or less: its input
+  // cache holds each input's interpolant at four points or more of every interval.
+  ExperimentOptions fine_options = stage->experiment;
+  double shortest = std::numeric_limits<double>::infinity();
+  for (int k = 0; k + 1 < e.num_nodes(); ++k) {
+    shortest = std::min(shortest, e.node_time[k + 1] - e.node_time[k]);
+  }
+  fine_options.max_step = shortest / 3.0;
+  std::vector<Experiment> fine_experiments;
+  ASSERT_TRUE(PrepareExperiments(config, {stage->experiments.front()}, *model, fine_options,
+                                 &cache, &fine_experiments, &error))
+      << error;
+  const Experiment& fine = fine_experiments.front();
+  ASSERT_EQ(fine.node_time, e.node_time);
+  std::vector<double> x0 = e.initial_state.empty() ? e.initial_state_guess : e.initial_state;
+  std::vector<double> reference;
+  ASSERT_TRUE(model->SimulateOutputs(e, exported.values.data(), x0.data(), &reference));
+
+  ASSERT_TRUE(WriteFmu(exported, VESSELID_FMU_RUNTIME, (dir / "model.fmu").string(), &error))
+      << error;
+  testing::FmuLoader fmu;
+  ASSERT_TRUE(fmu.Open((dir / "model.fmu").string(), (dir / "unpacked").string(), &error)) << error;
+  CheckDescription(fmu);
+  EXPECT_STREQ(fmu.Version(), "2.0");
+  ASSERT_TRUE(fmu.Instantiate());
+  const int nu = e.num_inputs, ny = static_cast<int>(info.outputs.size());
+  std::vector<int> input(nu), output(ny);
+  for (int i = 0; i < nu; ++i) input[i] = fmu.Reference(info.inputs[i]);
+  for (int j = 0; j < ny; ++j) output[j] = fmu.Reference(info.outputs[j]);
+  ASSERT_EQ(fmu.Setup(e.node_time.front()), fmi2OK);
+  ASSERT_EQ(fmu.EnterInitialization(), fmi2OK);
+  for (size_t s = 0; s < info.states.size(); ++s) {
+    ASSERT_EQ(fmu.SetReal(fmu.Reference("initial_" + info.states[s]), x0[s]), fmi2OK);
+  }
+  ASSERT_EQ(fmu.ExitInitialization(), fmi2OK);
+
+  // Per node: the inputs at its time and their interpolant's derivatives there (the cubic in
+  // tau through the fine cache's step starts 0, h/m, 2 h/m and the interval's end, a left
+  // limit: exact for the run's hold, linear and cubic interpolations), the outputs, one step.
+  const int nodes = e.num_nodes();
+  std::vector<double> channel_scale(ny, 0.0);
+  for (int k = 0; k < nodes; ++k) {
+    for (int j = 0; j < ny; ++j) {
+      channel_scale[j] = std::max(channel_scale[j], std::abs(reference[k * ny + j]));
+    }
+  }
+  int step = 0, fine_step = 0;
+  double worst = 0.0;
+  std::string worst_at;
+  for (int k = 0; k < nodes; ++k) {
+    const double* start = e.input_cache.data() + 3 * step * nu;
+    const int substeps = k + 1 < nodes ? e.node_substeps[k] : 0;
+    for (int i = 0; i < nu; ++i) {
+      ASSERT_EQ(fmu.SetReal(input[i], start[i]), fmi2OK);
+      if (substeps == 0 || !std::isfinite(start[i])) continue;
+      const int m = fine.node_substeps[k];
+      ASSERT_GE(m, 3);
+      const double h = e.node_time[k + 1] - e.node_time[k];
+      Eigen::Matrix4d powers;
+      Eigen::Vector4d values;
+      const double points[4] = {0.0, 1.0 / m, 2.0 / m, 1.0};
+      const int rows[4] = {3 * fine_step, 3 * (fine_step + 1), 3 * (fine_step + 2),
+                           3 * (fine_step + m - 1) + 2};
+      for (int r = 0; r < 4; ++r) {
+        for (int c = 0; c < 4; ++c) powers(r, c) = std::pow(points[r], c);
+        values[r] = fine.input_cache[rows[r] * nu + i];
+      }
+      const Eigen::Vector4d c = powers.fullPivLu().solve(values);  // in s = tau / h
+      ASSERT_EQ(fmu.SetDerivative(input[i], 1, c[1] / h), fmi2OK);
+      ASSERT_EQ(fmu.SetDerivative(input[i], 2, 2.0 * c[2] / (h * h)), fmi2OK);
+      ASSERT_EQ(fmu.SetDerivative(input[i], 3, 6.0 * c[3] / (h * h * h)), fmi2OK);
+    }
+    for (int j = 0; j < ny; ++j) {
+      const double expected = reference[k * ny + j], got = fmu.GetReal(output[j]);
+      const double relative =
+          std::abs(got - expected) / std::max(std::abs(expected), 1e-3 * channel_scale[j]);
+      if (!(relative <= worst)) {
+        worst = relative;
+        worst_at = info.outputs[j] + " at t = " + std::to_string(e.node_time[k]);
+      }
+    }
+    if (substeps == 0) break;
+    ASSERT_EQ(fmu.DoStep(e.node_time[k], e.node_time[k + 1] - e.node_time[k]), fmi2OK)
+        << "at t = " << e.node_time[k];
+    step += substeps;
+    fine_step += fine.node_substeps[k];
+  }
+  EXPECT_LE(worst, 1e-10) << name << ": worst " << worst_at << " over " << nodes << " nodes";
+  EXPECT_EQ(fmu.Terminate(), fmi2OK);
+
+  // ensemble_member 2 sets every parameter to the second draw.
+  testing::FmuLoader member;
+  ASSERT_TRUE(member.Open((dir / "model.fmu").string(), (dir / "member").string(), &error));
+  ASSERT_TRUE(member.Instantiate());
+  ASSERT_EQ(member.EnterInitialization(), fmi2OK);
+  ASSERT_EQ(member.SetInteger(member.Reference("ensemble_member"), 2), fmi2OK);
+  for (size_t i = 0; i < info.parameters.size(); ++i) {
+    EXPECT_EQ(member.GetReal(member.Reference(info.parameters[i])), exported.ensemble[1][i])
+        << info.parameters[i];
+  }
+  EXPECT_NE(member.SetInteger(member.Reference("ensemble_member"), 3), fmi2OK);
+  fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, FmuExport,
+                         ::testing::Values("nomoto_cargo", "nomoto_cargo_noise", "nomoto_patrol",
+                                           "nomoto_patrol_noise", "nomoto_tanker",
+                                           "eriksen_2dof", "erunsal_hierarchy",
+                                           "input_gain_static", "input_gain_dynamic",
+                                           "input_gain_usv_log"));
+
+}  // namespace
+}  // namespace vesselid
