@@ -5,10 +5,13 @@
 // the path every fit takes) to 1e-10 relative. modelDescription.xml is checked for the FMI 2.0
 // rules that matter (unique value references per type, causality/variability combinations,
 // start values where required), and ensemble_member selects its draw.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
-#include <limits>
 #include <filesystem>
+#include <fstream>
+#include <limits>
 #include <map>
 #include <regex>
 #include <set>
@@ -20,6 +23,7 @@
 #include "engine/export/fmu_package.h"
 #include "engine/run/records.h"
 #include "gtest/gtest.h"
+#include "nlohmann/json.hpp"
 #include "problems/registry.h"
 #include "tests/support/fmu_loader.h"
 
@@ -66,7 +70,8 @@ TEST_P(FmuExport, ReproducesTheEnginesSimulationOfTheFirstRecord) {
   std::string error;
   ASSERT_TRUE(LoadRunConfig(config_path, (dir / "data").string(), registry, &config, &error))
       << error;
-  // The model of the first output-error stage, at its parameters' starts.
+  // The model of the first output-error stage, at its parameters' starts (the model's typical
+  // values where a start is an earlier stage's estimate).
   const StageConfig* stage = nullptr;
   for (const StageConfig& s : config.stages) {
     if (stage == nullptr && s.kind == StageConfig::Kind::kOutputError) stage = &s;
@@ -78,6 +83,7 @@ TEST_P(FmuExport, ReproducesTheEnginesSimulationOfTheFirstRecord) {
   ASSERT_NE(model, nullptr) << error;
   const ModelInfo& info = model->info();
   for (const ParameterSpec& p : stage->parameters) {
+    if (p.start_from_previous) continue;
     for (size_t i = 0; i < info.parameters.size(); ++i) {
       if (info.parameters[i] == p.name) exported.values[i] = p.start;
     }
@@ -172,6 +178,12 @@ TEST_P(FmuExport, ReproducesTheEnginesSimulationOfTheFirstRecord) {
     }
     for (int j = 0; j < ny; ++j) {
       const double expected = reference[k * ny + j], got = fmu.GetReal(output[j]);
+      // An output the model leaves undefined (NaN, e.g. of an input the record lacks) is so in
+      // both.
+      if (std::isnan(expected)) {
+        EXPECT_TRUE(std::isnan(got)) << info.outputs[j] << " at t = " << e.node_time[k];
+        continue;
+      }
       const double relative =
           std::abs(got - expected) / std::max(std::abs(expected), 1e-3 * channel_scale[j]);
       if (!(relative <= worst)) {
@@ -185,6 +197,8 @@ TEST_P(FmuExport, ReproducesTheEnginesSimulationOfTheFirstRecord) {
     step += substeps;
     fine_step += fine.node_substeps[k];
   }
+  std::printf("%s: %d nodes, worst relative difference %.3g (%s)\n", name.c_str(), nodes, worst,
+              worst_at.c_str());
   EXPECT_LE(worst, 1e-10) << name << ": worst " << worst_at << " over " << nodes << " nodes";
   EXPECT_EQ(fmu.Terminate(), fmi2OK);
 
@@ -199,6 +213,88 @@ TEST_P(FmuExport, ReproducesTheEnginesSimulationOfTheFirstRecord) {
         << info.parameters[i];
   }
   EXPECT_NE(member.SetInteger(member.Reference("ensemble_member"), 3), fmi2OK);
+  fs::remove_all(dir);
+}
+
+// `vesselid export` on a finished run (the tanker's n1-form Nomoto model): model.json holds the
+// run's final values, the covariance of its estimates (diagonal: their squared standard
+// errors) and 100 draws around the values; the FMU starts its parameters at the final values
+// and offers the draws; bad requests are refused with one clear line and nothing written.
+TEST(ExportCommand, TakesARunsModelOutAsJsonAndFmu) {
+  const fs::path dir = fs::temp_directory_path() / "vesselid_export_command";
+  fs::remove_all(dir);
+  const std::string binary = VESSELID_BINARY;
+  const std::string config = std::string(VESSELID_SOURCE_DIR) + "/configs/nomoto_tanker.yaml";
+  ASSERT_EQ(std::system((binary + " simulate " + config + " --out " + (dir / "data").string() +
+                         " > /dev/null")
+                            .c_str()),
+            0);
+  ASSERT_EQ(std::system((binary + " run " + config + " --data " + (dir / "data").string() +
+                         " --out " + (dir / "run").string() + " --quiet --no-report > /dev/null")
+                            .c_str()),
+            0);
+  const std::string run = (dir / "run").string();
+  ASSERT_EQ(std::system((binary + " export " + run + " --format json > /dev/null").c_str()), 0);
+  ASSERT_EQ(std::system((binary + " export " + run + " --format fmu > /dev/null").c_str()), 0);
+  std::ifstream results_file(dir / "run" / "results.json");
+  const nlohmann::json results = nlohmann::json::parse(results_file);
+  const std::string model_name = results["model"]["name"];
+  std::ifstream model_file(dir / "run" / "export" / (model_name + ".json"));
+  const nlohmann::json model = nlohmann::json::parse(model_file);
+  EXPECT_EQ(model["family"], "nomoto");
+  EXPECT_EQ(model["options"], results["model"]["options"]);
+  std::map<std::string, double> value, std_error;
+  for (const nlohmann::json& p : results["parameters"]) {
+    value[p["name"]] = p["value"];
+    if (p["std_error"].is_number()) std_error[p["name"]] = p["std_error"];
+  }
+  std::vector<std::string> names;
+  for (const nlohmann::json& p : model["parameters"]) {
+    names.push_back(p["name"]);
+    EXPECT_EQ(p["value"].get<double>(), value.at(p["name"])) << p["name"];
+  }
+  const std::vector<std::string> estimated = model["covariance"]["names"];
+  ASSERT_FALSE(estimated.empty());
+  for (size_t a = 0; a < estimated.size(); ++a) {
+    const double se = std_error.at(estimated[a]);
+    EXPECT_NEAR(model["covariance"]["matrix"][a][a].get<double>(), se * se, 1e-12 * se * se);
+  }
+  // The draws: 100, centred on the values within 4 standard errors of their mean.
+  const nlohmann::json& members = model["ensemble"]["members"];
+  ASSERT_EQ(members.size(), 100u);
+  for (const std::string& name : estimated) {
+    const size_t i = std::find(names.begin(), names.end(), name) - names.begin();
+    double mean = 0.0;
+    for (const nlohmann::json& m : members) mean += m[i].get<double>() / 100.0;
+    EXPECT_NEAR(mean, value[name], 4.0 * std_error[name] / 10.0) << name;
+  }
+
+  testing::FmuLoader fmu;
+  std::string error;
+  ASSERT_TRUE(fmu.Open((dir / "run" / "export" / (model_name + ".fmu")).string(),
+                       (dir / "unpacked").string(), &error))
+      << error;
+  EXPECT_NE(fmu.description().find("max=\"100\""), std::string::npos);
+  ASSERT_TRUE(fmu.Instantiate());
+  for (const std::string& name : names) {
+    EXPECT_EQ(fmu.GetReal(fmu.Reference(name)), value[name]) << name;
+  }
+
+  // Refused: not a run's folder, an unknown format, a negative ensemble; nothing written.
+  auto refused = [&](const std::string& arguments, const std::string& says) {
+    const std::string command = binary + " export " + arguments + " 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    std::string output;
+    char buffer[512];
+    while (fgets(buffer, sizeof(buffer), pipe) != nullptr) output += buffer;
+    EXPECT_NE(pclose(pipe), 0) << command;
+    EXPECT_NE(output.find(says), std::string::npos) << command << "\n" << output;
+  };
+  refused((dir / "data").string() + " --format json", "results.json: cannot open");
+  refused(run + " --format onnx", "--format");
+  refused(run + " --members -3 --out " + (dir / "neg").string(), "--members must be >= 0");
+  EXPECT_FALSE(fs::exists(dir / "data" / "export"));
+  EXPECT_FALSE(fs::exists(dir / "neg"));
   fs::remove_all(dir);
 }
 
