@@ -9,10 +9,14 @@
 //                                                                also under mpirun -np K)
 //   vesselid export   <run-out> [--format fmu|json] [--out <dir>]  the model taken out
 //                     [--members n] [--seed s]
+//   vesselid predict  <run-out> [--length L] [--speed U]     IMO zigzags and turning, with
+//                     [--out <dir>] [--members n]             intervals
 #include <unistd.h>
 
+#include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 
@@ -26,6 +30,7 @@
 #include "engine/diagnose/run_findings.h"
 #include "engine/export/exported_model.h"
 #include "engine/export/fmu_package.h"
+#include "engine/export/manoeuvres.h"
 #include "engine/output/checkpoint.h"
 #include "engine/output/finding_report.h"
 #include "engine/output/output_folder.h"
@@ -135,6 +140,48 @@ int Export(const std::string& run_dir, const std::string& format, std::string ou
   std::printf("%s model of %s (%zu parameters, %zu ensemble members) written to %s\n",
               model.model.c_str(), model.results.c_str(), model.parameters.size(),
               model.ensemble.size(), (std::filesystem::path(out_dir) / name).string().c_str());
+  return 0;
+}
+
+// The standard manoeuvres the model of the run in `run_dir` predicts, with intervals, into
+// `out_dir` (default <run_dir>/predict): predictions.txt and predictions.json, one set.
+int Predict(const std::string& run_dir, std::string out_dir, vesselid::ManoeuvreConditions c,
+            int members, unsigned seed) {
+  if (out_dir.empty()) out_dir = (std::filesystem::path(run_dir) / "predict").string();
+  vesselid::ExportedModel model;
+  std::string error;
+  if (members < 2) return Fail("--members must be >= 2 (the ensemble interval)");
+  if (!vesselid::ReadExportedModel(run_dir, Registry(), members, seed, &model, &error)) {
+    return Fail(error);
+  }
+  // The model's own length (an n1-form Nomoto model on L) unless --length says otherwise.
+  const auto length = model.options.find("length");
+  if (!std::isfinite(c.length) && length != model.options.end()) {
+    c.length = std::strtod(length->second.c_str(), nullptr);
+  }
+  const auto handle = Registry().MakeModel(model.family, model.options, &error);
+  vesselid::ManoeuvrePredictions predictions;
+  if (handle == nullptr || !vesselid::PredictManoeuvres(model, *handle, c, &predictions, &error)) {
+    return Fail(error);
+  }
+  vesselid::PlannedOutputs planned;
+  planned.files = {"predictions.txt", "predictions.json"};
+  const auto folder = OpenOutput(out_dir, planned, {model.results}, &error);
+  if (folder == nullptr) return Fail(error);
+  const auto staging = vesselid::OutputStaging::Begin(out_dir, "predict", planned.files, &error);
+  if (staging == nullptr) return Fail(error);
+  const std::filesystem::path staged(staging->folder());
+  const std::string text = vesselid::ManoeuvresText(predictions);
+  nlohmann::json json = vesselid::ManoeuvresToJson(predictions);
+  json["model"] = model.model;
+  json["results"] = model.results;
+  if (!vesselid::WriteFileAtomically((staged / "predictions.txt").string(), text, &error) ||
+      !vesselid::WriteFileAtomically((staged / "predictions.json").string(), json.dump(2) + "\n",
+                                     &error) ||
+      !staging->Publish("predictions.json", &error)) {
+    return Fail(error);
+  }
+  std::printf("%s", text.c_str());
   return 0;
 }
 
@@ -373,6 +420,16 @@ int main(int argc, char** argv) {
                            "parameter draws from the covariance (ensemble_member 1..N)");
   export_model->add_option("--seed", seed, "seed of the draws");
 
+  CLI::App* predict = app.add_subcommand(
+      "predict", "the standard manoeuvres (IMO zigzags, initial turning) a run's model predicts");
+  vesselid::ManoeuvreConditions conditions;
+  predict->add_option("run", run_dir, "the --out folder of a finished run")->required();
+  predict->add_option("--length", conditions.length, "ship length L (m)");
+  predict->add_option("--speed", conditions.speed, "approach speed U (m/s)");
+  predict->add_option("--out", out_dir, "folder for the predictions (default <run>/predict)");
+  predict->add_option("--members", members, "parameter draws for the ensemble intervals");
+  predict->add_option("--seed", seed, "seed of the draws");
+
   CLI::App* run = app.add_subcommand("run", "staged identification");
   run->add_option("config", config_path, "run configuration (YAML)")->required();
   run->add_option("--data", data_dir,
@@ -418,6 +475,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   if (simulate->parsed()) return Simulate(config_path, out_dir);
   if (export_model->parsed()) return Export(run_dir, format, out_dir, members, seed);
+  if (predict->parsed()) return Predict(run_dir, out_dir, conditions, members, seed);
   if (findings->parsed()) {
     std::cout << vesselid::FindingCatalogueMarkdown();
     return 0;

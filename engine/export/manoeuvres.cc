@@ -1,0 +1,317 @@
+#include "engine/export/manoeuvres.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "engine/base/json_number.h"
+#include "engine/data/zigzag_figures.h"
+
+namespace vesselid {
+namespace {
+
+constexpr double kNotPredicted = ManoeuvreConditions::kUnknown;
+constexpr double kDegreeInRadians = 3.14159265358979323846 / 180.0;
+
+// Where the rudder, the speed and the heading are in the model.
+struct Layout {
+  int delta = -1, speed = -1, psi = -1;
+};
+
+int IndexOf(const std::vector<ExportedVariable>& list, const std::string& name) {
+  for (size_t i = 0; i < list.size(); ++i) {
+    if (list[i].name == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+// The figures of a delta_z / psi_z zigzag with parameters p: first and second overshoot
+// (rad) and the time to the first check (s); NaN where the simulation does not reach them.
+ZigzagFigures SimulateZigzag(const ModelHandle& model, const Layout& layout, double speed,
+                             const std::vector<double>& p, double rudder, double heading,
+                             const ManoeuvreConditions& c) {
+  const ModelInfo& info = model.info();
+  const size_t nx = info.states.size(), nu = info.inputs.size();
+  std::vector<double> x(nx, 0.0), k1(nx), k2(nx), k3(nx), k4(nx), xs(nx), y(info.outputs.size());
+  std::vector<double> u0(nu, kNotPredicted), u_mid(nu, kNotPredicted), u1(nu, kNotPredicted);
+  for (std::vector<double>* u : {&u0, &u_mid, &u1}) {
+    if (layout.speed >= 0) (*u)[layout.speed] = speed;
+    (*u)[layout.delta] = 0.0;
+  }
+  auto heading_of = [&](const std::vector<double>& state, const std::vector<double>& u) {
+    model.Output(state.data(), u.data(), p.data(), y.data());
+    return y[layout.psi];
+  };
+  const double psi0 = heading_of(x, u0);
+  double delta = 0.0, command = rudder, sign = 0.0;
+  int reversals = 0;
+  std::vector<double> t = {0.0}, psi = {psi0};
+  const double h = c.step;
+  auto moved = [&](double tau) {
+    return delta + std::clamp(command - delta, -c.rudder_rate * tau, c.rudder_rate * tau);
+  };
+  ZigzagFigures none;
+  for (double time = 0.0; time < c.duration && reversals < 4; time += h) {
+    u0[layout.delta] = delta;
+    u_mid[layout.delta] = moved(0.5 * h);
+    u1[layout.delta] = moved(h);
+    // RK4 as engine/model/rk4.h.
+    if (!model.Derivative(x.data(), u0.data(), p.data(), k1.data())) return none;
+    for (size_t i = 0; i < nx; ++i) xs[i] = x[i] + 0.5 * h * k1[i];
+    if (!model.Derivative(xs.data(), u_mid.data(), p.data(), k2.data())) return none;
+    for (size_t i = 0; i < nx; ++i) xs[i] = x[i] + 0.5 * h * k2[i];
+    if (!model.Derivative(xs.data(), u_mid.data(), p.data(), k3.data())) return none;
+    for (size_t i = 0; i < nx; ++i) xs[i] = x[i] + h * k3[i];
+    if (!model.Derivative(xs.data(), u1.data(), p.data(), k4.data())) return none;
+    for (size_t i = 0; i < nx; ++i) x[i] += h / 6.0 * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
+    delta = u1[layout.delta];
+    const double now = heading_of(x, u1);
+    if (!std::isfinite(now)) return none;
+    t.push_back(time + h);
+    psi.push_back(now);
+    // The checks: the first heading change of psi_z in either direction sets the sign s, then
+    // the rudder is reversed at s dpsi >= psi_z and s dpsi <= -psi_z in turn.
+    const double change = now - psi0;
+    if (reversals == 0 && std::abs(change) >= heading) {
+      sign = change > 0.0 ? 1.0 : -1.0;
+      command = -rudder;
+      ++reversals;
+    } else if (reversals % 2 == 1 && sign * change <= -heading) {
+      command = rudder;
+      ++reversals;
+    } else if (reversals > 0 && reversals % 2 == 0 && sign * change >= heading) {
+      command = -rudder;
+      ++reversals;
+    }
+  }
+  if (reversals == 0) return none;
+  ZigzagTest test;
+  test.rudder = rudder;
+  test.heading = heading;
+  test.first_execute = 0.0;
+  test.sign = sign;
+  test.reversals = reversals;
+  return MeasureZigzag(t, psi, test);
+}
+
+// The figures a parameter vector predicts, in the order of `names` below.
+std::vector<double> FiguresOf(const ModelHandle& model, const Layout& layout, double speed,
+                              double length, const std::vector<double>& p,
+                              const ManoeuvreConditions& c) {
+  const ZigzagFigures ten =
+      SimulateZigzag(model, layout, speed, p, 10 * kDegreeInRadians, 10 * kDegreeInRadians, c);
+  const ZigzagFigures twenty =
+      SimulateZigzag(model, layout, speed, p, 20 * kDegreeInRadians, 20 * kDegreeInRadians, c);
+  const double turning = std::isfinite(speed) && std::isfinite(length)
+                             ? ten.time_to_first_check * speed / length
+                             : ten.time_to_first_check;
+  return {ten.first_overshoot / kDegreeInRadians, ten.second_overshoot / kDegreeInRadians,
+          twenty.first_overshoot / kDegreeInRadians, twenty.second_overshoot / kDegreeInRadians,
+          turning};
+}
+
+double Quantile(std::vector<double> values, double q) {
+  std::sort(values.begin(), values.end());
+  const double position = q * static_cast<double>(values.size() - 1);
+  const size_t below = static_cast<size_t>(std::floor(position));
+  const size_t above = std::min(below + 1, values.size() - 1);
+  return values[below] + (position - below) * (values[above] - values[below]);
+}
+
+// The IMO MSC.137(76) 5.4 criterion of figure `f` for L/U (s); NaN and "" when it has none.
+double Criterion(int f, double l_over_u, std::string* text) {
+  char buffer[160];
+  switch (f) {
+    case 0:  // 10/10 first overshoot
+      if (l_over_u < 10.0) {
+        *text = "<= 10 deg (L/U < 10 s)";
+        return 10.0;
+      }
+      if (l_over_u >= 30.0) {
+        *text = "<= 20 deg (L/U >= 30 s)";
+        return 20.0;
+      }
+      std::snprintf(buffer, sizeof(buffer), "<= 5 + 0.5 L/U = %.1f deg (10 <= L/U = %.1f < 30 s)",
+                    5.0 + 0.5 * l_over_u, l_over_u);
+      *text = buffer;
+      return 5.0 + 0.5 * l_over_u;
+    case 1:  // 10/10 second overshoot
+      if (l_over_u < 10.0) {
+        *text = "<= 25 deg (L/U < 10 s)";
+        return 25.0;
+      }
+      if (l_over_u >= 30.0) {
+        *text = "<= 40 deg (L/U >= 30 s)";
+        return 40.0;
+      }
+      std::snprintf(buffer, sizeof(buffer),
+                    "<= 17.5 + 0.75 L/U = %.1f deg (10 <= L/U = %.1f < 30 s)",
+                    17.5 + 0.75 * l_over_u, l_over_u);
+      *text = buffer;
+      return 17.5 + 0.75 * l_over_u;
+    case 2:  // 20/20 first overshoot
+      *text = "<= 25 deg";
+      return 25.0;
+    case 4:  // initial turning ability
+      *text = "<= 2.5 ship lengths";
+      return 2.5;
+    default:
+      *text = "";
+      return kNotPredicted;
+  }
+}
+
+}  // namespace
+
+bool PredictManoeuvres(const ExportedModel& exported, const ModelHandle& model,
+                       const ManoeuvreConditions& c, ManoeuvrePredictions* predictions,
+                       std::string* error) {
+  Layout layout;
+  layout.delta = IndexOf(exported.inputs, "delta");
+  layout.psi = IndexOf(exported.outputs, "psi");
+  layout.speed = IndexOf(exported.inputs, "U");
+  if (layout.delta < 0 || layout.psi < 0) {
+    *error = "model " + exported.model +
+             ": the standard manoeuvres need a rudder input 'delta' and a heading output 'psi'";
+    return false;
+  }
+  const ModelInfo& info = model.info();
+  for (size_t i = 0; i < info.inputs.size(); ++i) {
+    const int index = static_cast<int>(i);
+    if (index == layout.delta || index == layout.speed || info.InputOptional(index)) continue;
+    *error = "model " + exported.model + ": its input '" + info.inputs[i] +
+             "' has no value in a standard manoeuvre";
+    return false;
+  }
+  if (layout.speed >= 0 && !(c.speed > 0.0)) {
+    *error = "model " + exported.model + " takes the speed U as an input: give it (--speed, m/s)";
+    return false;
+  }
+  ManoeuvrePredictions out;
+  out.length = c.length;
+  out.speed = c.speed;
+  const bool ship = std::isfinite(c.length) && std::isfinite(c.speed);
+  const std::vector<std::string> names = {
+      "zigzag_10_10.first_overshoot", "zigzag_10_10.second_overshoot",
+      "zigzag_20_20.first_overshoot", "zigzag_20_20.second_overshoot",
+      ship ? "initial_turning" : "initial_turning_time"};
+  const std::vector<double> estimate =
+      FiguresOf(model, layout, c.speed, c.length, exported.values, c);
+  std::vector<std::vector<double>> members;
+  for (const std::vector<double>& p : exported.ensemble) {
+    members.push_back(FiguresOf(model, layout, c.speed, c.length, p, c));
+  }
+  // Delta method: J by central differences of one standard error each side.
+  const int n = static_cast<int>(exported.covariance_names.size());
+  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(names.size(), n);
+  for (int a = 0; a < n; ++a) {
+    const int i = IndexOf(exported.parameters, exported.covariance_names[a]);
+    const double se = std::sqrt(std::max(exported.covariance(a, a), 0.0));
+    if (i < 0 || !(se > 0.0)) continue;
+    std::vector<double> up = exported.values, down = exported.values;
+    up[i] += se;
+    down[i] -= se;
+    const std::vector<double> f_up = FiguresOf(model, layout, c.speed, c.length, up, c);
+    const std::vector<double> f_down = FiguresOf(model, layout, c.speed, c.length, down, c);
+    for (size_t f = 0; f < names.size(); ++f) jacobian(f, a) = (f_up[f] - f_down[f]) / (2.0 * se);
+  }
+  const Eigen::MatrixXd variance = jacobian * exported.covariance * jacobian.transpose();
+  const double l_over_u = ship ? c.length / c.speed : kNotPredicted;
+  for (size_t f = 0; f < names.size(); ++f) {
+    ManoeuvreFigure figure;
+    figure.name = names[f];
+    figure.unit = f < 4 ? "deg" : ship ? "ship lengths" : "s";
+    figure.value = estimate[f];
+    std::vector<double> values;
+    for (const std::vector<double>& m : members) {
+      if (std::isfinite(m[f])) values.push_back(m[f]);
+    }
+    figure.members = static_cast<int>(values.size());
+    if (!values.empty()) {
+      figure.ensemble_low = Quantile(values, 0.025);
+      figure.ensemble_high = Quantile(values, 0.975);
+    }
+    const double half = 1.96 * std::sqrt(std::max(variance(f, f), 0.0));
+    if (std::isfinite(figure.value) && std::isfinite(half)) {
+      figure.delta_low = figure.value - half;
+      figure.delta_high = figure.value + half;
+      const double ensemble_half = 0.5 * (figure.ensemble_high - figure.ensemble_low);
+      figure.agree = ensemble_half > 0.0 && half > 0.0 && half / ensemble_half <= 1.5 &&
+                     ensemble_half / half <= 1.5;
+    }
+    // The L/U criteria need L and U; the 20/20 zigzag's does not.
+    if (ship || f == 2) figure.limit = Criterion(static_cast<int>(f), l_over_u, &figure.criterion);
+    if (std::isfinite(figure.limit)) {
+      figure.meets = figure.value <= figure.limit;
+      figure.interval_meets = figure.ensemble_high <= figure.limit;
+    }
+    if (!std::isfinite(figure.value)) {
+      out.notes.push_back(figure.name + ": not reached within " +
+                          std::to_string(static_cast<int>(c.duration)) +
+                          " s (the heading does not turn back, or the simulation diverges)");
+    }
+    out.figures.push_back(figure);
+  }
+  if (!ship) {
+    out.notes.push_back(
+        "the ship's length and speed are not known (--length, --speed): the initial turning "
+        "ability is given as a time and the overshoots are held against no L/U criterion");
+  }
+  *predictions = std::move(out);
+  return true;
+}
+
+std::string ManoeuvresText(const ManoeuvrePredictions& p) {
+  std::string text = "standard manoeuvres (IMO MSC.137(76)), 95 % intervals";
+  char line[400];
+  if (std::isfinite(p.length) && std::isfinite(p.speed)) {
+    std::snprintf(line, sizeof(line), " for L = %.4g m, U = %.4g m/s (L/U = %.3g s)", p.length,
+                  p.speed, p.length / p.speed);
+    text += line;
+  }
+  text += "\n";
+  std::snprintf(line, sizeof(line), "  %-30s %10s %-13s %23s %23s %7s  %s\n", "figure", "value",
+                "unit", "ensemble 2.5-97.5 %", "delta method", "agree", "IMO criterion");
+  text += line;
+  for (const ManoeuvreFigure& f : p.figures) {
+    char ensemble[48], delta[48];
+    std::snprintf(ensemble, sizeof(ensemble), "[%.3g, %.3g]", f.ensemble_low, f.ensemble_high);
+    std::snprintf(delta, sizeof(delta), "[%.3g, %.3g]", f.delta_low, f.delta_high);
+    std::string verdict = f.criterion;
+    if (std::isfinite(f.limit)) {
+      verdict += f.meets ? (f.interval_meets ? ": met (the whole interval)"
+                                             : ": met by the estimate, not by the whole interval")
+                         : ": not met";
+    }
+    std::snprintf(line, sizeof(line), "  %-30s %10.4g %-13s %23s %23s %7s  %s\n", f.name.c_str(),
+                  f.value, f.unit.c_str(), ensemble, delta, f.agree ? "yes" : "no",
+                  verdict.c_str());
+    text += line;
+  }
+  for (const std::string& note : p.notes) text += "  note: " + note + "\n";
+  return text;
+}
+
+nlohmann::json ManoeuvresToJson(const ManoeuvrePredictions& p) {
+  nlohmann::json figures = nlohmann::json::array();
+  for (const ManoeuvreFigure& f : p.figures) {
+    figures.push_back(
+        {{"name", f.name},
+         {"unit", f.unit},
+         {"value", JsonNumber(f.value)},
+         {"ensemble_interval", {JsonNumber(f.ensemble_low), JsonNumber(f.ensemble_high)}},
+         {"ensemble_members", f.members},
+         {"delta_method_interval", {JsonNumber(f.delta_low), JsonNumber(f.delta_high)}},
+         {"methods_agree", f.agree},
+         {"criterion", f.criterion},
+         {"limit", JsonNumber(f.limit)},
+         {"meets", f.meets},
+         {"interval_meets", f.interval_meets}});
+  }
+  return {{"length", JsonNumber(p.length)},
+          {"speed", JsonNumber(p.speed)},
+          {"figures", figures},
+          {"notes", p.notes}};
+}
+
+}  // namespace vesselid

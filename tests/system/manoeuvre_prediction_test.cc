@@ -1,0 +1,147 @@
+// `vesselid predict` on runs whose truth is known: the cargo ship's second-order Nomoto model
+// identified from a noisy heading record predicts the 10/10 and 20/20 zigzag overshoots and
+// the initial turning ability with 95 % intervals that hold the truth's figures, the ensemble
+// and delta-method intervals agree, and each figure is held against its IMO criterion for the
+// given L/U. The figures of the truth are computed by the same closed-loop simulation
+// (PredictManoeuvres on the true parameters), independently of any run.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+
+#include "engine/export/exported_model.h"
+#include "engine/export/manoeuvres.h"
+#include "gtest/gtest.h"
+#include "nlohmann/json.hpp"
+#include "problems/registry.h"
+
+namespace vesselid {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Shell(const std::string& command, int* status) {
+  std::string output;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  char buffer[512];
+  while (fgets(buffer, sizeof(buffer), pipe) != nullptr) output += buffer;
+  *status = pclose(pipe);
+  return output;
+}
+
+// Simulates and runs configs/<name>.yaml into dir/run.
+void SimulateAndRun(const std::string& name, const fs::path& dir) {
+  const std::string binary = VESSELID_BINARY;
+  const std::string config = std::string(VESSELID_SOURCE_DIR) + "/configs/" + name + ".yaml";
+  fs::remove_all(dir);
+  int status = 0;
+  Shell(binary + " simulate " + config + " --out " + (dir / "data").string(), &status);
+  ASSERT_EQ(status, 0);
+  Shell(binary + " run " + config + " --data " + (dir / "data").string() + " --out " +
+            (dir / "run").string() + " --quiet --no-report",
+        &status);
+  ASSERT_EQ(status, 0);
+}
+
+TEST(ManoeuvrePrediction, CargoShipOvershootsAndTurningWithIntervalsHoldTheTruth) {
+  const fs::path dir = fs::temp_directory_path() / "vesselid_predict_cargo";
+  ASSERT_NO_FATAL_FAILURE(SimulateAndRun("nomoto_cargo_noise", dir));
+  int status = 0;
+  // A cargo ship of 161 m at 7.7 m/s (15 kn): L/U = 20.9 s.
+  const std::string output = Shell(std::string(VESSELID_BINARY) + " predict " +
+                                       (dir / "run").string() + " --length 161 --speed 7.7",
+                                   &status);
+  ASSERT_EQ(status, 0) << output;
+  std::ifstream in(dir / "run" / "predict" / "predictions.json");
+  const nlohmann::json predicted = nlohmann::json::parse(in);
+  EXPECT_TRUE(fs::exists(dir / "run" / "predict" / "predictions.txt"));
+
+  // The truth's figures (configs/nomoto_cargo_noise.yaml: T1 45, T2 6, T3 10, K 0.09).
+  const ModelRegistry registry = DefaultRegistry();
+  ExportedModel truth;
+  std::string error;
+  const auto model =
+      MakeExportedModel(registry, "nomoto", {{"type", "second_order"}}, &truth, &error);
+  ASSERT_NE(model, nullptr) << error;
+  const std::map<std::string, double> true_values = {
+      {"T1", 45.0}, {"T2", 6.0}, {"T3", 10.0}, {"K", 0.09}, {"delta_0", 0.0}};
+  for (size_t i = 0; i < truth.parameters.size(); ++i) {
+    truth.values[i] = true_values.at(truth.parameters[i].name);
+  }
+  ManoeuvreConditions conditions;
+  conditions.length = 161.0;
+  conditions.speed = 7.7;
+  ManoeuvrePredictions true_figures;
+  ASSERT_TRUE(PredictManoeuvres(truth, *model, conditions, &true_figures, &error)) << error;
+
+  std::map<std::string, double> limit = {{"zigzag_10_10.first_overshoot", 5.0 + 0.5 * 161 / 7.7},
+                                         {"zigzag_10_10.second_overshoot", 17.5 + 0.75 * 161 / 7.7},
+                                         {"zigzag_20_20.first_overshoot", 25.0},
+                                         {"initial_turning", 2.5}};
+  ASSERT_EQ(predicted["figures"].size(), true_figures.figures.size());
+  for (size_t f = 0; f < true_figures.figures.size(); ++f) {
+    const nlohmann::json& p = predicted["figures"][f];
+    const std::string name = p["name"];
+    const double value = p["value"], low = p["ensemble_interval"][0],
+                 high = p["ensemble_interval"][1];
+    const double truth_value = true_figures.figures[f].value;
+    std::printf("%-30s %8.4f [%8.4f, %8.4f] truth %8.4f\n", name.c_str(), value, low, high,
+                truth_value);
+    EXPECT_EQ(p["ensemble_members"], 100) << name;
+    EXPECT_LT(low, value) << name;
+    EXPECT_GT(high, value) << name;
+    // The truth within the interval (widened by 20 % for a single noise realisation).
+    const double half = 0.5 * (high - low);
+    EXPECT_NEAR(truth_value, 0.5 * (low + high), 1.2 * half) << name;
+    EXPECT_TRUE(p["methods_agree"].get<bool>()) << name;
+    if (limit.count(name)) {
+      EXPECT_NEAR(p["limit"].get<double>(), limit[name], 1e-9) << name;
+      EXPECT_TRUE(p["meets"].get<bool>()) << name;
+    } else {
+      EXPECT_TRUE(p["limit"].is_null()) << name;
+    }
+  }
+  EXPECT_NE(output.find("met (the whole interval)"), std::string::npos) << output;
+  fs::remove_all(dir);
+}
+
+// Without L and U the turning is a time and only the 20/20 criterion applies; a model that
+// needs the speed as an input asks for it; a model without a rudder is refused.
+TEST(ManoeuvrePrediction, SaysWhatItCannotPredict) {
+  const ModelRegistry registry = DefaultRegistry();
+  ExportedModel cargo;
+  std::string error;
+  const auto model =
+      MakeExportedModel(registry, "nomoto", {{"type", "second_order"}}, &cargo, &error);
+  ASSERT_NE(model, nullptr) << error;
+  cargo.values = {45.0, 6.0, 10.0, 0.09, 0.0};
+  ManoeuvrePredictions predictions;
+  ASSERT_TRUE(PredictManoeuvres(cargo, *model, ManoeuvreConditions(), &predictions, &error));
+  EXPECT_EQ(predictions.figures.back().name, "initial_turning_time");
+  EXPECT_EQ(predictions.figures.back().unit, "s");
+  EXPECT_GT(predictions.figures.back().value, 10.0);
+  for (const ManoeuvreFigure& f : predictions.figures) {
+    EXPECT_EQ(std::isfinite(f.limit), f.name == "zigzag_20_20.first_overshoot") << f.name;
+  }
+  ASSERT_FALSE(predictions.notes.empty());
+  EXPECT_NE(predictions.notes.back().find("--length, --speed"), std::string::npos);
+
+  ExportedModel tanker;
+  const auto n1 = MakeExportedModel(registry, "nomoto", {{"type", "norrbin_n1"}, {"length", "320"}},
+                                    &tanker, &error);
+  ASSERT_NE(n1, nullptr) << error;
+  EXPECT_FALSE(PredictManoeuvres(tanker, *n1, ManoeuvreConditions(), &predictions, &error));
+  EXPECT_NE(error.find("--speed"), std::string::npos) << error;
+
+  ExportedModel catamaran;
+  const auto six = MakeExportedModel(registry, "erunsal6dof", {}, &catamaran, &error);
+  ASSERT_NE(six, nullptr) << error;
+  EXPECT_FALSE(PredictManoeuvres(catamaran, *six, ManoeuvreConditions(), &predictions, &error));
+  EXPECT_NE(error.find("rudder input 'delta'"), std::string::npos) << error;
+}
+
+}  // namespace
+}  // namespace vesselid
