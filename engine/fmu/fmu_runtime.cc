@@ -111,6 +111,20 @@ bool Rk4(Instance* instance, double h) {
 
 Instance* Of(fmi2Component c) { return static_cast<Instance*>(c); }
 
+// The instance as fmi2Instantiate leaves it (and fmi2Reset): the run's parameter values and
+// step bound, states and inputs zero, ensemble member 0.
+void Start(Instance* instance) {
+  const ExportedModel& m = instance->exported;
+  instance->p = m.values;
+  instance->x0.assign(m.states.size(), 0.0);
+  instance->u.assign(m.inputs.size(), 0.0);
+  for (std::vector<double>& d : instance->du) d.assign(m.inputs.size(), 0.0);
+  instance->max_step = m.max_step;
+  instance->member = 0;
+  instance->time = 0.0;
+  instance->phase = Phase::kInstantiated;
+}
+
 }  // namespace
 }  // namespace vesselid
 
@@ -163,11 +177,7 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
     v->assign(m.states.size(), 0.0);
   }
   for (auto* v : {&instance->u0, &instance->u_mid, &instance->u1}) v->assign(m.inputs.size(), 0.0);
-  instance->p = m.values;
-  instance->x0.assign(m.states.size(), 0.0);
-  instance->u.assign(m.inputs.size(), 0.0);
-  for (std::vector<double>& d : instance->du) d.assign(m.inputs.size(), 0.0);
-  instance->max_step = m.max_step;
+  vesselid::Start(instance.get());
   return instance.release();
 }
 
@@ -197,16 +207,7 @@ fmi2Status fmi2Terminate(fmi2Component c) {
 }
 
 fmi2Status fmi2Reset(fmi2Component c) {
-  Instance* instance = vesselid::Of(c);
-  const vesselid::ExportedModel& m = instance->exported;
-  instance->p = m.values;
-  instance->x0.assign(m.states.size(), 0.0);
-  instance->u.assign(m.inputs.size(), 0.0);
-  for (std::vector<double>& d : instance->du) d.assign(m.inputs.size(), 0.0);
-  instance->max_step = m.max_step;
-  instance->member = 0;
-  instance->time = 0.0;
-  instance->phase = Phase::kInstantiated;
+  vesselid::Start(vesselid::Of(c));
   return fmi2OK;
 }
 
