@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <string>
@@ -16,6 +17,7 @@
 #include "engine/config/config.h"
 #include "engine/data/trajectory_table.h"
 #include "engine/diagnose/run_findings.h"
+#include "engine/export/export_run.h"
 #include "engine/model/open_loop_simulation.h"
 #include "engine/output/output_folder.h"
 #include "engine/output/results_json_text.h"
@@ -364,6 +366,40 @@ Outcome Study(const std::string& config, bool is_text, const std::string& name,
   return {true, "", text, result};
 }
 
+// `vesselid export`: the written file's path. The FMU runtime is the one built with this
+// package unless VESSELID_FMU_RUNTIME names another.
+Outcome ExportModel(const std::string& run_dir, const std::string& format,
+                    const std::string& out_dir, int members, unsigned seed) {
+  std::string error, path;
+  std::string runtime = VESSELID_FMU_RUNTIME_BUILT;
+  if (const char* given = std::getenv("VESSELID_FMU_RUNTIME")) runtime = given;
+  bool ok = false;
+  {
+    py::gil_scoped_release release;
+    ok = ExportRun(Registry(), run_dir, format, out_dir, members, seed, runtime, &path, &error);
+  }
+  if (!ok) return Failure("run", error);
+  return {true, "", "", path};
+}
+
+// `vesselid predict`: predictions.txt's text and predictions.json's.
+Outcome PredictModel(const std::string& run_dir, double length, double speed, int members,
+                     unsigned seed, bool write, const std::string& out_dir) {
+  ManoeuvreConditions conditions;
+  conditions.length = length;
+  conditions.speed = speed;
+  std::string error, text;
+  nlohmann::json predictions;
+  bool ok = false;
+  {
+    py::gil_scoped_release release;
+    ok = PredictRun(Registry(), run_dir, conditions, members, seed, write, out_dir, &predictions,
+                    &text, &error);
+  }
+  if (!ok) return Failure("run", error);
+  return {true, "", text, predictions.dump()};
+}
+
 }  // namespace
 }  // namespace vesselid
 
@@ -383,4 +419,8 @@ PYBIND11_MODULE(_core, m) {
   m.def("simulate_model", &vesselid::SimulateModel, py::arg("config"), py::arg("is_text"),
         py::arg("name"), py::arg("parameters"), py::arg("initial_state"), py::arg("inputs"),
         py::arg("substeps"), py::arg("interpolation"));
+  m.def("export_model", &vesselid::ExportModel, py::arg("run_dir"), py::arg("format"),
+        py::arg("out_dir"), py::arg("members"), py::arg("seed"));
+  m.def("predict", &vesselid::PredictModel, py::arg("run_dir"), py::arg("length"), py::arg("speed"),
+        py::arg("members"), py::arg("seed"), py::arg("write"), py::arg("out_dir"));
 }

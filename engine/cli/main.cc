@@ -28,9 +28,8 @@
 #include "engine/cli/terminal_progress.h"
 #include "engine/config/config.h"
 #include "engine/diagnose/run_findings.h"
-#include "engine/export/exported_model.h"
+#include "engine/export/export_run.h"
 #include "engine/export/fmu_package.h"
-#include "engine/export/manoeuvres.h"
 #include "engine/output/checkpoint.h"
 #include "engine/output/finding_report.h"
 #include "engine/output/output_folder.h"
@@ -112,73 +111,26 @@ int Simulate(const std::string& config_path, const std::string& out_dir) {
 
 // The model of the run in `run_dir` taken out as `format` (json: model.json; fmu: an FMI 2.0
 // co-simulation FMU) into `out_dir` (default <run_dir>/export), published as one set.
-int Export(const std::string& run_dir, const std::string& format, std::string out_dir,
+int Export(const std::string& run_dir, const std::string& format, const std::string& out_dir,
            int members, unsigned seed) {
-  if (out_dir.empty()) out_dir = (std::filesystem::path(run_dir) / "export").string();
-  vesselid::ExportedModel model;
-  std::string error;
-  if (members < 0) return Fail("--members must be >= 0");
-  if (!vesselid::ReadExportedModel(run_dir, Registry(), members, seed, &model, &error)) {
+  std::string error, runtime, path;
+  if (format == "fmu" && (runtime = vesselid::FindFmuRuntime(&error)).empty()) return Fail(error);
+  if (!vesselid::ExportRun(Registry(), run_dir, format, out_dir, members, seed, runtime, &path,
+                           &error)) {
     return Fail(error);
   }
-  std::string runtime;
-  if (format == "fmu" && (runtime = vesselid::FindFmuRuntime(&error)).empty()) return Fail(error);
-  const std::string name = vesselid::FileNameOf(model.model) + "." + format;
-  vesselid::PlannedOutputs planned;
-  planned.files = {name};
-  const auto folder = OpenOutput(out_dir, planned, {model.results}, &error);
-  if (folder == nullptr) return Fail(error);
-  const auto staging = vesselid::OutputStaging::Begin(out_dir, "export." + format, {}, &error);
-  if (staging == nullptr) return Fail(error);
-  const std::string path = (std::filesystem::path(staging->folder()) / name).string();
-  const bool written =
-      format == "fmu"
-          ? vesselid::WriteFmu(model, runtime, path, &error)
-          : vesselid::WriteFileAtomically(path, vesselid::ExportedModelToJson(model).dump(2) + "\n",
-                                          &error);
-  if (!written || !staging->Publish(name, &error)) return Fail(error);
-  std::printf("%s model of %s (%zu parameters, %zu ensemble members) written to %s\n",
-              model.model.c_str(), model.results.c_str(), model.parameters.size(),
-              model.ensemble.size(), (std::filesystem::path(out_dir) / name).string().c_str());
+  std::printf("model of %s written to %s\n", run_dir.c_str(), path.c_str());
   return 0;
 }
 
 // The standard manoeuvres the model of the run in `run_dir` predicts, with intervals, into
 // `out_dir` (default <run_dir>/predict): predictions.txt and predictions.json, one set.
-int Predict(const std::string& run_dir, std::string out_dir, vesselid::ManoeuvreConditions c,
-            int members, unsigned seed) {
-  if (out_dir.empty()) out_dir = (std::filesystem::path(run_dir) / "predict").string();
-  vesselid::ExportedModel model;
-  std::string error;
-  if (members < 2) return Fail("--members must be >= 2 (the ensemble interval)");
-  if (!vesselid::ReadExportedModel(run_dir, Registry(), members, seed, &model, &error)) {
-    return Fail(error);
-  }
-  // The model's own length (an n1-form Nomoto model on L) unless --length says otherwise.
-  const auto length = model.options.find("length");
-  if (!std::isfinite(c.length) && length != model.options.end()) {
-    c.length = std::strtod(length->second.c_str(), nullptr);
-  }
-  const auto handle = Registry().MakeModel(model.family, model.options, &error);
-  vesselid::ManoeuvrePredictions predictions;
-  if (handle == nullptr || !vesselid::PredictManoeuvres(model, *handle, c, &predictions, &error)) {
-    return Fail(error);
-  }
-  vesselid::PlannedOutputs planned;
-  planned.files = {"predictions.txt", "predictions.json"};
-  const auto folder = OpenOutput(out_dir, planned, {model.results}, &error);
-  if (folder == nullptr) return Fail(error);
-  const auto staging = vesselid::OutputStaging::Begin(out_dir, "predict", planned.files, &error);
-  if (staging == nullptr) return Fail(error);
-  const std::filesystem::path staged(staging->folder());
-  const std::string text = vesselid::ManoeuvresText(predictions);
-  nlohmann::json json = vesselid::ManoeuvresToJson(predictions);
-  json["model"] = model.model;
-  json["results"] = model.results;
-  if (!vesselid::WriteFileAtomically((staged / "predictions.txt").string(), text, &error) ||
-      !vesselid::WriteFileAtomically((staged / "predictions.json").string(), json.dump(2) + "\n",
-                                     &error) ||
-      !staging->Publish("predictions.json", &error)) {
+int Predict(const std::string& run_dir, const std::string& out_dir,
+            const vesselid::ManoeuvreConditions& conditions, int members, unsigned seed) {
+  std::string error, text;
+  nlohmann::json predictions;
+  if (!vesselid::PredictRun(Registry(), run_dir, conditions, members, seed, true, out_dir,
+                            &predictions, &text, &error)) {
     return Fail(error);
   }
   std::printf("%s", text.c_str());

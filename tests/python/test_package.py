@@ -281,3 +281,33 @@ def test_ctrl_c_stops_a_run(tmp_path):
     out, _ = child.communicate(timeout=120)
     assert child.returncode == 0, out
     assert out.startswith("interrupted after"), out
+
+
+def test_export_and_predict_take_the_runs_model_out(campaign, tmp_path):
+    """vesselid.export writes the CLI's files (model.json identical to `vesselid export`'s, an
+    FMU archive); vesselid.predict gives the CLI's predictions; a folder without a run raises."""
+    cli = campaign["folder"] / "cli"
+    path = vesselid.export(cli, format="json", out=tmp_path / "py")
+    subprocess.run([BINARY, "export", str(cli), "--format", "json", "--out",
+                    str(tmp_path / "cli")], check=True, stdout=subprocess.DEVNULL)
+    name = os.path.basename(path)
+    assert (tmp_path / "py" / name).read_text() == (tmp_path / "cli" / name).read_text()
+    model = json.loads((tmp_path / "py" / name).read_text())
+    assert model["family"] == "nomoto" and len(model["ensemble"]["members"]) == 100
+    fmu = vesselid.export(cli, format="fmu", out=tmp_path / "fmu")
+    import zipfile
+    with zipfile.ZipFile(fmu) as archive:
+        assert {"modelDescription.xml", "resources/model.json",
+                "binaries/linux64/vesselid_model.so"} <= set(archive.namelist())
+
+    predictions = vesselid.predict(cli, speed=7.7, out=tmp_path / "predict")
+    subprocess.run([BINARY, "predict", str(cli), "--speed", "7.7", "--out",
+                    str(tmp_path / "cli_predict")], check=True, stdout=subprocess.DEVNULL)
+    with open(tmp_path / "cli_predict" / "predictions.json", encoding="utf-8") as f:
+        expected = json.load(f)
+    text = predictions.pop("text")
+    assert predictions == expected
+    assert "zigzag_10_10.first_overshoot" in text
+    assert expected["length"] == 320.0  # the n1 form's own length
+    with pytest.raises(vesselid.RunError, match="results.json"):
+        vesselid.export(campaign["folder"], format="json", out=tmp_path / "none")

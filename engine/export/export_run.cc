@@ -1,0 +1,110 @@
+#include "engine/export/export_run.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "engine/base/atomic_file.h"
+#include "engine/base/file_name.h"
+#include "engine/export/exported_model.h"
+#include "engine/export/fmu_package.h"
+#include "engine/output/output_folder.h"
+#include "engine/output/output_staging.h"
+
+namespace vesselid {
+namespace {
+
+namespace fs = std::filesystem;
+
+// `files` (name, content writer) published as the set `set` into `out_dir`, which is checked
+// (and locked) first, none of them replacing `input`.
+bool PublishSet(
+    const std::string& out_dir, const std::string& set, const std::string& input,
+    const std::vector<
+        std::pair<std::string, std::function<bool(const std::string&, std::string*)>>>& files,
+    std::string* error) {
+  PlannedOutputs planned;
+  for (const auto& file : files) planned.files.push_back(file.first);
+  if (!CheckInputsSurvive(out_dir, planned, {input}, error)) return false;
+  const std::unique_ptr<OutputFolder> folder = OutputFolder::Open(out_dir, error);
+  if (folder == nullptr) return false;
+  const std::unique_ptr<OutputStaging> staging =
+      OutputStaging::Begin(out_dir, set, planned.files, error);
+  if (staging == nullptr) return false;
+  for (const auto& [name, write] : files) {
+    if (!write((fs::path(staging->folder()) / name).string(), error)) return false;
+  }
+  return staging->Publish(planned.files.back(), error);
+}
+
+}  // namespace
+
+bool ExportRun(const ModelRegistry& registry, const std::string& run_dir, const std::string& format,
+               std::string out_dir, int members, unsigned seed, const std::string& runtime,
+               std::string* path, std::string* error) {
+  if (format != "json" && format != "fmu") {
+    *error = "unknown export format '" + format + "' (json, fmu)";
+    return false;
+  }
+  if (members < 0) {
+    *error = "--members must be >= 0";
+    return false;
+  }
+  if (out_dir.empty()) out_dir = (fs::path(run_dir) / "export").string();
+  ExportedModel model;
+  if (!ReadExportedModel(run_dir, registry, members, seed, &model, error)) return false;
+  const std::string name = FileNameOf(model.model) + "." + format;
+  auto write = [&](const std::string& file, std::string* message) {
+    return format == "fmu"
+               ? WriteFmu(model, runtime, file, message)
+               : WriteFileAtomically(file, ExportedModelToJson(model).dump(2) + "\n", message);
+  };
+  if (!PublishSet(out_dir, "export." + format, model.results, {{name, write}}, error)) {
+    return false;
+  }
+  *path = (fs::path(out_dir) / name).string();
+  return true;
+}
+
+bool PredictRun(const ModelRegistry& registry, const std::string& run_dir,
+                ManoeuvreConditions conditions, int members, unsigned seed, bool write,
+                std::string out_dir, nlohmann::json* predictions, std::string* text,
+                std::string* error) {
+  if (members < 2) {
+    *error = "--members must be >= 2 (the ensemble interval)";
+    return false;
+  }
+  ExportedModel model;
+  if (!ReadExportedModel(run_dir, registry, members, seed, &model, error)) return false;
+  // The model's own length (an n1-form Nomoto model on L) unless the conditions give one.
+  const auto length = model.options.find("length");
+  if (!std::isfinite(conditions.length) && length != model.options.end()) {
+    conditions.length = std::strtod(length->second.c_str(), nullptr);
+  }
+  const auto handle = registry.MakeModel(model.family, model.options, error);
+  ManoeuvrePredictions figures;
+  if (handle == nullptr || !PredictManoeuvres(model, *handle, conditions, &figures, error)) {
+    return false;
+  }
+  *text = ManoeuvresText(figures);
+  *predictions = ManoeuvresToJson(figures);
+  (*predictions)["model"] = model.model;
+  (*predictions)["results"] = model.results;
+  if (!write) return true;
+  if (out_dir.empty()) out_dir = (fs::path(run_dir) / "predict").string();
+  const std::string json_text = predictions->dump(2) + "\n";
+  auto text_file = [&](const std::string& file, std::string* message) {
+    return WriteFileAtomically(file, *text, message);
+  };
+  auto json_file = [&](const std::string& file, std::string* message) {
+    return WriteFileAtomically(file, json_text, message);
+  };
+  return PublishSet(out_dir, "predict", model.results,
+                    {{"predictions.txt", text_file}, {"predictions.json", json_file}}, error);
+}
+
+}  // namespace vesselid
