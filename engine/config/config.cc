@@ -320,14 +320,26 @@ void ReadLeastSquares(const YamlReader& reader, const YAML::Node& node, const st
   ReadRegressionData(reader, node, path, info, &stage->regression_data);
 }
 
+// `node` and everything in it in flow style ("[a, b]" whether a file wrote a block list or a
+// Python dict gave a JSON one).
+void SetFlowStyle(YAML::Node node) {
+  if (!node.IsSequence() && !node.IsMap()) return;
+  node.SetStyle(YAML::EmitterStyle::Flow);
+  for (auto item : node) {
+    SetFlowStyle(node.IsMap() ? item.second : YAML::Node(item));
+  }
+}
+
 // The `model` map's keys but family, each value in YAML flow style.
 ModelOptions OptionsText(const YAML::Node& model) {
   ModelOptions options;
   for (const auto& item : model) {
     const std::string key = item.first.as<std::string>();
     if (key == "family") continue;
+    const YAML::Node value = YAML::Clone(item.second);
+    SetFlowStyle(value);
     YAML::Emitter text;
-    text << YAML::Flow << item.second;
+    text << YAML::Flow << value;
     options[key] = text.c_str();
   }
   return options;
