@@ -6,6 +6,7 @@
 // segment; the text takes ~1.7 KiB.
 #pragma once
 
+#include <deque>
 #include <functional>
 #include <ostream>
 #include <string>
@@ -49,7 +50,9 @@ class JsonSplices {
   void WriteText(const std::string& text, int indent, int step, std::ostream* out) const;
   void WriteSplice(const Splice& splice, int indent, int step, std::ostream* out) const;
 
-  std::vector<Splice> splices_;
+  // A deque: an element may add placeholders of its own while a splice is being written, and
+  // that must not move the splice being written.
+  std::deque<Splice> splices_;
 };
 
 }  // namespace vesselid
