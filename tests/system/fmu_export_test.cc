@@ -26,6 +26,7 @@
 #include "nlohmann/json.hpp"
 #include "problems/registry.h"
 #include "tests/support/fmu_loader.h"
+#include "tests/support/run_command.h"
 
 namespace vesselid {
 namespace {
@@ -282,13 +283,10 @@ TEST(ExportCommand, TakesARunsModelOutAsJsonAndFmu) {
 
   // Refused: not a run's folder, an unknown format, a negative ensemble; nothing written.
   auto refused = [&](const std::string& arguments, const std::string& says) {
-    const std::string command = binary + " export " + arguments + " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    std::string output;
-    char buffer[512];
-    while (fgets(buffer, sizeof(buffer), pipe) != nullptr) output += buffer;
-    EXPECT_NE(pclose(pipe), 0) << command;
-    EXPECT_NE(output.find(says), std::string::npos) << command << "\n" << output;
+    const std::string command = binary + " export " + arguments;
+    const testing::CommandOutcome outcome = testing::RunCommand(command);
+    EXPECT_NE(outcome.status, 0) << command;
+    EXPECT_NE(outcome.output.find(says), std::string::npos) << command << "\n" << outcome.output;
   };
   refused((dir / "data").string() + " --format json", "results.json: cannot open");
   refused(run + " --format onnx", "--format");

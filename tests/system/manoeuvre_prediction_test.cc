@@ -17,19 +17,18 @@
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
 #include "problems/registry.h"
+#include "tests/support/run_command.h"
 
 namespace vesselid {
 namespace {
 
 namespace fs = std::filesystem;
 
+// The command's output; `status` its exit status (tests/support/run_command.h).
 std::string Shell(const std::string& command, int* status) {
-  std::string output;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  char buffer[512];
-  while (fgets(buffer, sizeof(buffer), pipe) != nullptr) output += buffer;
-  *status = pclose(pipe);
-  return output;
+  const testing::CommandOutcome outcome = testing::RunCommand(command);
+  *status = outcome.status;
+  return outcome.output;
 }
 
 // Simulates and runs configs/<name>.yaml into dir/run.
