@@ -7,7 +7,7 @@
 //   vesselid study    <config.yaml> [--data <dir>] --out <dir>  sensitivity studies (the
 //                     [--only part...] [--threads n]             config's `study` section;
 //                                                                also under mpirun -np K)
-//   vesselid export   <run-out> [--format fmu|json] [--out <dir>]  the model taken out
+//   vesselid export   <run-out> [--format fmu|c|json] [--out <dir>]  the model taken out
 //                     [--members n] [--seed s]
 //   vesselid predict  <run-out> [--length L] [--speed U]     IMO zigzags and turning, with
 //                     [--out <dir>] [--members n]             intervals
@@ -110,7 +110,8 @@ int Simulate(const std::string& config_path, const std::string& out_dir) {
 }
 
 // The model of the run in `run_dir` taken out as `format` (json: model.json; fmu: an FMI 2.0
-// co-simulation FMU) into `out_dir` (default <run_dir>/export), published as one set.
+// co-simulation FMU; c: C99 header, source and example) into `out_dir` (default
+// <run_dir>/export), published as one set.
 int Export(const std::string& run_dir, const std::string& format, const std::string& out_dir,
            int members, unsigned seed) {
   std::string error, runtime, path;
@@ -359,14 +360,16 @@ int main(int argc, char** argv) {
   simulate->add_option("config", config_path, "run configuration (YAML)")->required();
   simulate->add_option("--out", out_dir, "folder for the CSV files")->required();
 
-  CLI::App* export_model =
-      app.add_subcommand("export", "take a run's model out: model.json or an FMI 2.0 FMU");
+  CLI::App* export_model = app.add_subcommand(
+      "export", "take a run's model out: an FMI 2.0 FMU, C99 code or model.json");
   std::string run_dir, format = "fmu";
   int members = 100;
   unsigned seed = 1;
   export_model->add_option("run", run_dir, "the --out folder of a finished run")->required();
-  export_model->add_option("--format", format, "json (model.json) or fmu (FMI 2.0 co-simulation)")
-      ->check(CLI::IsMember({"json", "fmu"}));
+  export_model
+      ->add_option("--format", format,
+                   "fmu (FMI 2.0 co-simulation), c (C99 header, source, example) or json")
+      ->check(CLI::IsMember({"json", "fmu", "c"}));
   export_model->add_option("--out", out_dir, "folder for the export (default <run>/export)");
   export_model->add_option("--members", members,
                            "parameter draws from the covariance (ensemble_member 1..N)");

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <utility>
@@ -10,8 +11,10 @@
 
 #include "engine/base/atomic_file.h"
 #include "engine/base/file_name.h"
+#include "engine/export/c_model.h"
 #include "engine/export/exported_model.h"
 #include "engine/export/fmu_package.h"
+#include "engine/export/held_out_zigzags.h"
 #include "engine/output/output_folder.h"
 #include "engine/output/output_staging.h"
 
@@ -46,8 +49,8 @@ bool PublishSet(
 bool ExportRun(const ModelRegistry& registry, const std::string& run_dir, const std::string& format,
                std::string out_dir, int members, unsigned seed, const std::string& runtime,
                std::string* path, std::string* error) {
-  if (format != "json" && format != "fmu") {
-    *error = "unknown export format '" + format + "' (json, fmu)";
+  if (format != "json" && format != "fmu" && format != "c") {
+    *error = "unknown export format '" + format + "' (c, fmu, json)";
     return false;
   }
   if (members < 0) {
@@ -57,16 +60,29 @@ bool ExportRun(const ModelRegistry& registry, const std::string& run_dir, const 
   if (out_dir.empty()) out_dir = (fs::path(run_dir) / "export").string();
   ExportedModel model;
   if (!ReadExportedModel(run_dir, registry, members, seed, &model, error)) return false;
-  const std::string name = FileNameOf(model.model) + "." + format;
-  auto write = [&](const std::string& file, std::string* message) {
-    return format == "fmu"
-               ? WriteFmu(model, runtime, file, message)
-               : WriteFileAtomically(file, ExportedModelToJson(model).dump(2) + "\n", message);
-  };
-  if (!PublishSet(out_dir, "export." + format, model.results, {{name, write}}, error)) {
-    return false;
+  std::vector<std::pair<std::string, std::function<bool(const std::string&, std::string*)>>> files;
+  std::vector<CModelFile> sources;
+  if (format == "c") {
+    const auto handle = registry.MakeModel(model.family, model.options, error);
+    if (handle == nullptr || !MakeCModel(model, *handle, &sources, error)) return false;
+    // The example last: the set is published when its last file is in place.
+    for (const CModelFile& source : sources) {
+      files.push_back({source.name, [&source](const std::string& file, std::string* message) {
+                         return WriteFileAtomically(file, source.text, message);
+                       }});
+    }
+  } else {
+    files.push_back({FileNameOf(model.model) + "." + format,
+                     [&](const std::string& file, std::string* message) {
+                       return format == "fmu"
+                                  ? WriteFmu(model, runtime, file, message)
+                                  : WriteFileAtomically(
+                                        file, ExportedModelToJson(model).dump(2) + "\n", message);
+                     }});
   }
-  *path = (fs::path(out_dir) / name).string();
+  if (!PublishSet(out_dir, "export." + format, model.results, files, error)) return false;
+  // The file to open: the model.json, the FMU, or the C header.
+  *path = (fs::path(out_dir) / files.front().first).string();
   return true;
 }
 
@@ -92,6 +108,15 @@ bool PredictRun(const ModelRegistry& registry, const std::string& run_dir,
   }
   *text = ManoeuvresText(figures);
   *predictions = ManoeuvresToJson(figures);
+  // The zigzags the run held out, measured against predicted.
+  std::ifstream results_file(model.results);
+  const nlohmann::json results = nlohmann::json::parse(results_file, nullptr, false);
+  if (!results.is_discarded()) {
+    const HeldOutZigzagCheck held_out = CheckHeldOutZigzags(results);
+    const std::string held_out_text = HeldOutZigzagsText(held_out);
+    if (!held_out_text.empty()) *text += "\n" + held_out_text;
+    (*predictions)["held_out_zigzags"] = HeldOutZigzagsToJson(held_out);
+  }
   (*predictions)["model"] = model.model;
   (*predictions)["results"] = model.results;
   if (!write) return true;

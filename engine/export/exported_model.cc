@@ -10,6 +10,7 @@
 
 #include "Eigen/Cholesky"
 #include "engine/base/json_number.h"
+#include "engine/data/interpolation.h"
 
 namespace vesselid {
 namespace {
@@ -99,6 +100,7 @@ std::shared_ptr<const ModelHandle> MakeExportedModel(const ModelRegistry& regist
   m->outputs = Variables(info.outputs, [&](int i) { return info.OutputUnit(i); });
   m->parameters = Variables(info.parameters, [&](int i) { return info.ParameterUnit(i); });
   m->values = info.parameter_defaults;
+  m->interpolation.assign(info.inputs.size(), InterpolationToString(Interpolation::kLinear));
   m->std_errors.assign(info.parameters.size(), kNaN);
   m->covariance_names.clear();
   m->covariance.resize(0, 0);
@@ -177,9 +179,33 @@ bool ReadExportedModel(const std::string& out_folder, const ModelRegistry& regis
     if (stage != nullptr) {
       m.max_step = NumberOr(stage->value("integration_step", json()), 0.0);
       if (!(m.max_step > 0.0)) m.max_step = NumberOr(stage->value("max_step", json()), 0.0);
+      const json methods = stage->value("interpolation", json::object());
+      for (size_t i = 0; i < m.inputs.size(); ++i) {
+        m.interpolation[i] = methods.value(m.inputs[i].name, m.interpolation[i]);
+      }
     }
     m.ensemble_seed = seed;
-    m.ensemble = DrawEnsemble(m, members, seed);
+    const json no_replicates = json::object();
+    const json& replicates =
+        correlated == nullptr
+            ? no_replicates
+            : correlated->value("uncertainty", json::object()).value("replicates", no_replicates);
+    if (replicates.contains("values") && !replicates.at("values").empty()) {
+      // The bootstrap's replicates (the first `members`), each a full parameter vector.
+      const std::vector<std::string> names = replicates.at("names");
+      m.ensemble_source = "bootstrap";
+      for (const json& values : replicates.at("values")) {
+        if (static_cast<int>(m.ensemble.size()) == members) break;
+        std::vector<double> member = m.values;
+        for (size_t k = 0; k < names.size() && k < values.size(); ++k) {
+          const auto found = index.find(names[k]);
+          if (found != index.end()) member[found->second] = NumberOr(values.at(k), kNaN);
+        }
+        m.ensemble.push_back(std::move(member));
+      }
+    } else {
+      m.ensemble = DrawEnsemble(m, members, seed);
+    }
     *model = std::move(m);
     return true;
   } catch (const json::exception& e) {
@@ -202,6 +228,10 @@ json ExportedModelToJson(const ExportedModel& m) {
     for (int c = 0; c < m.covariance.cols(); ++c) line.push_back(m.covariance(r, c));
     matrix.push_back(line);
   }
+  json interpolation = json::object();
+  for (size_t i = 0; i < m.inputs.size() && i < m.interpolation.size(); ++i) {
+    interpolation[m.inputs[i].name] = m.interpolation[i];
+  }
   return {{"format", "vesselid-model"},
           {"version", kFormatVersion},
           {"family", m.family},
@@ -212,8 +242,10 @@ json ExportedModelToJson(const ExportedModel& m) {
           {"outputs", VariablesToJson(m.outputs)},
           {"parameters", parameters},
           {"covariance", {{"names", m.covariance_names}, {"matrix", matrix}}},
-          {"ensemble", {{"source", "covariance"}, {"seed", m.ensemble_seed}, {"members", m.ensemble}}},
+          {"ensemble",
+           {{"source", m.ensemble_source}, {"seed", m.ensemble_seed}, {"members", m.ensemble}}},
           {"max_step", m.max_step},
+          {"interpolation", interpolation},
           {"results", m.results}};
 }
 
@@ -244,6 +276,7 @@ bool ExportedModelFromJson(const json& j, ExportedModel* model, std::string* err
     }
     m.ensemble = j.at("ensemble").at("members").get<std::vector<std::vector<double>>>();
     m.ensemble_seed = j.at("ensemble").at("seed");
+    m.ensemble_source = j.at("ensemble").value("source", "covariance");
     for (const std::vector<double>& member : m.ensemble) {
       if (member.size() != m.values.size()) {
         *error = "ensemble member of " + std::to_string(member.size()) + " values, expected " +
@@ -252,6 +285,16 @@ bool ExportedModelFromJson(const json& j, ExportedModel* model, std::string* err
       }
     }
     m.max_step = j.at("max_step");
+    const json methods = j.value("interpolation", json::object());
+    for (const ExportedVariable& input : m.inputs) {
+      Interpolation method = Interpolation::kLinear;
+      const std::string text = methods.value(input.name, InterpolationToString(method));
+      if (!StringToInterpolation(text, &method)) {
+        *error = "interpolation." + input.name + ": unknown method '" + text + "'";
+        return false;
+      }
+      m.interpolation.push_back(text);
+    }
     m.results = j.value("results", "");
     *model = std::move(m);
     return true;

@@ -33,12 +33,16 @@ struct ExportedModel {
   std::vector<std::string> covariance_names;
   Eigen::MatrixXd covariance;
   // Full parameter vectors (member k + 1 is ensemble[k]; member 0 is `values`): draws from
-  // N(values, covariance) for the estimated parameters, the rest at their values.
+  // N(values, covariance) for the estimated parameters, the rest at their values; or, where
+  // the run's covariance is a bootstrap's, its replicates' estimates.
   std::vector<std::vector<double>> ensemble;
-  unsigned ensemble_seed = 0;
+  std::string ensemble_source = "covariance";  // or "bootstrap"
+  unsigned ensemble_seed = 0;                  // of the draws
   // RK4 steps of at most this length (s) within each sample interval; 0: one step per
   // interval (the run's default, the median sample interval, on regularly sampled data).
   double max_step = 0.0;
+  // Per input: how the run interpolated it between samples (zero_order_hold, linear, cubic).
+  std::vector<std::string> interpolation;
   std::string results;  // the results.json it came from
 };
 

@@ -17,6 +17,7 @@
 #include "engine/model/damping_inertia_form.h"
 #include "engine/model/experiment.h"
 #include "engine/model/experiment_cost.h"
+#include "engine/model/expression.h"
 #include "engine/model/model.h"
 #include "engine/model/regression_form.h"
 
@@ -45,6 +46,12 @@ class ModelHandle {
   virtual bool Derivative(const double* x, const double* u, const double* p,
                           double* xdot) const = 0;
   virtual void Output(const double* x, const double* u, const double* p, double* y) const = 0;
+  // The same recorded on the current expression tape (expression.h), for the C export: the
+  // model's own equations, each decision an outcome of the tape's script.
+  virtual bool Derivative(const symbolic::Expression* x, const symbolic::Expression* u,
+                          const symbolic::Expression* p, symbolic::Expression* xdot) const = 0;
+  virtual void Output(const symbolic::Expression* x, const symbolic::Expression* u,
+                      const symbolic::Expression* p, symbolic::Expression* y) const = 0;
 
   // Physical admissibility of parameter values (empty when admissible, or when the model
   // states no conditions). `state_limits` (may be null: unknown): the operating range of the
@@ -175,6 +182,14 @@ class ModelAdapter final : public ModelHandle {
     return model_(x, u, p, xdot);
   }
   void Output(const double* x, const double* u, const double* p, double* y) const override {
+    model_.Output(x, u, p, y);
+  }
+  bool Derivative(const symbolic::Expression* x, const symbolic::Expression* u,
+                  const symbolic::Expression* p, symbolic::Expression* xdot) const override {
+    return model_(x, u, p, xdot);
+  }
+  void Output(const symbolic::Expression* x, const symbolic::Expression* u,
+              const symbolic::Expression* p, symbolic::Expression* y) const override {
     model_.Output(x, u, p, y);
   }
 

@@ -210,6 +210,30 @@ json LocalAnalysisToJson(const LocalAnalysis& a) {
   return j;
 }
 
+// Per model input, how the stage's experiments interpolate it (the method most of them use):
+// how a tool that simulates the model (the C export) reads a record as the run did.
+json StageInterpolation(const RunConfig& config, const StageConfig& stage) {
+  json methods = json::object();
+  for (const std::string& input : config.model->info().inputs) {
+    std::map<std::string, int> count;
+    for (const std::string& name : stage.experiments) {
+      for (const ExperimentSpec& spec : config.experiments) {
+        if (spec.name != name) continue;
+        const auto method = spec.interpolation.find(input);
+        ++count[InterpolationToString(
+            method == spec.interpolation.end() ? spec.default_interpolation : method->second)];
+      }
+    }
+    std::string most = InterpolationToString(Interpolation::kLinear);
+    int most_count = 0;
+    for (const auto& [method, n] : count) {
+      if (n > most_count) most = method, most_count = n;
+    }
+    methods[input] = most;
+  }
+  return methods;
+}
+
 json StageToJson(const RunConfig& config, const StageResult& stage, JsonSplices* splices) {
   const StageSummary& s = stage.summary;
   json j;
@@ -223,6 +247,7 @@ json StageToJson(const RunConfig& config, const StageResult& stage, JsonSplices*
     // The configured bound on the RK4 step (0: the median sample interval);
     // integration_step below when the stage had to shorten it.
     j["max_step"] = configured.experiment.max_step;
+    j["interpolation"] = StageInterpolation(config, configured);
   }
   j["time_seconds"] = s.time_seconds;
   if (s.global.run) {
@@ -293,6 +318,8 @@ json StageToJson(const RunConfig& config, const StageResult& stage, JsonSplices*
     j["uncertainty"]["runs"] = u.bootstrap_runs;
     j["uncertainty"]["failed"] = u.bootstrap_failed;
     if (u.method == "block_bootstrap") j["uncertainty"]["block_length"] = u.block_length;
+    // The replicates' estimates: `vesselid export` takes its ensemble from them.
+    j["uncertainty"]["replicates"] = {{"names", u.replicate_names}, {"values", u.replicates}};
   }
   if (u.available) {
     json matrix = json::array();

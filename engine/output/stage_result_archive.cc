@@ -111,8 +111,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LocalSolveSummary, run, usable, initial_cost,
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Uncertainty, available, message, variables, covariance,
                                    correlation, std_errors, residual_variance, undetermined,
                                    undetermined_variables, method, hessian_std_errors,
-                                   method_reason, hac_bandwidth, bootstrap_runs,
-                                   bootstrap_failed, block_length)
+                                   method_reason, hac_bandwidth, bootstrap_runs, bootstrap_failed,
+                                   block_length, replicates, replicate_names)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(WeakDirection, combination, coefficients, eigenvalue_ratio,
                                    std_dev, std_dev_normalised, status)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LocalAnalysis, available, message, parameters, names,
@@ -182,8 +182,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BootstrapSummary, runs, failed, groups, resam
 namespace {
 // 3: Uncertainty method, hessian_std_errors, method_reason, hac_bandwidth; 4: bootstrap runs,
 // failed, block length; 6: traces' samples as byte strings; 7: typed solver findings,
-// comparable cost, state limits
-constexpr int kArchiveVersion = 8;
+// comparable cost, state limits; 9: bootstrap replicates
+constexpr int kArchiveVersion = 9;
 }  // namespace
 
 nlohmann::json StageResultToArchive(const StageResult& stage) {

@@ -276,6 +276,8 @@ void BootstrapStageUncertainty(const StageOptions& options, const OutputErrorOpt
   u.bootstrap_runs = runs;
   u.bootstrap_failed = failed;
   u.block_length = block_seconds;
+  u.replicates = good_values;
+  for (int index : variables) u.replicate_names.push_back(solved->variables()[index].name);
   // The Hessian's standard errors beside, in the same variable order.
   if (kept.available && kept.variables == variables) {
     u.hessian_std_errors = kept.method == "hessian" ? kept.std_errors : kept.hessian_std_errors;

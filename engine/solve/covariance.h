@@ -46,6 +46,10 @@ struct Uncertainty {
   // Bootstrap methods: replicates run and failed; block_bootstrap: the longest block, s.
   int bootstrap_runs = 0, bootstrap_failed = 0;
   double block_length = 0.0;
+  // Bootstrap methods: each solved replicate's values of `variables` (physical units) and
+  // the variables' names ("T1", "delta_0[run2]"): the ensemble an exported model carries.
+  std::vector<std::vector<double>> replicates;
+  std::vector<std::string> replicate_names;
 
   // Per-experiment variables whose standard errors come without their covariances (the
   // block-structured case above); `variables` then holds the shared variables only.

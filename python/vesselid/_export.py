@@ -9,9 +9,10 @@ from ._errors import raise_for
 
 def export(run_dir, format="fmu", out=None, members=100, seed=1):
     """The model of the run whose outputs are in `run_dir` (`vesselid run --out`, or
-    vesselid.run(..., out=...)) as an FMI 2.0 co-simulation FMU (`format="fmu"`) or model.json
-    (`"json"`: family, options, parameters, covariance, `members` draws), written into `out`
-    (default <run_dir>/export) as `vesselid export` writes it. Returns the file's path."""
+    vesselid.run(..., out=...)) as an FMI 2.0 co-simulation FMU (`format="fmu"`), C99 code
+    (`"c"`: header, source and example) or model.json (`"json"`: family, options, parameters,
+    covariance, `members` draws), written into `out` (default <run_dir>/export) as
+    `vesselid export` writes it. Returns the file's path (the header for "c")."""
     ok, kind, message, path = _core.export_model(os.fspath(run_dir), str(format),
                                                  os.fspath(out) if out else "", int(members),
                                                  int(seed))

@@ -285,7 +285,7 @@ def test_ctrl_c_stops_a_run(tmp_path):
 
 def test_export_and_predict_take_the_runs_model_out(campaign, tmp_path):
     """vesselid.export writes the CLI's files (model.json identical to `vesselid export`'s, an
-    FMU archive); vesselid.predict gives the CLI's predictions; a folder without a run raises."""
+    FMU archive, the C header, source and example); vesselid.predict gives the CLI's predictions; a folder without a run raises."""
     cli = campaign["folder"] / "cli"
     path = vesselid.export(cli, format="json", out=tmp_path / "py")
     subprocess.run([BINARY, "export", str(cli), "--format", "json", "--out",
@@ -299,6 +299,10 @@ def test_export_and_predict_take_the_runs_model_out(campaign, tmp_path):
     with zipfile.ZipFile(fmu) as archive:
         assert {"modelDescription.xml", "resources/model.json",
                 "binaries/linux64/vesselid_model.so"} <= set(archive.namelist())
+    header = vesselid.export(cli, format="c", out=tmp_path / "c")
+    stem = os.path.basename(header)[:-len(".h")]
+    assert header.endswith(".h") and (tmp_path / "c" / (stem + ".c")).exists()
+    assert (tmp_path / "c" / (stem + "_example.c")).exists()
 
     predictions = vesselid.predict(cli, speed=7.7, out=tmp_path / "predict")
     subprocess.run([BINARY, "predict", str(cli), "--speed", "7.7", "--out",

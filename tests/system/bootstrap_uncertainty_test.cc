@@ -85,6 +85,18 @@ TEST(BootstrapUncertainty, BlocksAgreeWithTheHessianOnWhiteResiduals) {
     EXPECT_NEAR(u.std_errors[i] / u.hessian_std_errors[i], 1.0, 0.35)
         << i << ": " << u.std_errors[i] << " vs " << u.hessian_std_errors[i];
   }
+  // The replicates kept (the exported model's ensemble) are the ones the standard errors come
+  // from: their sample SD is the reported one.
+  ASSERT_EQ(u.replicates.size(), 40u);
+  ASSERT_EQ(u.replicate_names.size(), u.variables.size());
+  EXPECT_EQ(u.replicate_names[3], "K");
+  for (int i = 0; i < 4; ++i) {
+    double mean = 0.0, variance = 0.0;
+    for (const std::vector<double>& r : u.replicates) mean += r[i] / 40.0;
+    for (const std::vector<double>& r : u.replicates)
+      variance += (r[i] - mean) * (r[i] - mean) / 39.0;
+    EXPECT_NEAR(std::sqrt(variance), u.std_errors[i], 1e-9 * u.std_errors[i]) << i;
+  }
 }
 
 TEST(BootstrapUncertainty, BlocksKeepTheRudderNoisesCorrelation) {

@@ -13,9 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "engine/export/held_out_zigzags.h"
 #include "gtest/gtest.h"
-#include "tests/support/findings.h"
 #include "nlohmann/json.hpp"
+#include "tests/support/findings.h"
 #include "tests/support/shipped_config.h"
 #include "yaml-cpp/yaml.h"
 
@@ -182,6 +183,31 @@ TEST_F(NomotoTanker, GoodFitIsJudgedGood) {
     EXPECT_EQ(f["severity"], "info") << f.dump();
   }
   for (const json& stage : (*results_)["stages"]) EXPECT_EQ(stage["verdict"], "good");
+}
+
+}  // namespace
+}  // namespace vesselid
+
+namespace vesselid {
+namespace {
+
+// `vesselid predict`'s check of the held-out zigzags: the first overshoot's 95 % prediction
+// interval (the run's simulation of the held-out record plus the model's error on the eight
+// training zigzags) covers the measured overshoot in at least 4 of the 5 held-out runs.
+TEST_F(NomotoTanker, HeldOutFirstOvershootIntervalCoversTheMeasurement) {
+  const HeldOutZigzagCheck check = CheckHeldOutZigzags(*results_);
+  std::printf("%s", HeldOutZigzagsText(check).c_str());
+  ASSERT_EQ(check.errors.size(), 2u) << check.note;
+  EXPECT_EQ(check.errors[0].runs, 8);
+  int rows = 0, covered = 0;
+  for (const HeldOutZigzag& row : check.rows) {
+    if (row.figure != "first_overshoot") continue;
+    ++rows;
+    covered += row.covered ? 1 : 0;
+    EXPECT_LT(row.high - row.low, 5.0) << row.experiment << ": an interval too wide to say much";
+  }
+  EXPECT_EQ(rows, static_cast<int>(held_out_->size()));
+  EXPECT_GE(covered, 4);
 }
 
 }  // namespace

@@ -1,10 +1,14 @@
-// The exported FMU of every shipped config's model, loaded by a test master (dlopen, the fmi2*
-// functions) and driven over the config's first simulated record as a co-simulation would
-// (inputs and their slopes set at each sample, one fmi2DoStep per sample interval):
-// its outputs equal the engine's own simulation of the record (ModelHandle::SimulateOutputs,
-// the path every fit takes) to 1e-10 relative. modelDescription.xml is checked for the FMI 2.0
-// rules that matter (unique value references per type, causality/variability combinations,
-// start values where required), and ensemble_member selects its draw.
+// The exported FMU and C code of every shipped config's model reproduce the engine's own
+// simulation of the config's first simulated record (ModelHandle::SimulateOutputs, the path
+// every fit takes) to 1e-10 relative:
+// * the FMU loaded by a test master (dlopen, the fmi2* functions) and driven as a
+//   co-simulation would (inputs and their slopes set at each sample, one fmi2DoStep per sample
+//   interval); modelDescription.xml checked for the FMI 2.0 rules that matter (unique value
+//   references per type, causality/variability combinations, start values where required),
+//   and ensemble_member selecting its draw;
+// * the C code compiled by the system's compiler with -std=c99 -Wall -Werror: its RK4 step on
+//   the engine's interpolated inputs, its record simulation (the run's step rule and input
+//   interpolation) on the record's inputs at its nodes, and its example program run.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -19,12 +23,14 @@
 
 #include "Eigen/Dense"
 #include "engine/config/config.h"
+#include "engine/export/c_model.h"
 #include "engine/export/exported_model.h"
 #include "engine/export/fmu_package.h"
 #include "engine/run/records.h"
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
 #include "problems/registry.h"
+#include "tests/support/c_model_loader.h"
 #include "tests/support/fmu_loader.h"
 #include "tests/support/run_command.h"
 
@@ -33,7 +39,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class FmuExport : public ::testing::TestWithParam<std::string> {};
+class ModelExport : public ::testing::TestWithParam<std::string> {};
 
 // The FMI 2.0 combinations of causality and variability (table in section 2.2.7) this export
 // uses, each allowed, and a start value on every input and parameter.
@@ -58,7 +64,146 @@ void CheckDescription(const testing::FmuLoader& fmu) {
   EXPECT_FALSE(std::regex_search(xml, needs_start)) << xml;
 }
 
-TEST_P(FmuExport, ReproducesTheEnginesSimulationOfTheFirstRecord) {
+// Worst relative difference of `got` from `expected` (nodes x outputs) over the outputs the
+// model defines (NaN in both elsewhere), each relative to the larger of |expected| and a
+// thousandth of its channel's largest value; `at` names where.
+double WorstDifference(const std::vector<double>& expected, const std::vector<double>& got,
+                       const ModelInfo& info, const std::vector<double>& node_time,
+                       std::string* at) {
+  const int ny = static_cast<int>(info.outputs.size());
+  const int nodes = static_cast<int>(node_time.size());
+  std::vector<double> scale(ny, 0.0);
+  for (int k = 0; k < nodes; ++k) {
+    for (int j = 0; j < ny; ++j) scale[j] = std::max(scale[j], std::abs(expected[k * ny + j]));
+  }
+  double worst = 0.0;
+  for (int k = 0; k < nodes; ++k) {
+    for (int j = 0; j < ny; ++j) {
+      const double e = expected[k * ny + j], g = got[k * ny + j];
+      const double relative = std::isnan(e)
+                                  ? (std::isnan(g) ? 0.0 : 1.0)
+                                  : std::abs(g - e) / std::max(std::abs(e), 1e-3 * scale[j]);
+      if (!(relative <= worst)) {
+        worst = relative;
+        *at = info.outputs[j] + " at t = " + std::to_string(node_time[k]);
+      }
+    }
+  }
+  return worst;
+}
+
+// The C export of `exported` (the model of `config`'s `stage`, whose first record `e` the
+// engine simulates from x0 as `reference`), built in dir/c and checked against the engine.
+void CheckCModel(const RunConfig& config, const StageConfig& stage, const ModelHandle& model,
+                 ExportedModel exported, const Experiment& e, const std::vector<double>& x0,
+                 const std::vector<double>& reference, const fs::path& dir) {
+  const ModelInfo& info = model.info();
+  const ExperimentSpec* spec = nullptr;
+  for (const ExperimentSpec& s : config.experiments) {
+    if (s.name == stage.experiments.front()) spec = &s;
+  }
+  ASSERT_NE(spec, nullptr);
+  for (size_t i = 0; i < info.inputs.size(); ++i) {
+    const auto method = spec->interpolation.find(info.inputs[i]);
+    exported.interpolation[i] = InterpolationToString(
+        method == spec->interpolation.end() ? spec->default_interpolation : method->second);
+  }
+  std::vector<CModelFile> files;
+  std::string error;
+  ASSERT_TRUE(MakeCModel(exported, model, &files, &error)) << error;
+  fs::create_directories(dir / "c");
+  testing::CModelLoader c;
+  const std::string id = CIdentifier(exported.model);
+  ASSERT_TRUE(c.Build(files, id, (dir / "c").string(), &error)) << error;
+  const double* p = exported.values.data();
+  // Member 0 is the estimate, member k the k-th draw; none beyond the last.
+  for (size_t i = 0; i < info.parameters.size(); ++i) {
+    EXPECT_EQ(c.member(0)[i], exported.values[i]) << info.parameters[i];
+    EXPECT_EQ(c.member(2)[i], exported.ensemble[1][i]) << info.parameters[i];
+  }
+  EXPECT_EQ(c.member(static_cast<int>(exported.ensemble.size()) + 1), nullptr);
+
+  // Its RK4 steps on the engine's interpolated inputs.
+  const int nu = e.num_inputs, ny = static_cast<int>(info.outputs.size());
+  const int nodes = e.num_nodes();
+  std::vector<double> x = x0, stepped(static_cast<size_t>(nodes) * ny, NAN);
+  const double* u = e.input_cache.data();
+  for (int k = 0; k < nodes; ++k) {
+    c.output(x.data(), u, p, stepped.data() + k * ny);
+    if (k + 1 == nodes) break;
+    for (int s = 0; s < e.node_substeps[k]; ++s, u += 3 * nu) {
+      ASSERT_EQ(c.rk4_step(x.data(), u, u + nu, u + 2 * nu, p, e.node_step[k]), 1)
+          << "at t = " << e.node_time[k];
+    }
+  }
+  std::string at;
+  double worst = WorstDifference(reference, stepped, info, e.node_time, &at);
+  std::printf("%s: C steps, worst relative difference %.3g (%s)\n", id.c_str(), worst, at.c_str());
+  EXPECT_LE(worst, 1e-10) << "C steps: worst " << at;
+
+  // Its record simulation on the record's inputs at the nodes, against the engine's
+  // simulation of the same samples (an in-memory record on the node grid).
+  auto grid = std::make_shared<Trajectory>();
+  grid->source = "grid";
+  grid->t = e.node_time;
+  std::vector<double> inputs(static_cast<size_t>(nodes) * nu, NAN);
+  ExperimentSpec grid_spec;
+  grid_spec.name = "grid";
+  grid_spec.interpolation = spec->interpolation;
+  grid_spec.default_interpolation = spec->default_interpolation;
+  int step = 0;
+  for (int k = 0; k < nodes; ++k) {
+    for (int i = 0; i < nu; ++i) inputs[k * nu + i] = e.input_cache[3 * step * nu + i];
+    if (k + 1 < nodes) step += e.node_substeps[k];
+  }
+  for (int i = 0; i < nu; ++i) {
+    if (spec->inputs.count(info.inputs[i]) == 0) continue;
+    grid_spec.inputs[info.inputs[i]] = info.inputs[i];
+    grid->names.push_back(info.inputs[i]);
+    grid->columns.emplace_back();
+    for (int k = 0; k < nodes; ++k) grid->columns.back().push_back(inputs[k * nu + i]);
+  }
+  for (int j = 0; j < ny; ++j) {
+    bool finite = true;
+    for (int k = 0; k < nodes; ++k) finite = finite && std::isfinite(reference[k * ny + j]);
+    if (!finite ||
+        std::find(grid->names.begin(), grid->names.end(), info.outputs[j]) != grid->names.end()) {
+      continue;
+    }
+    grid_spec.outputs[info.outputs[j]] = info.outputs[j];
+    grid->names.push_back(info.outputs[j]);
+    grid->columns.emplace_back();
+    for (int k = 0; k < nodes; ++k) grid->columns.back().push_back(reference[k * ny + j]);
+  }
+  for (size_t s = 0; s < info.states.size(); ++s) grid_spec.initial_state[info.states[s]] = x0[s];
+  grid_spec.table = grid;
+  RunConfig grid_config = config;
+  grid_config.experiments = {grid_spec};
+  TrajectoryCache cache;
+  std::vector<Experiment> grid_experiments;
+  ASSERT_TRUE(PrepareExperiments(grid_config, {"grid"}, model, stage.experiment, &cache,
+                                 &grid_experiments, &error))
+      << error;
+  ASSERT_EQ(grid_experiments.front().node_time, e.node_time);
+  std::vector<double> grid_reference, simulated(static_cast<size_t>(nodes) * ny);
+  ASSERT_TRUE(model.SimulateOutputs(grid_experiments.front(), p, x0.data(), &grid_reference));
+  ASSERT_EQ(c.simulate(nodes, e.node_time.data(), inputs.data(), x0.data(), p, exported.max_step,
+                       simulated.data()),
+            nodes);
+  worst = WorstDifference(grid_reference, simulated, info, e.node_time, &at);
+  std::printf("%s: C record simulation, worst relative difference %.3g (%s)\n", id.c_str(), worst,
+              at.c_str());
+  EXPECT_LE(worst, 1e-10) << "C simulation: worst " << at;
+
+  // The example runs and prints every output.
+  const testing::CommandOutcome example = testing::RunCommand(c.example());
+  EXPECT_EQ(example.status, 0) << example.output;
+  for (const std::string& output : info.outputs) {
+    EXPECT_NE(example.output.find(output), std::string::npos) << example.output;
+  }
+}
+
+TEST_P(ModelExport, FmuAndCReproduceTheEnginesSimulationOfTheFirstRecord) {
   const std::string name = GetParam();
   const fs::path dir = fs::temp_directory_path() / ("vesselid_fmu_" + name);
   fs::remove_all(dir);
@@ -114,8 +259,8 @@ TEST_P(FmuExport, ReproducesTheEnginesSimulationOfTheFirstRecord) {
   }
   fine_options.max_step = shortest / 3.0;
   std::vector<Experiment> fine_experiments;
-  ASSERT_TRUE(PrepareExperiments(config, {stage->experiments.front()}, *model, fine_options,
-                                 &cache, &fine_experiments, &error))
+  ASSERT_TRUE(PrepareExperiments(config, {stage->experiments.front()}, *model, fine_options, &cache,
+                                 &fine_experiments, &error))
       << error;
   const Experiment& fine = fine_experiments.front();
   ASSERT_EQ(fine.node_time, e.node_time);
@@ -214,13 +359,16 @@ TEST_P(FmuExport, ReproducesTheEnginesSimulationOfTheFirstRecord) {
         << info.parameters[i];
   }
   EXPECT_NE(member.SetInteger(member.Reference("ensemble_member"), 3), fmi2OK);
+
+  CheckCModel(config, *stage, *model, exported, e, x0, reference, dir);
   fs::remove_all(dir);
 }
 
-// `vesselid export` on a finished run (the tanker's n1-form Nomoto model): model.json holds the
-// run's final values, the covariance of its estimates (diagonal: their squared standard
-// errors) and 100 draws around the values; the FMU starts its parameters at the final values
-// and offers the draws; bad requests are refused with one clear line and nothing written.
+// `vesselid export` on a finished run (the tanker's n1-form Nomoto model): the C files are
+// written beside; model.json holds the run's final values, the covariance of its estimates
+// (diagonal: their squared standard errors) and 100 draws around the values; the FMU starts its
+// parameters at the final values and offers the draws; bad requests are refused with one clear line
+// and nothing written.
 TEST(ExportCommand, TakesARunsModelOutAsJsonAndFmu) {
   const fs::path dir = fs::temp_directory_path() / "vesselid_export_command";
   fs::remove_all(dir);
@@ -237,9 +385,13 @@ TEST(ExportCommand, TakesARunsModelOutAsJsonAndFmu) {
   const std::string run = (dir / "run").string();
   ASSERT_EQ(std::system((binary + " export " + run + " --format json > /dev/null").c_str()), 0);
   ASSERT_EQ(std::system((binary + " export " + run + " --format fmu > /dev/null").c_str()), 0);
+  ASSERT_EQ(std::system((binary + " export " + run + " --format c > /dev/null").c_str()), 0);
   std::ifstream results_file(dir / "run" / "results.json");
   const nlohmann::json results = nlohmann::json::parse(results_file);
   const std::string model_name = results["model"]["name"];
+  for (const std::string& file : {".h", ".c", "_example.c"}) {
+    EXPECT_TRUE(fs::exists(dir / "run" / "export" / (model_name + file))) << file;
+  }
   std::ifstream model_file(dir / "run" / "export" / (model_name + ".json"));
   const nlohmann::json model = nlohmann::json::parse(model_file);
   EXPECT_EQ(model["family"], "nomoto");
@@ -281,6 +433,35 @@ TEST(ExportCommand, TakesARunsModelOutAsJsonAndFmu) {
     EXPECT_EQ(fmu.GetReal(fmu.Reference(name)), value[name]) << name;
   }
 
+  // A run whose covariance is a bootstrap's carries its replicates: the ensemble is theirs.
+  nlohmann::json boot = results;
+  nlohmann::json* correlated = nullptr;
+  for (nlohmann::json& stage : boot["stages"]) {
+    if (stage.contains("correlation")) correlated = &stage;
+  }
+  ASSERT_NE(correlated, nullptr);
+  nlohmann::json replicate_values = nlohmann::json::array();
+  for (int r = 0; r < 3; ++r) {
+    nlohmann::json row = nlohmann::json::array();
+    for (size_t a = 0; a < estimated.size(); ++a) row.push_back(value[estimated[a]] + r + 1.0);
+    replicate_values.push_back(row);
+  }
+  (*correlated)["uncertainty"]["replicates"] = {{"names", estimated}, {"values", replicate_values}};
+  fs::create_directories(dir / "boot");
+  std::ofstream(dir / "boot" / "results.json") << boot.dump();
+  ASSERT_EQ(
+      std::system(
+          (binary + " export " + (dir / "boot").string() + " --format json > /dev/null").c_str()),
+      0);
+  std::ifstream boot_file(dir / "boot" / "export" / (model_name + ".json"));
+  const nlohmann::json boot_model = nlohmann::json::parse(boot_file);
+  EXPECT_EQ(boot_model["ensemble"]["source"], "bootstrap");
+  ASSERT_EQ(boot_model["ensemble"]["members"].size(), 3u);
+  for (size_t a = 0; a < estimated.size(); ++a) {
+    const size_t i = std::find(names.begin(), names.end(), estimated[a]) - names.begin();
+    EXPECT_EQ(boot_model["ensemble"]["members"][2][i].get<double>(), value[estimated[a]] + 3.0);
+  }
+
   // Refused: not a run's folder, an unknown format, a negative ensemble; nothing written.
   auto refused = [&](const std::string& arguments, const std::string& says) {
     const std::string command = binary + " export " + arguments;
@@ -296,12 +477,11 @@ TEST(ExportCommand, TakesARunsModelOutAsJsonAndFmu) {
   fs::remove_all(dir);
 }
 
-INSTANTIATE_TEST_SUITE_P(Shipped, FmuExport,
+INSTANTIATE_TEST_SUITE_P(Shipped, ModelExport,
                          ::testing::Values("nomoto_cargo", "nomoto_cargo_noise", "nomoto_patrol",
-                                           "nomoto_patrol_noise", "nomoto_tanker",
-                                           "eriksen_2dof", "erunsal_hierarchy",
-                                           "input_gain_static", "input_gain_dynamic",
-                                           "input_gain_usv_log"));
+                                           "nomoto_patrol_noise", "nomoto_tanker", "eriksen_2dof",
+                                           "erunsal_hierarchy", "input_gain_static",
+                                           "input_gain_dynamic", "input_gain_usv_log"));
 
 }  // namespace
 }  // namespace vesselid

@@ -1,0 +1,52 @@
+// Measured against predicted for the zigzags a run held out (results.json `zigzags`), with a
+// 95 % prediction interval: does the interval cover the measurement?
+//
+// The prediction of a held-out run's overshoot is the run's simulation of that record (its
+// own rudder and, where the run estimates one, its own bias). Its error on the training
+// zigzags, e_i = measured_i - simulated_i over the n training runs, holds what the model
+// leaves out (unmodelled dynamics, the disturbance, the compass's resolution) and the
+// parameters' error as far as it shows on such runs; with mean m and standard deviation s
+// the interval is
+//
+//   simulated + m +- t_{0.975, n-1} s sqrt(1 + 1/n)
+//
+// (a new run's error drawn like the training runs' ones; m is the model's bias on this
+// figure). Per figure (first and second overshoot) separately, with the n training runs that
+// have it; none with fewer than three.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "nlohmann/json.hpp"
+
+namespace vesselid {
+
+struct HeldOutZigzag {
+  std::string experiment;
+  std::string test;    // "10.0/10.4": rudder/heading change in degrees
+  std::string figure;  // "first_overshoot", "second_overshoot"
+  double measured = 0.0, predicted = 0.0, low = 0.0, high = 0.0;  // deg
+  bool covered = false;
+};
+
+struct HeldOutZigzagCheck {
+  std::string stage;  // whose simulations the held-out runs have
+  std::vector<HeldOutZigzag> rows;
+  // Per figure: training runs, their error's mean and SD (deg), the t factor.
+  struct Error {
+    std::string figure;
+    int runs = 0;
+    double mean = 0.0, sd = 0.0, t = 0.0;
+  };
+  std::vector<Error> errors;
+  std::string note;  // why there is no check (no held-out or too few training zigzags)
+};
+
+// The check of the run whose results.json is `results` (its `zigzags`).
+HeldOutZigzagCheck CheckHeldOutZigzags(const nlohmann::json& results);
+
+std::string HeldOutZigzagsText(const HeldOutZigzagCheck& check);
+nlohmann::json HeldOutZigzagsToJson(const HeldOutZigzagCheck& check);
+
+}  // namespace vesselid
