@@ -350,82 +350,68 @@ bool MakeCModel(const ExportedModel& model, const ModelHandle& handle,
          "s: the run's RK4 step bound; 0: the median sample interval");
   define("EXAMPLE_INPUTS", CNumbers(example_inputs), "the example's held inputs");
   h += "\n";
-  const std::string s_states = std::to_string(std::max<size_t>(model.states.size(), 1));
-  const std::string s_inputs = std::to_string(std::max<size_t>(model.inputs.size(), 1));
-  const std::string s_outputs = std::to_string(std::max<size_t>(model.outputs.size(), 1));
-  const std::string s_parameters = std::to_string(std::max<size_t>(model.parameters.size(), 1));
-  const std::string s_estimated = std::to_string(std::max(estimated, 1));
-  const std::string s_members = std::to_string(std::max(members, 1));
-  h += "extern const char* const " + id + "_state_names[" + s_states + "];\n";
-  h += "extern const char* const " + id + "_state_units[" + s_states + "];\n";
-  h += "extern const char* const " + id + "_input_names[" + s_inputs + "];\n";
-  h += "extern const char* const " + id + "_input_units[" + s_inputs + "];\n";
-  h += "extern const char* const " + id + "_output_names[" + s_outputs + "];\n";
-  h += "extern const char* const " + id + "_output_units[" + s_outputs + "];\n";
-  h += "extern const char* const " + id + "_parameter_names[" + s_parameters + "];\n";
-  h += "extern const char* const " + id + "_parameter_units[" + s_parameters + "];\n";
-  h += "/* Per input: 0 zero-order hold, 1 linear, 2 cubic Hermite (as the run read it). */\n";
-  h += "extern const int " + id + "_interpolation[" + s_inputs + "];\n";
-  h += "/* The estimate (the run's final values; the model's defaults where not estimated). */\n";
-  h += "extern const double " + id + "_parameters[" + s_parameters + "];\n";
-  h += "/* Standard errors; NaN where not estimated. */\n";
-  h += "extern const double " + id + "_std_errors[" + s_parameters + "];\n";
-  h +=
-      "/* The estimated parameters (indices into " + id + "_parameters) and their covariance. */\n";
-  h += "extern const int " + id + "_estimated[" + s_estimated + "];\n";
-  h += "extern const double " + id + "_covariance[" + s_estimated + "][" + s_estimated + "];\n";
-  h += "/* Ensemble members 1.." + macro + "_NUM_MEMBERS: full parameter vectors, " +
-       (model.ensemble_source == "bootstrap"
-            ? std::string("the estimates of the run's bootstrap replicates")
-            : "drawn from N(" + id + "_parameters, " + id + "_covariance) (seed " +
-                  std::to_string(model.ensemble_seed) + ")") +
-       ". */\n";
-  h += "extern const double " + id + "_ensemble[" + s_members + "][" + s_parameters + "];\n";
+  // The data, each array declared in the header and defined in the source (C has no empty
+  // arrays: a size of at least one, the count macros say how many are real).
+  auto size = [](size_t n) { return std::to_string(std::max<size_t>(n, 1)); };
+  auto rows = [&](const std::vector<std::vector<double>>& r, const std::vector<double>& empty) {
+    std::string text = "{";
+    for (size_t k = 0; k < r.size(); ++k)
+      text += std::string(k ? "," : "") + "\n    " + CNumbers(r[k]);
+    return r.empty() ? "{" + CNumbers(empty) + "}" : text + "}";
+  };
+  std::vector<std::vector<double>> covariance(estimated);
+  for (int r = 0; r < estimated; ++r) {
+    for (int k = 0; k < model.covariance.cols(); ++k)
+      covariance[r].push_back(model.covariance(r, k));
+  }
+  auto indices = [](const std::vector<int>& v, const std::string& empty) {
+    return List(
+        v, [](int k) { return std::to_string(k); }, empty);
+  };
+  const std::string ensemble_note =
+      "Ensemble members 1.." + macro + "_NUM_MEMBERS: full parameter vectors, " +
+      (model.ensemble_source == "bootstrap"
+           ? std::string("the estimates of the run's bootstrap replicates")
+           : "drawn from N(" + id + "_parameters, " + id + "_covariance) (seed " +
+                 std::to_string(model.ensemble_seed) + ")") +
+      ".";
+  struct CArray {
+    std::string type, name, size, value, note;
+  };
+  const std::string names = "const char* const";
+  const std::vector<CArray> arrays = {
+      {names, "state_names", size(model.states.size()), CNames(model.states), ""},
+      {names, "state_units", size(model.states.size()), CUnits(model.states), ""},
+      {names, "input_names", size(model.inputs.size()), CNames(model.inputs), ""},
+      {names, "input_units", size(model.inputs.size()), CUnits(model.inputs), ""},
+      {names, "output_names", size(model.outputs.size()), CNames(model.outputs), ""},
+      {names, "output_units", size(model.outputs.size()), CUnits(model.outputs), ""},
+      {names, "parameter_names", size(model.parameters.size()), CNames(model.parameters), ""},
+      {names, "parameter_units", size(model.parameters.size()), CUnits(model.parameters), ""},
+      {"const int", "interpolation", size(model.inputs.size()), indices(interpolation, "1"),
+       "Per input: 0 zero-order hold, 1 linear, 2 cubic Hermite (as the run read it)."},
+      {"const double", "parameters", size(model.parameters.size()), CNumbers(model.values),
+       "The estimate (the run's final values; the model's defaults where not estimated)."},
+      {"const double", "std_errors", size(model.parameters.size()), CNumbers(model.std_errors),
+       "Standard errors; NaN where not estimated."},
+      {"const int", "estimated", size(estimated), indices(estimated_index, "-1"),
+       "The estimated parameters (indices into " + id + "_parameters) and their covariance."},
+      {"const double", "covariance", size(estimated) + "][" + size(estimated),
+       rows(covariance, {0.0}), ""},
+      {"const double", "ensemble", size(members) + "][" + size(model.parameters.size()),
+       rows(model.ensemble, model.values), ensemble_note},
+  };
+  std::string data;
+  for (const CArray& a : arrays) {
+    if (!a.note.empty()) h += "/* " + a.note + " */\n";
+    h += "extern " + a.type + " " + id + "_" + a.name + "[" + a.size + "];\n";
+    data += a.type + " " + id + "_" + a.name + "[" + a.size + "] = " + a.value + ";\n";
+  }
   h += named(kHeaderFunctions);
   h += "\n#ifdef __cplusplus\n}\n#endif\n\n#endif\n";
 
   std::string c = "/* " + id + ".c: " + origin + " */\n";
-  c += "#include \"" + id + ".h\"\n\n#include <math.h>\n#include <stdlib.h>\n\n";
-  c += "const char* const " + id + "_state_names[" + s_states + "] = " + CNames(model.states) +
-       ";\n";
-  c += "const char* const " + id + "_state_units[" + s_states + "] = " + CUnits(model.states) +
-       ";\n";
-  c += "const char* const " + id + "_input_names[" + s_inputs + "] = " + CNames(model.inputs) +
-       ";\n";
-  c += "const char* const " + id + "_input_units[" + s_inputs + "] = " + CUnits(model.inputs) +
-       ";\n";
-  c += "const char* const " + id + "_output_names[" + s_outputs + "] = " + CNames(model.outputs) +
-       ";\n";
-  c += "const char* const " + id + "_output_units[" + s_outputs + "] = " + CUnits(model.outputs) +
-       ";\n";
-  c += "const char* const " + id + "_parameter_names[" + s_parameters +
-       "] = " + CNames(model.parameters) + ";\n";
-  c += "const char* const " + id + "_parameter_units[" + s_parameters +
-       "] = " + CUnits(model.parameters) + ";\n";
-  c += "const int " + id + "_interpolation[" + s_inputs + "] = " +
-       List(
-           interpolation, [](int k) { return std::to_string(k); }, "1") +
-       ";\n";
-  c += "const double " + id + "_parameters[" + s_parameters + "] = " + CNumbers(model.values) +
-       ";\n";
-  c += "const double " + id + "_std_errors[" + s_parameters + "] = " + CNumbers(model.std_errors) +
-       ";\n";
-  c += "const int " + id + "_estimated[" + s_estimated + "] = " +
-       List(
-           estimated_index, [](int k) { return std::to_string(k); }, "-1") +
-       ";\n";
-  c += "const double " + id + "_covariance[" + s_estimated + "][" + s_estimated + "] = {";
-  for (int r = 0; r < estimated; ++r) {
-    std::vector<double> row(model.covariance.cols());
-    for (int k = 0; k < model.covariance.cols(); ++k) row[k] = model.covariance(r, k);
-    c += std::string(r ? "," : "") + "\n    " + CNumbers(row);
-  }
-  c += estimated == 0 ? "{0.0}};\n" : "};\n";
-  c += "const double " + id + "_ensemble[" + s_members + "][" + s_parameters + "] = {";
-  for (int m = 0; m < members; ++m) {
-    c += std::string(m ? "," : "") + "\n    " + CNumbers(model.ensemble[m]);
-  }
-  c += members == 0 ? CNumbers(model.values) + "};\n" : "};\n";
+  c += "#include \"" + id + ".h\"\n\n#include <math.h>\n#include <stdlib.h>\n\n" + data;
   c += "\nint " + id +
        "_derivative(const double x[], const double u[], const double p[], double xdot[]) "
        "{\n";

@@ -25,7 +25,9 @@ struct ExportedModel {
   std::string model;  // the model's name (ModelInfo::name)
   ModelOptions options;
   std::vector<ExportedVariable> states, inputs, outputs, parameters;
-  std::vector<double> values;      // per parameter
+  // Per parameter: the run's final values; the model's defaults where no stage estimated one
+  // or where it was estimated per experiment (a run's own bias).
+  std::vector<double> values;
   std::vector<double> std_errors;  // per parameter; NaN where not estimated
   // Over the estimated parameters (covariance_names, a subset of parameters): from the
   // correlation of the last stage that has one and the final standard errors,

@@ -12,6 +12,10 @@ namespace {
 
 constexpr double kNotPredicted = ManoeuvreConditions::kUnknown;
 constexpr double kDegreeInRadians = 3.14159265358979323846 / 180.0;
+// deg/s: a pull-out's residual yaw rate from which the ship counts as course-unstable (a
+// stable ship's rate has decayed by then to a small fraction of this; an unstable one keeps a
+// turn of tenths of a degree per second).
+constexpr double kResidualRate = 0.01;
 
 // Where the rudder, the speed and the heading are in the model.
 struct Layout {
@@ -25,11 +29,14 @@ int IndexOf(const std::vector<ExportedVariable>& list, const std::string& name) 
   return -1;
 }
 
-// The figures of a delta_z / psi_z zigzag with parameters p: first and second overshoot
-// (rad) and the time to the first check (s); NaN where the simulation does not reach them.
-ZigzagFigures SimulateZigzag(const ModelHandle& model, const Layout& layout, double speed,
-                             const std::vector<double>& p, double rudder, double heading,
-                             const ManoeuvreConditions& c) {
+// The heading (rad) every step h of a manoeuvre with parameters p from a straight course
+// (every state zero) at `speed`: the rudder follows `command(time, heading change)` at the steering
+// gear's rate; `done()` true ends it early. False where the model refuses or the
+// heading stops being finite; t and psi hold what was reached.
+template <class Command, class Done>
+bool Steer(const ModelHandle& model, const Layout& layout, double speed,
+           const std::vector<double>& p, const ManoeuvreConditions& c, double h, double duration,
+           Command&& command_of, Done&& done, std::vector<double>* t, std::vector<double>* psi) {
   const ModelInfo& info = model.info();
   const size_t nx = info.states.size(), nu = info.inputs.size();
   std::vector<double> x(nx, 0.0), k1(nx), k2(nx), k3(nx), k4(nx), xs(nx), y(info.outputs.size());
@@ -43,35 +50,45 @@ ZigzagFigures SimulateZigzag(const ModelHandle& model, const Layout& layout, dou
     return y[layout.psi];
   };
   const double psi0 = heading_of(x, u0);
-  double delta = 0.0, command = rudder, sign = 0.0;
-  int reversals = 0;
-  std::vector<double> t = {0.0}, psi = {psi0};
-  const double h = c.step;
+  double delta = 0.0, command = command_of(0.0, 0.0);
+  *t = {0.0};
+  *psi = {psi0};
   auto moved = [&](double tau) {
     return delta + std::clamp(command - delta, -c.rudder_rate * tau, c.rudder_rate * tau);
   };
-  ZigzagFigures none;
-  for (double time = 0.0; time < c.duration && reversals < 4; time += h) {
+  for (double time = 0.0; time < duration && !done(); time += h) {
     u0[layout.delta] = delta;
     u_mid[layout.delta] = moved(0.5 * h);
     u1[layout.delta] = moved(h);
     // RK4 as engine/model/rk4.h.
-    if (!model.Derivative(x.data(), u0.data(), p.data(), k1.data())) return none;
+    if (!model.Derivative(x.data(), u0.data(), p.data(), k1.data())) return false;
     for (size_t i = 0; i < nx; ++i) xs[i] = x[i] + 0.5 * h * k1[i];
-    if (!model.Derivative(xs.data(), u_mid.data(), p.data(), k2.data())) return none;
+    if (!model.Derivative(xs.data(), u_mid.data(), p.data(), k2.data())) return false;
     for (size_t i = 0; i < nx; ++i) xs[i] = x[i] + 0.5 * h * k2[i];
-    if (!model.Derivative(xs.data(), u_mid.data(), p.data(), k3.data())) return none;
+    if (!model.Derivative(xs.data(), u_mid.data(), p.data(), k3.data())) return false;
     for (size_t i = 0; i < nx; ++i) xs[i] = x[i] + h * k3[i];
-    if (!model.Derivative(xs.data(), u1.data(), p.data(), k4.data())) return none;
+    if (!model.Derivative(xs.data(), u1.data(), p.data(), k4.data())) return false;
     for (size_t i = 0; i < nx; ++i) x[i] += h / 6.0 * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
     delta = u1[layout.delta];
     const double now = heading_of(x, u1);
-    if (!std::isfinite(now)) return none;
-    t.push_back(time + h);
-    psi.push_back(now);
-    // The checks: the first heading change of psi_z in either direction sets the sign s, then
-    // the rudder is reversed at s dpsi >= psi_z and s dpsi <= -psi_z in turn.
-    const double change = now - psi0;
+    if (!std::isfinite(now)) return false;
+    t->push_back(time + h);
+    psi->push_back(now);
+    command = command_of(time + h, now - psi0);
+  }
+  return true;
+}
+
+// The figures of a delta_z / psi_z zigzag with parameters p: first and second overshoot
+// (rad) and the time to the first check (s); NaN where the simulation does not reach them.
+ZigzagFigures SimulateZigzag(const ModelHandle& model, const Layout& layout, double speed,
+                             const std::vector<double>& p, double rudder, double heading,
+                             const ManoeuvreConditions& c) {
+  // The checks: the first heading change of psi_z in either direction sets the sign s, then
+  // the rudder is reversed at s dpsi >= psi_z and s dpsi <= -psi_z in turn.
+  double command = rudder, sign = 0.0;
+  int reversals = 0;
+  auto command_of = [&](double, double change) {
     if (reversals == 0 && std::abs(change) >= heading) {
       sign = change > 0.0 ? 1.0 : -1.0;
       command = -rudder;
@@ -83,8 +100,15 @@ ZigzagFigures SimulateZigzag(const ModelHandle& model, const Layout& layout, dou
       command = -rudder;
       ++reversals;
     }
+    return command;
+  };
+  std::vector<double> t, psi;
+  if (!Steer(
+          model, layout, speed, p, c, c.step, c.duration, command_of,
+          [&] { return reversals >= 4; }, &t, &psi) ||
+      reversals == 0) {
+    return ZigzagFigures();
   }
-  if (reversals == 0) return none;
   ZigzagTest test;
   test.rudder = rudder;
   test.heading = heading;
@@ -92,6 +116,30 @@ ZigzagFigures SimulateZigzag(const ModelHandle& model, const Layout& layout, dou
   test.sign = sign;
   test.reversals = reversals;
   return MeasureZigzag(t, psi, test);
+}
+
+// The pull-out test (MSC/Circ.1053): a steady turn on `rudder` for c.pull_out_turn s, the
+// rudder back to midships at the gear's rate, and the yaw rate left after c.pull_out_settle s
+// (deg/s, the heading's mean rate over the last tenth; its larger magnitude of the turns to
+// either side). Zero: the ship is course-stable; a residual rate: unstable (the spiral's
+// loop). NaN where a simulation fails.
+double PullOutResidualRate(const ModelHandle& model, const Layout& layout, double speed,
+                           const std::vector<double>& p, double rudder,
+                           const ManoeuvreConditions& c) {
+  double residual = 0.0;
+  for (const double side : {rudder, -rudder}) {
+    std::vector<double> t, psi;
+    auto command_of = [&](double time, double) { return time < c.pull_out_turn ? side : 0.0; };
+    if (!Steer(
+            model, layout, speed, p, c, c.pull_out_step, c.pull_out_turn + c.pull_out_settle,
+            command_of, [] { return false; }, &t, &psi)) {
+      return kNotPredicted;
+    }
+    const size_t last = t.size() - 1, from = last - last / 10;
+    const double rate = (psi[last] - psi[from]) / (t[last] - t[from]) / kDegreeInRadians;
+    residual = std::max(residual, std::abs(rate));
+  }
+  return residual;
 }
 
 // The figures a parameter vector predicts, in the order of `names` below.
@@ -105,9 +153,12 @@ std::vector<double> FiguresOf(const ModelHandle& model, const Layout& layout, do
   const double turning = std::isfinite(speed) && std::isfinite(length)
                              ? ten.time_to_first_check * speed / length
                              : ten.time_to_first_check;
-  return {ten.first_overshoot / kDegreeInRadians, ten.second_overshoot / kDegreeInRadians,
-          twenty.first_overshoot / kDegreeInRadians, twenty.second_overshoot / kDegreeInRadians,
-          turning};
+  return {ten.first_overshoot / kDegreeInRadians,
+          ten.second_overshoot / kDegreeInRadians,
+          twenty.first_overshoot / kDegreeInRadians,
+          twenty.second_overshoot / kDegreeInRadians,
+          turning,
+          PullOutResidualRate(model, layout, speed, p, 20 * kDegreeInRadians, c)};
 }
 
 double Quantile(std::vector<double> values, double q) {
@@ -191,10 +242,12 @@ bool PredictManoeuvres(const ExportedModel& exported, const ModelHandle& model,
   out.length = c.length;
   out.speed = c.speed;
   const bool ship = std::isfinite(c.length) && std::isfinite(c.speed);
-  const std::vector<std::string> names = {
-      "zigzag_10_10.first_overshoot", "zigzag_10_10.second_overshoot",
-      "zigzag_20_20.first_overshoot", "zigzag_20_20.second_overshoot",
-      ship ? "initial_turning" : "initial_turning_time"};
+  const std::vector<std::string> names = {"zigzag_10_10.first_overshoot",
+                                          "zigzag_10_10.second_overshoot",
+                                          "zigzag_20_20.first_overshoot",
+                                          "zigzag_20_20.second_overshoot",
+                                          ship ? "initial_turning" : "initial_turning_time",
+                                          "pull_out.residual_rate"};
   const std::vector<double> estimate =
       FiguresOf(model, layout, c.speed, c.length, exported.values, c);
   std::vector<std::vector<double>> members;
@@ -220,7 +273,7 @@ bool PredictManoeuvres(const ExportedModel& exported, const ModelHandle& model,
   for (size_t f = 0; f < names.size(); ++f) {
     ManoeuvreFigure figure;
     figure.name = names[f];
-    figure.unit = f < 4 ? "deg" : ship ? "ship lengths" : "s";
+    figure.unit = f < 4 ? "deg" : f == 5 ? "deg/s" : ship ? "ship lengths" : "s";
     figure.value = estimate[f];
     std::vector<double> values;
     for (const std::vector<double>& m : members) {
@@ -251,6 +304,26 @@ bool PredictManoeuvres(const ExportedModel& exported, const ModelHandle& model,
                           " s (the heading does not turn back, or the simulation diverges)");
     }
     out.figures.push_back(figure);
+  }
+  // Course stability from the pull-out's residual rate over the ensemble.
+  const ManoeuvreFigure& pull_out = out.figures.back();
+  if (std::isfinite(pull_out.value)) {
+    char text[300];
+    // Over the ensemble's interval where there is one, else the estimate's value.
+    const bool ensemble = pull_out.members > 0;
+    const double low = ensemble ? pull_out.ensemble_low : pull_out.value;
+    const double high = ensemble ? pull_out.ensemble_high : pull_out.value;
+    const std::string every = ensemble ? ", with every member of the ensemble" : "";
+    std::snprintf(text, sizeof(text),
+                  "pull-out: %.3g deg/s of yaw rate left %.0f s after the rudder returned to "
+                  "midships from a 20 deg turn: %s",
+                  pull_out.value, c.pull_out_settle,
+                  low >= kResidualRate
+                      ? ("course-unstable (the spiral test would show a loop)" + every).c_str()
+                  : high < kResidualRate
+                      ? ("course-stable" + every).c_str()
+                      : "the ensemble holds course-stable and course-unstable models");
+    out.notes.push_back(text);
   }
   if (!ship) {
     out.notes.push_back(

@@ -2,7 +2,9 @@
 // intervals (`vesselid predict`): the 10/10 and 20/20 zigzags of IMO MSC.137(76) /
 // MSC/Circ.1053 (first and second overshoot angles) and the initial turning ability (the
 // distance run, in ship lengths, until the heading has changed 10 deg with 10 deg of rudder),
-// for every model with a rudder input `delta` and a heading output `psi`.
+// for every model with a rudder input `delta` and a heading output `psi`; and the pull-out
+// test's residual yaw rate (MSC/Circ.1053: after a steady turn on 20 deg of rudder, the rudder
+// to midships; a rate that stays means a course-unstable ship, the spiral test's loop).
 //
 // Each zigzag is simulated in closed loop from a straight course (every state zero): the rudder
 // goes to +delta_z at t = 0 at the steering gear's rate and is reversed each time the heading
@@ -31,6 +33,10 @@ struct ManoeuvreConditions {
   double rudder_rate = 65.0 / 28.0 * 3.14159265358979323846 / 180.0;
   double step = 0.01;        // s, RK4 step of the closed-loop simulation (and the checks' timing)
   double duration = 3600.0;  // s, the longest a zigzag is simulated
+  // s: the pull-out test's steady turn on 20 deg of rudder, and the time it is then watched
+  // with the rudder at midships.
+  double pull_out_turn = 900.0, pull_out_settle = 900.0;
+  double pull_out_step = 0.1;  // s, its RK4 step (no check to time)
 };
 
 struct ManoeuvreFigure {

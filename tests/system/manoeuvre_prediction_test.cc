@@ -89,6 +89,12 @@ TEST(ManoeuvrePrediction, CargoShipOvershootsAndTurningWithIntervalsHoldTheTruth
     const double truth_value = true_figures.figures[f].value;
     std::printf("%-30s %8.4f [%8.4f, %8.4f] truth %8.4f\n", name.c_str(), value, low, high,
                 truth_value);
+    if (name == "pull_out.residual_rate") {
+      // A course-stable ship: no yaw rate left, in every member.
+      EXPECT_LT(high, 1e-3) << name;
+      EXPECT_LT(truth_value, 1e-3) << name;
+      continue;
+    }
     EXPECT_EQ(p["ensemble_members"], 100) << name;
     EXPECT_LT(low, value) << name;
     EXPECT_GT(high, value) << name;
@@ -104,7 +110,34 @@ TEST(ManoeuvrePrediction, CargoShipOvershootsAndTurningWithIntervalsHoldTheTruth
     }
   }
   EXPECT_NE(output.find("met (the whole interval)"), std::string::npos) << output;
+  EXPECT_NE(output.find("course-stable, with every member"), std::string::npos) << output;
   fs::remove_all(dir);
+}
+
+// The pull-out test tells the course-unstable tanker (configs/nomoto_tanker.yaml's truth, the
+// n1 form with n1 < 0) by the yaw rate it keeps with the rudder at midships: the stable
+// branch of n1 r + n3 r^3 = 0, r = sqrt(-n1 / n3_nd) U/L.
+TEST(ManoeuvrePrediction, PullOutTellsTheUnstableTanker) {
+  const ModelRegistry registry = DefaultRegistry();
+  ExportedModel tanker;
+  std::string error;
+  const auto model = MakeExportedModel(
+      registry, "nomoto", {{"type", "norrbin_n1"}, {"length", "320"}}, &tanker, &error);
+  ASSERT_NE(model, nullptr) << error;
+  tanker.values = {2.2, 1.9, -0.3, 12.0, 0.0};  // T_nd, K_nd, n1, n3_nd, delta_0
+  ManoeuvreConditions conditions;
+  conditions.speed = 7.7;
+  ManoeuvrePredictions predictions;
+  ASSERT_TRUE(PredictManoeuvres(tanker, *model, conditions, &predictions, &error)) << error;
+  const ManoeuvreFigure& pull_out = predictions.figures.back();
+  ASSERT_EQ(pull_out.name, "pull_out.residual_rate");
+  const double expected = std::sqrt(0.3 / 12.0) * 7.7 / 320.0 * 180.0 / M_PI;  // deg/s
+  EXPECT_NEAR(pull_out.value, expected, 0.02 * expected);
+  bool said = false;
+  for (const std::string& note : predictions.notes) {
+    said = said || note.find("course-unstable") != std::string::npos;
+  }
+  EXPECT_TRUE(said);
 }
 
 // Without L and U the turning is a time and only the 20/20 criterion applies; a model that
@@ -119,9 +152,10 @@ TEST(ManoeuvrePrediction, SaysWhatItCannotPredict) {
   cargo.values = {45.0, 6.0, 10.0, 0.09, 0.0};
   ManoeuvrePredictions predictions;
   ASSERT_TRUE(PredictManoeuvres(cargo, *model, ManoeuvreConditions(), &predictions, &error));
-  EXPECT_EQ(predictions.figures.back().name, "initial_turning_time");
-  EXPECT_EQ(predictions.figures.back().unit, "s");
-  EXPECT_GT(predictions.figures.back().value, 10.0);
+  const ManoeuvreFigure& turning = predictions.figures[4];
+  EXPECT_EQ(turning.name, "initial_turning_time");
+  EXPECT_EQ(turning.unit, "s");
+  EXPECT_GT(turning.value, 10.0);
   for (const ManoeuvreFigure& f : predictions.figures) {
     EXPECT_EQ(std::isfinite(f.limit), f.name == "zigzag_20_20.first_overshoot") << f.name;
   }
