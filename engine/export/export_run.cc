@@ -14,7 +14,7 @@
 #include "engine/export/c_model.h"
 #include "engine/export/exported_model.h"
 #include "engine/export/fmu_package.h"
-#include "engine/export/held_out_zigzags.h"
+#include "engine/output/held_out_zigzags.h"
 #include "engine/output/output_folder.h"
 #include "engine/output/output_staging.h"
 

@@ -5,6 +5,7 @@
 
 #include "engine/base/format_numbers.h"
 #include "engine/base/json_number.h"
+#include "engine/output/held_out_zigzags.h"
 
 namespace vesselid {
 namespace {
@@ -78,6 +79,9 @@ std::string ZigzagRunsText(const std::vector<ZigzagRun>& runs) {
         pair(run.measured.period, run.simulated.period, 1.0, "%.1f").c_str());
     out += line;
   }
+  // The held-out runs against their prediction intervals (held_out_zigzags.h).
+  const HeldOutZigzagCheck check = CheckHeldOutZigzags({{"zigzags", ZigzagRunsToJson(runs)}});
+  if (!check.rows.empty()) out += "\n" + HeldOutZigzagsText(check);
   return out;
 }
 

@@ -23,7 +23,8 @@ extern const char kZigzagDefinitions[];
 // The test as flown, "20.0/5.2" (delta_z/psi_z in degrees).
 std::string ZigzagTestLabel(const ZigzagRun& run);
 
-// A report.txt section; empty without zigzags.
+// A report.txt section, with the held-out runs against their prediction intervals
+// (held_out_zigzags.h) where the run holds zigzags out; empty without zigzags.
 std::string ZigzagRunsText(const std::vector<ZigzagRun>& runs);
 
 }  // namespace vesselid

@@ -1,7 +1,9 @@
 #include "engine/report/zigzag_html.h"
 
 #include <cmath>
+#include <cstdio>
 
+#include "engine/output/held_out_zigzags.h"
 #include "engine/output/zigzag_report.h"
 #include "engine/report/report_table_cells.h"
 
@@ -9,6 +11,38 @@ namespace vesselid {
 namespace {
 
 constexpr double kDegrees = 180.0 / M_PI;
+
+// The held-out runs' overshoots against their 95 % prediction intervals; empty without.
+std::string HeldOutZigzagsHtml(const HeldOutZigzagCheck& check) {
+  if (check.rows.empty()) return "";
+  std::string text = "<h3>Held-out zigzags, measured against predicted</h3>\n<p>";
+  for (const HeldOutZigzagCheck::Error& e : check.errors) {
+    int covered = 0, rows = 0;
+    for (const HeldOutZigzag& r : check.rows) {
+      if (r.figure != e.figure) continue;
+      ++rows;
+      covered += r.covered ? 1 : 0;
+    }
+    char line[300];
+    std::snprintf(line, sizeof(line),
+                  "%s: the 95 %% prediction interval (the run's prediction + m ± t s √(1 + 1/n) "
+                  "from its error on %d training zigzags, m = %+.3g°, s = %.3g°) covers %d of %d "
+                  "held-out runs. ",
+                  e.figure.c_str(), e.runs, e.mean, e.sd, covered, rows);
+    text += HtmlEscape(line);
+  }
+  std::string rows;
+  for (const HeldOutZigzag& r : check.rows) {
+    rows += "<tr>" + Td(r.experiment) + Td(r.test) + Td(r.figure) +
+            Num(HtmlNumber(r.measured, "%.2f")) + Num(HtmlNumber(r.predicted, "%.2f")) +
+            Num(HtmlNumber(r.low, "%.2f")) + Num(HtmlNumber(r.high, "%.2f")) +
+            Td(r.covered ? "yes" : "no") + "</tr>\n";
+  }
+  return text + "</p>\n<div class=\"scroll\"><table class=\"zigzag\">\n<tr>" + Th("experiment") +
+         Th("δz/ψz [deg]") + Th("figure") + Th("measured [deg]") + Th("predicted [deg]") +
+         Th("interval from [deg]") + Th("interval to [deg]") + Th("covers") + "</tr>\n" + rows +
+         "</table></div>\n";
+}
 
 }  // namespace
 
@@ -36,6 +70,7 @@ std::string ZigzagRunsHtml(const std::vector<ZigzagRun>& runs) {
       Th("period simulated [s]") + "</tr>\n" + rows + "</table></div>\n";
   return "<section id=\"zigzag\">\n<h2>Zigzag figures</h2>\n<p>" + HtmlEscape(kZigzagDefinitions) +
          "</p>\n" + Fold(table, runs.size(), std::to_string(runs.size()) + " zigzag fits", 24) +
+         HeldOutZigzagsHtml(CheckHeldOutZigzags({{"zigzags", ZigzagRunsToJson(runs)}})) +
          "</section>\n";
 }
 

@@ -9,11 +9,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <string>
 #include <vector>
 
-#include "engine/export/held_out_zigzags.h"
+#include "engine/output/held_out_zigzags.h"
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
 #include "tests/support/findings.h"
@@ -43,6 +44,11 @@ class NomotoTanker : public ::testing::Test {
     if (::testing::Test::HasFatalFailure()) return;
     std::ifstream in(out / "results.json");
     json results = json::parse(in);
+    reports_ = new std::string;
+    for (const char* file : {"report.txt", "report.html"}) {
+      std::ifstream report(out / file);
+      reports_->append(std::istreambuf_iterator<char>(report), std::istreambuf_iterator<char>());
+    }
     fs::remove_all(out);
     const YAML::Node config =
         YAML::LoadFile(std::string(VESSELID_SOURCE_DIR) + "/configs/nomoto_tanker.yaml");
@@ -79,6 +85,7 @@ class NomotoTanker : public ::testing::Test {
   }
 
   static json* results_;
+  static std::string* reports_;  // report.txt and report.html
   static std::map<std::string, double>* truth_;
   static std::map<std::string, double>* biases_;  // per run [rad]
   static std::vector<std::string>* held_out_;
@@ -86,6 +93,7 @@ class NomotoTanker : public ::testing::Test {
 };
 
 json* NomotoTanker::results_ = nullptr;
+std::string* NomotoTanker::reports_ = nullptr;
 std::map<std::string, double>* NomotoTanker::truth_ = nullptr;
 std::map<std::string, double>* NomotoTanker::biases_ = nullptr;
 std::vector<std::string>* NomotoTanker::held_out_ = nullptr;
@@ -191,9 +199,10 @@ TEST_F(NomotoTanker, GoodFitIsJudgedGood) {
 namespace vesselid {
 namespace {
 
-// `vesselid predict`'s check of the held-out zigzags: the first overshoot's 95 % prediction
-// interval (the run's simulation of the held-out record plus the model's error on the eight
-// training zigzags) covers the measured overshoot in at least 4 of the 5 held-out runs.
+// The check of the held-out zigzags (report.txt, report.html, `vesselid predict`): the first
+// overshoot's 95 % prediction interval (the run's simulation of the held-out record plus the
+// model's error on the eight training zigzags) covers the measured overshoot in at least 4 of the 5
+// held-out runs.
 TEST_F(NomotoTanker, HeldOutFirstOvershootIntervalCoversTheMeasurement) {
   const HeldOutZigzagCheck check = CheckHeldOutZigzags(*results_);
   std::printf("%s", HeldOutZigzagsText(check).c_str());
@@ -208,6 +217,18 @@ TEST_F(NomotoTanker, HeldOutFirstOvershootIntervalCoversTheMeasurement) {
   }
   EXPECT_EQ(rows, static_cast<int>(held_out_->size()));
   EXPECT_GE(covered, 4);
+  // Both reports show it: report.txt's line and report.html's sentence.
+  const std::string says =
+      "covers " + std::to_string(covered) + " of " + std::to_string(rows) + " held-out runs";
+  size_t count = 0;
+  for (size_t at = reports_->find(says); at != std::string::npos;
+       at = reports_->find(says, at + 1)) {
+    ++count;
+  }
+  EXPECT_GE(count, 2u) << says;  // once in each (twice each where the overshoots tally alike)
+  EXPECT_NE(reports_->find("first_overshoot: the interval " + says), std::string::npos);
+  EXPECT_NE(reports_->find("<h3>Held-out zigzags, measured against predicted</h3>"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 // the held-out run's simulation plus the training errors' mean, +- t(0.975, n-1) s sqrt(1+1/n);
 // a measurement outside it is called uncovered, and without held-out runs or with fewer than
 // three training zigzags there is no interval, with a note saying why.
-#include "engine/export/held_out_zigzags.h"
+#include "engine/output/held_out_zigzags.h"
 
 #include <cmath>
 

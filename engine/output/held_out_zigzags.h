@@ -1,5 +1,6 @@
 // Measured against predicted for the zigzags a run held out (results.json `zigzags`), with a
-// 95 % prediction interval: does the interval cover the measurement?
+// 95 % prediction interval: does the interval cover the measurement? In report.txt and
+// report.html (zigzag sections) and `vesselid predict`.
 //
 // The prediction of a held-out run's overshoot is the run's simulation of that record (its
 // own rudder and, where the run estimates one, its own bias). Its error on the training

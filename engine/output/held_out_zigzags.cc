@@ -1,4 +1,4 @@
-#include "engine/export/held_out_zigzags.h"
+#include "engine/output/held_out_zigzags.h"
 
 #include <cmath>
 #include <cstdio>
