@@ -62,7 +62,6 @@ HeldOutZigzagCheck CheckHeldOutZigzags(const json& results) {
     for (double e : errors) error.sd += (e - error.mean) * (e - error.mean) / (error.runs - 1);
     error.sd = std::sqrt(error.sd);
     error.t = StudentTQuantile(0.975, error.runs - 1);
-    check.errors.push_back(error);
     const double half = error.t * error.sd * std::sqrt(1.0 + 1.0 / error.runs);
     for (const json& z : zigzags) {
       if (!z.value("held_out", false) || z.value("stage", "") != held_stage) continue;
@@ -79,8 +78,11 @@ HeldOutZigzagCheck CheckHeldOutZigzags(const json& results) {
       row.low = row.predicted + error.mean - half;
       row.high = row.predicted + error.mean + half;
       row.covered = row.low <= row.measured && row.measured <= row.high;
+      ++error.held_out;
+      error.covered += row.covered ? 1 : 0;
       check.rows.push_back(row);
     }
+    check.errors.push_back(error);
   }
   return check;
 }
@@ -111,14 +113,8 @@ std::string HeldOutZigzagsText(const HeldOutZigzagCheck& check) {
     text += line;
   }
   for (const HeldOutZigzagCheck::Error& e : check.errors) {
-    int covered = 0, rows = 0;
-    for (const HeldOutZigzag& r : check.rows) {
-      if (r.figure != e.figure) continue;
-      ++rows;
-      covered += r.covered ? 1 : 0;
-    }
     std::snprintf(line, sizeof(line), "  %s: the interval covers %d of %d held-out runs\n",
-                  e.figure.c_str(), covered, rows);
+                  e.figure.c_str(), e.covered, e.held_out);
     text += line;
   }
   if (!check.note.empty()) text += "  note: " + check.note + "\n";
@@ -132,7 +128,9 @@ json HeldOutZigzagsToJson(const HeldOutZigzagCheck& check) {
                       {"training_runs", e.runs},
                       {"mean_deg", e.mean},
                       {"sd_deg", e.sd},
-                      {"t", e.t}});
+                      {"t", e.t},
+                      {"held_out_runs", e.held_out},
+                      {"covered", e.covered}});
   }
   for (const HeldOutZigzag& r : check.rows) {
     rows.push_back({{"experiment", r.experiment},

@@ -34,11 +34,13 @@ struct HeldOutZigzag {
 struct HeldOutZigzagCheck {
   std::string stage;  // whose simulations the held-out runs have
   std::vector<HeldOutZigzag> rows;
-  // Per figure: training runs, their error's mean and SD (deg), the t factor.
+  // Per figure: training runs, their error's mean and SD (deg), the t factor; held-out runs
+  // with the figure and how many of them the interval covers.
   struct Error {
     std::string figure;
     int runs = 0;
     double mean = 0.0, sd = 0.0, t = 0.0;
+    int held_out = 0, covered = 0;
   };
   std::vector<Error> errors;
   std::string note;  // why there is no check (no held-out or too few training zigzags)

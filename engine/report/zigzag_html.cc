@@ -17,18 +17,12 @@ std::string HeldOutZigzagsHtml(const HeldOutZigzagCheck& check) {
   if (check.rows.empty()) return "";
   std::string text = "<h3>Held-out zigzags, measured against predicted</h3>\n<p>";
   for (const HeldOutZigzagCheck::Error& e : check.errors) {
-    int covered = 0, rows = 0;
-    for (const HeldOutZigzag& r : check.rows) {
-      if (r.figure != e.figure) continue;
-      ++rows;
-      covered += r.covered ? 1 : 0;
-    }
     char line[300];
     std::snprintf(line, sizeof(line),
                   "%s: the 95 %% prediction interval (the run's prediction + m ± t s √(1 + 1/n) "
                   "from its error on %d training zigzags, m = %+.3g°, s = %.3g°) covers %d of %d "
                   "held-out runs. ",
-                  e.figure.c_str(), e.runs, e.mean, e.sd, covered, rows);
+                  e.figure.c_str(), e.runs, e.mean, e.sd, e.covered, e.held_out);
     text += HtmlEscape(line);
   }
   std::string rows;

@@ -46,6 +46,8 @@ TEST(HeldOutZigzags, IntervalFromTheTrainingErrors) {
   EXPECT_NEAR(check.rows[0].high, 10.25 + half, 1e-12);
   EXPECT_TRUE(check.rows[0].covered);
   EXPECT_FALSE(check.rows[1].covered);
+  EXPECT_EQ(check.errors[0].held_out, 2);
+  EXPECT_EQ(check.errors[0].covered, 1);
   EXPECT_NE(HeldOutZigzagsText(check).find("covers 1 of 2 held-out runs"), std::string::npos)
       << HeldOutZigzagsText(check);
 }
