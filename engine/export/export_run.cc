@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <memory>
 #include <utility>
@@ -95,7 +94,8 @@ bool PredictRun(const ModelRegistry& registry, const std::string& run_dir,
     return false;
   }
   ExportedModel model;
-  if (!ReadExportedModel(run_dir, registry, members, seed, &model, error)) return false;
+  nlohmann::json results;
+  if (!ReadExportedModel(run_dir, registry, members, seed, &model, error, &results)) return false;
   // The model's own length (an n1-form Nomoto model on L) unless the conditions give one.
   const auto length = model.options.find("length");
   if (!std::isfinite(conditions.length) && length != model.options.end()) {
@@ -109,14 +109,10 @@ bool PredictRun(const ModelRegistry& registry, const std::string& run_dir,
   *text = ManoeuvresText(figures);
   *predictions = ManoeuvresToJson(figures);
   // The zigzags the run held out, measured against predicted.
-  std::ifstream results_file(model.results);
-  const nlohmann::json results = nlohmann::json::parse(results_file, nullptr, false);
-  if (!results.is_discarded()) {
-    const HeldOutZigzagCheck held_out = CheckHeldOutZigzags(results);
-    const std::string held_out_text = HeldOutZigzagsText(held_out);
-    if (!held_out_text.empty()) *text += "\n" + held_out_text;
-    (*predictions)["held_out_zigzags"] = HeldOutZigzagsToJson(held_out);
-  }
+  const HeldOutZigzagCheck held_out = CheckHeldOutZigzags(results);
+  const std::string held_out_text = HeldOutZigzagsText(held_out);
+  if (!held_out_text.empty()) *text += "\n" + held_out_text;
+  (*predictions)["held_out_zigzags"] = HeldOutZigzagsToJson(held_out);
   (*predictions)["model"] = model.model;
   (*predictions)["results"] = model.results;
   if (!write) return true;

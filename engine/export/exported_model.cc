@@ -109,7 +109,7 @@ std::shared_ptr<const ModelHandle> MakeExportedModel(const ModelRegistry& regist
 }
 
 bool ReadExportedModel(const std::string& out_folder, const ModelRegistry& registry, int members,
-                       unsigned seed, ExportedModel* model, std::string* error) {
+                       unsigned seed, ExportedModel* model, std::string* error, json* parsed) {
   const std::string path = (std::filesystem::path(out_folder) / "results.json").string();
   std::ifstream in(path);
   if (!in) {
@@ -210,6 +210,7 @@ bool ReadExportedModel(const std::string& out_folder, const ModelRegistry& regis
       m.ensemble = DrawEnsemble(m, members, seed);
     }
     *model = std::move(m);
+    if (parsed != nullptr) *parsed = std::move(results);
     return true;
   } catch (const json::exception& e) {
     *error = path + ": " + e.what();

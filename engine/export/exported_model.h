@@ -57,8 +57,10 @@ std::shared_ptr<const ModelHandle> MakeExportedModel(const ModelRegistry& regist
 
 // The model of the run whose outputs are in `out_folder` (its results.json), with `members`
 // ensemble members drawn with `seed`. False with a message naming the file and key.
+// `results` (may be null) gets the parsed results.json for further reading.
 bool ReadExportedModel(const std::string& out_folder, const ModelRegistry& registry, int members,
-                       unsigned seed, ExportedModel* model, std::string* error);
+                       unsigned seed, ExportedModel* model, std::string* error,
+                       nlohmann::json* results = nullptr);
 
 // model.json and back.
 nlohmann::json ExportedModelToJson(const ExportedModel& model);
