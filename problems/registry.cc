@@ -3,6 +3,7 @@
 #include "problems/eriksen2dof/eriksen_config.h"
 #include "problems/erunsal6dof/erunsal_config.h"
 #include "problems/input_gain/input_gain_config.h"
+#include "problems/mmg/mmg_config.h"
 #include "problems/nomoto/nomoto_config.h"
 
 namespace vesselid {
@@ -13,6 +14,7 @@ ModelRegistry DefaultRegistry() {
   registry.Register(erunsal6dof::ErunsalFamily());
   registry.Register(input_gain::InputGainFamily());
   registry.Register(eriksen2dof::EriksenFamily());
+  registry.Register(mmg::MmgFamily());
   return registry;
 }
 
