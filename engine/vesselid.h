@@ -70,3 +70,8 @@
 // Config files and model families.
 #include "engine/config/config.h"
 #include "engine/config/model_registry.h"
+
+// Structure selection by cross-validation over runs.
+#include "engine/output/selection_report.h"
+#include "engine/select/selection.h"
+#include "engine/select/selection_config.h"

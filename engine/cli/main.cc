@@ -35,9 +35,12 @@
 #include "engine/output/output_folder.h"
 #include "engine/output/output_staging.h"
 #include "engine/output/results_text.h"
+#include "engine/output/selection_report.h"
 #include "engine/report/results_writer.h"
 #include "engine/report/started_gnuplots.h"
 #include "engine/run/pipeline.h"
+#include "engine/select/selection.h"
+#include "engine/select/selection_config.h"
 #include "engine/study/study_json.h"
 #include "engine/study/study_runner.h"
 #include "glog/logging.h"
@@ -203,15 +206,13 @@ int Interrupted(const std::string& config_path, const std::string& data_dir,
 
 // A staged run: progress on stderr, a checkpoint in out_dir after each stage; with --resume,
 // the stages an earlier run of the same config and data finished are loaded, not rerun.
-int Run(const std::string& config_path, const std::string& data_dir, const std::string& out_dir,
-        const RunFlags& flags) {
-  vesselid::ConfigFile file;
+// `selection` (may be null): the structure selection that chose `config` (`vesselid select`),
+// shown in every output.
+int RunConfigured(const vesselid::RunConfig& config, const std::string& config_path,
+                  const std::string& data_dir, const std::string& out_dir, const RunFlags& flags,
+                  std::shared_ptr<const vesselid::SelectionResult> selection = nullptr) {
   std::string error, fingerprint;
-  if (!Load(config_path, data_dir, &file, &error) ||
-      !vesselid::RunFingerprint(file.run, &fingerprint, &error)) {
-    return Fail(error);
-  }
-  const vesselid::RunConfig& config = file.run;
+  if (!vesselid::RunFingerprint(config, &fingerprint, &error)) return Fail(error);
   const auto folder =
       OpenOutput(out_dir, vesselid::RunOutputs(config), InputFiles(config), &error);
   if (folder == nullptr) return Fail(error);
@@ -263,6 +264,7 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
   }
   // A run that stopped after finishing a stage still writes what it finished.
   if (!complete && result.stages.empty()) return Fail(error);
+  result.selection = std::move(selection);
   std::string write_error;
   if (!vesselid::WriteRunResults(config, result, out_dir, &write_error, !flags.no_report)) {
     if (stop_signal != 0)
@@ -287,6 +289,41 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
   if (flags.strict && result.verdict == vesselid::Verdict::kDoubtful) return kExitDoubtful;
   if (flags.strict && result.verdict == vesselid::Verdict::kFailed) return kExitFailed;
   return 0;
+}
+
+int Run(const std::string& config_path, const std::string& data_dir, const std::string& out_dir,
+        const RunFlags& flags) {
+  vesselid::ConfigFile file;
+  std::string error;
+  if (!Load(config_path, data_dir, &file, &error)) return Fail(error);
+  return RunConfigured(file.run, config_path, data_dir, out_dir, flags);
+}
+
+// The config's `select` section: every candidate cross-validated over the runs (a case per
+// candidate and fold, over threads and MPI ranks), then the chosen candidate run on every
+// run as `vesselid run` runs a config, its outputs showing the selection.
+int Select(const std::string& config_path, const std::string& data_dir, const std::string& out_dir,
+           int threads, const RunFlags& flags) {
+  vesselid::ProcessGroup group(nullptr, nullptr);
+  vesselid::SelectionSetup setup;
+  std::string error;
+  if (!vesselid::LoadSelection(config_path, data_dir, Registry(), &setup, &error)) {
+    return group.root() ? Fail(error) : 1;
+  }
+  if (threads > 0) setup.options.cases.threads = threads;
+  const bool report = !flags.quiet && group.root();
+  auto progress = [report](const std::string& line) {
+    if (report) std::fprintf(stderr, "%s\n", line.c_str());
+  };
+  auto selection = std::make_shared<vesselid::SelectionResult>();
+  if (!vesselid::RunSelection(setup.candidates, setup.options, selection.get(), &error, progress)) {
+    return group.root() ? Fail(error) : 1;
+  }
+  if (!group.root()) return 0;
+  if (selection->chosen < 0) return Fail("select: " + selection->reason);
+  if (!flags.quiet) std::cout << vesselid::SelectionText(*selection) << "\n";
+  const vesselid::RunConfig& chosen = setup.candidates[selection->chosen].config;
+  return RunConfigured(chosen, config_path, data_dir, out_dir, flags, selection);
 }
 
 // The config's `study` section on the config's data. Under `mpirun` every rank runs its share
@@ -427,6 +464,26 @@ int main(int argc, char** argv) {
   study->add_option("--threads", threads, "worker threads per process (default: study.threads, "
                     "else cores / processes)");
 
+  CLI::App* select = app.add_subcommand(
+      "select",
+      "structure selection: the config's candidates cross-validated over its runs, "
+      "then the chosen one run");
+  select->add_option("config", config_path, "run configuration (YAML) with a select section")
+      ->required();
+  select->add_option("--data", data_dir,
+                     "folder the experiment files are relative to "
+                     "(default: the config's folder)");
+  select
+      ->add_option("--out", out_dir,
+                   "folder for the chosen candidate's results.json, report.txt, report.html")
+      ->required();
+  RunFlags select_flags;
+  select->add_flag("--quiet", select_flags.quiet, "print only the results path");
+  select->add_flag("--no-report", select_flags.no_report, "no report.html");
+  int select_threads = 0;
+  select->add_option("--threads", select_threads,
+                     "worker threads per process (default: select.threads, else cores)");
+
   CLI11_PARSE(app, argc, argv);
   if (simulate->parsed()) return Simulate(config_path, out_dir);
   if (export_model->parsed()) return Export(run_dir, format, out_dir, members, seed);
@@ -436,5 +493,8 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (study->parsed()) return Study(config_path, data_dir, out_dir, only, threads, quiet);
+  if (select->parsed()) {
+    return Select(config_path, data_dir, out_dir, select_threads, select_flags);
+  }
   return Run(config_path, data_dir, out_dir, run_flags);
 }

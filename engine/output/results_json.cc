@@ -1,23 +1,24 @@
 #include "engine/output/results_json.h"
 
-#include "engine/output/results_json_text.h"
-
 #include <map>
 #include <sstream>
 
 #include "engine/base/json_number.h"
 #include "engine/data/time_base.h"
-#include "engine/run/display_units.h"
-#include "engine/output/finding_report.h"
 #include "engine/output/bootstrap_report.h"
+#include "engine/output/finding_report.h"
 #include "engine/output/held_out_parameters_report.h"
 #include "engine/output/json_splices.h"
 #include "engine/output/noise_model_report.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/output/residual_report.h"
+#include "engine/output/results_json_text.h"
 #include "engine/output/run_fit_table.h"
+#include "engine/output/selection_report.h"
 #include "engine/output/step_regression_writer.h"
+#include "engine/output/turning_report.h"
 #include "engine/output/zigzag_report.h"
+#include "engine/run/display_units.h"
 
 namespace vesselid {
 namespace {
@@ -437,6 +438,10 @@ json RunResultDocument(const RunConfig& config, const RunResult& result, JsonSpl
     j["final_velocity_validation"] = VelocityToJson(result.final_velocity_validation);
   }
   if (!result.zigzags.empty()) j["zigzags"] = ZigzagRunsToJson(result.zigzags);
+  if (result.selection) j["selection"] = SelectionToJson(*result.selection);
+  if (!result.turning_circles.empty()) {
+    j["turning_circles"] = TurningRunsToJson(result.turning_circles);
+  }
   return j;
 }
 

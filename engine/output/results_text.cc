@@ -10,8 +10,10 @@
 #include "engine/output/noise_model_report.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/output/residual_report.h"
-#include "engine/output/shown_parameters.h"
 #include "engine/output/run_fit_table.h"
+#include "engine/output/selection_report.h"
+#include "engine/output/shown_parameters.h"
+#include "engine/output/turning_report.h"
 #include "engine/output/zigzag_report.h"
 #include "engine/run/held_out.h"
 
@@ -273,7 +275,8 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
     out << "final validation of the velocities\n"
         << TextVelocityTable(result.final_velocity_validation);
   }
-  out << ZigzagRunsText(result.zigzags);
+  out << ZigzagRunsText(result.zigzags) << TurningRunsText(result.turning_circles);
+  if (result.selection) out << "\n" << SelectionText(*result.selection);
   return out.str();
 }
 

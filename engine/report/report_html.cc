@@ -20,6 +20,8 @@
 #include "engine/report/report_summary.h"
 #include "engine/report/report_tables.h"
 #include "engine/report/residual_html.h"
+#include "engine/report/selection_html.h"
+#include "engine/report/turning_html.h"
 #include "engine/report/zigzag_html.h"
 #include "engine/run/display_units.h"
 #include "engine/run/held_out.h"
@@ -434,6 +436,10 @@ void Contents(const RunResult& result, std::ostringstream* html) {
     *html << " <span class=\"sub\"><a href=\"#final-validation\">validation</a></span>";
   }
   if (!result.zigzags.empty()) *html << "</li>\n<li><a href=\"#zigzag\">Zigzag figures</a>";
+  if (result.selection) *html << "</li>\n<li><a href=\"#selection\">Structure selection</a>";
+  if (!result.turning_circles.empty()) {
+    *html << "</li>\n<li><a href=\"#turning\">Turning circles</a>";
+  }
   *html << "</li>\n<li><a href=\"#papers\">Paper-style tables</a> <span class=\"sub\">"
            "<a href=\"#paper-parameters\">parameters by stage</a><a href=\"#paper-cost\">cost "
            "per test</a><a href=\"#paper-validation\">validation fit %</a></span></li>\n"
@@ -470,7 +476,8 @@ std::string RunReportHtml(const RunConfig& config, const RunResult& result) {
     StageSection(config, result.stages[k], k + 1, &page);
   }
   FinalSection(config, result, &page);
-  html << ZigzagRunsHtml(result.zigzags);
+  html << ZigzagRunsHtml(result.zigzags) << TurningRunsHtml(result.turning_circles);
+  if (result.selection) html << SelectionHtml(*result.selection);
   html << "<section id=\"papers\">\n<h2>Paper-style tables</h2>\n"
        << PaperTables(config, result) << "</section>\n";
   html << "<p class=\"muted\">Report written in <!--seconds--> s (plots <!--plot-seconds--> s)."

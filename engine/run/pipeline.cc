@@ -9,6 +9,7 @@
 #include "engine/run/held_out_memo.h"
 #include "engine/run/integration_step.h"
 #include "engine/run/least_squares_stage.h"
+#include "engine/run/manoeuvre_runs.h"
 #include "engine/run/output_error_stage.h"
 #include "engine/run/parameter_ledger.h"
 #include "engine/run/record_notes.h"
@@ -16,7 +17,6 @@
 #include "engine/run/step_regression_stage.h"
 #include "engine/run/velocity_validation.h"
 #include "engine/run/work_size.h"
-#include "engine/run/zigzag_runs.h"
 
 namespace vesselid {
 namespace {
@@ -308,7 +308,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
       }
     }
   }
-  run.zigzags = FindZigzagRuns(config, run, &cache);
+  FindManoeuvreRuns(config, &run, &cache);
   // What preparing the records did (what they say is diagnose/'s judgement).
   AddRecordNotes(config, cache, &run);
   run.time_seconds =

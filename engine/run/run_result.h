@@ -11,8 +11,10 @@
 
 #include "Eigen/Dense"
 #include "engine/base/finding.h"
+#include "engine/data/turning_figures.h"
 #include "engine/data/zigzag_figures.h"
 #include "engine/model/model.h"
+#include "engine/run/selection_result.h"
 #include "engine/solve/noise_weights.h"
 #include "engine/solve/parameter.h"
 #include "engine/solve/residual_analysis.h"
@@ -146,7 +148,7 @@ struct FinalParameter {
   double runs_max = std::numeric_limits<double>::quiet_NaN();
 };
 
-// A zigzag among the run's simulated records (zigzag_runs.h): the test as the record flies
+// A zigzag among the run's simulated records (manoeuvre_runs.h): the test as the record flies
 // it and its figures, measured and simulated.
 struct ZigzagRun {
   std::string stage;  // the stage whose fit it is, or "final" (final validation)
@@ -154,6 +156,17 @@ struct ZigzagRun {
   bool held_out = false;
   ZigzagTest test;
   ZigzagFigures measured, simulated;
+};
+
+// A turning circle among the run's simulated records (manoeuvre_runs.h): the test as the record
+// flies it and its figures, measured on the recorded track and on the simulated one.
+struct TurningRun {
+  std::string stage;  // the stage whose fit it is, or "final" (final validation)
+  std::string experiment;
+  bool held_out = false;
+  std::string unit;  // the track's unit ("m")
+  TurningTest test;
+  TurningFigures measured, simulated;
 };
 
 // Where a record's relative times and local positions start (record_notes.h).
@@ -182,6 +195,10 @@ struct RunResult {
   HeldOutParameters final_held_out_parameters;  // per-experiment parameters of final_validation
   std::vector<ChannelMetrics> final_velocity_validation;
   std::vector<ZigzagRun> zigzags;  // every zigzag fit of the stages and the final validation
+  std::vector<TurningRun> turning_circles;  // every turning circle fit, likewise
+  // Set by `vesselid select` on the chosen candidate's run: the structure selection that
+  // chose it (selection_result.h); null for a plain run.
+  std::shared_ptr<const SelectionResult> selection;
   std::vector<RecordOrigin> record_origins;
   double time_seconds = 0.0;
 };

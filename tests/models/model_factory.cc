@@ -12,6 +12,7 @@ const std::vector<ModelVariant>& ModelVariants() {
     AddInputGainVariants(&v);
     AddEriksenVariants(&v);
     AddErunsalVariants(&v);
+    AddMmgVariants(&v);
     return v;
   }();
   return variants;

@@ -73,7 +73,7 @@ inline void PrintTo(const ModelVariant& variant, std::ostream* out) { *out << va
 
 // Every variant: Nomoto (first order, second order, Norrbin; course-unstable n1-forms, with
 // and without the speed input, and the second-order rates form), input gain (static, dynamic),
-// Eriksen-Breivik 2-DOF, Erunsal 6-DOF under its DOF restrictions.
+// Eriksen-Breivik 2-DOF, Erunsal 6-DOF under its DOF restrictions, MMG 3-DOF (KVLCC2).
 const std::vector<ModelVariant>& ModelVariants();
 
 // Each family's variants (variants_<family>.cc).
@@ -82,6 +82,7 @@ void AddNomotoUnstableVariants(std::vector<ModelVariant>* variants);
 void AddInputGainVariants(std::vector<ModelVariant>* variants);
 void AddEriksenVariants(std::vector<ModelVariant>* variants);
 void AddErunsalVariants(std::vector<ModelVariant>* variants);
+void AddMmgVariants(std::vector<ModelVariant>* variants);
 
 // Shared helpers of the variant files.
 // theta_i = (truth_i * factor, or zero_offset where truth_i is 0) / scale_i, then `state`.

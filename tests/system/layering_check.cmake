@@ -26,6 +26,7 @@ set(rank_output 8)
 set(rank_report 9)
 set(rank_config 10)
 set(rank_export 11)
+set(rank_select 11)
 set(rank_api 12)       # engine/vesselid.h
 set(rank_problems 13)
 set(rank_cli 14)

@@ -1,0 +1,101 @@
+// The shipped KVLCC2 campaign (configs/mmg_kvlcc2.yaml) end to end through the command line:
+// the MMG model identified from free-running zigzags (positions, heading, speed; a rudder
+// bias per run, a slow disturbance and a rudder rate limit the model does not have), then
+// held-out zigzags and 35 deg turning circles predicted. What a user of the model needs: the
+// turning circle's advance and tactical diameter within 5 %, the held-out zigzags' heading
+// at >= 90 % fit, the linear yaw derivatives close to the captive-test truth.
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "gtest/gtest.h"
+#include "nlohmann/json.hpp"
+#include "tests/support/shipped_config.h"
+
+namespace vesselid {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+// Simulated and run once per process (ctest runs each case in its own, in parallel).
+class MmgKvlcc2 : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (results_ == nullptr) Load();
+    ASSERT_NE(results_, nullptr) << "the campaign did not run";
+  }
+  static void Load() {
+    const fs::path out =
+        fs::temp_directory_path() / ("vesselid_mmg_kvlcc2_" + std::to_string(::getpid()));
+    testing::SimulateAndRunInto("mmg_kvlcc2", out);
+    if (::testing::Test::HasFatalFailure()) return;
+    std::ifstream in(out / "results.json");
+    results_ = new json(json::parse(in));
+    reports_ = new std::string;
+    for (const char* file : {"report.txt", "report.html"}) {
+      std::ifstream report(out / file);
+      reports_->append(std::istreambuf_iterator<char>(report), std::istreambuf_iterator<char>());
+    }
+    fs::remove_all(out);
+  }
+  static const json* results_;
+  static const std::string* reports_;
+};
+const json* MmgKvlcc2::results_ = nullptr;
+const std::string* MmgKvlcc2::reports_ = nullptr;
+
+TEST_F(MmgKvlcc2, TurningCirclesPredictedWithinFivePercent) {
+  ASSERT_TRUE(results_->contains("turning_circles"));
+  int final_runs = 0;
+  for (const json& run : (*results_)["turning_circles"]) {
+    if (run["stage"] != "final") continue;
+    ++final_runs;
+    EXPECT_TRUE(run["held_out"].get<bool>());
+    EXPECT_NEAR(run["rudder_deg"].get<double>(), 35.0, 1.0);
+    for (const char* figure : {"advance", "tactical_diameter"}) {
+      // The truth's KVLCC2 turns with an advance and tactical diameter of about 3.1 L.
+      const double measured = run["measured"][figure].get<double>();
+      EXPECT_GT(measured, 2.8 * 7.0) << run["experiment"] << " " << figure;
+      EXPECT_LT(measured, 3.5 * 7.0) << run["experiment"] << " " << figure;
+      EXPECT_LT(std::abs(run["error_percent"][figure].get<double>()), 5.0)
+          << run["experiment"] << " " << figure;
+    }
+  }
+  EXPECT_EQ(final_runs, 2);
+  EXPECT_NE(reports_->find("turning circles, measured / simulated"), std::string::npos);
+  EXPECT_NE(reports_->find("<h2>Turning circles</h2>"), std::string::npos);
+}
+
+TEST_F(MmgKvlcc2, HeldOutZigzagHeadingFitAtLeastNinetyPercent) {
+  int zigzags = 0;
+  for (const json& row : (*results_)["final_validation"]["runs"]["rows"]) {
+    const std::string run = row["run"];
+    if (run.rfind("zz", 0) != 0) continue;
+    ++zigzags;
+    EXPECT_GE(row["outputs"]["psi"]["fit_percent"].get<double>(), 90.0) << run;
+  }
+  EXPECT_EQ(zigzags, 4);
+}
+
+TEST_F(MmgKvlcc2, LinearYawDerivativesCloseToTheTruth) {
+  const json& parameters = (*results_)["parameters"];
+  auto value = [&](const std::string& name) {
+    for (const json& p : parameters) {
+      if (p["name"] == name) return p["value"].get<double>();
+    }
+    ADD_FAILURE() << name << " not reported";
+    return std::nan("");
+  };
+  // Yasukawa & Yoshimura 2015 Table 3.
+  EXPECT_NEAR(value("N_v"), -0.137, 0.05 * 0.137);
+  EXPECT_NEAR(value("N_r"), -0.049, 0.05 * 0.049);
+  EXPECT_NEAR(value("Y_v"), -0.315, 0.15 * 0.315);
+}
+
+}  // namespace
+}  // namespace vesselid
