@@ -72,6 +72,5 @@
 #include "engine/config/model_registry.h"
 
 // Structure selection by cross-validation over runs.
-#include "engine/output/selection_report.h"
 #include "engine/select/selection.h"
 #include "engine/select/selection_config.h"

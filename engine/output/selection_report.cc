@@ -63,7 +63,7 @@ std::string SelectionText(const SelectionResult& s) {
   for (size_t i = 1; i < s.outputs.size(); ++i) out += ", " + s.outputs[i];
   out += " (" + std::string(kSelectionDefinitions) + ")\n";
   char line[512];
-  std::snprintf(line, sizeof(line), "  %-18s %-28s %7s %7s %7s %7s %16s %12s %12s  %s\n",
+  std::snprintf(line, sizeof(line), "  %-22s %-28s %7s %7s %7s %7s %16s %12s %12s  %s\n",
                 "candidate", "model", "shared", "per-run", "states", "fit %", "+- SE", "AIC", "BIC",
                 "per output: fit % (SD) RMSE");
   out += line;
@@ -79,7 +79,7 @@ std::string SelectionText(const SelectionResult& s) {
     const std::string mark = static_cast<int>(i) == s.chosen ? "  <- chosen"
                              : c.within_one_se               ? "  (within 1 SE)"
                                                              : "";
-    std::snprintf(line, sizeof(line), "  %-18s %-28s %7d %7d %7d %7s %16s %12s %12s  %s%s\n",
+    std::snprintf(line, sizeof(line), "  %-22s %-28s %7d %7d %7d %7s %16s %12s %12s  %s%s\n",
                   c.name.c_str(), c.model.c_str(), c.shared_parameters, c.per_run_values,
                   c.initial_states, FormatFinite("%.2f", c.score).c_str(),
                   ("+- " + FormatFinite("%.2f", c.score_se)).c_str(),

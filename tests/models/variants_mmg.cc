@@ -88,7 +88,7 @@ RecoveryCase Recovery(const ModelHandle& model, const std::vector<double>& truth
     run.seed = seed++;
     ExperimentSpec spec = Spec({"x", "y", "psi", "U"});
     spec.output_weights = {{"psi", position / heading}, {"U", position / speed}};
-    spec.initial_state = {{"v", 0.0}, {"r", 0.0}};
+    spec.initial_state = {{"u", 1.0}, {"v", 0.0}, {"r", 0.0}};
     c.experiments.push_back(Build(spec, Simulate(model, truth, run), model.info()));
   }
   c.options.free_initial_states = {"x", "y", "psi", "u"};

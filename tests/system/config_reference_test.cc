@@ -204,7 +204,7 @@ const char* const kShippedConfigs[] = {
     "nomoto_cargo.yaml",        "nomoto_cargo_noise.yaml", "nomoto_patrol.yaml",
     "nomoto_patrol_noise.yaml", "nomoto_tanker.yaml",      "input_gain_static.yaml",
     "input_gain_dynamic.yaml",  "input_gain_usv_log.yaml", "erunsal_hierarchy.yaml",
-    "eriksen_2dof.yaml"};
+    "eriksen_2dof.yaml",        "mmg_kvlcc2.yaml"};
 
 struct ReaderKeys {
   std::map<std::string, std::set<std::string>> by_schema;  // allowed keys by schema path

@@ -36,11 +36,12 @@ class MmgKvlcc2 : public ::testing::Test {
     if (::testing::Test::HasFatalFailure()) return;
     std::ifstream in(out / "results.json");
     results_ = new json(json::parse(in));
-    reports_ = new std::string;
+    std::string* reports = new std::string;
     for (const char* file : {"report.txt", "report.html"}) {
       std::ifstream report(out / file);
-      reports_->append(std::istreambuf_iterator<char>(report), std::istreambuf_iterator<char>());
+      reports->append(std::istreambuf_iterator<char>(report), std::istreambuf_iterator<char>());
     }
+    reports_ = reports;
     fs::remove_all(out);
   }
   static const json* results_;
