@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "engine/config/family_simulation.h"
 #include "problems/eriksen2dof/campaign.h"
 #include "problems/eriksen2dof/handles.h"
 
@@ -125,12 +126,7 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
   reader.CheckLimit(simulation, path, seconds / o.step, reader.limits().integration_steps,
                     "limits.integration_steps; the campaign's longest duration over its step");
   if (check_only) return true;
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec) {
-    *error = out_dir + ": cannot create folder: " + ec.message();
-    return false;
-  }
+  if (!CreateSimulationFolder(out_dir, error)) return false;
   const CraftParameters craft;
   Trajectory steps, validation;
   return SimulateStepCampaign(craft, o, &steps, error) &&

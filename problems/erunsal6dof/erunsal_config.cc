@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "engine/config/family_simulation.h"
 #include "problems/erunsal6dof/campaign.h"
 #include "problems/erunsal6dof/handles.h"
 
@@ -108,14 +109,8 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
   free_model.active.fill(true);
   const ModelInfo info = free_model.Info();
 
-  std::vector<double> truth = ReferenceParameters();
-  if (const YAML::Node node = simulation["truth"]) {
-    reader.CheckMap(node, Child(path, "truth"), info.parameters);
-    for (const auto& item : node) {
-      const std::string name = item.first.as<std::string>();
-      truth[info.ParameterIndex(name)] = reader.Double(item.second, Child(Child(path, "truth"), name));
-    }
-  }
+  const std::vector<double> truth =
+      ReadTruth(reader, simulation["truth"], Child(path, "truth"), info, ReferenceParameters());
   CampaignOptions options;
   reader.Read(simulation, path, "sample_time", &options.sample_time);
   reader.Read(simulation, path, "substeps", &options.substeps);
@@ -143,12 +138,7 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
                       reader.limits().integration_steps, "limits.integration_steps");
   }
   if (check_only) return true;
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec) {
-    *error = out_dir + ": cannot create folder: " + ec.message();
-    return false;
-  }
+  if (!CreateSimulationFolder(out_dir, error)) return false;
   for (const CampaignRun& run : runs) {
     Model truth_model = free_model;
     truth_model.active = run.active;

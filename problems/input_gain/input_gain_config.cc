@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <utility>
 
+#include "engine/config/family_simulation.h"
 #include "problems/input_gain/campaign.h"
 #include "problems/input_gain/field_log.h"
 #include "problems/input_gain/handles.h"
@@ -174,12 +175,7 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
                     options.total_duration / options.step, reader.limits().integration_steps,
                     "limits.integration_steps");
   if (check_only) return true;
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec) {
-    *error = out_dir + ": cannot create folder: " + ec.message();
-    return false;
-  }
+  if (!CreateSimulationFolder(out_dir, error)) return false;
   Trajectory campaign;
   const bool simulated =
       vessel == "catamaran" ? SimulateCampaign(CatamaranParameters(), options, &campaign, error)

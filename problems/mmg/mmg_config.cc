@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "engine/config/family_simulation.h"
 #include "problems/mmg/campaign.h"
 #include "problems/mmg/handles.h"
 
@@ -114,15 +115,8 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
   reader.CheckMap(simulation, path,
                   {"truth", "sample_time", "substeps", "degrees", "steering_gear", "experiments"});
   const ModelInfo& info = model.info();
-  std::vector<double> truth = info.parameter_defaults;
-  if (const YAML::Node t = simulation["truth"]) {
-    reader.CheckMap(t, Child(path, "truth"), info.parameters);
-    for (const auto& item : t) {
-      const std::string name = item.first.as<std::string>();
-      truth[info.ParameterIndex(name)] =
-          reader.Double(item.second, Child(Child(path, "truth"), name));
-    }
-  }
+  const std::vector<double> truth =
+      ReadTruth(reader, simulation["truth"], Child(path, "truth"), info, info.parameter_defaults);
   CampaignRun base;
   reader.Read(simulation, path, "sample_time", &base.sample_time);
   reader.Read(simulation, path, "substeps", &base.substeps);
@@ -145,12 +139,7 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
     runs.emplace_back(reader.String(experiments[i]["file"], Child(key, "file")), run);
   }
   if (check_only) return true;
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec) {
-    *error = out_dir + ": cannot create folder: " + ec.message();
-    return false;
-  }
+  if (!CreateSimulationFolder(out_dir, error)) return false;
   for (const auto& [file, run] : runs) {
     Trajectory trajectory;
     if (!SimulateRun(model, truth, run, &trajectory, error)) {

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "engine/config/family_simulation.h"
 #include "problems/nomoto/closed_loop_simulator.h"
 #include "problems/nomoto/handles.h"
 
@@ -87,14 +88,9 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
   reader.CheckMap(simulation, path,
                   {"truth", "steering_gear", "sample_time", "substeps", "experiments", "degrees"});
   const ModelInfo& info = model.info();
-  std::vector<double> truth = info.parameter_defaults;
   if (!simulation["truth"]) reader.Fail(simulation, Child(path, "truth"), "missing");
-  reader.CheckMap(simulation["truth"], Child(path, "truth"), info.parameters);
-  for (const auto& item : simulation["truth"]) {
-    const std::string name = item.first.as<std::string>();
-    truth[info.ParameterIndex(name)] =
-        reader.Double(item.second, Child(Child(path, "truth"), name));
-  }
+  const std::vector<double> truth =
+      ReadTruth(reader, simulation["truth"], Child(path, "truth"), info, info.parameter_defaults);
   ClosedLoopOptions base;
   if (const YAML::Node gear = simulation["steering_gear"]) {
     const std::string key = Child(path, "steering_gear");
@@ -170,12 +166,7 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
     runs.emplace_back(reader.String(node["file"], Child(key, "file")), options);
   }
   if (check_only) return true;
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec) {
-    *error = out_dir + ": cannot create folder: " + ec.message();
-    return false;
-  }
+  if (!CreateSimulationFolder(out_dir, error)) return false;
   for (const auto& [file, options] : runs) {
     Trajectory trajectory;
     if (!SimulateClosedLoop(model, truth, options, &trajectory, error)) return false;
