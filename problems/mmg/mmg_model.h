@@ -28,7 +28,9 @@
 // (propeller rate, 1/s)]; outputs [x0, y0, psi, u, v, r, U]. Parameters: the non-dimensional
 // coefficients above (defaults: the KVLCC2 of the paper's Tables 2-4) and a rudder bias delta_0.
 // The ship's dimensions (Ship) are given data, not parameters. The right-hand side fails where
-// u <= 0 or the propeller's flow term leaves its domain (a diverging fit).
+// u < 0 or the propeller's flow term leaves its domain (a diverging fit); from rest (U below
+// Ship::SpeedFloor) v' and r' are taken at the floor, where the hull forces vanish, so that a
+// simulation may start a ship from rest.
 #pragma once
 
 #include <cmath>
@@ -53,6 +55,8 @@ struct Ship {
   double water_density = 1000.0;      // rho [kg/m^3] (a towing tank's fresh water)
 
   double Mass() const { return water_density * displacement; }
+  // 0.1 % of sqrt(g L): the speed below which the model holds its non-dimensional velocities.
+  double SpeedFloor() const { return 1e-3 * std::sqrt(9.81 * length); }
   // 1/2 rho L^2 d: the scale of the non-dimensional masses and forces (x L).
   double MassScale() const { return 0.5 * water_density * length * length * draft; }
   bool IsValid(std::string* error) const;
@@ -108,6 +112,7 @@ struct Model {
   Ship ship;
 
   ModelInfo Info() const;
+  double SpeedFloor() const { return ship.SpeedFloor(); }
 
   // u_dot = [u', v', r'] from the forces X, Y, N (the mass matrix solved), for the simulator's
   // external disturbances as well as the right-hand side.
@@ -144,10 +149,14 @@ struct Model {
     const T& v = x[4];
     const T& r = x[5];
     const U& n = u_in[1];
-    if (!(u > 0.0) || !(n > 0.0)) return false;
+    if (!(u >= 0.0) || !(n > 0.0)) return false;
     const double L = ship.length, d = ship.draft, rho = ship.water_density;
     const double dp = ship.propeller_diameter;
-    const T speed2 = u * u + v * v;
+    // Below the speed floor (a ship starting from rest) the non-dimensional velocities are
+    // taken at the floor, where the hull forces (~U^2) vanish; above it the model is exact.
+    const double floor = SpeedFloor();
+    T speed2 = u * u + v * v;
+    if (speed2 < floor * floor) speed2 = T(floor * floor);
     const T speed = sqrt(speed2);
     const T vn = v / speed, rn = r * L / speed;
     const T beta = atan2(-v, u);
@@ -163,15 +172,17 @@ struct Model {
     const T c2 = beta_p > 0.0 ? p[kC2Plus] : p[kC2Minus];
     const T abs_beta_p = beta_p < 0.0 ? -beta_p : beta_p;
     const T wake = (1.0 - p[kWp0]) * (1.0 + (1.0 - exp(-p[kC1] * abs_beta_p)) * (c2 - 1.0));
-    const T j = u * wake / (n * dp);
+    const T inflow = u * wake;  // u_P = u (1 - w_P); J_P = u_P / (n D_P)
+    const T j = inflow / (n * dp);
     const T kt = p[kK0] + p[kK1] * j + p[kK2] * j * j;
     const T xp = (1.0 - p[kTp]) * rho * n * n * dp * dp * dp * dp * kt;
-    // Rudder: inflow accelerated by the propeller slipstream and straightened by the hull.
-    const T slip = 1.0 + 8.0 * kt / (M_PI * j * j);
-    if (!(slip > 0.0)) return false;
+    // Rudder: inflow accelerated by the propeller slipstream and straightened by the hull;
+    // u_P sqrt(1 + 8 K_T/(pi J^2)) = sqrt(u_P^2 + 8 K_T n^2 D_P^2 / pi), defined at rest.
+    const T slip2 = inflow * inflow + 8.0 * kt * n * n * dp * dp / M_PI;
+    if (!(slip2 > 0.0)) return false;
     const double eta = dp / ship.rudder_height;
-    const T stream = 1.0 + p[kKappa] * (sqrt(slip) - 1.0);
-    const T ur = p[kEpsilon] * u * wake * sqrt(eta * stream * stream + (1.0 - eta));
+    const T stream = (1.0 - p[kKappa]) * inflow + p[kKappa] * sqrt(slip2);
+    const T ur = p[kEpsilon] * sqrt(eta * stream * stream + (1.0 - eta) * inflow * inflow);
     const T beta_r = beta - p[kLr] * rn;
     const T gamma = beta_r > 0.0 ? p[kGammaPlus] : p[kGammaMinus];
     const T vr = speed * gamma * beta_r;

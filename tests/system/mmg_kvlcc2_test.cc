@@ -22,38 +22,26 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-// Simulated and run once per process (ctest runs each case in its own, in parallel).
-class MmgKvlcc2 : public ::testing::Test {
- protected:
-  void SetUp() override {
-    if (results_ == nullptr) Load();
-    ASSERT_NE(results_, nullptr) << "the campaign did not run";
+// One case: simulating and running the campaign is what costs (18 s), and ctest runs every
+// case in a process of its own.
+TEST(MmgKvlcc2, ZigzagsPredictTheTurningCirclesAndHeldOutRuns) {
+  const fs::path out =
+      fs::temp_directory_path() / ("vesselid_mmg_kvlcc2_" + std::to_string(::getpid()));
+  testing::SimulateAndRunInto("mmg_kvlcc2", out);
+  ASSERT_FALSE(::testing::Test::HasFatalFailure());
+  std::ifstream in(out / "results.json");
+  const json results = json::parse(in);
+  std::string reports;
+  for (const char* file : {"report.txt", "report.html"}) {
+    std::ifstream report(out / file);
+    reports.append(std::istreambuf_iterator<char>(report), std::istreambuf_iterator<char>());
   }
-  static void Load() {
-    const fs::path out =
-        fs::temp_directory_path() / ("vesselid_mmg_kvlcc2_" + std::to_string(::getpid()));
-    testing::SimulateAndRunInto("mmg_kvlcc2", out);
-    if (::testing::Test::HasFatalFailure()) return;
-    std::ifstream in(out / "results.json");
-    results_ = new json(json::parse(in));
-    std::string* reports = new std::string;
-    for (const char* file : {"report.txt", "report.html"}) {
-      std::ifstream report(out / file);
-      reports->append(std::istreambuf_iterator<char>(report), std::istreambuf_iterator<char>());
-    }
-    reports_ = reports;
-    fs::remove_all(out);
-  }
-  static const json* results_;
-  static const std::string* reports_;
-};
-const json* MmgKvlcc2::results_ = nullptr;
-const std::string* MmgKvlcc2::reports_ = nullptr;
+  fs::remove_all(out);
 
-TEST_F(MmgKvlcc2, TurningCirclesPredictedWithinFivePercent) {
-  ASSERT_TRUE(results_->contains("turning_circles"));
+  // The held-out 35 deg turning circles: advance and tactical diameter within 5 %.
+  ASSERT_TRUE(results.contains("turning_circles"));
   int final_runs = 0;
-  for (const json& run : (*results_)["turning_circles"]) {
+  for (const json& run : results["turning_circles"]) {
     if (run["stage"] != "final") continue;
     ++final_runs;
     EXPECT_TRUE(run["held_out"].get<bool>());
@@ -68,31 +56,27 @@ TEST_F(MmgKvlcc2, TurningCirclesPredictedWithinFivePercent) {
     }
   }
   EXPECT_EQ(final_runs, 2);
-  EXPECT_NE(reports_->find("turning circles, measured / simulated"), std::string::npos);
-  EXPECT_NE(reports_->find("<h2>Turning circles</h2>"), std::string::npos);
-}
+  EXPECT_NE(reports.find("turning circles, measured / simulated"), std::string::npos);
+  EXPECT_NE(reports.find("<h2>Turning circles</h2>"), std::string::npos);
 
-TEST_F(MmgKvlcc2, HeldOutZigzagHeadingFitAtLeastNinetyPercent) {
+  // The held-out zigzags' heading at >= 90 % fit.
   int zigzags = 0;
-  for (const json& row : (*results_)["final_validation"]["runs"]["rows"]) {
+  for (const json& row : results["final_validation"]["runs"]["rows"]) {
     const std::string run = row["run"];
     if (run.rfind("zz", 0) != 0) continue;
     ++zigzags;
     EXPECT_GE(row["outputs"]["psi"]["fit_percent"].get<double>(), 90.0) << run;
   }
   EXPECT_EQ(zigzags, 4);
-}
 
-TEST_F(MmgKvlcc2, LinearYawDerivativesCloseToTheTruth) {
-  const json& parameters = (*results_)["parameters"];
+  // The linear yaw derivatives close to Yasukawa & Yoshimura's (Table 3).
   auto value = [&](const std::string& name) {
-    for (const json& p : parameters) {
+    for (const json& p : results["parameters"]) {
       if (p["name"] == name) return p["value"].get<double>();
     }
     ADD_FAILURE() << name << " not reported";
     return std::nan("");
   };
-  // Yasukawa & Yoshimura 2015 Table 3.
   EXPECT_NEAR(value("N_v"), -0.137, 0.05 * 0.137);
   EXPECT_NEAR(value("N_r"), -0.049, 0.05 * 0.049);
   EXPECT_NEAR(value("Y_v"), -0.315, 0.15 * 0.315);
