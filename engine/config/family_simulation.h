@@ -1,5 +1,5 @@
 // What every family's `simulation` reader does alike (problems/*/..._config.cc): the `truth`
-// map over the model's parameters, and the folder the CSV files go to.
+// map over the model's parameters, angles given in degrees, and the folder the CSV files go to.
 #pragma once
 
 #include <filesystem>
@@ -24,6 +24,15 @@ inline std::vector<double> ReadTruth(const YamlReader& reader, const YAML::Node&
     defaults[info.ParameterIndex(name)] = reader.Double(item.second, Child(path, name));
   }
   return defaults;
+}
+
+// An angle given in degrees at map[name] into *radians (kept when absent).
+inline void ReadDegrees(const YamlReader& reader, const YAML::Node& map, const std::string& path,
+                        const std::string& name, double* radians) {
+  constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
+  double degrees = *radians / kRadiansPerDegree;
+  reader.Read(map, path, name, &degrees);
+  *radians = degrees * kRadiansPerDegree;
 }
 
 // Creates out_dir (and its parents); false with "<dir>: cannot create folder: <why>".

@@ -12,8 +12,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kDegree = M_PI / 180.0;
-
 //   model: {family: eriksen2dof, speed_scale: 10, yaw_rate_scale: 0.5}
 std::unique_ptr<ModelHandle> MakeModel(const YamlReader& reader, const YAML::Node& node,
                                        const std::string& path) {
@@ -36,14 +34,6 @@ void ReadRange(const YamlReader& reader, const YAML::Node& map, const std::strin
   if (range.size() != 2) reader.Fail(map[name], Child(path, name), "expected [lower, upper]");
   *lower = range[0];
   *upper = range[1];
-}
-
-// Reads an angle given in degrees at `name` into radians.
-void ReadDegrees(const YamlReader& reader, const YAML::Node& map, const std::string& path,
-                 const std::string& name, double* radians) {
-  double degrees = *radians / kDegree;
-  reader.Read(map, path, name, &degrees);
-  *radians = degrees * kDegree;
 }
 
 //   simulation: {steps_file, validation_file, seed, sample_period,

@@ -38,14 +38,6 @@ std::unique_ptr<ModelHandle> MakeModel(const YamlReader& reader, const YAML::Nod
   return MakeMmgHandle(ship);
 }
 
-// Reads an angle given in degrees at `name` into radians (kept when absent).
-void ReadDegrees(const YamlReader& reader, const YAML::Node& map, const std::string& path,
-                 const std::string& name, double* radians) {
-  double degrees = *radians / kDegree;
-  reader.Read(map, path, name, &degrees);
-  *radians = degrees * kDegree;
-}
-
 CampaignRun ReadRun(const YamlReader& reader, const YAML::Node& node, const std::string& key,
                     CampaignRun run, int index) {
   reader.CheckMap(node, key,
