@@ -11,6 +11,8 @@
 //                     [--members n] [--seed s]
 //   vesselid predict  <run-out> [--length L] [--speed U]     IMO zigzags and turning, with
 //                     [--out <dir>] [--members n]             intervals
+//   vesselid design   <config.yaml> --from <run-out>          the next experiment, planned
+//                     [--out <dir>] [--threads n] [--quiet]    from the fit (config's design:)
 #include <unistd.h>
 
 #include <cmath>
@@ -27,6 +29,9 @@
 #include "engine/base/stop_request.h"
 #include "engine/cli/terminal_progress.h"
 #include "engine/config/config.h"
+#include "engine/design/design_config.h"
+#include "engine/design/design_report.h"
+#include "engine/design/design_run.h"
 #include "engine/diagnose/run_findings.h"
 #include "engine/export/export_run.h"
 #include "engine/export/fmu_package.h"
@@ -139,6 +144,29 @@ int Predict(const std::string& run_dir, const std::string& out_dir,
   }
   std::printf("%s", text.c_str());
   return 0;
+}
+
+// The next experiment planned from the run in `run_dir` as the config's design section asks,
+// written into `out_dir` (default <run_dir>/design) as one set; design.txt printed.
+int Design(const std::string& config_path, const std::string& run_dir, const std::string& out_dir,
+           int threads, bool quiet) {
+  vesselid::DesignOptions options;
+  std::string error;
+  if (!vesselid::LoadDesign(config_path, &options, &error)) return Fail(error);
+  if (threads > 0) options.threads = threads;
+  vesselid::DesignResult result;
+  if (!vesselid::PlanNextExperiment(Registry(), options, run_dir, &result, &error) ||
+      !vesselid::WriteDesign(result, out_dir, &error)) {
+    return Fail(error);
+  }
+  const std::string where =
+      out_dir.empty() ? (std::filesystem::path(run_dir) / "design").string() : out_dir;
+  if (quiet) {
+    std::printf("%s\n", where.c_str());
+  } else {
+    std::printf("%s\nwritten to %s\n", vesselid::DesignText(result).c_str(), where.c_str());
+  }
+  return result.limit_violations.empty() ? 0 : 1;
 }
 
 // SIGINT (Ctrl-C) or SIGTERM during a run: the solves end after their current iteration
@@ -484,7 +512,20 @@ int main(int argc, char** argv) {
   select->add_option("--threads", select_threads,
                      "worker threads per process (default: select.threads, else cores)");
 
+  CLI::App* design = app.add_subcommand(
+      "design", "plan the next experiment from a run's fit (the config's design section)");
+  design->add_option("config", config_path, "configuration (YAML) with a design section")
+      ->required();
+  design->add_option("--from", run_dir, "the --out folder of the finished run")->required();
+  design->add_option("--out", out_dir, "folder for the plan (default <run>/design)");
+  int design_threads = 0;
+  design->add_option("--threads", design_threads, "worker threads (default: design.search.threads, "
+                     "else cores)");
+  bool design_quiet = false;
+  design->add_flag("--quiet", design_quiet, "print only the plan's folder");
+
   CLI11_PARSE(app, argc, argv);
+  if (design->parsed()) return Design(config_path, run_dir, out_dir, design_threads, design_quiet);
   if (simulate->parsed()) return Simulate(config_path, out_dir);
   if (export_model->parsed()) return Export(run_dir, format, out_dir, members, seed);
   if (predict->parsed()) return Predict(run_dir, out_dir, conditions, members, seed);

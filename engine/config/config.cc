@@ -621,7 +621,7 @@ bool LoadConfig(const ConfigSource& source, const ModelRegistry& registry, Confi
     reader.CheckMap(root, "",
                     {"description", "model", "simulation", "experiment_defaults", "experiments",
                      "sets", "stages", "fusion", "final", "final_validation", "surfaces", "study",
-                     "select", "limits", "velocity_validation"});
+                     "select", "design", "limits", "velocity_validation"});
     ConfigFile file;
     RunConfig& result = file.run;
     result.path = path;

@@ -14,36 +14,11 @@
 #include "engine/export/exported_model.h"
 #include "engine/export/fmu_package.h"
 #include "engine/output/held_out_zigzags.h"
-#include "engine/output/output_folder.h"
-#include "engine/output/output_staging.h"
+#include "engine/output/published_set.h"
 
 namespace vesselid {
-namespace {
 
 namespace fs = std::filesystem;
-
-// `files` (name, content writer) published as the set `set` into `out_dir`, which is checked
-// (and locked) first, none of them replacing `input`.
-bool PublishSet(
-    const std::string& out_dir, const std::string& set, const std::string& input,
-    const std::vector<
-        std::pair<std::string, std::function<bool(const std::string&, std::string*)>>>& files,
-    std::string* error) {
-  PlannedOutputs planned;
-  for (const auto& file : files) planned.files.push_back(file.first);
-  if (!CheckInputsSurvive(out_dir, planned, {input}, error)) return false;
-  const std::unique_ptr<OutputFolder> folder = OutputFolder::Open(out_dir, error);
-  if (folder == nullptr) return false;
-  const std::unique_ptr<OutputStaging> staging =
-      OutputStaging::Begin(out_dir, set, planned.files, error);
-  if (staging == nullptr) return false;
-  for (const auto& [name, write] : files) {
-    if (!write((fs::path(staging->folder()) / name).string(), error)) return false;
-  }
-  return staging->Publish(planned.files.back(), error);
-}
-
-}  // namespace
 
 bool ExportRun(const ModelRegistry& registry, const std::string& run_dir, const std::string& format,
                std::string out_dir, int members, unsigned seed, const std::string& runtime,

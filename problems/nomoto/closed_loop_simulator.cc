@@ -30,7 +30,11 @@ bool ClosedLoopOptions::IsValid(std::string* error) const {
     *error = "a disturbance needs a period > 0";
   else if (!(speed >= 0) || !std::isfinite(speed))
     *error = "speed must be >= 0";
-  else if (e.type != Excitation::Type::kZigzag && e.periods.empty())
+  else if (e.type == Excitation::Type::kPlanned &&
+           (e.planned_t.size() < 2 || e.planned_t.size() != e.planned_delta.size()))
+    *error = "a planned excitation needs at least two command samples";
+  else if (e.type != Excitation::Type::kZigzag && e.type != Excitation::Type::kPlanned &&
+           e.periods.empty())
     *error = "excitation needs a period";
   else if (e.type == Excitation::Type::kSine && e.periods.size() != 1)
     *error = "a sine has one period";
@@ -45,6 +49,16 @@ bool ClosedLoopOptions::IsValid(std::string* error) const {
 }
 
 namespace {
+
+// The planned command at t: linear between samples, held beyond them.
+double PlannedCommand(const Excitation& e, double t) {
+  const auto after = std::upper_bound(e.planned_t.begin(), e.planned_t.end(), t);
+  if (after == e.planned_t.begin()) return e.planned_delta.front();
+  if (after == e.planned_t.end()) return e.planned_delta.back();
+  const size_t k = static_cast<size_t>(after - e.planned_t.begin());
+  const double w = (t - e.planned_t[k - 1]) / (e.planned_t[k] - e.planned_t[k - 1]);
+  return (1.0 - w) * e.planned_delta[k - 1] + w * e.planned_delta[k];
+}
 
 double HeadingSetpoint(const Excitation& e, double t) {
   if (e.type == Excitation::Type::kSine) return e.amplitude * std::sin(2 * M_PI * t / e.periods[0]);
@@ -108,8 +122,9 @@ bool SimulateClosedLoop(const ModelHandle& model, const std::vector<double>& par
     return y[psi_out];
   };
   auto delta_set = [&](const std::vector<double>& z, double t) {
-    double set = zigzag
-                     ? zigzag_command
+    double set = zigzag ? zigzag_command
+                 : e.type == Excitation::Type::kPlanned
+                     ? PlannedCommand(e, t)
                      : sign_k * options.controller_gain * (HeadingSetpoint(e, t) - heading(z, t));
     return std::clamp(set, -options.rudder_limit, options.rudder_limit);
   };

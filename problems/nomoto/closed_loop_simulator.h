@@ -2,7 +2,9 @@
 // first-order steering gear delta' = (delta_set - delta) / Tm, rudder limited to
 // +-rudder_limit, sampled every sample_time from a zero initial state. The command is
 //   heading control:  delta_set = sign(K) kp (psi_set(t) - psi)   (stable for K < 0 too)
-//   zigzag:           delta_set = +-zigzag_rudder, switched when psi passes +-zigzag_heading.
+//   zigzag:           delta_set = +-zigzag_rudder, switched when psi passes +-zigzag_heading;
+//   planned:          delta_set(t) from a table (a plan of `vesselid design`), linear between
+//                     its samples and held after the last.
 // psi_set is a single sine (seed) or a Schroeder-phased multi-sine. Gaussian noise is added
 // to the recorded rudder angle and heading.
 //
@@ -23,13 +25,14 @@
 namespace vesselid::nomoto {
 
 struct Excitation {
-  enum class Type { kSine, kMultisine, kZigzag };
+  enum class Type { kSine, kMultisine, kZigzag, kPlanned };
   Type type = Type::kSine;
   double amplitude = 0.0;  // psi_set amplitude [rad] (multi-sine: peak of the sum's rms x sqrt2)
   std::vector<double> periods;  // one period for sine, several for multi-sine [s]
   double zigzag_rudder = 0.0;   // [rad]
   double zigzag_heading = 0.0;  // [rad]
   double zigzag_first = 1.0;    // +1: the first rudder turns the ship to starboard, -1: port
+  std::vector<double> planned_t, planned_delta;  // planned: the command's samples [s], [rad]
 };
 
 struct ClosedLoopOptions {

@@ -1,8 +1,10 @@
 #include "problems/nomoto/nomoto_config.h"
 
+#include <cmath>
 #include <filesystem>
 
 #include "engine/config/family_simulation.h"
+#include "engine/data/trajectory.h"
 #include "problems/nomoto/closed_loop_simulator.h"
 #include "problems/nomoto/handles.h"
 
@@ -42,11 +44,38 @@ std::unique_ptr<ModelHandle> MakeModel(const YamlReader& reader, const YAML::Nod
               "unknown Nomoto model '" + type + "' (" + kTypes + ")");
 }
 
+// A planned rudder command (`vesselid design`'s planned_input.csv): `file` relative to the
+// config's folder, `column` (default delta_deg; a name ending in _deg is in degrees).
+void ReadPlannedCommand(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                        Excitation* e) {
+  if (!node["file"]) reader.Fail(node, path, "a planned excitation needs its file");
+  std::string file = reader.String(node["file"], Child(path, "file"));
+  if (std::filesystem::path(file).is_relative()) {
+    file = (std::filesystem::path(reader.file()).parent_path() / file).string();
+  }
+  std::string column = "delta_deg";
+  reader.Read(node, path, "column", &column);
+  Trajectory table;
+  std::string error;
+  if (!ReadTrajectoryCsv(file, &table, &error)) reader.Fail(node["file"], Child(path, "file"), error);
+  const int c = table.Find(column);
+  if (c < 0) reader.Fail(node, Child(path, "column"), file + " has no column '" + column + "'");
+  const bool degrees = column.size() > 4 && column.compare(column.size() - 4, 4, "_deg") == 0;
+  for (size_t k = 0; k < table.t.size(); ++k) {
+    const double value = table.columns[c][k];
+    if (!std::isfinite(value)) continue;
+    e->planned_t.push_back(table.t[k]);
+    e->planned_delta.push_back(degrees ? value * kDegree : value);
+  }
+  if (e->planned_t.size() < 2) reader.Fail(node["file"], Child(path, "file"), "needs two samples");
+}
+
 Excitation ReadExcitation(const YamlReader& reader, const YAML::Node& node,
                           const std::string& path) {
   reader.CheckMap(
       node, path,
-      {"type", "amplitude_deg", "period", "periods", "rudder_deg", "heading_deg", "first"});
+      {"type", "amplitude_deg", "period", "periods", "rudder_deg", "heading_deg", "first", "file",
+       "column"});
   Excitation e;
   const std::string type = node["type"] ? reader.String(node["type"], Child(path, "type")) : "sine";
   if (type == "sine") {
@@ -55,9 +84,15 @@ Excitation ReadExcitation(const YamlReader& reader, const YAML::Node& node,
     e.type = Excitation::Type::kMultisine;
   } else if (type == "zigzag") {
     e.type = Excitation::Type::kZigzag;
+  } else if (type == "planned") {
+    e.type = Excitation::Type::kPlanned;
+    ReadPlannedCommand(reader, node, path, &e);
   } else {
     reader.Fail(node["type"], Child(path, "type"),
-                "unknown excitation '" + type + "' (sine, multisine, zigzag)");
+                "unknown excitation '" + type + "' (sine, multisine, zigzag, planned)");
+  }
+  if (e.type != Excitation::Type::kPlanned && (node["file"] || node["column"])) {
+    reader.Fail(node, path, "file and column belong to a planned excitation");
   }
   double amplitude = 0.0, rudder = 0.0, heading = 0.0;
   reader.Read(node, path, "amplitude_deg", &amplitude);

@@ -1,7 +1,8 @@
 # The layering rule of engine/: a file includes only its own folder and the folders below it.
 #
 #   base < data < model < solve < regression < step_regression < run < diagnose < {study, output}
-#        < report < config < export < engine/vesselid.h (the public API) < problems
+#        < report < config < {export, select} < design < engine/vesselid.h (the public API)
+#        < problems
 #        < {cli, fmu}
 #
 # study and output are siblings (neither includes the other); output holds the result files
@@ -27,10 +28,11 @@ set(rank_report 9)
 set(rank_config 10)
 set(rank_export 11)
 set(rank_select 11)
-set(rank_api 12)       # engine/vesselid.h
-set(rank_problems 13)
-set(rank_cli 14)
-set(rank_fmu 14)
+set(rank_design 12)
+set(rank_api 13)       # engine/vesselid.h
+set(rank_problems 14)
+set(rank_cli 15)
+set(rank_fmu 15)
 
 # The layer of a path relative to ROOT ("" when it belongs to none).
 function(layer_of path out)

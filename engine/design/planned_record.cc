@@ -1,0 +1,73 @@
+#include "engine/design/planned_record.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vesselid {
+
+bool RealizePlan(const ModelHandle& model, const std::vector<double>& p,
+                 const std::vector<double>& x0, double duration, double sample_time,
+                 double max_step, const Actuators& a, const InputCommand& command, PlannedRecord* record,
+                 const std::function<bool()>& stop) {
+  const ModelInfo& info = model.info();
+  const int nx = static_cast<int>(info.states.size());
+  const int nu = static_cast<int>(info.inputs.size());
+  const int ny = static_cast<int>(info.outputs.size());
+  const int samples = static_cast<int>(std::floor(duration / sample_time + 1e-9)) + 1;
+  record->time.clear();
+  record->inputs.resize(samples, nu);
+  record->outputs.resize(samples, ny);
+  record->finite = false;
+  std::vector<double> x = x0, xs(nx), k1(nx), k2(nx), k3(nx), k4(nx);
+  std::vector<double> u = a.start, u_next(nu), u_mid(nu), c(nu), y(ny);
+  const int substeps =
+      max_step > 0.0 ? std::max(1, static_cast<int>(std::ceil(sample_time / max_step - 1e-9))) : 1;
+  const double h = sample_time / substeps;
+  std::vector<double> u0(nu), u1(nu);
+  int k = 0;
+  for (; k < samples; ++k) {
+    const double t = k * sample_time;
+    model.Output(x.data(), u.data(), p.data(), y.data());
+    record->time.push_back(t);
+    for (int i = 0; i < nu; ++i) record->inputs(k, i) = u[i];
+    for (int j = 0; j < ny; ++j) record->outputs(k, j) = y[j];
+    if (k + 1 == samples || (stop && stop())) break;
+    command(t, y.data(), c.data());
+    for (int i = 0; i < nu; ++i) {
+      const double target = std::clamp(c[i], a.lower[i], a.upper[i]);
+      const double step = a.rate[i] > 0.0 ? a.rate[i] * sample_time : INFINITY;
+      u_next[i] = u[i] + std::clamp(target - u[i], -step, step);
+    }
+    // RK4 as engine/model/rk4.h, inputs linear over the sample interval.
+    bool finite = true;
+    for (int s = 0; s < substeps && finite; ++s) {
+      const double a0 = static_cast<double>(s) / substeps, a1 = (s + 1.0) / substeps;
+      for (int i = 0; i < nu; ++i) {
+        u0[i] = u[i] + a0 * (u_next[i] - u[i]);
+        u_mid[i] = u[i] + 0.5 * (a0 + a1) * (u_next[i] - u[i]);
+        u1[i] = u[i] + a1 * (u_next[i] - u[i]);
+      }
+      finite = model.Derivative(x.data(), u0.data(), p.data(), k1.data());
+      for (int i = 0; i < nx; ++i) xs[i] = x[i] + 0.5 * h * k1[i];
+      finite = finite && model.Derivative(xs.data(), u_mid.data(), p.data(), k2.data());
+      for (int i = 0; i < nx; ++i) xs[i] = x[i] + 0.5 * h * k2[i];
+      finite = finite && model.Derivative(xs.data(), u_mid.data(), p.data(), k3.data());
+      for (int i = 0; i < nx; ++i) xs[i] = x[i] + h * k3[i];
+      finite = finite && model.Derivative(xs.data(), u1.data(), p.data(), k4.data());
+      for (int i = 0; i < nx && finite; ++i) {
+        x[i] += h / 6.0 * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
+        finite = std::isfinite(x[i]);
+      }
+    }
+    if (!finite) break;
+    u = u_next;
+  }
+  // Divergence leaves the samples reached; a stop ends a whole record.
+  const int reached = static_cast<int>(record->time.size());
+  record->inputs.conservativeResize(reached, nu);
+  record->outputs.conservativeResize(reached, ny);
+  record->finite = reached == samples || (stop && stop());
+  return record->finite;
+}
+
+}  // namespace vesselid
