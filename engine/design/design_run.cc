@@ -214,7 +214,10 @@ bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& opti
   if (!options.free_initial_states_given && stage != nullptr) {
     for (const json& e : stage->at("estimates")) {
       if (e.value("kind", "") != "initial_state" || e.value("role", "") != "free") continue;
-      const std::string name = e.value("name", "");
+      // "x0.<state>[<experiment>]"
+      std::string name = e.value("name", "");
+      if (name.rfind("x0.", 0) == 0) name = name.substr(3);
+      name = name.substr(0, name.find('['));
       if (std::find(free_states.begin(), free_states.end(), name) == free_states.end()) {
         free_states.push_back(name);
       }

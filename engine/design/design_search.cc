@@ -116,10 +116,35 @@ bool SearchDesign(const DesignContext& c, SearchResult* result, std::string* err
   std::vector<int> used(refined, 0);
   ParallelFor(refined, c.options.threads, [&](int r) {
     std::vector<double> x = z[order[r]];
+    // Coordinate exchange (the classic search of discrete input designs): each variable in
+    // turn tried at 0, 1/2 and 1, the best kept, in passes until none improves or half the
+    // budget is spent; it finds the bang-bang switching a local search misses.
+    double current = score[order[r]];
+    int spent = 0;
+    for (bool improved = true; improved && spent + 2 * n <= budget / 2;) {
+      improved = false;
+      for (int i = 0; i < n; ++i) {
+        const double kept = x[i];
+        double best_value = kept;
+        for (double trial : {0.0, 0.5, 1.0}) {
+          if (trial == kept) continue;
+          x[i] = trial;
+          const double value = Score(EvaluatePlan(c, plan_of(x), robust));
+          ++spent;
+          if (value < current - 1e-12 * std::abs(current)) {
+            current = value;
+            best_value = trial;
+            improved = true;
+          }
+        }
+        x[i] = best_value;
+      }
+    }
+    used[r] += spent;
     nlopt::opt local(nlopt::LN_COBYLA, n);
     local.set_lower_bounds(std::vector<double>(n, 0.0));
     local.set_upper_bounds(std::vector<double>(n, 1.0));
-    local.set_maxeval(budget);
+    local.set_maxeval(std::max(2 * n + 2, budget - spent));
     local.set_xtol_rel(1e-4);
     local.set_initial_step(std::vector<double>(n, 0.25));
     struct Memo {
@@ -152,7 +177,8 @@ bool SearchDesign(const DesignContext& c, SearchResult* result, std::string* err
           },
           &memo, 1e-6);
     }
-    double value = score[order[r]];
+    const std::vector<double> exchanged = x;
+    double value = current;
     try {
       local.optimize(x, value);
     } catch (const std::exception&) {
@@ -160,9 +186,9 @@ bool SearchDesign(const DesignContext& c, SearchResult* result, std::string* err
     }
     best_z[r] = x;
     best_score[r] = Score(EvaluatePlan(c, plan_of(x), robust));
-    if (!(best_score[r] <= score[order[r]])) {  // never worse than its start
-      best_z[r] = z[order[r]];
-      best_score[r] = score[order[r]];
+    if (!(best_score[r] <= current)) {  // never worse than the exchange's
+      best_z[r] = exchanged;
+      best_score[r] = current;
     }
   });
   int winner = 0;
@@ -173,7 +199,7 @@ bool SearchDesign(const DesignContext& c, SearchResult* result, std::string* err
   result->z = best_z[winner];
   result->best = EvaluatePlan(c, plan_of(result->z), true);
   result->evaluations = evaluations;
-  result->algorithm = "random starts + NLopt LN_COBYLA";
+  result->algorithm = "random starts, coordinate exchange, NLopt LN_COBYLA";
   return result->best.ok;
 }
 
