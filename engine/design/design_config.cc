@@ -83,7 +83,7 @@ bool LoadDesign(const std::string& path, DesignOptions* options, std::string* er
     if (!d) reader.Fail(root, "design", "missing: the config has no design section");
     reader.CheckMap(d, "design",
                     {"duration", "sample_time", "criterion", "inputs", "box", "noise", "noise_deg",
-                     "initial_state", "free_initial_states", "search", "robust"});
+                     "initial_state", "settle", "free_initial_states", "search", "robust"});
     DesignOptions out;
     if (const YAML::Node model = root["model"]; model && model.IsMap() && model["family"]) {
       out.family = reader.String(model["family"], "model.family");
@@ -145,6 +145,8 @@ bool LoadDesign(const std::string& path, DesignOptions* options, std::string* er
       if (!(value > 0.0)) reader.Fail(d, "design.noise." + name, "must be > 0");
     }
     if (d["initial_state"]) out.initial_state = reader.DoubleMap(d["initial_state"], "design.initial_state");
+    reader.Read(d, "design", "settle", &out.settle);
+    if (out.settle < 0.0) reader.Fail(d["settle"], "design.settle", "must be >= 0 s");
     if (d["free_initial_states"]) {
       out.free_initial_states = reader.Strings(d["free_initial_states"], "design.free_initial_states");
       out.free_initial_states_given = true;

@@ -11,6 +11,7 @@
 //     noise: {psi: 0.00175}           # per output, model units (default: the fit's RMS)
 //     noise_deg: {psi: 0.1}           # the same in degrees
 //     initial_state: {u: 1.5}         # model units (default 0)
+//     settle: 60                      # s at the inputs' values first (a craft under way)
 //     free_initial_states: [psi]      # estimated from the planned log (default: the run's)
 //     search: {starts: 24, refined: 3, max_evaluations: 1500, seed: 1, threads: 0}
 //     robust: {members: 20}           # the criterion over the run's ensemble

@@ -57,6 +57,9 @@ struct DesignOptions {
   std::map<std::string, double> noise;
   // Initial state of the planned experiment (model units); absent states: 0.
   std::map<std::string, double> initial_state;
+  // > 0: the plan starts from the state the current model reaches after this many s at the
+  // inputs' values from initial_state (a craft already under way).
+  double settle = 0.0;
   // States estimated from the planned record (its nuisance): default the run's last stage's
   // free initial states.
   std::vector<std::string> free_initial_states;

@@ -50,6 +50,19 @@ std::string InputHeader(const DesignResult& r, size_t i) {
   return r.input_degrees[i] ? r.inputs[i] + "_deg" : r.inputs[i];
 }
 
+// How many times the widest interval shrinks: a number, "determined" (undetermined today,
+// finite after) or "undetermined" (both).
+std::string ShrinkText(double shrink) {
+  if (std::isinf(shrink)) return "determined";
+  if (!std::isfinite(shrink)) return "undetermined";
+  return Number(shrink, "%.3g") + "x";
+}
+
+json ShrinkJson(double shrink) {
+  if (std::isfinite(shrink)) return shrink;
+  return ShrinkText(shrink);
+}
+
 }  // namespace
 
 json DesignToJson(const DesignResult& r) {
@@ -64,7 +77,7 @@ json DesignToJson(const DesignResult& r) {
       }
       spread[p->name] = s;
     }
-    if (p->ok) shrink[p->name] = JsonNumber(p->shrink);
+    if (p->ok) shrink[p->name] = ShrinkJson(p->shrink);
     json item = {{"name", p->name},
                  {"ok", p->ok},
                  {"duration", p->duration},
@@ -141,7 +154,7 @@ std::string DesignText(const DesignResult& r) {
   if (r.widest >= 0) {
     out << "\nThe widest interval today, " << r.parameters[r.widest] << ", shrinks by:";
     for (const PlanSummary* p : plans) {
-      if (p->ok) out << "  " << p->name << " " << Number(p->shrink, "%.3g") << "x";
+      if (p->ok) out << "  " << p->name << " " << ShrinkText(p->shrink);
     }
     out << "\n";
   }
@@ -342,7 +355,7 @@ std::string DesignHtml(const DesignResult& r) {
   if (r.widest >= 0) {
     html << "<tr><th colspan=\"4\">" << HtmlEscape(r.parameters[r.widest])
          << " (widest today) shrinks</th>";
-    for (const PlanSummary* p : plans) html << Num(p->ok ? Number(p->shrink, "%.3g") + "x" : "-");
+    for (const PlanSummary* p : plans) html << Num(p->ok ? ShrinkText(p->shrink) : "-");
     html << "</tr>\n";
   }
   html << "</table>\n";

@@ -259,6 +259,12 @@ bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& opti
   r.members = options.ensemble_members > 0 ? static_cast<int>(c.members.size()) : 0;
   if (!MakeDesignLayout(info, options, 1.0, &c.layout, error)) return false;
   c.actuators = MakeActuators(info, options, c.layout);
+  if (options.settle > 0.0 &&
+      !SettleState(*handle, model.values, options.settle, c.setup.max_step, c.actuators.start,
+                   &c.x0)) {
+    *error = "design.settle: the current model diverges at the inputs' values";
+    return false;
+  }
   r.duration = options.duration;
   if (!(r.duration > 0.0)) {
     if (c.layout.rudder < 0 || c.layout.heading < 0) {

@@ -70,4 +70,27 @@ bool RealizePlan(const ModelHandle& model, const std::vector<double>& p,
   return record->finite;
 }
 
+bool SettleState(const ModelHandle& model, const std::vector<double>& p, double duration,
+                 double max_step, const std::vector<double>& u, std::vector<double>* x) {
+  const size_t nx = x->size();
+  const int steps = std::max(1, static_cast<int>(std::ceil(duration / std::max(max_step, 1e-3))));
+  const double h = duration / steps;
+  std::vector<double> xs(nx), k1(nx), k2(nx), k3(nx), k4(nx);
+  std::vector<double>& s = *x;
+  for (int k = 0; k < steps; ++k) {
+    if (!model.Derivative(s.data(), u.data(), p.data(), k1.data())) return false;
+    for (size_t i = 0; i < nx; ++i) xs[i] = s[i] + 0.5 * h * k1[i];
+    if (!model.Derivative(xs.data(), u.data(), p.data(), k2.data())) return false;
+    for (size_t i = 0; i < nx; ++i) xs[i] = s[i] + 0.5 * h * k2[i];
+    if (!model.Derivative(xs.data(), u.data(), p.data(), k3.data())) return false;
+    for (size_t i = 0; i < nx; ++i) xs[i] = s[i] + h * k3[i];
+    if (!model.Derivative(xs.data(), u.data(), p.data(), k4.data())) return false;
+    for (size_t i = 0; i < nx; ++i) {
+      s[i] += h / 6.0 * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
+      if (!std::isfinite(s[i])) return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace vesselid

@@ -39,4 +39,9 @@ bool RealizePlan(const ModelHandle& model, const std::vector<double>& p,
                  double max_step, const Actuators& actuators, const InputCommand& command,
                  PlannedRecord* record, const std::function<bool()>& stop = {});
 
+// The state after `duration` s from *x at constant inputs u (RK4 steps of at most max_step),
+// in *x; false when the model refuses a state or it stops being finite.
+bool SettleState(const ModelHandle& model, const std::vector<double>& p, double duration,
+                 double max_step, const std::vector<double>& u, std::vector<double>* x);
+
 }  // namespace vesselid

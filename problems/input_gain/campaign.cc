@@ -280,6 +280,15 @@ class Voyage {
     return true;
   }
 
+  // Unlogged lead-in up to step `end` on a held command (a planned experiment's approach).
+  bool Hold(long end, double mean, double difference, std::string* error) {
+    Command(mean, difference);
+    while (k_ < end) {
+      if (!Step(error)) return false;
+    }
+    return true;
+  }
+
   // Logged segment; a zigzag flips u_d when psi - psi0 passes +-zigzag_heading in the
   // direction u_d turns (u_d > 0 turns to starboard, r > 0).
   bool Run(int id, const Segment& s, std::string* error) {
@@ -311,8 +320,9 @@ class Voyage {
   void Command(double mean, double difference) {
     mean_ = mean;
     difference_ = difference;
-    pwm_value_[0] = std::clamp(mean + difference, -1.0, 1.0);
-    pwm_value_[1] = std::clamp(mean - difference, -1.0, 1.0);
+    const double lowest = options_.forward_only ? 0.0 : -1.0;
+    pwm_value_[0] = std::clamp(mean + difference, lowest, 1.0);
+    pwm_value_[1] = std::clamp(mean - difference, lowest, 1.0);
   }
 
   bool Step(std::string* error) {
@@ -375,12 +385,20 @@ bool CampaignOptions::IsValid(std::string* error) const {
     *error = "campaign: " + message;
     return false;
   };
-  if (segments < 1) return fail("segments must be at least 1");
   if (!(step > 0.0)) return fail("step must be positive");
+  if (!planned_t.empty()) {
+    if (planned_t.size() < 2 || planned_left.size() != planned_t.size() ||
+        planned_right.size() != planned_t.size() || !(lead_in >= 0.0)) {
+      return fail("a planned experiment needs two samples or more and lead_in >= 0");
+    }
+  } else if (segments < 1) {
+    return fail("segments must be at least 1");
+  }
   if (!(min_segment >= step && max_segment >= min_segment)) {
     return fail("need step <= min_segment <= max_segment");
   }
-  if (!(total_duration >= segments * min_segment && total_duration <= segments * max_segment)) {
+  if (planned_t.empty() &&
+      !(total_duration >= segments * min_segment && total_duration <= segments * max_segment)) {
     return fail("total_duration must lie within segments x [min_segment, max_segment]");
   }
   if (!(gap >= 0.0)) return fail("gap must be non-negative");
@@ -410,8 +428,29 @@ bool Simulate(const Rhs& rhs, const CampaignOptions& options, const std::string&
   if (!options.IsValid(error)) return false;
   std::seed_seq plan_seed{options.seed, 0u};
   Random random(plan_seed);
-  const std::vector<Segment> segments = PlanSegments(options, random);
   Voyage<Rhs> voyage(rhs, options);
+  if (!options.planned_t.empty()) {  // one segment, the plan: u_m, u_d through its samples
+    Segment s;
+    s.begin = std::lround(options.lead_in / options.step);
+    s.end = s.begin + std::lround((options.planned_t.back() - options.planned_t.front()) /
+                                  options.step) + 1;
+    for (size_t k = 0; k < options.planned_t.size(); ++k) {
+      const double t = options.planned_t[k] - options.planned_t.front();
+      s.mean.t.push_back(t);
+      s.difference.t.push_back(t);
+      s.mean.value.push_back(0.5 * (options.planned_left[k] + options.planned_right[k]));
+      s.difference.value.push_back(0.5 * (options.planned_left[k] - options.planned_right[k]));
+    }
+    if (!voyage.Hold(s.begin, s.mean(0.0), s.difference(0.0), error) ||
+        !voyage.Run(0, s, error)) {
+      return false;
+    }
+    *out = voyage.Release();
+    out->source = "input_gain planned experiment (" + vessel + "), seed " +
+                  std::to_string(options.seed);
+    return true;
+  }
+  const std::vector<Segment> segments = PlanSegments(options, random);
   for (int i = 0; i < options.segments; ++i) {
     const Segment& s = segments[i];
     voyage.SetAbrupt(i == options.defects.abrupt_start_segment);

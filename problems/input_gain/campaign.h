@@ -25,6 +25,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "engine/data/trajectory.h"
 #include "problems/input_gain/catamaran.h"
@@ -58,6 +59,13 @@ struct CampaignOptions {
   double step = 0.005;  // s, RK4 step; periods and offsets must be multiples of it
   bool truth_columns = true;  // add noiseless u_true, v_true, r_true on AHRS rows
   LogDefects defects;
+  // Every PWM clamped to [0, 1]: a campaign run without astern thrust.
+  bool forward_only = false;
+  // A planned experiment (`vesselid design`'s planned_input.csv) instead of the campaign: one
+  // segment (id 0) whose PWMs follow the plan (linear between its samples, sampled every
+  // pwm_period), after `lead_in` s from rest on the plan's first command, unlogged.
+  std::vector<double> planned_t, planned_left, planned_right;
+  double lead_in = 30.0;
 
   bool IsValid(std::string* error) const;
 };

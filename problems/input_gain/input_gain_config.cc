@@ -114,14 +114,15 @@ bool ReadFieldLog(const YamlReader& reader, const YAML::Node& node, const std::s
 
 //   simulation: {file, segments, duration_min, seed, noise: {position, heading_deg},
 //                vessel: catamaran | quadratic_usv, segment_s: [min, max],
-//                defects: {abrupt_start_segment, glitch_segment}, field_log: {...}}
+//                defects: {abrupt_start_segment, glitch_segment}, field_log: {...},
+//                forward_only: false, planned: {file, lead_in_s: 30}}
 bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const ModelHandle&,
               const std::string& out_dir, bool check_only, std::string* error) {
   const std::string path = "simulation";
   if (!simulation) reader.Fail(simulation, path, "missing: the config has no simulation section");
   reader.CheckMap(simulation, path,
                   {"file", "segments", "duration_min", "seed", "noise", "vessel", "segment_s",
-                   "defects", "field_log"});
+                   "defects", "field_log", "forward_only", "planned"});
   if (!simulation["file"]) reader.Fail(simulation, Child(path, "file"), "missing");
   const std::string file = reader.String(simulation["file"], Child(path, "file"));
   CampaignOptions options;
@@ -153,6 +154,24 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
     reader.Read(defects, key, "glitch_segment", &options.defects.glitch_segment);
     reader.Read(defects, key, "glitch_offset", &options.defects.glitch_offset);
   }
+  reader.Read(simulation, path, "forward_only", &options.forward_only);
+  if (const YAML::Node planned = simulation["planned"]) {
+    // A plan of `vesselid design` (t, u_L, u_R), relative to the config's folder.
+    const std::string key = Child(path, "planned");
+    reader.CheckMap(planned, key, {"file", "lead_in_s"});
+    if (!planned["file"]) reader.Fail(planned, key, "missing key 'file'");
+    std::string plan = reader.String(planned["file"], Child(key, "file"));
+    if (fs::path(plan).is_relative()) plan = (fs::path(reader.file()).parent_path() / plan).string();
+    reader.Read(planned, key, "lead_in_s", &options.lead_in);
+    Trajectory table;
+    std::string message;
+    if (!ReadTrajectoryCsv(plan, &table, &message)) reader.Fail(planned["file"], Child(key, "file"), message);
+    const int left = table.Find("u_L"), right = table.Find("u_R");
+    if (left < 0 || right < 0) reader.Fail(planned["file"], Child(key, "file"), plan + ": needs columns u_L and u_R");
+    options.planned_t = table.t;
+    options.planned_left = table.columns[left];
+    options.planned_right = table.columns[right];
+  }
   std::string vessel = "catamaran";
   if (simulation["vessel"]) vessel = reader.String(simulation["vessel"], Child(path, "vessel"));
   if (vessel != "catamaran" && vessel != "quadratic_usv") {
@@ -171,8 +190,11 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
   }
   std::string invalid;
   if (!options.IsValid(&invalid)) reader.Fail(simulation, path, invalid);
+  const double simulated_time = options.planned_t.empty()
+                                    ? options.total_duration
+                                    : options.lead_in + options.planned_t.back();
   reader.CheckLimit(simulation["duration_min"], Child(path, "duration_min"),
-                    options.total_duration / options.step, reader.limits().integration_steps,
+                    simulated_time / options.step, reader.limits().integration_steps,
                     "limits.integration_steps");
   if (check_only) return true;
   if (!CreateSimulationFolder(out_dir, error)) return false;
