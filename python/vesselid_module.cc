@@ -17,6 +17,9 @@
 #include "engine/config/config.h"
 #include "engine/data/trajectory_table.h"
 #include "engine/diagnose/run_findings.h"
+#include "engine/design/design_config.h"
+#include "engine/design/design_report.h"
+#include "engine/design/design_run.h"
 #include "engine/export/export_run.h"
 #include "engine/model/open_loop_simulation.h"
 #include "engine/output/output_folder.h"
@@ -400,10 +403,34 @@ Outcome PredictModel(const std::string& run_dir, double length, double speed, in
   return {true, "", text, predictions.dump()};
 }
 
+// `vesselid design`: design.txt's text, design.json's, and the planned and predicted CSVs'.
+std::tuple<bool, std::string, std::string, std::string, std::string, std::string> Design(
+    const std::string& config, bool is_text, const std::string& name, const std::string& run_dir,
+    bool write, const std::string& out_dir, int threads) {
+  DesignOptions options;
+  DesignResult result;
+  std::string error;
+  if (!LoadDesign(is_text ? name : config, &options, &error, is_text ? config : "")) {
+    return {false, "config", error, "", "", ""};
+  }
+  if (threads > 0) options.threads = threads;
+  bool ok = false;
+  {
+    py::gil_scoped_release release;
+    ok = PlanNextExperiment(Registry(), options, run_dir, &result, &error) &&
+         (!write || WriteDesign(result, out_dir, &error));
+  }
+  if (!ok) return {false, "run", error, "", "", ""};
+  return {true, "", DesignText(result), DesignToJson(result).dump(), PlannedInputCsv(result),
+          PredictedCsv(result)};
+}
+
 }  // namespace
 }  // namespace vesselid
 
 PYBIND11_MODULE(_core, m) {
+  m.def("design", &vesselid::Design, py::arg("config"), py::arg("is_text"), py::arg("name"),
+        py::arg("run_dir"), py::arg("write"), py::arg("out_dir"), py::arg("threads"));
   m.doc() = "vesselid engine entry points (use the vesselid package)";
   m.def("run", &vesselid::Run, py::arg("config"), py::arg("is_text"), py::arg("name"),
         py::arg("data_dir"), py::arg("data"), py::arg("out_dir"), py::arg("write_report"),

@@ -75,8 +75,9 @@ DesignInput ReadInput(const YamlReader& reader, const YAML::Node& node, const st
 
 }  // namespace
 
-bool LoadDesign(const std::string& path, DesignOptions* options, std::string* error) {
-  YamlReader reader(path);
+bool LoadDesign(const std::string& path, DesignOptions* options, std::string* error,
+                const std::string& text) {
+  YamlReader reader = text.empty() ? YamlReader(path) : YamlReader(path, text);
   try {
     const YAML::Node root = reader.Load();
     const YAML::Node d = root["design"];

@@ -27,7 +27,9 @@
 
 namespace vesselid {
 
-// False with a message naming the file, line and key.
-bool LoadDesign(const std::string& path, DesignOptions* options, std::string* error);
+// False with a message naming the file, line and key. With `text`, the config is that text
+// (YAML or JSON) and `path` the name messages give it.
+bool LoadDesign(const std::string& path, DesignOptions* options, std::string* error,
+                const std::string& text = "");
 
 }  // namespace vesselid

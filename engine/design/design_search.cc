@@ -85,12 +85,14 @@ bool SearchDesign(const DesignContext& c, SearchResult* result, std::string* err
   auto plan_of = [&c](const std::vector<double>& z) {
     return [&c, z] { return CommandOf(c.options, c.layout, z); };
   };
-  // Random starts: even ones on the unit box's corners (bang-bang), odd ones inside.
-  const int starts = std::max(1, c.options.starts);
+  // Random starts: even ones on the unit box's corners (bang-bang), odd ones inside; the first
+  // holds every input at its value (inside any box, so that the search has a feasible start).
+  const int starts = std::max(2, c.options.starts);
   std::vector<std::vector<double>> z(starts, std::vector<double>(n));
   std::mt19937_64 random(c.options.seed);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  for (int s = 0; s < starts; ++s) {
+  z[0] = QuietDesign(c.options, c.layout);
+  for (int s = 1; s < starts; ++s) {
     for (int i = 0; i < n; ++i) {
       z[s][i] = s % 2 == 0 ? (uniform(random) < 0.5 ? 0.0 : 1.0) : uniform(random);
     }

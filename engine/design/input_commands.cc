@@ -165,6 +165,18 @@ Actuators MakeActuators(const ModelInfo& info, const DesignOptions& options,
   return a;
 }
 
+std::vector<double> QuietDesign(const DesignOptions& options, const DesignLayout& layout) {
+  std::vector<double> z(layout.variables, 0.0);
+  for (size_t d = 0; d < options.inputs.size(); ++d) {
+    const DesignInput& in = options.inputs[d];
+    if (in.family != DesignInput::Family::kSteps) continue;  // amplitudes and rudder 0
+    for (int j = 0; j < layout.count[d]; ++j) {
+      z[layout.first[d] + j] = (in.value - in.lower) / (in.upper - in.lower);
+    }
+  }
+  return z;
+}
+
 Manoeuvre CommandOf(const DesignOptions& options, const DesignLayout& layout,
                     const std::vector<double>& z) {
   const std::vector<double> nominal = Nominal(options, layout);

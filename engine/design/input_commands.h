@@ -55,6 +55,10 @@ struct Manoeuvre {
   }
 };
 
+// The design that holds every input at its value (steps at the value, no sine, no rudder):
+// a start that keeps any box around the start.
+std::vector<double> QuietDesign(const DesignOptions& options, const DesignLayout& layout);
+
 // The command of design z.
 Manoeuvre CommandOf(const DesignOptions& options, const DesignLayout& layout,
                     const std::vector<double>& z);

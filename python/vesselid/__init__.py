@@ -12,9 +12,10 @@ for a missing sample. Experiments without data are read from their files as the 
 """
 from ._errors import ConfigError, DataError, RunError, VesselidError
 from ._run import load_config, run, simulate, study
+from ._design import design
 from ._export import export, predict
 from ._model import Model
 from ._result import Finding, Result
 
-__all__ = ["run", "simulate", "study", "load_config", "export", "predict", "Result", "Finding", "Model", "VesselidError", "ConfigError",
+__all__ = ["run", "simulate", "study", "load_config", "export", "predict", "design", "Result", "Finding", "Model", "VesselidError", "ConfigError",
            "DataError", "RunError"]
