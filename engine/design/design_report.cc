@@ -73,7 +73,8 @@ json DesignToJson(const DesignResult& r) {
     if (!p->std_error_low.empty()) {
       json s = json::object();
       for (size_t i = 0; i < r.parameters.size(); ++i) {
-        s[r.parameters[i]] = {JsonNumber(p->std_error_low[i]), JsonNumber(p->std_error_high[i])};
+        s[r.parameters[i]] = {JsonNumber(p->std_error_low[i]), JsonNumber(p->std_error_median[i]),
+                              JsonNumber(p->std_error_high[i])};
       }
       spread[p->name] = s;
     }
@@ -346,7 +347,8 @@ std::string DesignHtml(const DesignResult& r) {
     for (const PlanSummary* p : plans) {
       std::string cell = p->ok ? Number(p->std_errors[i]) : "failed";
       if (p->ok && !p->std_error_low.empty()) {
-        cell += " [" + Number(p->std_error_low[i]) + ", " + Number(p->std_error_high[i]) + "]";
+        cell += " [" + Number(p->std_error_low[i]) + ", " + Number(p->std_error_median[i]) + ", " +
+                Number(p->std_error_high[i]) + "]";
       }
       html << Num(cell);
     }
@@ -360,8 +362,8 @@ std::string DesignHtml(const DesignResult& r) {
   }
   html << "</table>\n";
   if (r.members > 0) {
-    html << "<p>In brackets: the 5th and 95th percentiles over the ensemble members (the plan's "
-            "spread should the estimate be wrong).</p>\n";
+    html << "<p>In brackets: the 5th, 50th and 95th percentiles over the ensemble members (what "
+            "to expect should the estimate be wrong).</p>\n";
   }
   auto figure = [&](size_t k) {
     if (k < drawn.svg.size() && !drawn.svg[k].empty()) html << drawn.svg[k] << "\n";

@@ -17,8 +17,9 @@ struct PlanSummary {
   std::string error;  // why it could not be simulated
   PlannedRecord record;  // at the estimate
   std::vector<double> std_errors;  // predicted after adding it, per DesignResult::parameters
-  // Robust designs: per parameter, the 5th and 95th percentiles over the ensemble members.
-  std::vector<double> std_error_low, std_error_high;
+  // Robust designs: per parameter, the 5th, 50th and 95th percentiles over the ensemble
+  // members (the median: the standard error to expect when the estimate may be wrong).
+  std::vector<double> std_error_low, std_error_median, std_error_high;
   double criterion = 0.0;
   double box_violation = 0.0;  // beyond the box, outputs' units (0: inside)
   double duration = 0.0;       // s, the record's

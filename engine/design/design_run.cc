@@ -81,6 +81,7 @@ PlanSummary Summarise(const std::string& name, PlanEvaluation e, const DesignRes
       std::vector<double> values;
       for (const std::vector<double>& m : e.member_std_errors) values.push_back(m[i]);
       s.std_error_low.push_back(Percentile(values, 0.05));
+      s.std_error_median.push_back(Percentile(values, 0.5));
       s.std_error_high.push_back(Percentile(values, 0.95));
     }
   }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "engine/config/config.h"
+#include "engine/design/design_config.h"
 #include "gtest/gtest.h"
 #include "problems/registry.h"
 #include "yaml-cpp/yaml.h"
@@ -165,6 +166,10 @@ class KeyTree {
     if (LoadConfig(source, registry, &config, &error)) {
       SimulateConfig(config, "", &error, /*check_only=*/true);
     }
+    if (root["design"] && error.find(kProbe) == std::string::npos) {  // `vesselid design`'s
+      DesignOptions options;
+      LoadDesign(name_, &options, &error, source.text);
+    }
     static const std::regex unknown(std::string(kProbe) + R"(: unknown key \(allowed: ([^)]*)\))");
     std::smatch match;
     if (!std::regex_search(error, match, unknown)) return {};
@@ -204,7 +209,8 @@ const char* const kShippedConfigs[] = {
     "nomoto_cargo.yaml",        "nomoto_cargo_noise.yaml", "nomoto_patrol.yaml",
     "nomoto_patrol_noise.yaml", "nomoto_tanker.yaml",      "input_gain_static.yaml",
     "input_gain_dynamic.yaml",  "input_gain_usv_log.yaml", "erunsal_hierarchy.yaml",
-    "eriksen_2dof.yaml",        "mmg_kvlcc2.yaml"};
+    "eriksen_2dof.yaml",        "mmg_kvlcc2.yaml",         "design_cargo.yaml",
+    "design_input_gain.yaml"};
 
 struct ReaderKeys {
   std::map<std::string, std::set<std::string>> by_schema;  // allowed keys by schema path
