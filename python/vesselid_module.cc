@@ -16,10 +16,10 @@
 #include "engine/base/stop_request.h"
 #include "engine/config/config.h"
 #include "engine/data/trajectory_table.h"
-#include "engine/diagnose/run_findings.h"
 #include "engine/design/design_config.h"
 #include "engine/design/design_report.h"
 #include "engine/design/design_run.h"
+#include "engine/diagnose/run_findings.h"
 #include "engine/export/export_run.h"
 #include "engine/model/open_loop_simulation.h"
 #include "engine/output/output_folder.h"
@@ -421,7 +421,11 @@ std::tuple<bool, std::string, std::string, std::string, std::string, std::string
          (!write || WriteDesign(result, out_dir, &error));
   }
   if (!ok) return {false, "run", error, "", "", ""};
-  return {true, "", DesignText(result), DesignToJson(result).dump(), PlannedInputCsv(result),
+  return {true,
+          "",
+          DesignText(result),
+          DesignToJson(result).dump(),
+          PlannedInputCsv(result),
           PredictedCsv(result)};
 }
 

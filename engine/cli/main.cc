@@ -519,7 +519,8 @@ int main(int argc, char** argv) {
   design->add_option("--from", run_dir, "the --out folder of the finished run")->required();
   design->add_option("--out", out_dir, "folder for the plan (default <run>/design)");
   int design_threads = 0;
-  design->add_option("--threads", design_threads, "worker threads (default: design.search.threads, "
+  design->add_option("--threads", design_threads,
+                     "worker threads (default: design.search.threads, "
                      "else cores)");
   bool design_quiet = false;
   design->add_flag("--quiet", design_quiet, "print only the plan's folder");

@@ -1,22 +1,22 @@
-#include "engine/design/design_names.h"
 #include "engine/design/design_config.h"
 
 #include <cmath>
 
 #include "engine/config/yaml_reader.h"
+#include "engine/design/design_names.h"
 
 namespace vesselid {
 namespace {
 
-
 DesignInput ReadInput(const YamlReader& reader, const YAML::Node& node, const std::string& name,
                       const std::string& key) {
-  reader.CheckMap(node, key,
-                  {"family", "lower", "upper", "rate", "value", "hold", "periods", "headings",
-                   "degrees"});
+  reader.CheckMap(
+      node, key,
+      {"family", "lower", "upper", "rate", "value", "hold", "periods", "headings", "degrees"});
   DesignInput in;
   in.name = name;
-  if (!node["family"]) reader.Fail(node, key, "missing key 'family' (steps, multisine, zigzag, fixed)");
+  if (!node["family"])
+    reader.Fail(node, key, "missing key 'family' (steps, multisine, zigzag, fixed)");
   const std::string family = reader.String(node["family"], Child(key, "family"));
   if (family == "steps") {
     in.family = DesignInput::Family::kSteps;
@@ -60,7 +60,8 @@ DesignInput ReadInput(const YamlReader& reader, const YAML::Node& node, const st
     std::vector<double> h = {5.0, 30.0};
     if (node["headings"]) h = reader.Doubles(node["headings"], Child(key, "headings"));
     if (h.size() != 2 || !(h[0] > 0.0 && h[0] <= h[1])) {
-      reader.Fail(node["headings"], Child(key, "headings"), "[lowest, highest], 0 < lowest <= highest");
+      reader.Fail(node["headings"], Child(key, "headings"),
+                  "[lowest, highest], 0 < lowest <= highest");
     }
     // Headings are degrees unless the input's values are radians too.
     const double heading_unit = in.degrees || !node["headings"] ? kDesignDegree : 1.0;
@@ -94,7 +95,8 @@ bool LoadDesign(const std::string& path, DesignOptions* options, std::string* er
         out.duration = 0.0;
       } else {
         out.duration = reader.Double(n, "design.duration");
-        if (!(out.duration > 0.0)) reader.Fail(n, "design.duration", "must be > 0 s, or zigzag_20_20");
+        if (!(out.duration > 0.0))
+          reader.Fail(n, "design.duration", "must be > 0 s, or zigzag_20_20");
       }
     }
     reader.Read(d, "design", "sample_time", &out.sample_time);
@@ -131,7 +133,8 @@ bool LoadDesign(const std::string& path, DesignOptions* options, std::string* er
         const std::string name = reader.KeyName(item.first, "design.box");
         const std::vector<double> range = reader.Doubles(item.second, "design.box." + name);
         if (range.size() != 2 || !(range[0] < 0.0 && 0.0 < range[1])) {
-          reader.Fail(item.second, "design.box." + name, "[lower, upper] around the start (lower < 0 < upper)");
+          reader.Fail(item.second, "design.box." + name,
+                      "[lower, upper] around the start (lower < 0 < upper)");
         }
         out.box[name] = {range[0], range[1]};
       }
@@ -145,15 +148,18 @@ bool LoadDesign(const std::string& path, DesignOptions* options, std::string* er
     for (const auto& [name, value] : out.noise) {
       if (!(value > 0.0)) reader.Fail(d, "design.noise." + name, "must be > 0");
     }
-    if (d["initial_state"]) out.initial_state = reader.DoubleMap(d["initial_state"], "design.initial_state");
+    if (d["initial_state"])
+      out.initial_state = reader.DoubleMap(d["initial_state"], "design.initial_state");
     reader.Read(d, "design", "settle", &out.settle);
     if (out.settle < 0.0) reader.Fail(d["settle"], "design.settle", "must be >= 0 s");
     if (d["free_initial_states"]) {
-      out.free_initial_states = reader.Strings(d["free_initial_states"], "design.free_initial_states");
+      out.free_initial_states =
+          reader.Strings(d["free_initial_states"], "design.free_initial_states");
       out.free_initial_states_given = true;
     }
     if (const YAML::Node s = d["search"]) {
-      reader.CheckMap(s, "design.search", {"starts", "refined", "max_evaluations", "seed", "threads"});
+      reader.CheckMap(s, "design.search",
+                      {"starts", "refined", "max_evaluations", "seed", "threads"});
       reader.Read(s, "design.search", "starts", &out.starts);
       reader.Read(s, "design.search", "refined", &out.refined);
       reader.Read(s, "design.search", "max_evaluations", &out.max_evaluations);

@@ -7,8 +7,7 @@ namespace vesselid {
 
 std::vector<std::string> CheckLimits(
     const DesignOptions& options, const DesignLayout& layout, const Actuators& actuators,
-    const PlannedRecord& record,
-    const std::vector<std::pair<int, std::pair<double, double>>>& box,
+    const PlannedRecord& record, const std::vector<std::pair<int, std::pair<double, double>>>& box,
     const std::vector<std::string>& outputs, double sample_time) {
   std::vector<std::string> out;
   char text[300];
@@ -28,16 +27,18 @@ std::vector<std::string> CheckLimits(
       const double u = record.inputs(k, i);
       if (u < actuators.lower[i] - tolerance || u > actuators.upper[i] + tolerance) {
         std::snprintf(text, sizeof(text), "%s = %.6g%s at t = %.6g s, outside [%.6g, %.6g]",
-                      in.name.c_str(), u * unit, suffix, record.time[k],
-                      actuators.lower[i] * unit, actuators.upper[i] * unit);
+                      in.name.c_str(), u * unit, suffix, record.time[k], actuators.lower[i] * unit,
+                      actuators.upper[i] * unit);
         out.push_back(text);
         break;
       }
       if (k > 0 && actuators.rate[i] > 0.0) {
-        const double rate = std::abs(u - record.inputs(k - 1, i)) / (record.time[k] - record.time[k - 1]);
+        const double rate =
+            std::abs(u - record.inputs(k - 1, i)) / (record.time[k] - record.time[k - 1]);
         if (rate > actuators.rate[i] * (1.0 + 1e-9) + tolerance) {
-          std::snprintf(text, sizeof(text), "%s changes at %.6g%s/s at t = %.6g s, beyond its rate %.6g",
-                        in.name.c_str(), rate * unit, suffix, record.time[k], actuators.rate[i] * unit);
+          std::snprintf(
+              text, sizeof(text), "%s changes at %.6g%s/s at t = %.6g s, beyond its rate %.6g",
+              in.name.c_str(), rate * unit, suffix, record.time[k], actuators.rate[i] * unit);
           out.push_back(text);
           break;
         }

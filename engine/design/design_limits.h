@@ -16,8 +16,7 @@ namespace vesselid {
 
 std::vector<std::string> CheckLimits(
     const DesignOptions& options, const DesignLayout& layout, const Actuators& actuators,
-    const PlannedRecord& record,
-    const std::vector<std::pair<int, std::pair<double, double>>>& box,
+    const PlannedRecord& record, const std::vector<std::pair<int, std::pair<double, double>>>& box,
     const std::vector<std::string>& outputs, double sample_time);
 
 }  // namespace vesselid

@@ -64,9 +64,9 @@ struct DesignOptions {
   // free initial states.
   std::vector<std::string> free_initial_states;
   bool free_initial_states_given = false;
-  int starts = 24;              // random starts of the search (steps, multisine)
-  int max_evaluations = 1500;   // of the local search from the best starts
-  int refined = 3;              // starts refined locally
+  int starts = 24;             // random starts of the search (steps, multisine)
+  int max_evaluations = 1500;  // of the local search from the best starts
+  int refined = 3;             // starts refined locally
   unsigned seed = 1;
   // > 0: the criterion averaged over this many members of the run's ensemble (robust to the
   // estimate being wrong); the spread of each plan's standard errors is reported.

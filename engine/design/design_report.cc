@@ -1,4 +1,3 @@
-#include "engine/design/design_names.h"
 #include "engine/design/design_report.h"
 
 #include <cmath>
@@ -8,6 +7,7 @@
 
 #include "engine/base/atomic_file.h"
 #include "engine/base/json_number.h"
+#include "engine/design/design_names.h"
 #include "engine/output/published_set.h"
 #include "engine/report/report_figures.h"
 #include "engine/report/report_plots.h"
@@ -98,30 +98,29 @@ json DesignToJson(const DesignResult& r) {
   for (size_t o = 0; o < r.outputs.size(); ++o) {
     if (std::isfinite(r.noise[o])) noise[r.outputs[o]] = r.noise[o];
   }
-  json j = {{"run", r.run},
-            {"model", r.model},
-            {"family", r.family},
-            {"criterion", r.criterion},
-            {"duration", r.duration},
-            {"sample_time", r.sample_time},
-            {"parameters", parameters},
-            {"noise", noise},
-            {"predicted_std_errors",
-             {{"current", ByParameter(r, r.current_std_errors)},
-              {"planned", ByParameter(r, r.planned.std_errors)},
-              {"alternatives", alternatives}}},
-            {"widest",
-             {{"parameter", r.widest >= 0 ? r.parameters[r.widest] : ""}, {"shrink", shrink}}},
-            {"plans", plans},
-            {"limits",
-             {{"respected", r.limit_violations.empty()}, {"violations", r.limit_violations}}},
-            {"search",
-             {{"algorithm", r.algorithm},
-              {"evaluations", r.evaluations},
-              {"design_variables", r.design_variables},
-              {"ensemble_members", r.members}}},
-            {"notes", r.notes},
-            {"files", {"planned_input.csv", "predicted.csv", "design.txt", "report.html"}}};
+  json j = {
+      {"run", r.run},
+      {"model", r.model},
+      {"family", r.family},
+      {"criterion", r.criterion},
+      {"duration", r.duration},
+      {"sample_time", r.sample_time},
+      {"parameters", parameters},
+      {"noise", noise},
+      {"predicted_std_errors",
+       {{"current", ByParameter(r, r.current_std_errors)},
+        {"planned", ByParameter(r, r.planned.std_errors)},
+        {"alternatives", alternatives}}},
+      {"widest", {{"parameter", r.widest >= 0 ? r.parameters[r.widest] : ""}, {"shrink", shrink}}},
+      {"plans", plans},
+      {"limits", {{"respected", r.limit_violations.empty()}, {"violations", r.limit_violations}}},
+      {"search",
+       {{"algorithm", r.algorithm},
+        {"evaluations", r.evaluations},
+        {"design_variables", r.design_variables},
+        {"ensemble_members", r.members}}},
+      {"notes", r.notes},
+      {"files", {"planned_input.csv", "predicted.csv", "design.txt", "report.html"}}};
   if (!spread.empty()) j["predicted_std_error_spread"] = spread;
   return j;
 }
@@ -147,7 +146,8 @@ std::string DesignText(const DesignResult& r) {
                   Number(r.values[i]).c_str(), Number(r.current_std_errors[i]).c_str());
     out << cell;
     for (const PlanSummary* p : plans) {
-      std::snprintf(cell, sizeof(cell), " %13s", p->ok ? Number(p->std_errors[i]).c_str() : "failed");
+      std::snprintf(cell, sizeof(cell), " %13s",
+                    p->ok ? Number(p->std_errors[i]).c_str() : "failed");
       out << cell;
     }
     out << "\n";
@@ -166,37 +166,24 @@ std::string DesignText(const DesignResult& r) {
     if (!p->ok) out << p->name << ": " << p->error << "\n";
   }
   out << (r.limit_violations.empty() ? "\nThe plan keeps every limit (amplitude, rate, duration"
-                                       : "\nLIMITS NOT KEPT:\n");
+                                     : "\nLIMITS NOT KEPT:\n");
   if (r.limit_violations.empty()) out << (r.options.box.empty() ? ").\n" : ", box).\n");
   for (const std::string& v : r.limit_violations) out << "  " << v << "\n";
   for (const std::string& note : r.notes) out << "note: " << note << "\n";
   return out.str();
 }
 
-std::string PlannedInputCsv(const DesignResult& r) {
-  std::ostringstream out;
-  out << "t";
-  for (size_t i = 0; i < r.inputs.size(); ++i) out << "," << InputHeader(r, i);
-  out << "\n";
-  const PlannedRecord& record = r.planned.record;
-  char number[40];
-  for (size_t k = 0; k < record.time.size(); ++k) {
-    std::snprintf(number, sizeof(number), "%.6f", record.time[k]);
-    out << number;
-    for (size_t i = 0; i < r.inputs.size(); ++i) {
-      std::snprintf(number, sizeof(number), ",%.9g", record.inputs(k, i) * InputScale(r, i));
-      out << number;
-    }
-    out << "\n";
-  }
-  return out.str();
-}
+namespace {
 
-std::string PredictedCsv(const DesignResult& r) {
+// The plan as CSV: t, the inputs (in the config's units), and the predicted outputs when
+// `outputs`.
+std::string PlanCsv(const DesignResult& r, bool outputs) {
   std::ostringstream out;
   out << "t";
   for (size_t i = 0; i < r.inputs.size(); ++i) out << "," << InputHeader(r, i);
-  for (const std::string& o : r.outputs) out << "," << o;
+  if (outputs) {
+    for (const std::string& o : r.outputs) out << "," << o;
+  }
   out << "\n";
   const PlannedRecord& record = r.planned.record;
   char number[40];
@@ -207,7 +194,7 @@ std::string PredictedCsv(const DesignResult& r) {
       std::snprintf(number, sizeof(number), ",%.9g", record.inputs(k, i) * InputScale(r, i));
       out << number;
     }
-    for (size_t o = 0; o < r.outputs.size(); ++o) {
+    for (size_t o = 0; outputs && o < r.outputs.size(); ++o) {
       std::snprintf(number, sizeof(number), ",%.9g", record.outputs(k, o));
       out << number;
     }
@@ -215,6 +202,12 @@ std::string PredictedCsv(const DesignResult& r) {
   }
   return out.str();
 }
+
+}  // namespace
+
+std::string PlannedInputCsv(const DesignResult& r) { return PlanCsv(r, false); }
+
+std::string PredictedCsv(const DesignResult& r) { return PlanCsv(r, true); }
 
 namespace {
 
@@ -255,8 +248,8 @@ Figure PlanFigure(const DesignResult& r) {
   const PlannedRecord& record = r.planned.record;
   const int panels = static_cast<int>(r.inputs.size() + r.outputs.size());
   f.height = 120 * panels + 60;
-  std::string script = std::string(kPlotStyle) + "set multiplot layout " +
-                       std::to_string(panels) + ",1\nset key off\n";
+  std::string script = std::string(kPlotStyle) + "set multiplot layout " + std::to_string(panels) +
+                       ",1\nset key off\n";
   auto series = [&](const Eigen::MatrixXd& m, int column, double scale) {
     SeriesPiece piece;
     for (size_t k = 0; k < record.time.size(); ++k) {
@@ -274,9 +267,9 @@ Figure PlanFigure(const DesignResult& r) {
   }
   for (size_t o = 0; o < r.outputs.size(); ++o, ++d) {
     f.data.push_back(series(record.outputs, static_cast<int>(o), 1.0));
-    script += std::string(o + 1 == r.outputs.size() ? "set xlabel 't [s]'\n" : "") +
-              "set ylabel " + GnuplotString(r.outputs[o] + " (predicted)") + "\nplot D" +
-              std::to_string(d) + " with lines lw 1.5 lc rgb '#b5532a'\n";
+    script += std::string(o + 1 == r.outputs.size() ? "set xlabel 't [s]'\n" : "") + "set ylabel " +
+              GnuplotString(r.outputs[o] + " (predicted)") + "\nplot D" + std::to_string(d) +
+              " with lines lw 1.5 lc rgb '#b5532a'\n";
   }
   f.script = script + "unset multiplot\n";
   return f;
@@ -333,8 +326,9 @@ std::string DesignHtml(const DesignResult& r) {
        << ".warning { color: #8a1c1c; }\n</style>\n</head>\n<body>\n";
   html << "<h1>Next experiment for " << HtmlEscape(r.model) << "</h1>\n<p>From the run "
        << HtmlEscape(r.run) << "; criterion " << HtmlEscape(r.criterion) << ", "
-       << Number(r.duration, "%.1f") << " s sampled every " << Number(r.sample_time, "%.3g")
-       << " s" << (r.members > 0 ? ", averaged over " + std::to_string(r.members) + " ensemble members" : "")
+       << Number(r.duration, "%.1f") << " s sampled every " << Number(r.sample_time, "%.3g") << " s"
+       << (r.members > 0 ? ", averaged over " + std::to_string(r.members) + " ensemble members"
+                         : "")
        << ". The plan is <code>planned_input.csv</code>.</p>\n";
   html << "<h2>Predicted standard errors</h2>\n<table>\n<tr>" << Th("parameter") << Th("unit")
        << Th("value") << Th("today");

@@ -14,8 +14,8 @@ namespace vesselid {
 struct PlanSummary {
   std::string name;  // "planned", "zigzag_10_10", ...
   bool ok = false;
-  std::string error;  // why it could not be simulated
-  PlannedRecord record;  // at the estimate
+  std::string error;               // why it could not be simulated
+  PlannedRecord record;            // at the estimate
   std::vector<double> std_errors;  // predicted after adding it, per DesignResult::parameters
   // Robust designs: per parameter, the 5th, 50th and 95th percentiles over the ensemble
   // members (the median: the standard error to expect when the estimate may be wrong).
@@ -32,11 +32,11 @@ struct DesignResult {
   std::string run;  // the run's folder
   std::string model, family;
   std::vector<std::string> parameters, parameter_units;  // those designed for
-  std::vector<double> values;              // the estimate
-  std::vector<double> current_std_errors;  // today's (+infinity: undetermined)
+  std::vector<double> values;                            // the estimate
+  std::vector<double> current_std_errors;                // today's (+infinity: undetermined)
   int widest = -1;  // the parameter with the largest relative standard error today
   std::vector<std::string> inputs, input_units;  // the model's
-  std::vector<bool> input_degrees;                // written in degrees
+  std::vector<bool> input_degrees;               // written in degrees
   std::vector<std::string> outputs, output_units;
   std::vector<double> noise;  // per output, the sigma assumed (NaN: not measured)
   DesignOptions options;

@@ -1,4 +1,3 @@
-#include "engine/design/design_names.h"
 #include "engine/design/design_run.h"
 
 #include <algorithm>
@@ -9,6 +8,7 @@
 
 #include "engine/design/design_criterion.h"
 #include "engine/design/design_limits.h"
+#include "engine/design/design_names.h"
 #include "engine/design/design_search.h"
 #include "engine/design/input_commands.h"
 #include "engine/export/exported_model.h"
@@ -20,17 +20,7 @@ namespace {
 using json = nlohmann::json;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-
 double Number(const json& j) { return j.is_number() ? j.get<double>() : std::nan(""); }
-
-// The last output-error stage of the run (one with estimates and a model).
-const json* LastModelStage(const json& results) {
-  const json* last = nullptr;
-  for (const json& stage : results.at("stages")) {
-    if (stage.contains("estimates") && stage.contains("model")) last = &stage;
-  }
-  return last;
-}
 
 // Per model output: the RMS residual of the stage's fit pooled over its experiments, in the
 // model's units (the metrics are in the units the data came in: degrees back to radians).
@@ -118,16 +108,19 @@ bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& opti
   for (size_t i = 0; i < info.inputs.size(); ++i) {
     r.input_units.push_back(info.InputUnit(static_cast<int>(i)));
     bool degrees = false;
-    for (const DesignInput& in : options.inputs) degrees = degrees || (in.name == info.inputs[i] && in.degrees);
+    for (const DesignInput& in : options.inputs)
+      degrees = degrees || (in.name == info.inputs[i] && in.degrees);
     r.input_degrees.push_back(degrees);
   }
-  for (size_t o = 0; o < info.outputs.size(); ++o) r.output_units.push_back(info.OutputUnit(static_cast<int>(o)));
+  for (size_t o = 0; o < info.outputs.size(); ++o)
+    r.output_units.push_back(info.OutputUnit(static_cast<int>(o)));
 
   // The parameters designed for (the run's free ones) and the plan's nuisance.
   DesignContext c;
   c.model = handle.get();
   std::map<std::string, int> index;
-  for (size_t i = 0; i < info.parameters.size(); ++i) index[info.parameters[i]] = static_cast<int>(i);
+  for (size_t i = 0; i < info.parameters.size(); ++i)
+    index[info.parameters[i]] = static_cast<int>(i);
   try {
     for (const json& p : results.at("parameters")) {
       const auto found = index.find(p.at("name").get<std::string>());
@@ -162,7 +155,8 @@ bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& opti
   {
     const Eigen::MatrixXd known = InformationOfCovariance(model.covariance);
     std::vector<int> row(model.covariance_names.size(), -1);
-    for (size_t k = 0; k < row.size(); ++k) row[k] = NameIndex(r.parameters, model.covariance_names[k]);
+    for (size_t k = 0; k < row.size(); ++k)
+      row[k] = NameIndex(r.parameters, model.covariance_names[k]);
     for (size_t a = 0; a < row.size(); ++a) {
       for (size_t b = 0; b < row.size(); ++b) {
         if (row[a] >= 0 && row[b] >= 0) c.current(row[a], row[b]) = known(a, b);
@@ -260,17 +254,17 @@ bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& opti
   r.members = options.ensemble_members > 0 ? static_cast<int>(c.members.size()) : 0;
   if (!MakeDesignLayout(info, options, 1.0, &c.layout, error)) return false;
   c.actuators = MakeActuators(info, options, c.layout);
-  if (options.settle > 0.0 &&
-      !SettleState(*handle, model.values, options.settle, c.setup.max_step, c.actuators.start,
-                   &c.x0)) {
+  if (options.settle > 0.0 && !SettleState(*handle, model.values, options.settle, c.setup.max_step,
+                                           c.actuators.start, &c.x0)) {
     *error = "design.settle: the current model diverges at the inputs' values";
     return false;
   }
   r.duration = options.duration;
   if (!(r.duration > 0.0)) {
     if (c.layout.rudder < 0 || c.layout.heading < 0) {
-      *error = "design.duration: needed (the model has no rudder 'delta' and heading 'psi' for "
-               "the default, a 20/20 zigzag's duration)";
+      *error =
+          "design.duration: needed (the model has no rudder 'delta' and heading 'psi' for "
+          "the default, a 20/20 zigzag's duration)";
       return false;
     }
     Manoeuvre zigzag = Zigzag(options, c.layout, 20 * kDesignDegree, 20 * kDesignDegree);
@@ -278,8 +272,7 @@ bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& opti
     PlannedRecord record;
     constexpr double kLongest = 7200.0;
     if (!RealizePlan(*handle, model.values, c.x0, kLongest, r.sample_time, c.setup.max_step,
-                     c.actuators,
-                     zigzag.command, &record, zigzag.Stop()) ||
+                     c.actuators, zigzag.command, &record, zigzag.Stop()) ||
         *zigzag.reversals < 4) {
       *error = "design.duration: the current model does not complete a 20/20 zigzag within " +
                std::to_string(static_cast<int>(kLongest)) + " s; give the duration in s";
@@ -315,8 +308,9 @@ bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& opti
   r.limit_violations = CheckLimits(options, c.layout, c.actuators, r.planned.record, c.box,
                                    info.outputs, r.sample_time);
   if (r.planned.box_violation > 0.0) {
-    r.notes.push_back("no plan found keeps every member's track inside the box: the best leaves it by " +
-                      std::to_string(r.planned.box_violation));
+    r.notes.push_back(
+        "no plan found keeps every member's track inside the box: the best leaves it by " +
+        std::to_string(r.planned.box_violation));
   }
   *result = std::move(r);
   return true;

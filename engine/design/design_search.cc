@@ -48,8 +48,7 @@ PlanEvaluation EvaluatePlan(const DesignContext& c, const ManoeuvreFactory& make
     const Manoeuvre manoeuvre = make();
     PlannedRecord record;
     if (!RealizePlan(*c.model, p, c.x0, c.layout.duration, c.sample_time, c.setup.max_step,
-                     c.actuators,
-                     manoeuvre.command, &record, manoeuvre.Stop())) {
+                     c.actuators, manoeuvre.command, &record, manoeuvre.Stop())) {
       if (m == 0) {
         e.error = "the plan's simulation diverges";
         return e;
@@ -98,9 +97,8 @@ bool SearchDesign(const DesignContext& c, SearchResult* result, std::string* err
     }
   }
   std::vector<double> score(starts);
-  ParallelFor(starts, c.options.threads, [&](int s) {
-    score[s] = Score(EvaluatePlan(c, plan_of(z[s]), robust));
-  });
+  ParallelFor(starts, c.options.threads,
+              [&](int s) { score[s] = Score(EvaluatePlan(c, plan_of(z[s]), robust)); });
   int evaluations = starts;
   std::vector<int> order(starts);
   for (int s = 0; s < starts; ++s) order[s] = s;

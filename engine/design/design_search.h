@@ -34,16 +34,16 @@ struct DesignContext {
   DesignLayout layout;
   Actuators actuators;
   double sample_time = 0.0;
-  int criterion_parameter = -1;  // kParameter: its row
+  int criterion_parameter = -1;                                // kParameter: its row
   std::vector<std::pair<int, std::pair<double, double>>> box;  // output -> range from start
 };
 
 struct PlanEvaluation {
   bool ok = false;
   std::string error;
-  double criterion = 0.0;  // mean over the members
-  double box_violation = 0.0;  // largest excursion beyond the box over the members' tracks
-  PlannedRecord record;        // at the estimate
+  double criterion = 0.0;       // mean over the members
+  double box_violation = 0.0;   // largest excursion beyond the box over the members' tracks
+  PlannedRecord record;         // at the estimate
   Eigen::MatrixXd information;  // the plan's, at the estimate
   // Per member, the predicted standard errors with the plan added.
   std::vector<std::vector<double>> member_std_errors;

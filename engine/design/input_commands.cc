@@ -1,4 +1,3 @@
-#include "engine/design/design_names.h"
 #include "engine/design/input_commands.h"
 
 #include <algorithm>
@@ -6,11 +5,12 @@
 #include <limits>
 #include <random>
 
+#include "engine/design/design_names.h"
+
 namespace vesselid {
 namespace {
 
 constexpr double kDesignPi = 3.14159265358979323846;
-
 
 double Hold(const DesignInput& in, double duration) {
   return in.hold > 0.0 ? in.hold : duration / 12.0;
@@ -41,7 +41,8 @@ int VariableCount(const DesignInput& in, double duration) {
 // planned).
 std::vector<double> Nominal(const DesignOptions& options, const DesignLayout& layout) {
   std::vector<double> value(layout.num_inputs, std::numeric_limits<double>::quiet_NaN());
-  for (size_t d = 0; d < options.inputs.size(); ++d) value[layout.input[d]] = options.inputs[d].value;
+  for (size_t d = 0; d < options.inputs.size(); ++d)
+    value[layout.input[d]] = options.inputs[d].value;
   return value;
 }
 
@@ -118,8 +119,9 @@ bool MakeDesignLayout(const ModelInfo& info, const DesignOptions& options, doubl
     if (in.family == DesignInput::Family::kZigzag &&
         (index != out.rudder || out.heading < 0 ||
          !(in.headings.first > 0.0 && in.headings.first <= in.headings.second))) {
-      *error = key + ": a zigzag steers the rudder 'delta' on the heading output 'psi', with "
-                     "headings: [lowest, highest] > 0";
+      *error = key +
+               ": a zigzag steers the rudder 'delta' on the heading output 'psi', with "
+               "headings: [lowest, highest] > 0";
       return false;
     }
     out.input.push_back(index);
@@ -261,8 +263,10 @@ std::vector<std::pair<std::string, Manoeuvre>> Alternatives(const DesignOptions&
                                         options.inputs[d].family != DesignInput::Family::kFixed);
   }
   if (rudder_planned && layout.heading >= 0) {
-    out.emplace_back("zigzag_10_10", Zigzag(options, layout, 10 * kDesignDegree, 10 * kDesignDegree));
-    out.emplace_back("zigzag_20_20", Zigzag(options, layout, 20 * kDesignDegree, 20 * kDesignDegree));
+    out.emplace_back("zigzag_10_10",
+                     Zigzag(options, layout, 10 * kDesignDegree, 10 * kDesignDegree));
+    out.emplace_back("zigzag_20_20",
+                     Zigzag(options, layout, 20 * kDesignDegree, 20 * kDesignDegree));
     const int delta = layout.rudder;
     out.emplace_back("spiral",
                      Holding(nominal, [duration, delta](double t, const double*, double* c, int*) {

@@ -22,7 +22,7 @@ namespace vesselid {
 
 // Where each designed input's variables lie in z, and the model's rudder and heading.
 struct DesignLayout {
-  std::vector<int> input;  // per DesignOptions::inputs: the model input index
+  std::vector<int> input;         // per DesignOptions::inputs: the model input index
   std::vector<int> first, count;  // per DesignOptions::inputs: its variables in z
   int variables = 0;
   int rudder = -1;   // the model input `delta` (alternatives' zigzags and spiral), or -1

@@ -19,8 +19,8 @@
 namespace vesselid {
 
 struct InformationSetup {
-  std::vector<int> parameters;  // model parameter indices, the rows and columns of I_eff
-  std::vector<int> nuisance;    // model parameter indices estimated per experiment
+  std::vector<int> parameters;   // model parameter indices, the rows and columns of I_eff
+  std::vector<int> nuisance;     // model parameter indices estimated per experiment
   std::vector<int> free_states;  // initial states estimated from the record
   std::vector<double> sigma;     // per model output; not finite or <= 0: not measured
   double max_step = 0.0;         // RK4 step bound (0: the sample interval)

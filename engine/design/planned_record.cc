@@ -4,11 +4,39 @@
 #include <cmath>
 
 namespace vesselid {
+namespace {
+
+// One RK4 step of length h from x (rk4.h) with inputs u0, u_mid, u1 at its start, middle and
+// end; false when the model refuses a state or the state stops being finite.
+struct Rk4Scratch {
+  std::vector<double> xs, k1, k2, k3, k4;
+  explicit Rk4Scratch(size_t n) : xs(n), k1(n), k2(n), k3(n), k4(n) {}
+};
+
+bool Rk4Advance(const ModelHandle& model, const double* u0, const double* u_mid, const double* u1,
+                const std::vector<double>& p, double h, std::vector<double>* state, Rk4Scratch* w) {
+  std::vector<double>& x = *state;
+  const size_t n = x.size();
+  if (!model.Derivative(x.data(), u0, p.data(), w->k1.data())) return false;
+  for (size_t i = 0; i < n; ++i) w->xs[i] = x[i] + 0.5 * h * w->k1[i];
+  if (!model.Derivative(w->xs.data(), u_mid, p.data(), w->k2.data())) return false;
+  for (size_t i = 0; i < n; ++i) w->xs[i] = x[i] + 0.5 * h * w->k2[i];
+  if (!model.Derivative(w->xs.data(), u_mid, p.data(), w->k3.data())) return false;
+  for (size_t i = 0; i < n; ++i) w->xs[i] = x[i] + h * w->k3[i];
+  if (!model.Derivative(w->xs.data(), u1, p.data(), w->k4.data())) return false;
+  for (size_t i = 0; i < n; ++i) {
+    x[i] += h / 6.0 * (w->k1[i] + 2.0 * (w->k2[i] + w->k3[i]) + w->k4[i]);
+    if (!std::isfinite(x[i])) return false;
+  }
+  return true;
+}
+
+}  // namespace
 
 bool RealizePlan(const ModelHandle& model, const std::vector<double>& p,
                  const std::vector<double>& x0, double duration, double sample_time,
-                 double max_step, const Actuators& a, const InputCommand& command, PlannedRecord* record,
-                 const std::function<bool()>& stop) {
+                 double max_step, const Actuators& a, const InputCommand& command,
+                 PlannedRecord* record, const std::function<bool()>& stop) {
   const ModelInfo& info = model.info();
   const int nx = static_cast<int>(info.states.size());
   const int nu = static_cast<int>(info.inputs.size());
@@ -18,7 +46,8 @@ bool RealizePlan(const ModelHandle& model, const std::vector<double>& p,
   record->inputs.resize(samples, nu);
   record->outputs.resize(samples, ny);
   record->finite = false;
-  std::vector<double> x = x0, xs(nx), k1(nx), k2(nx), k3(nx), k4(nx);
+  std::vector<double> x = x0;
+  Rk4Scratch scratch(nx);
   std::vector<double> u = a.start, u_next(nu), u_mid(nu), c(nu), y(ny);
   const int substeps =
       max_step > 0.0 ? std::max(1, static_cast<int>(std::ceil(sample_time / max_step - 1e-9))) : 1;
@@ -47,17 +76,7 @@ bool RealizePlan(const ModelHandle& model, const std::vector<double>& p,
         u_mid[i] = u[i] + 0.5 * (a0 + a1) * (u_next[i] - u[i]);
         u1[i] = u[i] + a1 * (u_next[i] - u[i]);
       }
-      finite = model.Derivative(x.data(), u0.data(), p.data(), k1.data());
-      for (int i = 0; i < nx; ++i) xs[i] = x[i] + 0.5 * h * k1[i];
-      finite = finite && model.Derivative(xs.data(), u_mid.data(), p.data(), k2.data());
-      for (int i = 0; i < nx; ++i) xs[i] = x[i] + 0.5 * h * k2[i];
-      finite = finite && model.Derivative(xs.data(), u_mid.data(), p.data(), k3.data());
-      for (int i = 0; i < nx; ++i) xs[i] = x[i] + h * k3[i];
-      finite = finite && model.Derivative(xs.data(), u1.data(), p.data(), k4.data());
-      for (int i = 0; i < nx && finite; ++i) {
-        x[i] += h / 6.0 * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
-        finite = std::isfinite(x[i]);
-      }
+      finite = Rk4Advance(model, u0.data(), u_mid.data(), u1.data(), p, h, &x, &scratch);
     }
     if (!finite) break;
     u = u_next;
@@ -72,23 +91,11 @@ bool RealizePlan(const ModelHandle& model, const std::vector<double>& p,
 
 bool SettleState(const ModelHandle& model, const std::vector<double>& p, double duration,
                  double max_step, const std::vector<double>& u, std::vector<double>* x) {
-  const size_t nx = x->size();
   const int steps = std::max(1, static_cast<int>(std::ceil(duration / std::max(max_step, 1e-3))));
   const double h = duration / steps;
-  std::vector<double> xs(nx), k1(nx), k2(nx), k3(nx), k4(nx);
-  std::vector<double>& s = *x;
+  Rk4Scratch scratch(x->size());
   for (int k = 0; k < steps; ++k) {
-    if (!model.Derivative(s.data(), u.data(), p.data(), k1.data())) return false;
-    for (size_t i = 0; i < nx; ++i) xs[i] = s[i] + 0.5 * h * k1[i];
-    if (!model.Derivative(xs.data(), u.data(), p.data(), k2.data())) return false;
-    for (size_t i = 0; i < nx; ++i) xs[i] = s[i] + 0.5 * h * k2[i];
-    if (!model.Derivative(xs.data(), u.data(), p.data(), k3.data())) return false;
-    for (size_t i = 0; i < nx; ++i) xs[i] = s[i] + h * k3[i];
-    if (!model.Derivative(xs.data(), u.data(), p.data(), k4.data())) return false;
-    for (size_t i = 0; i < nx; ++i) {
-      s[i] += h / 6.0 * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
-      if (!std::isfinite(s[i])) return false;
-    }
+    if (!Rk4Advance(model, u.data(), u.data(), u.data(), p, h, x, &scratch)) return false;
   }
   return true;
 }

@@ -41,17 +41,17 @@ std::vector<ExportedVariable> VariablesFromJson(const json& list) {
   return variables;
 }
 
+}  // namespace
+
 // The last output-error stage (one with estimates and a model): the model the final values
 // were estimated with.
-const json* LastModelStage(const json& results) {
+const nlohmann::json* LastModelStage(const nlohmann::json& results) {
   const json* last = nullptr;
   for (const json& stage : results.at("stages")) {
     if (stage.contains("estimates") && stage.contains("model")) last = &stage;
   }
   return last;
 }
-
-}  // namespace
 
 std::vector<std::vector<double>> DrawEnsemble(const ExportedModel& model, int members,
                                               unsigned seed) {

@@ -62,6 +62,10 @@ bool ReadExportedModel(const std::string& out_folder, const ModelRegistry& regis
                        unsigned seed, ExportedModel* model, std::string* error,
                        nlohmann::json* results = nullptr);
 
+// The last output-error stage of a results.json (one with estimates and a model), or null:
+// the stage the run's final model was estimated with.
+const nlohmann::json* LastModelStage(const nlohmann::json& results);
+
 // model.json and back.
 nlohmann::json ExportedModelToJson(const ExportedModel& model);
 bool ExportedModelFromJson(const nlohmann::json& j, ExportedModel* model, std::string* error);

@@ -432,8 +432,8 @@ bool Simulate(const Rhs& rhs, const CampaignOptions& options, const std::string&
   if (!options.planned_t.empty()) {  // one segment, the plan: u_m, u_d through its samples
     Segment s;
     s.begin = std::lround(options.lead_in / options.step);
-    s.end = s.begin + std::lround((options.planned_t.back() - options.planned_t.front()) /
-                                  options.step) + 1;
+    s.end = s.begin +
+            std::lround((options.planned_t.back() - options.planned_t.front()) / options.step) + 1;
     for (size_t k = 0; k < options.planned_t.size(); ++k) {
       const double t = options.planned_t[k] - options.planned_t.front();
       s.mean.t.push_back(t);
@@ -441,13 +441,12 @@ bool Simulate(const Rhs& rhs, const CampaignOptions& options, const std::string&
       s.mean.value.push_back(0.5 * (options.planned_left[k] + options.planned_right[k]));
       s.difference.value.push_back(0.5 * (options.planned_left[k] - options.planned_right[k]));
     }
-    if (!voyage.Hold(s.begin, s.mean(0.0), s.difference(0.0), error) ||
-        !voyage.Run(0, s, error)) {
+    if (!voyage.Hold(s.begin, s.mean(0.0), s.difference(0.0), error) || !voyage.Run(0, s, error)) {
       return false;
     }
     *out = voyage.Release();
-    out->source = "input_gain planned experiment (" + vessel + "), seed " +
-                  std::to_string(options.seed);
+    out->source =
+        "input_gain planned experiment (" + vessel + "), seed " + std::to_string(options.seed);
     return true;
   }
   const std::vector<Segment> segments = PlanSegments(options, random);

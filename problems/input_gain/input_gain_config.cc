@@ -161,13 +161,16 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
     reader.CheckMap(planned, key, {"file", "lead_in_s"});
     if (!planned["file"]) reader.Fail(planned, key, "missing key 'file'");
     std::string plan = reader.String(planned["file"], Child(key, "file"));
-    if (fs::path(plan).is_relative()) plan = (fs::path(reader.file()).parent_path() / plan).string();
+    if (fs::path(plan).is_relative())
+      plan = (fs::path(reader.file()).parent_path() / plan).string();
     reader.Read(planned, key, "lead_in_s", &options.lead_in);
     Trajectory table;
     std::string message;
-    if (!ReadTrajectoryCsv(plan, &table, &message)) reader.Fail(planned["file"], Child(key, "file"), message);
+    if (!ReadTrajectoryCsv(plan, &table, &message))
+      reader.Fail(planned["file"], Child(key, "file"), message);
     const int left = table.Find("u_L"), right = table.Find("u_R");
-    if (left < 0 || right < 0) reader.Fail(planned["file"], Child(key, "file"), plan + ": needs columns u_L and u_R");
+    if (left < 0 || right < 0)
+      reader.Fail(planned["file"], Child(key, "file"), plan + ": needs columns u_L and u_R");
     options.planned_t = table.t;
     options.planned_left = table.columns[left];
     options.planned_right = table.columns[right];

@@ -57,7 +57,8 @@ void ReadPlannedCommand(const YamlReader& reader, const YAML::Node& node, const 
   reader.Read(node, path, "column", &column);
   Trajectory table;
   std::string error;
-  if (!ReadTrajectoryCsv(file, &table, &error)) reader.Fail(node["file"], Child(path, "file"), error);
+  if (!ReadTrajectoryCsv(file, &table, &error))
+    reader.Fail(node["file"], Child(path, "file"), error);
   const int c = table.Find(column);
   if (c < 0) reader.Fail(node, Child(path, "column"), file + " has no column '" + column + "'");
   const bool degrees = column.size() > 4 && column.compare(column.size() - 4, 4, "_deg") == 0;
@@ -72,10 +73,9 @@ void ReadPlannedCommand(const YamlReader& reader, const YAML::Node& node, const 
 
 Excitation ReadExcitation(const YamlReader& reader, const YAML::Node& node,
                           const std::string& path) {
-  reader.CheckMap(
-      node, path,
-      {"type", "amplitude_deg", "period", "periods", "rudder_deg", "heading_deg", "first", "file",
-       "column"});
+  reader.CheckMap(node, path,
+                  {"type", "amplitude_deg", "period", "periods", "rudder_deg", "heading_deg",
+                   "first", "file", "column"});
   Excitation e;
   const std::string type = node["type"] ? reader.String(node["type"], Child(path, "type")) : "sine";
   if (type == "sine") {

@@ -134,7 +134,8 @@ TEST(DesignLimits, EveryFamilyKeepsItsLimits) {
     const Actuators actuators = MakeActuators(n.model->info(), options, layout);
     for (int trial = 0; trial < 5; ++trial) {
       std::vector<double> z(layout.variables);
-      for (int i = 0; i < layout.variables; ++i) z[i] = std::fmod(0.37 * (i + 1) * (trial + 2), 1.0);
+      for (int i = 0; i < layout.variables; ++i)
+        z[i] = std::fmod(0.37 * (i + 1) * (trial + 2), 1.0);
       PlannedRecord record;
       ASSERT_TRUE(RealizePlan(*n.model, n.p, {0, 0, 0}, 300.0, 0.5, 0.5, actuators,
                               CommandOf(options, layout, z).command, &record));
@@ -142,7 +143,8 @@ TEST(DesignLimits, EveryFamilyKeepsItsLimits) {
       for (int k = 0; k < record.inputs.rows(); ++k) {
         EXPECT_LE(std::abs(record.inputs(k, 0)), 35 * kDeg + 1e-12);
         if (k > 0) {
-          EXPECT_LE(std::abs(record.inputs(k, 0) - record.inputs(k - 1, 0)), 2.3 * kDeg * 0.5 + 1e-12);
+          EXPECT_LE(std::abs(record.inputs(k, 0) - record.inputs(k - 1, 0)),
+                    2.3 * kDeg * 0.5 + 1e-12);
         }
       }
       EXPECT_NEAR(record.time.back(), 300.0, 1e-9);
@@ -192,13 +194,13 @@ TEST(DesignSearch, KeepsTheBox) {
   for (int k = 0; k < result.best.record.outputs.rows(); ++k) {
     EXPECT_LE(std::abs(result.best.record.outputs(k, 0)), 0.3 + 1e-6);
   }
-  EXPECT_TRUE(CheckLimits(c.options, c.layout, c.actuators, result.best.record, c.box,
-                          {"psi", "r"}, 0.5)
-                  .empty());
+  EXPECT_TRUE(
+      CheckLimits(c.options, c.layout, c.actuators, result.best.record, c.box, {"psi", "r"}, 0.5)
+          .empty());
   // Well above the quiet start that keeps the box by doing nothing.
   const std::vector<double> quiet = QuietDesign(c.options, c.layout);
-  const PlanEvaluation nothing =
-      EvaluatePlan(c, [&] { return CommandOf(c.options, c.layout, quiet); }, false);
+  const PlanEvaluation nothing = EvaluatePlan(
+      c, [&] { return CommandOf(c.options, c.layout, quiet); }, false);
   EXPECT_LT(result.best.criterion, nothing.criterion - 1.0);
 }
 
