@@ -220,7 +220,7 @@ Figure StdErrorFigure(const DesignResult& r) {
   std::ostringstream data;
   for (size_t i = 0; i < r.parameters.size(); ++i) {
     const double value = std::abs(r.values[i]) > 0.0 ? std::abs(r.values[i]) : 1.0;
-    data << GnuplotString(r.parameters[i]) << " "
+    data << '"' << r.parameters[i] << "\" "
          << GnuplotNumber(std::isfinite(r.current_std_errors[i]) ? r.current_std_errors[i] / value
                                                                  : NAN);
     for (const PlanSummary* p : plans) {
