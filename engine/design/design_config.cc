@@ -119,14 +119,6 @@ bool LoadDesign(const std::string& path, DesignOptions* options, std::string* er
         }
       }
     }
-    const YAML::Node inputs = d["inputs"];
-    if (!inputs || !inputs.IsMap() || inputs.size() == 0) {
-      reader.Fail(inputs ? inputs : d, "design.inputs", "a map of the model's inputs to plan");
-    }
-    for (const auto& item : inputs) {
-      const std::string name = reader.KeyName(item.first, "design.inputs");
-      out.inputs.push_back(ReadInput(reader, item.second, name, "design.inputs." + name));
-    }
     if (const YAML::Node box = d["box"]) {
       if (!box.IsMap()) reader.Fail(box, "design.box", "a map of outputs to [lower, upper]");
       for (const auto& item : box) {
@@ -175,6 +167,15 @@ bool LoadDesign(const std::string& path, DesignOptions* options, std::string* er
       reader.CheckMap(r, "design.robust", {"members"});
       reader.Read(r, "design.robust", "members", &out.ensemble_members);
       if (out.ensemble_members < 2) reader.Fail(r, "design.robust.members", "must be >= 2");
+    }
+    // The inputs last: a section's own keys are checked whatever the inputs hold.
+    const YAML::Node inputs = d["inputs"];
+    if (!inputs || !inputs.IsMap() || inputs.size() == 0) {
+      reader.Fail(inputs ? inputs : d, "design.inputs", "a map of the model's inputs to plan");
+    }
+    for (const auto& item : inputs) {
+      const std::string name = reader.KeyName(item.first, "design.inputs");
+      out.inputs.push_back(ReadInput(reader, item.second, name, "design.inputs." + name));
     }
     *options = std::move(out);
     return true;
