@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -279,8 +280,10 @@ bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& opti
       return false;
     }
     r.duration = record.time.back();
-    r.notes.push_back("duration: the 20/20 zigzag's to its fourth rudder reversal, " +
-                      std::to_string(r.duration) + " s");
+    char note[120];
+    std::snprintf(note, sizeof(note),
+                  "duration: the 20/20 zigzag's to its fourth rudder reversal, %.1f s", r.duration);
+    r.notes.push_back(note);
   }
   if (!MakeDesignLayout(info, options, r.duration, &c.layout, error)) return false;
 

@@ -6,6 +6,7 @@ gear and rudder noise, 3 seeds here; tests/benchmarks/design/closed_loop.py runs
 keeps its limits."""
 import json
 import os
+import subprocess
 import sys
 
 import numpy as np
@@ -74,3 +75,10 @@ def test_python_design_returns_the_plan(cargo, tmp_path):
     config["design"] = dict(config["design"], criterion="F")
     with pytest.raises(vesselid.ConfigError, match="design.criterion"):
         vesselid.design(config, os.path.join(work, "run"))
+
+
+def test_example_script_plans(tmp_path):
+    script = os.path.join(SOURCE, "examples", "python", "plan_next_experiment.py")
+    done = subprocess.run(["/usr/bin/python3", script, str(tmp_path)], cwd=SOURCE,
+                          capture_output=True, text=True, check=True)
+    assert "shrinks" in done.stdout and "delta_deg" in done.stdout, done.stdout
