@@ -311,9 +311,12 @@ bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& opti
   r.limit_violations = CheckLimits(options, c.layout, c.actuators, r.planned.record, c.box,
                                    info.outputs, r.sample_time);
   if (r.planned.box_violation > 0.0) {
-    r.notes.push_back(
-        "no plan found keeps every member's track inside the box: the best leaves it by " +
-        std::to_string(r.planned.box_violation));
+    char note[160];
+    std::snprintf(note, sizeof(note),
+                  "no plan found keeps every member's track inside the box: the best leaves it "
+                  "by %.4g",
+                  r.planned.box_violation);
+    r.notes.push_back(note);
   }
   *result = std::move(r);
   return true;
