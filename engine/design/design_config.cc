@@ -63,9 +63,8 @@ DesignInput ReadInput(const YamlReader& reader, const YAML::Node& node, const st
       reader.Fail(node["headings"], Child(key, "headings"),
                   "[lowest, highest], 0 < lowest <= highest");
     }
-    // Headings are degrees unless the input's values are radians too.
-    const double heading_unit = in.degrees || !node["headings"] ? kDesignDegree : 1.0;
-    in.headings = {h[0] * heading_unit, h[1] * heading_unit};
+    // Switch headings in degrees, as a zigzag is named (10/10, 20/20), whatever the rudder's unit.
+    in.headings = {h[0] * kDesignDegree, h[1] * kDesignDegree};
   }
   in.lower *= unit;
   in.upper *= unit;

@@ -18,7 +18,8 @@
 //
 // An input's keys: family (steps | multisine | zigzag | fixed), lower, upper, rate (per s,
 // 0: none), value (when not excited; default 0, or the middle of a range without 0), hold
-// (steps, s), periods (multisine, s), headings (zigzag, [lowest, highest]), degrees.
+// (steps, s), periods (multisine, s), headings (zigzag, [lowest, highest] in degrees, default
+// [5, 30]), degrees.
 #pragma once
 
 #include <string>

@@ -29,7 +29,7 @@ struct DesignInput {
   double value = 0.0;               // the input when not excited (fixed: always), model units
   double hold = 0.0;                // steps: s per level (0: duration / 12)
   std::vector<double> periods;      // multisine, s (empty: duration / {1, 2, 3, 5, 8, 13})
-  std::pair<double, double> headings = {0.0, 0.0};  // zigzag: psi_z range, rad
+  std::pair<double, double> headings = {0.0, 0.0};  // zigzag: psi_z range, rad (config: deg)
   // The values in the config and the planned CSV are in degrees (the model's are radians).
   bool degrees = false;
 };

@@ -393,6 +393,12 @@ std::string DesignHtml(const DesignResult& r) {
 
 bool WriteDesign(const DesignResult& r, std::string out_dir, std::string* error) {
   if (out_dir.empty()) out_dir = (std::filesystem::path(r.run) / "design").string();
+  std::error_code same_error;
+  if (std::filesystem::equivalent(out_dir, r.run, same_error)) {
+    *error = "--out " + out_dir + ": the run's own folder (its report.html would be replaced); "
+             "leave --out out for <run>/design";
+    return false;
+  }
   const std::string json_text = DesignToJson(r).dump(2) + "\n";
   const std::string text = DesignText(r), csv = PlannedInputCsv(r), predicted = PredictedCsv(r);
   const std::string html = DesignHtml(r);

@@ -71,6 +71,9 @@ def test_python_design_returns_the_plan(cargo, tmp_path):
     assert {"psi", "r"} <= set(result["predicted"].columns)
     assert "Predicted standard errors" in result["text"]
     assert (tmp_path / "plan" / "design.json").exists()
+    # The run's own folder is refused (its report.html is the run's).
+    with pytest.raises(vesselid.RunError, match="own folder"):
+        vesselid.design(cfg, os.path.join(work, "run"), out=os.path.join(work, "run"))
     # A bad section names its key.
     config["design"] = dict(config["design"], criterion="F")
     with pytest.raises(vesselid.ConfigError, match="design.criterion"):
