@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 
+#include "engine/base/json_number.h"
 #include "engine/design/design_criterion.h"
 #include "engine/design/design_limits.h"
 #include "engine/design/design_names.h"
@@ -21,8 +22,6 @@ namespace {
 using json = nlohmann::json;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-double Number(const json& j) { return j.is_number() ? j.get<double>() : std::nan(""); }
-
 // Per model output: the RMS residual of the stage's fit pooled over its experiments, in the
 // model's units (the metrics are in the units the data came in: degrees back to radians).
 std::vector<double> FitNoise(const json* stage, const ModelInfo& info) {
@@ -30,8 +29,8 @@ std::vector<double> FitNoise(const json* stage, const ModelInfo& info) {
   if (stage != nullptr && stage->contains("fit")) {
     for (const json& m : stage->at("fit").value("metrics", json::array())) {
       const int o = NameIndex(info.outputs, m.value("output", ""));
-      const double rmse = Number(m.value("rmse", json()));
-      const double n = Number(m.value("samples", json()));
+      const double rmse = NumberOr(m.value("rmse", json()), std::nan(""));
+      const double n = NumberOr(m.value("samples", json()), std::nan(""));
       if (o < 0 || !std::isfinite(rmse) || !(n > 0)) continue;
       const std::string unit = m.value("unit", "");
       const double scale = unit == "deg" || unit == "deg/s" ? kDesignDegree : 1.0;
@@ -182,7 +181,7 @@ bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& opti
     return false;
   }
   c.sample_time = r.sample_time;
-  c.setup.max_step = stage != nullptr ? Number(stage->value("integration_step", json())) : 0.0;
+  c.setup.max_step = stage != nullptr ? NumberOr(stage->value("integration_step", json()), 0.0) : 0.0;
   if (!(c.setup.max_step > 0.0)) c.setup.max_step = model.max_step;
   if (!(c.setup.max_step > 0.0)) c.setup.max_step = r.sample_time;
   const std::vector<double> fit_noise = FitNoise(stage, info);
@@ -293,9 +292,9 @@ bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& opti
   r.evaluations = search.evaluations;
   r.algorithm = search.algorithm;
   r.planned = Summarise("planned", std::move(search.best), r);
-  for (auto& [name, manoeuvre] : Alternatives(options, c.layout)) {
-    (void)manoeuvre;  // made again per simulation: a manoeuvre keeps its own state
-    const std::string label = name;
+  // Each alternative made again per simulation: a manoeuvre keeps its own state.
+  for (const auto& alternative : Alternatives(options, c.layout)) {
+    const std::string label = alternative.first;
     PlanEvaluation e = EvaluatePlan(
         c,
         [&options, &c, label]() {
@@ -305,7 +304,7 @@ bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& opti
           return Manoeuvre();
         },
         true);
-    r.alternatives.push_back(Summarise(name, std::move(e), r));
+    r.alternatives.push_back(Summarise(label, std::move(e), r));
   }
   // Every plan against the limits it was made within.
   r.limit_violations = CheckLimits(options, c.layout, c.actuators, r.planned.record, c.box,

@@ -53,8 +53,7 @@ bool RealizePlan(const ModelHandle& model, const std::vector<double>& p,
       max_step > 0.0 ? std::max(1, static_cast<int>(std::ceil(sample_time / max_step - 1e-9))) : 1;
   const double h = sample_time / substeps;
   std::vector<double> u0(nu), u1(nu);
-  int k = 0;
-  for (; k < samples; ++k) {
+  for (int k = 0; k < samples; ++k) {
     const double t = k * sample_time;
     model.Output(x.data(), u.data(), p.data(), y.data());
     record->time.push_back(t);
