@@ -181,7 +181,8 @@ bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& opti
     return false;
   }
   c.sample_time = r.sample_time;
-  c.setup.max_step = stage != nullptr ? NumberOr(stage->value("integration_step", json()), 0.0) : 0.0;
+  c.setup.max_step =
+      stage != nullptr ? NumberOr(stage->value("integration_step", json()), 0.0) : 0.0;
   if (!(c.setup.max_step > 0.0)) c.setup.max_step = model.max_step;
   if (!(c.setup.max_step > 0.0)) c.setup.max_step = r.sample_time;
   const std::vector<double> fit_noise = FitNoise(stage, info);
