@@ -13,7 +13,7 @@
 #include "problems/input_gain/catamaran.h"
 
 namespace vesselid::input_gain {
-namespace {
+namespace catamaran_campaign_test {
 
 struct Rhs {
   static constexpr int kNumStates = kCatamaranStates;
@@ -281,5 +281,5 @@ TEST_F(Campaign, CsvRoundTripKeepsTimes) {
   std::filesystem::remove(path);
 }
 
-}  // namespace
+}  // namespace catamaran_campaign_test
 }  // namespace vesselid::input_gain

@@ -13,7 +13,7 @@
 #include "problems/eriksen2dof/craft.h"
 
 namespace vesselid::eriksen2dof {
-namespace {
+namespace eriksen_craft_test {
 
 CraftSteadyState Steady(const CraftParameters& p, double tau_m, double tau_delta) {
   CraftSteadyState s;
@@ -302,5 +302,5 @@ TEST(EriksenCampaign, RejectsBadOptions) {
   EXPECT_FALSE(SimulateStepCampaign(CraftParameters(), o, &t, &error));
 }
 
-}  // namespace
+}  // namespace eriksen_craft_test
 }  // namespace vesselid::eriksen2dof

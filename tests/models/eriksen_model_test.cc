@@ -8,7 +8,7 @@
 #include "tests/support/eriksen_data.h"
 
 namespace vesselid {
-namespace {
+namespace eriksen_model_test {
 
 class EriksenModel : public ::testing::Test {
  protected:
@@ -38,5 +38,5 @@ TEST_F(EriksenModel, InadmissibleInertiaFailsTheSimulation) {
   EXPECT_TRUE(model_->Derivative(x, u, truth_.data(), xdot));
 }
 
-}  // namespace
+}  // namespace eriksen_model_test
 }  // namespace vesselid

@@ -17,7 +17,7 @@
 #include "problems/registry.h"
 
 namespace vesselid {
-namespace {
+namespace erunsal_identifiability_test {
 
 namespace fs = std::filesystem;
 
@@ -165,5 +165,5 @@ TEST_F(Identifiability, AirDragIsCollinearWithQuadraticDampingInStillAir) {
   EXPECT_FALSE(Final(still_air, "Xu").undetermined);
 }
 
-}  // namespace
+}  // namespace erunsal_identifiability_test
 }  // namespace vesselid

@@ -10,7 +10,7 @@
 #include "tests/support/erunsal_data.h"
 
 namespace vesselid::erunsal6dof {
-namespace {
+namespace erunsal_model_test {
 
 // The open-loop simulator that makes the campaigns (its own RK4; the battery checks the
 // identification's).
@@ -129,5 +129,5 @@ TEST(ErunsalModel, ReferenceVesselBehaviour) {
   EXPECT_NEAR((crossings.back() - crossings.front()) / (crossings.size() - 1), 1.21, 0.03);
 }
 
-}  // namespace
+}  // namespace erunsal_model_test
 }  // namespace vesselid::erunsal6dof

@@ -16,7 +16,7 @@
 #include "problems/registry.h"
 
 namespace vesselid {
-namespace {
+namespace field_log_test {
 
 using namespace input_gain;
 
@@ -200,5 +200,5 @@ TEST(FieldLog, ConfigRefusalsNameFileLineAndKey) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace field_log_test
 }  // namespace vesselid

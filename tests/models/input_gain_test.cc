@@ -13,7 +13,7 @@
 #include "tests/support/input_gain_data.h"
 
 namespace vesselid {
-namespace {
+namespace input_gain_test {
 
 using testing::LumpedGrid;
 using testing::LumpedRun;
@@ -239,11 +239,11 @@ TEST(NomotoLeastSquares, FirstOrderAndNorrbinRecoverExactDataExactly) {
   }
 }
 
-}  // namespace
+}  // namespace input_gain_test
 }  // namespace vesselid
 
 namespace vesselid {
-namespace {
+namespace input_gain_test {
 
 // Passive damping judged over the speeds the records reach: the twin-thruster USV's surge
 // damping -0.815 u + 0.0044 |u|u dissipates below |u| = 185 m/s, so a campaign reaching 3 m/s
@@ -356,5 +356,5 @@ TEST(InputGainStructure, DeadZoneWithAWrongWayBendIsDoubted) {
   EXPECT_TRUE(quadratic->StructureDoubts(q.data(), EmptyOperatingRange(6, 2).data()).empty());
 }
 
-}  // namespace
+}  // namespace input_gain_test
 }  // namespace vesselid

@@ -10,7 +10,7 @@
 #include "tests/support/jacobian_check.h"
 
 namespace vesselid::testing {
-namespace {
+namespace model_battery_test {
 
 class ModelBattery : public ::testing::TestWithParam<ModelVariant> {
  protected:
@@ -84,5 +84,5 @@ INSTANTIATE_TEST_SUITE_P(EveryModel, ModelBattery, ::testing::ValuesIn(ModelVari
                            return info.param.name;
                          });
 
-}  // namespace
+}  // namespace model_battery_test
 }  // namespace vesselid::testing

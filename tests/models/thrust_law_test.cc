@@ -15,7 +15,7 @@
 #include "problems/registry.h"
 
 namespace vesselid {
-namespace {
+namespace thrust_law_test {
 
 namespace fs = std::filesystem;
 using input_gain::ThrustLaw;
@@ -144,5 +144,5 @@ TEST_F(ThrustConfig, RefusalsNameFileLineAndKey) {
   EXPECT_NE(error.find("config.yaml:"), std::string::npos) << error;
 }
 
-}  // namespace
+}  // namespace thrust_law_test
 }  // namespace vesselid

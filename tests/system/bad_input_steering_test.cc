@@ -7,7 +7,7 @@
 #include "tests/support/bad_input_fixture.h"
 
 namespace vesselid {
-namespace {
+namespace bad_input_steering_test {
 
 using testing::BadInput;
 
@@ -74,5 +74,5 @@ TEST_F(BadSpeedInput, LengthOfAModelWithoutSpeed) {
   ExpectRejected("config\\.yaml:1: model\\.length: only the n1-form models");
 }
 
-}  // namespace
+}  // namespace bad_input_steering_test
 }  // namespace vesselid

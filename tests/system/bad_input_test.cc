@@ -12,7 +12,7 @@
 #include "tests/support/bad_input_fixture.h"
 
 namespace vesselid {
-namespace {
+namespace bad_input_test {
 
 namespace fs = std::filesystem;
 using testing::BadInput;
@@ -165,11 +165,11 @@ TEST_F(BadInput, DivergentSimulationFailsCleanly) {
   ExpectRejected("stage 'fit': .*diverges");
 }
 
-}  // namespace
+}  // namespace bad_input_test
 }  // namespace vesselid
 
 namespace vesselid {
-namespace {
+namespace bad_input_test {
 
 // A least-squares stage in front of the good config's output-error stage.
 const char* kLeastSquaresStage = R"(stages:
@@ -301,5 +301,5 @@ TEST_F(BadInput, HeadingJumpTooLargeToUnwrap) {
       "list 'psi' in the experiment's wrap:");
 }
 
-}  // namespace
+}  // namespace bad_input_test
 }  // namespace vesselid

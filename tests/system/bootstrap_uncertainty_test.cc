@@ -16,7 +16,7 @@
 #include "tests/support/nomoto_data.h"
 
 namespace vesselid {
-namespace {
+namespace bootstrap_uncertainty_test {
 
 constexpr double kDegree = M_PI / 180.0;
 constexpr int kK = 3;  // K, the gain the integrated rudder noise blurs most
@@ -142,5 +142,5 @@ TEST(BootstrapUncertainty, FewExperimentsAreRefusedAndTheStageKeepsItsFigures) {
   EXPECT_TRUE(refused);
 }
 
-}  // namespace
+}  // namespace bootstrap_uncertainty_test
 }  // namespace vesselid

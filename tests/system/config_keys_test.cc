@@ -29,7 +29,7 @@
 #include "problems/registry.h"
 
 namespace vesselid {
-namespace {
+namespace config_keys_test {
 
 namespace fs = std::filesystem;
 
@@ -678,5 +678,5 @@ TEST(ConfigKeysDocumented, EveryDocumentedKeyHasACase) {
 
 INSTANTIATE_TEST_SUITE_P(Reference, ConfigKeys, ::testing::ValuesIn(kCases), CaseName);
 
-}  // namespace
+}  // namespace config_keys_test
 }  // namespace vesselid

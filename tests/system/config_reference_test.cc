@@ -20,7 +20,7 @@
 #include "yaml-cpp/yaml.h"
 
 namespace vesselid {
-namespace {
+namespace config_reference_test {
 
 constexpr char kProbe[] = "zz_probe";
 
@@ -280,5 +280,5 @@ TEST(ConfigReference, NamesEveryKeyTheReadersAcceptAndNoOther) {
 
 }
 
-}  // namespace
+}  // namespace config_reference_test
 }  // namespace vesselid

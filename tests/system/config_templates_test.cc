@@ -14,7 +14,7 @@
 #include "problems/registry.h"
 
 namespace vesselid {
-namespace {
+namespace config_templates_test {
 
 namespace fs = std::filesystem;
 
@@ -233,5 +233,5 @@ TEST_F(ConfigTemplates, ErrorsNameTheLineWhereTheTextIs) {
             std::string::npos);
 }
 
-}  // namespace
+}  // namespace config_templates_test
 }  // namespace vesselid

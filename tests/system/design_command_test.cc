@@ -13,7 +13,7 @@
 #include "tests/support/run_command.h"
 
 namespace vesselid {
-namespace {
+namespace design_command_test {
 
 namespace fs = std::filesystem;
 
@@ -77,5 +77,5 @@ TEST(DesignCommand, BadSectionIsRefusedNamingFileLineAndKeyWithNothingWritten) {
   EXPECT_FALSE(fs::exists(dir / "run" / "design")) << outcome.output;
 }
 
-}  // namespace
+}  // namespace design_command_test
 }  // namespace vesselid

@@ -14,7 +14,7 @@
 #include "tests/support/study_cli.h"
 
 namespace vesselid {
-namespace {
+namespace divergence_test {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -176,5 +176,5 @@ TEST_F(DivergenceTest, StudiesRecordDivergingCasesAndGoOn) {
   EXPECT_EQ(usable_runs, 3) << study["monte_carlo"].dump();
 }
 
-}  // namespace
+}  // namespace divergence_test
 }  // namespace vesselid

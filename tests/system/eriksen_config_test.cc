@@ -12,7 +12,7 @@
 #include "nlohmann/json.hpp"
 
 namespace vesselid {
-namespace {
+namespace eriksen_config_test {
 
 namespace fs = std::filesystem;
 
@@ -91,5 +91,5 @@ TEST(EriksenConfig, RegressionThenRefinementImprovesTheValidationFit) {
   fs::remove_all(out);
 }
 
-}  // namespace
+}  // namespace eriksen_config_test
 }  // namespace vesselid

@@ -15,7 +15,7 @@
 #include "tests/support/shipped_config.h"
 
 namespace vesselid {
-namespace {
+namespace erunsal_hierarchy_test {
 
 using nlohmann::json;
 
@@ -116,5 +116,5 @@ TEST(ErunsalHierarchy, ShippedConfigEndToEnd) {
   }
 }
 
-}  // namespace
+}  // namespace erunsal_hierarchy_test
 }  // namespace vesselid

@@ -26,7 +26,7 @@
 #include "problems/registry.h"
 
 namespace vesselid {
-namespace {
+namespace held_out_parameters_test {
 
 namespace fs = std::filesystem;
 
@@ -367,5 +367,5 @@ TEST_F(HeldOutParametersTest, FinalValidationReusesTheStagesWhenItIsTheSame) {
   }
 }
 
-}  // namespace
+}  // namespace held_out_parameters_test
 }  // namespace vesselid

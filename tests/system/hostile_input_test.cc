@@ -19,7 +19,7 @@
 #include "tests/support/bad_input_fixture.h"
 
 namespace vesselid {
-namespace {
+namespace hostile_input_test {
 
 namespace fs = std::filesystem;
 using testing::BadInput;
@@ -586,5 +586,5 @@ TEST_F(HostileInput, FailedWriteLeavesNoTemporaryFile) {
   }
 }
 
-}  // namespace
+}  // namespace hostile_input_test
 }  // namespace vesselid

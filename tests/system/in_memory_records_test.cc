@@ -29,7 +29,7 @@
 #include "yaml-cpp/yaml.h"
 
 namespace vesselid {
-namespace {
+namespace in_memory_records_test {
 
 using nlohmann::json;
 using testing::DropTimes;
@@ -215,5 +215,5 @@ TEST(TrajectoryFromTable, BadTablesAreRefusedByRowAndColumn) {
             "experiment 'x' (in memory): 4 rows x 3 columns is more than limits.data_values (10)");
 }
 
-}  // namespace
+}  // namespace in_memory_records_test
 }  // namespace vesselid

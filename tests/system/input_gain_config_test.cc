@@ -11,7 +11,7 @@
 #include "tests/support/shipped_config.h"
 
 namespace vesselid {
-namespace {
+namespace input_gain_config_test {
 
 // (stage, prediction) -> state -> metrics
 using Metrics = std::map<std::string, nlohmann::json>;
@@ -46,5 +46,5 @@ TEST(InputGainConfigs, StaticLeastSquaresThenRefinement) { CheckRun("input_gain_
 
 TEST(InputGainConfigs, DynamicLeastSquaresThenRefinement) { CheckRun("input_gain_dynamic"); }
 
-}  // namespace
+}  // namespace input_gain_config_test
 }  // namespace vesselid

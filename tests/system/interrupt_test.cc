@@ -20,7 +20,7 @@
 extern char** environ;
 
 namespace vesselid {
-namespace {
+namespace interrupt_test {
 
 namespace fs = std::filesystem;
 using testing::BadInput;
@@ -167,5 +167,5 @@ TEST_F(Interrupt, LateWriteFailureLeavesThePreviousSet) {
   EXPECT_FALSE(fs::exists(out / ".vesselid-staging"));
 }
 
-}  // namespace
+}  // namespace interrupt_test
 }  // namespace vesselid

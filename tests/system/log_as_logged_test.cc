@@ -21,7 +21,7 @@
 #include "tests/support/run_command.h"
 
 namespace vesselid {
-namespace {
+namespace log_as_logged_test {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -197,5 +197,5 @@ TEST_F(LogAsLogged, MangledCellsAboveTheShareRefuseTheFileNamingTheFirst) {
   EXPECT_EQ(run.status, 0) << run.output;
 }
 
-}  // namespace
+}  // namespace log_as_logged_test
 }  // namespace vesselid

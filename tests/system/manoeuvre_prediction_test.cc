@@ -20,7 +20,7 @@
 #include "tests/support/run_command.h"
 
 namespace vesselid {
-namespace {
+namespace manoeuvre_prediction_test {
 
 namespace fs = std::filesystem;
 
@@ -176,5 +176,5 @@ TEST(ManoeuvrePrediction, SaysWhatItCannotPredict) {
   EXPECT_NE(error.find("rudder input 'delta'"), std::string::npos) << error;
 }
 
-}  // namespace
+}  // namespace manoeuvre_prediction_test
 }  // namespace vesselid

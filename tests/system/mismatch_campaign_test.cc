@@ -17,7 +17,7 @@
 #include "nlohmann/json.hpp"
 
 namespace vesselid {
-namespace {
+namespace mismatch_campaign_test {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -159,5 +159,5 @@ TEST(MismatchCampaign, DynamicDefaultLawsSpuriousDeadZoneIsNamed) {
   EXPECT_EQ(results["verdict"], "failed");
 }
 
-}  // namespace
+}  // namespace mismatch_campaign_test
 }  // namespace vesselid

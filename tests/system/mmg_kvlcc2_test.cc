@@ -17,7 +17,7 @@
 #include "tests/support/shipped_config.h"
 
 namespace vesselid {
-namespace {
+namespace mmg_kvlcc2_test {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -82,5 +82,5 @@ TEST(MmgKvlcc2, ZigzagsPredictTheTurningCirclesAndHeldOutRuns) {
   EXPECT_NEAR(value("Y_v"), -0.315, 0.15 * 0.315);
 }
 
-}  // namespace
+}  // namespace mmg_kvlcc2_test
 }  // namespace vesselid

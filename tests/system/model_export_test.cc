@@ -35,7 +35,7 @@
 #include "tests/support/run_command.h"
 
 namespace vesselid {
-namespace {
+namespace model_export_test {
 
 namespace fs = std::filesystem;
 
@@ -494,5 +494,5 @@ INSTANTIATE_TEST_SUITE_P(Shipped, ModelExport,
                                            "input_gain_dynamic", "input_gain_usv_log",
                                            "mmg_kvlcc2"));
 
-}  // namespace
+}  // namespace model_export_test
 }  // namespace vesselid

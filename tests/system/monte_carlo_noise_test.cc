@@ -24,7 +24,7 @@
 #include "yaml-cpp/yaml.h"
 
 namespace vesselid {
-namespace {
+namespace monte_carlo_noise_test {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -200,5 +200,5 @@ TEST_F(MonteCarloNoise, BadNoiseAndTruthAreRefusedWithFileAndLine) {
   }
 }
 
-}  // namespace
+}  // namespace monte_carlo_noise_test
 }  // namespace vesselid

@@ -21,7 +21,7 @@
 #include "yaml-cpp/yaml.h"
 
 namespace vesselid {
-namespace {
+namespace noise_weights_test {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -219,5 +219,5 @@ TEST_F(NoiseWeights, SingleOutputStageKeepsTheConfiguredWeights) {
   EXPECT_EQ(by_default["estimates"], given["estimates"]);
 }
 
-}  // namespace
+}  // namespace noise_weights_test
 }  // namespace vesselid

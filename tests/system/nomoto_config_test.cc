@@ -9,7 +9,7 @@
 #include "tests/support/shipped_config.h"
 
 namespace vesselid {
-namespace {
+namespace nomoto_config_test {
 
 using nlohmann::json;
 
@@ -82,5 +82,5 @@ TEST(NomotoConfigs, PatrolNoiseSingleSineReportsPoorDetermination) {
   }
 }
 
-}  // namespace
+}  // namespace nomoto_config_test
 }  // namespace vesselid

@@ -10,7 +10,7 @@
 #include "tests/support/nomoto_data.h"
 
 namespace vesselid {
-namespace {
+namespace nomoto_seed_test {
 
 struct SeedResult {
   std::vector<double> relative_error;  // percent, T1 T2 T3 K
@@ -79,5 +79,5 @@ TEST(NomotoSeed, ExchangedTimeConstantsAreReportedOrdered) {
   EXPECT_NE(r.summary.notes[0].find("swapped T1 and T2"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace nomoto_seed_test
 }  // namespace vesselid

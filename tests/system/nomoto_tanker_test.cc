@@ -22,7 +22,7 @@
 #include "yaml-cpp/yaml.h"
 
 namespace vesselid {
-namespace {
+namespace nomoto_tanker_test {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -175,11 +175,11 @@ TEST_F(NomotoTanker, HeldOutHeadingFitWithOwnBiasAtLeast80Percent) {
   }
 }
 
-}  // namespace
+}  // namespace nomoto_tanker_test
 }  // namespace vesselid
 
 namespace vesselid {
-namespace {
+namespace nomoto_tanker_test {
 
 // The real-like campaign fits well (heading fits of 76-99 %) though its records carry what the
 // model lacks: no finding says otherwise. Its verdict is good, it has no failure and no
@@ -193,11 +193,11 @@ TEST_F(NomotoTanker, GoodFitIsJudgedGood) {
   for (const json& stage : (*results_)["stages"]) EXPECT_EQ(stage["verdict"], "good");
 }
 
-}  // namespace
+}  // namespace nomoto_tanker_test
 }  // namespace vesselid
 
 namespace vesselid {
-namespace {
+namespace nomoto_tanker_test {
 
 // The check of the held-out zigzags (report.txt, report.html, `vesselid predict`): the first
 // overshoot's 95 % prediction interval (the run's simulation of the held-out record plus the
@@ -231,5 +231,5 @@ TEST_F(NomotoTanker, HeldOutFirstOvershootIntervalCoversTheMeasurement) {
             std::string::npos);
 }
 
-}  // namespace
+}  // namespace nomoto_tanker_test
 }  // namespace vesselid

@@ -22,7 +22,7 @@
 #include "yaml-cpp/yaml.h"
 
 namespace vesselid {
-namespace {
+namespace partition_study_test {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -255,5 +255,5 @@ TEST(StudyOptions, SharesMustFitTheData) {
   EXPECT_FALSE(options.IsValid(&error));
 }
 
-}  // namespace
+}  // namespace partition_study_test
 }  // namespace vesselid

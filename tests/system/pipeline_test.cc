@@ -18,7 +18,7 @@
 #include "problems/registry.h"
 
 namespace vesselid {
-namespace {
+namespace pipeline_test {
 
 namespace fs = std::filesystem;
 
@@ -475,5 +475,5 @@ final_validation: {experiments: [hard]}
   EXPECT_EQ(result.verdict, Verdict::kFailed);
 }
 
-}  // namespace
+}  // namespace pipeline_test
 }  // namespace vesselid

@@ -15,7 +15,7 @@
 #include "tests/support/study_cli.h"
 
 namespace vesselid {
-namespace {
+namespace progress_test {
 
 namespace fs = std::filesystem;
 
@@ -135,5 +135,5 @@ TEST_F(ProgressTest, OnATerminalALiveStatusLine) {
   EXPECT_NE(out.find("[2/2] stage all: cost"), std::string::npos) << out;
 }
 
-}  // namespace
+}  // namespace progress_test
 }  // namespace vesselid

@@ -21,7 +21,7 @@
 #include "problems/registry.h"
 
 namespace vesselid {
-namespace {
+namespace public_api_test {
 
 // A first-order Nomoto ship (T 8 s, K 0.12 1/s) under a rudder sine, integrated here.
 std::shared_ptr<Trajectory> SineRecord() {
@@ -86,5 +86,5 @@ stages:
   EXPECT_TRUE(found);
 }
 
-}  // namespace
+}  // namespace public_api_test
 }  // namespace vesselid

@@ -24,7 +24,7 @@
 #include "tests/support/run_command.h"
 
 namespace vesselid {
-namespace {
+namespace real_log_test {
 
 namespace fs = std::filesystem;
 
@@ -309,5 +309,5 @@ TEST_F(BadInput, OriginOutsideTheGlobe) {
       "in \\[-90, 90\\]");
 }
 
-}  // namespace
+}  // namespace real_log_test
 }  // namespace vesselid

@@ -23,7 +23,7 @@
 #include "tests/support/shipped_config.h"
 
 namespace vesselid {
-namespace {
+namespace report_html_test {
 
 namespace fs = std::filesystem;
 
@@ -369,5 +369,5 @@ TEST(ReportHtmlTest, ErunsalHierarchyReportRendersEveryPlot) {
   fs::remove_all(out);
 }
 
-}  // namespace
+}  // namespace report_html_test
 }  // namespace vesselid

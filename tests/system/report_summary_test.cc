@@ -22,7 +22,7 @@
 #include "problems/registry.h"
 
 namespace vesselid {
-namespace {
+namespace report_summary_test {
 
 namespace fs = std::filesystem;
 
@@ -212,5 +212,5 @@ TEST_F(ReportSummaryTest, SegmentsArePlottedOnTheirOwnTimeAxis) {
   EXPECT_NE(figure.data[0].find(" 5.729578"), std::string::npos) << figure.data[0];
 }
 
-}  // namespace
+}  // namespace report_summary_test
 }  // namespace vesselid

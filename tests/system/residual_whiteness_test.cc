@@ -19,7 +19,7 @@
 #include "nlohmann/json.hpp"
 
 namespace vesselid {
-namespace {
+namespace residual_whiteness_test {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -198,5 +198,5 @@ TEST(ResidualWhiteness, HeadingNoiseAloneLeavesWhiteResiduals) {
   EXPECT_TRUE(held_out[0]["white"].get<bool>()) << held_out[0].dump();
 }
 
-}  // namespace
+}  // namespace residual_whiteness_test
 }  // namespace vesselid

@@ -22,7 +22,7 @@
 extern char** environ;
 
 namespace vesselid {
-namespace {
+namespace resume_test {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -125,5 +125,5 @@ TEST(ResumeTest, KilledRunResumesToTheUninterruptedResults) {
   EXPECT_NE(messages.find("stage_003.cbor"), std::string::npos) << messages;
 }
 
-}  // namespace
+}  // namespace resume_test
 }  // namespace vesselid

@@ -25,7 +25,7 @@
 #include "problems/nomoto/handles.h"
 
 namespace vesselid {
-namespace {
+namespace scale_test {
 
 namespace fs = std::filesystem;
 
@@ -186,5 +186,5 @@ TEST(Scale, HalfAMillionSegmentsOverTheBudgetAreRefusedBeforeTheFirstStage) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace scale_test
 }  // namespace vesselid

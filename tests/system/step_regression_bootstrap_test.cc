@@ -15,7 +15,7 @@
 #include "nlohmann/json.hpp"
 
 namespace vesselid {
-namespace {
+namespace step_regression_bootstrap_test {
 
 namespace fs = std::filesystem;
 
@@ -154,5 +154,5 @@ TEST_F(StepRegressionBootstrap, BadKeysAreRefusedNamingTheLine) {
   EXPECT_TRUE(results["stages"][0]["estimates"][0]["std_error"].is_null());
 }
 
-}  // namespace
+}  // namespace step_regression_bootstrap_test
 }  // namespace vesselid

@@ -19,7 +19,7 @@
 #include "nlohmann/json.hpp"
 
 namespace vesselid {
-namespace {
+namespace structure_selection_test {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -193,5 +193,5 @@ TEST(MmgKvlcc2Selection, MmgChosenOverEveryNomotoForm) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace structure_selection_test
 }  // namespace vesselid

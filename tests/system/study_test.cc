@@ -14,7 +14,7 @@
 #include "yaml-cpp/yaml.h"
 
 namespace vesselid {
-namespace {
+namespace study_test {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -139,5 +139,5 @@ TEST_F(Study, BadStudyInputIsRejectedWithoutResults) {
   EXPECT_FALSE(fs::exists(folder_->dir() / "bad_part" / "study.json"));
 }
 
-}  // namespace
+}  // namespace study_test
 }  // namespace vesselid

@@ -28,7 +28,7 @@
 #include "yaml-cpp/yaml.h"
 
 namespace vesselid {
-namespace {
+namespace thread_count_test {
 
 using nlohmann::json;
 using testing::DropTimes;
@@ -177,5 +177,5 @@ TEST_F(ThreadCount, NoReportWritesResultsAndTextButNoHtml) {
   EXPECT_TRUE(batch == with_report) << Differences(with_report, batch);
 }
 
-}  // namespace
+}  // namespace thread_count_test
 }  // namespace vesselid

@@ -18,7 +18,7 @@
 #include "tests/support/shipped_config.h"
 
 namespace vesselid {
-namespace {
+namespace thrust_law_fit_test {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -170,5 +170,5 @@ TEST_F(ThrustLawFit, ProfileSearchKeepsToMaxProfileEvaluations) {
   EXPECT_NE(free["parameters"], capped["parameters"]);
 }
 
-}  // namespace
+}  // namespace thrust_law_fit_test
 }  // namespace vesselid

@@ -14,7 +14,7 @@
 #include "tests/support/nomoto_data.h"
 
 namespace vesselid {
-namespace {
+namespace uncertainty_method_test {
 
 constexpr double kDegree = M_PI / 180.0;
 
@@ -83,5 +83,5 @@ TEST(UncertaintyMethod, AutoRuleIsTheLargestRatio) {
   EXPECT_EQ(ChooseUncertaintyMethod({}), UncertaintyMethod::kHessian);
 }
 
-}  // namespace
+}  // namespace uncertainty_method_test
 }  // namespace vesselid

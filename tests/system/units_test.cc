@@ -24,7 +24,7 @@
 #include "problems/registry.h"
 
 namespace vesselid {
-namespace {
+namespace units_test {
 
 namespace fs = std::filesystem;
 
@@ -230,5 +230,5 @@ TEST_F(UnitsTest, HeadingInDegreesReadAsRadiansIsNamed) {
   }
 }
 
-}  // namespace
+}  // namespace units_test
 }  // namespace vesselid

@@ -20,7 +20,7 @@
 #include "tests/support/shipped_config.h"
 
 namespace vesselid {
-namespace {
+namespace usv_log_test {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -136,5 +136,5 @@ TEST_F(UsvLog, VelocityValidationThatCannotBeMadeIsSkippedNotFatal) {
   EXPECT_NE(message.find("median steps) at t = "), std::string::npos) << message;
 }
 
-}  // namespace
+}  // namespace usv_log_test
 }  // namespace vesselid

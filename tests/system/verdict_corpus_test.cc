@@ -15,7 +15,7 @@
 #include "tests/support/verdict_corpus.h"
 
 namespace vesselid {
-namespace {
+namespace verdict_corpus_test {
 
 namespace fs = std::filesystem;
 
@@ -63,5 +63,5 @@ TEST(VerdictCorpus, GoodRunsAreQuietAndBadRunsAreCalledOut) {
   EXPECT_GE(static_cast<int>(outcomes.size()) - good, 20);
 }
 
-}  // namespace
+}  // namespace verdict_corpus_test
 }  // namespace vesselid

@@ -13,7 +13,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace angle_units_test {
 
 constexpr double kDeg = 180.0 / M_PI;
 
@@ -99,5 +99,5 @@ TEST(WrappedFitTest, SpreadIsTakenModuloOneTurn) {
   EXPECT_LT(s.fit_percent, 99.5) << s.fit_percent;  // spread 0.3 rad, not ~pi from the wrap
 }
 
-}  // namespace
+}  // namespace angle_units_test
 }  // namespace vesselid

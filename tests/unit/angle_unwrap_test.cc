@@ -17,7 +17,7 @@
 #include "problems/nomoto/handles.h"
 
 namespace vesselid {
-namespace {
+namespace angle_unwrap_test {
 
 constexpr double kT = 2.0, kK = 0.2, kRudder = 0.15;  // steady turn 0.03 rad/s
 
@@ -186,5 +186,5 @@ TEST_F(AngleTest, ContinuationCutsSegmentColumnRecordsIntoPieces) {
   EXPECT_DOUBLE_EQ(pieces[4].t_end, whole[0].t_end);
 }
 
-}  // namespace
+}  // namespace angle_unwrap_test
 }  // namespace vesselid

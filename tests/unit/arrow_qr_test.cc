@@ -9,7 +9,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace arrow_qr_test {
 
 ceres::CRSMatrix ToCrs(const Eigen::MatrixXd& dense) {
   ceres::CRSMatrix crs;
@@ -92,5 +92,5 @@ TEST(ArrowQrTest, RowsOnlyPrefixAndNoSharedColumns) {
   EXPECT_LT((arrow.r.transpose() * arrow.r - permuted.transpose() * permuted).norm(), 1e-12);
 }
 
-}  // namespace
+}  // namespace arrow_qr_test
 }  // namespace vesselid

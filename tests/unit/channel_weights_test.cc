@@ -9,7 +9,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace channel_weights_test {
 
 Experiment TwoChannels() {
   Experiment e;
@@ -56,5 +56,5 @@ TEST(ChannelWeights, ZeroOrNegativeWeightsAreIgnored) {
   EXPECT_DOUBLE_EQ(e.prior_weight, before.prior_weight);
 }
 
-}  // namespace
+}  // namespace channel_weights_test
 }  // namespace vesselid

@@ -12,7 +12,7 @@
 #include "problems/input_gain/handles.h"
 
 namespace vesselid {
-namespace {
+namespace compensation_findings_test {
 
 Estimate Parameter(const std::string& name, double value, double std_error) {
   Estimate e;
@@ -153,5 +153,5 @@ TEST(CompensationFindings, ReachTheRunsFindingsWithTheDeadZoneNamed) {
   EXPECT_EQ(run.verdict, Verdict::kGood);
 }
 
-}  // namespace
+}  // namespace compensation_findings_test
 }  // namespace vesselid

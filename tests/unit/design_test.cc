@@ -18,7 +18,7 @@
 #include "problems/registry.h"
 
 namespace vesselid {
-namespace {
+namespace design_test {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
@@ -227,5 +227,5 @@ TEST(DesignConfig, BadKeysNameFileLineAndKey) {
   }
 }
 
-}  // namespace
+}  // namespace design_test
 }  // namespace vesselid

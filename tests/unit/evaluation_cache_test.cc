@@ -20,7 +20,7 @@
 #include "tests/support/nomoto_data.h"
 
 namespace vesselid {
-namespace {
+namespace evaluation_cache_test {
 
 nomoto::ClosedLoopOptions Loop(double period, unsigned seed) {
   nomoto::ClosedLoopOptions loop;
@@ -219,5 +219,5 @@ TEST(EvaluationCache, WeightsAndConstantBlocksInvalidate) {
   EXPECT_EQ(ja, jb);
 }
 
-}  // namespace
+}  // namespace evaluation_cache_test
 }  // namespace vesselid

@@ -7,7 +7,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace file_name_test {
 
 TEST(FileName, KeepsPlainNamesAndEscapesTheRest) {
   EXPECT_EQ(FileNameOf("zz10s_a"), "zz10s_a");
@@ -36,5 +36,5 @@ TEST(FileName, NameProblems) {
   EXPECT_NE(NameProblem(std::string(40, '/')).find("(120 in a file name)"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace file_name_test
 }  // namespace vesselid

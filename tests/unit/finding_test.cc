@@ -8,7 +8,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace finding_test {
 
 TEST(Finding, CatalogueHasEveryKindOnceWithARuleAndAdvice) {
   const std::vector<FindingRule>& catalogue = FindingCatalogue();
@@ -70,5 +70,5 @@ TEST(Finding, DescriptionNamesWhereAndCounts) {
             "info [coloured_residuals] stage final, output psi: the residuals of psi are coloured");
 }
 
-}  // namespace
+}  // namespace finding_test
 }  // namespace vesselid

@@ -7,7 +7,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace fusion_test {
 
 TEST(FuseEstimates, InverseVarianceAndMeanDiffer) {
   double value, std_error;
@@ -78,5 +78,5 @@ TEST(FusionRule, NamesRoundTrip) {
   EXPECT_FALSE(StringToFusionRule("median", &parsed));
 }
 
-}  // namespace
+}  // namespace fusion_test
 }  // namespace vesselid

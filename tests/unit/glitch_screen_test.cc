@@ -9,7 +9,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace glitch_screen_test {
 
 constexpr int kRows = 600;
 
@@ -151,5 +151,5 @@ TEST(GlitchScreen, LastingMoveIsKeptAsTheTrack) {
             std::string::npos);
 }
 
-}  // namespace
+}  // namespace glitch_screen_test
 }  // namespace vesselid

@@ -8,7 +8,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace gnss_position_test {
 
 Trajectory Fixes(const std::vector<double>& lat, const std::vector<double>& lon) {
   Trajectory data;
@@ -99,5 +99,5 @@ TEST(GnssPosition, BadInputNamesFileLineColumnOrKey) {
   EXPECT_NE(error.find("no valid fix"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace gnss_position_test
 }  // namespace vesselid

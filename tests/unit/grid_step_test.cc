@@ -6,7 +6,7 @@
 #include "engine/regression/regression_data.h"
 
 namespace vesselid {
-namespace {
+namespace grid_step_test {
 
 TEST(GridStep, AcceptedGapOrJitter) {
   EXPECT_EQ(GridStepOf(0.1, 0.1, 1.5), GridStep::kAccepted);
@@ -23,5 +23,5 @@ TEST(GridStep, AcceptedGapOrJitter) {
   }
 }
 
-}  // namespace
+}  // namespace grid_step_test
 }  // namespace vesselid

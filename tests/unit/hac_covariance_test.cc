@@ -11,7 +11,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace hac_covariance_test {
 
 struct Replicates {
   double slope_variance = 0.0;  // spread of the estimates over the replicates
@@ -117,5 +117,5 @@ TEST(HacCovariance, FixedBandwidthUsesBartlettWeights) {
               1e-12);
 }
 
-}  // namespace
+}  // namespace hac_covariance_test
 }  // namespace vesselid

@@ -10,7 +10,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace held_out_check_test {
 
 ExperimentFit Fit(const std::string& name, double mae, bool diverged = false) {
   ExperimentFit fit;
@@ -56,5 +56,5 @@ TEST(HeldOutCheck, TheMaeComparesTheRunsBothSimulate) {
   EXPECT_NEAR(check.stage_mae[0], 1.1, 1e-12);
 }
 
-}  // namespace
+}  // namespace held_out_check_test
 }  // namespace vesselid

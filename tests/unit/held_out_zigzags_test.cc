@@ -10,7 +10,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace held_out_zigzags_test {
 
 using nlohmann::json;
 
@@ -59,5 +59,5 @@ TEST(HeldOutZigzags, NoneWithoutHeldOutRuns) {
   EXPECT_EQ(check.note, "the run holds out no zigzag");
 }
 
-}  // namespace
+}  // namespace held_out_zigzags_test
 }  // namespace vesselid

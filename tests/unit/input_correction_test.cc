@@ -15,7 +15,7 @@
 #include "tests/support/nomoto_data.h"
 
 namespace vesselid {
-namespace {
+namespace input_correction_test {
 
 nomoto::ClosedLoopOptions PatrolMultisine(double duration, double rudder_noise_deg,
                                           unsigned seed) {
@@ -172,5 +172,5 @@ TEST(InputCorrection, IntervalWarningNamesTheBootstrap) {
   }
 }
 
-}  // namespace
+}  // namespace input_correction_test
 }  // namespace vesselid

@@ -10,7 +10,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace input_noise_findings_test {
 
 constexpr double kDeg = M_PI / 180;
 
@@ -94,5 +94,5 @@ TEST(InputNoiseWarning, ColouredResiduals) {
   EXPECT_FALSE(ResidualsColoured(std::vector<double>(100, 0.0)));  // too short to tell
 }
 
-}  // namespace
+}  // namespace input_noise_findings_test
 }  // namespace vesselid

@@ -3,7 +3,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace input_range_test {
 
 // Throttle 0.2 for t in [0, 50), 0.9 for [50, 80), 0.4 for [80, 200], sampled every second.
 Trajectory Record() {
@@ -67,5 +67,5 @@ TEST(InputRange, RespectsTheWindowAndNamesAnUnmappedInput) {
   EXPECT_NE(error.find("input_range names input 'tau_m'"), std::string::npos) << error;
 }
 
-}  // namespace
+}  // namespace input_range_test
 }  // namespace vesselid

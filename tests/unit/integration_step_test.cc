@@ -5,7 +5,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace integration_step_test {
 
 StageResult WithStep(double step) {
   StageResult s;
@@ -43,5 +43,5 @@ TEST(IntegrationStep, VelocityValidationTakesATenthOfTheGridOrAShorterStageStep)
   EXPECT_DOUBLE_EQ(IntegrationStep(StepUse::kVelocityValidation, 0.5, {}, 1.0), 0.1);
 }
 
-}  // namespace
+}  // namespace integration_step_test
 }  // namespace vesselid

@@ -8,7 +8,7 @@
 #include <sstream>
 
 namespace vesselid {
-namespace {
+namespace json_splices_test {
 
 using nlohmann::json;
 
@@ -74,5 +74,5 @@ TEST(JsonSplices, ElementsAreFormedWhileWritten) {
   EXPECT_EQ(out.str(), "{\n  \"a\": [\n    0,\n    1,\n    2\n  ]\n}");
 }
 
-}  // namespace
+}  // namespace json_splices_test
 }  // namespace vesselid

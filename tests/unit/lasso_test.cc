@@ -12,7 +12,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace lasso_test {
 
 struct Data {
   Eigen::MatrixXd x;
@@ -432,5 +432,5 @@ TEST(Lasso, RejectsUnusableInput) {
   EXPECT_TRUE(CrossValidateLasso(d.x, d.y, d.w, d.group, {}, &path, &error)) << error;
 }
 
-}  // namespace
+}  // namespace lasso_test
 }  // namespace vesselid

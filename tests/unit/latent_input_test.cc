@@ -11,7 +11,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace latent_input_test {
 
 double Signal(double t) {
   const double ramp = std::clamp((t - 200.0) / 4.0, 0.0, 1.0);  // 4 s rate-limited step
@@ -87,5 +87,5 @@ TEST(LatentInput, GapsInTheRecordStayDetermined) {
   EXPECT_NEAR(spline(99.0), Signal(99.0), 5 * sigma);
 }
 
-}  // namespace
+}  // namespace latent_input_test
 }  // namespace vesselid

@@ -10,7 +10,7 @@
 #include "problems/nomoto/handles.h"
 
 namespace vesselid {
-namespace {
+namespace least_squares_per_experiment_test {
 
 constexpr double kT = 80.0, kK = 0.04, kN1 = -0.25, kN3 = 900.0;
 
@@ -132,5 +132,5 @@ TEST(LeastSquaresPerExperiment, SameBiasInEveryRunMatchesTheSharedFit) {
   EXPECT_TRUE(shared.per_experiment.empty());
 }
 
-}  // namespace
+}  // namespace least_squares_per_experiment_test
 }  // namespace vesselid

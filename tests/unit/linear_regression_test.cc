@@ -9,7 +9,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace linear_regression_test {
 
 // y = 2 + 0.5 x1 - 3 x2 (+ 0 x3) + noise, x on very different scales.
 struct Data {
@@ -148,5 +148,5 @@ TEST(Regression, RejectsUnusableInput) {
   EXPECT_NE(error.find("not finite"), std::string::npos) << error;
 }
 
-}  // namespace
+}  // namespace linear_regression_test
 }  // namespace vesselid

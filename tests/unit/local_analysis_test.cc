@@ -11,7 +11,7 @@
 #include "tests/support/nomoto_data.h"
 
 namespace vesselid {
-namespace {
+namespace local_analysis_test {
 
 // The patrol vessel's steering loop with a multi-sine heading set point and 0.1 deg noise.
 nomoto::ClosedLoopOptions MultisineLoop(unsigned seed) {
@@ -116,5 +116,5 @@ TEST_F(LocalAnalysisTest, ExchangeableRidgeIsAnUndeterminedDirectionNamingBoth) 
   EXPECT_TRUE(std::isnan(a.std_errors[0]) && std::isnan(a.std_errors[1]));
 }
 
-}  // namespace
+}  // namespace local_analysis_test
 }  // namespace vesselid

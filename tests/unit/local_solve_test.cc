@@ -10,7 +10,7 @@
 #include "tests/support/nomoto_data.h"
 
 namespace vesselid {
-namespace {
+namespace local_solve_test {
 
 // First-order Nomoto from a start far off (T 8x, K a third), so the solve takes a while.
 std::unique_ptr<OutputErrorProblem> FarStart(const ModelHandle& model) {
@@ -63,5 +63,5 @@ TEST(LocalSolve, StallStopEndsACrawlAtItsBestPoint) {
   EXPECT_NE(error.find("stall_window"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace local_solve_test
 }  // namespace vesselid

@@ -16,7 +16,7 @@
 #include "tests/support/nomoto_data.h"
 
 namespace vesselid {
-namespace {
+namespace multistart_test {
 
 constexpr double kDeg = M_PI / 180.0;
 
@@ -345,5 +345,5 @@ TEST(Multistart, CountsAndNotesPointsWhoseSimulationDiverges) {
   EXPECT_NEAR(ValueOf(*problem, "K"), -0.1724, 0.02 * 0.1724);
 }
 
-}  // namespace
+}  // namespace multistart_test
 }  // namespace vesselid

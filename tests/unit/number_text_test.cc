@@ -8,7 +8,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace number_text_test {
 
 bool Parses(const char* text, double expected) {
   double value = -7.0;
@@ -73,5 +73,5 @@ TEST(NumberText, YamlReaderUsesTheSameSyntaxAndAllowsInfiniteBounds) {
   }
 }
 
-}  // namespace
+}  // namespace number_text_test
 }  // namespace vesselid

@@ -10,7 +10,7 @@
 #include "tests/support/nomoto_data.h"
 
 namespace vesselid {
-namespace {
+namespace output_error_problem_test {
 
 using testing::ShortLoop;
 
@@ -153,5 +153,5 @@ TEST(OutputErrorProblem, RejectsUnknownNamesAndTooManyDirections) {
   EXPECT_NE(error.find("unknown loss 'tukey'"), std::string::npos) << error;
 }
 
-}  // namespace
+}  // namespace output_error_problem_test
 }  // namespace vesselid

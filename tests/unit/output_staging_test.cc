@@ -11,7 +11,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace output_staging_test {
 
 namespace fs = std::filesystem;
 
@@ -178,5 +178,5 @@ TEST_F(OutputStagingTest, SetsOfTwoCommandsKeepEachOther) {
   EXPECT_EQ(Read(out_ / "results.json"), "B");
 }
 
-}  // namespace
+}  // namespace output_staging_test
 }  // namespace vesselid

@@ -9,7 +9,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace record_checks_test {
 
 TEST(RecordChecks, QuantisationStepOfAWholeDegreeCompass) {
   std::vector<double> heading;
@@ -35,13 +35,13 @@ TEST(RecordChecks, SmoothNoisyAndTwoLevelChannelsAreNotQuantised) {
   EXPECT_EQ(QuantisationStep({1.0, 2.0, 3.0}), 0.0);  // too few samples to judge
 }
 
-}  // namespace
+}  // namespace record_checks_test
 }  // namespace vesselid
 
 #include "problems/nomoto/handles.h"
 
 namespace vesselid {
-namespace {
+namespace record_checks_test {
 
 // The record checks through a run's config and cache: a rudder that starts hard over and a
 // compass in whole degrees are named (in degrees, the column's unit), a dead rudder column is
@@ -141,5 +141,5 @@ TEST(RecordChecks, StaleRepeatsAndGapsOfAMeasuredOutput) {
   EXPECT_NE(gaps[0].message.find("10.5 s at t = 149.5 s"), std::string::npos) << gaps[0].message;
 }
 
-}  // namespace
+}  // namespace record_checks_test
 }  // namespace vesselid

@@ -13,7 +13,7 @@
 #include "problems/nomoto/handles.h"
 
 namespace vesselid {
-namespace {
+namespace regression_bootstrap_test {
 
 TEST(GroupBootstrap, MeanOfGroupsHasTheTextbookStandardErrorAndIgnoresThreads) {
   // 40 groups of 5 samples; the quantity is the mean of the drawn samples. Its bootstrap SE
@@ -219,5 +219,5 @@ TEST(LeastSquaresBootstrap, LassoStandardErrorsAreFiniteAndPositive) {
   }
 }
 
-}  // namespace
+}  // namespace regression_bootstrap_test
 }  // namespace vesselid

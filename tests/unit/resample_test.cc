@@ -7,7 +7,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace resample_test {
 
 // 10 Hz rows with +-30 ms jitter: a smooth output y = sin(0.5 t) + t, an angle output in
 // radians crossing +-pi, and a command switched every 1.5 s logged on every third row.
@@ -115,5 +115,5 @@ TEST(Resample, RefusesAGridPastTheLimit) {
   EXPECT_NE(error.find("log.csv: resampling"), std::string::npos) << error;
 }
 
-}  // namespace
+}  // namespace resample_test
 }  // namespace vesselid

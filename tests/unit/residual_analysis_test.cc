@@ -11,7 +11,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace residual_analysis_test {
 
 // Standard normal samples by Box-Muller on mt19937 (the same on every standard library).
 class Gaussian {
@@ -234,5 +234,5 @@ TEST(ResidualAnalysis, ConstantInputHasNoCorrelation) {
   EXPECT_FALSE(a.input_correlated);
 }
 
-}  // namespace
+}  // namespace residual_analysis_test
 }  // namespace vesselid

@@ -15,7 +15,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace residual_report_test {
 
 ModelInfo HeadingModel() {
   ModelInfo info;
@@ -201,5 +201,5 @@ TEST(ResidualReportText, OneLinePerChannelOrASummaryOfManySegments) {
   EXPECT_NE(html.find("<tr class=\"flagged\"><td>log@7</td>"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace residual_report_test
 }  // namespace vesselid

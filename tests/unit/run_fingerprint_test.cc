@@ -10,7 +10,7 @@
 #include "tests/support/temp_file.h"
 
 namespace vesselid {
-namespace {
+namespace run_fingerprint_test {
 
 using testing::WriteTemp;
 
@@ -88,5 +88,5 @@ TEST(ContentHash, DoesNotDependOnHowTheStreamIsCut) {
   EXPECT_NE(shorter.Digest(), whole.Digest());
 }
 
-}  // namespace
+}  // namespace run_fingerprint_test
 }  // namespace vesselid

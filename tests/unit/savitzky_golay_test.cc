@@ -8,7 +8,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace savitzky_golay_test {
 
 std::vector<double> Sample(double dt, int n, double (*f)(double)) {
   std::vector<double> y(n);
@@ -64,5 +64,5 @@ TEST(SavitzkyGolay, RejectsOptionsThatDoNotFitTheData) {
   EXPECT_FALSE(SavitzkyGolay(std::vector<double>(50, 0.0), 0.0, {3, 2, 1}, &out, &error));
 }
 
-}  // namespace
+}  // namespace savitzky_golay_test
 }  // namespace vesselid

@@ -4,7 +4,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace search_horizons_test {
 
 Experiment Record(double duration, double interval) {
   Experiment e;
@@ -35,5 +35,5 @@ TEST(SearchHorizons, ShortRecordsAreSearchedWhole) {
   EXPECT_TRUE(AutomaticHorizons({}).empty());
 }
 
-}  // namespace
+}  // namespace search_horizons_test
 }  // namespace vesselid

@@ -6,7 +6,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace selection_choice_test {
 
 SelectionCandidate Candidate(const std::string& name, int complexity, double score, double se,
                              bool usable = true) {
@@ -60,5 +60,5 @@ TEST(SelectionChoice, NoUsableCandidateChoosesNothing) {
   EXPECT_EQ(s.reason, "no candidate could be scored");
 }
 
-}  // namespace
+}  // namespace selection_choice_test
 }  // namespace vesselid

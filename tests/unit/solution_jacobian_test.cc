@@ -15,7 +15,7 @@
 #include "tests/support/nomoto_data.h"
 
 namespace vesselid {
-namespace {
+namespace solution_jacobian_test {
 
 nomoto::ClosedLoopOptions NoisyLoop(unsigned seed) {
   nomoto::ClosedLoopOptions loop;
@@ -198,5 +198,5 @@ TEST_F(SolutionJacobianTest, CovarianceByBlocksMatchesTheDenseOne) {
   }
 }
 
-}  // namespace
+}  // namespace solution_jacobian_test
 }  // namespace vesselid

@@ -9,7 +9,7 @@
 #include "problems/nomoto/handles.h"
 
 namespace vesselid {
-namespace {
+namespace stage_findings_test {
 
 Estimate Free(const std::string& name, double value, double std_error) {
   Estimate e;
@@ -211,5 +211,5 @@ TEST(RunFindings, FinalValuesAndTheVerdictRule) {
   EXPECT_EQ(run.verdict, Verdict::kFailed);
 }
 
-}  // namespace
+}  // namespace stage_findings_test
 }  // namespace vesselid

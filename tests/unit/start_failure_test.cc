@@ -11,7 +11,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace start_failure_test {
 
 // x' = -sqrt(a) x + g u, y = x: finite at a = 0, but d sqrt(a)/da is not; g < 0 breaks
 // "the gain is positive".
@@ -115,5 +115,5 @@ TEST(StartFailure, NothingWhenTheStartValuesEvaluate) {
   EXPECT_EQ(StartFailure(problem.get()), "");
 }
 
-}  // namespace
+}  // namespace start_failure_test
 }  // namespace vesselid

@@ -15,7 +15,7 @@
 #include "tests/support/eriksen_data.h"
 
 namespace vesselid {
-namespace {
+namespace step_regression_test {
 
 TEST(ExpandToModelBasis, IsExact) {
   std::mt19937 random(2);
@@ -155,5 +155,5 @@ TEST_F(StepRegression, InvalidOptionsAreRejected) {
   EXPECT_NE(error.find("asymptote"), std::string::npos) << error;
 }
 
-}  // namespace
+}  // namespace step_regression_test
 }  // namespace vesselid

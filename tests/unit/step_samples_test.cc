@@ -14,7 +14,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace step_samples_test {
 
 constexpr double kDt = 0.2;  // 5 Hz
 constexpr double kPi = 3.14159265358979323846;
@@ -562,5 +562,5 @@ TEST(StepSamples, SteadyMeansAndStepFitsGiveTheDampingAndInertiaOfThePlant) {
   EXPECT_EQ(fits, 6);
 }
 
-}  // namespace
+}  // namespace step_samples_test
 }  // namespace vesselid

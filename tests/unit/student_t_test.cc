@@ -5,7 +5,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace student_t_test {
 
 TEST(StudentT, QuantilesMatchTheTable) {
   EXPECT_NEAR(StudentTQuantile(0.975, 1), 12.7062, 1e-4);
@@ -19,5 +19,5 @@ TEST(StudentT, QuantilesMatchTheTable) {
   EXPECT_TRUE(std::isnan(StudentTQuantile(0.9, 0)));
 }
 
-}  // namespace
+}  // namespace student_t_test
 }  // namespace vesselid

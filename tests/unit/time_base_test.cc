@@ -9,7 +9,7 @@
 #include "tests/support/temp_file.h"
 
 namespace vesselid {
-namespace {
+namespace time_base_test {
 
 namespace fs = std::filesystem;
 
@@ -100,5 +100,5 @@ TEST(TimeBase, NamedTimeColumnAndRelativeTimesUnchanged) {
   EXPECT_NE(error.find("header has no time column 'time'"), std::string::npos) << error;
 }
 
-}  // namespace
+}  // namespace time_base_test
 }  // namespace vesselid

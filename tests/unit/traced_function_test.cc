@@ -12,7 +12,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace traced_function_test {
 
 using symbolic::Expression;
 using symbolic::ExpressionOp;
@@ -119,5 +119,5 @@ TEST(TracedFunction, LiteralsReadBackExactly) {
   EXPECT_EQ(CDoubleLiteral(2.0), "2.0");
 }
 
-}  // namespace
+}  // namespace traced_function_test
 }  // namespace vesselid

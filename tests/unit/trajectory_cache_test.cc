@@ -9,7 +9,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace trajectory_cache_test {
 
 namespace fs = std::filesystem;
 
@@ -107,5 +107,5 @@ TEST(MemoryBudget, ScopedBudgetRestoresAndFormatsInBinaryUnits) {
   EXPECT_EQ(FormatBytes(1536), "1.5 KiB");
 }
 
-}  // namespace
+}  // namespace trajectory_cache_test
 }  // namespace vesselid

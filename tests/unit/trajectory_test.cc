@@ -13,7 +13,7 @@
 #include "tests/support/temp_file.h"
 
 namespace vesselid {
-namespace {
+namespace trajectory_test {
 
 namespace fs = std::filesystem;
 
@@ -302,5 +302,5 @@ TEST(Interpolation, NamesRoundTrip) {
   EXPECT_FALSE(StringToInterpolation("spline", &unused));
 }
 
-}  // namespace
+}  // namespace trajectory_test
 }  // namespace vesselid

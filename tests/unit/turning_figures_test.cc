@@ -8,7 +8,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace turning_figures_test {
 
 constexpr double kDegree = M_PI / 180.0;
 
@@ -98,5 +98,5 @@ TEST(TurningFigures, NotATurningCircle) {
   EXPECT_EQ(why, "the heading turns less than 90 deg");
 }
 
-}  // namespace
+}  // namespace turning_figures_test
 }  // namespace vesselid

@@ -9,7 +9,7 @@
 #include "gtest/gtest.h"
 
 namespace vesselid {
-namespace {
+namespace zigzag_figures_test {
 
 constexpr double kDegree = M_PI / 180.0;
 
@@ -111,5 +111,5 @@ TEST(ZigzagFigures, OtherManoeuvresAreNotZigzags) {
   EXPECT_EQ(why, "the rudder reversals do not follow the heading checks");
 }
 
-}  // namespace
+}  // namespace zigzag_figures_test
 }  // namespace vesselid
