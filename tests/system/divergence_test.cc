@@ -136,7 +136,9 @@ TEST_F(DivergenceTest, StageThatDivergesKeepsTheFinishedStagesResults) {
   EXPECT_NE(report.find("STOPPED in stage 'second'"), std::string::npos);
   // The final values are the first stage's.
   for (const json& p : results["parameters"]) {
-    if (p["name"] == "T1") EXPECT_NEAR(p["value"].get<double>(), 2.0875, 1e-3);
+    if (p["name"] == "T1") {
+      EXPECT_NEAR(p["value"].get<double>(), 2.0875, 1e-3);
+    }
   }
 }
 

@@ -396,7 +396,7 @@ TEST(ExportCommand, TakesARunsModelOutAsJsonAndFmu) {
   std::ifstream results_file(dir / "run" / "results.json");
   const nlohmann::json results = nlohmann::json::parse(results_file);
   const std::string model_name = results["model"]["name"];
-  for (const std::string& file : {".h", ".c", "_example.c"}) {
+  for (const char* file : {".h", ".c", "_example.c"}) {
     EXPECT_TRUE(fs::exists(dir / "run" / "export" / (model_name + file))) << file;
   }
   std::ifstream model_file(dir / "run" / "export" / (model_name + ".json"));

@@ -115,7 +115,9 @@ TEST_F(StructureSelection, SameSelectionForAnyThreadCountAndShownEverywhere) {
   // The chosen candidate's run is the one written: its model is the chosen one's.
   const std::string chosen = s["chosen"];
   for (const json& c : s["candidates"]) {
-    if (c["name"] == chosen) EXPECT_EQ(one["model"]["name"], c["model"]);
+    if (c["name"] == chosen) {
+      EXPECT_EQ(one["model"]["name"], c["model"]);
+    }
   }
   const std::string text = ReadText(*dir_ / "one" / "report.txt");
   EXPECT_NE(text.find("structure selection, 4-fold by run"), std::string::npos);
