@@ -41,8 +41,10 @@ namespace vesselid {
 using JetSizes = std::integer_sequence<int, 2, 4, 6, 8, 12, 16, 24, 32>;
 inline constexpr int kMaxJetSize = 32;
 // Experiments with input corrections have a direction per knot (32 for a minute of record
-// at the default spacing): fewer sizes suffice.
-using CorrectedJetSizes = std::integer_sequence<int, 8, 16, 24, 32>;
+// at the default spacing) besides the parameters and states, so nearly always more than 16:
+// two sizes suffice. Each size is a whole simulation compiled per model (8 and 24 took a
+// sixth of the 6-DOF handle's compile time and a quarter of a Nomoto handle's).
+using CorrectedJetSizes = std::integer_sequence<int, 16, 32>;
 
 // The most directions an experiment without input corrections can ask for: every parameter
 // and state of the model. A model whose parameter count has a ceiling states it as
