@@ -127,16 +127,15 @@ class ExperimentCost final : public ceres::CostFunction {
       const int width = (directions + passes - 1) / passes;
       for (int first = 0; ok && first < directions; first += width) {
         if (counts_ != nullptr) ++counts_->jet_simulations;
-        ok = num_corrections_ == 0 ? Dispatch<false>(JetSizes{}, width, first, parameters,
-                                                     residuals, jacobians)
-                                   : Dispatch<true>(CorrectedJetSizes{}, width, first,
-                                                    parameters, residuals, jacobians);
+        ok = num_corrections_ == 0
+                 ? Dispatch<false>(JetSizes{}, width, first, parameters, residuals, jacobians)
+                 : Dispatch<true>(CorrectedJetSizes{}, width, first, parameters, residuals,
+                                  jacobians);
       }
     }
     if (ok && cache_ != nullptr) cache_->Store(parameters, revision, residuals, jacobians);
     return ok;
   }
-
 
  private:
   int NumBlocks() const { return num_parameters_ + Model::kNumStates + num_corrections_; }

@@ -52,8 +52,7 @@ TEST(DesignCommand, PlansWithinItsLimitsAndShrinksEveryStandardError) {
               errors["current"][parameter].get<double>())
         << parameter;
   }
-  for (const char* alternative :
-       {"zigzag_10_10", "zigzag_20_20", "spiral", "multisine", "prbs"}) {
+  for (const char* alternative : {"zigzag_10_10", "zigzag_20_20", "spiral", "multisine", "prbs"}) {
     EXPECT_TRUE(errors["alternatives"].contains(alternative)) << alternative;
   }
 }
@@ -69,8 +68,8 @@ TEST(DesignCommand, BadSectionIsRefusedNamingFileLineAndKeyWithNothingWritten) {
   text.replace(at, key.size(), "  criterion: F");
   const fs::path bad = dir / "design_bad.yaml";
   std::ofstream(bad) << text;
-  const testing::CommandOutcome outcome = testing::RunCommand(
-      kBinary + " design " + bad.string() + " --from " + (dir / "run").string());
+  const testing::CommandOutcome outcome = testing::RunCommand(kBinary + " design " + bad.string() +
+                                                              " --from " + (dir / "run").string());
   EXPECT_NE(outcome.status, 0);
   EXPECT_NE(outcome.output.find("design_bad.yaml:"), std::string::npos) << outcome.output;
   EXPECT_NE(outcome.output.find("design.criterion"), std::string::npos) << outcome.output;
