@@ -212,6 +212,12 @@ const Row kRows[] = {
      "The final values' simulation of the held-out records diverges, or predicts an output "
      "worse than holding its first measured value (pooled MAE ratio above 1).",
      "Do not use the model for prediction as it is."},
+    {K::kImplausibleStart, "implausible_start", S::kWarning,
+     "A held-out run was scored from a refitted start (`held_out: {start: refitted}`) that "
+     "puts a measured state more than `implausible_sds` (5) noise SDs from its measurement: "
+     "its fit leans on the start, not on the parameters. The finding gives the run's figures "
+     "from the measured start beside it.",
+     "Judge the model by the figures from the measured start (the default, `start: measured`)."},
 };
 
 // The value of `values` whose name is `text`.

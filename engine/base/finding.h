@@ -65,6 +65,7 @@ enum class FindingKind {
   kHeldOutDiverged,
   kHeldOutFreeRunFailed,
   kFinalHeldOutFailed,
+  kImplausibleStart,
 };
 
 const char* FindingKindToString(FindingKind kind);  // snake_case, e.g. "at_bound"

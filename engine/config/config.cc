@@ -1,6 +1,7 @@
 #include "engine/config/config.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <limits>
 
@@ -376,6 +377,56 @@ HeldOutPerExperiment ReadHeldOutPerExperiment(const YamlReader& reader, const YA
   return mode;
 }
 
+//   initial_state_prior: segments | all | off, or {apply: ..., scale: 1, bounds: 3}
+InitialStatePrior ReadInitialStatePrior(const YamlReader& reader, const YAML::Node& n,
+                                        const std::string& key) {
+  InitialStatePrior prior;
+  auto read_apply = [&](const YAML::Node& value, const std::string& where) {
+    const std::string text = reader.String(value, where);
+    if (text == "segments")
+      prior.apply = InitialStatePrior::Apply::kSegments;
+    else if (text == "all")
+      prior.apply = InitialStatePrior::Apply::kAll;
+    else if (text == "off")
+      prior.apply = InitialStatePrior::Apply::kOff;
+    else
+      reader.Fail(value, where, "expected segments, all or off");
+  };
+  if (n.IsScalar()) {
+    read_apply(n, key);
+  } else {
+    reader.CheckMap(n, key, {"apply", "scale", "bounds"});
+    if (n["apply"]) read_apply(n["apply"], Child(key, "apply"));
+    reader.Read(n, key, "scale", &prior.scale);
+    reader.Read(n, key, "bounds", &prior.bounds);
+    if (!(prior.scale > 0.0)) reader.Fail(n["scale"], Child(key, "scale"), "must be > 0");
+    if (!(prior.bounds >= 0.0)) reader.Fail(n["bounds"], Child(key, "bounds"), "must be >= 0");
+  }
+  return prior;
+}
+
+//   held_out: {start: measured | refitted, burn_in: <s>, implausible_sds: 5}
+void ReadHeldOutStart(const YamlReader& reader, const YAML::Node& n, const std::string& key,
+                      HeldOutStart* start) {
+  reader.CheckMap(n, key, {"start", "burn_in", "implausible_sds"});
+  if (n["start"]) {
+    const std::string text = reader.String(n["start"], Child(key, "start"));
+    if (!StringToHeldOutStartMode(text, &start->mode)) {
+      reader.Fail(n["start"], Child(key, "start"),
+                  "unknown choice '" + text + "' (measured, refitted)");
+    }
+  }
+  reader.Read(n, key, "burn_in", &start->burn_in);
+  if (!(start->burn_in >= 0.0) || !std::isfinite(start->burn_in)) {
+    reader.Fail(n["burn_in"], Child(key, "burn_in"),
+                "must be a duration in s >= 0 (0: a tenth of each run)");
+  }
+  reader.Read(n, key, "implausible_sds", &start->implausible_sds);
+  if (!(start->implausible_sds > 0.0)) {
+    reader.Fail(n["implausible_sds"], Child(key, "implausible_sds"), "must be > 0");
+  }
+}
+
 StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                       const RunConfig& config, const ModelFamily& family,
                       const YAML::Node& model_node, size_t index) {
@@ -384,7 +435,7 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
       {"name", "type", "least_squares", "step_regression", "model", "experiments", "validation",
        "validation_per_experiment", "outputs", "parameters", "free_initial_states", "loss",
        "integration", "normalize_by_length", "continuation", "global", "local", "uncertainty",
-       "initial_state_prior", "outliers", "velocity_validation", "weights"});
+       "initial_state_prior", "held_out", "outliers", "velocity_validation", "weights"});
   StageConfig stage;
   if (node["model"]) {
     stage.model = OverrideModel(reader, family, model_node, node["model"], Child(path, "model"),
@@ -449,31 +500,12 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
     CheckNames(reader, node["free_initial_states"], key, stage.problem.free_initial_states,
                info.states, "state", info);
   }
-  //   initial_state_prior: segments | all | off, or {apply: ..., scale: 1, bounds: 3}
   if (const YAML::Node n = node["initial_state_prior"]) {
-    const std::string key = Child(path, "initial_state_prior");
-    InitialStatePrior& prior = stage.problem.prior;
-    auto read_apply = [&](const YAML::Node& value, const std::string& where) {
-      const std::string text = reader.String(value, where);
-      if (text == "segments")
-        prior.apply = InitialStatePrior::Apply::kSegments;
-      else if (text == "all")
-        prior.apply = InitialStatePrior::Apply::kAll;
-      else if (text == "off")
-        prior.apply = InitialStatePrior::Apply::kOff;
-      else
-        reader.Fail(value, where, "expected segments, all or off");
-    };
-    if (n.IsScalar()) {
-      read_apply(n, key);
-    } else {
-      reader.CheckMap(n, key, {"apply", "scale", "bounds"});
-      if (n["apply"]) read_apply(n["apply"], Child(key, "apply"));
-      reader.Read(n, key, "scale", &prior.scale);
-      reader.Read(n, key, "bounds", &prior.bounds);
-      if (!(prior.scale > 0.0)) reader.Fail(n["scale"], Child(key, "scale"), "must be > 0");
-      if (!(prior.bounds >= 0.0)) reader.Fail(n["bounds"], Child(key, "bounds"), "must be >= 0");
-    }
+    stage.problem.prior = ReadInitialStatePrior(reader, n, Child(path, "initial_state_prior"));
+  }
+  stage.held_out.prior = stage.problem.prior;
+  if (const YAML::Node n = node["held_out"]) {
+    ReadHeldOutStart(reader, n, Child(path, "held_out"), &stage.held_out);
   }
   //   outliers: {action: note | downweight | drop, threshold: 5}
   if (const YAML::Node n = node["outliers"]) {
@@ -692,7 +724,8 @@ bool LoadConfig(const ConfigSource& source, const ModelRegistry& registry, Confi
     }
     if (const YAML::Node final = root["final_validation"]) {
       reader.CheckMap(final, "final_validation",
-                      {"experiments", "outputs", "model", "free_initial_states", "per_experiment"});
+                      {"experiments", "outputs", "model", "free_initial_states", "per_experiment",
+                       "held_out", "initial_state_prior"});
       FinalValidationConfig& v = result.final_validation;
       result.has_final_validation = true;
       if (final["model"]) {
@@ -712,6 +745,12 @@ bool LoadConfig(const ConfigSource& source, const ModelRegistry& registry, Confi
       if (final["per_experiment"]) {
         v.per_experiment = ReadHeldOutPerExperiment(reader, final["per_experiment"],
                                                     "final_validation.per_experiment");
+      }
+      if (const YAML::Node n = final["initial_state_prior"]) {
+        v.held_out.prior = ReadInitialStatePrior(reader, n, "final_validation.initial_state_prior");
+      }
+      if (const YAML::Node n = final["held_out"]) {
+        ReadHeldOutStart(reader, n, "final_validation.held_out", &v.held_out);
       }
       if (final["free_initial_states"]) {
         const std::string key = "final_validation.free_initial_states";

@@ -8,6 +8,7 @@
 #include "engine/diagnose/input_noise_findings.h"
 #include "engine/diagnose/record_checks.h"
 #include "engine/diagnose/stage_findings.h"
+#include "engine/diagnose/start_findings.h"
 #include "engine/diagnose/unit_findings.h"
 
 namespace vesselid {
@@ -168,6 +169,7 @@ void DiagnoseRun(const RunConfig& config, RunResult* run, TrajectoryCache* recor
   AddBoundFindings(info, run->final_held_out_parameters.estimates, "final", &findings,
                    parameter_unit_of);
   AddFinalHeldOutFindings(*run, &findings);
+  AddImplausibleStartFindings(run->final_validation, "final", output_unit_of, &findings);
   AddFreeRunFindings(run->final_velocity_validation, "final", FindingSeverity::kFailure,
                      &findings);
   findings = FoldFindings(findings);

@@ -9,6 +9,7 @@
 #include "engine/diagnose/bootstrap_findings.h"
 #include "engine/diagnose/compensation_findings.h"
 #include "engine/diagnose/residual_findings.h"
+#include "engine/diagnose/start_findings.h"
 #include "engine/run/held_out.h"
 
 namespace vesselid {
@@ -105,6 +106,7 @@ void AddWeaklyDeterminedFindings(const StageResult& stage, std::vector<Finding>*
 
 void AddHeldOutFindings(const StageResult& stage, std::vector<Finding>* findings,
                         const DisplayUnitOf& unit_of) {
+  AddImplausibleStartFindings(stage.validation, stage.name, unit_of, findings);
   for (const ExperimentFit& fit : stage.validation) {
     if (!fit.diverged) continue;
     Finding f = MakeFinding(FindingKind::kHeldOutDiverged, fit.message);

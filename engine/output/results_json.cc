@@ -151,11 +151,48 @@ json RmsCostToJson(const std::vector<ExperimentFit>& fits, JsonSplices* splices)
                                [&fits](size_t i) { return JsonNumber(fits[i].rms_cost); });
 }
 
+// How each held-out run was started and scored (HeldOutStartReport); null for training fits.
+json StartsToJson(const RunConfig& config, const std::vector<ExperimentFit>& fits) {
+  json starts = json::object();
+  for (const ExperimentFit& fit : fits) {
+    const HeldOutStartReport& s = fit.start;
+    if (s.mode.empty()) continue;
+    json j = {{"mode", s.mode}, {"burn_in_s", JsonNumber(s.burn_in)}, {"estimated", s.estimated}};
+    if (!s.offsets.empty() || !s.measured_start.empty() || s.measured_start_diverged) {
+      json measured = json::object();
+      for (const ChannelMetrics& m : s.measured_start) {
+        const DisplayUnit unit = OutputDisplayUnit(config, fit.experiment, m.output);
+        measured[m.output] = {{"fit_percent", JsonNumber(m.fit_percent)},
+                              {"rmse", JsonNumber(unit.scale * m.rmse)},
+                              {"r2", JsonNumber(m.r2)}};
+      }
+      j["measured_start"] = measured;
+      j["measured_start_diverged"] = s.measured_start_diverged;
+      json offsets = json::array();
+      for (const StartOffset& o : s.offsets) {
+        const DisplayUnit unit = OutputDisplayUnit(config, fit.experiment, o.state);
+        offsets.push_back({{"state", o.state},
+                           {"unit", unit.unit},
+                           {"measured", JsonNumber(unit.scale * o.measured)},
+                           {"refitted", JsonNumber(unit.scale * o.refitted)},
+                           {"noise", JsonNumber(unit.scale * o.noise)},
+                           {"sds", JsonNumber(o.sds)}});
+      }
+      j["refitted_offsets"] = offsets;
+      j["implausible_sds"] = JsonNumber(s.implausible_sds);
+    }
+    starts[fit.experiment] = j;
+  }
+  return starts;
+}
+
 json FitsToJson(const RunConfig& config, const std::vector<ExperimentFit>& fits,
                 JsonSplices* splices) {
   json j = {{"metrics", MetricsToJson(config, fits, splices)},
             {"rms_cost", RmsCostToJson(fits, splices)},
             {"runs", RunsToJson(config, fits)}};
+  const json starts = StartsToJson(config, fits);
+  if (!starts.empty()) j["start"] = starts;
   const json diverged = DivergedToJson(fits);
   if (!diverged.empty()) j["diverged"] = diverged;
   return j;

@@ -7,6 +7,7 @@
 #include "engine/output/bootstrap_report.h"
 #include "engine/output/finding_report.h"
 #include "engine/output/held_out_parameters_report.h"
+#include "engine/output/held_out_start_text.h"
 #include "engine/output/noise_model_report.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/output/residual_report.h"
@@ -167,8 +168,8 @@ std::string StageText(const RunConfig& config, const StageResult& stage) {
   out << TextMetricsTable(config, s.fits);
   out << ResidualAnalysesText(stage.residuals, "  ");
   if (!stage.validation.empty()) {
-    out << "  local validation:\n"
-        << TextMetricsTable(config, stage.validation)
+    out << "  local validation: " << HeldOutStartSentence(stage.validation) << "\n"
+        << TextMetricsTable(config, stage.validation) << HeldOutStartTable(stage.validation, "  ")
         << ResidualAnalysesText(stage.validation_residuals, "  ");
   }
   out << HeldOutParametersText(stage.held_out_parameters, stage.validation, "  ",
@@ -254,7 +255,8 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
         << TextMetricsTable(config, last->summary.fits);
   }
   if (config.has_final_validation && !result.final_validation.empty()) {
-    out << "\n  fit per run, final values on held-out data:\n"
+    out << "\n  fit per run, final values on held-out data:\n  "
+        << HeldOutStartSentence(result.final_validation) << "\n"
         << TextMetricsTable(config, result.final_validation);
   }
   if (all.empty()) {
@@ -265,8 +267,9 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
   out << "\nstages\n";
   for (const StageResult& stage : result.stages) out << StageText(config, stage);
   if (config.has_final_validation) {
-    out << "\nfinal validation\n"
+    out << "\nfinal validation\n  " << HeldOutStartSentence(result.final_validation) << "\n"
         << TextMetricsTable(config, result.final_validation)
+        << HeldOutStartTable(result.final_validation, "  ")
         << ResidualAnalysesText(result.final_validation_residuals, "  ")
         << HeldOutParametersText(result.final_held_out_parameters, result.final_validation, "  ",
                                  ParameterUnits(config));

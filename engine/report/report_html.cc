@@ -9,6 +9,7 @@
 #include "engine/base/atomic_file.h"
 #include "engine/base/elapsed.h"
 #include "engine/output/finding_report.h"
+#include "engine/output/held_out_start_text.h"
 #include "engine/output/parameter_summary.h"
 #include "engine/report/base64.h"
 #include "engine/report/bootstrap_html.h"
@@ -28,6 +29,17 @@
 
 namespace vesselid {
 namespace {
+
+// How the held-out runs were started and scored, and with refitted starts each run's figures
+// from its measured start (held_out_start_text.h).
+std::string HeldOutStartHtml(const std::vector<ExperimentFit>& fits) {
+  const std::string sentence = HeldOutStartSentence(fits);
+  if (sentence.empty()) return "";
+  std::string html = "<p>" + HtmlEscape(sentence) + "</p>\n";
+  const std::string table = HeldOutStartTable(fits, "");
+  if (!table.empty()) html += "<pre>" + HtmlEscape(table) + "</pre>\n";
+  return html;
+}
 
 constexpr char kStyle[] = R"(<style>
 body { font-family: "DejaVu Sans", Verdana, Arial, sans-serif; font-size: 14px; line-height: 1.45;
@@ -339,7 +351,8 @@ void StageSection(const RunConfig& config, const StageResult& stage, size_t numb
     page->AddFigure(std::move(figure), "cost history, stage " + stage.name);
   }
   if (!stage.validation.empty() || !stage.velocity_validation.empty()) {
-    html << "<h3 id=\"" << id << "-validation\">Validation on held-out experiments</h3>\n";
+    html << "<h3 id=\"" << id << "-validation\">Validation on held-out experiments</h3>\n"
+         << HeldOutStartHtml(stage.validation);
     if (stage.validation.size() > 1) html << RunFitTableHtml(PerRunFits(config, stage.validation));
     FitFigures(config, key + ".validation", "held out, stage " + stage.name, stage.validation,
                angles, page);
@@ -395,7 +408,8 @@ void FinalSection(const RunConfig& config, const RunResult& result, ReportPage* 
     html << FindingsHtml(doubts);
   }
   if (!result.final_validation.empty() || !result.final_velocity_validation.empty()) {
-    html << "<h3 id=\"final-validation\">Final validation</h3>\n";
+    html << "<h3 id=\"final-validation\">Final validation</h3>\n"
+         << HeldOutStartHtml(result.final_validation);
     if (result.final_validation.size() > 1) {
       html << RunFitTableHtml(PerRunFits(config, result.final_validation));
     }

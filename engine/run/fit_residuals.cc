@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "engine/base/angle.h"
@@ -56,8 +57,13 @@ std::vector<ResidualAnalysis> AnalyseFitResiduals(const ModelInfo& info,
       std::vector<std::vector<double>> inputs(num_inputs);
       const std::vector<double>& y = fit.trace.columns[measured];
       const std::vector<double>& y_sim = fit.trace.columns[simulated];
+      // A held-out run's burn-in is not scored, and not analysed.
+      const double scored_from = fit.start.burn_in > 0.0 && !fit.trace.t.empty()
+                                     ? fit.trace.t.front() + fit.start.burn_in + 1e-9
+                                     : -std::numeric_limits<double>::infinity();
       for (size_t k = 0; k < y.size() && k < fit.trace.t.size(); ++k) {
         if (!std::isfinite(y[k]) || !std::isfinite(y_sim[k])) continue;
+        if (fit.trace.t[k] <= scored_from) continue;
         const double residual = y_sim[k] - y[k];
         t.push_back(fit.trace.t[k]);
         e.push_back(wrapped ? WrapAngle(residual) : residual);

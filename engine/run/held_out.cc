@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <set>
 
 #include "engine/base/parallel_for.h"
+#include "engine/model/experiment_window.h"
 #include "engine/run/fit_residuals.h"
 #include "engine/solve/covariance.h"
 
@@ -32,7 +34,7 @@ std::unique_ptr<OutputErrorProblem> HeldOutProblem(
     const ModelHandle& model, std::vector<Experiment> experiments,
     const std::vector<std::string>& free_states, const LocalSolveOptions& local,
     const std::vector<double>& values, std::string* error,
-    const std::vector<ParameterSpec>& per_experiment) {
+    const std::vector<ParameterSpec>& per_experiment, const InitialStatePrior& prior) {
   std::vector<ParameterSpec> fixed;
   for (size_t i = 0; i < values.size(); ++i) {
     ParameterSpec spec;
@@ -46,6 +48,7 @@ std::unique_ptr<OutputErrorProblem> HeldOutProblem(
   }
   OutputErrorOptions problem_options;
   problem_options.free_initial_states = free_states;
+  problem_options.prior = prior;
   auto problem =
       OutputErrorProblem::Create(&model, std::move(experiments), fixed, problem_options, error);
   if (problem == nullptr) return nullptr;
@@ -90,16 +93,23 @@ HeldOutPerRun PerRunFromStage(const StageResult& stage, const ModelInfo& model,
       spec.upper = e.upper;
       per_run.parameters.push_back(spec);
       per_run.fit_start.push_back(0.0);
+      per_run.spread.push_back(0.0);
       runs.push_back(0);
     }
     per_run.fit_start[k] += e.value;
+    per_run.spread[k] += e.value * e.value;
     ++runs[k];
   }
   // Held (without, and per_experiment: hold) and started from at the training runs' mean,
   // never one training run's value.
   for (size_t k = 0; k < runs.size(); ++k) {
     ParameterSpec& spec = per_run.parameters[k];
-    per_run.fit_start[k] = std::clamp(per_run.fit_start[k] / runs[k], spec.lower, spec.upper);
+    const double mean = per_run.fit_start[k] / runs[k];
+    per_run.spread[k] =
+        runs[k] < 2 ? std::nan("")
+                    : std::sqrt(std::max(0.0, (per_run.spread[k] - runs[k] * mean * mean) /
+                                                  (runs[k] - 1)));
+    per_run.fit_start[k] = std::clamp(mean, spec.lower, spec.upper);
     spec.start = per_run.fit_start[k];
   }
   return per_run;
@@ -134,15 +144,66 @@ void CollectEstimates(OutputErrorProblem* problem, const HeldOutPerRun& per_run,
   }
 }
 
-// One held-out run fitted at `values`, estimating its per-experiment parameters if given;
-// its residual analysis appended to `residuals` if not null.
-ExperimentFit FitOne(const ModelHandle& model, Experiment experiment,
-                     const std::vector<std::string>& free_states, const LocalSolveOptions& local,
-                     const std::vector<double>& values, const HeldOutPerRun* per_run,
-                     std::vector<Estimate>* estimates,
-                     std::vector<ResidualAnalysis>* residuals = nullptr) {
-  ExperimentFit fit;
-  fit.experiment = experiment.name;
+// Each of the run's own estimates combined with the training runs' values (HeldOutPerRun);
+// `values` (model order) take the combined values. True if any value changed.
+bool CombineWithTrainingRuns(const ModelInfo& info, const HeldOutPerRun& per_run,
+                             std::vector<Estimate>* estimates, std::vector<double>* values) {
+  bool changed = false;
+  for (Estimate& e : *estimates) {
+    for (size_t k = 0; k < per_run.parameters.size(); ++k) {
+      const std::string& name = per_run.parameters[k].name;
+      if (e.name != name && e.name.rfind(name + "[", 0) != 0) continue;
+      const double s = per_run.spread[k], m = per_run.fit_start[k];
+      if (!(s > 0.0)) continue;  // one training run, or all alike: the estimate stands
+      const double se = e.std_error;
+      double value = m, sigma = s;
+      if (std::isfinite(se) && se > 0.0 && !e.undetermined) {
+        const double precision = 1.0 / (se * se) + 1.0 / (s * s);
+        value = (e.value / (se * se) + m / (s * s)) / precision;
+        sigma = 1.0 / std::sqrt(precision);
+      }
+      changed |= value != e.value;
+      e.value = std::clamp(value, e.lower, e.upper);
+      e.std_error = sigma;
+      (*values)[info.ParameterIndex(name)] = e.value;
+    }
+  }
+  return changed;
+}
+
+// The index of the output that measures state s in `experiment`, or -1.
+int MeasuringOutput(const ModelInfo& info, const Experiment& experiment, size_t s) {
+  const int o = info.OutputIndex(info.states[s]);
+  return o >= 0 && experiment.output_sample_count[o] > 0 ? o : -1;
+}
+
+// Noise SD of output o's samples in `experiment` (NaN when unknown).
+double OutputNoise(const Experiment& experiment, int o) {
+  const int count = experiment.output_sample_count[o];
+  const double power = experiment.channel_noise_power[o];
+  return count > 0 && power > 0.0 ? std::sqrt(power / count) : std::nan("");
+}
+
+// The burn-in of `experiment` in s: `burn_in` if given, else kBurnInShare of the run and at
+// least kMinBurnInIntervals sample intervals; at most half the run.
+double BurnInOf(const Experiment& experiment, double burn_in) {
+  const double t0 = experiment.node_time.front();
+  const double duration = experiment.node_time.back() - t0;
+  const double interval = duration / std::max(1, experiment.num_nodes() - 1);
+  double b = burn_in > 0.0 ? burn_in
+                            : std::max(kBurnInShare * duration, kMinBurnInIntervals * interval);
+  b = std::min(b, 0.5 * duration);
+  return LastNodeUntil(experiment, t0 + b) - t0;
+}
+
+// A held-out run's problem as HeldOutProblem solves it, with its per-experiment parameters
+// (if any) starting from `per_run`'s fit start.
+std::unique_ptr<OutputErrorProblem> RunProblem(const ModelHandle& model, Experiment experiment,
+                                               const std::vector<std::string>& free_states,
+                                               const LocalSolveOptions& local,
+                                               const std::vector<double>& values,
+                                               const HeldOutPerRun* per_run,
+                                               const InitialStatePrior& prior, std::string* why) {
   std::vector<ParameterSpec> own;
   if (per_run != nullptr) {
     own = per_run->parameters;
@@ -150,22 +211,170 @@ ExperimentFit FitOne(const ModelHandle& model, Experiment experiment,
   }
   std::vector<Experiment> one;
   one.push_back(std::move(experiment));
+  return HeldOutProblem(model, std::move(one), free_states, local, values, why, own, prior);
+}
+
+// The run predicted from its measured start (HeldOutStart::kMeasured): measured states at
+// their measurement, unmeasured ones at the data's guess; the listed unmeasured states and
+// the run's own parameters estimated on the burn-in, then the whole run simulated and
+// scored after it. `problem` is the burn-in's (null when nothing was estimated, or on failure).
+ExperimentFit PredictFromMeasuredStart(const ModelHandle& model, Experiment experiment,
+                                       const std::vector<std::string>& free_states,
+                                       const LocalSolveOptions& local,
+                                       const std::vector<double>& values,
+                                       const HeldOutPerRun* per_run, const HeldOutStart& start,
+                                       std::unique_ptr<OutputErrorProblem>* problem,
+                                       std::vector<Estimate>* estimates) {
+  const ModelInfo& info = model.info();
+  ExperimentFit fit;
+  fit.experiment = experiment.name;
+  fit.start.mode = HeldOutStartModeToString(HeldOutStart::Mode::kMeasured);
+  std::vector<std::string> unmeasured;
+  for (size_t s = 0; s < info.states.size(); ++s) {
+    if (MeasuringOutput(info, experiment, s) >= 0) continue;
+    if (s < experiment.initial_state_guess.size() && std::isfinite(experiment.initial_state_guess[s]))
+      experiment.initial_state[s] = experiment.initial_state_guess[s];
+    if (std::find(free_states.begin(), free_states.end(), info.states[s]) != free_states.end())
+      unmeasured.push_back(info.states[s]);
+  }
+  const bool own = per_run != nullptr && !per_run->parameters.empty();
+  std::vector<double> at = values;
+  double scored_from = -std::numeric_limits<double>::infinity();
   std::string why;
-  const std::unique_ptr<OutputErrorProblem> problem =
-      HeldOutProblem(model, std::move(one), free_states, local, values, &why, own);
-  if (problem == nullptr) {
+  if (!unmeasured.empty() || own) {
+    fit.start.burn_in = BurnInOf(experiment, start.burn_in);
+    scored_from = experiment.node_time.front() + fit.start.burn_in;
+    *problem = RunProblem(model, ExperimentUntil(experiment, scored_from), unmeasured, local,
+                          values, own ? per_run : nullptr, start.prior, &why);
+    if (*problem == nullptr) {
+      fit.diverged = true;
+      fit.message = "burn-in: " + why;
+      return fit;
+    }
+    fit.start.estimated = unmeasured;
+    if (own) {
+      for (const ParameterSpec& spec : per_run->parameters) fit.start.estimated.push_back(spec.name);
+    }
+    at = (*problem)->ParametersOf(0);
+    if (own) {
+      std::vector<Estimate> burn_in;
+      CollectEstimates(problem->get(), *per_run, &burn_in);
+      if (CombineWithTrainingRuns(info, *per_run, &burn_in, &at) && !unmeasured.empty()) {
+        // The unmeasured states again, with the run's own parameters at the combined values.
+        *problem = RunProblem(model, ExperimentUntil(experiment, scored_from), unmeasured, local,
+                              at, nullptr, start.prior, &why);
+        if (*problem == nullptr) {
+          fit.diverged = true;
+          fit.message = "burn-in: " + why;
+          return fit;
+        }
+      }
+      if (estimates != nullptr) *estimates = std::move(burn_in);
+    }
+    const std::vector<double> x0 = (*problem)->InitialStateOf(0);
+    for (const std::string& state : unmeasured) {
+      const int s = info.StateIndex(state);
+      experiment.initial_state[s] = x0[s];
+    }
+  }
+  std::vector<Experiment> one;
+  one.push_back(std::move(experiment));
+  const std::unique_ptr<OutputErrorProblem> whole =
+      HeldOutProblem(model, std::move(one), {}, local, at, &why);
+  if (whole == nullptr) {
     fit.diverged = true;
     fit.message = why;
     return fit;
   }
   std::vector<ExperimentFit> evaluated;
-  EvaluateFit(*problem, &evaluated, &why);  // a divergence is recorded in the fit
-  if (residuals != nullptr) {
-    for (ResidualAnalysis& a : AnalyseFitResiduals(model.info(), problem->experiments(), evaluated))
-      residuals->push_back(std::move(a));
+  EvaluateFit(*whole, &evaluated, &why, scored_from);  // a divergence is recorded in the fit
+  HeldOutStartReport report = std::move(fit.start);
+  fit = std::move(evaluated.front());
+  fit.start = std::move(report);
+  return fit;
+}
+
+// Each measured state the refitted start of `problem` (one run) estimated, against its
+// measurement in `experiment`.
+std::vector<StartOffset> RefittedOffsets(const ModelInfo& info, const Experiment& experiment,
+                                         const OutputErrorProblem& problem,
+                                         const std::vector<std::string>& free_states) {
+  std::vector<StartOffset> offsets;
+  const std::vector<double> x0 = problem.InitialStateOf(0);
+  for (size_t s = 0; s < info.states.size(); ++s) {
+    const int o = MeasuringOutput(info, experiment, s);
+    if (o < 0 || std::find(free_states.begin(), free_states.end(), info.states[s]) ==
+                     free_states.end()) {
+      continue;
+    }
+    StartOffset offset;
+    offset.state = info.states[s];
+    offset.measured = experiment.initial_state[s];
+    offset.refitted = x0[s];
+    offset.noise = OutputNoise(experiment, o);
+    // An unwrapped angle a whole turn off is a turn off; a wrapped one is compared modulo one.
+    double d = offset.refitted - offset.measured;
+    if (experiment.Wrapped(o)) d = std::remainder(d, 2.0 * M_PI);
+    offset.sds = std::isfinite(offset.noise) ? std::abs(d) / offset.noise : std::nan("");
+    offsets.push_back(offset);
   }
-  if (per_run != nullptr) CollectEstimates(problem.get(), *per_run, estimates);
-  return std::move(evaluated.front());
+  return offsets;
+}
+
+// One held-out run fitted at `values`, estimating its per-experiment parameters if given, as
+// `start` says (HeldOutStart); its residual analysis appended to `residuals` if not null.
+ExperimentFit FitOne(const ModelHandle& model, Experiment experiment,
+                     const std::vector<std::string>& free_states, const LocalSolveOptions& local,
+                     const std::vector<double>& values, const HeldOutPerRun* per_run,
+                     const HeldOutStart& start, std::vector<Estimate>* estimates,
+                     std::vector<ResidualAnalysis>* residuals = nullptr) {
+  std::unique_ptr<OutputErrorProblem> measured_problem;
+  const Experiment copy = experiment;
+  std::vector<Estimate> measured_estimates;
+  ExperimentFit predicted = PredictFromMeasuredStart(model, std::move(experiment), free_states,
+                                                     local, values, per_run, start,
+                                                     &measured_problem, &measured_estimates);
+  ExperimentFit fit;
+  std::unique_ptr<OutputErrorProblem> primary;
+  if (start.mode == HeldOutStart::Mode::kMeasured) {
+    fit = std::move(predicted);
+    primary = std::move(measured_problem);
+    if (residuals != nullptr && !fit.diverged) {
+      for (ResidualAnalysis& a : AnalyseFitResiduals(model.info(), {copy}, {fit}))
+        residuals->push_back(std::move(a));
+    }
+  } else {
+    fit.experiment = copy.name;
+    std::string why;
+    primary = RunProblem(model, copy, free_states, local, values, per_run, start.prior, &why);
+    if (primary == nullptr) {
+      fit.diverged = true;
+      fit.message = why;
+    } else {
+      std::vector<ExperimentFit> evaluated;
+      EvaluateFit(*primary, &evaluated, &why);  // a divergence is recorded in the fit
+      if (residuals != nullptr) {
+        for (ResidualAnalysis& a :
+             AnalyseFitResiduals(model.info(), primary->experiments(), evaluated))
+          residuals->push_back(std::move(a));
+      }
+      fit = std::move(evaluated.front());
+      fit.start.offsets = RefittedOffsets(model.info(), copy, *primary, free_states);
+    }
+    fit.start.mode = HeldOutStartModeToString(HeldOutStart::Mode::kRefitted);
+    fit.start.implausible_sds = start.implausible_sds;
+    fit.start.measured_start = std::move(predicted.channels);
+    fit.start.measured_start_diverged = predicted.diverged;
+    fit.start.burn_in = predicted.start.burn_in;
+    fit.start.estimated = std::move(predicted.start.estimated);
+  }
+  if (per_run != nullptr && estimates != nullptr) {
+    if (start.mode == HeldOutStart::Mode::kMeasured)
+      *estimates = std::move(measured_estimates);
+    else if (primary != nullptr)
+      CollectEstimates(primary.get(), *per_run, estimates);
+  }
+  return fit;
 }
 
 }  // namespace
@@ -175,7 +384,7 @@ bool SimulateHeldOutPasses(const RunConfig& config, const ModelHandle& model,
                            const std::vector<std::string>& free_states,
                            const LocalSolveOptions& local, const std::vector<HeldOutPass>& passes,
                            TrajectoryCache* cache, std::string* error,
-                           const HeldOutPerRun& per_run) {
+                           const HeldOutPerRun& per_run, const HeldOutStart& start) {
   std::vector<Experiment> experiments;
   if (!PrepareExperiments(config, names, model, options, cache, &experiments, error)) {
     return false;
@@ -221,7 +430,7 @@ bool SimulateHeldOutPasses(const RunConfig& config, const ModelHandle& model,
     const Experiment& experiment = experiments[task.run];
     if (task.without) {
       without[slot] = FitOne(model, experiment, free_states, one_run, held[task.pass], nullptr,
-                             nullptr);
+                             start, nullptr);
       without[slot].trace = Trajectory();
       return;
     }
@@ -229,10 +438,11 @@ bool SimulateHeldOutPasses(const RunConfig& config, const ModelHandle& model,
         passes[task.pass].residuals != nullptr ? &analyses[slot] : nullptr;
     if (!fit_own) {
       with[slot] =
-          FitOne(model, experiment, free_states, one_run, held[task.pass], nullptr, nullptr, own);
+          FitOne(model, experiment, free_states, one_run, held[task.pass], nullptr, start, nullptr,
+                 own);
     } else {
       with[slot] = FitOne(model, experiment, free_states, one_run, *passes[task.pass].values,
-                          &per_run, &estimates[slot], own);
+                          &per_run, start, &estimates[slot], own);
     }
   });
   for (int p = 0; p < num_passes; ++p) {
@@ -266,9 +476,10 @@ bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
                      const std::vector<double>& values, TrajectoryCache* cache,
                      std::vector<ExperimentFit>* fits, std::string* error,
                      const HeldOutPerRun& per_run, HeldOutParameters* parameters,
-                     std::vector<ResidualAnalysis>* residuals) {
+                     std::vector<ResidualAnalysis>* residuals, const HeldOutStart& start) {
   return SimulateHeldOutPasses(config, model, names, options, free_states, local,
-                               {{&values, fits, parameters, residuals}}, cache, error, per_run);
+                               {{&values, fits, parameters, residuals}}, cache, error, per_run,
+                               start);
 }
 
 std::vector<std::string> HeldOutBoundNotes(const HeldOutParameters& parameters) {

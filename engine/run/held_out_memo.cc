@@ -1,6 +1,7 @@
 #include "engine/run/held_out_memo.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "engine/run/records.h"
 
@@ -19,10 +20,20 @@ bool SameSettings(const HeldOutRequest& a, const HeldOutRequest& b) {
          lx.max_time_seconds == ly.max_time_seconds && !lx.keep_going && !ly.keep_going;
 }
 
+bool SameStart(const HeldOutStart& a, const HeldOutStart& b) {
+  return a.mode == b.mode && a.burn_in == b.burn_in && a.implausible_sds == b.implausible_sds &&
+         a.prior.apply == b.prior.apply && a.prior.scale == b.prior.scale &&
+         a.prior.bounds == b.prior.bounds;
+}
+
 bool SamePerRun(const HeldOutPerRun& a, const HeldOutPerRun& b) {
   if (a.mode != b.mode || a.fit_start != b.fit_start ||
-      a.parameters.size() != b.parameters.size()) {
+      a.parameters.size() != b.parameters.size() || a.spread.size() != b.spread.size()) {
     return false;
+  }
+  for (size_t k = 0; k < a.spread.size(); ++k) {
+    if (a.spread[k] != b.spread[k] && !(std::isnan(a.spread[k]) && std::isnan(b.spread[k])))
+      return false;
   }
   for (size_t k = 0; k < a.parameters.size(); ++k) {
     const ParameterSpec &x = a.parameters[k], &y = b.parameters[k];
@@ -65,7 +76,8 @@ bool HeldOutMemo::Find(const HeldOutRequest& request, HeldOutAnswer* answer) con
     if (asked.model != request.model || (request.parameters && !asked.parameters) ||
         (request.residuals && !asked.residuals) || asked.free_states != request.free_states ||
         !InOrderSubset(request.names, asked.names) || !SameSettings(asked, request) ||
-        !SamePerRun(asked.per_run, request.per_run) || !SameValues(asked, request)) {
+        !SamePerRun(asked.per_run, request.per_run) || !SameStart(asked.start, request.start) ||
+        !SameValues(asked, request)) {
       continue;
     }
     const std::vector<std::string>& names = request.names;
@@ -114,7 +126,7 @@ bool HeldOutMemo::Fit(const RunConfig& config, const std::vector<HeldOutRequest>
   if (passes.empty()) return true;
   const HeldOutRequest& first = requests[fitted.front()];
   if (!SimulateHeldOutPasses(config, *first.model, first.names, first.options, first.free_states,
-                             first.local, passes, cache, error, first.per_run)) {
+                             first.local, passes, cache, error, first.per_run, first.start)) {
     return false;
   }
   for (size_t k : fitted) entries_.emplace_back(requests[k], (*answers)[k]);

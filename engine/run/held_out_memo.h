@@ -28,6 +28,7 @@ struct HeldOutRequest {
   std::vector<std::string> free_states;
   LocalSolveOptions local;
   HeldOutPerRun per_run;
+  HeldOutStart start;
   std::vector<double> values;  // model order
   bool parameters = false, residuals = false;
 };

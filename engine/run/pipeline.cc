@@ -59,6 +59,7 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
   request.free_states = stage.problem.free_initial_states;
   request.local = stage.options.local;
   request.per_run = PerRunFromStage(*result, model.info(), stage.validation_per_experiment);
+  request.start = stage.held_out;
   // At the start the fits alone; at the estimate with the per-experiment estimates and the
   // residual analyses, which the stage reports.
   HeldOutRequest at_estimate = request;
@@ -278,6 +279,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     request.options = options;
     request.free_states = v.free_initial_states;
     request.per_run = per_run;
+    request.start = v.held_out;
     request.values = final_values;
     request.parameters = request.residuals = true;
     std::vector<HeldOutAnswer> answers;

@@ -53,6 +53,20 @@ bool StringToHeldOutPerExperiment(const std::string& text, HeldOutPerExperiment*
   return false;
 }
 
+const char* HeldOutStartModeToString(HeldOutStart::Mode mode) {
+  return mode == HeldOutStart::Mode::kRefitted ? "refitted" : "measured";
+}
+
+bool StringToHeldOutStartMode(const std::string& text, HeldOutStart::Mode* mode) {
+  for (HeldOutStart::Mode m : {HeldOutStart::Mode::kMeasured, HeldOutStart::Mode::kRefitted}) {
+    if (text == HeldOutStartModeToString(m)) {
+      *mode = m;
+      return true;
+    }
+  }
+  return false;
+}
+
 const ExperimentSpec* RunConfig::FindExperiment(const std::string& name) const {
   for (const ExperimentSpec& e : experiments) {
     if (e.name == name) return &e;

@@ -46,6 +46,28 @@ enum class HeldOutPerExperiment { kFit, kHold };
 const char* HeldOutPerExperimentToString(HeldOutPerExperiment mode);  // "fit", "hold"
 bool StringToHeldOutPerExperiment(const std::string& text, HeldOutPerExperiment* mode);
 
+// How a held-out run starts (`held_out: {start, burn_in, implausible_sds}` of a stage and of
+// final_validation). A held-out run is a prediction: with `measured` (the default) the states
+// the record measures start at their measured values, and what it does not measure (the
+// listed free states that are not outputs, the run's own parameters) is estimated on a
+// burn-in at its start, which is not scored. With `refitted` every listed state is estimated
+// on the whole run, which is scored whole; the figures from the measured start are reported
+// beside it and a refitted measured state more than `implausible_sds` noise SDs from its
+// measurement is a finding.
+struct HeldOutStart {
+  enum class Mode { kMeasured, kRefitted };
+  Mode mode = Mode::kMeasured;
+  // Burn-in, s; 0: kBurnInShare of the run, at least kMinBurnInIntervals sample intervals.
+  double burn_in = 0.0;
+  double implausible_sds = 5.0;
+  InitialStatePrior prior;  // the stage's (or final_validation's) initial_state_prior
+};
+inline constexpr double kBurnInShare = 0.1;
+inline constexpr int kMinBurnInIntervals = 10;
+
+const char* HeldOutStartModeToString(HeldOutStart::Mode mode);  // "measured", "refitted"
+bool StringToHeldOutStartMode(const std::string& text, HeldOutStart::Mode* mode);
+
 // A model's options as a config gives them: each key of the `model` map but `family`, its value
 // as YAML text ("second_order", "[surge, sway, yaw]"), so that the model can be made again
 // (ModelRegistry::MakeModel) from results.json alone.
@@ -72,6 +94,7 @@ struct StageConfig {
   // Held-out experiments simulated after the stage (its free initial states estimated first).
   std::vector<std::string> validation;
   HeldOutPerExperiment validation_per_experiment = HeldOutPerExperiment::kFit;
+  HeldOutStart held_out;  // how the validation runs start (prior: the stage's own)
   std::vector<ParameterSpec> parameters;
   OutputErrorOptions problem;
   ExperimentOptions experiment;  // compared outputs, step bound, length normalisation
@@ -108,6 +131,7 @@ struct FinalValidationConfig {
   ExperimentOptions experiment;
   // Per-experiment parameters of the last stage that estimated them.
   HeldOutPerExperiment per_experiment = HeldOutPerExperiment::kFit;
+  HeldOutStart held_out;  // with final_validation's initial_state_prior
 };
 
 // Which estimate a stage that is worse on its held-out data than its start leaves to the

@@ -82,7 +82,7 @@ std::string DivergenceMessage(const Experiment& experiment, const std::vector<do
 }
 
 bool EvaluateFit(const OutputErrorProblem& problem, std::vector<ExperimentFit>* fits,
-                 std::string* error) {
+                 std::string* error, double scored_from) {
   fits->clear();
   std::string first_divergence;
   const ModelInfo& info = problem.model().info();
@@ -117,7 +117,8 @@ bool EvaluateFit(const OutputErrorProblem& problem, std::vector<ExperimentFit>* 
       for (int i = experiment.node_first_sample[k]; i < experiment.node_first_sample[k + 1]; ++i) {
         const ExperimentSample& s = experiment.samples[i];
         const double simulated = outputs[static_cast<size_t>(k) * ny + s.output];
-        channels[s.output].Add(simulated, s.value, experiment.Wrapped(s.output));
+        if (experiment.node_time[k] > scored_from)
+          channels[s.output].Add(simulated, s.value, experiment.Wrapped(s.output));
         fit.trace.columns[column_of[s.output]][k] = s.value;
         fit.trace.columns[column_of[s.output] + 1][k] = simulated;
       }
@@ -129,8 +130,10 @@ bool EvaluateFit(const OutputErrorProblem& problem, std::vector<ExperimentFit>* 
       if (!fit.diverged)
         fit.channels.push_back(channels[c].Finish(experiment.name, info.outputs[c]));
     }
+    int scored = 0;
+    for (const MetricAccumulator& c : channels) scored += c.samples();
     fit.rms_cost = fit.diverged ? std::numeric_limits<double>::quiet_NaN()
-                                : std::sqrt(total_sse / std::max(1, experiment.num_samples()));
+                                : std::sqrt(total_sse / std::max(1, scored));
     fits->push_back(std::move(fit));
   }
   if (!first_divergence.empty()) *error = first_divergence;

@@ -78,6 +78,29 @@ class MetricAccumulator {
   NoiseLevel noise_;
 };
 
+// A measured initial state of a held-out run whose start was refitted, against its measurement:
+// `sds` noise SDs of the output apart.
+struct StartOffset {
+  std::string state;
+  double measured = 0.0, refitted = 0.0, noise = 0.0, sds = 0.0;
+};
+
+// How a held-out run was started and what of it was scored (empty mode: a training fit).
+//   measured: measured states start at their measurement; the unmeasured ones listed free and
+//     the run's own parameters are estimated on the first `burn_in` s, which are not scored.
+//   refitted: every listed state (and the run's own parameters) estimated on the whole run,
+//     which is scored whole; `measured_start` holds the figures from the measured start
+//     (burn-in as above) and `offsets` the refitted measured states.
+struct HeldOutStartReport {
+  std::string mode;
+  double burn_in = 0.0;  // s not scored (measured start); 0: none
+  std::vector<std::string> estimated;  // states and parameters estimated on the burn-in
+  std::vector<ChannelMetrics> measured_start;
+  bool measured_start_diverged = false;
+  std::vector<StartOffset> offsets;
+  double implausible_sds = 0.0;  // an offset beyond this many noise SDs is a finding
+};
+
 struct ExperimentFit {
   std::string experiment;
   // The simulation diverged (or its initial states could not be estimated): no metrics, the
@@ -87,6 +110,7 @@ struct ExperimentFit {
   double rms_cost = 0.0;
   std::vector<ChannelMetrics> channels;
   Trajectory trace;  // t, <output>_measured, <output>_simulated per compared output
+  HeldOutStartReport start;  // held-out runs: how the run was started and scored
 };
 
 // Time of the last node a simulation reached (its outputs are finite), from the outputs
@@ -99,8 +123,10 @@ std::string DivergenceMessage(const Experiment& experiment, const std::vector<do
                               int num_outputs);
 
 // Simulates every experiment at the problem's current values; one that diverges is recorded
-// as such (ExperimentFit::diverged). False (with `error` naming it) if any diverged.
+// as such (ExperimentFit::diverged). False (with `error` naming it) if any diverged. Samples
+// at or before `scored_from` (the end of a held-out run's burn-in) are traced, not scored.
 bool EvaluateFit(const OutputErrorProblem& problem, std::vector<ExperimentFit>* fits,
-                 std::string* error);
+                 std::string* error,
+                 double scored_from = -std::numeric_limits<double>::infinity());
 
 }  // namespace vesselid

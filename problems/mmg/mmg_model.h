@@ -215,7 +215,10 @@ struct Model {
   void Output(const T* x, const U*, const T*, T* y) const {
     using std::sqrt;
     for (int i = 0; i < kNumStates; ++i) y[i] = x[i];
-    y[6] = sqrt(x[3] * x[3] + x[4] * x[4]);
+    // U = sqrt(u^2 + v^2); at rest its derivative is taken as 0, not sqrt's infinite one
+    // times 0 (a held-out run started at rest would have no derivatives at all).
+    const T speed2 = x[3] * x[3] + x[4] * x[4];
+    y[6] = speed2 > 0.0 ? sqrt(speed2) : T(0.0);
   }
 
   // Unmeasured velocities from the track: u, v from the position rates turned into the body
