@@ -43,6 +43,13 @@ void AddSolveFindings(const StageResult& stage, std::vector<Finding>* findings) 
     f.value = local.iterations;
     findings->push_back(std::move(f));
   }
+  if (local.termination == kStoppedAtFailedStep) {
+    Finding f = MakeFinding(FindingKind::kNoConvergence,
+                            local.message + ": the estimate may not be an optimum");
+    f.stage = stage.name;
+    f.value = local.iterations;
+    findings->push_back(std::move(f));
+  }
   bool free = false;
   for (const Estimate& e : stage.estimates) {
     free |= e.kind == EstimateKind::kParameter && e.role != ParameterRole::kFixed;

@@ -145,9 +145,8 @@ bool ReadExportedModel(const std::string& out_folder, const ModelRegistry& regis
     for (const json& p : results.at("parameters")) {
       const auto found = index.find(p.at("name").get<std::string>());
       if (found == index.end()) continue;  // a per-experiment value, an initial state
-      // A parameter estimated per experiment (a run's rudder bias) has no one value for the
-      // ship: the model's default (no bias) stands.
-      if (p.value("role", "") == "per_experiment") continue;
+      // A parameter estimated per experiment (a run's rudder bias) takes the training runs'
+      // mean, as every other use of the results does (run_result.h, FinalParameter).
       m.values[found->second] = p.at("value").get<double>();
       if (p.at("role") == "free") m.std_errors[found->second] = NumberOr(p.at("std_error"), kNaN);
     }

@@ -67,11 +67,12 @@ bool FuseSharedJointly(const ParameterLedger& ledger, const std::vector<StageRes
 }
 
 // A parameter estimated per experiment: its values in the last stage that estimated it
-// (count and range) and the start it had there, which a run without its own value takes.
+// (count and range) and their mean, which a run without its own value takes (a held-out run
+// starts from it; predict, export and Python simulate with it), within the stage's bounds.
 void PerExperimentFinal(const std::vector<StageResult>& stages, FinalParameter* f) {
   for (const StageResult& stage : stages) {
     int runs = 0;
-    double low = 0.0, high = 0.0, start = 0.0;
+    double low = 0.0, high = 0.0, sum = 0.0, lower = -INFINITY, upper = INFINITY;
     for (const Estimate& e : stage.estimates) {
       if (e.kind != EstimateKind::kParameter || e.role != ParameterRole::kPerExperiment ||
           e.experiment.empty() || e.name.substr(0, e.name.find('[')) != f->name) {
@@ -79,14 +80,16 @@ void PerExperimentFinal(const std::vector<StageResult>& stages, FinalParameter* 
       }
       low = runs == 0 ? e.value : std::min(low, e.value);
       high = runs == 0 ? e.value : std::max(high, e.value);
-      start = e.start;
+      sum += e.value;
+      lower = e.lower;
+      upper = e.upper;
       ++runs;
     }
     if (runs == 0) continue;
     f->role = ParameterRole::kPerExperiment;
     f->rule = "per_experiment";
     f->stages = {stage.name};
-    f->value = start;
+    f->value = std::clamp(sum / runs, lower, upper);
     f->runs = runs;
     f->runs_min = low;
     f->runs_max = high;

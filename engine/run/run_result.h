@@ -142,7 +142,8 @@ struct FinalParameter {
                      // "per_experiment"
   bool undetermined = false;
   // Role per_experiment: one value per run in the last stage that estimated it; `value` is
-  // then its start there, what a run without a value of its own is simulated with.
+  // then their mean, what a run without a value of its own is simulated with (held-out runs,
+  // predict, the exported model and FMU, Python's model).
   int runs = 0;
   double runs_min = std::numeric_limits<double>::quiet_NaN();
   double runs_max = std::numeric_limits<double>::quiet_NaN();

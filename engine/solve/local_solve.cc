@@ -45,6 +45,28 @@ class AbandonCheck : public ceres::IterationCallback {
   const std::function<bool(int, double)>& keep_going_;
 };
 
+// Keeps the values of the last iterate Ceres reached with its derivatives evaluated (each
+// callback sees the current, accepted iterate: update_state_every_iteration). A step whose
+// simulation diverges is rejected by Ceres; one whose values simulate but whose derivatives
+// do not (a Jet the double simulation does not form) ends Ceres with FAILURE instead, and the
+// solve goes back to this iterate.
+class IterateKeeper : public ceres::IterationCallback {
+ public:
+  explicit IterateKeeper(const OutputErrorProblem* problem) : problem_(problem) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    values_ = problem_->Values();
+    iteration_ = summary.iteration;
+    return ceres::SOLVER_CONTINUE;
+  }
+  const std::vector<double>& values() const { return values_; }
+  int iteration() const { return iteration_; }
+
+ private:
+  const OutputErrorProblem* problem_;
+  std::vector<double> values_;
+  int iteration_ = -1;
+};
+
 // Ends a crawl: LocalSolveOptions::stall_window and stall_tolerance.
 class StallCheck : public ceres::IterationCallback {
  public:
@@ -237,6 +259,9 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   }
   StallCheck stall(options.stall_window, options.stall_tolerance);
   if (options.stall_window > 0) ceres_options.callbacks.push_back(&stall);
+  IterateKeeper keeper(problem);
+  ceres_options.callbacks.push_back(&keeper);
+  ceres_options.update_state_every_iteration = true;
   ceres::Solver::Summary ceres_summary;
   ceres::Solve(ceres_options, problem->problem(), &ceres_summary);
   if (threaded && ceres_summary.initial_cost >= 0.0 && ordered_initial >= 0.0) {
@@ -249,14 +274,33 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   }
   summary->run = true;
   summary->usable = ceres_summary.IsSolutionUsable();
+  std::string stopped_at;
+  double kept_cost = 0.0;
+  if (!summary->usable && ceres_summary.termination_type == ceres::FAILURE &&
+      keeper.iteration() > 0) {
+    problem->SetValues(keeper.values());
+    if (problem->Cost(&kept_cost) && std::isfinite(kept_cost)) {
+      summary->usable = true;
+      stopped_at = "the solve stopped after iteration " + std::to_string(keeper.iteration()) +
+                   " (" + InEngineWords(ceres_summary) +
+                   ") and keeps the last iterate it reached: its next accepted step could not "
+                   "be evaluated with derivatives";
+    }
+  }
   summary->initial_cost = ceres_summary.initial_cost;
   summary->final_cost = ceres_summary.final_cost;
   if (!ceres_summary.iterations.empty()) {
     summary->cost_history.push_back(ceres_summary.iterations.front().cost);
   }
   AddSolve(ceres_summary, summary);
+  if (!stopped_at.empty()) {
+    summary->final_cost = kept_cost;
+    summary->termination = kStoppedAtFailedStep;
+    summary->message = stopped_at;
+  }
   // Not after an abandoned solve (keep_going: its caller wants it stopped).
-  if (options.hold_bounds_at_end && summary->usable && std::isfinite(summary->final_cost) &&
+  if (options.hold_bounds_at_end && summary->usable && stopped_at.empty() &&
+      std::isfinite(summary->final_cost) &&
       ceres_summary.termination_type != ceres::USER_FAILURE) {
     ContinueWithBoundsHeld(ceres_options, options, options.progress ? &reporter : nullptr,
                            problem, summary);

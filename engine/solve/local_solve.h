@@ -44,6 +44,10 @@ struct LocalSolveOptions {
   bool IsValid(std::string* error) const;
 };
 
+// The termination of a solve that Ceres ended with FAILURE at a step whose derivatives could
+// not be evaluated, resumed at its last iterate (usable, with the reason in `message`).
+inline constexpr const char* kStoppedAtFailedStep = "STOPPED_AT_FAILED_STEP";
+
 struct LocalSolveSummary {
   bool run = false;
   bool usable = false;  // Ceres ended with a usable solution

@@ -63,5 +63,45 @@ TEST(LocalSolve, StallStopEndsACrawlAtItsBestPoint) {
   EXPECT_NE(error.find("stall_window"), std::string::npos);
 }
 
+// A residual of 0 on T whose derivative cannot be evaluated below T = 3 (the truth is 2; the
+// block holds T over its scale): as a simulation that runs in doubles but not in Jets at a
+// step the solver accepts.
+class NoDerivativeBelow : public ceres::SizedCostFunction<1, 1> {
+ public:
+  explicit NoDerivativeBelow(double block_threshold) : threshold_(block_threshold) {}
+  bool Evaluate(double const* const* x, double* residual, double** jacobians) const override {
+    residual[0] = 0.0;
+    if (jacobians == nullptr || jacobians[0] == nullptr) return true;
+    jacobians[0][0] = 0.0;
+    return x[0][0] >= threshold_;
+  }
+
+ private:
+  double threshold_;
+};
+
+TEST(LocalSolve, AStepWithoutDerivativesEndsTheSolveAtTheLastIterate) {
+  auto model = nomoto::MakeFirstOrderHandle();
+  auto problem = FarStart(*model);
+  const Variable* t = nullptr;
+  for (const Variable& v : problem->variables()) {
+    if (v.name == "T") t = &v;
+  }
+  ASSERT_NE(t, nullptr);
+  const double scale = *t->block / t->value();
+  problem->problem()->AddResidualBlock(new NoDerivativeBelow(3.0 * scale), nullptr, t->block);
+  LocalSolveOptions options;
+  LocalSolveSummary summary;
+  ASSERT_TRUE(RunLocalSolve(options, problem.get(), &summary)) << summary.message;
+  EXPECT_EQ(summary.termination, kStoppedAtFailedStep);
+  EXPECT_NE(summary.message.find("keeps the last iterate"), std::string::npos) << summary.message;
+  EXPECT_GE(t->value(), 3.0);
+  EXPECT_LT(t->value(), 16.0);  // it made progress before the step
+  double cost = 0.0;
+  ASSERT_TRUE(problem->Cost(&cost));
+  EXPECT_DOUBLE_EQ(cost, summary.final_cost);
+  EXPECT_LT(cost, summary.initial_cost);
+}
+
 }  // namespace local_solve_test
 }  // namespace vesselid
