@@ -144,6 +144,25 @@ void CollectEstimates(OutputErrorProblem* problem, const HeldOutPerRun& per_run,
   }
 }
 
+// The standard errors of a burn-in's estimates assume white residuals; a short burn-in of a
+// model that is not the ship's leaves them coloured (lag-1 autocorrelation rho near 1), and
+// its estimates are worth fewer samples: n (1 - rho) / (1 + rho) (an AR(1) residual's
+// effective count). Each standard error is scaled by sqrt((1 + rho) / (1 - rho)), rho the
+// largest lag-1 autocorrelation of the burn-in's outputs.
+void InflateForColouredResiduals(const ModelInfo& info, const OutputErrorProblem& problem,
+                                 std::vector<Estimate>* estimates) {
+  std::vector<ExperimentFit> fits;
+  std::string why;
+  if (!EvaluateFit(problem, &fits, &why)) return;
+  double rho = 0.0;
+  for (const ResidualAnalysis& a : AnalyseFitResiduals(info, problem.experiments(), fits)) {
+    if (std::isfinite(a.lag1)) rho = std::max(rho, a.lag1);
+  }
+  rho = std::min(rho, 0.999);
+  const double factor = std::sqrt((1.0 + rho) / (1.0 - rho));
+  for (Estimate& e : *estimates) e.std_error *= factor;
+}
+
 // Each of the run's own estimates combined with the training runs' values (HeldOutPerRun);
 // `values` (model order) take the combined values. True if any value changed.
 bool CombineWithTrainingRuns(const ModelInfo& info, const HeldOutPerRun& per_run,
@@ -259,6 +278,7 @@ ExperimentFit PredictFromMeasuredStart(const ModelHandle& model, Experiment expe
     if (own) {
       std::vector<Estimate> burn_in;
       CollectEstimates(problem->get(), *per_run, &burn_in);
+      InflateForColouredResiduals(model.info(), **problem, &burn_in);
       if (CombineWithTrainingRuns(info, *per_run, &burn_in, &at) && !unmeasured.empty()) {
         // The unmeasured states again, with the run's own parameters at the combined values.
         *problem = RunProblem(model, ExperimentUntil(experiment, scored_from), unmeasured, local,

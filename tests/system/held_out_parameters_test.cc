@@ -5,6 +5,7 @@
 // fit without it, in every output.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -69,8 +70,12 @@ class HeldOutParametersTest : public ::testing::Test {
     delete dir_;
   }
 
+  // The stage's held-out runs start as `start` says: the tests of the per-experiment estimates
+  // refit them on the whole run (the estimates are then the whole run's); the default start,
+  // the measured one, is tested on its own below.
   static bool Run(const std::string& extra, RunConfig* config, RunResult* result,
-                  const std::string& bias_bounds = "lower: -0.1, upper: 0.1") {
+                  const std::string& bias_bounds = "lower: -0.1, upper: 0.1",
+                  const std::string& start = "refitted") {
     std::string text = "model: {family: nomoto, type: first_order}\nexperiments:\n";
     for (int i = 0; i < 6; ++i) {
       const std::string name = "z" + std::to_string(i);
@@ -81,6 +86,7 @@ class HeldOutParametersTest : public ::testing::Test {
   - name: biased
     experiments: [z0, z1, z2, z3]
     validation: [z4, z5]
+    held_out: {start: REFITTED}
     free_initial_states: [psi]
     parameters:
       T: {start: 20, lower: 1, upper: 200}
@@ -88,6 +94,7 @@ class HeldOutParametersTest : public ::testing::Test {
       delta_0: {start: 0.0, BOUNDS, role: per_experiment}
 )" + extra;
     text.replace(text.find("BOUNDS"), 6, bias_bounds);
+    text.replace(text.find("REFITTED"), 8, start);
     std::ofstream(*dir_ / "run.yaml") << text;
     static const ModelRegistry registry = DefaultRegistry();
     std::string error;
@@ -121,7 +128,7 @@ double FitPercent(const ExperimentFit& fit) {
 TEST_F(HeldOutParametersTest, HeldOutRunsEstimateTheirOwnBiasAndShowWhatItBuys) {
   RunConfig config;
   RunResult result;
-  ASSERT_TRUE(Run("final_validation: {experiments: [z4, z5]}\n", &config, &result));
+  ASSERT_TRUE(Run("final_validation: {held_out: {start: refitted}, experiments: [z4, z5]}\n", &config, &result));
   ASSERT_EQ(result.stages.size(), 1u);
   // "Without" holds the bias at the mean of the training runs' estimates, not at one
   // training run's value.
@@ -243,10 +250,10 @@ TEST_F(HeldOutParametersTest, HeldOutRunsEstimateTheirOwnBiasAndShowWhatItBuys) 
 TEST_F(HeldOutParametersTest, HoldKeepsThemAtTheirStart) {
   RunConfig config;
   RunResult fitted, held;
-  ASSERT_TRUE(Run("final_validation: {experiments: [z4, z5]}\n", &config, &fitted));
+  ASSERT_TRUE(Run("final_validation: {held_out: {start: refitted}, experiments: [z4, z5]}\n", &config, &fitted));
   ASSERT_TRUE(
       Run("    validation_per_experiment: hold\n"
-          "final_validation: {experiments: [z4, z5], per_experiment: hold}\n",
+          "final_validation: {held_out: {start: refitted}, experiments: [z4, z5], per_experiment: hold}\n",
           &config, &held));
   for (const HeldOutParameters* p :
        {&held.stages[0].held_out_parameters, &held.final_held_out_parameters}) {
@@ -270,7 +277,7 @@ TEST_F(HeldOutParametersTest, HoldKeepsThemAtTheirStart) {
 TEST_F(HeldOutParametersTest, HeldOutEstimateAtABoundIsAWarning) {
   RunConfig config;
   RunResult result;
-  ASSERT_TRUE(Run("final_validation: {experiments: [z4, z5]}\n", &config, &result,
+  ASSERT_TRUE(Run("final_validation: {held_out: {start: refitted}, experiments: [z4, z5]}\n", &config, &result,
                   "lower: -0.04, upper: 0.1"));
   // Per stage, the lines of delta_0's at_bound findings (the stage's own runs' values and its
   // held-out runs' fold into one per stage, every run named).
@@ -295,7 +302,7 @@ TEST_F(HeldOutParametersTest, HeldOutEstimateAtABoundIsAWarning) {
 TEST_F(HeldOutParametersTest, FinalValidationReusesTheStagesWhenItIsTheSame) {
   RunConfig config;
   RunResult result;
-  ASSERT_TRUE(Run("final_validation: {experiments: [z4, z5], free_initial_states: [psi]}\n",
+  ASSERT_TRUE(Run("final_validation: {held_out: {start: refitted}, experiments: [z4, z5], free_initial_states: [psi]}\n",
                   &config, &result));
   ASSERT_EQ(result.stages.size(), 1u);
   const StageResult& stage = result.stages[0];
@@ -312,8 +319,10 @@ TEST_F(HeldOutParametersTest, FinalValidationReusesTheStagesWhenItIsTheSame) {
   HeldOutParameters parameters;
   std::vector<ResidualAnalysis> residuals;
   std::string error;
+  HeldOutStart refitted;
+  refitted.mode = HeldOutStart::Mode::kRefitted;
   ASSERT_TRUE(SimulateHeldOut(config, model, {"z4", "z5"}, options, {"psi"}, {}, values, &cache,
-                              &fits, &error, per_run, &parameters, &residuals))
+                              &fits, &error, per_run, &parameters, &residuals, refitted))
       << error;
   auto same_fits = [](const std::vector<ExperimentFit>& a, const std::vector<ExperimentFit>& b) {
     ASSERT_EQ(a.size(), b.size());
@@ -338,7 +347,7 @@ TEST_F(HeldOutParametersTest, FinalValidationReusesTheStagesWhenItIsTheSame) {
   // Without the stage's free initial heading the final validation is another one: fitted.
   RunConfig other_config;
   RunResult other;
-  ASSERT_TRUE(Run("final_validation: {experiments: [z4, z5]}\n", &other_config, &other));
+  ASSERT_TRUE(Run("final_validation: {held_out: {start: refitted}, experiments: [z4, z5]}\n", &other_config, &other));
   EXPECT_EQ(other.stages[0].validation[0].channels[0].mae, stage.validation[0].channels[0].mae);
   EXPECT_NE(other.final_validation[0].channels[0].mae, stage.validation[0].channels[0].mae);
 
@@ -353,18 +362,68 @@ TEST_F(HeldOutParametersTest, FinalValidationReusesTheStagesWhenItIsTheSame) {
     ASSERT_TRUE(SimulateHeldOutPasses(
         config, model, {"z4", "z5"}, options, {"psi"}, local,
         {{&values, &at_values, &batch_parameters}, {&start_values, &at_start}}, &cache, &error,
-        per_run))
+        per_run, refitted))
         << error;
     ASSERT_TRUE(SimulateHeldOut(config, model, {"z4", "z5"}, options, {"psi"}, local, values,
-                                &cache, &single_values, &error, per_run));
+                                &cache, &single_values, &error, per_run, nullptr, nullptr,
+                                refitted));
     ASSERT_TRUE(SimulateHeldOut(config, model, {"z4", "z5"}, options, {"psi"}, local,
-                                start_values, &cache, &single_start, &error, per_run));
+                                start_values, &cache, &single_start, &error, per_run, nullptr,
+                                nullptr, refitted));
     same_fits(at_values, single_values);
     same_fits(at_start, single_start);
     same_fits(batch_parameters.without, parameters.without);
     // The start's fits move off the data: the two passes are not the same fits.
     EXPECT_NE(at_values[0].channels[0].mae, at_start[0].channels[0].mae);
   }
+}
+
+// The default: held-out runs are predicted from their measured start. The heading is
+// measured and starts at its measurement; the run's bias is estimated on a burn-in of a tenth
+// of the run (24 s), which is traced but not scored; the report says so; no refitted start, so
+// no implausible_start finding.
+TEST_F(HeldOutParametersTest, MeasuredStartPredictsAfterABurnIn) {
+  RunConfig config;
+  RunResult result;
+  ASSERT_TRUE(Run("final_validation: {experiments: [z4, z5], free_initial_states: [psi, r]}\n",
+                  &config, &result, "lower: -0.1, upper: 0.1", "measured"));
+  for (const std::vector<ExperimentFit>* fits :
+       {&result.stages[0].validation, &result.final_validation}) {
+    ASSERT_EQ(fits->size(), 2u);
+    for (const ExperimentFit& fit : *fits) {
+      ASSERT_FALSE(fit.diverged) << fit.message;
+      EXPECT_EQ(fit.start.mode, "measured");
+      EXPECT_NEAR(fit.start.burn_in, 24.0, 0.3) << fit.experiment;
+      EXPECT_TRUE(fit.start.offsets.empty());
+      // psi is measured, so never estimated; the bias is (and r, where listed free).
+      const std::vector<std::string>& estimated = fit.start.estimated;
+      EXPECT_EQ(std::count(estimated.begin(), estimated.end(), "psi"), 0);
+      // The stage's runs estimate their bias; the final validation lists r free.
+      const bool final = fits == &result.final_validation;
+      if (!final) EXPECT_EQ(std::count(estimated.begin(), estimated.end(), "delta_0"), 1);
+      EXPECT_EQ(std::count(estimated.begin(), estimated.end(), "r"), final ? 1 : 0);
+      // The trace starts at the record's start, at the measured heading; the scored samples
+      // are those after the burn-in.
+      ASSERT_FALSE(fit.trace.t.empty());
+      EXPECT_EQ(fit.trace.t.front(), 0.0);
+      const int measured = fit.trace.Find("psi_measured"), simulated = fit.trace.Find("psi_simulated");
+      ASSERT_GE(measured, 0);
+      EXPECT_EQ(fit.trace.columns[simulated].front(), fit.trace.columns[measured].front());
+      ASSERT_EQ(fit.channels.size(), 1u);
+      int after = 0;
+      for (double t : fit.trace.t) after += t > fit.start.burn_in + 1e-9;
+      EXPECT_EQ(fit.channels[0].samples, after);
+    }
+  }
+  for (const Finding& f : AllFindings(result)) EXPECT_NE(f.kind, FindingKind::kImplausibleStart);
+  const nlohmann::json j = RunResultToJson(config, result);
+  EXPECT_EQ(j["final_validation"]["start"]["z4"]["mode"], "measured");
+  EXPECT_NEAR(j["final_validation"]["start"]["z5"]["burn_in_s"].get<double>(), 24.0, 0.3);
+  const std::string text = RunResultToText(config, result);
+  EXPECT_NE(text.find("local validation: Held-out runs are predicted from their measured "
+                      "start; delta_0 estimated on a burn-in of 24 s"),
+            std::string::npos)
+      << text;
 }
 
 }  // namespace held_out_parameters_test
