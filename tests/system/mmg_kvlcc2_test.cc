@@ -3,7 +3,8 @@
 // bias per run, a slow disturbance and a rudder rate limit the model does not have), then
 // held-out zigzags and 35 deg turning circles predicted. What a user of the model needs: the
 // turning circle's advance and tactical diameter within 5 %, the held-out zigzags' heading
-// at >= 90 % fit, the linear yaw derivatives close to the captive-test truth.
+// at >= 70 % fit from their measured start, the linear yaw derivatives close to the captive-test
+// truth.
 #include <unistd.h>
 
 #include <cmath>
@@ -36,7 +37,45 @@ TEST(MmgKvlcc2, ZigzagsPredictTheTurningCirclesAndHeldOutRuns) {
     std::ifstream report(out / file);
     reports.append(std::istreambuf_iterator<char>(report), std::istreambuf_iterator<char>());
   }
+  // The same final validation with starts refitted on the whole run (what the shipped config
+  // did before held-out runs became predictions): the refitted headings lie many noise SDs
+  // from the measured ones, and each such run is an implausible_start finding with both fits.
+  std::ifstream shipped(std::string(VESSELID_SOURCE_DIR) + "/configs/mmg_kvlcc2.yaml");
+  std::string config((std::istreambuf_iterator<char>(shipped)), std::istreambuf_iterator<char>());
+  const std::string final_line = "final_validation: {experiments: held_out,";
+  ASSERT_NE(config.find(final_line), std::string::npos);
+  config.replace(config.find(final_line), final_line.size(),
+                 final_line + " held_out: {start: refitted},");
+  std::ofstream(out / "refitted.yaml") << config;
+  const std::string refit = std::string(VESSELID_BINARY) + " run " + (out / "refitted.yaml").string() +
+                            " --data " + out.string() + " --out " + (out / "refitted").string() +
+                            " --quiet > /dev/null";
+  ASSERT_EQ(std::system(refit.c_str()), 0) << refit;
+  std::ifstream refitted_in(out / "refitted" / "results.json");
+  const json refitted = json::parse(refitted_in);
   fs::remove_all(out);
+  int implausible = 0;
+  for (const json& f : refitted["findings"]) {
+    if (f["kind"] != "implausible_start") continue;
+    implausible += f.value("count", 1);  // runs alike fold into one finding
+    EXPECT_EQ(f["stage"], "final");
+    EXPECT_NE(f["message"].get<std::string>().find("from the measured start"), std::string::npos);
+  }
+  EXPECT_GE(implausible, 4);
+  for (const auto& [run, start] : refitted["final_validation"]["start"].items()) {
+    EXPECT_EQ(start["mode"], "refitted") << run;
+    EXPECT_TRUE(start["measured_start"]["psi"]["fit_percent"].is_number()) << run;
+    EXPECT_FALSE(start["refitted_offsets"].empty()) << run;
+  }
+  // From the measured start (the shipped config): no such finding, the burn-in reported.
+  for (const json& f : results["findings"]) EXPECT_NE(f["kind"], "implausible_start");
+  for (const auto& [run, start] : results["final_validation"]["start"].items()) {
+    EXPECT_EQ(start["mode"], "measured") << run;
+    EXPECT_GT(start["burn_in_s"].get<double>(), 8.9) << run;
+    EXPECT_LT(start["burn_in_s"].get<double>(), 15.1) << run;
+  }
+  EXPECT_NE(reports.find("Held-out runs are predicted from their measured start"),
+            std::string::npos);
 
   // The held-out 35 deg turning circles: advance and tactical diameter within 5 %.
   ASSERT_TRUE(results.contains("turning_circles"));
@@ -59,13 +98,15 @@ TEST(MmgKvlcc2, ZigzagsPredictTheTurningCirclesAndHeldOutRuns) {
   EXPECT_NE(reports.find("turning circles, measured / simulated"), std::string::npos);
   EXPECT_NE(reports.find("<h2>Turning circles</h2>"), std::string::npos);
 
-  // The held-out zigzags' heading at >= 90 % fit.
+  // The held-out zigzags' heading predicted from the measured start at >= 70 % fit (72-89 %:
+  // each run's rudder bias and the unmodelled slow disturbance are known only from its first
+  // 9-11 s; refitted on the whole run, as before, they were 98-99 %).
   int zigzags = 0;
   for (const json& row : results["final_validation"]["runs"]["rows"]) {
     const std::string run = row["run"];
     if (run.rfind("zz", 0) != 0) continue;
     ++zigzags;
-    EXPECT_GE(row["outputs"]["psi"]["fit_percent"].get<double>(), 90.0) << run;
+    EXPECT_GE(row["outputs"]["psi"]["fit_percent"].get<double>(), 70.0) << run;
   }
   EXPECT_EQ(zigzags, 4);
 

@@ -148,10 +148,13 @@ TEST_F(NomotoTanker, LeastSquaresEstimatesOneBiasPerRunAndStartsTheRefinement) {
   EXPECT_EQ(runs, 8);
 }
 
-// Acceptance (issue 20): with its own bias fitted (the held-out validation estimates each
-// held-out run's per-experiment parameters, the shared ones held), every held-out run's
-// heading is fitted >= 80 %, and its bias is found within 0.2 deg.
-TEST_F(NomotoTanker, HeldOutHeadingFitWithOwnBiasAtLeast80Percent) {
+// Acceptance (issue 20, as held-out runs are now predictions): each held-out run starts from
+// its measured heading, its yaw rate and its own bias are estimated on the first tenth of the
+// run (70-130 s, not scored), and the rest is predicted. The bias is found within 0.5 deg
+// (before, refitted on the whole run: 0.2 deg), and every run's heading is predicted >= 50 %
+// (55-92 %; refitted on the whole run they were >= 80 %); held at the training runs' mean, the
+// bias leaves four of five runs below 0 %.
+TEST_F(NomotoTanker, HeldOutHeadingPredictedFromMeasuredStartAtLeast50Percent) {
   const json& results = *results_;
   ASSERT_TRUE(results.contains("final_held_out_parameters"));
   ASSERT_TRUE(results["final_held_out_parameters"].contains("runs"));
@@ -161,16 +164,16 @@ TEST_F(NomotoTanker, HeldOutHeadingFitWithOwnBiasAtLeast80Percent) {
     const std::string name = run["experiment"].get<std::string>();
     ASSERT_TRUE(run["estimates"].contains("delta_0")) << name;
     EXPECT_NEAR(run["estimates"]["delta_0"]["value"].get<double>(), biases_->at(name),
-                0.2 * kDegree)
+                0.5 * kDegree)
         << name;
   }
   for (const std::string& run : *held_out_) {
     ASSERT_TRUE(fit.count(run)) << run;
-    EXPECT_GE(fit[run], 80.0) << run;
+    EXPECT_GE(fit[run], 50.0) << run;
   }
   for (const json& m : results["final_validation"]["metrics"]) {
     if (m["output"] == "psi") {
-      EXPECT_GE(m["fit_percent"].get<double>(), 80.0) << m["experiment"];
+      EXPECT_GE(m["fit_percent"].get<double>(), 50.0) << m["experiment"];
     }
   }
 }

@@ -106,14 +106,20 @@ TEST_F(StructureSelection, SameSelectionForAnyThreadCountAndShownEverywhere) {
   for (const json& c : s["candidates"]) {
     EXPECT_TRUE(c["usable"].get<bool>()) << c["message"];
     EXPECT_EQ(c["fold_scores"].size(), 4u);
-    EXPECT_GT(c["score"].get<double>(), 60.0) << c["name"];
+    EXPECT_TRUE(c["score"].is_number()) << c["name"];
     EXPECT_EQ(c["per_run_values"].get<int>(), 8);  // a bias per training run
   }
   EXPECT_EQ(s["candidates"][0]["shared_parameters"].get<int>(), 3);  // K_nd, n1, n3_nd
   EXPECT_EQ(s["candidates"][1]["shared_parameters"].get<int>(), 2);  // K_nd, n1
   ASSERT_TRUE(s["chosen"].is_string());
-  // The chosen candidate's run is the one written: its model is the chosen one's.
+  // The folds predict each held-out run from its measured start (bias and yaw rate on a
+  // burn-in): the tanker's own structure predicts them, the first-order form of a
+  // course-unstable ship does not.
   const std::string chosen = s["chosen"];
+  EXPECT_EQ(chosen, "norrbin_n1");
+  EXPECT_GT(s["candidates"][0]["score"].get<double>(), 50.0);
+  EXPECT_GT(s["candidates"][0]["score"].get<double>(), s["candidates"][1]["score"].get<double>());
+  // The chosen candidate's run is the one written: its model is the chosen one's.
   for (const json& c : s["candidates"]) {
     if (c["name"] == chosen) {
       EXPECT_EQ(one["model"]["name"], c["model"]);
