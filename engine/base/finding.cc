@@ -57,19 +57,24 @@ const Row kRows[] = {
     {K::kSegmentSkipped, "segment_skipped", S::kWarning,
      "A piece of a record has fewer samples than a stage needs (a least-squares stage: its "
      "Savitzky-Golay window; an output-error stage: the model's number of states) and is left "
-     "out of that stage.",
+     "out of that stage. Two or more are one finding: the count of pieces and records and the "
+     "shortest piece.",
      "Lengthen the piece, shorten the smoothing window, or accept the loss."},
     {K::kRecordCut, "record_cut", S::kInfo,
      "An equation-error stage cut a record into pieces at gaps of its grid output: steps "
      "longer than the stage's max_gap and at least 2 median steps (a missing sample). The same "
      "rule decides where a piece is built, so a record, resampled or not, is cut or accepted; "
-     "only row jitter beyond max_gap is refused.",
+     "only row jitter beyond max_gap is refused. Two or more records cut are one finding: the "
+     "count of records and pieces and the record cut into most.",
      "None; raise `least_squares: {max_gap: ...}` to bridge the gaps."},
     {K::kUnitSuspect, "unit_suspect", S::kWarning,
      "An angle output not listed under `degrees:` looks like degrees: it swings back and forth "
      "over more than one turn (a heading that turns steadily, a spiral, is not counted), or "
-     "steps by more than pi within one turn.",
-     "Add the column to the experiment's `degrees:` if it was logged in degrees."},
+     "steps by more than pi within one turn; an angle input (a rudder) not listed goes beyond "
+     "90 deg, which no rudder or fin does; or a record's median sample interval is above 10 s "
+     "(milliseconds read as seconds).",
+     "Add the column to the experiment's `degrees:` if it was logged in degrees; give the time "
+     "column's unit (`time: {unit: ms}`) if it is not seconds."},
     {K::kQuantised, "quantised", S::kInfo,
      "A mapped channel's distinct values lie on a grid (95 % of the gaps between neighbouring "
      "values are whole steps, fewer distinct values than a fifth of the samples): a compass in "
@@ -101,8 +106,8 @@ const Row kRows[] = {
      "require means the structure is wrong."},
     {K::kWeaklyDetermined, "weakly_determined", S::kWarning,
      "A free shared estimate off its bounds whose standard error is above 50 % of its value "
-     "(of 1 % of its bound range, for a value near 0), or that the stage's covariance calls "
-     "undetermined: the data say little about it, and its value is a consequence of the start "
+     "(of 1 % of its bound range, for a value near 0, unless its 95 % interval spans 0: then "
+     "its sign is unknown), or that the stage's covariance calls undetermined: the data say little about it, and its value is a consequence of the start "
      "and the others. One finding per stage lists them.",
      "Hold it at a known value, or add records that excite it (a richer input, a longer run)."},
     {K::kNoConvergence, "no_convergence", S::kWarning,
@@ -120,8 +125,9 @@ const Row kRows[] = {
      "stability limit): the stage was solved again with a shorter step, or could not be.",
      "Set `integration: {max_step: ...}` to the step the finding names."},
     {K::kOutliers, "outliers", S::kWarning,
-     "Experiments whose RMS cost is far above the rest, or free initial states that end far "
-     "from the data's guess (OutlierOptions).",
+     "Experiments whose RMS cost is far above the rest (above median + 5 x 1.4826 MAD of the "
+     "costs and above twice the median), or free initial states that end far from the data's "
+     "guess (OutlierOptions).",
      "Look at the named records; drop them (`outliers: drop`) if they are broken."},
     {K::kNoiseModel, "noise_model", S::kWarning,
      "Under `weights: noise` the per-channel noise model did not settle, or could not be "
@@ -204,7 +210,8 @@ const Row kRows[] = {
      "The estimate is unstable outside the training records."},
     {K::kHeldOutFreeRunFailed, "held_out_free_run_failed", S::kWarning,
      "The velocity validation of a kept stage (each held-out record simulated whole from the "
-     "data's state) predicts a velocity worse than its mean: free-run R2 < 0. A failure for "
+     "data's state, with the per-experiment values its held-out fit estimated) predicts a "
+     "velocity worse than its mean: free-run R2 < 0. A failure for "
      "the final values. Good fits of the shipped campaigns reach R2 0.98 and above.",
      "Read the held-out free-run traces; the model's structure or its thrust law may not hold "
      "outside the training runs."},
@@ -347,6 +354,7 @@ std::string DescribeFinding(const Finding& f) {
   add("segment ", f.segment);
   add("", f.parameter);
   add("output ", f.output);
+  add("input ", f.input);
   std::string text = std::string(FindingSeverityToString(f.severity)) + " [" +
                      FindingKindToString(f.kind) + "] " + (where.empty() ? "" : where + ": ") +
                      f.message;

@@ -78,7 +78,8 @@ struct Finding {
   std::string experiment;  // the user's experiment name, "" when not one
   std::string segment;     // e.g. "120-240 s" of a record's piece, "" when the whole record
   std::string parameter;   // model parameter (or "a, b" for a group), "" when none
-  std::string output;      // model output or input channel, "" when none
+  std::string output;      // model output, "" when none
+  std::string input;       // model input (a rudder column), "" when none
   double value = std::numeric_limits<double>::quiet_NaN();      // what the rule measured
   double threshold = std::numeric_limits<double>::quiet_NaN();  // where the rule fires
   int count = 1;  // repeats folded into this one (e.g. segments with coloured residuals)

@@ -1,5 +1,7 @@
 #include "engine/config/experiment_data_config.h"
 
+#include <map>
+
 #include "engine/config/config_sections.h"
 
 namespace vesselid {
@@ -7,9 +9,18 @@ namespace {
 
 void ReadTime(const YamlReader& reader, const YAML::Node& n, const std::string& key,
               ExperimentSpec* spec) {
-  reader.CheckMap(n, key, {"column"});
+  reader.CheckMap(n, key, {"column", "unit"});
   reader.Read(n, key, "column", &spec->csv.time_column);
   if (spec->csv.time_column.empty()) reader.Fail(n["column"], Child(key, "column"), "is empty");
+  if (const YAML::Node unit = n["unit"]) {
+    const std::string text = reader.String(unit, Child(key, "unit"));
+    const std::map<std::string, double> scales = {{"s", 1.0}, {"ms", 1e-3}, {"us", 1e-6},
+                                                  {"min", 60.0}};
+    const auto found = scales.find(text);
+    if (found == scales.end())
+      reader.Fail(unit, Child(key, "unit"), "unknown unit '" + text + "' (s, ms, us, min)");
+    spec->data.time_scale = found->second;
+  }
 }
 
 void ReadPosition(const YamlReader& reader, const YAML::Node& n, const std::string& key,

@@ -114,10 +114,12 @@ void ScreenJumps(Series s, const Trajectory& data, GlitchFinding* jumps, GlitchF
     return s.Distance(a, b) <= s.max_rate * (data.t[b] - data.t[a]) + allowance;
   };
   size_t last = rows[0];
+  bool first_kept = false;  // a row after the first was within reach of it
   std::vector<size_t> rejected;  // consecutive rejected rows, each consistent with the one before
   for (size_t i = 1; i < rows.size(); ++i) {
     const size_t k = rows[i];
     if (within(last, k)) {
+      first_kept = true;
       for (size_t r : rejected) {
         jumps->Add(data.t[r]);
         s.Remove(r);
@@ -135,7 +137,15 @@ void ScreenJumps(Series s, const Trajectory& data, GlitchFinding* jumps, GlitchF
     }
     rejected.push_back(k);
     if (static_cast<int>(rejected.size()) >= kRelock) {
-      anchors->Add(data.t[rejected.front()]);
+      if (!first_kept) {
+        // Nothing ever followed the first row: it was the glitch (a logger's first row), not
+        // a lasting move of the track.
+        jumps->Add(data.t[rows[0]]);
+        s.Remove(rows[0]);
+        first_kept = true;
+      } else {
+        anchors->Add(data.t[rejected.front()]);
+      }
       last = k;
       rejected.clear();
     }

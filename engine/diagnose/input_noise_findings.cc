@@ -112,7 +112,7 @@ void AddInputNoiseFindings(const RunConfig& config, const RunResult& run, Trajec
                     input.c_str());
       Finding f = MakeFinding(FindingKind::kInputNoise, text);
       f.experiment = spec.name;
-      f.output = input;
+      f.input = input;
       f.value = degrees ? sigma * 180.0 / M_PI : sigma;
       findings->push_back(std::move(f));
     }

@@ -10,6 +10,7 @@ namespace {
 
 constexpr double kGridShare = 0.95;       // gaps on the grid
 constexpr double kDistinctShare = 0.2;    // distinct values per sample at most
+constexpr double kRoundOff = 1e-9;        // relative difference of values taken as equal
 constexpr double kMidManoeuvre = 0.4;     // |first sample| / largest |sample| of an angle input
 constexpr size_t kFewestSamples = 20;     // shorter columns are not judged
 constexpr double kGapSteps = 3.0;         // median sample intervals that make a gap
@@ -70,12 +71,18 @@ double QuantisationStep(const std::vector<double>& values) {
   if (values.size() < kFewestSamples) return 0.0;
   std::vector<double> distinct = values;
   std::sort(distinct.begin(), distinct.end());
-  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  // Values apart by round-off only (a column converted from degrees, 1e-12 of its size) are
+  // one value: a grid of round-off is no quantisation.
+  const double scale = std::max(std::abs(distinct.front()), std::abs(distinct.back()));
+  const double same = kRoundOff * scale;
+  distinct.erase(std::unique(distinct.begin(), distinct.end(),
+                             [same](double a, double b) { return b - a <= same; }),
+                 distinct.end());
   if (distinct.size() < 3 || distinct.size() > kDistinctShare * values.size()) return 0.0;
   std::vector<double> gaps;
   for (size_t i = 1; i < distinct.size(); ++i) gaps.push_back(distinct[i] - distinct[i - 1]);
   const double q = *std::min_element(gaps.begin(), gaps.end());
-  if (!(q > 0.0)) return 0.0;
+  if (!(q > same)) return 0.0;
   size_t on_grid = 0;
   for (double g : gaps) {
     const double multiple = g / q;
@@ -166,7 +173,7 @@ void AddRecordCheckFindings(const RunConfig& config, TrajectoryCache* cache,
                    const std::string& message) {
       Finding f = MakeFinding(kind, message);
       f.experiment = spec.name;
-      f.output = channel;
+      (spec.inputs.count(channel) > 0 ? f.input : f.output) = channel;
       f.value = value;
       findings->push_back(std::move(f));
     };

@@ -61,11 +61,63 @@ void UseRecordNames(std::vector<Finding>* findings) {
   }
 }
 
+// Findings about single pieces of records (a piece skipped, a record cut at its gaps) are one
+// per kind, stage and severity: the count of pieces and records and the worst case (the
+// shortest piece skipped, the record cut into most pieces), not one line per piece: a field
+// log's 201 skipped pieces hid the two reasons of its verdict.
+void SummarisePieces(std::vector<Finding>* findings) {
+  using Key = std::tuple<int, int, std::string>;
+  std::map<Key, std::vector<const Finding*>> groups;
+  for (const Finding& f : *findings) {
+    if (f.kind == FindingKind::kSegmentSkipped || f.kind == FindingKind::kRecordCut)
+      groups[{static_cast<int>(f.kind), static_cast<int>(f.severity), f.stage}].push_back(&f);
+  }
+  std::vector<Finding> summaries;
+  for (const auto& [key, group] : groups) {
+    if (group.size() < 2) continue;
+    const bool skipped = group.front()->kind == FindingKind::kSegmentSkipped;
+    std::set<std::string> records;
+    const Finding* worst = group.front();
+    int pieces = 0;
+    for (const Finding* f : group) {
+      records.insert(f->experiment);
+      pieces += skipped ? f->count : static_cast<int>(f->value);
+      const bool worse = skipped ? f->value < worst->value : f->value > worst->value;
+      if (worse) worst = f;
+    }
+    char text[160];
+    if (skipped) {
+      std::snprintf(text, sizeof(text), "%d pieces of %zu record(s) skipped; the shortest, %.3g s",
+                    pieces, records.size(), worst->value);
+    } else {
+      std::snprintf(text, sizeof(text), "%zu records cut into %d pieces in all; the most",
+                    group.size(), pieces);
+    }
+    Finding summary = *worst;
+    summary.message = std::string(text) + " (" + worst->experiment +
+                      (worst->segment.empty() ? "" : ", " + worst->segment) + "): " + worst->message;
+    summary.count = static_cast<int>(group.size());
+    if (records.size() > 1) summary.experiment.clear();
+    summary.segment.clear();
+    summaries.push_back(std::move(summary));
+  }
+  if (summaries.empty()) return;
+  std::vector<Finding> kept;
+  for (const Finding& f : *findings) {
+    const Key key{static_cast<int>(f.kind), static_cast<int>(f.severity), f.stage};
+    const auto group = groups.find(key);
+    if (group == groups.end() || group->second.size() < 2) kept.push_back(f);
+  }
+  kept.insert(kept.end(), summaries.begin(), summaries.end());
+  *findings = std::move(kept);
+}
+
 }  // namespace
 
 std::vector<Finding> FoldFindings(const std::vector<Finding>& input) {
   std::vector<Finding> findings = input;
   UseRecordNames(&findings);
+  SummarisePieces(&findings);
   using Key = std::tuple<int, int, std::string, std::string, std::string, std::string>;
   std::map<Key, size_t> first;
   std::vector<Finding> folded;
@@ -81,7 +133,7 @@ std::vector<Finding> FoldFindings(const std::vector<Finding>& input) {
         FindingKind::kStaleRepeats,   FindingKind::kOutsideDataFolder};
     const bool whole_kind = !f.experiment.empty() && kPerRecord.count(f.kind) == 0;
     const Key key{static_cast<int>(f.kind), static_cast<int>(f.severity), f.stage,
-                  f.parameter.substr(0, f.parameter.find('[')), f.output,
+                  f.parameter.substr(0, f.parameter.find('[')), f.output + "\n" + f.input,
                   whole_kind ? f.segment : f.segment + "\n" + f.message};
     const auto found = first.find(key);
     if (found == first.end()) {

@@ -71,6 +71,7 @@ void AddSolveFindings(const StageResult& stage, std::vector<Finding>* findings) 
 // One finding per stage naming every free estimate, off its bounds, that the data determine
 // poorly (relative standard error above kWeakRelativeError, or undetermined).
 constexpr double kWeakRelativeError = 0.5;
+constexpr double kSignUnknownSe = 1.96;  // |value| below this many SEs: a 95 % interval spans 0
 
 void AddWeaklyDeterminedFindings(const StageResult& stage, std::vector<Finding>* findings,
                                  const ParameterUnitOf& unit_of) {
@@ -83,11 +84,14 @@ void AddWeaklyDeterminedFindings(const StageResult& stage, std::vector<Finding>*
         e.role == ParameterRole::kPerExperiment) {
       continue;
     }
-    const double span = 1e-6 * (e.upper - e.lower);
-    if (e.value - e.lower <= span || e.upper - e.value <= span) continue;  // at_bound's
-    // Relative to the value, floored at 1 % of a finite bound range (a value near 0).
+    if (BoundSide(e.value, e.lower, e.upper) != 0) continue;  // at_bound's
+    // Relative to the value, floored at 1 % of a finite bound range (a value near 0), unless
+    // the 95 % interval spans 0: then even the sign is unknown (a course-stability term
+    // 0.39 +- 0.49 in a range of 10^4 is not determined).
     const double range = std::isfinite(e.upper - e.lower) ? e.upper - e.lower : 0.0;
-    const double relative = e.std_error / std::max(std::abs(e.value), 0.01 * range);
+    const bool sign_unknown = std::abs(e.value) < kSignUnknownSe * e.std_error;
+    const double relative =
+        e.std_error / (sign_unknown ? std::abs(e.value) : std::max(std::abs(e.value), 0.01 * range));
     if (!e.undetermined && !(relative > kWeakRelativeError)) continue;
     ++count;
     worst = std::max(worst, std::isfinite(relative) ? relative : HUGE_VAL);
@@ -97,7 +101,8 @@ void AddWeaklyDeterminedFindings(const StageResult& stage, std::vector<Finding>*
                     ? " (undetermined)"
                     : ShownValue(e.value, Unit(unit_of, e.name), " = %.4g") +
                           ShownValue(e.std_error, Unit(unit_of, e.name), " +- %.2g") +
-                          FormatNumbers(" (%.0f %%)", 100.0 * relative));
+                          FormatNumbers(" (%.0f %%", 100.0 * relative) +
+                          (sign_unknown ? ", sign unknown)" : ")"));
     }
   }
   if (count == 0) return;
@@ -165,10 +170,11 @@ void AddBoundFindings(const ModelInfo& info, const std::vector<Estimate>& estima
                       const ParameterUnitOf& unit_of) {
   for (const Estimate& e : estimates) {
     if (e.kind != EstimateKind::kParameter || e.role == ParameterRole::kFixed) continue;
-    if (!std::isfinite(e.lower) || !std::isfinite(e.upper) || !(e.upper > e.lower)) continue;
-    const double tolerance = 1e-6 * (e.upper - e.lower);
-    const bool at_lower = e.value - e.lower <= tolerance, at_upper = e.upper - e.value <= tolerance;
-    if (!at_lower && !at_upper) continue;
+    // One bound may be infinite (N_r <= 0 alone): on the other it is still held there.
+    if (!(e.upper > e.lower)) continue;
+    const int side = BoundSide(e.value, e.lower, e.upper);
+    if (side == 0) continue;
+    const bool at_lower = side < 0;
     const double bound = at_lower ? e.lower : e.upper;
     // A per-experiment value is named "delta_0[zz1]"; the model's hint is by "delta_0".
     const std::string model_name = e.name.substr(0, e.name.find('['));

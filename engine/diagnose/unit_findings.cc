@@ -2,10 +2,65 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "engine/data/angle_units.h"
 
 namespace vesselid {
+namespace {
+
+bool ListedInDegrees(const ExperimentSpec& spec, const std::string& column) {
+  const std::vector<std::string>& degrees = spec.degree_columns;
+  return std::find(degrees.begin(), degrees.end(), column) != degrees.end();
+}
+
+// An angle input beyond any rudder: the largest magnitude, and what it is in degrees.
+void AddAngleInputFinding(const ExperimentSpec& spec, const std::string& input,
+                          const std::string& column, const std::vector<double>& values,
+                          std::vector<Finding>* findings) {
+  double largest = 0.0;
+  for (double v : values) {
+    if (std::isfinite(v)) largest = std::max(largest, std::abs(v));
+  }
+  if (!(largest > kMaxAngleInput)) return;
+  char text[320];
+  std::snprintf(text, sizeof(text),
+                "input column '%s' reaches %.4g rad (%.4g deg), beyond any rudder or fin (%.0f "
+                "deg): it looks like degrees read as radians; add it to degrees:",
+                column.c_str(), largest, largest * 180.0 / M_PI, kMaxAngleInput * 180.0 / M_PI);
+  Finding f = MakeFinding(FindingKind::kUnitSuspect, text);
+  f.experiment = spec.name;
+  f.input = input;
+  f.value = largest;
+  f.threshold = kMaxAngleInput;
+  findings->push_back(std::move(f));
+}
+
+// A record whose median sample interval is beyond what a ship's motion is logged at.
+void AddSampleIntervalFinding(const ExperimentSpec& spec, const Trajectory& data,
+                              std::vector<Finding>* findings) {
+  std::vector<double> steps;
+  for (size_t k = 1; k < data.t.size(); ++k) {
+    if (data.t[k] >= spec.t_begin && data.t[k] <= spec.t_end) steps.push_back(data.t[k] - data.t[k - 1]);
+  }
+  if (steps.empty()) return;
+  std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
+  const double median = steps[steps.size() / 2];
+  if (!(median > kMaxSampleInterval)) return;
+  char text[320];
+  std::snprintf(text, sizeof(text),
+                "the time column's median sample interval is %.4g s: a ship's motion is logged "
+                "at 0.01-%.0f s; it looks like milliseconds read as seconds (%.4g s): give "
+                "time: {unit: ms}",
+                median, kMaxSampleInterval, median / 1000.0);
+  Finding f = MakeFinding(FindingKind::kUnitSuspect, text);
+  f.experiment = spec.name;
+  f.value = median;
+  f.threshold = kMaxSampleInterval;
+  findings->push_back(std::move(f));
+}
+
+}  // namespace
 
 void AddUnitFindings(const RunConfig& config, TrajectoryCache* cache,
                      std::vector<Finding>* findings) {
@@ -16,8 +71,7 @@ void AddUnitFindings(const RunConfig& config, TrajectoryCache* cache,
       if (o < 0 || o >= static_cast<int>(info.angle_outputs.size()) || !info.angle_outputs[o]) {
         continue;
       }
-      const std::vector<std::string>& degrees = spec.degree_columns;
-      if (std::find(degrees.begin(), degrees.end(), column) != degrees.end()) continue;
+      if (ListedInDegrees(spec, column)) continue;
       std::vector<double> values;
       if (!WindowSamples(spec, column, cache, &values)) continue;
       const AngleUnitCheck check = CheckAngleUnit(values);
@@ -28,6 +82,16 @@ void AddUnitFindings(const RunConfig& config, TrajectoryCache* cache,
         findings->push_back(std::move(f));
       }
     }
+    for (const auto& [input, column] : spec.inputs) {
+      const int i = info.InputIndex(input);
+      if (i < 0 || info.InputUnit(i) != "rad" || ListedInDegrees(spec, column)) continue;
+      std::vector<double> values;
+      if (WindowSamples(spec, column, cache, &values))
+        AddAngleInputFinding(spec, input, column, values, findings);
+    }
+    std::string error;
+    if (const Trajectory* data = cache->Load(spec, &error))
+      AddSampleIntervalFinding(spec, *data, findings);
   }
 }
 

@@ -24,7 +24,7 @@ constexpr double kNodeTimeTolerance = 1e-9;
 // turned (gaps outside the window, e.g. between the segments of a record, do not matter: the
 // window's start value and samples move by the same whole turns).
 bool OutputChannelOf(RecordChannels* channels, int column, const ModelInfo& info, int output,
-                     bool wrapped, double t0, double t_end, const Channel** channel,
+                     bool wrapped, bool degrees, double t0, double t_end, const Channel** channel,
                      std::string* error) {
   const Trajectory& trajectory = channels->trajectory();
   *channel = &channels->Extracted(column);
@@ -48,8 +48,9 @@ bool OutputChannelOf(RecordChannels* channels, int column, const ModelInfo& info
                   info.outputs[output].c_str(), trajectory.names[column].c_str(),
                   std::abs(step) * 180.0 / M_PI, t[k - 1], t[k], info.outputs[output].c_str());
     *error = text;
+    // A column read in degrees is in radians here: the hint is for one that is not.
     const AngleUnitCheck unit = CheckAngleUnit(raw);
-    if (unit.looks_like_degrees)
+    if (unit.looks_like_degrees && !degrees)
       *error += "; " + DescribeDegreesLook(trajectory.names[column], unit);
     return false;
   }
@@ -190,7 +191,8 @@ bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* record_channels
     if (column < 0) return fail("no column '" + mapped->second + "' for output '" + output + "'");
     auto weight = spec.output_weights.find(output);
     OutputChannel oc{index, weight == spec.output_weights.end() ? 1.0 : weight->second, nullptr};
-    if (!OutputChannelOf(record_channels, column, info, index, e.Wrapped(index), t0, t_end,
+    if (!OutputChannelOf(record_channels, column, info, index, e.Wrapped(index),
+                         spec.IsDegreeColumn(trajectory.names[column]), t0, t_end,
                          &oc.channel, error)) {
       return fail(*error);
     }
@@ -356,7 +358,8 @@ bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* record_channels
     const int column = trajectory.Find(column_name);
     if (o < 0 || column < 0) continue;
     const Channel* extracted = nullptr;
-    if (!OutputChannelOf(record_channels, column, info, o, e.Wrapped(o), t0, t_end, &extracted,
+    if (!OutputChannelOf(record_channels, column, info, o, e.Wrapped(o),
+                         spec.IsDegreeColumn(column_name), t0, t_end, &extracted,
                          error)) {
       return fail(*error);
     }

@@ -192,6 +192,7 @@ std::string ReadKey(const ExperimentSpec& spec) {
   add(table);
   add(std::string(1, spec.csv.separator));
   add(spec.csv.time_column);
+  number(spec.data.time_scale);
   number(static_cast<double>(spec.csv.max_bytes));
   number(static_cast<double>(spec.csv.max_values));
   number(spec.csv.max_bad_share);
@@ -236,6 +237,9 @@ bool LoadExperimentData(const ExperimentSpec& spec, Trajectory* trajectory, std:
     if (!TrajectoryFromTable(*spec.table, csv, trajectory, error)) return false;
   } else if (!ReadTrajectoryCsv(spec.file, csv, trajectory, error)) {
     return false;
+  }
+  if (spec.data.time_scale != 1.0) {
+    for (double& t : trajectory->t) t *= spec.data.time_scale;
   }
   AddBadCellFindings(spec, trajectory);
   if (!trajectory->skipped_columns.empty()) {

@@ -15,6 +15,8 @@
 namespace vesselid {
 
 struct ExperimentDataSpec {
+  // time: {unit: s | ms | us | min}: seconds per unit of the time column, applied as read.
+  double time_scale = 1.0;
   // position: {lat, lon, origin}: adds channels `north` and `east`.
   bool position = false;
   GnssPositionOptions gnss;

@@ -16,6 +16,7 @@ json FindingsToJson(const std::vector<Finding>& findings) {
                     {"segment", f.segment},
                     {"parameter", f.parameter},
                     {"output", f.output},
+                    {"input", f.input},
                     {"value", JsonNumber(f.value)},
                     {"threshold", JsonNumber(f.threshold)},
                     {"count", f.count},

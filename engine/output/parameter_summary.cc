@@ -16,16 +16,6 @@ std::string Number6(double value) {
 
 }  // namespace
 
-int BoundSide(double value, double lower, double upper) {
-  const bool finite = std::isfinite(lower) && std::isfinite(upper);
-  auto tolerance = [&](double bound) {
-    return 1e-6 * (finite ? upper - lower : std::max(1.0, std::abs(bound)));
-  };
-  if (std::isfinite(lower) && value - lower <= tolerance(lower)) return -1;
-  if (std::isfinite(upper) && upper - value <= tolerance(upper)) return 1;
-  return 0;
-}
-
 std::vector<ParameterReport> ReportParameters(const RunResult& result) {
   std::vector<ParameterReport> reports;
   for (const FinalParameter& f : result.parameters) {

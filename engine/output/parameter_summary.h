@@ -33,9 +33,6 @@ struct ParameterReport {
   std::string fusion_note;  // empty unless a fused value lies outside its stages' estimates
 };
 
-// Tolerance of "on a bound": 1e-6 of the bound range (of max(1, |bound|) when one is infinite).
-int BoundSide(double value, double lower, double upper);
-
 // One per final parameter, in the order of result.parameters.
 std::vector<ParameterReport> ReportParameters(const RunResult& result);
 

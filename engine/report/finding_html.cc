@@ -19,6 +19,7 @@ std::string FindingsHtml(const std::vector<Finding>& findings) {
       if (!f.experiment.empty()) where += (where.empty() ? "" : ", ") + f.experiment;
       if (!f.parameter.empty()) where += (where.empty() ? "" : ", ") + f.parameter;
       if (!f.output.empty()) where += (where.empty() ? "" : ", ") + f.output;
+      if (!f.input.empty()) where += (where.empty() ? "" : ", ") + f.input;
       out += "<li><code>" + std::string(FindingKindToString(f.kind)) + "</code> " +
              (where.empty() ? "" : "<em>" + HtmlEscape(where) + "</em>: ") + HtmlEscape(f.message) +
              (f.count > 1 ? " (x" + std::to_string(f.count) + ")" : "") + "</li>\n";

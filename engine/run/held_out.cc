@@ -234,9 +234,9 @@ std::unique_ptr<OutputErrorProblem> RunProblem(const ModelHandle& model, Experim
 }
 
 // The run predicted from its measured start (HeldOutStart::kMeasured): measured states at
-// their measurement, unmeasured ones at the data's guess; the listed unmeasured states and
-// the run's own parameters estimated on the burn-in, then the whole run simulated and
-// scored after it. `problem` is the burn-in's (null when nothing was estimated, or on failure).
+// their measurement; the listed unmeasured states (from the data's guess) and the run's own
+// parameters estimated on the burn-in, then the whole run simulated and scored after it. An
+// unmeasured state not listed starts where the stages start it (its given value, else 0). `problem` is the burn-in's (null when nothing was estimated, or on failure).
 ExperimentFit PredictFromMeasuredStart(const ModelHandle& model, Experiment experiment,
                                        const std::vector<std::string>& free_states,
                                        const LocalSolveOptions& local,
@@ -251,8 +251,6 @@ ExperimentFit PredictFromMeasuredStart(const ModelHandle& model, Experiment expe
   std::vector<std::string> unmeasured;
   for (size_t s = 0; s < info.states.size(); ++s) {
     if (MeasuringOutput(info, experiment, s) >= 0) continue;
-    if (s < experiment.initial_state_guess.size() && std::isfinite(experiment.initial_state_guess[s]))
-      experiment.initial_state[s] = experiment.initial_state_guess[s];
     if (std::find(free_states.begin(), free_states.end(), info.states[s]) != free_states.end())
       unmeasured.push_back(info.states[s]);
   }
@@ -505,10 +503,9 @@ bool SimulateHeldOut(const RunConfig& config, const ModelHandle& model,
 std::vector<std::string> HeldOutBoundNotes(const HeldOutParameters& parameters) {
   std::vector<std::string> notes;
   for (const Estimate& e : parameters.estimates) {
-    if (!std::isfinite(e.lower) || !std::isfinite(e.upper)) continue;
-    const double tolerance = 1e-6 * (e.upper - e.lower);
-    const bool at_lower = e.value - e.lower <= tolerance, at_upper = e.upper - e.value <= tolerance;
-    if (!at_lower && !at_upper) continue;
+    const int side = BoundSide(e.value, e.lower, e.upper);
+    if (side == 0) continue;
+    const bool at_lower = side < 0;
     char text[256];
     std::snprintf(text, sizeof(text),
                   "validation: %s of held-out run '%s' is at its %s bound %g: the run's data "

@@ -181,10 +181,7 @@ bool HandleOutliers(const StageConfig& stage, const StageOptions& options,
   if (count < 3 || static_cast<int>(summary->fits.size()) != count) return true;
   std::vector<double> rms;
   for (const ExperimentFit& fit : summary->fits) rms.push_back(fit.rms_cost);
-  const double median = UpperMedian(rms, 0.0);
-  std::vector<double> deviations;
-  for (double r : rms) deviations.push_back(std::abs(r - median));
-  const double limit = median + stage.outliers.threshold * 1.4826 * UpperMedian(deviations, 0.0);
+  const double limit = OutlierLimit(rms, stage.outliers.threshold);
   std::vector<double> factor(count, 1.0);  // weight scale per experiment
   std::vector<std::pair<double, std::string>> costly, far;
   for (int e = 0; e < count; ++e) {
@@ -221,7 +218,8 @@ bool HandleOutliers(const StageConfig& stage, const StageOptions& options,
         FindingKind::kOutliers,
         std::to_string(costly.size()) + " of " + std::to_string(count) +
             " experiments fit far worse than the rest (RMS cost above " + FormatNumbers("%.3g", limit) +
-            " = median + " + FormatNumbers("%g", stage.outliers.threshold) + " x MAD): " + list(costly));
+            " = max(median + " + FormatNumbers("%g", stage.outliers.threshold) +
+            " x MAD, 2 x median)): " + list(costly));
     f.count = static_cast<int>(costly.size());
     f.threshold = limit;
     summary->findings.push_back(std::move(f));

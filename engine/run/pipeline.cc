@@ -89,7 +89,7 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
     if (!ValidateVelocities(config, model, stage.validation, velocity_data, values, cache,
                             VelocitySteps{stage.experiment.max_step, {result}},
                             &result->velocity_validation, &diverged, &why,
-                            stage.options.local.num_threads)) {
+                            stage.options.local.num_threads, &result->held_out_parameters)) {
       // An optional check: the run goes on without it.
       result->velocity_validation.clear();
       diverged.clear();
@@ -296,7 +296,8 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
       std::string why;
       if (!ValidateVelocities(config, model, v.experiments, velocity_data, final_values, &cache,
                               VelocitySteps{v.experiment.max_step, accepted_stages},
-                              &run.final_velocity_validation, &diverged, &why)) {
+                              &run.final_velocity_validation, &diverged, &why, 0,
+                              &run.final_held_out_parameters)) {
         run.final_velocity_validation.clear();
         diverged.clear();
         Finding skipped = SkippedVelocityCheck(why, "velocity_validation");

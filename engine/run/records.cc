@@ -117,6 +117,7 @@ void NoteSkipped(TrajectoryCache* cache, const std::string& record, const Experi
                                                                    ": " + why);
   skipped.experiment = record;
   skipped.segment = piece.name;
+  skipped.value = std::min(piece.t_end, data.t.back()) - std::max(piece.t_begin, data.t.front());
   cache->AddNote(record, std::move(skipped));
 }
 
@@ -306,6 +307,7 @@ bool PrepareRegressionRecords(const RunConfig& config, const std::vector<std::st
                   cuts.size(), output.c_str(), limit / sorted[sorted.size() / 2]);
     Finding cut = MakeFinding(FindingKind::kRecordCut, "'" + s.name + text + where);
     cut.experiment = record;
+    cut.value = static_cast<double>(cuts.size());  // pieces
     cache->AddNote(record, std::move(cut));
     return true;
   };

@@ -8,11 +8,14 @@
 // that value.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "engine/base/statistics.h"
 #include "engine/base/work_limits.h"
 #include "engine/model/damping_inertia_form.h"
 #include "engine/model/experiment.h"
@@ -37,6 +40,18 @@ struct OutlierOptions {
   Action action = Action::kNote;
   double threshold = 5.0;
 };
+
+// An experiment's RMS cost above which it is an outlier: median + threshold x 1.4826 MAD of
+// the costs, and never below kOutlierFloor x the median. With few runs whose costs are all
+// alike (five within 3.5 %) the MAD is tiny and the first term alone named a correct run.
+inline constexpr double kOutlierFloor = 2.0;
+inline double OutlierLimit(const std::vector<double>& rms, double threshold) {
+  const double median = UpperMedian(rms, 0.0);
+  std::vector<double> deviations;
+  for (double r : rms) deviations.push_back(std::abs(r - median));
+  return std::max(median + threshold * 1.4826 * UpperMedian(deviations, 0.0),
+                  kOutlierFloor * median);
+}
 
 // What held-out runs do with the per-experiment parameters (a rudder bias per run) that have
 // no value for them (`per_experiment:`): estimate their own with the other parameters held

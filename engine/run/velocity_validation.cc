@@ -62,11 +62,24 @@ bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model, const std
   return true;
 }
 
+std::vector<double> WithOwnValues(const ModelInfo& info, const std::vector<double>& p,
+                                  const HeldOutParameters* own, const std::string& record) {
+  std::vector<double> values = p;
+  if (own == nullptr || !own->fitted) return values;
+  for (const Estimate& e : own->estimates) {
+    if (e.experiment != record) continue;
+    const int index = info.ParameterIndex(e.name.substr(0, e.name.find('[')));
+    if (index >= 0 && std::isfinite(e.value)) values[index] = e.value;
+  }
+  return values;
+}
+
 bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
                         const std::vector<std::string>& names, const RegressionDataOptions& data,
                         const std::vector<double>& p, TrajectoryCache* cache,
                         const VelocitySteps& steps, std::vector<ChannelMetrics>* metrics,
-                        std::vector<std::string>* diverged, std::string* error, int threads) {
+                        std::vector<std::string>* diverged, std::string* error, int threads,
+                        const HeldOutParameters* own) {
   metrics->clear();
   // The records are prepared in turn (preparing notes skipped segments in the cache), then
   // measured in parallel, each into its own slot, collected in the given order.
@@ -86,11 +99,12 @@ bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
   std::vector<Measured> measured(count);
   ParallelFor(count, threads, [&](int i) {
     Measured& m = measured[i];
+    const std::vector<double> values = WithOwnValues(model.info(), p, own, names[i]);
     m.ok =
-        OneStepMetrics(model, p, LeastSquaresOptions(), &records[i], "one-step", &m.one_step,
+        OneStepMetrics(model, values, LeastSquaresOptions(), &records[i], "one-step", &m.one_step,
                        &m.error) &&
-        FreeRunMetrics(config, model, p, *cache, steps, &records[i], &m.free_run, &m.diverged,
-                       &m.error);
+        FreeRunMetrics(config, model, values, *cache, steps, &records[i], &m.free_run,
+                       &m.diverged, &m.error);
   });
   for (int i = 0; i < count; ++i) {
     Measured& m = measured[i];

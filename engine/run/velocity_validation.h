@@ -34,7 +34,13 @@ bool ValidateVelocities(const RunConfig& config, const ModelHandle& model,
                         const std::vector<double>& p, TrajectoryCache* cache,
                         const VelocitySteps& steps, std::vector<ChannelMetrics>* metrics,
                         std::vector<std::string>* diverged, std::string* error,
-                        int threads = 0);
+                        int threads = 0, const HeldOutParameters* own = nullptr);
+
+// `p` with each per-experiment parameter that `own` estimated for record `record` (a held-out
+// run's own rudder bias, on its burn-in) at that estimate: a run's free run is simulated with
+// the values its held-out fit had, not the training runs' mean.
+std::vector<double> WithOwnValues(const ModelInfo& info, const std::vector<double>& p,
+                                  const HeldOutParameters* own, const std::string& record);
 
 // Free-run part on prepared records (which get the model's internal states at p).
 bool FreeRunMetrics(const RunConfig& config, const ModelHandle& model, const std::vector<double>& p,

@@ -1,6 +1,8 @@
 // Named model parameters as a run declares them: start value, bounds, scale and role.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <string>
@@ -26,6 +28,18 @@ inline bool IsEstimatedOnce(ParameterRole role) {
 
 const char* ParameterRoleToString(ParameterRole role);
 bool StringToParameterRole(const std::string& text, ParameterRole* role);
+
+// Which bound `value` is on: -1 lower, +1 upper, 0 neither (or no finite bound). Tolerance:
+// 1e-6 of the bound range, of max(1, |bound|) when the other bound is infinite.
+inline int BoundSide(double value, double lower, double upper) {
+  const bool finite = std::isfinite(lower) && std::isfinite(upper);
+  auto tolerance = [&](double bound) {
+    return 1e-6 * (finite ? upper - lower : std::max(1.0, std::abs(bound)));
+  };
+  if (std::isfinite(lower) && value - lower <= tolerance(lower)) return -1;
+  if (std::isfinite(upper) && upper - value <= tolerance(upper)) return 1;
+  return 0;
+}
 
 struct ParameterSpec {
   std::string name;

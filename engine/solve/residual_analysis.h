@@ -26,6 +26,10 @@ namespace vesselid {
 
 inline constexpr int kResidualMaxLags = 25;
 inline constexpr double kWhitenessLevel = 0.01;     // Ljung-Box p below it: coloured
+// The coloured_residuals finding also needs |lag-1 autocorrelation| above this: a Ljung-Box
+// test over 25 lags rejects long records for structure at far lags that no consequence follows
+// from (a lag-1 of 0.00 is not what a reader takes "coloured" for).
+inline constexpr double kColouredLag1 = 0.3;
 inline constexpr double kBand99 = 2.5758293035489;  // two-sided normal quantiles
 inline constexpr double kBand95 = 1.9599639845401;
 // Fewer samples than this: no test (too few lags to say anything).

@@ -159,7 +159,8 @@ struct Model {
     if (speed2 < floor * floor) speed2 = T(floor * floor);
     const T speed = sqrt(speed2);
     const T vn = v / speed, rn = r * L / speed;
-    const T beta = atan2(-v, u);
+    // Drift angle; at rest (u = v = 0) taken as 0 with no derivative: atan2's Jet is 0/0 there.
+    const T beta = (u > 0.0 || v != 0.0) ? atan2(-v, u) : T(0.0);
     const T v2 = vn * vn, r2 = rn * rn;
     const T xh = -p[kR0] + p[kXvv] * v2 + p[kXvr] * vn * rn + p[kXrr] * r2 + p[kXvvvv] * v2 * v2;
     const T yh = p[kYv] * vn + p[kYr] * rn + p[kYvvv] * v2 * vn + p[kYvvr] * v2 * rn +

@@ -47,6 +47,11 @@ inline void YawRateRegressors(bool cubic, RegressionRecord* record,
 inline ModelInfo WithParameterUnits(ModelInfo info, std::vector<std::string> units) {
   info.parameter_units = std::move(units);
   info.parameter_channels = {{"delta_0", "delta"}};
+  // The rudder is an angle (the unit checks judge a column logged in degrees by it).
+  if (info.input_units.empty()) {
+    for (const std::string& input : info.inputs)
+      info.input_units.push_back(input == "delta" ? "rad" : (input == "U" ? "m/s" : ""));
+  }
   return info;
 }
 

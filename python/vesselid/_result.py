@@ -18,6 +18,7 @@ class Finding:
     segment: str = ""
     parameter: str = ""
     output: str = ""
+    input: str = ""  # the model input the finding is about (a rudder column), "" when none
     value: float = math.nan
     threshold: float = math.nan
     count: int = 0
@@ -28,7 +29,8 @@ class Finding:
         return Finding(kind=item["kind"], severity=item["severity"], message=item["message"],
                        stage=item.get("stage", ""), experiment=item.get("experiment", ""),
                        segment=item.get("segment", ""), parameter=item.get("parameter", ""),
-                       output=item.get("output", ""), value=number(item.get("value")),
+                       output=item.get("output", ""), input=item.get("input", ""),
+                       value=number(item.get("value")),
                        threshold=number(item.get("threshold")), count=item.get("count", 0))
 
 

@@ -117,11 +117,12 @@ void CheckRun(const std::string& kind, const Expected& expected) {
   }
 }
 
-// Measured held-out MAE 0.062 m (e), 0.050 m (n), 0.0134 rad (psi), against 0.31, 0.26, 0.076
-// at its start; the final values fit the held-out segments at 71-99.8 %, but their sway
+// Measured held-out MAE from each segment's measured start (velocities on a burn-in of a tenth
+// of the segment) 0.127 m (e), 0.124 m (n), 0.0232 rad (psi), better than at its start (refitted
+// on the whole segments, before: 0.062, 0.050, 0.0134); the final values fit the held-out segments at 71-99.8 %, but their sway
 // damping -1.54 v + 4.15 |v|v feeds the motion within the speeds the records reach.
 TEST(MismatchCampaign, StaticConfigSaysWhatItKept) {
-  CheckRun("static", {{{"e", 0.093}, {"n", 0.075}, {"psi", 0.02}},
+  CheckRun("static", {{{"e", 0.19}, {"n", 0.19}, {"psi", 0.035}},
                       "not_admissible",
                       "v.|v|v"});
 }

@@ -53,7 +53,28 @@ TEST(MmgKvlcc2, ZigzagsPredictTheTurningCirclesAndHeldOutRuns) {
   ASSERT_EQ(std::system(refit.c_str()), 0) << refit;
   std::ifstream refitted_in(out / "refitted" / "results.json");
   const json refitted = json::parse(refitted_in);
+  // And with no initial state free: the held-out runs start where the stages would (u = 0,
+  // the ship at rest) and estimate only their rudder bias on the burn-in. Each run is
+  // simulated (before: "derivative by delta_0 not finite" in every run, from U = sqrt(u^2 +
+  // v^2) and atan2(-v, u) at rest).
+  std::string no_free = config;
+  const std::string refitted_line = final_line + " held_out: {start: refitted},";
+  no_free.replace(no_free.find(refitted_line), std::string::npos,
+                  "final_validation: {experiments: held_out}\n");
+  std::ofstream(out / "no_free.yaml") << no_free;
+  const std::string run_no_free = std::string(VESSELID_BINARY) + " run " +
+                                  (out / "no_free.yaml").string() + " --data " + out.string() +
+                                  " --out " + (out / "no_free").string() + " --quiet --no-report > /dev/null";
+  ASSERT_EQ(std::system(run_no_free.c_str()), 0) << run_no_free;
+  std::ifstream no_free_in(out / "no_free" / "results.json");
+  const json without_states = json::parse(no_free_in);
   fs::remove_all(out);
+  EXPECT_FALSE(without_states["final_validation"].contains("diverged"))
+      << without_states["final_validation"]["diverged"].dump();
+  EXPECT_EQ(without_states["final_validation"]["runs"]["rows"].size(), 6u);
+  for (const auto& [run, start] : without_states["final_validation"]["start"].items()) {
+    EXPECT_EQ(start["estimated"], json::array({"delta_0"})) << run;
+  }
   int implausible = 0;
   for (const json& f : refitted["findings"]) {
     if (f["kind"] != "implausible_start") continue;

@@ -37,7 +37,7 @@ std::string ReadText(const fs::path& path) {
 
 constexpr char kConfig[] = R"(model: {family: nomoto, type: first_order}
 experiments:
-  - {name: zz, file: zz.csv, inputs: {delta: delta}, outputs: {psi: psi, r: r}, DEGREES}
+  - {name: zz, inputs: {delta: delta}, outputs: {psi: psi, r: r}, DEGREES}
 stages:
   - name: fit
     parameters:
@@ -78,6 +78,9 @@ class UnitsTest : public ::testing::Test {
       for (double& v : logged.columns.back()) v *= kDeg;
     }
     ASSERT_TRUE(WriteTrajectoryCsv((*dir_ / "zz.csv").string(), logged, &error)) << error;
+    // The same log with its time in milliseconds.
+    for (double& t : logged.t) t *= 1000.0;
+    ASSERT_TRUE(WriteTrajectoryCsv((*dir_ / "zz_ms.csv").string(), logged, &error)) << error;
   }
   static void TearDownTestSuite() {
     fs::remove_all(*dir_);
@@ -87,7 +90,8 @@ class UnitsTest : public ::testing::Test {
   // Runs the config with `degrees` into <dir>/<out>; the run's result.
   static RunResult Run(const std::string& degrees, const std::string& out) {
     std::string text = kConfig;
-    text.replace(text.find("DEGREES"), 7, degrees);
+    text.replace(text.find("DEGREES"), 7,
+                 degrees + (degrees.find("file:") == std::string::npos ? ", file: zz.csv" : ""));
     std::ofstream(*dir_ / (out + ".yaml")) << text;
     RunConfig config;
     RunResult result;
@@ -102,6 +106,16 @@ class UnitsTest : public ::testing::Test {
     fs::create_directories(*dir_ / out);
     EXPECT_TRUE(WriteRunResults(config, result, (*dir_ / out).string(), &error)) << error;
     return result;
+  }
+
+  // The unit_suspect findings' outputs (columns) of a run.
+  static std::vector<std::string> SuspectUnits(const RunResult& result) {
+    std::vector<std::string> columns;
+    for (const Finding& f : result.findings) {
+      if (f.kind != FindingKind::kUnitSuspect) continue;
+      columns.push_back(!f.output.empty() ? f.output : !f.input.empty() ? f.input : "time");
+    }
+    return columns;
   }
 
   static bool WarnsOfDegrees(const RunResult& result) {
@@ -227,6 +241,43 @@ TEST_F(UnitsTest, HeadingInDegreesReadAsRadiansIsNamed) {
     if (m.output == "psi") {
       EXPECT_LT(m.fit_percent, 50.0);
     }
+  }
+}
+
+}  // namespace units_test
+}  // namespace vesselid
+
+namespace vesselid {
+namespace units_test {
+
+// A rudder logged in degrees but not listed: the input check names it (10-20 "rad" is beyond
+// any rudder), with the value; the heading listed correctly stays quiet. Listed, nothing.
+TEST_F(UnitsTest, RudderInDegreesReadAsRadiansIsNamed) {
+  const RunResult forgotten = Run("degrees: [psi, r]", "nodelta");
+  EXPECT_EQ(SuspectUnits(forgotten), std::vector<std::string>{"delta"});
+  for (const Finding& f : forgotten.findings) {
+    if (f.kind != FindingKind::kUnitSuspect) continue;
+    EXPECT_EQ(f.experiment, "zz");
+    EXPECT_GT(f.value, 20.0);
+    EXPECT_NE(f.message.find("input column 'delta' reaches"), std::string::npos) << f.message;
+  }
+  EXPECT_TRUE(SuspectUnits(Run("degrees: [psi, r, delta]", "alldeg")).empty());
+}
+
+// Time logged in milliseconds and read as seconds: a median sample interval of 100 s is named;
+// with `time: {unit: ms}` the run is quiet and identifies what the seconds log does.
+TEST_F(UnitsTest, TimeInMillisecondsIsNamedAndReadWithItsUnit) {
+  const RunResult ms = Run("degrees: [psi, r, delta], file: zz_ms.csv", "ms");
+  EXPECT_EQ(SuspectUnits(ms), std::vector<std::string>{"time"});
+  const RunResult read = Run("degrees: [psi, r, delta], file: zz_ms.csv, time: {unit: ms}", "msread");
+  EXPECT_TRUE(SuspectUnits(read).empty());
+  const RunResult seconds = Run("degrees: [psi, r, delta]", "seconds");
+  ASSERT_FALSE(read.parameters.empty());
+  ASSERT_EQ(read.parameters.size(), seconds.parameters.size());
+  for (size_t i = 0; i < read.parameters.size(); ++i) {
+    EXPECT_NEAR(read.parameters[i].value, seconds.parameters[i].value,
+                1e-6 * std::abs(seconds.parameters[i].value) + 1e-12)
+        << read.parameters[i].name;
   }
 }
 

@@ -151,5 +151,22 @@ TEST(GlitchScreen, LastingMoveIsKeptAsTheTrack) {
             std::string::npos);
 }
 
+// A logger's bad first row (a heading 150 deg off, 3 s before the next row) and a bad last
+// row: each is a jump removed like any other glitch, not the anchor the rest of the record is
+// judged from.
+TEST(GlitchScreen, BadFirstAndLastRowsAreGlitches) {
+  Trajectory data = Track();
+  data.t[0] = data.t[1] - 3.0;
+  data.columns[2][0] = std::fmod(data.columns[2][1] + 150.0, 360.0);
+  data.columns[2][kRows - 1] = std::fmod(data.columns[2][kRows - 1] + 180.0, 360.0);
+  const std::vector<GlitchFinding> findings = ScreenGlitches(Options(), &data);
+  ASSERT_EQ(findings.size(), 1u) << DescribeGlitches(findings);
+  EXPECT_EQ(findings[0].kind, "jump");
+  EXPECT_EQ(findings[0].count, 2);
+  EXPECT_TRUE(std::isnan(data.columns[2][0]));
+  EXPECT_TRUE(std::isnan(data.columns[2][kRows - 1]));
+  EXPECT_EQ(Missing(data, 2), 2);
+}
+
 }  // namespace glitch_screen_test
 }  // namespace vesselid

@@ -35,6 +35,17 @@ TEST(RecordChecks, SmoothNoisyAndTwoLevelChannelsAreNotQuantised) {
   EXPECT_EQ(QuantisationStep({1.0, 2.0, 3.0}), 0.0);  // too few samples to judge
 }
 
+// A rudder held at +-20 deg, converted to radians with round-off in the last digits: its values
+// differ by 1e-16-1e-13, which is no quantisation (the note said "steps of 1e-12").
+TEST(RecordChecks, RoundOffIsNotQuantisation) {
+  std::vector<double> rudder;
+  for (int k = 0; k < 600; ++k) {
+    const double level = ((k / 50) % 2 == 0 ? 20.0 : -20.0) * M_PI / 180.0;
+    rudder.push_back(level * (1.0 + 1e-13 * (k % 7)));
+  }
+  EXPECT_EQ(QuantisationStep(rudder), 0.0);
+}
+
 }  // namespace record_checks_test
 }  // namespace vesselid
 

@@ -2,7 +2,9 @@
 // each fires on what it names, with its value and threshold, and a good stage stays quiet.
 #include "engine/diagnose/stage_findings.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "engine/diagnose/run_findings.h"
 #include "gtest/gtest.h"
@@ -182,6 +184,97 @@ TEST(StageFindings, WeaklyDeterminedAndNotAdmissible) {
       << stage.findings[0].message;
   EXPECT_EQ(stage.findings[1].kind, FindingKind::kNotAdmissible);
   EXPECT_EQ(stage.findings[1].severity, FindingSeverity::kWarning);
+}
+
+// An interval that spans 0 leaves the sign unknown, however small the value is beside its
+// bound range; near 0 with a tight interval it is determined.
+TEST(StageFindings, SignUnknownWhenTheIntervalSpansZero) {
+  StageResult stage = GoodStage();
+  stage.estimates[1] = Free("K", 0.386, 0.49);
+  stage.estimates[1].lower = -1000.0;
+  stage.estimates[1].upper = 10000.0;
+  DiagnoseStage(Info(), true, &stage);
+  ASSERT_EQ(stage.findings.size(), 1u);
+  EXPECT_EQ(stage.findings[0].kind, FindingKind::kWeaklyDetermined);
+  EXPECT_NE(stage.findings[0].message.find("sign unknown"), std::string::npos)
+      << stage.findings[0].message;
+  stage = GoodStage();
+  stage.estimates[1] = Free("K", 0.386, 0.049);
+  stage.estimates[1].lower = -1000.0;
+  stage.estimates[1].upper = 10000.0;
+  DiagnoseStage(Info(), true, &stage);
+  EXPECT_TRUE(stage.findings.empty());
+}
+
+// On a bound whose other side is open (N_r <= 0): at_bound all the same; off it, quiet.
+TEST(StageFindings, AtABoundWithTheOtherSideOpen) {
+  StageResult stage = GoodStage();
+  stage.estimates[1] = Free("K", 0.0, 0.001);
+  stage.estimates[1].lower = -std::numeric_limits<double>::infinity();
+  stage.estimates[1].upper = 0.0;
+  DiagnoseStage(Info(), true, &stage);
+  ASSERT_EQ(stage.findings.size(), 1u);
+  EXPECT_EQ(stage.findings[0].kind, FindingKind::kAtBound);
+  EXPECT_NE(stage.findings[0].message.find("upper bound 0"), std::string::npos);
+  stage = GoodStage();
+  stage.estimates[1] = Free("K", -0.17, 0.001);
+  stage.estimates[1].lower = -std::numeric_limits<double>::infinity();
+  stage.estimates[1].upper = 0.0;
+  DiagnoseStage(Info(), true, &stage);
+  EXPECT_TRUE(stage.findings.empty());
+}
+
+// Coloured residuals are a note when Ljung-Box rejects whiteness and the lag-1 autocorrelation
+// is above 0.3, as the rule says; a rejection at far lags with lag-1 0.00 is no such note.
+TEST(StageFindings, ColouredResidualsNeedTheLagOneCorrelation) {
+  for (double lag1 : {0.0, 0.8}) {
+    StageResult stage = GoodStage();
+    ResidualAnalysis a;
+    a.experiment = "run";
+    a.output = "psi";
+    a.samples = 1000;
+    a.lags = 25;
+    a.lag1 = lag1;
+    a.ljung_box_p = 1e-6;
+    a.white = false;
+    stage.residuals = {a};
+    DiagnoseStage(Info(), true, &stage);
+    const std::vector<FindingKind> kinds = Kinds(stage);
+    EXPECT_EQ(std::count(kinds.begin(), kinds.end(), FindingKind::kColouredResiduals),
+              lag1 > 0.3 ? 1 : 0)
+        << lag1;
+  }
+}
+
+// Pieces skipped in several records are one finding with the counts and the shortest piece;
+// one piece alone stays as it is.
+TEST(RunFindings, SkippedPiecesAreOneFindingWithTheWorstCase) {
+  std::vector<Finding> findings;
+  const double lengths[] = {3.0, 0.4, 2.0, 5.0, 1.5};
+  for (int i = 0; i < 5; ++i) {
+    Finding f = MakeFinding(FindingKind::kSegmentSkipped,
+                            "skipped (t = 0 to 1 s): fewer samples than the smoothing window");
+    f.experiment = i < 3 ? "log1" : "log2";
+    f.segment = f.experiment + "#" + std::to_string(i);
+    f.value = lengths[i];
+    findings.push_back(f);
+  }
+  Finding other = MakeFinding(FindingKind::kAtBound, "T is at its bound");
+  other.stage = "fit";
+  findings.push_back(other);
+  const std::vector<Finding> folded = FoldFindings(findings);
+  ASSERT_EQ(folded.size(), 2u);
+  const Finding& skipped = folded[0].kind == FindingKind::kSegmentSkipped ? folded[0] : folded[1];
+  EXPECT_EQ(skipped.count, 5);
+  EXPECT_DOUBLE_EQ(skipped.value, 0.4);
+  EXPECT_TRUE(skipped.experiment.empty());
+  EXPECT_NE(skipped.message.find("5 pieces of 2 record(s) skipped; the shortest, 0.4 s (log1, "
+                                 "log1#1)"),
+            std::string::npos)
+      << skipped.message;
+  findings.resize(1);
+  ASSERT_EQ(FoldFindings(findings).size(), 1u);
+  EXPECT_EQ(FoldFindings(findings)[0].message, findings[0].message);
 }
 
 TEST(RunFindings, FinalValuesAndTheVerdictRule) {
