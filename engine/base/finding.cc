@@ -126,7 +126,8 @@ const Row kRows[] = {
      "Set `integration: {max_step: ...}` to the step the finding names."},
     {K::kOutliers, "outliers", S::kWarning,
      "Experiments whose RMS cost is far above the rest (above median + 5 x 1.4826 MAD of the "
-     "costs and above twice the median), or free initial states that end far from the data's "
+     "costs and above twice the median; with `outliers: {threshold: k}`, k x MAD and "
+     "(1 + k/5) x the median), or free initial states that end far from the data's "
      "guess (OutlierOptions).",
      "Look at the named records; drop them (`outliers: drop`) if they are broken."},
     {K::kNoiseModel, "noise_model", S::kWarning,
@@ -168,7 +169,8 @@ const Row kRows[] = {
      "Expected of a start stage; in the last stage, look for missing dynamics or a wrong "
      "minimum (a global start)."},
     {K::kColouredResiduals, "coloured_residuals", S::kInfo,
-     "Residuals are coloured (Ljung-Box p < 0.01, lag-1 autocorrelation > 0.3): normal for "
+     "Residuals are coloured (Ljung-Box p < 0.01, and the lag-1 autocorrelation beyond its 99 % "
+     "band +-2.58/sqrt(N)): normal for "
      "real records with unmodelled dynamics; it matters for the standard errors "
      "(narrow_intervals says when).",
      "None for the fit; for the intervals use sandwich_hac."},

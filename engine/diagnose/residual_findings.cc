@@ -130,7 +130,7 @@ void AddResidualFindings(const StageResult& stage, std::vector<Finding>* finding
   for (const ResidualAnalysis& a : stage.residuals) {
     if (!a.tested() || a.noise_free || failed.count({a.experiment, a.output}) > 0) continue;
     if (analysed[a.output]++ == 0) outputs.push_back(a.output);
-    if (!a.white && std::abs(a.lag1) > kColouredLag1) coloured[a.output].push_back(&a);
+    if (a.coloured()) coloured[a.output].push_back(&a);
     if (a.input_correlated) correlated[a.output].push_back(&a);
   }
   for (const std::string& output : outputs) {

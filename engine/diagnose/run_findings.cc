@@ -61,21 +61,36 @@ void UseRecordNames(std::vector<Finding>* findings) {
   }
 }
 
+// A finding's message without its numbers (times, counts, lengths): messages alike but for
+// them give the same reason.
+std::string Reason(const std::string& message) {
+  std::string reason;
+  for (char c : message) {
+    if ((c >= '0' && c <= '9') || c == '.') continue;
+    reason += c;
+  }
+  return reason;
+}
+
 // Findings about single pieces of records (a piece skipped, a record cut at its gaps) are one
-// per kind, stage and severity: the count of pieces and records and the worst case (the
-// shortest piece skipped, the record cut into most pieces), not one line per piece: a field
-// log's 201 skipped pieces hid the two reasons of its verdict.
+// per kind, stage, severity and reason: the count of pieces and records and the worst case
+// (the shortest piece skipped, the record cut into most pieces), not one line per piece: a
+// field log's 201 skipped pieces hid the two reasons of its verdict.
 void SummarisePieces(std::vector<Finding>* findings) {
-  using Key = std::tuple<int, int, std::string>;
+  using Key = std::tuple<int, int, std::string, std::string>;
+  auto key_of = [](const Finding& f) {
+    return Key{static_cast<int>(f.kind), static_cast<int>(f.severity), f.stage, Reason(f.message)};
+  };
   std::map<Key, std::vector<const Finding*>> groups;
   for (const Finding& f : *findings) {
     if (f.kind == FindingKind::kSegmentSkipped || f.kind == FindingKind::kRecordCut)
-      groups[{static_cast<int>(f.kind), static_cast<int>(f.severity), f.stage}].push_back(&f);
+      groups[key_of(f)].push_back(&f);
   }
   std::vector<Finding> summaries;
   for (const auto& [key, group] : groups) {
     if (group.size() < 2) continue;
     const bool skipped = group.front()->kind == FindingKind::kSegmentSkipped;
+    std::string summary_text;
     std::set<std::string> records;
     const Finding* worst = group.front();
     int pieces = 0;
@@ -85,16 +100,29 @@ void SummarisePieces(std::vector<Finding>* findings) {
       const bool worse = skipped ? f->value < worst->value : f->value > worst->value;
       if (worse) worst = f;
     }
+    std::string names;
+    int named = 0;
+    for (const std::string& record : records) {
+      if (++named > 6) {
+        names += ", ...";
+        break;
+      }
+      names += (names.empty() ? "" : ", ") + record;
+    }
     char text[160];
     if (skipped) {
-      std::snprintf(text, sizeof(text), "%d pieces of %zu record(s) skipped; the shortest, %.3g s",
-                    pieces, records.size(), worst->value);
+      std::snprintf(text, sizeof(text), "%d pieces of %zu record(s) skipped (", pieces,
+                    records.size());
+      summary_text = text + names;
+      std::snprintf(text, sizeof(text), "); the shortest, %.3g s", worst->value);
     } else {
-      std::snprintf(text, sizeof(text), "%zu records cut into %d pieces in all; the most",
-                    group.size(), pieces);
+      std::snprintf(text, sizeof(text), "%zu records cut into %d pieces in all (", group.size(),
+                    pieces);
+      summary_text = text + names;
+      std::snprintf(text, sizeof(text), "); the most");
     }
     Finding summary = *worst;
-    summary.message = std::string(text) + " (" + worst->experiment +
+    summary.message = summary_text + text + " (" + worst->experiment +
                       (worst->segment.empty() ? "" : ", " + worst->segment) + "): " + worst->message;
     summary.count = static_cast<int>(group.size());
     if (records.size() > 1) summary.experiment.clear();
@@ -104,8 +132,7 @@ void SummarisePieces(std::vector<Finding>* findings) {
   if (summaries.empty()) return;
   std::vector<Finding> kept;
   for (const Finding& f : *findings) {
-    const Key key{static_cast<int>(f.kind), static_cast<int>(f.severity), f.stage};
-    const auto group = groups.find(key);
+    const auto group = groups.find(key_of(f));
     if (group == groups.end() || group->second.size() < 2) kept.push_back(f);
   }
   kept.insert(kept.end(), summaries.begin(), summaries.end());
@@ -240,7 +267,17 @@ bool Identify(const RunConfig& config, RunResult* result, std::string* error,
   TrajectoryCache records;
   const bool ok =
       RunIdentification(config, result, error, observer, std::move(finished), &records);
-  if (ok || !result->stopped_stage.empty()) DiagnoseRun(config, result, &records);
+  if (ok || !result->stopped_stage.empty()) {
+    DiagnoseRun(config, result, &records);
+  } else {
+    // A run that fails says what its records' units suggest (time in milliseconds read as
+    // seconds makes the first simulation diverge).
+    std::vector<Finding> units;
+    AddUnitFindings(config, &records, &units);
+    for (const Finding& f : units) {
+      *error += "; experiment '" + f.experiment + "': " + f.message;
+    }
+  }
   return ok;
 }
 

@@ -218,8 +218,9 @@ bool HandleOutliers(const StageConfig& stage, const StageOptions& options,
         FindingKind::kOutliers,
         std::to_string(costly.size()) + " of " + std::to_string(count) +
             " experiments fit far worse than the rest (RMS cost above " + FormatNumbers("%.3g", limit) +
-            " = max(median + " + FormatNumbers("%g", stage.outliers.threshold) +
-            " x MAD, 2 x median)): " + list(costly));
+            " = max(median + " + FormatNumbers("%g", stage.outliers.threshold) + " x MAD, " +
+            FormatNumbers("%g", 1.0 + stage.outliers.threshold / kOutlierFloorScale) +
+            " x median)): " + list(costly));
     f.count = static_cast<int>(costly.size());
     f.threshold = limit;
     summary->findings.push_back(std::move(f));

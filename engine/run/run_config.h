@@ -42,15 +42,16 @@ struct OutlierOptions {
 };
 
 // An experiment's RMS cost above which it is an outlier: median + threshold x 1.4826 MAD of
-// the costs, and never below kOutlierFloor x the median. With few runs whose costs are all
-// alike (five within 3.5 %) the MAD is tiny and the first term alone named a correct run.
-inline constexpr double kOutlierFloor = 2.0;
+// the costs, and never below (1 + threshold / kOutlierFloorScale) x the median (twice the
+// median at the default threshold 5). With few runs whose costs are all alike (five within
+// 3.5 %) the MAD is tiny and the first term alone named a correct run.
+inline constexpr double kOutlierFloorScale = 5.0;
 inline double OutlierLimit(const std::vector<double>& rms, double threshold) {
   const double median = UpperMedian(rms, 0.0);
   std::vector<double> deviations;
   for (double r : rms) deviations.push_back(std::abs(r - median));
   return std::max(median + threshold * 1.4826 * UpperMedian(deviations, 0.0),
-                  kOutlierFloor * median);
+                  (1.0 + threshold / kOutlierFloorScale) * median);
 }
 
 // What held-out runs do with the per-experiment parameters (a rudder bias per run) that have

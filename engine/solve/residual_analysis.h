@@ -18,6 +18,7 @@
 // O(N L) time; no per-lag allocation.
 #pragma once
 
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -26,10 +27,7 @@ namespace vesselid {
 
 inline constexpr int kResidualMaxLags = 25;
 inline constexpr double kWhitenessLevel = 0.01;     // Ljung-Box p below it: coloured
-// The coloured_residuals finding also needs |lag-1 autocorrelation| above this: a Ljung-Box
-// test over 25 lags rejects long records for structure at far lags that no consequence follows
-// from (a lag-1 of 0.00 is not what a reader takes "coloured" for).
-inline constexpr double kColouredLag1 = 0.3;
+
 inline constexpr double kBand99 = 2.5758293035489;  // two-sided normal quantiles
 inline constexpr double kBand95 = 1.9599639845401;
 // Fewer samples than this: no test (too few lags to say anything).
@@ -66,6 +64,10 @@ struct ResidualAnalysis {
   bool noise_free = false;
 
   bool tested() const { return lags > 0; }
+  // What the coloured_residuals finding says: whiteness rejected (Ljung-Box) and the lag-1
+  // autocorrelation itself beyond the 99 % band; a rejection at far lags with a lag-1 of 0.00
+  // is not what a reader takes "coloured" for.
+  bool coloured() const { return tested() && !white && std::abs(lag1) > band_99; }
   bool irregular() const { return interval_spread > kIrregularSpacing; }
 };
 

@@ -228,6 +228,7 @@ const KeyCase kCases[] = {
     {"final_validation", V, V.T("final_validation: {experiments: [c]}")},
     {"validation_per_experiment", kPerRun.K("    validation: [c]"),
      kPerRun.K("    validation: [c]\n    validation_per_experiment: hold")},
+    {"unit", V, V.A(", time: {unit: min}")},
     {"held_out", kPerRun.K("    validation: [c]"),
      kPerRun.K("    validation: [c]\n    held_out: {start: refitted}")},
     {"burn_in", kPerRun.K("    validation: [c]"),

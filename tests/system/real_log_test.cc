@@ -187,7 +187,7 @@ TEST_F(RealLog, FinishesWithEveryDefectNamed) {
       "1 jump(s) faster than the screen's bound in north/east (t = ",
       "1 jump(s) faster than the screen's bound in hdg_deg (t = ",
       "experiment 'log': resampled to a uniform 5 Hz grid",
-      "experiment 'log', segment log@5: skipped (t = ",
+      "experiment 'log': 2 pieces of 1 record(s) skipped (log); the shortest, ",
       "s): Savitzky-Golay window of 15 samples is longer than the ",
       "experiment 'log', segment log@6: skipped (t = ",
       " sample time(s) of its outputs, fewer than the 6 the model's states need"};

@@ -90,7 +90,8 @@ TEST(RecordChecks, FindingsNameTheExperimentAndChannel) {
   ASSERT_EQ(found.size(), 2u);
   EXPECT_EQ(found[0].kind, FindingKind::kStartsMidManoeuvre);
   EXPECT_EQ(found[0].experiment, "zz");
-  EXPECT_EQ(found[0].output, "delta");
+  EXPECT_EQ(found[0].input, "delta");  // an input is named as one
+  EXPECT_TRUE(found[0].output.empty());
   EXPECT_NEAR(found[0].value, 30.0, 1e-9);
   EXPECT_EQ(found[0].message.rfind("column 'rudder' starts at 30 deg", 0), 0u) << found[0].message;
   EXPECT_EQ(found[1].kind, FindingKind::kQuantised);

@@ -180,7 +180,7 @@ TEST(StageFindings, WeaklyDeterminedAndNotAdmissible) {
   ASSERT_EQ(stage.findings.size(), 2u);
   EXPECT_EQ(stage.findings[0].kind, FindingKind::kWeaklyDetermined);
   EXPECT_NEAR(stage.findings[0].value, 0.75, 1e-12);
-  EXPECT_NE(stage.findings[0].message.find("T = 2 +- 1.5 (75 %)"), std::string::npos)
+  EXPECT_NE(stage.findings[0].message.find("T = 2 +- 1.5 (75 %, sign unknown)"), std::string::npos)
       << stage.findings[0].message;
   EXPECT_EQ(stage.findings[1].kind, FindingKind::kNotAdmissible);
   EXPECT_EQ(stage.findings[1].severity, FindingSeverity::kWarning);
@@ -225,7 +225,8 @@ TEST(StageFindings, AtABoundWithTheOtherSideOpen) {
 }
 
 // Coloured residuals are a note when Ljung-Box rejects whiteness and the lag-1 autocorrelation
-// is above 0.3, as the rule says; a rejection at far lags with lag-1 0.00 is no such note.
+// is beyond its 99 % band, as the rule says; a rejection at far lags with lag-1 0.00 is no
+// such note.
 TEST(StageFindings, ColouredResidualsNeedTheLagOneCorrelation) {
   for (double lag1 : {0.0, 0.8}) {
     StageResult stage = GoodStage();
@@ -237,6 +238,7 @@ TEST(StageFindings, ColouredResidualsNeedTheLagOneCorrelation) {
     a.lag1 = lag1;
     a.ljung_box_p = 1e-6;
     a.white = false;
+    a.band_99 = 2.5758 / std::sqrt(1000.0);
     stage.residuals = {a};
     DiagnoseStage(Info(), true, &stage);
     const std::vector<FindingKind> kinds = Kinds(stage);
@@ -268,8 +270,8 @@ TEST(RunFindings, SkippedPiecesAreOneFindingWithTheWorstCase) {
   EXPECT_EQ(skipped.count, 5);
   EXPECT_DOUBLE_EQ(skipped.value, 0.4);
   EXPECT_TRUE(skipped.experiment.empty());
-  EXPECT_NE(skipped.message.find("5 pieces of 2 record(s) skipped; the shortest, 0.4 s (log1, "
-                                 "log1#1)"),
+  EXPECT_NE(skipped.message.find("5 pieces of 2 record(s) skipped (log1, log2); the shortest, "
+                                 "0.4 s (log1, log1#1)"),
             std::string::npos)
       << skipped.message;
   findings.resize(1);
