@@ -184,16 +184,21 @@ TEST_F(NomotoTanker, HeldOutHeadingPredictedFromMeasuredStartAtLeast50Percent) {
 namespace vesselid {
 namespace nomoto_tanker_test {
 
-// The real-like campaign fits well (heading fits of 76-99 %) though its records carry what the
-// model lacks: no finding says otherwise. Its verdict is good, it has no failure and no
-// warning (the coloured residuals of the rate-limited gear and the quantised compass are notes,
-// the reported intervals being the HAC's).
-TEST_F(NomotoTanker, GoodFitIsJudgedGood) {
-  EXPECT_EQ((*results_)["verdict"], "good") << testing::JsonFindingsText(*results_);
+// The real-like campaign fits well (heading fits of 76-99 %), but its records carry what the
+// model lacks (a slow yaw disturbance, a rate-limited gear): the output-error stage's
+// residuals keep a lag-1 of 0.89-0.98 at up to 8 x the compass's noise level, which no noise
+// gives. That one warning makes the verdict doubtful; nothing fails.
+TEST_F(NomotoTanker, WhatTheModelLacksIsAWarning) {
+  EXPECT_EQ((*results_)["verdict"], "doubtful") << testing::JsonFindingsText(*results_);
+  int warnings = 0;
   for (const json& f : testing::JsonFindings(*results_)) {
-    EXPECT_EQ(f["severity"], "info") << f.dump();
+    EXPECT_NE(f["severity"], "failure") << f.dump();
+    if (f["severity"] != "warning") continue;
+    ++warnings;
+    EXPECT_EQ(f["kind"], "coloured_residuals") << f.dump();
+    EXPECT_NE(f["message"].get<std::string>().find("the structure is strong"), std::string::npos);
   }
-  for (const json& stage : (*results_)["stages"]) EXPECT_EQ(stage["verdict"], "good");
+  EXPECT_GE(warnings, 1);
 }
 
 }  // namespace nomoto_tanker_test

@@ -81,16 +81,20 @@ TEST_F(ProgressTest, NotOnATerminalOneLinePerStage) {
   std::string out, err;
   ASSERT_EQ(Run("", &out, &err), 0) << err;
   std::vector<std::string> lines = Lines(err);
-  // After the stage lines, the run's findings: the gain-only stage fits the data poorly (20 %);
-  // the verdict last, the last stage's (the gain stage was a start).
-  ASSERT_EQ(lines.size(), 4u) << err;
+  // After the stage lines, the run's findings: the gain-only stage fits the data poorly (20 %)
+  // and leaves strong structure in its residuals; the verdict last, the last stage's (the gain
+  // stage was a start).
+  ASSERT_EQ(lines.size(), 5u) << err;
   EXPECT_EQ(lines[2].rfind("vesselid: warning [poor_fit] stage 'gain', experiment 'sine', output "
                            "psi: the simulated psi explains less than half of its record",
                            0),
             0u)
       << lines[2];
-  EXPECT_EQ(lines[3].rfind("vesselid: verdict: good (0 failure(s), 1 warning(s)", 0), 0u)
+  EXPECT_EQ(lines[3].rfind("vesselid: warning [coloured_residuals] stage 'gain', output psi:", 0),
+            0u)
       << lines[3];
+  EXPECT_EQ(lines[4].rfind("vesselid: verdict: good (0 failure(s), 2 warning(s)", 0), 0u)
+      << lines[4];
   EXPECT_TRUE(std::regex_match(lines[0], std::regex(R"(\[1/2\] stage gain: cost .* s)")))
       << lines[0];
   EXPECT_TRUE(std::regex_match(lines[1], std::regex(R"(\[2/2\] stage all: cost .* s)")))
@@ -103,7 +107,7 @@ TEST_F(ProgressTest, QuietPrintsOnlyTheResultsPath) {
   std::string out, err;
   ASSERT_EQ(Run("--quiet", &out, &err), 0) << err;
   // Failures and warnings are never silenced, nor is the verdict.
-  EXPECT_EQ(Lines(err).size(), 2u) << err;
+  EXPECT_EQ(Lines(err).size(), 3u) << err;
   EXPECT_EQ(err.rfind("vesselid: warning [poor_fit] stage 'gain'", 0), 0u) << err;
   EXPECT_EQ(Lines(out).size(), 2u) << out;  // a blank line, then the path
 }

@@ -279,6 +279,32 @@ TEST(RunFindings, SkippedPiecesAreOneFindingWithTheWorstCase) {
   EXPECT_EQ(FoldFindings(findings)[0].message, findings[0].message);
 }
 
+// Strong structure (lag-1 above 0.5 where the RMSE is above 1.2 x the record's noise level)
+// is a warning; the same colour at the noise level (a residual that is mostly noise) a note.
+TEST(StageFindings, StrongResidualStructureIsAWarning) {
+  for (double noise : {0.001, 0.095}) {
+    StageResult stage = GoodStage();  // its fit: RMSE 0.1
+    stage.summary.fits[0].channels[0].noise = noise;
+    ResidualAnalysis a;
+    a.experiment = "run";
+    a.output = "psi";
+    a.samples = 1000;
+    a.lags = 25;
+    a.lag1 = 0.9;
+    a.ljung_box_p = 1e-9;
+    a.white = false;
+    a.band_99 = 2.5758 / std::sqrt(1000.0);
+    stage.residuals = {a};
+    DiagnoseStage(Info(), true, &stage);
+    ASSERT_EQ(stage.findings.size(), 1u) << noise;
+    EXPECT_EQ(stage.findings[0].kind, FindingKind::kColouredResiduals);
+    const bool strong = noise < 0.01;
+    EXPECT_EQ(stage.findings[0].severity,
+              strong ? FindingSeverity::kWarning : FindingSeverity::kInfo);
+    EXPECT_EQ(stage.verdict, strong ? Verdict::kDoubtful : Verdict::kGood);
+  }
+}
+
 TEST(RunFindings, FinalValuesAndTheVerdictRule) {
   RunConfig config;
   config.model = nomoto::MakeFirstOrderHandle();

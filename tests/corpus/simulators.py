@@ -1,0 +1,149 @@
+"""Ship simulators of the independent verdict corpus (LABELS.md), written from other
+structures' equations than the engine's model families, integrated here (RK4 at 20 Hz, not the
+engine's integrator), logged at 5 Hz with noise.
+
+  LinearSwayYaw: the Davidson-Schiff linear sway-yaw equations in prime (non-dimensional)
+    coefficients, M nu' + N nu = b delta with nu = (v/U, r L/U), Mariner-class coefficients
+    (Chislett & Strom) varied per ship; its Nomoto constants follow from the matrices.
+  Norrbin: T r' + r + alpha r^3 = K (delta + bias).
+
+Both are steered through a gear (first-order lag, rate limit) by a zigzag autopilot or an
+open-loop sine / multisine command; a slow yaw disturbance (as equivalent rudder, not logged)
+and a rudder bias (not logged) may be added.
+"""
+import math
+
+import numpy as np
+
+# Mariner class, prime coefficients (x 1e-5), L = 160.93 m at U = 7.7 m/s.
+MARINER = dict(m=798.0, Iz=39.2, xG=-0.023, Yvdot=-748.0, Yrdot=-9.354, Nvdot=4.646,
+               Nrdot=-43.8, Yv=-1160.0, Yr=-499.0, Nv=-264.0, Nr=-166.0, Yd=278.0, Nd=-139.0)
+
+
+class LinearSwayYaw:
+    """A Mariner-like ship; `scale` multiplies each hydrodynamic coefficient."""
+
+    def __init__(self, scale=None, length=160.93, speed=7.7):
+        c = dict(MARINER)
+        for key, factor in (scale or {}).items():
+            c[key] *= factor
+        e = 1e-5
+        m, iz, xg = c["m"] * e, c["Iz"] * e, c["xG"]
+        mass = np.array([[m - c["Yvdot"] * e, m * xg - c["Yrdot"] * e],
+                         [m * xg - c["Nvdot"] * e, iz - c["Nrdot"] * e]])
+        damping = np.array([[-c["Yv"] * e, m - c["Yr"] * e],
+                            [-c["Nv"] * e, m * xg - c["Nr"] * e]])
+        rudder = np.array([c["Yd"] * e, c["Nd"] * e])
+        self.a = -np.linalg.solve(mass, damping)  # prime time
+        self.b = np.linalg.solve(mass, rudder)
+        self.length, self.speed = length, speed
+
+    def nomoto(self):
+        """(T1, T2, T3, K) in s and 1/s; None when the ship is not course-stable."""
+        a, b = self.a, self.b
+        poles = np.linalg.eigvals(a)
+        if np.any(np.abs(poles.imag) > 1e-12) or np.any(poles.real >= 0):
+            return None
+        det = np.linalg.det(a)
+        numerator0 = a[1, 0] * b[0] - a[0, 0] * b[1]
+        t1, t2 = sorted((-1.0 / p.real for p in poles), reverse=True)
+        k_prime = numerator0 / det
+        t3_prime = b[1] / numerator0
+        time = self.length / self.speed
+        return t1 * time, t2 * time, t3_prime * time, k_prime / time
+
+    def rates(self, state, delta):
+        """d/dt of (v', r', psi) in real time."""
+        nu = state[:2]
+        scale = self.speed / self.length
+        d_nu = scale * (self.a @ nu + self.b * delta)
+        return np.array([d_nu[0], d_nu[1], nu[1] * scale])
+
+    def initial(self):
+        return np.zeros(3)
+
+    def yaw_rate(self, state):
+        return state[1] * self.speed / self.length
+
+    def gain_sign(self):
+        return math.copysign(1.0, self.nomoto()[3])
+
+
+class Norrbin:
+    """T r' + r + alpha r^3 = K (delta + bias)."""
+
+    def __init__(self, t, k, alpha):
+        self.t, self.k, self.alpha = t, k, alpha
+
+    def rates(self, state, delta):
+        r = state[0]
+        return np.array([(self.k * delta - r - self.alpha * r ** 3) / self.t, r])
+
+    def initial(self):
+        return np.zeros(2)
+
+    def yaw_rate(self, state):
+        return state[0]
+
+    def gain_sign(self):
+        return math.copysign(1.0, self.k)
+
+
+def command(excitation, t, psi, state):
+    """The rudder command (rad) of an excitation dict at time t and heading psi."""
+    kind = excitation["type"]
+    if kind == "sine":
+        return excitation["amplitude"] * math.sin(2 * math.pi * t / excitation["period"])
+    if kind == "multisine":
+        return excitation["amplitude"] / len(excitation["periods"]) * sum(
+            math.sin(2 * math.pi * t / p + i) for i, p in enumerate(excitation["periods"]))
+    # zigzag: rudder to +-delta_z, reversed when the heading passes +-psi_z the rudder's way
+    side = state.setdefault("side", 1.0)
+    if excitation["sign"] * side * psi >= excitation["heading"]:
+        state["side"] = side = -side
+    return side * excitation["rudder"]
+
+
+def simulate(ship, excitation, duration, seed, gear_lag=1.0, rate_limit_deg=2.5, bias=0.0,
+             disturbance=0.0, disturbance_period=200.0, heading_noise_deg=0.1,
+             rudder_noise_deg=0.1, step=0.05, log_every=4):
+    """Columns t, delta (rad, the gear's angle with noise), psi (rad, with noise)."""
+    rng = np.random.default_rng(seed)
+    excitation = dict(excitation)
+    excitation["sign"] = ship.gain_sign()
+    phase = rng.uniform(0, 2 * math.pi)
+    x = ship.initial()
+    delta = 0.0
+    rate = math.radians(rate_limit_deg)
+    zig = {}
+    rows = []
+    steps = int(round(duration / step))
+
+    def derivative(x, delta, t):
+        extra = bias + disturbance * math.sin(2 * math.pi * t / disturbance_period + phase)
+        return ship.rates(x, delta + extra)
+
+    for k in range(steps + 1):
+        t = k * step
+        psi = x[-1]
+        if k % log_every == 0:
+            rows.append((t, delta + rng.normal(0, math.radians(rudder_noise_deg)),
+                         psi + rng.normal(0, math.radians(heading_noise_deg))))
+        if k == steps:
+            break
+        target = command(excitation, t, psi, zig)
+        delta += max(-rate * step, min(rate * step, (target - delta) * step / gear_lag))
+        k1 = derivative(x, delta, t)
+        k2 = derivative(x + 0.5 * step * k1, delta, t + 0.5 * step)
+        k3 = derivative(x + 0.5 * step * k2, delta, t + 0.5 * step)
+        k4 = derivative(x + step * k3, delta, t + step)
+        x = x + step / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
+    return np.array(rows)
+
+
+def largest_yaw_rate(ship, excitation, duration, seed, **options):
+    """The largest |r| of a noise-free run (the Norrbin label's r_max)."""
+    clean = dict(options, heading_noise_deg=0.0, rudder_noise_deg=0.0)
+    rows = simulate(ship, excitation, duration, seed, **clean)
+    psi = np.unwrap(rows[:, 2])
+    return float(np.max(np.abs(np.gradient(psi, rows[:, 0]))))
