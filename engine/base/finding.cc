@@ -106,8 +106,9 @@ const Row kRows[] = {
      "require means the structure is wrong."},
     {K::kWeaklyDetermined, "weakly_determined", S::kWarning,
      "A free shared estimate off its bounds whose standard error is above 50 % of its value "
-     "(of 1 % of its bound range, for a value near 0, unless its 95 % interval spans 0: then "
-     "its sign is unknown), or that the stage's covariance calls undetermined: the data say little about it, and its value is a consequence of the start "
+     "(of 1 % of its bound range, for a value near 0), or that the stage's covariance calls "
+     "undetermined (a note where only its sign is unknown: its 95 % interval spans 0 while "
+     "the error is small beside the bound range): the data say little about it, and its value is a consequence of the start "
      "and the others. One finding per stage lists them.",
      "Hold it at a known value, or add records that excite it (a richer input, a longer run)."},
     {K::kNoConvergence, "no_convergence", S::kWarning,

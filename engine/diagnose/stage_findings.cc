@@ -75,9 +75,14 @@ constexpr double kSignUnknownSe = 1.96;  // |value| below this many SEs: a 95 % 
 
 void AddWeaklyDeterminedFindings(const StageResult& stage, std::vector<Finding>* findings,
                                  const ParameterUnitOf& unit_of) {
-  std::string names;
-  int count = 0;
-  double worst = 0.0;
+  // Two lists: the poorly determined (a warning), and those whose sign alone is unknown (a
+  // note: a term near 0 whose interval spans 0 hardly acts on the fit; on the independent
+  // corpus, cubic terms within their truth's tolerance were all of this kind).
+  struct List {
+    std::string names;
+    int count = 0;
+    double worst = 0.0;
+  } weak, sign;
   for (const Estimate& e : stage.estimates) {
     // Per-experiment values (a bias per run) sit near 0, where a relative error means nothing.
     if (e.kind != EstimateKind::kParameter || e.role == ParameterRole::kFixed ||
@@ -85,35 +90,43 @@ void AddWeaklyDeterminedFindings(const StageResult& stage, std::vector<Finding>*
       continue;
     }
     if (BoundSide(e.value, e.lower, e.upper) != 0) continue;  // at_bound's
-    // Relative to the value, floored at 1 % of a finite bound range (a value near 0), unless
-    // the 95 % interval spans 0: then even the sign is unknown (a course-stability term
-    // 0.39 +- 0.49 in a range of 10^4 is not determined).
+    // Relative to the value, floored at 1 % of a finite bound range (a value near 0); the
+    // sign is unknown where the 95 % interval spans 0 (a course-stability term 0.39 +- 0.49).
     const double range = std::isfinite(e.upper - e.lower) ? e.upper - e.lower : 0.0;
     const bool sign_unknown = std::abs(e.value) < kSignUnknownSe * e.std_error;
-    const double relative =
-        e.std_error / (sign_unknown ? std::abs(e.value) : std::max(std::abs(e.value), 0.01 * range));
-    if (!e.undetermined && !(relative > kWeakRelativeError)) continue;
-    ++count;
-    worst = std::max(worst, std::isfinite(relative) ? relative : HUGE_VAL);
-    if (count <= 6) {
-      names += (count > 1 ? ", " : "") + e.name +
-               (e.undetermined || !std::isfinite(relative)
-                    ? " (undetermined)"
-                    : ShownValue(e.value, Unit(unit_of, e.name), " = %.4g") +
-                          ShownValue(e.std_error, Unit(unit_of, e.name), " +- %.2g") +
-                          FormatNumbers(" (%.0f %%", 100.0 * relative) +
-                          (sign_unknown ? ", sign unknown)" : ")"));
+    const double relative = e.std_error / std::max(std::abs(e.value), 0.01 * range);
+    const bool poor = e.undetermined || relative > kWeakRelativeError;
+    if (!poor && !sign_unknown) continue;
+    List& list = poor ? weak : sign;
+    const double shown = sign_unknown ? e.std_error / std::abs(e.value) : relative;
+    ++list.count;
+    list.worst = std::max(list.worst, std::isfinite(shown) ? shown : HUGE_VAL);
+    if (list.count <= 6) {
+      list.names += (list.count > 1 ? ", " : "") + e.name +
+                    (e.undetermined || !std::isfinite(shown)
+                         ? " (undetermined)"
+                         : ShownValue(e.value, Unit(unit_of, e.name), " = %.4g") +
+                               ShownValue(e.std_error, Unit(unit_of, e.name), " +- %.2g") +
+                               FormatNumbers(" (%.0f %%", 100.0 * shown) +
+                               (sign_unknown ? ", sign unknown)" : ")"));
     }
   }
-  if (count == 0) return;
-  Finding f = MakeFinding(FindingKind::kWeaklyDetermined,
-                          std::to_string(count) + " estimate(s) the data determine poorly: " +
-                              names + (count > 6 ? ", ..." : ""));
-  f.stage = stage.name;
-  f.count = count;
-  f.value = worst;
-  f.threshold = kWeakRelativeError;
-  findings->push_back(std::move(f));
+  for (const List* list : {&weak, &sign}) {
+    if (list->count == 0) continue;
+    const bool notes = list == &sign;
+    Finding f = MakeFinding(
+        FindingKind::kWeaklyDetermined,
+        std::to_string(list->count) +
+            (notes ? " estimate(s) whose sign the data leave open (95 % interval spans 0): "
+                   : " estimate(s) the data determine poorly: ") +
+            list->names + (list->count > 6 ? ", ..." : ""));
+    f.stage = stage.name;
+    f.count = list->count;
+    f.value = list->worst;
+    f.threshold = notes ? 1.0 / kSignUnknownSe : kWeakRelativeError;
+    if (notes) f.severity = FindingSeverity::kInfo;
+    findings->push_back(std::move(f));
+  }
 }
 
 void AddHeldOutFindings(const StageResult& stage, std::vector<Finding>* findings,

@@ -127,7 +127,7 @@ def make_case(kind, index, seed):
             share = rng.uniform(0.3, 1.0)
         else:
             share = rng.uniform(0.1, 0.6)
-        alpha = share / max(probe, 1e-6) ** 2 * (1.0 if rng.random() < 0.8 else -0.2)
+        alpha = share / max(probe, 1e-6) ** 2  # > 0: a negative cubic term runs away
         case["ship"] = {"type": "norrbin", "T": t, "K": k, "alpha": float(alpha)}
         case["truth"] = {"T": t, "K": k, "alpha": float(alpha)}
         r_max = simulators.largest_yaw_rate(simulators.Norrbin(t, k, alpha),

@@ -187,7 +187,8 @@ TEST(StageFindings, WeaklyDeterminedAndNotAdmissible) {
 }
 
 // An interval that spans 0 leaves the sign unknown, however small the value is beside its
-// bound range; near 0 with a tight interval it is determined.
+// bound range: a note saying so (the fit hardly depends on such a term); near 0 with a tight
+// interval it is determined and quiet; a relative error above 50 % stays a warning.
 TEST(StageFindings, SignUnknownWhenTheIntervalSpansZero) {
   StageResult stage = GoodStage();
   stage.estimates[1] = Free("K", 0.386, 0.49);
@@ -196,14 +197,22 @@ TEST(StageFindings, SignUnknownWhenTheIntervalSpansZero) {
   DiagnoseStage(Info(), true, &stage);
   ASSERT_EQ(stage.findings.size(), 1u);
   EXPECT_EQ(stage.findings[0].kind, FindingKind::kWeaklyDetermined);
-  EXPECT_NE(stage.findings[0].message.find("sign unknown"), std::string::npos)
+  EXPECT_EQ(stage.findings[0].severity, FindingSeverity::kInfo);
+  EXPECT_NE(stage.findings[0].message.find("K = 0.386 +- 0.49 (127 %, sign unknown)"),
+            std::string::npos)
       << stage.findings[0].message;
+  EXPECT_EQ(stage.verdict, Verdict::kGood);
   stage = GoodStage();
   stage.estimates[1] = Free("K", 0.386, 0.049);
   stage.estimates[1].lower = -1000.0;
   stage.estimates[1].upper = 10000.0;
   DiagnoseStage(Info(), true, &stage);
   EXPECT_TRUE(stage.findings.empty());
+  stage = GoodStage();
+  stage.estimates[1] = Free("K", 0.386, 0.49);  // bounds -10..10: 0.49 / 0.386 is poor
+  DiagnoseStage(Info(), true, &stage);
+  ASSERT_EQ(stage.findings.size(), 1u);
+  EXPECT_EQ(stage.findings[0].severity, FindingSeverity::kWarning);
 }
 
 // On a bound whose other side is open (N_r <= 0): at_bound all the same; off it, quiet.
