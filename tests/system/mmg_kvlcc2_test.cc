@@ -49,7 +49,7 @@ TEST(MmgKvlcc2, ZigzagsPredictTheTurningCirclesAndHeldOutRuns) {
   std::ofstream(out / "refitted.yaml") << config;
   const std::string refit = std::string(VESSELID_BINARY) + " run " + (out / "refitted.yaml").string() +
                             " --data " + out.string() + " --out " + (out / "refitted").string() +
-                            " --quiet > /dev/null";
+                            " --quiet --no-report > /dev/null";
   ASSERT_EQ(std::system(refit.c_str()), 0) << refit;
   std::ifstream refitted_in(out / "refitted" / "results.json");
   const json refitted = json::parse(refitted_in);
