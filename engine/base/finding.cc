@@ -72,7 +72,7 @@ const Row kRows[] = {
      "over more than one turn (a heading that turns steadily, a spiral, is not counted), or "
      "steps by more than pi within one turn; an angle input (a rudder) not listed goes beyond "
      "90 deg, which no rudder or fin does; or a record's median sample interval is above 10 s "
-     "(milliseconds read as seconds).",
+     "(milliseconds read as seconds) or below 1 ms (seconds read as milliseconds).",
      "Add the column to the experiment's `degrees:` if it was logged in degrees; give the time "
      "column's unit (`time: {unit: ms}`) if it is not seconds."},
     {K::kQuantised, "quantised", S::kInfo,

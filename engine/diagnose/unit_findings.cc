@@ -46,17 +46,26 @@ void AddSampleIntervalFinding(const ExperimentSpec& spec, const Trajectory& data
   if (steps.empty()) return;
   std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
   const double median = steps[steps.size() / 2];
-  if (!(median > kMaxSampleInterval)) return;
   char text[320];
-  std::snprintf(text, sizeof(text),
-                "the time column's median sample interval is %.4g s: a ship's motion is logged "
-                "at 0.01-%.0f s; it looks like milliseconds read as seconds (%.4g s): give "
-                "time: {unit: ms}",
-                median, kMaxSampleInterval, median / 1000.0);
+  if (median > kMaxSampleInterval) {
+    std::snprintf(text, sizeof(text),
+                  "the time column's median sample interval is %.4g s: a ship's motion is "
+                  "logged at 0.01-%.0f s; it looks like milliseconds read as seconds (%.4g s): "
+                  "give time: {unit: ms}",
+                  median, kMaxSampleInterval, median / 1000.0);
+  } else if (median > 0.0 && median < kMinSampleInterval) {
+    std::snprintf(text, sizeof(text),
+                  "the time column's median sample interval is %.4g s: a ship's motion is "
+                  "logged at 0.01-%.0f s; the time's unit looks wrong (seconds read as "
+                  "milliseconds would give %.4g s): check time: {unit: ...}",
+                  median, kMaxSampleInterval, median * 1000.0);
+  } else {
+    return;
+  }
   Finding f = MakeFinding(FindingKind::kUnitSuspect, text);
   f.experiment = spec.name;
   f.value = median;
-  f.threshold = kMaxSampleInterval;
+  f.threshold = median > kMaxSampleInterval ? kMaxSampleInterval : kMinSampleInterval;
   findings->push_back(std::move(f));
 }
 

@@ -4,8 +4,9 @@
 //     residual stays below pi;
 //   * an angle input (a rudder, unit rad) not listed in `degrees:` that goes beyond
 //     kMaxAngleInput: no rudder or fin turns that far, a rudder logged in degrees does;
-//   * a time column whose median sample interval is above kMaxSampleInterval: a ship's motion
-//     is logged at 0.01-10 s, a time in milliseconds read as seconds at 10-1000 s.
+//   * a time column whose median sample interval is above kMaxSampleInterval or below
+//     kMinSampleInterval: a ship's motion is logged at 0.01-10 s, a time in milliseconds read
+//     as seconds at 10-1000 s, one in seconds read as milliseconds at 0.01-1 ms.
 #pragma once
 
 #include <string>
@@ -19,6 +20,7 @@ namespace vesselid {
 
 inline constexpr double kMaxAngleInput = M_PI / 2.0;  // rad: 90 deg
 inline constexpr double kMaxSampleInterval = 10.0;    // s
+inline constexpr double kMinSampleInterval = 1e-3;    // s: 1 kHz
 
 // Appends one finding per experiment and suspicious column (within the experiment's window).
 // Experiments whose data cannot be read are passed over (the stages report them).

@@ -6,43 +6,71 @@
 
 namespace vesselid {
 
+namespace {
+
+// Appends the names of `from` that `to` does not hold yet.
+void AddNew(const std::vector<std::string>& from, std::vector<std::string>* to) {
+  for (const std::string& name : from) {
+    if (std::find(to->begin(), to->end(), name) == to->end()) to->push_back(name);
+  }
+}
+
+std::string Joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
+}  // namespace
+
 std::string HeldOutStartSentence(const std::vector<ExperimentFit>& fits) {
   std::string mode;
-  std::vector<std::string> estimated;
-  double shortest = INFINITY, longest = 0.0;
+  std::vector<std::string> estimated, weighed, refitted;
+  double shortest = INFINITY, longest = 0.0, requested = 0.0;
+  bool changed = false;  // a configured burn_in held to its limits in some run
   for (const ExperimentFit& fit : fits) {
-    if (fit.start.mode.empty()) continue;
-    mode = fit.start.mode;
-    for (const std::string& name : fit.start.estimated) {
-      if (std::find(estimated.begin(), estimated.end(), name) == estimated.end())
-        estimated.push_back(name);
-    }
-    if (fit.start.burn_in > 0.0) {
-      shortest = std::min(shortest, fit.start.burn_in);
-      longest = std::max(longest, fit.start.burn_in);
+    const HeldOutStartReport& start = fit.start;
+    if (start.mode.empty()) continue;
+    mode = start.mode;
+    AddNew(start.estimated, &estimated);
+    AddNew(start.weighed, &weighed);
+    AddNew(start.refitted, &refitted);
+    if (start.burn_in > 0.0) {
+      shortest = std::min(shortest, start.burn_in);
+      longest = std::max(longest, start.burn_in);
+      requested = start.requested_burn_in;
+      changed |= requested > 0.0 && std::abs(start.burn_in - requested) > 0.01 * requested;
     }
   }
   if (mode.empty()) return "";
-  std::string names;
-  for (const std::string& name : estimated) names += (names.empty() ? "" : ", ") + name;
-  char burn_in[96] = "";
+  char burn_in[160] = "";
   if (longest > 0.0) {
     if (longest - shortest < 0.05 * longest)
       std::snprintf(burn_in, sizeof(burn_in), "%.3g s", longest);
     else
       std::snprintf(burn_in, sizeof(burn_in), "%.3g-%.3g s", shortest, longest);
   }
-  const std::string what = names.empty() ? "" : names + " estimated on a burn-in of " +
-                                                    burn_in + " at each run's start";
+  std::string what = estimated.empty() ? "" : Joined(estimated) + " estimated on a burn-in of " +
+                                                  burn_in + " at each run's start";
+  if (changed) {
+    char text[160];
+    std::snprintf(text, sizeof(text),
+                  " (burn_in %.6g s held to at least 10 sample intervals and at most half of "
+                  "each run)",
+                  requested);
+    what += text;
+  }
+  const std::string weighing =
+      weighed.empty() ? "" : "; " + Joined(weighed) + " weighed against the training runs' spread";
   if (mode == "measured") {
     return "Held-out runs are predicted from their measured start" +
            (what.empty() ? std::string(": nothing is estimated on them.")
-                         : "; " + what + ", which is not scored (a run's own parameters "
-                           "weighed against the training runs' spread).");
+                         : "; " + what + ", which is not scored" + weighing + ".");
   }
-  return "Held-out runs are scored from starts refitted on the whole run (held_out: {start: "
-         "refitted}); the figures from the measured start (" +
-         (what.empty() ? std::string("nothing estimated") : what + ", not scored") +
+  return "Held-out runs are scored from starts refitted on the whole run (" +
+         (refitted.empty() ? std::string("nothing") : Joined(refitted)) +
+         "; held_out: {start: refitted}); the figures from the measured start (" +
+         (what.empty() ? std::string("nothing estimated") : what + ", not scored" + weighing) +
          ") are beside them.";
 }
 

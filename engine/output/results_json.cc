@@ -157,7 +157,12 @@ json StartsToJson(const RunConfig& config, const std::vector<ExperimentFit>& fit
   for (const ExperimentFit& fit : fits) {
     const HeldOutStartReport& s = fit.start;
     if (s.mode.empty()) continue;
-    json j = {{"mode", s.mode}, {"burn_in_s", JsonNumber(s.burn_in)}, {"estimated", s.estimated}};
+    json j = {{"mode", s.mode},
+              {"burn_in_s", JsonNumber(s.burn_in)},
+              {"estimated", s.estimated},
+              {"weighed", s.weighed}};
+    if (s.requested_burn_in > 0.0) j["requested_burn_in_s"] = JsonNumber(s.requested_burn_in);
+    if (s.mode == "refitted") j["refitted"] = s.refitted;
     if (!s.offsets.empty() || !s.measured_start.empty() || s.measured_start_diverged) {
       json measured = json::object();
       for (const ChannelMetrics& m : s.measured_start) {

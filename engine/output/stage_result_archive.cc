@@ -95,7 +95,8 @@ void from_json(const nlohmann::json& j, Trajectory& trajectory) {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ChannelMetrics, experiment, output, samples, rmse, mae, r2,
                                    fit_percent, hold_mae, noise)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(StartOffset, state, measured, refitted, noise, sds)
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(HeldOutStartReport, mode, burn_in, estimated, measured_start,
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(HeldOutStartReport, mode, burn_in, requested_burn_in,
+                                   estimated, weighed, refitted, measured_start,
                                    measured_start_diverged, offsets, implausible_sds)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ExperimentFit, experiment, diverged, message, rms_cost, channels,
                                    trace, start)

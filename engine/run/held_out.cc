@@ -164,9 +164,11 @@ void InflateForColouredResiduals(const ModelInfo& info, const OutputErrorProblem
 }
 
 // Each of the run's own estimates combined with the training runs' values (HeldOutPerRun);
-// `values` (model order) take the combined values. True if any value changed.
+// `values` (model order) take the combined values, `weighed` the parameters combined (those
+// with a training spread). True if any value changed.
 bool CombineWithTrainingRuns(const ModelInfo& info, const HeldOutPerRun& per_run,
-                             std::vector<Estimate>* estimates, std::vector<double>* values) {
+                             std::vector<Estimate>* estimates, std::vector<double>* values,
+                             std::vector<std::string>* weighed) {
   bool changed = false;
   for (Estimate& e : *estimates) {
     for (size_t k = 0; k < per_run.parameters.size(); ++k) {
@@ -174,6 +176,8 @@ bool CombineWithTrainingRuns(const ModelInfo& info, const HeldOutPerRun& per_run
       if (e.name != name && e.name.rfind(name + "[", 0) != 0) continue;
       const double s = per_run.spread[k], m = per_run.fit_start[k];
       if (!(s > 0.0)) continue;  // one training run, or all alike: the estimate stands
+      if (std::find(weighed->begin(), weighed->end(), name) == weighed->end())
+        weighed->push_back(name);
       const double se = e.std_error;
       double value = m, sigma = s;
       if (std::isfinite(se) && se > 0.0 && !e.undetermined) {
@@ -203,15 +207,15 @@ double OutputNoise(const Experiment& experiment, int o) {
   return count > 0 && power > 0.0 ? std::sqrt(power / count) : std::nan("");
 }
 
-// The burn-in of `experiment` in s: `burn_in` if given, else kBurnInShare of the run and at
-// least kMinBurnInIntervals sample intervals; at most half the run.
+// The burn-in of `experiment` in s: `burn_in` if given, else kBurnInShare of the run; at least
+// kMinBurnInIntervals sample intervals and at most half the run either way (the report says
+// where a given one was changed).
 double BurnInOf(const Experiment& experiment, double burn_in) {
   const double t0 = experiment.node_time.front();
   const double duration = experiment.node_time.back() - t0;
   const double interval = duration / std::max(1, experiment.num_nodes() - 1);
-  double b = burn_in > 0.0 ? burn_in
-                            : std::max(kBurnInShare * duration, kMinBurnInIntervals * interval);
-  b = std::min(b, 0.5 * duration);
+  double b = burn_in > 0.0 ? burn_in : kBurnInShare * duration;
+  b = std::min(std::max(b, kMinBurnInIntervals * interval), 0.5 * duration);
   return LastNodeUntil(experiment, t0 + b) - t0;
 }
 
@@ -258,6 +262,7 @@ ExperimentFit PredictFromMeasuredStart(const ModelHandle& model, Experiment expe
   std::vector<double> at = values;
   double scored_from = -std::numeric_limits<double>::infinity();
   std::string why;
+  fit.start.requested_burn_in = start.burn_in;
   if (!unmeasured.empty() || own) {
     fit.start.burn_in = BurnInOf(experiment, start.burn_in);
     scored_from = experiment.node_time.front() + fit.start.burn_in;
@@ -277,7 +282,8 @@ ExperimentFit PredictFromMeasuredStart(const ModelHandle& model, Experiment expe
       std::vector<Estimate> burn_in;
       CollectEstimates(problem->get(), *per_run, &burn_in);
       InflateForColouredResiduals(model.info(), **problem, &burn_in);
-      if (CombineWithTrainingRuns(info, *per_run, &burn_in, &at) && !unmeasured.empty()) {
+      if (CombineWithTrainingRuns(info, *per_run, &burn_in, &at, &fit.start.weighed) &&
+          !unmeasured.empty()) {
         // The unmeasured states again, with the run's own parameters at the combined values.
         *problem = RunProblem(model, ExperimentUntil(experiment, scored_from), unmeasured, local,
                               at, nullptr, start.prior, &why);
@@ -384,7 +390,13 @@ ExperimentFit FitOne(const ModelHandle& model, Experiment experiment,
     fit.start.measured_start = std::move(predicted.channels);
     fit.start.measured_start_diverged = predicted.diverged;
     fit.start.burn_in = predicted.start.burn_in;
+    fit.start.requested_burn_in = predicted.start.requested_burn_in;
     fit.start.estimated = std::move(predicted.start.estimated);
+    fit.start.weighed = std::move(predicted.start.weighed);
+    fit.start.refitted = free_states;
+    if (per_run != nullptr) {
+      for (const ParameterSpec& spec : per_run->parameters) fit.start.refitted.push_back(spec.name);
+    }
   }
   if (per_run != nullptr && estimates != nullptr) {
     if (start.mode == HeldOutStart::Mode::kMeasured)

@@ -145,6 +145,13 @@ bool ResolveParameters(const StageConfig& stage, const ModelInfo& info,
   return true;
 }
 
+void RecordStartValues(const StageResult& stage, ParameterLedger* ledger) {
+  for (const Estimate& e : stage.estimates) {
+    if (e.kind != EstimateKind::kParameter || e.role == ParameterRole::kPerExperiment) continue;
+    ledger->latest[e.name] = e.start;
+  }
+}
+
 void RecordStage(const StageResult& stage, ParameterLedger* ledger) {
   for (const Estimate& e : stage.estimates) {
     if (e.kind == EstimateKind::kParameter && e.role == ParameterRole::kPerExperiment &&

@@ -45,6 +45,11 @@ bool ResolveParameters(const StageConfig& stage, const ModelInfo& info,
 // and its per-experiment estimates as the latest of their experiments.
 void RecordStage(const StageResult& stage, ParameterLedger* ledger);
 
+// Enters the start values of a stage set aside (StageResult::rejected) as the latest values of
+// its parameters: later stages and the final values take them, as the rejection says, not the
+// model's defaults where no kept stage estimated them.
+void RecordStartValues(const StageResult& stage, ParameterLedger* ledger);
+
 // Every model parameter's final value under `rule` (information: the shared parameters
 // fused jointly with each stage's covariance block, per parameter when that is singular).
 std::vector<FinalParameter> FinalParameters(const ModelInfo& info, const ParameterLedger& ledger,

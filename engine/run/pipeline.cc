@@ -147,7 +147,10 @@ bool RunStages(const RunConfig& config, size_t first, size_t count, TrajectoryCa
                        &stage_result, error)) {
       return fail(*error);
     }
-    if (stage_result.rejected.empty()) RecordStage(stage_result, &ledger);
+    if (stage_result.rejected.empty())
+      RecordStage(stage_result, &ledger);
+    else
+      RecordStartValues(stage_result, &ledger);
     run.stages.push_back(std::move(stage_result));
     if (observer.stage_finished && !observer.stage_finished(index, run.stages.back(), error)) {
       return false;
@@ -223,7 +226,10 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
                "', the config's is '" + config.stages[i].options.name + "'";
       return false;
     }
-    if (finished[i].rejected.empty()) RecordStage(finished[i], &ledger);
+    if (finished[i].rejected.empty())
+      RecordStage(finished[i], &ledger);
+    else
+      RecordStartValues(finished[i], &ledger);
     run.stages.push_back(std::move(finished[i]));
   }
   if (!CheckWorkSize(config, &cache, error)) return false;

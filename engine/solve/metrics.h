@@ -94,7 +94,12 @@ struct StartOffset {
 struct HeldOutStartReport {
   std::string mode;
   double burn_in = 0.0;  // s not scored (measured start); 0: none
+  double requested_burn_in = 0.0;  // the configured burn_in (0: the default)
   std::vector<std::string> estimated;  // states and parameters estimated on the burn-in
+  // Per-run parameters whose burn-in estimate was weighed against the training runs' spread.
+  std::vector<std::string> weighed;
+  // With refitted starts: what was estimated on the whole run (states and parameters).
+  std::vector<std::string> refitted;
   std::vector<ChannelMetrics> measured_start;
   bool measured_start_diverged = false;
   std::vector<StartOffset> offsets;

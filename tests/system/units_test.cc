@@ -285,6 +285,9 @@ TEST_F(UnitsTest, TimeInMillisecondsIsNamedAndReadWithItsUnit) {
   }
   const RunResult read = Run("degrees: [psi, r, delta], file: zz_ms.csv, time: {unit: ms}", "msread");
   EXPECT_TRUE(SuspectUnits(read).empty());
+  // A log in seconds read as milliseconds: a median interval of 0.1 ms, named too.
+  const RunResult too_fine = Run("degrees: [psi, r, delta], time: {unit: ms}", "sasms");
+  EXPECT_EQ(SuspectUnits(too_fine), std::vector<std::string>{"time"});
   const RunResult seconds = Run("degrees: [psi, r, delta]", "seconds");
   ASSERT_FALSE(read.parameters.empty());
   ASSERT_EQ(read.parameters.size(), seconds.parameters.size());
