@@ -240,81 +240,80 @@ std::unique_ptr<OutputErrorProblem> RunProblem(const ModelHandle& model, Experim
 // The run predicted from its measured start (HeldOutStart::kMeasured): measured states at
 // their measurement; the listed unmeasured states (from the data's guess) and the run's own
 // parameters estimated on the burn-in, then the whole run simulated and scored after it. An
-// unmeasured state not listed starts where the stages start it (its given value, else 0). `problem` is the burn-in's (null when nothing was estimated, or on failure).
-ExperimentFit PredictFromMeasuredStart(const ModelHandle& model, Experiment experiment,
+// unmeasured state not listed starts where the stages start it (its given value, else 0).
+// `problem` is the burn-in's (null when nothing was estimated, or on failure); with
+// `residuals`, the analysis of the scored part is appended there.
+ExperimentFit PredictFromMeasuredStart(const ModelHandle& model, const Experiment& measured,
                                        const std::vector<std::string>& free_states,
                                        const LocalSolveOptions& local,
                                        const std::vector<double>& values,
                                        const HeldOutPerRun* per_run, const HeldOutStart& start,
                                        std::unique_ptr<OutputErrorProblem>* problem,
-                                       std::vector<Estimate>* estimates) {
+                                       std::vector<Estimate>* estimates,
+                                       std::vector<ResidualAnalysis>* residuals) {
   const ModelInfo& info = model.info();
   ExperimentFit fit;
-  fit.experiment = experiment.name;
+  fit.experiment = measured.name;
   fit.start.mode = HeldOutStartModeToString(HeldOutStart::Mode::kMeasured);
+  fit.start.requested_burn_in = start.burn_in;
+  auto failed = [&fit](const std::string& why) {
+    fit.diverged = true;
+    fit.message = why;
+    return fit;
+  };
   std::vector<std::string> unmeasured;
   for (size_t s = 0; s < info.states.size(); ++s) {
-    if (MeasuringOutput(info, experiment, s) >= 0) continue;
+    if (MeasuringOutput(info, measured, s) >= 0) continue;
     if (std::find(free_states.begin(), free_states.end(), info.states[s]) != free_states.end())
       unmeasured.push_back(info.states[s]);
   }
   const bool own = per_run != nullptr && !per_run->parameters.empty();
   std::vector<double> at = values;
+  std::vector<double> x0 = measured.initial_state;
   double scored_from = -std::numeric_limits<double>::infinity();
   std::string why;
-  fit.start.requested_burn_in = start.burn_in;
   if (!unmeasured.empty() || own) {
-    fit.start.burn_in = BurnInOf(experiment, start.burn_in);
-    scored_from = experiment.node_time.front() + fit.start.burn_in;
-    *problem = RunProblem(model, ExperimentUntil(experiment, scored_from), unmeasured, local,
-                          values, own ? per_run : nullptr, start.prior, &why);
-    if (*problem == nullptr) {
-      fit.diverged = true;
-      fit.message = "burn-in: " + why;
-      return fit;
-    }
+    fit.start.burn_in = BurnInOf(measured, start.burn_in);
+    scored_from = measured.node_time.front() + fit.start.burn_in;
+    const Experiment burn_in = ExperimentUntil(measured, scored_from);
+    *problem = RunProblem(model, burn_in, unmeasured, local, values, own ? per_run : nullptr,
+                          start.prior, &why);
+    if (*problem == nullptr) return failed("burn-in: " + why);
     fit.start.estimated = unmeasured;
-    if (own) {
-      for (const ParameterSpec& spec : per_run->parameters) fit.start.estimated.push_back(spec.name);
-    }
     at = (*problem)->ParametersOf(0);
     if (own) {
-      std::vector<Estimate> burn_in;
-      CollectEstimates(problem->get(), *per_run, &burn_in);
-      InflateForColouredResiduals(model.info(), **problem, &burn_in);
-      if (CombineWithTrainingRuns(info, *per_run, &burn_in, &at, &fit.start.weighed) &&
+      for (const ParameterSpec& spec : per_run->parameters) fit.start.estimated.push_back(spec.name);
+      std::vector<Estimate> own_estimates;
+      CollectEstimates(problem->get(), *per_run, &own_estimates);
+      InflateForColouredResiduals(info, **problem, &own_estimates);
+      if (CombineWithTrainingRuns(info, *per_run, &own_estimates, &at, &fit.start.weighed) &&
           !unmeasured.empty()) {
         // The unmeasured states again, with the run's own parameters at the combined values.
-        *problem = RunProblem(model, ExperimentUntil(experiment, scored_from), unmeasured, local,
-                              at, nullptr, start.prior, &why);
-        if (*problem == nullptr) {
-          fit.diverged = true;
-          fit.message = "burn-in: " + why;
-          return fit;
-        }
+        *problem = RunProblem(model, burn_in, unmeasured, local, at, nullptr, start.prior, &why);
+        if (*problem == nullptr) return failed("burn-in: " + why);
       }
-      if (estimates != nullptr) *estimates = std::move(burn_in);
+      if (estimates != nullptr) *estimates = std::move(own_estimates);
     }
-    const std::vector<double> x0 = (*problem)->InitialStateOf(0);
+    const std::vector<double> estimated = (*problem)->InitialStateOf(0);
     for (const std::string& state : unmeasured) {
       const int s = info.StateIndex(state);
-      experiment.initial_state[s] = x0[s];
+      x0[s] = estimated[s];
     }
   }
-  std::vector<Experiment> one;
-  one.push_back(std::move(experiment));
+  std::vector<Experiment> one{measured};
+  one.front().initial_state = std::move(x0);
   const std::unique_ptr<OutputErrorProblem> whole =
       HeldOutProblem(model, std::move(one), {}, local, at, &why);
-  if (whole == nullptr) {
-    fit.diverged = true;
-    fit.message = why;
-    return fit;
-  }
+  if (whole == nullptr) return failed(why);
   std::vector<ExperimentFit> evaluated;
   EvaluateFit(*whole, &evaluated, &why, scored_from);  // a divergence is recorded in the fit
   HeldOutStartReport report = std::move(fit.start);
   fit = std::move(evaluated.front());
   fit.start = std::move(report);
+  if (residuals != nullptr && !fit.diverged) {
+    for (ResidualAnalysis& a : AnalyseFitResiduals(info, whole->experiments(), {fit}))
+      residuals->push_back(std::move(a));
+  }
   return fit;
 }
 
@@ -347,62 +346,53 @@ std::vector<StartOffset> RefittedOffsets(const ModelInfo& info, const Experiment
 
 // One held-out run fitted at `values`, estimating its per-experiment parameters if given, as
 // `start` says (HeldOutStart); its residual analysis appended to `residuals` if not null.
-ExperimentFit FitOne(const ModelHandle& model, Experiment experiment,
+ExperimentFit FitOne(const ModelHandle& model, const Experiment& experiment,
                      const std::vector<std::string>& free_states, const LocalSolveOptions& local,
                      const std::vector<double>& values, const HeldOutPerRun* per_run,
                      const HeldOutStart& start, std::vector<Estimate>* estimates,
                      std::vector<ResidualAnalysis>* residuals = nullptr) {
-  std::unique_ptr<OutputErrorProblem> measured_problem;
-  const Experiment copy = experiment;
+  const bool measured = start.mode == HeldOutStart::Mode::kMeasured;
+  std::unique_ptr<OutputErrorProblem> burn_in;
   std::vector<Estimate> measured_estimates;
-  ExperimentFit predicted = PredictFromMeasuredStart(model, std::move(experiment), free_states,
-                                                     local, values, per_run, start,
-                                                     &measured_problem, &measured_estimates);
+  ExperimentFit predicted =
+      PredictFromMeasuredStart(model, experiment, free_states, local, values, per_run, start,
+                               &burn_in, &measured_estimates, measured ? residuals : nullptr);
+  if (measured) {
+    if (per_run != nullptr && estimates != nullptr) *estimates = std::move(measured_estimates);
+    return predicted;
+  }
   ExperimentFit fit;
-  std::unique_ptr<OutputErrorProblem> primary;
-  if (start.mode == HeldOutStart::Mode::kMeasured) {
-    fit = std::move(predicted);
-    primary = std::move(measured_problem);
-    if (residuals != nullptr && !fit.diverged) {
-      for (ResidualAnalysis& a : AnalyseFitResiduals(model.info(), {copy}, {fit}))
+  fit.experiment = experiment.name;
+  std::string why;
+  const std::unique_ptr<OutputErrorProblem> refit =
+      RunProblem(model, experiment, free_states, local, values, per_run, start.prior, &why);
+  if (refit == nullptr) {
+    fit.diverged = true;
+    fit.message = why;
+  } else {
+    std::vector<ExperimentFit> evaluated;
+    EvaluateFit(*refit, &evaluated, &why);  // a divergence is recorded in the fit
+    if (residuals != nullptr) {
+      for (ResidualAnalysis& a : AnalyseFitResiduals(model.info(), refit->experiments(), evaluated))
         residuals->push_back(std::move(a));
     }
-  } else {
-    fit.experiment = copy.name;
-    std::string why;
-    primary = RunProblem(model, copy, free_states, local, values, per_run, start.prior, &why);
-    if (primary == nullptr) {
-      fit.diverged = true;
-      fit.message = why;
-    } else {
-      std::vector<ExperimentFit> evaluated;
-      EvaluateFit(*primary, &evaluated, &why);  // a divergence is recorded in the fit
-      if (residuals != nullptr) {
-        for (ResidualAnalysis& a :
-             AnalyseFitResiduals(model.info(), primary->experiments(), evaluated))
-          residuals->push_back(std::move(a));
-      }
-      fit = std::move(evaluated.front());
-      fit.start.offsets = RefittedOffsets(model.info(), copy, *primary, free_states);
-    }
-    fit.start.mode = HeldOutStartModeToString(HeldOutStart::Mode::kRefitted);
-    fit.start.implausible_sds = start.implausible_sds;
-    fit.start.measured_start = std::move(predicted.channels);
-    fit.start.measured_start_diverged = predicted.diverged;
-    fit.start.burn_in = predicted.start.burn_in;
-    fit.start.requested_burn_in = predicted.start.requested_burn_in;
-    fit.start.estimated = std::move(predicted.start.estimated);
-    fit.start.weighed = std::move(predicted.start.weighed);
-    fit.start.refitted = free_states;
-    if (per_run != nullptr) {
-      for (const ParameterSpec& spec : per_run->parameters) fit.start.refitted.push_back(spec.name);
-    }
+    fit = std::move(evaluated.front());
+    fit.start.offsets = RefittedOffsets(model.info(), experiment, *refit, free_states);
+    if (per_run != nullptr && estimates != nullptr) CollectEstimates(refit.get(), *per_run, estimates);
   }
-  if (per_run != nullptr && estimates != nullptr) {
-    if (start.mode == HeldOutStart::Mode::kMeasured)
-      *estimates = std::move(measured_estimates);
-    else if (primary != nullptr)
-      CollectEstimates(primary.get(), *per_run, estimates);
+  // The refit's report, with the measured start's figures beside it.
+  HeldOutStartReport& report = fit.start;
+  report.mode = HeldOutStartModeToString(HeldOutStart::Mode::kRefitted);
+  report.implausible_sds = start.implausible_sds;
+  report.measured_start = std::move(predicted.channels);
+  report.measured_start_diverged = predicted.diverged;
+  report.burn_in = predicted.start.burn_in;
+  report.requested_burn_in = predicted.start.requested_burn_in;
+  report.estimated = std::move(predicted.start.estimated);
+  report.weighed = std::move(predicted.start.weighed);
+  report.refitted = free_states;
+  if (per_run != nullptr) {
+    for (const ParameterSpec& spec : per_run->parameters) report.refitted.push_back(spec.name);
   }
   return fit;
 }
