@@ -4,15 +4,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/base/statistics.h"
 #include "engine/data/angle_units.h"
 
 namespace vesselid {
 namespace {
-
-bool ListedInDegrees(const ExperimentSpec& spec, const std::string& column) {
-  const std::vector<std::string>& degrees = spec.degree_columns;
-  return std::find(degrees.begin(), degrees.end(), column) != degrees.end();
-}
 
 // An angle input beyond any rudder: the largest magnitude, and what it is in degrees.
 void AddAngleInputFinding(const ExperimentSpec& spec, const std::string& input,
@@ -44,8 +40,7 @@ void AddSampleIntervalFinding(const ExperimentSpec& spec, const Trajectory& data
     if (data.t[k] >= spec.t_begin && data.t[k] <= spec.t_end) steps.push_back(data.t[k] - data.t[k - 1]);
   }
   if (steps.empty()) return;
-  std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
-  const double median = steps[steps.size() / 2];
+  const double median = UpperMedian(std::move(steps));
   char text[320];
   if (median > kMaxSampleInterval) {
     std::snprintf(text, sizeof(text),
@@ -80,7 +75,7 @@ void AddUnitFindings(const RunConfig& config, TrajectoryCache* cache,
       if (o < 0 || o >= static_cast<int>(info.angle_outputs.size()) || !info.angle_outputs[o]) {
         continue;
       }
-      if (ListedInDegrees(spec, column)) continue;
+      if (spec.IsDegreeColumn(column)) continue;
       std::vector<double> values;
       if (!WindowSamples(spec, column, cache, &values)) continue;
       const AngleUnitCheck check = CheckAngleUnit(values);
@@ -93,7 +88,7 @@ void AddUnitFindings(const RunConfig& config, TrajectoryCache* cache,
     }
     for (const auto& [input, column] : spec.inputs) {
       const int i = info.InputIndex(input);
-      if (i < 0 || info.InputUnit(i) != "rad" || ListedInDegrees(spec, column)) continue;
+      if (i < 0 || info.InputUnit(i) != "rad" || spec.IsDegreeColumn(column)) continue;
       std::vector<double> values;
       if (WindowSamples(spec, column, cache, &values))
         AddAngleInputFinding(spec, input, column, values, findings);
