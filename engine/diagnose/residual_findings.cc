@@ -14,9 +14,10 @@ constexpr size_t kNamed = 6;  // experiments named in a warning at most
 // Residual structure that noise does not give: a lag-1 autocorrelation above kStrongLag1 where
 // the fit's RMSE is above kStrongNoiseRatio x the record's own noise level (the residual is
 // mostly not noise). Calibrated on the independent corpus (tests/corpus): correct structures
-// fitted to noisy records reach lag-1 0.06 and RMSE 1.04 x the noise, and the correct Norrbin
-// fits that stop short of their optimum up to 0.85 and 2.6 x; wrong structures, held
-// parameters and unmodelled disturbances reach a median lag-1 of 0.80-0.95 at 2.3-4.6 x.
+// fitted to noisy records reach lag-1 0.06 and RMSE 1.04 x the noise (a few Norrbin ships of
+// large gain, whose rudder noise psi' = r integrates, up to 0.85 and 2.6 x: errors in
+// variables); wrong structures, held parameters and unmodelled disturbances reach a median
+// lag-1 of 0.80-0.95 at 2.3-4.6 x.
 constexpr double kStrongLag1 = 0.5;
 constexpr double kStrongNoiseRatio = 1.2;
 
