@@ -151,11 +151,17 @@ const Row kRows[] = {
      "either has a relative standard error of 30 % or more (pairs determined to 8-20 % at "
      "correlation 0.999 fit well in the verdict corpus; the USV log's b_u and k_f, 40 % at "
      "-0.9994, are a real trade-off): the data determine only their "
-     "combination.",
+     "combination. A note where one of the two is determined and the other's 95 % interval "
+     "spans 0: a term the data do not need.",
      "Fix or drop the one the finding names."},
     {K::kInputNoise, "input_noise", S::kWarning,
-     "A measured input is noisy enough to bias output error (errors in variables).",
-     "Declare it under `input_noise:`."},
+     "A measured input carries white noise (robust second and third differences agree) and "
+     "the fit's residuals are coloured, in a stage that left the noise out of its standard "
+     "errors (`uncertainty: {input_noise: off}`, or its refits failed). By default a stage "
+     "adds the spread of refits with the noise added again to its standard errors and says "
+     "so in its notes.",
+     "Keep `uncertainty: {input_noise: auto}`, or declare the input under `input_noise:` (a "
+     "latent input)."},
     {K::kFailedFit, "failed_fit", S::kFailure,
      "A simulated output predicts its record worse than the record's mean (R^2 < 0) or worse "
      "than holding the record's first value (MAE above the hold MAE), where the record varies "
@@ -175,7 +181,9 @@ const Row kRows[] = {
      "A warning where the structure is strong, beyond what noise gives: a lag-1 above 0.5 with "
      "an RMSE above 1.2 x the record's noise level (correct structures fitted to noisy records "
      "stay below 0.06 and 1.04 x; wrong structures, held parameters and unmodelled "
-     "disturbances reach 0.8-0.95 and 2.3-4.6 x).",
+     "disturbances reach 0.8-0.95 and 2.3-4.6 x). The RMSE is taken without the part that "
+     "noise on a measured input can make (the 99 % quantile over the input noise refits): "
+     "a rudder's noise integrated into the heading is noise, not structure.",
      "A note: for the intervals use sandwich_hac. A warning: the model leaves out what drives "
      "the residual; try a richer structure, free what is held, or model the disturbance."},
     {K::kInputCorrelatedResiduals, "input_correlated_residuals", S::kInfo,

@@ -2,9 +2,11 @@
 //   {method: auto | hessian | sandwich_hac | block_bootstrap | experiment_bootstrap,
 //    bandwidth: auto | <blocks>, aggregation: auto | <time nodes>,
 //    kernel: bartlett | quadratic_spectral, prewhiten: true | false,
-//    runs: <replicates >= 10>, block_length: auto | <seconds>, seed: <integer>}
+//    runs: <replicates >= 10>, block_length: auto | <seconds>, seed: <integer>,
+//    input_noise: auto | off, input_noise_runs: <refits >= 5>}
 #include "engine/config/config_sections.h"
 #include "engine/run/bootstrap_uncertainty.h"
+#include "engine/run/input_noise_uncertainty.h"
 
 namespace vesselid {
 
@@ -15,7 +17,7 @@ void ReadUncertainty(const YamlReader& reader, const YAML::Node& node, const std
     return;
   }
   reader.CheckMap(node, path, {"method", "bandwidth", "aggregation", "kernel", "prewhiten", "runs",
-                               "block_length", "seed"});
+                               "block_length", "seed", "input_noise", "input_noise_runs"});
   options->compute_uncertainty = true;
   UncertaintyOptions& u = options->uncertainty;
   if (const YAML::Node n = node["method"]) {
@@ -65,6 +67,21 @@ void ReadUncertainty(const YamlReader& reader, const YAML::Node& node, const std
     } else {
       u.bootstrap.block_length = reader.Double(n, key);
       if (!(u.bootstrap.block_length > 0.0)) reader.Fail(n, key, "must be auto or > 0 (seconds)");
+    }
+  }
+  if (const YAML::Node n = node["input_noise"]) {
+    const std::string key = Child(path, "input_noise");
+    const std::string text = n.IsScalar() ? n.Scalar() : "";
+    if (text != "auto" && text != "off" && text != "true" && text != "false") {
+      reader.Fail(n, key, "must be auto or off");
+    }
+    u.input_noise = text == "auto" || text == "true";
+  }
+  if (const YAML::Node n = node["input_noise_runs"]) {
+    u.input_noise_runs = reader.Int(n, Child(path, "input_noise_runs"));
+    if (u.input_noise_runs < kMinInputNoiseRuns) {
+      reader.Fail(n, Child(path, "input_noise_runs"),
+                  "must be >= " + std::to_string(kMinInputNoiseRuns));
     }
   }
   if (const YAML::Node n = node["seed"]) {

@@ -24,6 +24,9 @@ inline constexpr double kCompensationCorrelation = 0.999;
 // corpus: quiet); the USV log's default thrust law trades b_u against k_f (the thrusters are
 // purely quadratic) at -0.9994 with both at 39-40 % (named).
 inline constexpr double kCompensationRelativeError = 0.3;
+// A pair of which one is determined (below kCompensationRelativeError) and the other's 95 %
+// interval spans 0 is a note: a term the data do not need (a weak cubic damping beside the
+// gain it trades with), whose trade-off the determined one's standard error already carries.
 
 // Appends "b_u and k_f compensate each other ..." findings for `stage`; initial states are
 // left to the correlation matrix.

@@ -3,14 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <set>
 
-#include "engine/data/noise_level.h"
+#include "engine/base/statistics.h"
 
 namespace vesselid {
 namespace {
 
 constexpr double kRatio = 1e-3;          // noise SD / signal SD below which noise is ignored
-constexpr double kWhiteCorrelation = -0.3;  // lag-1 correlation of first differences
+constexpr double kNormalMad = 0.6745;      // median |x| / SD of a normal variable
+constexpr double kWhiteRatioLow = 0.8;     // third- over second-difference sigma: white noise 1
+constexpr double kWhiteRatioHigh = 1.25;
 constexpr double kRepeatShare = 0.2;        // share of exact repeats that marks a held input
 constexpr int kBlock = 20;               // samples per block mean
 constexpr double kColouredRatio = 2.0;
@@ -20,11 +23,9 @@ constexpr double kColouredRatio = 2.0;
 double WhiteInputNoise(const std::vector<double>& values) {
   const size_t n = values.size();
   if (n < 50) return 0.0;
-  NoiseLevel level;
   double mean = 0.0;
   int repeats = 0;
   for (size_t k = 0; k < n; ++k) {
-    level.Add(values[k]);
     mean += values[k];
     if (k > 0 && values[k] == values[k - 1]) ++repeats;
   }
@@ -32,17 +33,28 @@ double WhiteInputNoise(const std::vector<double>& values) {
   mean /= n;
   double variance = 0.0;
   for (double v : values) variance += (v - mean) * (v - mean);
-  const double sd = std::sqrt(variance / n), sigma = level.Sigma();
-  if (!(sigma >= kRatio * sd) || !(sigma > 0.0)) return 0.0;
-  double s01 = 0.0, s00 = 0.0, s11 = 0.0;
+  const double sd = std::sqrt(variance / n);
+  // |second| and |third| differences: white noise of SD sigma gives them SDs sqrt(6) sigma and
+  // sqrt(20) sigma; their medians (0.6745 SD for a normal variable) pass over the few large
+  // ones a zigzag's corners or a step give.
+  std::vector<double> second, third;
+  second.reserve(n);
+  third.reserve(n);
   for (size_t k = 2; k < n; ++k) {
-    const double d1 = values[k] - values[k - 1], d0 = values[k - 1] - values[k - 2];
-    s01 += d0 * d1;
-    s00 += d0 * d0;
-    s11 += d1 * d1;
+    const double d2 = values[k] - 2.0 * values[k - 1] + values[k - 2];
+    second.push_back(std::abs(d2));
+    if (k >= 3) {
+      third.push_back(std::abs(values[k] - 3.0 * values[k - 1] + 3.0 * values[k - 2] -
+                               values[k - 3]));
+    }
   }
-  const double correlation = s01 / std::sqrt(s00 * s11);
-  return correlation < kWhiteCorrelation ? sigma : 0.0;
+  const double sigma = UpperMedian(second) / (kNormalMad * std::sqrt(6.0));
+  const double sigma3 = UpperMedian(third) / (kNormalMad * std::sqrt(20.0));
+  if (!(sigma >= kRatio * sd) || !(sigma > 0.0)) return 0.0;
+  // White: the third differences see the same sigma. A signal smooth on the sampling scale
+  // leaves a factor (omega dt) less in each higher difference (ratio far below 1).
+  const double ratio = sigma3 / sigma;
+  return ratio > kWhiteRatioLow && ratio < kWhiteRatioHigh ? sigma : 0.0;
 }
 
 bool ResidualsColoured(const std::vector<double>& r) {
@@ -72,12 +84,26 @@ void AddInputNoiseFindings(const RunConfig& config, const RunResult& run, Trajec
   for (const ExperimentSpec& spec : config.experiments) {
     // Coloured residuals in any stage fit of this experiment (or of its segments).
     bool coloured = false;
+    // Inputs of this experiment whose noise the last stage fitting it put in its standard
+    // errors (input_noise_uncertainty.h): no finding for them.
+    std::set<std::string> included;
+    const auto of_spec = [&spec](const std::string& name) {
+      return name == spec.name || name.rfind(spec.name + "@", 0) == 0 ||
+             name.rfind(spec.name + "#", 0) == 0;
+    };
     for (const StageResult& stage : run.stages) {
-      for (const ExperimentFit& fit : stage.summary.fits) {
-        if (fit.experiment != spec.name && fit.experiment.rfind(spec.name + "@", 0) != 0 &&
-            fit.experiment.rfind(spec.name + "#", 0) != 0) {
-          continue;
+      bool fitted = false;
+      for (const ExperimentFit& fit : stage.summary.fits) fitted |= of_spec(fit.experiment);
+      if (!fitted) continue;
+      included.clear();
+      for (const std::string& key : stage.summary.uncertainty.input_noise_inputs) {
+        const size_t colon = key.rfind(':');
+        if (colon != std::string::npos && of_spec(key.substr(0, colon))) {
+          included.insert(key.substr(colon + 1));
         }
+      }
+      for (const ExperimentFit& fit : stage.summary.fits) {
+        if (!of_spec(fit.experiment)) continue;
         const Trajectory& trace = fit.trace;
         for (size_t c = 0; c + 1 < trace.names.size(); ++c) {
           const std::string& name = trace.names[c];
@@ -93,7 +119,10 @@ void AddInputNoiseFindings(const RunConfig& config, const RunResult& run, Trajec
     }
     if (!coloured) continue;
     for (const auto& [input, column] : spec.inputs) {
-      if (spec.input_noise.count(input) > 0 || info.InputIndex(input) < 0) continue;
+      if (spec.input_noise.count(input) > 0 || info.InputIndex(input) < 0 ||
+          included.count(input) > 0) {
+        continue;
+      }
       std::vector<double> values;
       if (!WindowSamples(spec, column, cache, &values)) continue;
       const double sigma = WhiteInputNoise(values);

@@ -2,12 +2,11 @@
 // experiment input not listed in the experiment's `input_noise`, an input_noise finding naming the
 // experiment, the input and the estimated noise SD, suggesting `input_noise: {<input>: auto}`,
 // when all of these hold:
-//   * the input's noise level (second differences, noise_level.h) is at least kRatio of its
-//     standard deviation over the window;
-//   * it is white: consecutive first differences d_k = u_k - u_k-1 correlate by about -1/2
-//     (white noise), not by about +1 (a signal smooth on the sampling scale); held and
-//     quantised inputs (PWM steps, a zigzag rudder held constant, where most d_k are 0) are
-//     passed over;
+//   * the input's noise SD, from the median |second difference| (robust to a zigzag's corners
+//     and steps), is at least kRatio of its standard deviation over the window;
+//   * it is white: the median |third difference| gives the same SD (within 0.8-1.25x), where a
+//     signal smooth on the sampling scale leaves far less; held and quantised inputs (PWM
+//     steps, a clean zigzag rudder held constant, where most differences are 0) are passed over;
 //   * the outputs' residuals of a stage that fitted the experiment are coloured: the variance
 //     of their means over blocks of B samples is above twice sigma^2 / B (what white residuals
 //     give). The input noise integrated by the model shows as such slow residuals.
@@ -23,6 +22,9 @@
 
 namespace vesselid {
 
+// Noisy inputs a stage treated as exact: the finding is left to stages that did not include
+// the input noise in their standard errors (input_noise_uncertainty.h, `uncertainty:
+// {input_noise: off}`).
 void AddInputNoiseFindings(const RunConfig& config, const RunResult& run, TrajectoryCache* cache,
                            std::vector<Finding>* findings);
 

@@ -149,7 +149,9 @@ void AddResidualFindings(const StageResult& stage, std::vector<Finding>* finding
     if (a.input_correlated) correlated[a.output].push_back(&a);
     const auto m = metrics.find({a.experiment, a.output});
     if (a.coloured() && a.lag1 > kStrongLag1 && m != metrics.end() && m->second->noise > 0.0) {
-      const double ratio = m->second->rmse / m->second->noise;
+      // What the residual would be without the noise on the measured inputs (its share from
+      // the input noise refits): that part is noise, not structure the model leaves out.
+      const double ratio = m->second->rmse * std::sqrt(1.0 - a.input_noise_share) / m->second->noise;
       if (ratio > kStrongNoiseRatio) strong[a.output] = std::max(strong[a.output], ratio);
     }
   }
@@ -161,6 +163,16 @@ void AddResidualFindings(const StageResult& stage, std::vector<Finding>* finding
       f.stage = stage.name;
       f.output = output;
       f.count = static_cast<int>(coloured[output].size());
+      double share = 0.0;  // the largest share of input noise among the coloured
+      for (const ResidualAnalysis* a : coloured[output]) share = std::max(share, a->input_noise_share);
+      if (share >= 0.1) {
+        char text[200];
+        std::snprintf(text, sizeof(text),
+                      "; up to %.0f %% of the residual power is the noise on a measured input, "
+                      "which the standard errors include",
+                      100.0 * share);
+        f.message += text;
+      }
       if (strong.count(output) > 0) {
         char text[200];
         std::snprintf(text, sizeof(text),

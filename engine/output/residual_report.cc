@@ -64,7 +64,8 @@ json ResidualAnalysisToJson(const ResidualAnalysis& a) {
           {"input_correlated", a.input_correlated},
           {"interval_spread", JsonNumber(a.interval_spread)},
           {"irregular_sampling", a.irregular()},
-          {"noise_free", a.noise_free}};
+          {"noise_free", a.noise_free},
+          {"input_noise_share", JsonNumber(a.input_noise_share)}};
 }
 
 json ResidualAnalysesToJson(const std::vector<ResidualAnalysis>& analyses, JsonSplices* splices) {

@@ -364,6 +364,21 @@ json StageToJson(const RunConfig& config, const StageResult& stage, JsonSplices*
     // The replicates' estimates: `vesselid export` takes its ensemble from them.
     j["uncertainty"]["replicates"] = {{"names", u.replicate_names}, {"values", u.replicates}};
   }
+  if (u.input_noise_runs > 0) {
+    // The input noise's part of each standard error, by name (the matrix's variables are the
+    // reported ones unless latent-input corrections are among them).
+    json parts = json::object();
+    if (u.input_noise_std_errors.size() == stage.correlation_names.size()) {
+      for (size_t i = 0; i < u.input_noise_std_errors.size(); ++i) {
+        parts[stage.correlation_names[i]] = JsonNumber(u.input_noise_std_errors[i]);
+      }
+    }
+    j["uncertainty"]["input_noise"] = {{"runs", u.input_noise_runs},
+                                       {"failed", u.input_noise_failed},
+                                       {"inputs", u.input_noise_inputs},
+                                       {"std_errors", parts},
+                                       {"residual_share", u.input_noise_share}};
+  }
   if (u.available) {
     json matrix = json::array();
     for (int r = 0; r < stage.correlation.rows(); ++r) {

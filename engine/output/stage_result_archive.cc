@@ -116,7 +116,9 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(Uncertainty, available, message, variables, c
                                    correlation, std_errors, residual_variance, undetermined,
                                    undetermined_variables, method, hessian_std_errors,
                                    method_reason, hac_bandwidth, bootstrap_runs, bootstrap_failed,
-                                   block_length, replicates, replicate_names)
+                                   block_length, replicates, replicate_names, input_noise_runs,
+                                   input_noise_failed, input_noise_inputs, input_noise_std_errors,
+                                   input_noise_share)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(WeakDirection, combination, coefficients, eigenvalue_ratio,
                                    std_dev, std_dev_normalised, status)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LocalAnalysis, available, message, parameters, names,
@@ -128,7 +130,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ResidualCrossCorrelation, input, values, band
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ResidualAnalysis, experiment, output, samples, lags,
                                    autocorrelation, band_99, band_95, ljung_box_q, ljung_box_p,
                                    lag1, white, cross_correlation, input_correlated,
-                                   interval_spread, noise_free)
+                                   interval_spread, noise_free, input_noise_share)
 // Kind and severity as the words results.json uses; an unknown word fails the archive.
 void to_json(nlohmann::json& j, FindingKind kind) { j = FindingKindToString(kind); }
 void from_json(const nlohmann::json& j, FindingKind& kind) {
@@ -186,8 +188,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BootstrapSummary, runs, failed, groups, resam
 namespace {
 // 3: Uncertainty method, hessian_std_errors, method_reason, hac_bandwidth; 4: bootstrap runs,
 // failed, block length; 6: traces' samples as byte strings; 7: typed solver findings,
-// comparable cost, state limits; 9: bootstrap replicates
-constexpr int kArchiveVersion = 9;
+// comparable cost, state limits; 9: bootstrap replicates; 10: input noise refits
+constexpr int kArchiveVersion = 10;
 }  // namespace
 
 nlohmann::json StageResultToArchive(const StageResult& stage) {

@@ -11,27 +11,10 @@
 #include "engine/base/nan.h"
 #include "engine/base/parallel_for.h"
 #include "engine/run/estimate_specs.h"
+#include "engine/run/experiment_residuals.h"
 
 namespace vesselid {
 namespace {
-
-// Per sample of experiment e: simulated minus measured at the estimate (d_i = r_i / w_i,
-// wrapped as the residual is); NaN where the sample has no weight.
-bool SimulatedMinusMeasured(OutputErrorProblem* problem, int e, std::vector<double>* d) {
-  const Experiment& experiment = problem->experiments()[e];
-  std::vector<double> r(experiment.num_samples());
-  double cost = 0.0;
-  if (!problem->problem()->EvaluateResidualBlock(problem->data_residual_blocks()[e], false, &cost,
-                                                 r.data(), nullptr)) {
-    return false;
-  }
-  d->resize(r.size());
-  for (size_t i = 0; i < r.size(); ++i) {
-    const double w = experiment.samples[i].weight;
-    (*d)[i] = w != 0.0 ? r[i] / w : kNaN;
-  }
-  return true;
-}
 
 // d of each output at every node: its value at the node, else at the nearest earlier node
 // sampling it (else the first later one), so that a block drawn from any node has every

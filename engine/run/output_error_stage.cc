@@ -18,6 +18,7 @@
 #include "engine/run/estimate_specs.h"
 #include "engine/run/fit_residuals.h"
 #include "engine/run/input_noise_notes.h"
+#include "engine/run/input_noise_uncertainty.h"
 #include "engine/run/records.h"
 #include "engine/run/stage_weights.h"
 #include "engine/solve/noise_weights.h"
@@ -404,6 +405,7 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
     // On the final problem: after the noise weights, step reductions and outlier refinement.
     BootstrapStageUncertainty(options, stage.problem, problem.get(), &summary);
   }
+  AddInputNoiseSpread(config, cache, options, stage.problem, problem.get(), &summary);
   summary.notes.insert(summary.notes.begin(), continuation_notes.begin(), continuation_notes.end());
   // The cost at the end point with the first solve's weights: under noise weights the
   // minimised cost is ~N/2 wherever the solve ends, this one ranks end points.
@@ -419,6 +421,13 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
   const double integration_step = result->integration_step;
   std::vector<ResidualAnalysis> residuals =
       AnalyseFitResiduals(model.info(), problem->experiments(), summary.fits);
+  for (ResidualAnalysis& a : residuals) {
+    const auto& share = summary.uncertainty.input_noise_share;
+    const auto e = share.find(a.experiment);
+    if (e == share.end()) continue;
+    const auto o = e->second.find(a.output);
+    if (o != e->second.end()) a.input_noise_share = o->second;
+  }
   // The stage's time includes the analysis of its residuals, as it does its uncertainty.
   summary.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start).count();

@@ -13,6 +13,7 @@
 //   Cov_gg = R_gg^-1 R_gg^-T + B C_pp B^T,  B = R_gg^-1 R_gp.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,14 @@ struct Uncertainty {
   // the variables' names ("T1", "delta_0[run2]"): the ensemble an exported model carries.
   std::vector<std::vector<double>> replicates;
   std::vector<std::string> replicate_names;
+  // Noise on measured inputs held exact (engine/run/input_noise_uncertainty.h): the refits
+  // run and failed, the inputs ("<experiment>:<input>"), the input noise's part of each
+  // standard error (order of `variables`; already in std_errors), and per experiment and
+  // output the largest share of the residual power the input noise can make (99 % quantile).
+  int input_noise_runs = 0, input_noise_failed = 0;
+  std::vector<std::string> input_noise_inputs;
+  std::vector<double> input_noise_std_errors;
+  std::map<std::string, std::map<std::string, double>> input_noise_share;
 
   // Per-experiment variables whose standard errors come without their covariances (the
   // block-structured case above); `variables` then holds the shared variables only.

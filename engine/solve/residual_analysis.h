@@ -62,6 +62,10 @@ struct ResidualAnalysis {
   // integration's error, smooth and so coloured, and say nothing of measurement noise
   // (NoiseFree below); reported, not warned.
   bool noise_free = false;
+  // The largest share of the residual power that noise on a measured input can make (99 %
+  // quantile over the input noise refits, input_noise_uncertainty.h); 0 when no input was
+  // found noisy.
+  double input_noise_share = 0.0;
 
   bool tested() const { return lags > 0; }
   // What the coloured_residuals finding says: whiteness rejected (Ljung-Box) and the lag-1

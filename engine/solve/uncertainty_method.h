@@ -46,6 +46,10 @@ struct UncertaintyOptions {
   UncertaintyMethod method = UncertaintyMethod::kAuto;
   HacOptions hac;
   BootstrapOptions bootstrap;
+  // Noise on measured inputs in the standard errors (input_noise_uncertainty.h): `input_noise:
+  // auto` (true) or off, and its refits.
+  bool input_noise = true;
+  int input_noise_runs = 12;
 };
 
 // HAC standard error over the Hessian's above which the residuals count as serially

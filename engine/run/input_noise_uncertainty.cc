@@ -1,0 +1,253 @@
+#include "engine/run/input_noise_uncertainty.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <random>
+
+#include "engine/base/case_seed.h"
+#include "engine/base/chi_square.h"
+#include "engine/base/parallel_for.h"
+#include "engine/diagnose/input_noise_findings.h"
+#include "engine/run/estimate_specs.h"
+#include "engine/run/experiment_residuals.h"
+
+namespace vesselid {
+namespace {
+
+struct NoisyInput {
+  int experiment = 0;
+  int input = 0;        // model input index
+  double sigma = 0.0;   // model units
+  std::string name;     // the model input's name
+  std::string text;     // "delta on train (0.15 deg)"
+};
+
+const ExperimentSpec* SpecOf(const RunConfig& config, const Experiment& x) {
+  const std::string& record = x.record.empty() ? x.name : x.record;
+  for (const ExperimentSpec& spec : config.experiments) {
+    if (spec.name == record) return &spec;
+  }
+  return nullptr;
+}
+
+std::vector<NoisyInput> NoisyInputs(const RunConfig& config, TrajectoryCache* cache,
+                                    const OutputErrorProblem& problem) {
+  const ModelInfo& info = problem.model().info();
+  std::vector<NoisyInput> noisy;
+  for (size_t e = 0; e < problem.experiments().size(); ++e) {
+    const Experiment& x = problem.experiments()[e];
+    const ExperimentSpec* spec = SpecOf(config, x);
+    if (spec == nullptr) continue;
+    for (const auto& [input, column] : spec->inputs) {
+      const int j = info.InputIndex(input);
+      if (j < 0 || spec->input_noise.count(input) > 0) continue;
+      std::vector<double> values;
+      if (!WindowSamples(*spec, column, cache, &values)) continue;
+      const double sigma = WhiteInputNoise(values);
+      if (!(sigma > 0.0)) continue;
+      const bool degrees = std::find(spec->degree_columns.begin(), spec->degree_columns.end(),
+                                     column) != spec->degree_columns.end();
+      NoisyInput n;
+      n.experiment = static_cast<int>(e);
+      n.input = j;
+      n.sigma = sigma;  // WindowSamples reads a degree column in radians
+      n.name = input;
+      char text[160];
+      std::snprintf(text, sizeof(text), "%s on %s (%.3g %s)", input.c_str(), x.name.c_str(),
+                    degrees ? sigma * 180.0 / M_PI : sigma,
+                    degrees ? "deg" : info.InputUnit(j).c_str());
+      n.text = text;
+      noisy.push_back(std::move(n));
+    }
+  }
+  return noisy;
+}
+
+// Adds white noise of n.sigma, drawn at the nodes and linear between them, to input n.input's
+// rows of the input cache (each step's start, midpoint and end, and the last node).
+void AddNodeNoise(const NoisyInput& n, std::mt19937_64* rng, Experiment* x) {
+  const int nodes = x->num_nodes(), nu = x->num_inputs, j = n.input;
+  int steps = 0;
+  for (int m : x->node_substeps) steps += m;
+  if (nodes < 2 || x->input_cache.size() != static_cast<size_t>(3 * steps + 1) * nu) return;
+  std::normal_distribution<double> noise(0.0, n.sigma);
+  std::vector<double> at(nodes);
+  for (double& v : at) v = noise(*rng);
+  int step = 0;
+  for (int k = 0; k + 1 < nodes; ++k) {
+    const int m = x->node_substeps[k];
+    const auto value = [&](double f) { return at[k] + f * (at[k + 1] - at[k]); };
+    for (int i = 0; i < m; ++i, ++step) {
+      const double a = static_cast<double>(i) / m, b = static_cast<double>(i + 1) / m;
+      x->input_cache[(3 * step) * nu + j] += value(a);
+      x->input_cache[(3 * step + 1) * nu + j] += value(0.5 * (a + b));
+      x->input_cache[(3 * step + 2) * nu + j] += value(b);
+    }
+  }
+  x->input_cache[(3 * step) * nu + j] += at.back();
+}
+
+// Mean square per output of d_i - reference_i over experiment e's samples, d the residuals
+// (simulated - measured) at the problem's values; reference empty: of d itself. NaN where an
+// output has none.
+std::vector<double> OutputMeanSquares(OutputErrorProblem* problem, int e, int outputs,
+                                      const std::vector<double>& reference,
+                                      std::vector<double>* d) {
+  std::vector<double> sum(outputs, 0.0), ms(outputs, std::nan(""));
+  std::vector<int> count(outputs, 0);
+  if (!SimulatedMinusMeasured(problem, e, d)) return ms;
+  const Experiment& x = problem->experiments()[e];
+  for (size_t i = 0; i < d->size(); ++i) {
+    const double v = reference.empty() ? (*d)[i] : (*d)[i] - reference[i];
+    if (!std::isfinite(v)) continue;
+    sum[x.samples[i].output] += v * v;
+    ++count[x.samples[i].output];
+  }
+  for (int o = 0; o < outputs; ++o) {
+    if (count[o] > 0) ms[o] = sum[o] / count[o];
+  }
+  return ms;
+}
+
+// The 99 % quantile of a mean square's distribution from draws c_r of it: scaled chi-square
+// with the draws' mean m and k = 2 m^2 / var degrees of freedom (Satterthwaite). A random
+// walk's power over one record has few degrees of freedom: the record's own realisation may
+// lie far above the refits' mean.
+double UpperQuantile99(const std::vector<double>& c) {
+  double m = 0.0, v = 0.0;
+  for (double x : c) m += x;
+  m /= c.size();
+  for (double x : c) v += (x - m) * (x - m);
+  v /= std::max<size_t>(1, c.size() - 1);
+  if (!(m > 0.0)) return 0.0;
+  const double k = v > 0.0 ? std::clamp(2.0 * m * m / v, 0.5, 1e6) : 1e6;
+  double lo = 0.0, hi = k + 50.0 * std::sqrt(2.0 * k) + 50.0;
+  for (int i = 0; i < 100; ++i) {  // P(chi2_k > q) = 0.01 by bisection
+    const double q = 0.5 * (lo + hi);
+    (ChiSquareUpperTail(q, k) > 0.01 ? lo : hi) = q;
+  }
+  return m * 0.5 * (lo + hi) / k;
+}
+
+}  // namespace
+
+void AddInputNoiseSpread(const RunConfig& config, TrajectoryCache* cache,
+                         const StageOptions& options, const OutputErrorOptions& problem_options,
+                         OutputErrorProblem* solved, StageSummary* summary) {
+  Uncertainty& u = summary->uncertainty;
+  if (!options.compute_uncertainty || !options.uncertainty.input_noise || !u.available) return;
+  const std::vector<NoisyInput> noisy = NoisyInputs(config, cache, *solved);
+  if (noisy.empty()) return;
+  const int runs = options.uncertainty.input_noise_runs;
+  const unsigned seed = options.uncertainty.bootstrap.seed;
+  const std::vector<ParameterSpec> specs = EstimateSpecs(*solved);
+  const std::vector<double> estimate = solved->Values();
+  const int count = static_cast<int>(solved->experiments().size());
+  const int outputs = static_cast<int>(solved->model().info().outputs.size());
+  std::vector<std::vector<double>> base(count), base_residuals(count);
+  for (int e = 0; e < count; ++e) {
+    base[e] = OutputMeanSquares(solved, e, outputs, {}, &base_residuals[e]);
+  }
+
+  StageOptions replicate_options = options;
+  replicate_options.use_global_start = false;
+  replicate_options.compute_uncertainty = false;
+  replicate_options.local.num_threads = 1;  // the replicates are the parallel work
+  replicate_options.local.progress = nullptr;
+  replicate_options.global.progress = nullptr;
+  std::vector<std::vector<double>> values(runs);
+  std::vector<std::vector<std::vector<double>>> squares(runs);
+  ParallelFor(runs, options.uncertainty.bootstrap.num_threads, [&](int r) {
+    std::vector<Experiment> experiments = solved->experiments();
+    for (const NoisyInput& n : noisy) {
+      std::mt19937_64 rng(CaseSeed(seed, 1000 + n.experiment * 64 + n.input, r));
+      AddNodeNoise(n, &rng, &experiments[n.experiment]);
+    }
+    std::string error;
+    std::unique_ptr<OutputErrorProblem> p = OutputErrorProblem::Create(
+        &solved->model(), std::move(experiments), specs, problem_options, &error);
+    if (p == nullptr || p->variables().size() != estimate.size()) return;
+    p->SetValues(estimate);
+    StageSummary s;
+    if (!RunStage(replicate_options, p.get(), &s)) return;
+    // The simulated outputs' move from the stage's (the replicate's residuals minus the
+    // stage's): the input noise's part of a residual once the refit has absorbed what it can.
+    std::vector<double> d;
+    for (int e = 0; e < count; ++e) {
+      squares[r].push_back(OutputMeanSquares(p.get(), e, outputs, base_residuals[e], &d));
+    }
+    values[r] = p->Values();
+  });
+  std::vector<int> good;
+  for (int r = 0; r < runs; ++r) {
+    if (!values[r].empty()) good.push_back(r);
+  }
+  std::string inputs;
+  for (const NoisyInput& n : noisy) inputs += (inputs.empty() ? "" : ", ") + n.text;
+  char text[512];
+  if (good.size() < std::max<size_t>(2, std::ceil(kMinInputNoiseSolved * runs))) {
+    std::snprintf(text, sizeof(text),
+                  "input noise: only %zu of %d refits with the measured inputs' noise added "
+                  "again solved; the standard errors leave out the noise on %s",
+                  good.size(), runs, inputs.c_str());
+    summary->notes.push_back(text);
+    return;
+  }
+  // Cov_input over every free variable (the stage's matrix and its per-experiment blocks).
+  const auto covariance = [&](int a, int b) {
+    double ma = 0.0, mb = 0.0;
+    for (int r : good) ma += values[r][a], mb += values[r][b];
+    ma /= good.size();
+    mb /= good.size();
+    double sum = 0.0;
+    for (int r : good) sum += (values[r][a] - ma) * (values[r][b] - mb);
+    return sum / (good.size() - 1);
+  };
+  const std::vector<double> kept_std_errors = u.std_errors;
+  const int n = static_cast<int>(u.variables.size());
+  if (u.covariance.rows() == n) {
+    for (int a = 0; a < n; ++a) {
+      for (int b = 0; b < n; ++b) u.covariance(a, b) += covariance(u.variables[a], u.variables[b]);
+    }
+    SetStdErrorsAndCorrelation(&u);
+  }
+  for (size_t i = 0; i < u.block_variables.size(); ++i) {
+    const double se = u.block_std_errors[i], v = covariance(u.block_variables[i], u.block_variables[i]);
+    u.block_std_errors[i] = std::sqrt(se * se + v);
+  }
+  if (u.method == "hessian" && u.hessian_std_errors.empty()) u.hessian_std_errors = kept_std_errors;
+  u.input_noise_runs = runs;
+  u.input_noise_failed = runs - static_cast<int>(good.size());
+  u.input_noise_std_errors.clear();
+  for (int index : u.variables) u.input_noise_std_errors.push_back(std::sqrt(covariance(index, index)));
+  u.input_noise_inputs.clear();
+  for (const NoisyInput& x : noisy) {
+    u.input_noise_inputs.push_back(solved->experiments()[x.experiment].name + ":" + x.name);
+  }
+  // The share of each experiment's residual power that the input noise makes.
+  const std::vector<std::string>& names = solved->model().info().outputs;
+  u.input_noise_share.clear();
+  for (int e = 0; e < count; ++e) {
+    for (int o = 0; o < outputs; ++o) {
+      if (!(base[e][o] > 0.0)) continue;
+      std::vector<double> c;
+      for (int r : good) c.push_back(squares[r][e][o]);
+      u.input_noise_share[solved->experiments()[e].name][names[o]] =
+          std::clamp(UpperQuantile99(c) / base[e][o], 0.0, 1.0);
+    }
+  }
+  std::snprintf(text, sizeof(text),
+                "; plus the spread of %zu refits with the measured inputs' white noise added "
+                "again (errors in variables: %s)",
+                good.size(), inputs.c_str());
+  u.method_reason += text;
+  std::snprintf(text, sizeof(text),
+                "input noise: the standard errors include the noise on %s, measured by %zu "
+                "refits with it added again (%d failed)",
+                inputs.c_str(), good.size(), runs - static_cast<int>(good.size()));
+  summary->notes.push_back(text);
+}
+
+}  // namespace vesselid

@@ -1,0 +1,44 @@
+// Errors in variables by default (`uncertainty: {input_noise: auto}`). Output error simulates
+// with the measured inputs, so white noise on a logged rudder enters every simulated output
+// (psi' = r integrates its slow part into a random walk) and moves the estimate by more than
+// the Hessian's or the HAC's covariance allows: on the independent corpus (tests/corpus), K
+// ended 3-8 of those SEs from the truth on records whose residuals looked white.
+//
+// Where an experiment's input carries white noise (WhiteInputNoise, input_noise_findings.h)
+// and is not declared under the experiment's `input_noise:` (a latent input), the stage is
+// solved again `input_noise_runs` times (default 12) from its estimate, each time with fresh
+// white noise of the input's SD added to that input (drawn at the simulation's nodes,
+// interpolated linearly over each step), and
+//   Cov = Cov_stage + Cov_input,   Cov_input the replicates' sample covariance:
+// to first order the estimate moves by A e_u for the input noise e_u, and the replicates'
+// moves A e'_u have the same covariance.
+// The same replicates measure how much of the residuals the input noise makes: a replicate's
+// simulated outputs move from the stage's by what the added noise leaves after the refit,
+// of mean square c per experiment and output (the cross term with the stage's own residuals,
+// large and random over a record's few slow swings, is left out this way). c of one record
+// varies widely (a random walk has few degrees of freedom): its 99 % quantile over the refits
+// (scaled chi-square with their mean and variance) over ms_0 is the largest share of the
+// stage's residual power that the input's noise can explain, not missing
+// structure (the coloured_residuals rule reads it, residual_findings.h).
+#pragma once
+
+#include "engine/run/records.h"
+#include "engine/run/run_config.h"
+#include "engine/solve/output_error_problem.h"
+#include "engine/solve/stage.h"
+
+namespace vesselid {
+
+// Fewest replicates `uncertainty: {input_noise_runs: N}` takes, and the share of them that
+// must solve for the spread to be used.
+inline constexpr int kMinInputNoiseRuns = 5;
+inline constexpr double kMinInputNoiseSolved = 0.5;
+
+// Adds the input noise's part to summary->uncertainty at the solved problem's values (and
+// records what was done in it and in summary->notes); nothing when no experiment has a noisy
+// exact input, the stage computes no uncertainty, or options turn it off.
+void AddInputNoiseSpread(const RunConfig& config, TrajectoryCache* cache,
+                         const StageOptions& options, const OutputErrorOptions& problem_options,
+                         OutputErrorProblem* solved, StageSummary* summary);
+
+}  // namespace vesselid
