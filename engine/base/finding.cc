@@ -151,8 +151,8 @@ const Row kRows[] = {
      "either has a relative standard error of 30 % or more (pairs determined to 8-20 % at "
      "correlation 0.999 fit well in the verdict corpus; the USV log's b_u and k_f, 40 % at "
      "-0.9994, are a real trade-off): the data determine only their "
-     "combination. A note where one of the two is determined and the other's 95 % interval "
-     "spans 0: a term the data do not need.",
+     "combination. A note where one of the two is determined (below 30 %): its standard error "
+     "carries the trade-off, and weakly_determined judges the other.",
      "Fix or drop the one the finding names."},
     {K::kInputNoise, "input_noise", S::kWarning,
      "A measured input carries white noise (robust second and third differences agree) and "
@@ -178,10 +178,11 @@ const Row kRows[] = {
     {K::kColouredResiduals, "coloured_residuals", S::kInfo,
      "Residuals are coloured (Ljung-Box p < 0.01, and the lag-1 autocorrelation beyond its 99 % "
      "band +-2.58/sqrt(N)): it matters for the standard errors (narrow_intervals says when). "
-     "A warning where the structure is strong, beyond what noise gives: a lag-1 above 0.5 with "
-     "an RMSE above 1.2 x the record's noise level (correct structures fitted to noisy records "
-     "stay below 0.06 and 1.04 x; wrong structures, held parameters and unmodelled "
-     "disturbances reach 0.8-0.95 and 2.3-4.6 x). The RMSE is taken without the part that "
+     "A warning where the structure is strong, beyond what noise gives: a lag-1 above 0.3 with "
+     "an RMSE above 1.05 x the record's noise level (correct structures fitted to noisy records "
+     "stay below 0.06 and 1.03 x where the input is clean; wrong structures, held parameters "
+     "and unmodelled disturbances reach 0.3-0.95 and 1.2-2.1 x). The RMSE is taken without the "
+     "part that "
      "noise on a measured input can make (the 99 % quantile over the input noise refits): "
      "a rudder's noise integrated into the heading is noise, not structure.",
      "A note: for the intervals use sandwich_hac. A warning: the model leaves out what drives "

@@ -49,7 +49,7 @@ void AddCompensationFindings(const ModelInfo& info, const StageResult& stage,
     return i;
   };
   std::vector<std::pair<int, int>> pairs;
-  std::vector<char> absent;  // per pair: a term the data do not need (below)
+  std::vector<char> determined;  // per pair: one of the two determined (below)
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j < n; ++j) {
       if (estimate[i] == nullptr || estimate[j] == nullptr) continue;
@@ -62,16 +62,10 @@ void AddCompensationFindings(const ModelInfo& info, const StageResult& stage,
       }
       pairs.emplace_back(i, j);
       group[root(j)] = root(i);
-      // One determined (relative SE below the limit), the other's 95 % interval spanning 0:
-      // the data do not need the other term (a weak cubic damping beside its gain), and the
-      // determined one's standard error already carries the trade-off. A note, not a defect.
-      const Estimate& x = *estimate[i];
-      const Estimate& y = *estimate[j];
-      const auto spans_zero = [](const Estimate& e) {
-        return std::isfinite(e.std_error) && std::abs(e.value) < 1.96 * e.std_error;
-      };
-      absent.push_back((RelativeError(x) < kCompensationRelativeError && spans_zero(y)) ||
-                       (RelativeError(y) < kCompensationRelativeError && spans_zero(x)));
+      // One of the two determined (relative SE below the limit): its standard error already
+      // carries the trade-off, and the other's is weakly_determined's to judge. A note.
+      determined.push_back(std::min(RelativeError(*estimate[i]), RelativeError(*estimate[j])) <
+                           kCompensationRelativeError);
     }
   }
   for (int g = 0; g < n; ++g) {
@@ -79,12 +73,12 @@ void AddCompensationFindings(const ModelInfo& info, const StageResult& stage,
     std::vector<int> members;
     std::pair<int, int> strongest(-1, -1);
     int count = 0;
-    bool all_absent = true;
+    bool all_determined = true;
     for (size_t k = 0; k < pairs.size(); ++k) {
       const auto [i, j] = pairs[k];
       if (root(i) != g) continue;
       ++count;
-      all_absent &= absent[k] != 0;
+      all_determined &= determined[k] != 0;
       if (strongest.first < 0 ||
           std::abs(c(i, j)) > std::abs(c(strongest.first, strongest.second))) {
         strongest = {i, j};
@@ -139,10 +133,14 @@ void AddCompensationFindings(const ModelInfo& info, const StageResult& stage,
     f.parameter = names;
     f.value = c(a, b);
     f.threshold = kCompensationCorrelation;
-    if (all_absent) {
+    if (all_determined) {
       f.severity = FindingSeverity::kInfo;
-      f.message += "; its interval spans 0: the data do not need the term, and the other's "
-                   "standard error includes the trade-off";
+      int best = members[0];  // the best determined
+      for (int i : members) {
+        if (RelativeError(*estimate[i]) < RelativeError(*estimate[best])) best = i;
+      }
+      f.message += "; " + estimate[best]->name +
+                   " is determined all the same: its standard error includes the trade-off";
     }
     findings->push_back(std::move(f));
   }

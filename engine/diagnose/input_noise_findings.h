@@ -2,11 +2,7 @@
 // experiment input not listed in the experiment's `input_noise`, an input_noise finding naming the
 // experiment, the input and the estimated noise SD, suggesting `input_noise: {<input>: auto}`,
 // when all of these hold:
-//   * the input's noise SD, from the median |second difference| (robust to a zigzag's corners
-//     and steps), is at least kRatio of its standard deviation over the window;
-//   * it is white: the median |third difference| gives the same SD (within 0.8-1.25x), where a
-//     signal smooth on the sampling scale leaves far less; held and quantised inputs (PWM
-//     steps, a clean zigzag rudder held constant, where most differences are 0) are passed over;
+//   * the input carries white noise that matters (WhiteInputNoise, data/white_noise.h);
 //   * the outputs' residuals of a stage that fitted the experiment are coloured: the variance
 //     of their means over blocks of B samples is above twice sigma^2 / B (what white residuals
 //     give). The input noise integrated by the model shows as such slow residuals.
@@ -16,6 +12,7 @@
 #include <vector>
 
 #include "engine/base/finding.h"
+#include "engine/data/white_noise.h"
 #include "engine/run/records.h"
 #include "engine/run/run_config.h"
 #include "engine/run/run_result.h"
@@ -28,8 +25,6 @@ namespace vesselid {
 void AddInputNoiseFindings(const RunConfig& config, const RunResult& run, TrajectoryCache* cache,
                            std::vector<Finding>* findings);
 
-// The test on one input's samples: its white-noise SD, or 0 when it has none that matters.
-double WhiteInputNoise(const std::vector<double>& values);
 
 // Whether a residual series is coloured (block means vary more than white noise allows).
 bool ResidualsColoured(const std::vector<double>& residuals);

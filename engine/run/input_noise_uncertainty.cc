@@ -9,9 +9,11 @@
 #include "engine/base/case_seed.h"
 #include "engine/base/chi_square.h"
 #include "engine/base/parallel_for.h"
-#include "engine/diagnose/input_noise_findings.h"
+#include "engine/data/white_noise.h"
 #include "engine/run/estimate_specs.h"
 #include "engine/run/experiment_residuals.h"
+#include "engine/solve/covariance.h"
+#include "engine/solve/uncertainty_method.h"
 
 namespace vesselid {
 namespace {
@@ -138,6 +140,11 @@ void AddInputNoiseSpread(const RunConfig& config, TrajectoryCache* cache,
                          OutputErrorProblem* solved, StageSummary* summary) {
   Uncertainty& u = summary->uncertainty;
   if (!options.compute_uncertainty || !options.uncertainty.input_noise || !u.available) return;
+  // A bootstrap's replicates and a configured HAC see the input noise's residuals themselves.
+  if (IsBootstrap(options.uncertainty.method) ||
+      options.uncertainty.method == UncertaintyMethod::kSandwichHac) {
+    return;
+  }
   const std::vector<NoisyInput> noisy = NoisyInputs(config, cache, *solved);
   if (noisy.empty()) return;
   const int runs = options.uncertainty.input_noise_runs;
@@ -205,19 +212,55 @@ void AddInputNoiseSpread(const RunConfig& config, TrajectoryCache* cache,
     for (int r : good) sum += (values[r][a] - ma) * (values[r][b] - mb);
     return sum / (good.size() - 1);
   };
-  const std::vector<double> kept_std_errors = u.std_errors;
+  // The base the input noise's part is added to: the Hessian's covariance (output noise).
+  // Where `auto` chose the HAC for coloured residuals, the colour may be the input noise's own,
+  // which the HAC already counts: the Hessian plus the refits' spread is reported unless the
+  // HAC is wider still (colour beyond the input noise's).
   const int n = static_cast<int>(u.variables.size());
-  if (u.covariance.rows() == n) {
-    for (int a = 0; a < n; ++a) {
-      for (int b = 0; b < n; ++b) u.covariance(a, b) += covariance(u.variables[a], u.variables[b]);
+  const bool from_hac = u.method == "sandwich_hac";
+  Uncertainty total = u;
+  if (from_hac) {
+    Uncertainty hessian;
+    if (!ComputeUncertainty(solved, summary->local().final_cost, &hessian) ||
+        hessian.variables != u.variables || hessian.covariance.rows() != n) {
+      summary->notes.push_back("input noise: the Hessian's covariance could not be formed; the "
+                               "HAC's standard errors are kept");
+      return;
     }
-    SetStdErrorsAndCorrelation(&u);
+    total = std::move(hessian);
+    total.hessian_std_errors = total.std_errors;
+    total.method = "hessian";
+  } else if (u.hessian_std_errors.empty()) {
+    total.hessian_std_errors = u.std_errors;
   }
-  for (size_t i = 0; i < u.block_variables.size(); ++i) {
-    const double se = u.block_std_errors[i], v = covariance(u.block_variables[i], u.block_variables[i]);
-    u.block_std_errors[i] = std::sqrt(se * se + v);
+  if (total.covariance.rows() == n) {
+    for (int a = 0; a < n; ++a) {
+      for (int b = 0; b < n; ++b) {
+        total.covariance(a, b) += covariance(total.variables[a], total.variables[b]);
+      }
+    }
+    SetStdErrorsAndCorrelation(&total);
   }
-  if (u.method == "hessian" && u.hessian_std_errors.empty()) u.hessian_std_errors = kept_std_errors;
+  for (size_t i = 0; i < total.block_variables.size(); ++i) {
+    const double se = total.block_std_errors[i];
+    total.block_std_errors[i] =
+        std::sqrt(se * se + covariance(total.block_variables[i], total.block_variables[i]));
+  }
+  // The HAC wider than the sum (geometric mean of the ratios above 1): kept.
+  double log_ratio = 0.0;
+  int ratios = 0;
+  for (int i = 0; from_hac && i < n; ++i) {
+    const double r = u.std_errors[i] / total.std_errors[i];
+    if (std::isfinite(r) && r > 0.0) log_ratio += std::log(r), ++ratios;
+  }
+  const bool hac_kept = ratios > 0 && log_ratio / ratios > 0.0;
+  if (!hac_kept) {
+    total.method_reason =
+        from_hac ? "auto: the Hessian's covariance with the input noise's part below (the HAC, "
+                   "which the noise's colour chose, would count it again, and is narrower)"
+                 : u.method_reason;
+    u = std::move(total);
+  }
   u.input_noise_runs = runs;
   u.input_noise_failed = runs - static_cast<int>(good.size());
   u.input_noise_std_errors.clear();
@@ -238,15 +281,24 @@ void AddInputNoiseSpread(const RunConfig& config, TrajectoryCache* cache,
           std::clamp(UpperQuantile99(c) / base[e][o], 0.0, 1.0);
     }
   }
-  std::snprintf(text, sizeof(text),
-                "; plus the spread of %zu refits with the measured inputs' white noise added "
-                "again (errors in variables: %s)",
-                good.size(), inputs.c_str());
+  if (hac_kept) {
+    std::snprintf(text, sizeof(text),
+                  "; wider than the Hessian's with the spread of %zu refits with the measured "
+                  "inputs' white noise added again (%s): the residuals' colour is more than "
+                  "the input noise's",
+                  good.size(), inputs.c_str());
+  } else {
+    std::snprintf(text, sizeof(text),
+                  "; plus the spread of %zu refits with the measured inputs' white noise added "
+                  "again (errors in variables: %s)",
+                  good.size(), inputs.c_str());
+  }
   u.method_reason += text;
   std::snprintf(text, sizeof(text),
                 "input noise: the standard errors include the noise on %s, measured by %zu "
-                "refits with it added again (%d failed)",
-                inputs.c_str(), good.size(), runs - static_cast<int>(good.size()));
+                "refits with it added again (%d failed)%s",
+                inputs.c_str(), good.size(), runs - static_cast<int>(good.size()),
+                hac_kept ? "; the HAC's, wider, are reported" : "");
   summary->notes.push_back(text);
 }
 

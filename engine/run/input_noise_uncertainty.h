@@ -4,14 +4,17 @@
 // the Hessian's or the HAC's covariance allows: on the independent corpus (tests/corpus), K
 // ended 3-8 of those SEs from the truth on records whose residuals looked white.
 //
-// Where an experiment's input carries white noise (WhiteInputNoise, input_noise_findings.h)
+// Where an experiment's input carries white noise (WhiteInputNoise, data/white_noise.h)
 // and is not declared under the experiment's `input_noise:` (a latent input), the stage is
 // solved again `input_noise_runs` times (default 12) from its estimate, each time with fresh
 // white noise of the input's SD added to that input (drawn at the simulation's nodes,
 // interpolated linearly over each step), and
-//   Cov = Cov_stage + Cov_input,   Cov_input the replicates' sample covariance:
+//   Cov = Cov_hessian + Cov_input,   Cov_input the replicates' sample covariance:
 // to first order the estimate moves by A e_u for the input noise e_u, and the replicates'
-// moves A e'_u have the same covariance.
+// moves A e'_u have the same covariance. Where `auto` had chosen the HAC (coloured residuals),
+// the HAC is kept only if wider than that sum (geometric mean of the SE ratios): the colour is
+// then more than the input noise's, which the HAC would otherwise count a second time. A
+// configured sandwich_hac or bootstrap is left as it is: both see the noise's residuals.
 // The same replicates measure how much of the residuals the input noise makes: a replicate's
 // simulated outputs move from the stage's by what the added noise leaves after the refit,
 // of mean square c per experiment and output (the cross term with the stage's own residuals,

@@ -250,6 +250,7 @@ def run_case(case, binary, root):
             result["residuals"] = {"rmse_over_noise": fit[0]["rmse"] / fit[0]["noise"]
                                    if fit[0].get("noise") else None,
                                    "lag1": a.get("lag1"), "cross_over_band": max(cross or [0]),
+                                   "input_noise_share": a.get("input_noise_share") or 0.0,
                                    "fit_percent": fit[0]["fit_percent"]}
         result["findings"] = ["%s %s: %s" % (f["severity"], f["kind"], f["message"][:160])
                               for f in results["findings"] + [g for s in results["stages"]

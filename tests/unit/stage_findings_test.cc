@@ -288,10 +288,10 @@ TEST(RunFindings, SkippedPiecesAreOneFindingWithTheWorstCase) {
   EXPECT_EQ(FoldFindings(findings)[0].message, findings[0].message);
 }
 
-// Strong structure (lag-1 above 0.5 where the RMSE is above 1.2 x the record's noise level)
+// Strong structure (lag-1 above 0.3 where the RMSE is above 1.05 x the record's noise level)
 // is a warning; the same colour at the noise level (a residual that is mostly noise) a note.
 TEST(StageFindings, StrongResidualStructureIsAWarning) {
-  for (double noise : {0.001, 0.095}) {
+  for (double noise : {0.001, 0.098}) {
     StageResult stage = GoodStage();  // its fit: RMSE 0.1
     stage.summary.fits[0].channels[0].noise = noise;
     ResidualAnalysis a;
@@ -311,6 +311,36 @@ TEST(StageFindings, StrongResidualStructureIsAWarning) {
     EXPECT_EQ(stage.findings[0].severity,
               strong ? FindingSeverity::kWarning : FindingSeverity::kInfo);
     EXPECT_EQ(stage.verdict, strong ? Verdict::kDoubtful : Verdict::kGood);
+  }
+}
+
+// A residual the noise on a measured input can make (its share from the input noise refits,
+// input_noise_uncertainty.h) is noise, not structure: a note, however coloured, that says so.
+TEST(StageFindings, ColourTheInputNoiseMakesIsANote) {
+  for (double share : {0.0, 0.5, 0.9995}) {
+    StageResult stage = GoodStage();  // its fit: RMSE 0.1
+    stage.summary.fits[0].channels[0].noise = 0.05;
+    ResidualAnalysis a;
+    a.experiment = "run";
+    a.output = "psi";
+    a.samples = 1000;
+    a.lags = 25;
+    a.lag1 = 0.85;
+    a.ljung_box_p = 1e-9;
+    a.white = false;
+    a.band_99 = 2.5758 / std::sqrt(1000.0);
+    a.input_noise_share = share;
+    stage.residuals = {a};
+    DiagnoseStage(Info(), true, &stage);
+    ASSERT_EQ(stage.findings.size(), 1u) << share;
+    // Without the input noise's part the RMSE is 0.1 sqrt(1 - share): 2, 1.41, 0.06 x noise.
+    const bool strong = share < 0.99;
+    EXPECT_EQ(stage.findings[0].severity,
+              strong ? FindingSeverity::kWarning : FindingSeverity::kInfo) << share;
+    EXPECT_EQ(stage.findings[0].message.find("of the residual power is the noise on a measured "
+                                             "input") != std::string::npos,
+              share >= 0.1)
+        << stage.findings[0].message;
   }
 }
 
