@@ -151,7 +151,7 @@ void AddHeldOutFindings(const StageResult& stage, std::vector<Finding>* findings
   }
   if (h.worse) {
     Finding f = MakeFinding(FindingKind::kHeldOutWorse,
-                            "worse on held-out data than its start (" +
+                            "worse on held-out data than " + h.BaselineText() + " (" +
                                 DescribeHeldOut(h, unit_of, held_out_run) +
                                 "), kept because of final: last");
     f.stage = stage.name;
@@ -165,7 +165,8 @@ void AddHeldOutFindings(const StageResult& stage, std::vector<Finding>* findings
     Finding f = MakeFinding(
         FindingKind::kHeldOutOutputWorse,
         "predicts the held-out " + h.outputs[i] +
-            FormatNumbers(" worse than its start (MAE %.4g -> %.4g", unit.scale * h.start_mae[i],
+            " worse than " + h.BaselineText() +
+            FormatNumbers(" (MAE %.4g -> %.4g", unit.scale * h.start_mae[i],
                           unit.scale * h.stage_mae[i]) +
             (unit.unit.empty() ? "" : " " + unit.unit) + "), though better over all outputs");
     f.stage = stage.name;

@@ -101,7 +101,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(HeldOutStartReport, mode, burn_in, requested_
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ExperimentFit, experiment, diverged, message, rms_cost, channels,
                                    trace, start)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(HeldOutCheck, done, outputs, start_mae, stage_mae,
-                                   start_diverged, stage_diverged, start_far_worse, worse)
+                                   start_diverged, stage_diverged, start_far_worse, worse,
+                                   baseline)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(GlobalStartSummary, run, variables, around_start, algorithm,
                                    horizon_seconds, evaluations, failed_evaluations, abandoned,
                                    short_solves, known_joined, clusters, short_iterations_total,
@@ -188,7 +189,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BootstrapSummary, runs, failed, groups, resam
 namespace {
 // 3: Uncertainty method, hessian_std_errors, method_reason, hac_bandwidth; 4: bootstrap runs,
 // failed, block length; 6: traces' samples as byte strings; 7: typed solver findings,
-// comparable cost, state limits; 9: bootstrap replicates; 10: input noise refits
+// comparable cost, state limits; 9: bootstrap replicates; 10: input noise refits, the held-out
+// check's baseline
 constexpr int kArchiveVersion = 10;
 }  // namespace
 

@@ -583,12 +583,24 @@ HeldOutCheck CompareHeldOut(const std::vector<ExperimentFit>& start,
   return check;
 }
 
+bool PredictsBetter(const std::vector<ExperimentFit>& a, const std::vector<ExperimentFit>& b) {
+  const HeldOutCheck check = CompareHeldOut(b, a);  // a as the "stage" against b
+  if (check.stage_diverged > check.start_diverged) return false;
+  if (check.stage_diverged < check.start_diverged) return true;
+  double ratio_sum = 0.0;
+  int ratios = 0;
+  for (size_t i = 0; i < check.outputs.size(); ++i) {
+    if (check.start_mae[i] > 0.0) ratio_sum += check.stage_mae[i] / check.start_mae[i], ++ratios;
+  }
+  return ratios > 0 && ratio_sum / ratios < 1.0;
+}
+
 std::string DescribeHeldOut(const HeldOutCheck& check, const DisplayUnitOf& unit_of,
                             const std::string& experiment) {
   std::string text;
   if (check.stage_diverged > check.start_diverged) {
     text = std::to_string(check.stage_diverged) + " held-out run(s) diverge (" +
-           std::to_string(check.start_diverged) + " at its start)";
+           std::to_string(check.start_diverged) + " at " + check.BaselineText() + ")";
   }
   for (size_t i = 0; i < check.outputs.size(); ++i) {
     const DisplayUnit unit =

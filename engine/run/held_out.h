@@ -99,6 +99,10 @@ bool SimulateHeldOutPasses(const RunConfig& config, const ModelHandle& model,
 // upper bound 0.05 ..."), as the stage notes active bounds.
 std::vector<std::string> HeldOutBoundNotes(const HeldOutParameters& parameters);
 
+// Whether fits `a` predict the held-out runs better than fits `b`: no more runs diverge, and
+// the pooled MAE is lower on the runs both simulate (mean ratio over the outputs below 1).
+bool PredictsBetter(const std::vector<ExperimentFit>& a, const std::vector<ExperimentFit>& b);
+
 // The held-out check of a stage from its fits and those of its start values (HeldOutCheck).
 HeldOutCheck CompareHeldOut(const std::vector<ExperimentFit>& start,
                             const std::vector<ExperimentFit>& stage);

@@ -152,6 +152,14 @@ void RecordStartValues(const StageResult& stage, ParameterLedger* ledger) {
   }
 }
 
+void RecordStageOrItsBaseline(const StageResult& stage, ParameterLedger* ledger) {
+  if (stage.rejected.empty()) {
+    RecordStage(stage, ledger);
+  } else if (stage.held_out.baseline != "previous") {
+    RecordStartValues(stage, ledger);
+  }  // set aside against the previous stages' values: the ledger holds them already
+}
+
 void RecordStage(const StageResult& stage, ParameterLedger* ledger) {
   for (const Estimate& e : stage.estimates) {
     if (e.kind == EstimateKind::kParameter && e.role == ParameterRole::kPerExperiment &&

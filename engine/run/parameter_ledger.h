@@ -50,6 +50,11 @@ void RecordStage(const StageResult& stage, ParameterLedger* ledger);
 // model's defaults where no kept stage estimated them.
 void RecordStartValues(const StageResult& stage, ParameterLedger* ledger);
 
+// A kept stage's estimates (RecordStage); a stage set aside against its start, its start values
+// (RecordStartValues); one set aside against the previous stages' values (HeldOutCheck::
+// baseline), nothing: the ledger holds those.
+void RecordStageOrItsBaseline(const StageResult& stage, ParameterLedger* ledger);
+
 // Every model parameter's final value under `rule` (information: the shared parameters
 // fused jointly with each stage's covariance block, per parameter when that is singular).
 std::vector<FinalParameter> FinalParameters(const ModelInfo& info, const ParameterLedger& ledger,

@@ -44,7 +44,8 @@ Finding SkippedVelocityCheck(const std::string& why, const std::string& key) {
 // than its start is set aside under final: best_validation.
 bool ValidateStage(const RunConfig& config, const StageConfig& stage, const ModelHandle& model,
                    const RegressionDataOptions& velocity_data,
-                   const std::vector<double>& start_values, const std::vector<double>& values,
+                   const std::vector<double>& start_values,
+                   const std::vector<double>& previous_values, const std::vector<double>& values,
                    TrajectoryCache* cache, HeldOutMemo* memo, StageResult* result,
                    std::string* error) {
   ExperimentOptions options = stage.experiment;
@@ -66,8 +67,16 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
   at_estimate.values = values;
   at_estimate.parameters = at_estimate.residuals = true;
   request.values = start_values;
+  std::vector<HeldOutRequest> requests = {at_estimate, request};
+  // The previous stages' values where they differ from the start (a parameter restarted from
+  // the config): the guard holds the stage against the better of the two.
+  const bool previous = previous_values != start_values;
+  if (previous) {
+    requests.push_back(request);
+    requests.back().values = previous_values;
+  }
   std::vector<HeldOutAnswer> answers;
-  if (!memo->Fit(config, {at_estimate, request}, cache, &answers, error)) {
+  if (!memo->Fit(config, requests, cache, &answers, error)) {
     *error = "validation: " + *error;
     return false;
   }
@@ -76,12 +85,19 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
   result->validation_residuals = std::move(answers[0].residuals);
   const std::vector<ExperimentFit>& at_start = answers[1].fits;
   result->held_out = CompareHeldOut(at_start, result->validation);
+  if (previous && PredictsBetter(answers[2].fits, at_start)) {
+    result->held_out = CompareHeldOut(answers[2].fits, result->validation);
+    result->held_out.baseline = "previous";
+  }
   if (result->held_out.worse && config.final_choice == FinalChoice::kBestValidation) {
-    result->rejected = "worse on held-out data than its start (" +
+    const bool from_previous = result->held_out.baseline == "previous";
+    result->rejected = "worse on held-out data than " + result->held_out.BaselineText() + " (" +
                        DescribeHeldOut(result->held_out, OutputUnits(config),
                                        stage.validation.front()) +
                        "): its estimates are set aside and later stages and the final values "
-                       "take its start values (final: last would keep them)";
+                       "take " +
+                       (from_previous ? "the previous stages' values" : "its start values") +
+                       " (final: last would keep them)";
   }
   if (stage.velocity_validation && model.regression_form() != nullptr) {
     std::vector<std::string> diverged;
@@ -122,8 +138,12 @@ bool RunStages(const RunConfig& config, size_t first, size_t count, TrajectoryCa
     const ModelHandle& model = config.StageModel(stage);
     std::vector<ParameterSpec> specs;
     if (!ResolveParameters(stage, model.info(), ledger, &specs, error)) return fail(*error);
-    std::vector<double> start_values;
-    for (const ParameterSpec& spec : specs) start_values.push_back(spec.start);
+    std::vector<double> start_values, previous_values;
+    for (const ParameterSpec& spec : specs) {
+      start_values.push_back(spec.start);
+      const auto latest = ledger.latest.find(spec.name);
+      previous_values.push_back(latest != ledger.latest.end() ? latest->second : spec.start);
+    }
     StageResult stage_result;
     if (stage.kind == StageConfig::Kind::kLeastSquares) {
       if (!RunLeastSquaresStage(config, stage, model, specs, &cache, &stage_result, error)) {
@@ -143,14 +163,11 @@ bool RunStages(const RunConfig& config, size_t first, size_t count, TrajectoryCa
     stage_result.admissibility = model.Admissibility(values.data(), range);
     stage_result.structure_doubts = model.StructureDoubts(values.data(), range);
     if (!stage.validation.empty() &&
-        !ValidateStage(config, stage, model, velocity_data, start_values, values, &cache, memo,
-                       &stage_result, error)) {
+        !ValidateStage(config, stage, model, velocity_data, start_values, previous_values,
+                       values, &cache, memo, &stage_result, error)) {
       return fail(*error);
     }
-    if (stage_result.rejected.empty())
-      RecordStage(stage_result, &ledger);
-    else
-      RecordStartValues(stage_result, &ledger);
+    RecordStageOrItsBaseline(stage_result, &ledger);
     run.stages.push_back(std::move(stage_result));
     if (observer.stage_finished && !observer.stage_finished(index, run.stages.back(), error)) {
       return false;
@@ -226,10 +243,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
                "', the config's is '" + config.stages[i].options.name + "'";
       return false;
     }
-    if (finished[i].rejected.empty())
-      RecordStage(finished[i], &ledger);
-    else
-      RecordStartValues(finished[i], &ledger);
+    RecordStageOrItsBaseline(finished[i], &ledger);
     run.stages.push_back(std::move(finished[i]));
   }
   if (!CheckWorkSize(config, &cache, error)) return false;

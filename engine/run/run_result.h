@@ -55,6 +55,15 @@ struct HeldOutCheck {
   // the outputs below kStartFarWorse): more diverging runs do not make the stage worse.
   bool start_far_worse = false;
   bool worse = false;
+  // What the stage is held against: "start" (its start values), or "previous" where the
+  // previous stages' values, differing from the start (a stage that restarts a parameter from
+  // the config), predict the held-out runs better: the better of the two is the guard. A stage
+  // set aside against "previous" leaves those values to the next stage.
+  std::string baseline = "start";
+  // "its start" or "the previous stages' values", for messages.
+  std::string BaselineText() const {
+    return baseline == "previous" ? "the previous stages' values" : "its start";
+  }
 };
 
 inline constexpr double kHeldOutTolerance = 1.01;
