@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/run/held_out.h"
+#include "engine/run/parameter_ledger.h"
 #include "gtest/gtest.h"
 
 namespace vesselid {
@@ -54,6 +55,43 @@ TEST(HeldOutCheck, TheMaeComparesTheRunsBothSimulate) {
   check = CompareHeldOut({Fit("a", 1.0), Fit("b", 1.0)}, {Fit("a", 1.2), Fit("b", 1.0)});
   EXPECT_TRUE(check.worse);
   EXPECT_NEAR(check.stage_mae[0], 1.1, 1e-12);
+}
+
+// The guard's baseline: the better of the stage's start and the previous stages' values.
+TEST(HeldOutCheck, PredictsBetterComparesDivergingRunsFirstThenTheMae) {
+  EXPECT_TRUE(PredictsBetter({Fit("a", 0.9), Fit("b", 1.0)}, {Fit("a", 1.0), Fit("b", 1.0)}));
+  EXPECT_FALSE(PredictsBetter({Fit("a", 1.0), Fit("b", 1.0)}, {Fit("a", 1.0), Fit("b", 1.0)}));
+  EXPECT_FALSE(PredictsBetter({Fit("a", 0.1), Fit("b", 0.0, true)},
+                              {Fit("a", 1.0), Fit("b", 1.0)}));
+  EXPECT_TRUE(PredictsBetter({Fit("a", 5.0), Fit("b", 5.0)},
+                             {Fit("a", 1.0), Fit("b", 0.0, true)}));
+}
+
+// A stage set aside against the previous stages' values leaves the ledger as they left it; one
+// set aside against its start enters its start values; a kept one its estimates.
+TEST(HeldOutCheck, ASetAsideStageLeavesItsBaselinesValues) {
+  StageResult stage;
+  stage.name = "refine";
+  Estimate t;
+  t.name = "T";
+  t.kind = EstimateKind::kParameter;
+  t.role = ParameterRole::kFree;
+  t.value = 9.0;
+  t.start = 3.0;
+  stage.estimates = {t};
+  ParameterLedger ledger;
+  ledger.latest["T"] = 5.0;  // the previous stage's
+  stage.rejected = "worse";
+  stage.held_out.baseline = "previous";
+  EXPECT_EQ(stage.held_out.BaselineText(), "the previous stages' values");
+  RecordStageOrItsBaseline(stage, &ledger);
+  EXPECT_EQ(ledger.latest["T"], 5.0);
+  stage.held_out.baseline = "start";
+  RecordStageOrItsBaseline(stage, &ledger);
+  EXPECT_EQ(ledger.latest["T"], 3.0);
+  stage.rejected.clear();
+  RecordStageOrItsBaseline(stage, &ledger);
+  EXPECT_EQ(ledger.latest["T"], 9.0);
 }
 
 }  // namespace held_out_check_test
