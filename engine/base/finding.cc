@@ -206,19 +206,22 @@ const Row kRows[] = {
      "held-out fits."},
     {K::kStageSetAside, "stage_set_aside", S::kWarning,
      "Under `final: best_validation` a stage predicted its held-out records worse than its "
-     "start (more runs diverged, or a mean MAE ratio above 1.01 on the runs both simulate) and "
-     "its estimates were set aside; the next stage and the final values take its start values. "
+     "baseline (more runs diverged, or a mean MAE ratio above 1.01 on the runs both simulate) "
+     "and its estimates were set aside; the next stage and the final values take the baseline's "
+     "values. The baseline is the better on the held-out records of the stage's start and the "
+     "previous stages' values (they differ where a stage restarts a parameter from the config). "
      "More diverging runs do not set a stage aside when its start is far worse (over twice "
      "its MAE) on the runs both simulate: a guard never falls back to values worse still. "
      "With no stage kept the final values are the config's start values: a failure.",
      "Look at the stage's held-out fits; the stage may need other records or bounds."},
     {K::kHeldOutWorse, "held_out_worse", S::kWarning,
-     "A kept stage predicts its held-out records worse than its start (mean MAE ratio above "
-     "1.01, or more runs diverged).",
+     "A kept stage predicts its held-out records worse than its baseline (the better of its "
+     "start and the previous stages' values; mean MAE ratio above 1.01, or more runs "
+     "diverged).",
      "Use `final: best_validation` or look at the held-out traces."},
     {K::kHeldOutOutputWorse, "held_out_output_worse", S::kWarning,
-     "A stage better over all held-out outputs predicts one of them worse than its start "
-     "(MAE ratio above 1.01).",
+     "A stage better over all held-out outputs predicts one of them worse than its baseline "
+     "(the better of its start and the previous stages' values; MAE ratio above 1.01).",
      "Look at that output's held-out trace."},
     {K::kHeldOutDiverged, "held_out_diverged", S::kFailure,
      "The simulation of a held-out record diverged with the stage's estimate.",
