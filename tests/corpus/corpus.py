@@ -39,6 +39,8 @@ CLASSES = {
     "bounds_exclude_truth": 20,
     "first_order_of_nonlinear_ship": 20,
     "weak_cubic_term": 20,
+    "speed_loss_small": 20,
+    "speed_loss_large": 20,
 }
 
 
@@ -78,6 +80,8 @@ def make_case(kind, index, seed):
             "sim": {}, "bias": 0.0, "disturbance": 0.0, "judged": {}, "bad_why": ""}
     near = lambda: rng.uniform(0.7, 1.3)
     nonlinear = kind in ("correct_norrbin", "first_order_of_nonlinear_ship", "weak_cubic_term")
+    if kind.startswith("speed_loss"):
+        return speed_loss_case(case, kind, rng)
     case["excitation"] = [excitation(rng), excitation(rng)]  # training, held out
     case["duration"] = [float(rng.uniform(350, 500)), float(rng.uniform(300, 400))]
     case["noise"] = (float(rng.uniform(0.05, 0.3)), float(rng.uniform(0.05, 0.2)))
@@ -163,8 +167,43 @@ def make_case(kind, index, seed):
     return case
 
 
+def speed_loss_case(case, kind, rng):
+    """A second-order Nomoto fit of the speed-loss ship (LABELS.md): small rudder angles and
+    little rudder drag, or large angles and much drag."""
+    case["excitation"] = [excitation(rng), excitation(rng)]
+    case["duration"] = [float(rng.uniform(350, 500)), float(rng.uniform(300, 400))]
+    case["noise"] = (float(rng.uniform(0.05, 0.3)), float(rng.uniform(0.05, 0.2)))
+    case["gear_lag"] = float(rng.uniform(0.5, 2.0))
+    large = kind == "speed_loss_large"
+    if not large:  # 10 deg zigzags or small sines
+        for e in case["excitation"]:
+            if e["type"] == "zigzag":
+                e["rudder"] = e["heading"] = 10.0 * DEG
+            else:
+                e["amplitude"] = min(e["amplitude"], 10.0 * DEG)
+    _, scale = fleet_ship(rng)
+    drag = float(rng.uniform(0.05, 0.2) if large else rng.uniform(0.0, 0.01))
+    case["ship"] = {"type": "speed_loss", "scale": scale, "drag": drag}
+    ship = ship_of(case)
+    t1, t2, t3, k = ship.nomoto()
+    near = lambda: rng.uniform(0.7, 1.3)
+    case["model"] = "second_order"
+    case["parameters"] = [spec("T1", t1 * near(), 0.5, 1000), spec("T2", t2 * near(), 0.05, 200),
+                          spec("T3", t3 * near(), 0.05, 400), spec("K", k * near(), -2.0, -1e-5)]
+    case["judged"] = {"K": k, "T_eff": t1 + t2 - t3}
+    case["truth"] = {"T1": t1, "T2": t2, "T3": t3, "K": k}
+    loss = simulators.speed_loss(ship, case["excitation"][0], case["duration"][0],
+                                 case["seed"] * 2, gear_lag=case["gear_lag"])
+    case["speed_loss"] = loss
+    if loss > 0.05:
+        case["bad_why"] = "speed loss %.0f %% (the Nomoto constants move with U)" % (100 * loss)
+    return case
+
+
 def ship_of(case):
     s = case["ship"]
+    if s["type"] == "speed_loss":
+        return simulators.SpeedLossShip(s["scale"], s["drag"])
     if s["type"] == "linear":
         return simulators.LinearSwayYaw(s["scale"])
     return simulators.Norrbin(s["T"], s["K"], s["alpha"])

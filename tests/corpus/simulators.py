@@ -6,6 +6,10 @@ engine's integrator), logged at 5 Hz with noise.
     coefficients, M nu' + N nu = b delta with nu = (v/U, r L/U), Mariner-class coefficients
     (Chislett & Strom) varied per ship; its Nomoto constants follow from the matrices.
   Norrbin: T r' + r + alpha r^3 = K (delta + bias).
+  SpeedLossShip: the linear sway-yaw equations at the ship's current speed U (time constants
+    scale with L/U, the yaw-rate gain with U/L) and a surge equation, u' = v r - c_d delta^2 u
+    - (u^2 - U0^2) / (U0 tau): the turn and the rudder's drag slow the ship, the propeller
+    brings it back to U0 over tau.
 
 Both are steered through a gear (first-order lag, rate limit) by a zigzag autopilot or an
 open-loop sine / multisine command; a slow yaw disturbance (as equivalent rudder, not logged)
@@ -87,6 +91,47 @@ class Norrbin:
 
     def gain_sign(self):
         return math.copysign(1.0, self.k)
+
+
+class SpeedLossShip:
+    """A Mariner-like ship that loses speed in turns; state (u, v', r', psi)."""
+
+    def __init__(self, scale, drag, recovery=60.0, length=160.93, speed=7.7):
+        self.sway = LinearSwayYaw(scale, length, speed)
+        self.drag, self.recovery = drag, recovery
+        self.length, self.speed = length, speed
+        self.u_min = speed
+
+    def nomoto(self):
+        """The sway-yaw equations' Nomoto constants at U0."""
+        return self.sway.nomoto()
+
+    def rates(self, state, delta):
+        u, nu, psi = state[0], state[1:3], state[3]
+        speed = max(u, 0.1 * self.speed)
+        self.u_min = min(self.u_min, u)
+        d_nu = speed / self.length * (self.sway.a @ nu + self.sway.b * delta)
+        v, r = nu[0] * speed, nu[1] * speed / self.length
+        du = (v * r - self.drag * delta ** 2 * u
+              - (u * u - self.speed ** 2) / (self.speed * self.recovery))
+        return np.array([du, d_nu[0], d_nu[1], r])
+
+    def initial(self):
+        self.u_min = self.speed
+        return np.array([self.speed, 0.0, 0.0, 0.0])
+
+    def yaw_rate(self, state):
+        return state[2] * max(state[0], 0.1 * self.speed) / self.length
+
+    def gain_sign(self):
+        return math.copysign(1.0, self.nomoto()[3])
+
+
+def speed_loss(ship, excitation, duration, seed, **options):
+    """1 - U_min / U0 of a noise-free run of a SpeedLossShip."""
+    clean = dict(options, heading_noise_deg=0.0, rudder_noise_deg=0.0)
+    simulate(ship, excitation, duration, seed, **clean)
+    return 1.0 - ship.u_min / ship.speed
 
 
 def command(excitation, t, psi, state):
