@@ -191,12 +191,7 @@ void BootstrapStageUncertainty(const StageOptions& options, const OutputErrorOpt
       }
     }
   }
-  StageOptions replicate_options = options;
-  replicate_options.use_global_start = false;
-  replicate_options.compute_uncertainty = false;
-  replicate_options.local.num_threads = 1;  // the replicates are the parallel work
-  replicate_options.local.progress = nullptr;
-  replicate_options.global.progress = nullptr;
+  const StageOptions replicate_options = ReplicateOptions(options);
 
   const int runs = boot.runs;
   std::vector<std::vector<double>> values(runs);

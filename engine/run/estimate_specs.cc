@@ -26,4 +26,14 @@ std::vector<ParameterSpec> EstimateSpecs(const OutputErrorProblem& solved) {
   return specs;
 }
 
+StageOptions ReplicateOptions(const StageOptions& options) {
+  StageOptions replicate = options;
+  replicate.use_global_start = false;
+  replicate.compute_uncertainty = false;
+  replicate.local.num_threads = 1;
+  replicate.local.progress = nullptr;
+  replicate.global.progress = nullptr;
+  return replicate;
+}
+
 }  // namespace vesselid

@@ -7,9 +7,14 @@
 
 #include "engine/solve/output_error_problem.h"
 #include "engine/solve/parameter.h"
+#include "engine/solve/stage.h"
 
 namespace vesselid {
 
 std::vector<ParameterSpec> EstimateSpecs(const OutputErrorProblem& solved);
+
+// The stage's options for such a replicate solve: local from the estimate (no global start),
+// no uncertainty, one thread (the replicates are the parallel work), no progress reports.
+StageOptions ReplicateOptions(const StageOptions& options);
 
 }  // namespace vesselid

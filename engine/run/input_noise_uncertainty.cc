@@ -158,14 +158,9 @@ void AddInputNoiseSpread(const RunConfig& config, TrajectoryCache* cache,
     base[e] = OutputMeanSquares(solved, e, outputs, {}, &base_residuals[e]);
   }
 
-  StageOptions replicate_options = options;
-  replicate_options.use_global_start = false;
-  replicate_options.compute_uncertainty = false;
-  replicate_options.local.num_threads = 1;  // the replicates are the parallel work
+  StageOptions replicate_options = ReplicateOptions(options);
   // From the optimum the first steps are the Gauss-Newton moves A e' the spread is about.
   replicate_options.local.max_iterations = kInputNoiseIterations;
-  replicate_options.local.progress = nullptr;
-  replicate_options.global.progress = nullptr;
   std::vector<std::vector<double>> values(runs);
   std::vector<std::vector<std::vector<double>>> squares(runs);
   ParallelFor(runs, options.uncertainty.bootstrap.num_threads, [&](int r) {

@@ -288,22 +288,27 @@ TEST(RunFindings, SkippedPiecesAreOneFindingWithTheWorstCase) {
   EXPECT_EQ(FoldFindings(findings)[0].message, findings[0].message);
 }
 
+// Coloured residuals of psi on 1000 samples, whiteness rejected, with the given lag-1.
+ResidualAnalysis ColouredPsi(double lag1) {
+  ResidualAnalysis a;
+  a.experiment = "run";
+  a.output = "psi";
+  a.samples = 1000;
+  a.lags = 25;
+  a.lag1 = lag1;
+  a.ljung_box_p = 1e-9;
+  a.white = false;
+  a.band_99 = 2.5758 / std::sqrt(1000.0);
+  return a;
+}
+
 // Strong structure (lag-1 above 0.3 where the RMSE is above 1.05 x the record's noise level)
 // is a warning; the same colour at the noise level (a residual that is mostly noise) a note.
 TEST(StageFindings, StrongResidualStructureIsAWarning) {
   for (double noise : {0.001, 0.098}) {
     StageResult stage = GoodStage();  // its fit: RMSE 0.1
     stage.summary.fits[0].channels[0].noise = noise;
-    ResidualAnalysis a;
-    a.experiment = "run";
-    a.output = "psi";
-    a.samples = 1000;
-    a.lags = 25;
-    a.lag1 = 0.9;
-    a.ljung_box_p = 1e-9;
-    a.white = false;
-    a.band_99 = 2.5758 / std::sqrt(1000.0);
-    stage.residuals = {a};
+    stage.residuals = {ColouredPsi(0.9)};
     DiagnoseStage(Info(), true, &stage);
     ASSERT_EQ(stage.findings.size(), 1u) << noise;
     EXPECT_EQ(stage.findings[0].kind, FindingKind::kColouredResiduals);
@@ -320,15 +325,7 @@ TEST(StageFindings, ColourTheInputNoiseMakesIsANote) {
   for (double share : {0.0, 0.5, 0.9995}) {
     StageResult stage = GoodStage();  // its fit: RMSE 0.1
     stage.summary.fits[0].channels[0].noise = 0.05;
-    ResidualAnalysis a;
-    a.experiment = "run";
-    a.output = "psi";
-    a.samples = 1000;
-    a.lags = 25;
-    a.lag1 = 0.85;
-    a.ljung_box_p = 1e-9;
-    a.white = false;
-    a.band_99 = 2.5758 / std::sqrt(1000.0);
+    ResidualAnalysis a = ColouredPsi(0.85);
     a.input_noise_share = share;
     stage.residuals = {a};
     DiagnoseStage(Info(), true, &stage);
