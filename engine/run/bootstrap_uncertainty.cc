@@ -202,13 +202,9 @@ void BootstrapStageUncertainty(const StageOptions& options, const OutputErrorOpt
     std::vector<Experiment> experiments =
         blocks ? BlockReplicate(original, data, boot.seed, r)
                : ExperimentReplicate(original, boot.seed, r, &drawn);
-    std::string error;
-    std::unique_ptr<OutputErrorProblem> p = OutputErrorProblem::Create(
-        &solved->model(), std::move(experiments), specs, problem_options, &error);
-    if (p == nullptr || p->variables().size() != estimate.size()) return;
-    p->SetValues(estimate);
-    StageSummary s;
-    if (!RunStage(replicate_options, p.get(), &s)) return;
+    std::unique_ptr<OutputErrorProblem> p = SolveReplicate(
+        *solved, std::move(experiments), specs, problem_options, replicate_options);
+    if (p == nullptr) return;
     const std::vector<double> v = p->Values();
     for (int index : variables) {
       const int e = p->variables()[index].experiment;

@@ -36,4 +36,19 @@ StageOptions ReplicateOptions(const StageOptions& options) {
   return replicate;
 }
 
+std::unique_ptr<OutputErrorProblem> SolveReplicate(const OutputErrorProblem& solved,
+                                                   std::vector<Experiment> experiments,
+                                                   const std::vector<ParameterSpec>& specs,
+                                                   const OutputErrorOptions& problem_options,
+                                                   const StageOptions& options) {
+  std::string error;
+  std::unique_ptr<OutputErrorProblem> p = OutputErrorProblem::Create(
+      &solved.model(), std::move(experiments), specs, problem_options, &error);
+  if (p == nullptr || p->variables().size() != solved.variables().size()) return nullptr;
+  p->SetValues(solved.Values());
+  StageSummary summary;
+  if (!RunStage(options, p.get(), &summary)) return nullptr;
+  return p;
+}
+
 }  // namespace vesselid

@@ -3,6 +3,7 @@
 // and keeps its role, bounds and scale; a shared parameter held fixed stays fixed.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "engine/solve/output_error_problem.h"
@@ -16,5 +17,14 @@ std::vector<ParameterSpec> EstimateSpecs(const OutputErrorProblem& solved);
 // The stage's options for such a replicate solve: local from the estimate (no global start),
 // no uncertainty, one thread (the replicates are the parallel work), no progress reports.
 StageOptions ReplicateOptions(const StageOptions& options);
+
+// The problem of `solved` built on `experiments` from `specs` (EstimateSpecs), set to the
+// estimate and solved with `options` (ReplicateOptions); null when it cannot be built or
+// solved.
+std::unique_ptr<OutputErrorProblem> SolveReplicate(const OutputErrorProblem& solved,
+                                                   std::vector<Experiment> experiments,
+                                                   const std::vector<ParameterSpec>& specs,
+                                                   const OutputErrorOptions& problem_options,
+                                                   const StageOptions& options);
 
 }  // namespace vesselid

@@ -169,13 +169,9 @@ void AddInputNoiseSpread(const RunConfig& config, TrajectoryCache* cache,
       std::mt19937_64 rng(CaseSeed(seed, 1000 + n.experiment * 64 + n.input, r));
       AddNodeNoise(n, &rng, &experiments[n.experiment]);
     }
-    std::string error;
-    std::unique_ptr<OutputErrorProblem> p = OutputErrorProblem::Create(
-        &solved->model(), std::move(experiments), specs, problem_options, &error);
-    if (p == nullptr || p->variables().size() != estimate.size()) return;
-    p->SetValues(estimate);
-    StageSummary s;
-    if (!RunStage(replicate_options, p.get(), &s)) return;
+    std::unique_ptr<OutputErrorProblem> p = SolveReplicate(
+        *solved, std::move(experiments), specs, problem_options, replicate_options);
+    if (p == nullptr) return;
     // The simulated outputs' move from the stage's (the replicate's residuals minus the
     // stage's): the input noise's part of a residual once the refit has absorbed what it can.
     std::vector<double> d;

@@ -233,22 +233,27 @@ TEST(StageFindings, AtABoundWithTheOtherSideOpen) {
   EXPECT_TRUE(stage.findings.empty());
 }
 
+// Coloured residuals of psi on 1000 samples, whiteness rejected, with the given lag-1.
+ResidualAnalysis ColouredPsi(double lag1) {
+  ResidualAnalysis a;
+  a.experiment = "run";
+  a.output = "psi";
+  a.samples = 1000;
+  a.lags = 25;
+  a.lag1 = lag1;
+  a.ljung_box_p = 1e-9;
+  a.white = false;
+  a.band_99 = 2.5758 / std::sqrt(1000.0);
+  return a;
+}
+
 // Coloured residuals are a note when Ljung-Box rejects whiteness and the lag-1 autocorrelation
 // is beyond its 99 % band, as the rule says; a rejection at far lags with lag-1 0.00 is no
 // such note.
 TEST(StageFindings, ColouredResidualsNeedTheLagOneCorrelation) {
   for (double lag1 : {0.0, 0.8}) {
     StageResult stage = GoodStage();
-    ResidualAnalysis a;
-    a.experiment = "run";
-    a.output = "psi";
-    a.samples = 1000;
-    a.lags = 25;
-    a.lag1 = lag1;
-    a.ljung_box_p = 1e-6;
-    a.white = false;
-    a.band_99 = 2.5758 / std::sqrt(1000.0);
-    stage.residuals = {a};
+    stage.residuals = {ColouredPsi(lag1)};
     DiagnoseStage(Info(), true, &stage);
     const std::vector<FindingKind> kinds = Kinds(stage);
     EXPECT_EQ(std::count(kinds.begin(), kinds.end(), FindingKind::kColouredResiduals),
@@ -286,20 +291,6 @@ TEST(RunFindings, SkippedPiecesAreOneFindingWithTheWorstCase) {
   findings.resize(1);
   ASSERT_EQ(FoldFindings(findings).size(), 1u);
   EXPECT_EQ(FoldFindings(findings)[0].message, findings[0].message);
-}
-
-// Coloured residuals of psi on 1000 samples, whiteness rejected, with the given lag-1.
-ResidualAnalysis ColouredPsi(double lag1) {
-  ResidualAnalysis a;
-  a.experiment = "run";
-  a.output = "psi";
-  a.samples = 1000;
-  a.lags = 25;
-  a.lag1 = lag1;
-  a.ljung_box_p = 1e-9;
-  a.white = false;
-  a.band_99 = 2.5758 / std::sqrt(1000.0);
-  return a;
 }
 
 // Strong structure (lag-1 above 0.3 where the RMSE is above 1.05 x the record's noise level)
