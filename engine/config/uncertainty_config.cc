@@ -73,7 +73,7 @@ void ReadUncertainty(const YamlReader& reader, const YAML::Node& node, const std
     const std::string key = Child(path, "input_noise");
     const std::string text = n.IsScalar() ? n.Scalar() : "";
     if (text != "auto" && text != "off" && text != "true" && text != "false") {
-      reader.Fail(n, key, "must be auto or off");
+      reader.Fail(n, key, "must be auto or off (true or false)");
     }
     u.input_noise = text == "auto" || text == "true";
   }

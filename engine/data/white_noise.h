@@ -5,8 +5,9 @@
 //   * the median |third difference| (SD sqrt(20) sigma) gives the same sigma within 0.8-1.25x,
 //     where a signal smooth on the sampling scale leaves a factor (omega dt) less in each
 //     higher difference;
-// 0 otherwise, and for held or quantised inputs (PWM steps, a clean zigzag held constant:
-// more than 20 % of consecutive samples equal).
+// 0 otherwise. Samples equal to a neighbour (held: a zigzag's angle, a logger's exact zeros at
+// rest, PWM levels, a quantised signal's steps) are left out of the differences; with fewer
+// than 30 % of the samples (or 50 windows) left, the input is held or quantised: 0.
 #pragma once
 
 #include <vector>

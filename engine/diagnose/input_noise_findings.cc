@@ -93,7 +93,9 @@ void AddInputNoiseFindings(const RunConfig& config, const RunResult& run, Trajec
                     "input %s (column '%s'): white noise of SD %.3g %s on the "
                     "measured input, and the fit's residuals are coloured: the simulation "
                     "integrates the noise, which biases fast parameters and makes the standard "
-                    "errors too small; consider input_noise: {%s: auto}",
+                    "errors too small; keep the stage's default uncertainty: {input_noise: auto} "
+                    "(refits with the noise added again) or declare the experiment's "
+                    "input_noise: {%s: auto} (a latent input)",
                     input.c_str(), column.c_str(),
                     degrees ? sigma * 180.0 / M_PI : sigma, unit.c_str(),
                     input.c_str());

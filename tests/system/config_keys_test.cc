@@ -221,7 +221,7 @@ const KeyCase kCases[] = {
     {"uncertainty_few_runs", V, V.K("    uncertainty: {method: block_bootstrap, runs: 5}"),
      "config.yaml:12: stages[0].uncertainty.runs: must be >= 10"},
     {"uncertainty_input_noise_bad", V, V.K("    uncertainty: {input_noise: maybe}"),
-     "config.yaml:12: stages[0].uncertainty.input_noise: must be auto or off"},
+     "config.yaml:12: stages[0].uncertainty.input_noise: must be auto or off (true or false)"},
     {"uncertainty_input_noise_few_runs", V, V.K("    uncertainty: {input_noise_runs: 2}"),
      "config.yaml:12: stages[0].uncertainty.input_noise_runs: must be >= 5"},
     {"uncertainty_bad_block_length", V,

@@ -2,6 +2,7 @@
 // a measured rudder is found with its SD, clean, held (zigzag) and quantised (PWM) inputs are
 // passed over, and slow residuals are told from white ones.
 #include "engine/diagnose/input_noise_findings.h"
+#include "engine/data/white_noise.h"
 
 #include <algorithm>
 #include <cmath>
@@ -55,6 +56,16 @@ TEST(InputNoiseWarning, FindsWhiteNoiseOnARudder) {
     AddNoise(sigma, 4, &z);
     EXPECT_NEAR(WhiteInputNoise(z), sigma, 0.1 * sigma);
   }
+}
+
+// A logger that writes exact zeros while the rudder rests (a third of the record) and the
+// noisy angle otherwise: the noise is found on the stretches between the zeros.
+TEST(InputNoiseWarning, FindsTheNoiseBetweenExactZeros) {
+  const double sigma = 0.15 * kDeg;
+  std::vector<double> z = Zigzag(6000);
+  AddNoise(sigma, 9, &z);
+  for (size_t k = 2000; k < 4000; ++k) z[k] = 0.0;
+  EXPECT_NEAR(WhiteInputNoise(z), sigma, 0.15 * sigma);
 }
 
 TEST(InputNoiseWarning, QuietOnCleanHeldAndQuantisedInputs) {
