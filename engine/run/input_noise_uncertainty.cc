@@ -227,10 +227,17 @@ void AddInputNoiseSpread(const RunConfig& config, TrajectoryCache* cache,
     total.hessian_std_errors = u.std_errors;
   }
   if (total.covariance.rows() == n) {
+    // Each variance grows by the refits' (var_i), the correlations stay the Hessian's: C_ab
+    // s_a s_b with s_i = sqrt(1 + var_i / C_ii). A dozen refits estimate a variance to about
+    // +-40 %, a correlation far worse (a 0.99 ridge came out 0.79 added whole).
+    std::vector<double> scale(n, 1.0);
     for (int a = 0; a < n; ++a) {
-      for (int b = 0; b < n; ++b) {
-        total.covariance(a, b) += covariance(total.variables[a], total.variables[b]);
-      }
+      const double c = total.covariance(a, a);
+      const double v = covariance(total.variables[a], total.variables[a]);
+      if (c > 0.0 && std::isfinite(v)) scale[a] = std::sqrt(1.0 + v / c);
+    }
+    for (int a = 0; a < n; ++a) {
+      for (int b = 0; b < n; ++b) total.covariance(a, b) *= scale[a] * scale[b];
     }
     SetStdErrorsAndCorrelation(&total);
   }

@@ -9,9 +9,11 @@
 // solved again `input_noise_runs` times (default 12) from its estimate, each time with fresh
 // white noise of the input's SD added to that input (drawn at the simulation's nodes,
 // interpolated linearly over each step), and
-//   Cov = Cov_hessian + Cov_input,   Cov_input the replicates' sample covariance:
+//   Var_i = Var_hessian,i + Var_input,i,   Var_input the replicates' sample variances:
 // to first order the estimate moves by A e_u for the input noise e_u, and the replicates'
-// moves A e'_u have the same covariance. Where `auto` had chosen the HAC (coloured residuals),
+// moves A e'_u have the same covariance. The correlations stay the Hessian's (each row and
+// column scaled by sqrt(Var_i / Var_hessian,i)): a dozen refits estimate a variance to about
+// +-40 % but a correlation far worse. Where `auto` had chosen the HAC (coloured residuals),
 // the HAC is kept only if wider than that sum (geometric mean of the SE ratios): the colour is
 // then more than the input noise's, which the HAC would otherwise count a second time. A
 // configured sandwich_hac or bootstrap is left as it is: both see the noise's residuals.

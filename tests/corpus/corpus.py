@@ -291,6 +291,15 @@ def run_case(case, binary, root):
                                    "lag1": a.get("lag1"), "cross_over_band": max(cross or [0]),
                                    "input_noise_share": a.get("input_noise_share") or 0.0,
                                    "fit_percent": fit[0]["fit_percent"]}
+        # And what the held-out run's prediction from its measured start looks like.
+        final = results.get("final_validation", {})
+        held = [m for m in final.get("metrics", []) if m["output"] == "psi"]
+        held_analysis = [a for a in final.get("residual_analysis", []) if a["output"] == "psi"]
+        if held and held_analysis:
+            result["held_out"] = {"rmse_over_noise": held[0]["rmse"] / held[0]["noise"]
+                                  if held[0].get("noise") else None,
+                                  "lag1": held_analysis[0].get("lag1"),
+                                  "fit_percent": held[0]["fit_percent"]}
         result["findings"] = ["%s %s: %s" % (f["severity"], f["kind"], f["message"][:160])
                               for f in results["findings"] + [g for s in results["stages"]
                                                                for g in s.get("findings", [])]
