@@ -147,6 +147,19 @@ void AddInputNoiseSpread(const RunConfig& config, TrajectoryCache* cache,
   }
   const std::vector<NoisyInput> noisy = NoisyInputs(config, cache, *solved);
   if (noisy.empty()) return;
+  double samples = 0.0;
+  for (const Experiment& x : solved->experiments()) samples += x.num_samples();
+  if (solved->experiments().size() > static_cast<size_t>(kMaxInputNoiseExperiments) ||
+      samples > kMaxInputNoiseSamples) {
+    char note[256];
+    std::snprintf(note, sizeof(note),
+                  "input noise: %zu experiments/segments and %.3g samples are too many for the "
+                  "refits (at most %d and %.0g); the standard errors leave out the noise on %s",
+                  solved->experiments().size(), samples, kMaxInputNoiseExperiments,
+                  kMaxInputNoiseSamples, noisy.front().text.c_str());
+    summary->notes.push_back(note);
+    return;
+  }
   const int runs = options.uncertainty.input_noise_runs;
   const unsigned seed = options.uncertainty.bootstrap.seed;
   const std::vector<ParameterSpec> specs = EstimateSpecs(*solved);

@@ -43,6 +43,11 @@ inline constexpr double kMinInputNoiseSolved = 0.5;
 // standard errors to 2-3 digits on the corpus's Nomoto fits; the KVLCC2 campaign's stage
 // costs 1.2x its solve instead of 1.6x.
 inline constexpr int kInputNoiseIterations = 2;
+// Beyond these the refits are not made (a note says so; `input_noise` warns as with `off`):
+// two copies of the problem solve at once, and a campaign of thousands of segments would
+// double the run's memory and cost minutes (50 000 segments: over ten minutes).
+inline constexpr int kMaxInputNoiseExperiments = 200;
+inline constexpr double kMaxInputNoiseSamples = 2e6;
 
 // Adds the input noise's part to summary->uncertainty at the solved problem's values (and
 // records what was done in it and in summary->notes); nothing when no experiment has a noisy
