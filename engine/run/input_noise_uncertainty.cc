@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <random>
 
@@ -38,6 +39,7 @@ std::vector<NoisyInput> NoisyInputs(const RunConfig& config, TrajectoryCache* ca
                                     const OutputErrorProblem& problem) {
   const ModelInfo& info = problem.model().info();
   std::vector<NoisyInput> noisy;
+  std::map<std::pair<std::string, std::string>, double> tested;  // (record, column): SD
   for (size_t e = 0; e < problem.experiments().size(); ++e) {
     const Experiment& x = problem.experiments()[e];
     const ExperimentSpec* spec = SpecOf(config, x);
@@ -45,9 +47,16 @@ std::vector<NoisyInput> NoisyInputs(const RunConfig& config, TrajectoryCache* ca
     for (const auto& [input, column] : spec->inputs) {
       const int j = info.InputIndex(input);
       if (j < 0 || spec->input_noise.count(input) > 0) continue;
-      std::vector<double> values;
-      if (!WindowSamples(*spec, column, cache, &values)) continue;
-      const double sigma = WhiteInputNoise(values);
+      // Segments and windows of one record share its test.
+      const auto key = std::make_pair(spec->name, column);
+      auto found = tested.find(key);
+      if (found == tested.end()) {
+        std::vector<double> values;
+        const double sd = WindowSamples(*spec, column, cache, &values) ? WhiteInputNoise(values)
+                                                                       : 0.0;
+        found = tested.emplace(key, sd).first;
+      }
+      const double sigma = found->second;
       if (!(sigma > 0.0)) continue;
       const bool degrees = std::find(spec->degree_columns.begin(), spec->degree_columns.end(),
                                      column) != spec->degree_columns.end();
