@@ -11,6 +11,7 @@ Exit status 1 with --max-false-alarms / --max-misses (percent, over all runs) ex
 """
 import argparse
 import concurrent.futures
+import functools
 import json
 import math
 import os
@@ -358,8 +359,10 @@ def main():
     root = tempfile.mkdtemp(prefix="vesselid_corpus_")
     try:
         todo = cases(args.per_class)
-        with concurrent.futures.ThreadPoolExecutor(args.workers) as pool:
-            results = list(pool.map(lambda c: run_case(c, args.binary, root), todo))
+        # Processes, not threads: the simulators are Python loops that hold the GIL.
+        with concurrent.futures.ProcessPoolExecutor(args.workers) as pool:
+            results = list(pool.map(functools.partial(run_case, binary=args.binary, root=root),
+                                    todo))
     finally:
         shutil.rmtree(root, ignore_errors=True)
     text, totals = table(results)
