@@ -41,6 +41,9 @@ class LinearSwayYaw:
         self.a = -np.linalg.solve(mass, damping)  # prime time
         self.b = np.linalg.solve(mass, rudder)
         self.length, self.speed = length, speed
+        # Plain floats for the integration loop (numpy's per-call cost dominates at 2 x 2).
+        self._a = tuple(float(v) for v in self.a.ravel())
+        self._b = tuple(float(v) for v in self.b)
 
     def nomoto(self):
         """(T1, T2, T3, K) in s and 1/s; None when the ship is not course-stable."""
@@ -58,13 +61,18 @@ class LinearSwayYaw:
 
     def rates(self, state, delta):
         """d/dt of (v', r', psi) in real time."""
-        nu = state[:2]
         scale = self.speed / self.length
-        d_nu = scale * (self.a @ nu + self.b * delta)
-        return np.array([d_nu[0], d_nu[1], nu[1] * scale])
+        return self.prime_rates(state[0], state[1], delta, scale) + (state[1] * scale,)
+
+    def prime_rates(self, v, r, delta, scale):
+        """d/dt of (v', r') in real time, scale = U / L."""
+        a00, a01, a10, a11 = self._a
+        b0, b1 = self._b
+        return (scale * ((a00 * v + a01 * r) + b0 * delta),
+                scale * ((a10 * v + a11 * r) + b1 * delta))
 
     def initial(self):
-        return np.zeros(3)
+        return (0.0, 0.0, 0.0)
 
     def yaw_rate(self, state):
         return state[1] * self.speed / self.length
@@ -81,10 +89,10 @@ class Norrbin:
 
     def rates(self, state, delta):
         r = state[0]
-        return np.array([(self.k * delta - r - self.alpha * r ** 3) / self.t, r])
+        return ((self.k * delta - r - self.alpha * r ** 3) / self.t, r)
 
     def initial(self):
-        return np.zeros(2)
+        return (0.0, 0.0)
 
     def yaw_rate(self, state):
         return state[0]
@@ -107,18 +115,18 @@ class SpeedLossShip:
         return self.sway.nomoto()
 
     def rates(self, state, delta):
-        u, nu, psi = state[0], state[1:3], state[3]
+        u = state[0]
         speed = max(u, 0.1 * self.speed)
         self.u_min = min(self.u_min, u)
-        d_nu = speed / self.length * (self.sway.a @ nu + self.sway.b * delta)
-        v, r = nu[0] * speed, nu[1] * speed / self.length
+        dv, dr = self.sway.prime_rates(state[1], state[2], delta, speed / self.length)
+        v, r = state[1] * speed, state[2] * speed / self.length
         du = (v * r - self.drag * delta ** 2 * u
               - (u * u - self.speed ** 2) / (self.speed * self.recovery))
-        return np.array([du, d_nu[0], d_nu[1], r])
+        return (du, dv, dr, r)
 
     def initial(self):
         self.u_min = self.speed
-        return np.array([self.speed, 0.0, 0.0, 0.0])
+        return (self.speed, 0.0, 0.0, 0.0)
 
     def yaw_rate(self, state):
         return state[2] * max(state[0], 0.1 * self.speed) / self.length
@@ -168,6 +176,9 @@ def simulate(ship, excitation, duration, seed, gear_lag=1.0, rate_limit_deg=2.5,
         extra = bias + disturbance * math.sin(2 * math.pi * t / disturbance_period + phase)
         return ship.rates(x, delta + extra)
 
+    def moved(x, h, k):
+        return tuple(xi + h * ki for xi, ki in zip(x, k))
+
     for k in range(steps + 1):
         t = k * step
         psi = x[-1]
@@ -179,10 +190,11 @@ def simulate(ship, excitation, duration, seed, gear_lag=1.0, rate_limit_deg=2.5,
         target = command(excitation, t, psi, zig)
         delta += max(-rate * step, min(rate * step, (target - delta) * step / gear_lag))
         k1 = derivative(x, delta, t)
-        k2 = derivative(x + 0.5 * step * k1, delta, t + 0.5 * step)
-        k3 = derivative(x + 0.5 * step * k2, delta, t + 0.5 * step)
-        k4 = derivative(x + step * k3, delta, t + step)
-        x = x + step / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
+        k2 = derivative(moved(x, 0.5 * step, k1), delta, t + 0.5 * step)
+        k3 = derivative(moved(x, 0.5 * step, k2), delta, t + 0.5 * step)
+        k4 = derivative(moved(x, step, k3), delta, t + step)
+        x = tuple(xi + step / 6.0 * (((a + 2 * b) + 2 * c) + d)
+                  for xi, a, b, c, d in zip(x, k1, k2, k3, k4))
     return np.array(rows)
 
 
