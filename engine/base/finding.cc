@@ -157,7 +157,8 @@ const Row kRows[] = {
     {K::kInputNoise, "input_noise", S::kWarning,
      "A measured input carries white noise (robust second and third differences agree) and "
      "the fit's residuals are coloured, in a stage that left the noise out of its standard "
-     "errors (`uncertainty: {input_noise: off}`, or its refits failed). By default a stage "
+     "errors (`uncertainty: {input_noise: off}`, its refits failed, or it has more than 200 "
+     "experiments/segments or 2e6 samples). By default a stage "
      "adds the spread of refits with the noise added again to its standard errors and says "
      "so in its notes.",
      "Keep `uncertainty: {input_noise: auto}`, or declare the input under `input_noise:` (a "
