@@ -85,8 +85,7 @@ void AddInputNoiseFindings(const RunConfig& config, const RunResult& run, Trajec
       if (!WindowSamples(spec, column, cache, &values)) continue;
       const double sigma = WhiteInputNoise(values);
       if (!(sigma > 0.0)) continue;
-      const bool degrees = std::find(spec.degree_columns.begin(), spec.degree_columns.end(),
-                                     column) != spec.degree_columns.end();
+      const bool degrees = spec.IsDegreeColumn(column);
       const std::string unit = degrees ? "deg" : info.InputUnit(info.InputIndex(input));
       char text[512];
       std::snprintf(text, sizeof(text),

@@ -17,11 +17,6 @@ constexpr double kGapSteps = 3.0;         // median sample intervals that make a
 constexpr size_t kStaleRun = 3;           // equal samples in a row that may be stale
 constexpr double kStaleShare = 0.01;      // held samples per sample that make a finding
 
-bool IsDegrees(const ExperimentSpec& spec, const std::string& column) {
-  return std::find(spec.degree_columns.begin(), spec.degree_columns.end(), column) !=
-         spec.degree_columns.end();
-}
-
 std::string Number4(double value) {
   char text[32];
   std::snprintf(text, sizeof(text), "%.4g", value);
@@ -185,7 +180,7 @@ void AddRecordCheckFindings(const RunConfig& config, TrajectoryCache* cache,
       const auto& [name, column] = channels[c];
       std::vector<double> values;
       if (!WindowSamples(spec, column, cache, &values) || values.size() < kFewestSamples) continue;
-      const bool degrees = IsDegrees(spec, column);
+      const bool degrees = spec.IsDegreeColumn(column);
       const double unit = degrees ? 180.0 / M_PI : 1.0;
       const std::string label = degrees ? " deg" : "";
       const auto [low, high] = std::minmax_element(values.begin(), values.end());

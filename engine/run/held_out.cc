@@ -545,6 +545,15 @@ void Pool(const std::vector<ExperimentFit>& fits, const std::set<std::string>& c
 
 }  // namespace
 
+double MeanMaeRatio(const HeldOutCheck& check) {
+  double sum = 0.0;
+  int count = 0;
+  for (size_t i = 0; i < check.outputs.size(); ++i) {
+    if (check.start_mae[i] > 0.0) sum += check.stage_mae[i] / check.start_mae[i], ++count;
+  }
+  return count > 0 ? sum / count : std::nan("");
+}
+
 HeldOutCheck CompareHeldOut(const std::vector<ExperimentFit>& start,
                             const std::vector<ExperimentFit>& stage) {
   HeldOutCheck check;
@@ -560,24 +569,19 @@ HeldOutCheck CompareHeldOut(const std::vector<ExperimentFit>& start,
   std::map<std::string, double> start_mae, stage_mae;
   Pool(start, common, &start_mae, &check.start_diverged);
   Pool(stage, common, &stage_mae, &check.stage_diverged);
-  double ratio_sum = 0.0;
-  int ratios = 0;
   for (const auto& [output, mae] : stage_mae) {
     auto before = start_mae.find(output);
     if (before == start_mae.end()) continue;
     check.outputs.push_back(output);
     check.start_mae.push_back(before->second);
     check.stage_mae.push_back(mae);
-    if (before->second > 0.0) {
-      ratio_sum += mae / before->second;
-      ++ratios;
-    }
   }
-  const double ratio = ratios > 0 ? ratio_sum / ratios : 1.0;
+  const double mean = MeanMaeRatio(check);
+  const double ratio = std::isnan(mean) ? 1.0 : mean;
   // More diverging runs make a stage worse unless its start is far worse on the runs both
   // simulate: a guard never falls back to values that are worse still (the start of a
   // least-squares stage is the config's guess, not a model).
-  check.start_far_worse = ratios > 0 && ratio < kStartFarWorse;
+  check.start_far_worse = ratio < kStartFarWorse && !std::isnan(mean);
   check.worse = (check.stage_diverged > check.start_diverged && !check.start_far_worse) ||
                 (check.stage_diverged == check.start_diverged && ratio > kHeldOutTolerance);
   return check;
@@ -587,12 +591,7 @@ bool PredictsBetter(const std::vector<ExperimentFit>& a, const std::vector<Exper
   const HeldOutCheck check = CompareHeldOut(b, a);  // a as the "stage" against b
   if (check.stage_diverged > check.start_diverged) return false;
   if (check.stage_diverged < check.start_diverged) return true;
-  double ratio_sum = 0.0;
-  int ratios = 0;
-  for (size_t i = 0; i < check.outputs.size(); ++i) {
-    if (check.start_mae[i] > 0.0) ratio_sum += check.stage_mae[i] / check.start_mae[i], ++ratios;
-  }
-  return ratios > 0 && ratio_sum / ratios < 1.0;
+  return MeanMaeRatio(check) < 1.0;  // false for NaN
 }
 
 std::string DescribeHeldOut(const HeldOutCheck& check, const DisplayUnitOf& unit_of,

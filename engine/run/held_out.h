@@ -99,6 +99,10 @@ bool SimulateHeldOutPasses(const RunConfig& config, const ModelHandle& model,
 // upper bound 0.05 ..."), as the stage notes active bounds.
 std::vector<std::string> HeldOutBoundNotes(const HeldOutParameters& parameters);
 
+// The mean over the outputs of stage MAE / start MAE (outputs whose start MAE is above 0);
+// NaN where there is none.
+double MeanMaeRatio(const HeldOutCheck& check);
+
 // Whether fits `a` predict the held-out runs better than fits `b`: no more runs diverge, and
 // the pooled MAE is lower on the runs both simulate (mean ratio over the outputs below 1).
 bool PredictsBetter(const std::vector<ExperimentFit>& a, const std::vector<ExperimentFit>& b);

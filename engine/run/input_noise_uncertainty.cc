@@ -27,14 +27,6 @@ struct NoisyInput {
   std::string text;     // "delta on train (0.15 deg)"
 };
 
-const ExperimentSpec* SpecOf(const RunConfig& config, const Experiment& x) {
-  const std::string& record = x.record.empty() ? x.name : x.record;
-  for (const ExperimentSpec& spec : config.experiments) {
-    if (spec.name == record) return &spec;
-  }
-  return nullptr;
-}
-
 std::vector<NoisyInput> NoisyInputs(const RunConfig& config, TrajectoryCache* cache,
                                     const OutputErrorProblem& problem) {
   const ModelInfo& info = problem.model().info();
@@ -42,7 +34,7 @@ std::vector<NoisyInput> NoisyInputs(const RunConfig& config, TrajectoryCache* ca
   std::map<std::pair<std::string, std::string>, double> tested;  // (record, column): SD
   for (size_t e = 0; e < problem.experiments().size(); ++e) {
     const Experiment& x = problem.experiments()[e];
-    const ExperimentSpec* spec = SpecOf(config, x);
+    const ExperimentSpec* spec = config.FindExperiment(x.record.empty() ? x.name : x.record);
     if (spec == nullptr) continue;
     for (const auto& [input, column] : spec->inputs) {
       const int j = info.InputIndex(input);
@@ -58,8 +50,7 @@ std::vector<NoisyInput> NoisyInputs(const RunConfig& config, TrajectoryCache* ca
       }
       const double sigma = found->second;
       if (!(sigma > 0.0)) continue;
-      const bool degrees = std::find(spec->degree_columns.begin(), spec->degree_columns.end(),
-                                     column) != spec->degree_columns.end();
+      const bool degrees = spec->IsDegreeColumn(column);
       NoisyInput n;
       n.experiment = static_cast<int>(e);
       n.input = j;
@@ -172,7 +163,6 @@ void AddInputNoiseSpread(const RunConfig& config, TrajectoryCache* cache,
   const int runs = options.uncertainty.input_noise_runs;
   const unsigned seed = options.uncertainty.bootstrap.seed;
   const std::vector<ParameterSpec> specs = EstimateSpecs(*solved);
-  const std::vector<double> estimate = solved->Values();
   const int count = static_cast<int>(solved->experiments().size());
   const int outputs = static_cast<int>(solved->model().info().outputs.size());
   std::vector<std::vector<double>> base(count), base_residuals(count);
@@ -206,8 +196,15 @@ void AddInputNoiseSpread(const RunConfig& config, TrajectoryCache* cache,
   for (int r = 0; r < runs; ++r) {
     if (!values[r].empty()) good.push_back(r);
   }
+  // The noisy inputs named in the notes: the first few (a segmented record repeats its own).
+  constexpr size_t kNamedInputs = 4;
   std::string inputs;
-  for (const NoisyInput& n : noisy) inputs += (inputs.empty() ? "" : ", ") + n.text;
+  for (size_t i = 0; i < noisy.size() && i < kNamedInputs; ++i) {
+    inputs += (i == 0 ? "" : ", ") + noisy[i].text;
+  }
+  if (noisy.size() > kNamedInputs) {
+    inputs += " and " + std::to_string(noisy.size() - kNamedInputs) + " more";
+  }
   char text[512];
   if (good.size() < std::max<size_t>(2, std::ceil(kMinInputNoiseSolved * runs))) {
     std::snprintf(text, sizeof(text),

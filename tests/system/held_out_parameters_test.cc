@@ -400,7 +400,9 @@ TEST_F(HeldOutParametersTest, MeasuredStartPredictsAfterABurnIn) {
       EXPECT_EQ(std::count(estimated.begin(), estimated.end(), "psi"), 0);
       // The stage's runs estimate their bias; the final validation lists r free.
       const bool final = fits == &result.final_validation;
-      if (!final) EXPECT_EQ(std::count(estimated.begin(), estimated.end(), "delta_0"), 1);
+      if (!final) {
+        EXPECT_EQ(std::count(estimated.begin(), estimated.end(), "delta_0"), 1);
+      }
       EXPECT_EQ(std::count(estimated.begin(), estimated.end(), "r"), final ? 1 : 0);
       // The trace starts at the record's start, at the measured heading; the scored samples
       // are those after the burn-in.
