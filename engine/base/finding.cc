@@ -244,6 +244,18 @@ const Row kRows[] = {
      "its fit leans on the start, not on the parameters. The finding gives the run's figures "
      "from the measured start beside it.",
      "Judge the model by the figures from the measured start (the default, `start: measured`)."},
+    {K::kHeldOutBeyondBand, "held_out_beyond_band", S::kWarning,
+     "A held-out run of the final validation, flown from its measured start, has an error that "
+     "no adjustment of the estimates and of its start within their covariance explains: "
+     "Q = min_d |r - S d|^2 / sigma^2 + d' P^-1 d over its scored samples, with sigma^2 the "
+     "training fit's mean square residual per output (raised to the run's own noise level where "
+     "that is higher), above (1 - s) 1.25 + s 4.6 times the samples, s the training residuals' "
+     "input-noise share. Correct fits of the independent corpus stay at 0.9-1.3; structures "
+     "that fit their training run and miss the next (speed loss, an unmodelled nonlinearity or "
+     "disturbance) reach 1.4-50. `prediction_band` in results.json holds each run's figures.",
+     "Compare the run's traces with the training runs': what it shows that they do not (larger "
+     "rudder angles, speed loss in the turns, another speed) is what the model's structure or "
+     "its training data lack; add that to the structure or to the training runs."},
 };
 
 // The value of `values` whose name is `text`.

@@ -66,6 +66,7 @@ enum class FindingKind {
   kHeldOutFreeRunFailed,
   kFinalHeldOutFailed,
   kImplausibleStart,
+  kHeldOutBeyondBand,
 };
 
 const char* FindingKindToString(FindingKind kind);  // snake_case, e.g. "at_bound"

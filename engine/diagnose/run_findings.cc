@@ -5,6 +5,7 @@
 #include <set>
 #include <tuple>
 
+#include "engine/diagnose/band_findings.h"
 #include "engine/diagnose/input_noise_findings.h"
 #include "engine/diagnose/record_checks.h"
 #include "engine/diagnose/stage_findings.h"
@@ -249,6 +250,7 @@ void DiagnoseRun(const RunConfig& config, RunResult* run, TrajectoryCache* recor
                    parameter_unit_of);
   AddFinalHeldOutFindings(*run, &findings);
   AddImplausibleStartFindings(run->final_validation, "final", output_unit_of, &findings);
+  AddPredictionBandFindings(*run, &findings);
   AddFreeRunFindings(run->final_velocity_validation, "final", FindingSeverity::kFailure,
                      &findings);
   findings = FoldFindings(findings);

@@ -191,6 +191,22 @@ json StartsToJson(const RunConfig& config, const std::vector<ExperimentFit>& fit
   return starts;
 }
 
+// Each held-out run's prediction band (prediction_band.h), by experiment.
+json BandsToJson(const std::vector<ExperimentFit>& fits) {
+  json bands = json::object();
+  for (const ExperimentFit& fit : fits) {
+    const PredictionBand& b = fit.band;
+    if (!b.done) continue;
+    json outputs = json::object();
+    for (size_t o = 0; o < b.outputs.size(); ++o) outputs[b.outputs[o]] = JsonNumber(b.output_ratio[o]);
+    bands[fit.experiment] = {{"samples", b.samples},
+                             {"ratio", JsonNumber(b.ratio)},
+                             {"raw_ratio", JsonNumber(b.raw_ratio)},
+                             {"output_raw_ratio", outputs}};
+  }
+  return bands;
+}
+
 json FitsToJson(const RunConfig& config, const std::vector<ExperimentFit>& fits,
                 JsonSplices* splices) {
   json j = {{"metrics", MetricsToJson(config, fits, splices)},
@@ -200,6 +216,8 @@ json FitsToJson(const RunConfig& config, const std::vector<ExperimentFit>& fits,
   if (!starts.empty()) j["start"] = starts;
   const json diverged = DivergedToJson(fits);
   if (!diverged.empty()) j["diverged"] = diverged;
+  const json bands = BandsToJson(fits);
+  if (!bands.empty()) j["prediction_band"] = bands;
   return j;
 }
 

@@ -300,6 +300,8 @@ ExperimentFit PredictFromMeasuredStart(const ModelHandle& model, const Experimen
       x0[s] = estimated[s];
     }
   }
+  fit.start.initial_state = x0;
+  fit.start.values = at;
   std::vector<Experiment> one{measured};
   one.front().initial_state = std::move(x0);
   const std::unique_ptr<OutputErrorProblem> whole =

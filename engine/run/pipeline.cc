@@ -12,6 +12,7 @@
 #include "engine/run/manoeuvre_runs.h"
 #include "engine/run/output_error_stage.h"
 #include "engine/run/parameter_ledger.h"
+#include "engine/run/prediction_band.h"
 #include "engine/run/record_notes.h"
 #include "engine/run/records.h"
 #include "engine/run/step_regression_stage.h"
@@ -310,6 +311,10 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     run.final_validation = std::move(answers[0].fits);
     run.final_held_out_parameters = std::move(answers[0].parameters);
     run.final_validation_residuals = std::move(answers[0].residuals);
+    if (!SetPredictionBands(config, model, options, &cache, &run, error)) {
+      *error = "final validation: " + *error;
+      return false;
+    }
     if (config.velocity_validation && model.regression_form() != nullptr) {
       const RegressionDataOptions velocity_data = VelocityData(config, config.stages.size());
       std::vector<std::string> diverged;

@@ -104,6 +104,26 @@ struct HeldOutStartReport {
   bool measured_start_diverged = false;
   std::vector<StartOffset> offsets;
   double implausible_sds = 0.0;  // an offset beyond this many noise SDs is a finding
+  // From the measured start: the initial state the run was flown from (model state order)
+  // and the parameter values, its own per-experiment ones included (model order).
+  std::vector<double> initial_state;
+  std::vector<double> values;
+};
+
+// Whether a held-out run's prediction error is what the fit leads one to expect
+// (prediction_band.h): the error left after the best adjustment of the parameters and the
+// initial state within their uncertainty,
+//   Q = min_d  sum_i (r_i - s_i d)^2 / sigma_o(i)^2 + d' P^-1 d,
+// over the scored samples, with sigma_o^2 the training fit's mean square residual of output o
+// and P the covariance of the estimates and of the start. A prediction as good as the fit
+// gives Q / samples near 1.
+struct PredictionBand {
+  bool done = false;
+  int samples = 0;
+  double ratio = 0.0;      // Q / samples
+  double raw_ratio = 0.0;  // sum r^2 / sigma^2 / samples: before the adjustment
+  std::vector<std::string> outputs;
+  std::vector<double> output_ratio;  // per output: its raw ratio
 };
 
 struct ExperimentFit {
@@ -116,6 +136,7 @@ struct ExperimentFit {
   std::vector<ChannelMetrics> channels;
   Trajectory trace;  // t, <output>_measured, <output>_simulated per compared output
   HeldOutStartReport start;  // held-out runs: how the run was started and scored
+  PredictionBand band;       // held-out runs of the final validation, from the measured start
 };
 
 // Time of the last node a simulation reached (its outputs are finite), from the outputs

@@ -297,7 +297,9 @@ def run_case(case, binary, root):
         held = [m for m in final.get("metrics", []) if m["output"] == "psi"]
         held_analysis = [a for a in final.get("residual_analysis", []) if a["output"] == "psi"]
         if held and held_analysis:
-            result["held_out"] = {"rmse_over_noise": held[0]["rmse"] / held[0]["noise"]
+            band = final.get("prediction_band", {}).get("test", {})
+            result["held_out"] = {"band": band.get("ratio"), "raw_band": band.get("raw_ratio"),
+                                  "rmse_over_noise": held[0]["rmse"] / held[0]["noise"]
                                   if held[0].get("noise") else None,
                                   "lag1": held_analysis[0].get("lag1"),
                                   "fit_percent": held[0]["fit_percent"]}
