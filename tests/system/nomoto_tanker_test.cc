@@ -187,18 +187,25 @@ namespace nomoto_tanker_test {
 // The real-like campaign fits well (heading fits of 76-99 %), but its records carry what the
 // model lacks (a slow yaw disturbance, a rate-limited gear): the output-error stage's
 // residuals keep a lag-1 of 0.89-0.98 at up to 8 x the compass's noise level, which no noise
-// gives. That one warning makes the verdict doubtful; nothing fails.
+// gives. Flown from their measured starts, the held-out zigzags drift with the disturbance
+// far beyond what the fit and its intervals explain (held_out_beyond_band). Those warnings
+// make the verdict doubtful; nothing fails.
 TEST_F(NomotoTanker, WhatTheModelLacksIsAWarning) {
   EXPECT_EQ((*results_)["verdict"], "doubtful") << testing::JsonFindingsText(*results_);
-  int warnings = 0;
+  int coloured = 0, beyond_band = 0;
   for (const json& f : testing::JsonFindings(*results_)) {
     EXPECT_NE(f["severity"], "failure") << f.dump();
     if (f["severity"] != "warning") continue;
-    ++warnings;
+    if (f["kind"] == "held_out_beyond_band") {
+      ++beyond_band;
+      continue;
+    }
+    ++coloured;
     EXPECT_EQ(f["kind"], "coloured_residuals") << f.dump();
     EXPECT_NE(f["message"].get<std::string>().find("the structure is strong"), std::string::npos);
   }
-  EXPECT_GE(warnings, 1);
+  EXPECT_GE(coloured, 1);
+  EXPECT_GE(beyond_band, 1);
 }
 
 }  // namespace nomoto_tanker_test
