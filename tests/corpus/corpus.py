@@ -265,6 +265,30 @@ def label(case, estimates):
     return True, ""
 
 
+def judged_z(case, results):
+    """Each judged quantity's error against the truth in reported standard errors (T_eff's
+    from the last stage's correlations): how honest the intervals are."""
+    se = {p["name"]: p["std_error"] for p in results["parameters"]}
+    value = {p["name"]: p["value"] for p in results["parameters"]}
+    corr = results["stages"][-1].get("correlation") or {}
+    names = corr.get("names") or corr.get("parameters") or []
+    matrix = corr.get("matrix") or []
+    z = {}
+    for name, truth in case["judged"].items():
+        weights = {"T1": 1.0, "T2": 1.0, "T3": -1.0} if name == "T_eff" else {name: 1.0}
+        try:
+            est = sum(w * value[n] for n, w in weights.items())
+            var = 0.0
+            for a, wa in weights.items():
+                for b, wb in weights.items():
+                    c = 1.0 if a == b else matrix[names.index(a)][names.index(b)]
+                    var += wa * wb * c * se[a] * se[b]
+            z[name] = (est - truth) / math.sqrt(var) if var > 0 else None
+        except (KeyError, ValueError, TypeError, IndexError):
+            z[name] = None
+    return z
+
+
 def run_case(case, binary, root):
     folder = os.path.join(root, case["name"])
     os.makedirs(folder, exist_ok=True)
@@ -278,6 +302,7 @@ def run_case(case, binary, root):
         with open(os.path.join(out, "results.json")) as f:
             results = json.load(f)
         estimates = {p["name"]: p["value"] for p in results["parameters"]}
+        result["z"] = judged_z(case, results)
         result["verdict"] = results["verdict"]
         # What the training fit's residuals look like (for calibrating the rules).
         stage = results["stages"][-1]
