@@ -105,7 +105,7 @@ int Simulate(const std::string& config_path, const std::string& out_dir) {
   // what it wrote before; other configs' files in the folder stay.
   const std::string set =
       "simulate." + vesselid::FileNameOf(std::filesystem::path(config_path).stem().string());
-  const auto staging = vesselid::OutputStaging::Begin(out_dir, set, {}, &error);
+  const auto staging = vesselid::OutputStaging::Begin(out_dir, set, &error);
   if (staging == nullptr || !vesselid::SimulateConfig(config, staging->folder(), &error)) {
     return Fail(error);
   }
@@ -169,7 +169,7 @@ int Design(const std::string& config_path, const std::string& run_dir, const std
   return result.limit_violations.empty() ? 0 : 1;
 }
 
-// SIGINT (Ctrl-C) or SIGTERM during a run: the solves end after their current iteration
+// SIGINT (Ctrl-C), SIGTERM or SIGHUP (the terminal closed) during a run: the solves end after their current iteration
 // (stop_request.h), the stage cut short is not saved and no output is published; the run
 // says where it stopped and how to go on. A second signal ends the process at once (the
 // checkpoint still holds every finished stage).
@@ -191,6 +191,7 @@ void CatchStopSignals() {
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  sigaction(SIGHUP, &action, nullptr);
 }
 
 struct RunFlags {
@@ -210,7 +211,10 @@ constexpr int kExitFailed = 4;
 int Interrupted(const std::string& config_path, const std::string& data_dir,
                 const std::string& out_dir, const vesselid::RunConfig& config, size_t stage) {
   const int signal = stop_signal;
-  const std::string name = signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal";
+  const std::string name = signal == SIGINT    ? "SIGINT"
+                           : signal == SIGTERM ? "SIGTERM"
+                           : signal == SIGHUP  ? "SIGHUP"
+                                               : "a signal";
   const std::string resume = "vesselid run " + config_path +
                              (data_dir.empty() ? "" : " --data " + data_dir) + " --out " + out_dir +
                              " --resume";
@@ -385,7 +389,7 @@ int Study(const std::string& config_path, const std::string& data_dir, const std
   if (folder == nullptr && !open_output()) return Fail(error);
   // study.txt and study.json appear together (output_staging.h).
   const auto staging =
-      vesselid::OutputStaging::Begin(out_dir, "study", {"study.txt", "study.json"}, &error);
+      vesselid::OutputStaging::Begin(out_dir, "study", &error);
   if (staging == nullptr) return Fail(error);
   const std::filesystem::path out(staging->folder());
   if (!vesselid::WriteFileAtomically((out / "study.txt").string(), text, &error) ||

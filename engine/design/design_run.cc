@@ -8,6 +8,7 @@
 #include <map>
 
 #include "engine/base/json_number.h"
+#include "engine/base/memory_budget.h"
 #include "engine/design/design_criterion.h"
 #include "engine/design/design_limits.h"
 #include "engine/design/design_names.h"
@@ -18,6 +19,29 @@
 
 namespace vesselid {
 namespace {
+
+// False, saying which keys and figures, when a planned log of `duration` s at `sample_time`
+// would not fit the memory budget: each sample holds the inputs and outputs and, for the
+// information, the outputs' sensitivities to the parameters and states, for the plan and the
+// alternatives the two cores evaluate at once.
+bool PlannedLogFits(const ModelInfo& info, double duration, double sample_time,
+                    std::string* error) {
+  const double samples = std::floor(duration / sample_time) + 1.0;
+  const double per_sample =
+      8.0 * (info.inputs.size() + info.outputs.size() +
+             info.outputs.size() * (info.parameters.size() + info.states.size())) * 4.0;
+  const double need = samples * per_sample;
+  if (samples < 2e9 && need <= static_cast<double>(MemoryBudget())) return true;
+  char text[320];
+  std::snprintf(text, sizeof(text),
+                "design.duration / design.sample_time: a planned log of %.4g samples (%.4g s "
+                "at %.4g s) needs %s, more than the memory budget of %s (half this machine's "
+                "memory); log less often or plan a shorter run",
+                samples, duration, sample_time, FormatBytes(need).c_str(),
+                FormatBytes(static_cast<double>(MemoryBudget())).c_str());
+  *error = text;
+  return false;
+}
 
 using json = nlohmann::json;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
@@ -272,6 +296,7 @@ bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& opti
     zigzag.stop_after = 4;
     PlannedRecord record;
     constexpr double kLongest = 7200.0;
+    if (!PlannedLogFits(info, kLongest, r.sample_time, error)) return false;
     if (!RealizePlan(*handle, model.values, c.x0, kLongest, r.sample_time, c.setup.max_step,
                      c.actuators, zigzag.command, &record, zigzag.Stop()) ||
         *zigzag.reversals < 4) {
@@ -285,6 +310,7 @@ bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& opti
                   "duration: the 20/20 zigzag's to its fourth rudder reversal, %.1f s", r.duration);
     r.notes.push_back(note);
   }
+  if (!PlannedLogFits(info, r.duration, r.sample_time, error)) return false;
   if (!MakeDesignLayout(info, options, r.duration, &c.layout, error)) return false;
 
   SearchResult search;

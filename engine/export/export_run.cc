@@ -68,6 +68,16 @@ bool PredictRun(const ModelRegistry& registry, const std::string& run_dir,
     *error = "--members must be >= 2 (the ensemble interval)";
     return false;
   }
+  // A ship's length and approach speed, where given: 1 cm to 1 km, 1 mm/s to 50 m/s (100 kn).
+  if (!std::isnan(conditions.length) && !(conditions.length >= 0.01 && conditions.length <= 1000.0)) {
+    *error = "--length " + std::to_string(conditions.length) + ": a ship's length in m, 0.01 to 1000";
+    return false;
+  }
+  if (!std::isnan(conditions.speed) && !(conditions.speed >= 0.001 && conditions.speed <= 50.0)) {
+    *error = "--speed " + std::to_string(conditions.speed) +
+             ": an approach speed in m/s, 0.001 to 50";
+    return false;
+  }
   ExportedModel model;
   nlohmann::json results;
   if (!ReadExportedModel(run_dir, registry, members, seed, &model, error, &results)) return false;

@@ -9,8 +9,12 @@
 #include <random>
 
 #include "Eigen/Cholesky"
+#include "Eigen/Eigenvalues"
 #include "engine/base/json_number.h"
+#include "engine/base/memory_budget.h"
 #include "engine/data/interpolation.h"
+#include "engine/output/output_folder.h"
+#include "engine/output/output_staging.h"
 
 namespace vesselid {
 namespace {
@@ -39,6 +43,47 @@ std::vector<ExportedVariable> VariablesFromJson(const json& list) {
   std::vector<ExportedVariable> variables;
   for (const json& v : list) variables.push_back({v.at("name"), v.at("unit")});
   return variables;
+}
+
+// The largest results.json read: a run's holds its estimates, findings and metrics (the
+// traces are CSV files beside it), a few MiB; parsing one takes about twice its size.
+constexpr std::uintmax_t kMaxResultsBytes = 256ull << 20;
+
+// Bytes an ensemble of `members` draws of `n` parameters takes: the vectors, and the
+// model.json text and document an export makes of them.
+double EnsembleBytes(double members, int n) { return members * (n * (8.0 + 16.0 + 25.0) + 96.0); }
+
+// "" when `covariance` (of `names`) is finite, symmetric and positive semi-definite; else
+// which parameter breaks it and how.
+std::string CovarianceProblem(const std::vector<std::string>& names,
+                              const Eigen::MatrixXd& covariance) {
+  const int n = static_cast<int>(names.size());
+  for (int a = 0; a < n; ++a) {
+    if (!(std::isfinite(covariance(a, a)) && covariance(a, a) >= 0.0)) {
+      return "the variance of " + names[a] + " is not a finite number (its std_error)";
+    }
+    for (int b = 0; b < n; ++b) {
+      const double c = covariance(a, b), scale = std::sqrt(covariance(a, a) * covariance(b, b));
+      if (!std::isfinite(c) || std::abs(c) > scale * (1.0 + 1e-9) ||
+          std::abs(c - covariance(b, a)) > 1e-9 * scale) {
+        return "the correlation of " + names[a] + " and " + names[b] +
+               " is not a correlation (finite, symmetric, within [-1, 1])";
+      }
+    }
+  }
+  if (n == 0) return "";
+  // Positive semi-definite up to rounding: the correlation matrix's eigenvalues >= -1e-8.
+  Eigen::VectorXd sd = covariance.diagonal().cwiseSqrt();
+  for (int a = 0; a < n; ++a) sd(a) = sd(a) > 0.0 ? 1.0 / sd(a) : 0.0;
+  const Eigen::MatrixXd correlation = sd.asDiagonal() * covariance * sd.asDiagonal();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(correlation);
+  if (eigen.eigenvalues().minCoeff() < -1e-8) {
+    Eigen::Index worst = 0;
+    eigen.eigenvectors().col(0).cwiseAbs().maxCoeff(&worst);
+    return "the correlations are not those of any covariance (not positive semi-definite; "
+           "most in " + names[worst] + ")";
+  }
+  return "";
 }
 
 }  // namespace
@@ -111,6 +156,26 @@ std::shared_ptr<const ModelHandle> MakeExportedModel(const ModelRegistry& regist
 bool ReadExportedModel(const std::string& out_folder, const ModelRegistry& registry, int members,
                        unsigned seed, ExportedModel* model, std::string* error, json* parsed) {
   const std::string path = (std::filesystem::path(out_folder) / "results.json").string();
+  std::error_code ec;
+  // A run killed while publishing its results: finished first, under the folder's lock, as
+  // the next command writing into it would (output_staging.h).
+  if (PublicationUnfinished(out_folder) && OutputFolder::Open(out_folder, error) == nullptr) {
+    *error = out_folder + ": the run's interrupted publication cannot be finished: " + *error;
+    return false;
+  }
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    // A FIFO or device would block or never end.
+    *error = path + ": not a regular file (the results.json of a finished `vesselid run`)";
+    return false;
+  }
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (!ec && bytes > kMaxResultsBytes) {
+    *error = path + ": " + FormatBytes(static_cast<double>(bytes)) + ", more than the " +
+             FormatBytes(static_cast<double>(kMaxResultsBytes)) +
+             " a run's results.json can be (its traces are CSV files beside it)";
+    return false;
+  }
   std::ifstream in(path);
   if (!in) {
     *error = path + ": cannot open (the folder of a finished `vesselid run`?)";
@@ -177,6 +242,20 @@ bool ReadExportedModel(const std::string& out_folder, const ModelRegistry& regis
         }
         m.covariance(a, b) = r * sa * sb;
       }
+    }
+    const std::string broken = CovarianceProblem(m.covariance_names, m.covariance);
+    if (!broken.empty()) {
+      *error = path + ": parameters and stages' correlation: " + broken +
+               "; no ensemble can be drawn from it";
+      return false;
+    }
+    const double need = EnsembleBytes(members, static_cast<int>(info.parameters.size()));
+    if (need > static_cast<double>(MemoryBudget())) {
+      *error = "--members " + std::to_string(members) + ": the ensemble's draws need " +
+               FormatBytes(need) + ", more than the memory budget of " +
+               FormatBytes(static_cast<double>(MemoryBudget())) +
+               " (half this machine's memory); ask for fewer members";
+      return false;
     }
     if (stage != nullptr) {
       m.max_step = NumberOr(stage->value("integration_step", json()), 0.0);

@@ -116,10 +116,31 @@ bool RunFingerprint(const RunConfig& config, std::string* fingerprint, std::stri
   return true;
 }
 
+std::string CheckpointNotOwned(const std::string& out_dir) {
+  const fs::path folder = fs::path(out_dir) / kFolder;
+  std::error_code ec;
+  const fs::file_type type = fs::symlink_status(folder, ec).type();
+  if (type == fs::file_type::not_found) return "";
+  if (type == fs::file_type::directory &&
+      fs::symlink_status(folder / kManifest, ec).type() == fs::file_type::regular) {
+    bool links = false;
+    for (auto it = fs::recursive_directory_iterator(folder, ec);
+         !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+      links |= it->is_symlink();
+    }
+    if (!links) return "";
+  }
+  return folder.string() + ": vesselid keeps a run's checkpoint here, but did not write what is "
+         "there (no checkpoint manifest, or a link): move it away or choose another --out "
+         "(nothing was changed)";
+}
+
 bool StartCheckpoint(const std::string& out_dir, const std::string& fingerprint,
                      std::string* error) {
   const fs::path folder = fs::path(out_dir) / kFolder;
   std::error_code ec;
+  *error = CheckpointNotOwned(out_dir);
+  if (!error->empty()) return false;
   fs::remove_all(folder, ec);
   fs::create_directories(folder, ec);
   if (ec) {

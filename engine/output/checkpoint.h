@@ -18,7 +18,12 @@ namespace vesselid {
 // file, in hex: a resumed run must see the same bytes as the run it continues.
 bool RunFingerprint(const RunConfig& config, std::string* fingerprint, std::string* error);
 
-// A fresh run: removes any earlier checkpoint in out_dir and starts an empty one.
+// "" when out_dir has no checkpoint folder or one vesselid wrote (a folder, not a link, with
+// its manifest); else why it is not replaced, naming it.
+std::string CheckpointNotOwned(const std::string& out_dir);
+
+// A fresh run: removes any earlier checkpoint in out_dir (one CheckpointNotOwned accepts)
+// and starts an empty one.
 bool StartCheckpoint(const std::string& out_dir, const std::string& fingerprint,
                      std::string* error);
 

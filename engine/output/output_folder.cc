@@ -11,10 +11,12 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "engine/base/file_name.h"
 #include "engine/base/input_file.h"
 #include "engine/base/text_match.h"
+#include "engine/output/checkpoint.h"
 #include "engine/output/output_staging.h"
 
 namespace vesselid {
@@ -56,17 +58,45 @@ bool OutNamed(const std::string& path, std::string* error) {
 }
 
 // An entry of the existing folder `path` when it is neither empty nor an earlier output of
-// vesselid (its marker, or, from versions before the marker, one of the files and folders
-// `run` and `study` write); "" otherwise.
+// vesselid (its marker; a file of the name vesselid writes, a report.txt, is not one); ""
+// otherwise.
 std::string ForeignEntry(const std::string& path) {
   std::error_code ec;
-  for (const char* earlier : {kMarkerFile, kLockFile, "results.json", "report.txt", "report.html",
-                              "study.json", "study.txt", "checkpoint", "traces"}) {
-    if (fs::exists(fs::path(path) / earlier, ec)) return "";
+  for (const char* mark : {kMarkerFile, kLockFile}) {  // a lock: a vesselid process is at work
+    if (fs::symlink_status(fs::path(path) / mark, ec).type() == fs::file_type::regular) return "";
   }
   fs::directory_iterator it(path, ec);
   if (ec || it == fs::directory_iterator()) return "";
   return it->path().filename().string();
+}
+
+// "" when every output `planned` names is absent from `out` or vesselid's to replace; else
+// why not (the first in the way).
+std::string PlannedNotOwned(const std::string& out, const PlannedOutputs& planned) {
+  const std::set<std::string> owned = OwnedEntries(out);
+  std::vector<std::string> names;
+  for (const std::string& f : planned.files) {
+    if (f != kLockFile) names.push_back(f);
+  }
+  for (const std::string& f : planned.folders) {
+    if (f != "checkpoint") names.push_back(f);
+  }
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(out, ec)) {
+    const std::string name = entry.path().filename().string();
+    for (const std::string& prefix : planned.csv_prefixes) {
+      if (StartsWith(name, prefix) && EndsWith(name, ".csv")) names.push_back(name);
+    }
+  }
+  for (const std::string& name : names) {
+    const std::string why = NotOwned(out, name, owned);
+    if (!why.empty()) return why;
+  }
+  if (std::find(planned.folders.begin(), planned.folders.end(), "checkpoint") !=
+      planned.folders.end()) {
+    return CheckpointNotOwned(out);
+  }
+  return "";
 }
 
 }  // namespace
@@ -107,7 +137,8 @@ std::unique_ptr<OutputFolder> OutputFolder::Open(const std::string& path, std::s
                   " is less than " + ByteCount(kFirstWriteBytes) + " for the results");
   }
   const std::string lock_path = (fs::path(path) / kLockFile).string();
-  const int fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  // O_NOFOLLOW: a link planted at the lock's name would have its target truncated.
+  const int fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
   if (fd < 0)
     return refuse("cannot write into the output folder: " + std::string(std::strerror(errno)));
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
@@ -117,9 +148,14 @@ std::unique_ptr<OutputFolder> OutputFolder::Open(const std::string& path, std::s
                   " is writing into this folder; wait for it or choose another --out");
   }
   auto folder = std::unique_ptr<OutputFolder>(new OutputFolder(path, fd));
-  if (!fs::exists(fs::path(path) / kMarkerFile, ec)) {
-    std::ofstream marker(fs::path(path) / kMarkerFile);
-    marker << "written by vesselid: a later vesselid command may write into this folder\n";
+  const std::string marker_path = (fs::path(path) / kMarkerFile).string();
+  const int marker = ::open(marker_path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (marker >= 0) {  // else it is there already (or a link, which is neither followed nor replaced)
+    const char text[] = "written by vesselid: a later vesselid command may write into this folder\n";
+    if (::write(marker, text, sizeof(text) - 1) < 0) {
+      // An empty marker marks the folder as well.
+    }
+    ::close(marker);
   }
   const std::string pid = std::to_string(::getpid()) + "\n";
   if (::ftruncate(fd, 0) != 0 ||
@@ -204,6 +240,12 @@ bool CheckInputsSurvive(const std::string& out_dir, const PlannedOutputs& planne
     if (!other.empty() && !holds_input) {
       *error = out_dir + ": --out holds other files ('" + other +
                "') and no earlier vesselid output: choose an empty or new folder";
+      return false;
+    }
+    // Nothing in the way of an output but what vesselid wrote (output_staging.h).
+    const std::string why = PlannedNotOwned(out.string(), planned);
+    if (!why.empty()) {
+      *error = why;
       return false;
     }
   }

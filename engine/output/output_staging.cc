@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "engine/base/atomic_file.h"
 
@@ -25,9 +26,34 @@ fs::path ManifestPath(const std::string& out_dir, const std::string& set) {
   return fs::path(out_dir) / (".vesselid-" + set + ".set");
 }
 
-// The lines of a text file; empty when it is missing.
+bool IsLink(const fs::path& path) {
+  std::error_code ec;
+  return fs::symlink_status(path, ec).type() == fs::file_type::symlink;
+}
+
+bool Present(const fs::path& path) {
+  std::error_code ec;
+  return fs::symlink_status(path, ec).type() != fs::file_type::not_found && !ec;
+}
+
+// A path inside a folder as a manifest may name it: relative, every part a plain name.
+bool PlainPath(const std::string& path) {
+  if (path.empty() || path.front() == '/' || path.back() == '/') return false;
+  size_t start = 0;
+  while (start <= path.size()) {
+    const size_t end = std::min(path.find('/', start), path.size());
+    const std::string part = path.substr(start, end - start);
+    if (part.empty() || part == "." || part == "..") return false;
+    start = end + 1;
+  }
+  return path.find('\0') == std::string::npos;
+}
+
+// The lines of a regular text file; empty when it is missing or a link (not trusted).
 std::vector<std::string> Lines(const fs::path& path) {
   std::vector<std::string> lines;
+  std::error_code ec;
+  if (fs::symlink_status(path, ec).type() != fs::file_type::regular) return lines;
   std::ifstream in(path);
   for (std::string line; std::getline(in, line);) {
     if (!line.empty()) lines.push_back(line);
@@ -78,8 +104,40 @@ bool Failed(const fs::path& path, const std::string& what, const std::error_code
   return false;
 }
 
+// `name` and, for a folder, every path under it (not following links), relative to `base`:
+// the lines a manifest gives an entry.
+void ListEntry(const fs::path& base, const std::string& name, std::vector<std::string>* lines) {
+  lines->push_back(name);
+  std::error_code ec;
+  if (fs::symlink_status(base / name, ec).type() != fs::file_type::directory) return;
+  for (auto it = fs::recursive_directory_iterator(base / name, ec);
+       !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    lines->push_back(it->path().lexically_relative(base).string());
+  }
+}
+
+// Checks every destructive step of `j` against what vesselid wrote (NotOwned) before any is
+// taken: a journal (a forged one too) cannot replace or remove what a manifest does not name.
+bool JournalOwned(const fs::path& out, const fs::path& staging, const Journal& j,
+                  std::string* error) {
+  const std::set<std::string> owned = OwnedEntries(out.string());
+  std::vector<std::string> replaced = j.remove;
+  for (const std::string& name : j.entries) {
+    if (Present(staging / name)) replaced.push_back(name);
+  }
+  for (const std::string& name : replaced) {
+    const std::string why = NotOwned(out.string(), name, owned);
+    if (why.empty()) continue;
+    *error = why + "; the unfinished publication in " + staging.string() +
+             " is not carried out (remove that folder to go on)";
+    return false;
+  }
+  return true;
+}
+
 // Carries out `j` from wherever an earlier attempt stopped: every step can be repeated.
 bool Roll(const fs::path& out, const fs::path& staging, const Journal& j, std::string* error) {
+  if (!JournalOwned(out, staging, j, error)) return false;
   std::error_code ec;
   // The previous set's completion file goes first: from here until the end, --out holds no
   // results.json, so nobody reads a mixture as a whole set.
@@ -92,7 +150,8 @@ bool Roll(const fs::path& out, const fs::path& staging, const Journal& j, std::s
     if (ec) return Failed(out / name, "cannot remove the previous output", ec, error);
   }
   for (const std::string& name : j.entries) {
-    if (name == j.last || !fs::exists(staging / name, ec)) continue;  // moved already
+    // Moved already; or a link, which vesselid never stages.
+    if (name == j.last || !fs::exists(staging / name, ec) || IsLink(staging / name)) continue;
     // A folder replaces a folder whole (rename needs an absent or empty target).
     if (fs::is_directory(out / name, ec)) {
       fs::remove_all(out / name, ec);
@@ -101,10 +160,13 @@ bool Roll(const fs::path& out, const fs::path& staging, const Journal& j, std::s
     fs::rename(staging / name, out / name, ec);
     if (ec) return Failed(out / name, "cannot publish", ec, error);
   }
+  // The manifest: every entry and everything under it, wherever it is now.
+  std::vector<std::string> lines;
+  for (const std::string& name : j.entries) ListEntry(Present(out / name) ? out : staging, name, &lines);
   std::string text;
-  for (const std::string& name : j.entries) text += name + "\n";
+  for (const std::string& line : lines) text += line + "\n";
   if (!WriteFileAtomically(ManifestPath(out.string(), j.set).string(), text, error)) return false;
-  if (fs::exists(staging / j.last, ec)) {
+  if (fs::exists(staging / j.last, ec) && !IsLink(staging / j.last)) {
     fs::rename(staging / j.last, out / j.last, ec);
     if (ec) return Failed(out / j.last, "cannot publish", ec, error);
   }
@@ -115,20 +177,62 @@ bool Roll(const fs::path& out, const fs::path& staging, const Journal& j, std::s
 
 }  // namespace
 
+std::set<std::string> OwnedEntries(const std::string& out_dir) {
+  std::set<std::string> owned;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(out_dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(".vesselid-", 0) != 0 || name.size() < 14 ||
+        name.compare(name.size() - 4, 4, ".set") != 0) {
+      continue;
+    }
+    for (const std::string& line : Lines(entry.path())) {
+      if (PlainPath(line)) owned.insert(line);
+    }
+  }
+  return owned;
+}
+
+std::string NotOwned(const std::string& out_dir, const std::string& name,
+                     const std::set<std::string>& owned) {
+  const fs::path out(out_dir), path = out / name;
+  if (!Present(path)) return "";
+  auto refuse = [&](const fs::path& what) {
+    if (IsLink(what)) {
+      return what.string() + ": a link where vesselid writes its output '" + name +
+             "'; vesselid neither follows nor replaces links in --out: move it away or choose "
+             "another --out (nothing was changed)";
+    }
+    return what.string() + ": vesselid would replace this with its output '" + name +
+           "', but did not write it (no manifest in the folder names it): move it away or "
+           "choose another --out (nothing was changed)";
+  };
+  if (IsLink(path) || owned.count(name) == 0) return refuse(path);
+  std::vector<std::string> inside;
+  ListEntry(out, name, &inside);
+  for (const std::string& p : inside) {
+    if (IsLink(out / p) || owned.count(p) == 0) return refuse(out / p);
+  }
+  return "";
+}
+
 std::unique_ptr<OutputStaging> OutputStaging::Begin(const std::string& out_dir,
                                                     const std::string& set,
-                                                    std::vector<std::string> known,
                                                     std::string* error) {
   if (!FinishPublication(out_dir, error)) return nullptr;
   const fs::path folder = fs::path(out_dir) / kStagingFolder;
   std::error_code ec;
+  if (Present(folder) && fs::symlink_status(folder, ec).type() != fs::file_type::directory) {
+    *error = folder.string() + ": not vesselid's staging folder (a file or a link at its name); "
+             "move it away";
+    return nullptr;
+  }
   fs::create_directory(folder, ec);
   if (ec) {
     Failed(folder, "cannot create the staging folder", ec, error);
     return nullptr;
   }
-  return std::unique_ptr<OutputStaging>(
-      new OutputStaging(out_dir, set, std::move(known), folder.string()));
+  return std::unique_ptr<OutputStaging>(new OutputStaging(out_dir, set, folder.string()));
 }
 
 OutputStaging::~OutputStaging() {
@@ -144,9 +248,15 @@ bool OutputStaging::Publish(const std::string& last, std::string* error) {
   const fs::path out(out_dir_), staging(folder_);
   Journal j{set_, last, {}, {}};
   std::error_code ec;
+  const std::set<std::string> owned = OwnedEntries(out_dir_);
   for (const auto& entry : fs::directory_iterator(staging, ec)) {
     const std::string name = entry.path().filename().string();
-    if (name == kJournal) continue;
+    if (name == kJournal || entry.is_symlink()) continue;
+    const std::string why = NotOwned(out_dir_, name, owned);
+    if (!why.empty()) {
+      *error = why;
+      return false;
+    }
     // Checked before anything changes: a rename cannot put a file where a folder is, nor the
     // reverse, and --out must not change halfway.
     const fs::path target = out / name;
@@ -165,14 +275,12 @@ bool OutputStaging::Publish(const std::string& last, std::string* error) {
     *error = (staging / last).string() + ": missing from the staged outputs";
     return false;
   }
-  // What the previous set held and this one does not: its manifest, else every entry a set of
-  // this kind may hold.
-  std::vector<std::string> previous = Lines(ManifestPath(out_dir_, set_));
-  if (previous.empty()) previous = known_;
-  for (const std::string& name : previous) {
-    if (name.find('/') != std::string::npos || name == "." || name == "..") continue;
-    if (!std::binary_search(j.entries.begin(), j.entries.end(), name) &&
-        fs::exists(out / name, ec)) {
+  // What the previous set held and this one does not (its manifest's top-level entries, as
+  // long as everything in them is vesselid's).
+  for (const std::string& name : Lines(ManifestPath(out_dir_, set_))) {
+    if (!PlainPath(name) || name.find('/') != std::string::npos) continue;
+    if (!std::binary_search(j.entries.begin(), j.entries.end(), name) && Present(out / name) &&
+        NotOwned(out_dir_, name, owned).empty()) {
       j.remove.push_back(name);
     }
   }
@@ -181,12 +289,26 @@ bool OutputStaging::Publish(const std::string& last, std::string* error) {
   return published_;
 }
 
+bool PublicationUnfinished(const std::string& out_dir) {
+  const fs::path staging = fs::path(out_dir) / kStagingFolder;
+  std::error_code ec;
+  return fs::symlink_status(staging, ec).type() == fs::file_type::directory &&
+         fs::symlink_status(staging / kJournal, ec).type() == fs::file_type::regular;
+}
+
 bool FinishPublication(const std::string& out_dir, std::string* error, bool* finished) {
   if (finished != nullptr) *finished = false;
   const fs::path out(out_dir), staging = fs::path(out_dir) / kStagingFolder;
   std::error_code ec;
-  if (!fs::exists(staging, ec)) return true;
-  if (!fs::exists(staging / kJournal, ec)) {
+  if (!Present(staging)) return true;
+  if (IsLink(staging)) {
+    // Not vesselid's: what it points to is neither read nor touched; the link goes.
+    fs::remove(staging, ec);
+    if (ec) return Failed(staging, "cannot remove a link at the staging folder's name", ec, error);
+    return true;
+  }
+  if (fs::symlink_status(staging, ec).type() != fs::file_type::directory) return true;
+  if (fs::symlink_status(staging / kJournal, ec).type() != fs::file_type::regular) {
     // A command stopped while writing: nothing of it reached --out.
     fs::remove_all(staging, ec);
     if (ec) return Failed(staging, "cannot remove an unfinished staging folder", ec, error);

@@ -16,7 +16,7 @@ bool PublishSet(const std::string& out_dir, const std::string& set, const std::s
   const std::unique_ptr<OutputFolder> folder = OutputFolder::Open(out_dir, error);
   if (folder == nullptr) return false;
   const std::unique_ptr<OutputStaging> staging =
-      OutputStaging::Begin(out_dir, set, planned.files, error);
+      OutputStaging::Begin(out_dir, set, error);
   if (staging == nullptr) return false;
   for (const auto& [name, write] : files) {
     if (!write((std::filesystem::path(staging->folder()) / name).string(), error)) return false;

@@ -43,7 +43,7 @@ bool WriteTraces(const std::string& folder, const RunConfig& config, const RunRe
 bool WriteRunResults(const RunConfig& config, const RunResult& result, const std::string& out_dir,
                      std::string* error, bool html_report) {
   const std::unique_ptr<OutputStaging> staging =
-      OutputStaging::Begin(out_dir, "run", RunSetEntries(), error);
+      OutputStaging::Begin(out_dir, "run", error);
   if (staging == nullptr) return false;
   const std::string folder = staging->folder();
   std::error_code ec;
@@ -83,10 +83,6 @@ bool WriteRunResults(const RunConfig& config, const RunResult& result, const std
     return false;
   }
   return staging->Publish("results.json", error);
-}
-
-std::vector<std::string> RunSetEntries() {
-  return {"results.json", "report.txt", "report.html", "traces", "surfaces"};
 }
 
 }  // namespace vesselid

@@ -19,8 +19,4 @@ namespace vesselid {
 bool WriteRunResults(const RunConfig& config, const RunResult& result, const std::string& out_dir,
                      std::string* error, bool html_report = true);
 
-// The entries a run's set may hold (removed with the previous set when this one lacks them;
-// its step-regression tables come from the manifest the previous publication wrote).
-std::vector<std::string> RunSetEntries();
-
 }  // namespace vesselid

@@ -11,6 +11,7 @@
 #include <csignal>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -422,6 +423,68 @@ TEST_F(HostileInput, OutHoldingOtherFilesIsRefusedAnEarlierOutputIsNot) {
   std::ofstream(dir_ / "out" / "notes.txt") << "field notes\n";
   outcome = Run();
   EXPECT_EQ(outcome.status, 0) << outcome.output;
+}
+
+// --out the config's own folder, which holds the user's traces/, surfaces/, report.txt and
+// notes.txt: the run is refused before any work, naming what is in the way, and every byte
+// stays. A report.txt of the user's own does not make the folder an earlier output.
+TEST_F(HostileInput, UsersFilesBesideAndInsideOutSurvive) {
+  std::map<std::string, std::string> mine = {{"traces/gps_2026.csv", "t,lat\n0,59.9\n"},
+                                                   {"surfaces/hull.stl", "solid hull\n"},
+                                                   {"report.txt", "my own report\n"},
+                                                   {"notes.txt", "field notes\n"}};
+  auto plant = [&]() {
+    for (const auto& [name, text] : mine) {
+      fs::create_directories((dir_ / name).parent_path());
+      std::ofstream(dir_ / name) << text;
+    }
+  };
+  auto check = [&]() {
+    for (const auto& [name, text] : mine) EXPECT_EQ(ReadFile(dir_ / name), text) << name;
+  };
+  plant();
+  Outcome outcome = Run("", dir_);
+  EXPECT_NE(outcome.status, 0);
+  EXPECT_NE(outcome.output.find("but did not write it"), std::string::npos) << outcome.output;
+  EXPECT_FALSE(fs::exists(dir_ / "results.json"));
+  check();
+  // Without the sub-folders in the way, report.txt still is.
+  fs::remove_all(dir_ / "traces");
+  fs::remove_all(dir_ / "surfaces");
+  mine.erase("traces/gps_2026.csv");
+  mine.erase("surfaces/hull.stl");
+  outcome = Run("", dir_);
+  EXPECT_NE(outcome.status, 0);
+  EXPECT_NE(outcome.output.find("report.txt: vesselid would replace this"), std::string::npos)
+      << outcome.output;
+  check();
+  // With room, the run writes beside them, and runs again over its own outputs only.
+  fs::remove(dir_ / "report.txt");
+  outcome = Run("", dir_);
+  ASSERT_EQ(outcome.status, 0) << outcome.output;
+  std::ofstream(dir_ / "traces" / "my_notes.txt") << "mine\n";  // inside an output folder
+  outcome = Run("", dir_);
+  EXPECT_NE(outcome.status, 0);
+  EXPECT_EQ(ReadFile(dir_ / "traces" / "my_notes.txt"), "mine\n");
+  EXPECT_EQ(ReadFile(dir_ / "notes.txt"), "field notes\n");
+}
+
+// A link planted at the staging folder's name (to a forged journal and a file outside --out)
+// and at the lock's name: neither is followed; the files they point to stay as they were.
+TEST_F(HostileInput, LinksPlantedInOutAreNotFollowed) {
+  ASSERT_EQ(Run().status, 0);
+  const fs::path outside = dir_ / "outside";
+  fs::create_directories(outside);
+  std::ofstream(outside / "precious.csv") << "keep\n";
+  std::ofstream(outside / ".publish") << "set run\nlast precious.csv\nentry precious.csv\n";
+  std::ofstream(outside / "lock_target") << "keep too\n";
+  fs::create_directory_symlink(outside, dir_ / "out" / kStagingFolder);
+  fs::create_symlink(outside / "lock_target", dir_ / "out" / ".vesselid.lock");
+  const Outcome outcome = Run();
+  EXPECT_EQ(ReadFile(outside / "precious.csv"), "keep\n");
+  EXPECT_EQ(ReadFile(outside / "lock_target"), "keep too\n");
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "precious.csv"));
+  (void)outcome;  // refused (the lock is a link) or run: either way nothing outside moved
 }
 
 // --out a parent of the config's (and data's) folder: its outputs would mix with them.

@@ -138,9 +138,10 @@ TEST_F(Interrupt, ResumeFinishesAStoppedRun) {
   EXPECT_EQ(results["stages"].size(), 2u);
 }
 
-// A failure while the outputs are written (here a folder where report.txt goes; a full disk
-// does the same) comes after the stages ran: the previous set stays whole, nothing of the new
-// one is published, and the message names the obstacle.
+// An obstacle where the outputs go (here a folder of the user's where report.txt goes) is
+// found before the stages run; a failure while they are written (a full disk) comes after:
+// either way the previous set stays whole, nothing of the new one is published, and the
+// message names the obstacle.
 TEST_F(Interrupt, LateWriteFailureLeavesThePreviousSet) {
   const fs::path out = dir_ / "out";
   ASSERT_EQ(Run("", out).status, 0);
@@ -154,7 +155,7 @@ TEST_F(Interrupt, LateWriteFailureLeavesThePreviousSet) {
   EditConfig("name: run", "name: renamed");
   const Outcome outcome = Run("", out);
   EXPECT_NE(outcome.status, 0);
-  EXPECT_NE(outcome.output.find("report.txt: is a folder where vesselid writes a file"),
+  EXPECT_NE(outcome.output.find("report.txt/kept: vesselid would replace this"),
             std::string::npos)
       << outcome.output;
   EXPECT_EQ(ReadFile(out / "results.json"), earlier_results);

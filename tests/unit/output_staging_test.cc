@@ -1,6 +1,7 @@
 // OutputStaging: a set of outputs appears together or not at all. A failure before the
 // publication leaves the previous set; a publication killed at any point is finished by the
-// next command (FinishPublication), from the on-disk state a kill leaves.
+// next command (FinishPublication), from the on-disk state a kill leaves. Nothing a manifest
+// does not name is replaced or removed, whatever a journal or a link says.
 #include "engine/output/output_staging.h"
 
 #include <filesystem>
@@ -42,7 +43,7 @@ class OutputStagingTest : public ::testing::Test {
   std::unique_ptr<OutputStaging> Stage(const std::string& tag,
                                        const std::vector<std::string>& traces, bool report_html) {
     std::string error;
-    auto staging = OutputStaging::Begin(out_.string(), "run", Known(), &error);
+    auto staging = OutputStaging::Begin(out_.string(), "run", &error);
     EXPECT_NE(staging, nullptr) << error;
     if (staging == nullptr) return nullptr;
     const fs::path folder = staging->folder();
@@ -51,9 +52,6 @@ class OutputStagingTest : public ::testing::Test {
     if (report_html) Write(folder / "report.html", tag);
     for (const std::string& t : traces) Write(folder / "traces" / t, tag);
     return staging;
-  }
-  static std::vector<std::string> Known() {
-    return {"results.json", "report.txt", "report.html", "traces", "surfaces"};
   }
   // Every file under --out but the bookkeeping ones, with its content.
   std::map<std::string, std::string> Set() const {
@@ -112,7 +110,7 @@ TEST_F(OutputStagingTest, AFolderWhereAFileGoesIsRefusedBeforeAnythingChanges) {
   Write(out_ / "report.txt" / "inside", "mine");
   const auto before = Set();
   EXPECT_FALSE(Stage("B", {"fit.b.csv"}, true)->Publish("results.json", &error));
-  EXPECT_NE(error.find("report.txt: is a folder where vesselid writes a file"), std::string::npos)
+  EXPECT_NE(error.find("report.txt/inside: vesselid would replace this"), std::string::npos)
       << error;
   EXPECT_EQ(Set(), before);
   EXPECT_FALSE(fs::exists(out_ / kStagingFolder));
@@ -169,13 +167,86 @@ TEST_F(OutputStagingTest, PublicationKilledAtAnyStepIsFinishedByTheNextCommand) 
 TEST_F(OutputStagingTest, SetsOfTwoCommandsKeepEachOther) {
   std::string error;
   ASSERT_TRUE(Stage("A", {}, false)->Publish("results.json", &error)) << error;
-  auto study = OutputStaging::Begin(out_.string(), "study", {"study.txt", "study.json"}, &error);
+  auto study = OutputStaging::Begin(out_.string(), "study", &error);
   ASSERT_NE(study, nullptr) << error;
   Write(fs::path(study->folder()) / "study.json", "S");
   ASSERT_TRUE(study->Publish("study.json", &error)) << error;
   ASSERT_TRUE(Stage("B", {}, false)->Publish("results.json", &error)) << error;
   EXPECT_EQ(Read(out_ / "study.json"), "S");
   EXPECT_EQ(Read(out_ / "results.json"), "B");
+}
+
+// A user's entries where a run writes its own (the config's folder as --out, with the user's
+// traces/ and report.txt): refused before anything changes, every byte kept.
+TEST_F(OutputStagingTest, AUsersEntryInTheWayIsRefusedAndKept) {
+  Write(out_ / "traces" / "gps_2026.csv", "mine");
+  Write(out_ / "surfaces" / "hull.stl", "hull");
+  std::string error;
+  EXPECT_FALSE(Stage("A", {"fit.a.csv"}, false)->Publish("results.json", &error));
+  EXPECT_NE(error.find("did not write it"), std::string::npos) << error;
+  EXPECT_NE(error.find("traces"), std::string::npos) << error;
+  EXPECT_EQ(Read(out_ / "traces" / "gps_2026.csv"), "mine");
+  EXPECT_EQ(Read(out_ / "surfaces" / "hull.stl"), "hull");
+  EXPECT_FALSE(fs::exists(out_ / "results.json"));
+  EXPECT_FALSE(fs::exists(out_ / kStagingFolder));
+
+  fs::remove_all(out_ / "traces");
+  Write(out_ / "report.txt", "my own report");
+  EXPECT_FALSE(Stage("A", {}, false)->Publish("results.json", &error));
+  EXPECT_EQ(Read(out_ / "report.txt"), "my own report");
+}
+
+TEST_F(OutputStagingTest, AFileAddedInsideAnOutputFolderIsNotReplaced) {
+  std::string error;
+  ASSERT_TRUE(Stage("A", {"fit.a.csv"}, false)->Publish("results.json", &error)) << error;
+  Write(out_ / "traces" / "my_notes.txt", "mine");
+  EXPECT_FALSE(Stage("B", {"fit.b.csv"}, false)->Publish("results.json", &error));
+  EXPECT_NE(error.find("my_notes.txt"), std::string::npos) << error;
+  EXPECT_EQ(Read(out_ / "traces" / "my_notes.txt"), "mine");
+  EXPECT_EQ(Read(out_ / "results.json"), "A");
+}
+
+// A staging folder that is a link (to a forged journal and a file outside --out): neither
+// read nor followed; the link goes, the file outside stays where it is.
+TEST_F(OutputStagingTest, AStagingLinkIsNotFollowed) {
+  const fs::path outside = out_.string() + "_outside";
+  fs::remove_all(outside);
+  Write(outside / "precious.csv", "outside");
+  Write(outside / ".publish", "set run\nlast precious.csv\nentry precious.csv\n");
+  fs::create_directory_symlink(outside, out_ / kStagingFolder);
+  std::string error;
+  ASSERT_TRUE(FinishPublication(out_.string(), &error)) << error;
+  EXPECT_FALSE(fs::exists(fs::symlink_status(out_ / kStagingFolder)));
+  EXPECT_EQ(Read(outside / "precious.csv"), "outside");
+  EXPECT_FALSE(fs::exists(out_ / "precious.csv"));
+  fs::remove_all(outside);
+}
+
+// A journal asking to remove or replace what no manifest names is not carried out.
+TEST_F(OutputStagingTest, AForgedJournalCannotRemoveAUsersFile) {
+  std::string error;
+  ASSERT_TRUE(Stage("A", {}, false)->Publish("results.json", &error)) << error;
+  Write(out_ / "notes.txt", "mine");
+  Write(out_ / kStagingFolder / "results.json", "B");
+  Write(out_ / kStagingFolder / ".publish",
+        "set run\nlast results.json\nremove notes.txt\nentry results.json\n");
+  EXPECT_FALSE(FinishPublication(out_.string(), &error));
+  EXPECT_NE(error.find("notes.txt"), std::string::npos) << error;
+  EXPECT_EQ(Read(out_ / "notes.txt"), "mine");
+  EXPECT_EQ(Read(out_ / "results.json"), "A");
+}
+
+// A manifest reached through a link is not vesselid's: what it names stays the user's.
+TEST_F(OutputStagingTest, AManifestThatIsALinkIsNotTrusted) {
+  const fs::path forged = out_.string() + "_manifest";
+  Write(forged, "report.txt\n");
+  fs::create_symlink(forged, out_ / ".vesselid-run.set");
+  Write(out_ / "report.txt", "my own report");
+  std::string error;
+  EXPECT_FALSE(Stage("A", {}, false)->Publish("results.json", &error));
+  EXPECT_EQ(Read(out_ / "report.txt"), "my own report");
+  EXPECT_TRUE(OwnedEntries(out_.string()).empty());
+  fs::remove(forged);
 }
 
 }  // namespace output_staging_test

@@ -1,0 +1,167 @@
+// `export`, `predict` and `design` under the guarantees `run` keeps: every figure that sizes
+// their memory (ensemble members, planned samples, the results.json read) checked against the
+// budget before anything is allocated, with a refusal that names the flag or key and the
+// figure; inputs checked (a covariance that is none, a ship of no length, a FIFO for a file);
+// and no child process above 1 GiB on the way.
+#include <sys/resource.h>
+#include <sys/stat.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <regex>
+#include <string>
+
+#include "gtest/gtest.h"
+#include "nlohmann/json.hpp"
+
+namespace vesselid {
+namespace command_limits_test {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct Outcome {
+  int status;
+  std::string output;
+};
+
+Outcome Command(const std::string& arguments) {
+  // `timeout`: a command that blocks (a FIFO opened for reading) fails the test, not CI.
+  const std::string command = "timeout 60 " + std::string(VESSELID_BINARY) + " " + arguments + " 2>&1";
+  Outcome outcome{0, ""};
+  FILE* pipe = popen(command.c_str(), "r");
+  char buffer[512];
+  while (fgets(buffer, sizeof(buffer), pipe) != nullptr) outcome.output += buffer;
+  outcome.status = pclose(pipe);
+  return outcome;
+}
+
+// Largest resident set of any child process so far, MiB.
+double ChildPeakMiB() {
+  struct rusage usage;
+  ::getrusage(RUSAGE_CHILDREN, &usage);
+  return usage.ru_maxrss / 1024.0;
+}
+
+class CommandLimits : public ::testing::Test {
+ protected:
+  // One folder per case (ctest runs the cases as processes side by side), with a finished run
+  // of the shipped design campaign (1 s).
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("vesselid_command_limits_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    const std::string config = std::string(VESSELID_SOURCE_DIR) + "/configs/design_cargo.yaml";
+    ASSERT_EQ(Command("simulate " + config + " --out " + (dir_ / "data").string()).status, 0);
+    const Outcome run = Command("run " + config + " --data " + (dir_ / "data").string() +
+                                " --out " + (dir_ / "run").string() + " --quiet --no-report");
+    ASSERT_EQ(run.status, 0) << run.output;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  // A copy of the run's folder whose results.json `edit` changed.
+  std::string EditedRun(const std::string& name, const std::function<void(json*)>& edit) {
+    const fs::path copy = dir_ / name;
+    fs::remove_all(copy);
+    fs::create_directories(copy);
+    std::ifstream in(dir_ / "run" / "results.json");
+    json results = json::parse(in);
+    edit(&results);
+    std::ofstream(copy / "results.json") << results.dump();
+    return copy.string();
+  }
+  static void ExpectRefused(const Outcome& outcome, const std::string& pattern) {
+    EXPECT_NE(outcome.status, 0) << outcome.output;
+    EXPECT_TRUE(std::regex_search(outcome.output, std::regex(pattern)))
+        << "expected /" << pattern << "/ in:\n" << outcome.output;
+    EXPECT_EQ(outcome.output.find("terminate called"), std::string::npos) << outcome.output;
+    EXPECT_LT(ChildPeakMiB(), 1024.0);
+  }
+  fs::path dir_;
+};
+
+TEST_F(CommandLimits, EnsembleMembersBeyondTheBudgetAreRefused) {
+  const std::string run = (dir_ / "run").string();
+  ExpectRefused(Command("export " + run + " --format json --members 100000000 --out " +
+                        (dir_ / "export").string()),
+                "--members 100000000: the ensemble's draws need [0-9.]+ [GMT]iB, more than the "
+                "memory budget");
+  ExpectRefused(Command("predict " + run + " --members 1000000000 --out " +
+                        (dir_ / "predict").string()),
+                "--members 1000000000: the ensemble's draws need");
+  EXPECT_FALSE(fs::exists(dir_ / "export" / "results.json"));
+}
+
+TEST_F(CommandLimits, AShipOfNoLengthOrSpeedIsRefused) {
+  const std::string run = (dir_ / "run").string();
+  ExpectRefused(Command("predict " + run + " --length 0 --speed 0 --out " +
+                        (dir_ / "predict_zero").string()),
+                "--length 0.0+: a ship's length in m");
+  ExpectRefused(Command("predict " + run + " --length 100 --speed -3 --out " +
+                        (dir_ / "predict_zero").string()),
+                "--speed -3.0+: an approach speed in m/s");
+}
+
+// An edited results.json: a correlation of 5 (no covariance has it) or a standard error of
+// 1e300 (its variance overflows) draws no ensemble; the parameters are named.
+TEST_F(CommandLimits, ACovarianceThatIsNoneIsRefusedNamingTheParameters) {
+  const std::string bad_correlation = EditedRun("correlation_5", [](json* r) {
+    for (json& stage : (*r)["stages"]) {
+      if (stage.contains("correlation") && stage["correlation"]["matrix"].size() > 1) {
+        stage["correlation"]["matrix"][0][1] = 5.0;
+        stage["correlation"]["matrix"][1][0] = 5.0;
+      }
+    }
+  });
+  ExpectRefused(Command("export " + bad_correlation + " --format json"),
+                "the correlation of T[123] and T[123] is not a correlation");
+  const std::string huge_se = EditedRun("std_error_1e300", [](json* r) {
+    for (json& p : (*r)["parameters"]) {
+      if (p["name"] == "K") p["std_error"] = 1e300;
+    }
+  });
+  ExpectRefused(Command("predict " + huge_se), "the variance of K is not a finite number");
+}
+
+TEST_F(CommandLimits, AFifoForResultsIsRefusedWithoutBlocking) {
+  const fs::path folder = dir_ / "fifo";
+  fs::create_directories(folder);
+  ASSERT_EQ(::mkfifo((folder / "results.json").c_str(), 0644), 0);
+  ExpectRefused(Command("export " + folder.string() + " --format json"),
+                "results.json: not a regular file");
+}
+
+TEST_F(CommandLimits, ResultsLargerThanARunWritesAreNotRead) {
+  const fs::path folder = dir_ / "huge";
+  fs::create_directories(folder);
+  {
+    std::ofstream out(folder / "results.json");
+    out << "{\"pad\": \"";
+  }
+  fs::resize_file(folder / "results.json", 600ull << 20);  // sparse: no disk used
+  ExpectRefused(Command("export " + folder.string() + " --format json"),
+                "results.json: 600 MiB, more than the 256 MiB");
+}
+
+// A planned log of 1e10 samples (a sample interval of 0.1 us over a zigzag's duration) is
+// refused before a sample is allocated, naming both keys.
+TEST_F(CommandLimits, APlannedLogBeyondTheBudgetIsRefused) {
+  std::ifstream in(std::string(VESSELID_SOURCE_DIR) + "/configs/design_cargo.yaml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string from = "design:\n  duration: zigzag_20_20\n  sample_time: 0.5";
+  ASSERT_NE(text.find(from), std::string::npos);
+  for (const std::string& planned : {std::string("duration: zigzag_20_20\n  sample_time: 1e-7"),
+                                     std::string("duration: 1000\n  sample_time: 1e-7")}) {
+    std::string edited = text;
+    edited.replace(edited.find(from), from.size(), "design:\n  " + planned);
+    const fs::path config = dir_ / "design_huge.yaml";
+    std::ofstream(config) << edited;
+    ExpectRefused(Command("design " + config.string() + " --from " + (dir_ / "run").string()),
+                  "design.duration / design.sample_time: a planned log of [0-9.e+]+ samples");
+  }
+}
+
+}  // namespace command_limits_test
+}  // namespace vesselid
