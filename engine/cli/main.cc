@@ -215,18 +215,19 @@ int Interrupted(const std::string& config_path, const std::string& data_dir,
                            : signal == SIGTERM ? "SIGTERM"
                            : signal == SIGHUP  ? "SIGHUP"
                                                : "a signal";
-  const std::string resume = "vesselid run " + config_path +
-                             (data_dir.empty() ? "" : " --data " + data_dir) + " --out " + out_dir +
-                             " --resume";
+  const std::string again = "vesselid run " + config_path +
+                            (data_dir.empty() ? "" : " --data " + data_dir) + " --out " + out_dir;
+  const std::string resume = again + " --resume";
   const size_t total = config.stages.size();
   std::string where;
   if (stage < total) {
     where = "in stage '" + config.stages[stage].options.name + "' (" + std::to_string(stage + 1) +
             " of " + std::to_string(total) + "); " +
-            (stage == 0
-                 ? std::string("no stage finished")
-                 : std::to_string(stage) + " finished stage(s) are in " + out_dir + "/checkpoint") +
-            ": `" + resume + "` goes on from stage '" + config.stages[stage].options.name + "'";
+            // Resume is advised only where it goes on from this run's own checkpoint.
+            (stage == 0 ? "no stage finished: `" + again + "` starts it again"
+                        : std::to_string(stage) + " finished stage(s) are in " + out_dir +
+                              "/checkpoint: `" + resume + "` goes on from stage '" +
+                              config.stages[stage].options.name + "'");
   } else {
     where = "before its results were published; its stages are in " + out_dir + "/checkpoint: `" +
             resume + "` writes them without solving again";

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -624,10 +625,15 @@ bool WriteTrajectoryCsv(const std::string& path, const Trajectory& trajectory, s
     });
     for (size_t b = 0; b < batch; ++b) std::fwrite(text[b].data(), 1, text[b].size(), file);
   }
+  // The cause ("No space left on device", "File too large"): the failed write's errno.
   const bool written = std::ferror(file) == 0;
-  if (std::fclose(file) != 0 || !written || std::rename(temporary.c_str(), path.c_str()) != 0) {
+  int code = written ? 0 : errno;
+  if (std::fclose(file) != 0 && code == 0) code = errno;
+  const bool failed = !written || code != 0;
+  if (failed || std::rename(temporary.c_str(), path.c_str()) != 0) {
+    if (code == 0) code = errno;
     std::remove(temporary.c_str());
-    *error = path + ": write failed";
+    *error = path + ": write failed" + (code != 0 ? ": " + std::string(std::strerror(code)) : "");
     return false;
   }
   return true;

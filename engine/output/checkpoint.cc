@@ -100,7 +100,10 @@ bool RunFingerprint(const RunConfig& config, std::string* fingerprint, std::stri
   std::set<std::string> hashed;  // each file once (windows of one log name it 10 000 times)
   for (const ExperimentSpec& spec : config.experiments) {
     AddPiece(spec.name, &hash);
-    AddPiece(spec.file, &hash);
+    // The file by its canonical path: `--data out` and `--data ./out/` name the same files.
+    std::error_code canonical_ec;
+    const fs::path canonical = fs::weakly_canonical(spec.file, canonical_ec);
+    AddPiece(canonical_ec ? spec.file : canonical.string(), &hash);
     // A missing file counts as absent: the run itself reports it when it needs the data.
     std::error_code ec;
     if (!fs::exists(spec.file, ec)) {

@@ -73,6 +73,9 @@ std::string ForeignEntry(const std::string& path) {
 // "" when every output `planned` names is absent from `out` or vesselid's to replace; else
 // why not (the first in the way).
 std::string PlannedNotOwned(const std::string& out, const PlannedOutputs& planned) {
+  // A publication a killed command left is finished under the folder's lock first
+  // (OutputFolder::Open), its manifest with it; the publication checks again.
+  if (PublicationUnfinished(out)) return "";
   const std::set<std::string> owned = OwnedEntries(out);
   std::vector<std::string> names;
   for (const std::string& f : planned.files) {

@@ -1,6 +1,8 @@
 #include "engine/output/output_staging.h"
 
 #include <algorithm>
+#include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -135,6 +137,18 @@ bool JournalOwned(const fs::path& out, const fs::path& staging, const Journal& j
   return true;
 }
 
+// A test's kill point (tests/system/interrupt_test.cc): with VESSELID_TEST_KILL_AT_PUBLISH_STEP
+// set to k, the process sends itself SIGKILL once k of the publication's steps (each removal,
+// move and manifest write) are taken: a kill -9 at exactly that point. Unset in use.
+void StepTaken() {
+  static const int kill_at = [] {
+    const char* text = std::getenv("VESSELID_TEST_KILL_AT_PUBLISH_STEP");
+    return text != nullptr ? std::atoi(text) : 0;
+  }();
+  static int taken = 0;
+  if (kill_at > 0 && ++taken == kill_at) ::raise(SIGKILL);
+}
+
 // Carries out `j` from wherever an earlier attempt stopped: every step can be repeated.
 bool Roll(const fs::path& out, const fs::path& staging, const Journal& j, std::string* error) {
   if (!JournalOwned(out, staging, j, error)) return false;
@@ -144,21 +158,27 @@ bool Roll(const fs::path& out, const fs::path& staging, const Journal& j, std::s
   if (fs::exists(staging / j.last, ec)) {
     fs::remove(out / j.last, ec);
     if (ec) return Failed(out / j.last, "cannot remove the previous results", ec, error);
+    StepTaken();
   }
   for (const std::string& name : j.remove) {
     fs::remove_all(out / name, ec);
     if (ec) return Failed(out / name, "cannot remove the previous output", ec, error);
+    StepTaken();
+  }
+  // Every entry of the previous set this one replaces goes before any of this set arrives, so
+  // that the folder never holds entries of both.
+  for (const std::string& name : j.entries) {
+    if (name == j.last || !Present(staging / name) || IsLink(staging / name)) continue;
+    fs::remove_all(out / name, ec);
+    if (ec) return Failed(out / name, "cannot remove the previous output", ec, error);
+    StepTaken();
   }
   for (const std::string& name : j.entries) {
     // Moved already; or a link, which vesselid never stages.
     if (name == j.last || !fs::exists(staging / name, ec) || IsLink(staging / name)) continue;
-    // A folder replaces a folder whole (rename needs an absent or empty target).
-    if (fs::is_directory(out / name, ec)) {
-      fs::remove_all(out / name, ec);
-      if (ec) return Failed(out / name, "cannot remove the previous output", ec, error);
-    }
     fs::rename(staging / name, out / name, ec);
     if (ec) return Failed(out / name, "cannot publish", ec, error);
+    StepTaken();
   }
   // The manifest: every entry and everything under it, wherever it is now.
   std::vector<std::string> lines;
@@ -166,9 +186,11 @@ bool Roll(const fs::path& out, const fs::path& staging, const Journal& j, std::s
   std::string text;
   for (const std::string& line : lines) text += line + "\n";
   if (!WriteFileAtomically(ManifestPath(out.string(), j.set).string(), text, error)) return false;
+  StepTaken();
   if (fs::exists(staging / j.last, ec) && !IsLink(staging / j.last)) {
     fs::rename(staging / j.last, out / j.last, ec);
     if (ec) return Failed(out / j.last, "cannot publish", ec, error);
+    StepTaken();
   }
   fs::remove_all(staging, ec);
   if (ec) return Failed(staging, "cannot remove", ec, error);

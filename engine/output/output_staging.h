@@ -1,9 +1,10 @@
 // A command's outputs appear together or not at all. They are written into a staging folder
 // inside --out (OUT/.vesselid-staging/, same file system, so every move is a rename) and then
 // published: a journal in the staging folder lists the set; the previous set's completion file
-// (results.json for `run`) is removed first, then every staged entry replaces its namesake,
-// entries of the previous set this one lacks are removed, the set's manifest
-// (OUT/.vesselid-<set>.set) is rewritten, and the completion file is renamed in last. Whatever
+// (results.json for `run`) is removed first, then every entry of the previous set (those this
+// set replaces and those it lacks), then the staged entries are moved in, the set's manifest
+// (OUT/.vesselid-<set>.set) is rewritten, and the completion file is renamed in last: the
+// folder never holds entries of two sets, and holds results.json only over a whole one. Whatever
 // fails before the journal is written (a full disk, a file name, a signal) leaves the previous
 // complete set as it was; a process killed while publishing leaves a journal, and the next
 // vesselid command on the folder finishes the publication (FinishPublication, called under the

@@ -4,9 +4,11 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -109,7 +111,7 @@ void DrawGroup(const std::vector<Figure>& figures, size_t begin, size_t end,
     const fs::path script = folder / ("figures" + tag + ".gp");
     const fs::path messages = folder / ("gnuplot" + tag + ".txt");
     if (!WriteFile(script, Script(figures, first, end, folder.string(), "done" + tag + ".txt"))) {
-      *error = script.string() + ": write failed";
+      *error = script.string() + ": write failed: " + std::strerror(errno);
       break;
     }
     // The first run takes a gnuplot started ahead (started_gnuplots.h) if there is one.
@@ -198,7 +200,7 @@ FigureRendering RenderFigures(const std::vector<Figure>& figures) {
   for (size_t i = 0; i < figures.size(); ++i) {
     for (size_t k = 0; k < figures[i].data.size(); ++k) {
       if (!WriteFile(folder / DataName(i, k), figures[i].data[k])) {
-        result.error = (folder / DataName(i, k)).string() + ": write failed";
+        result.error = (folder / DataName(i, k)).string() + ": write failed: " + std::strerror(errno);
         fs::remove_all(folder);
         return result;
       }

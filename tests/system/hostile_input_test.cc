@@ -469,6 +469,77 @@ TEST_F(HostileInput, UsersFilesBesideAndInsideOutSurvive) {
   EXPECT_EQ(ReadFile(dir_ / "notes.txt"), "field notes\n");
 }
 
+// kill -9 at every step of the publication (VESSELID_TEST_KILL_AT_PUBLISH_STEP: the process
+// sends itself SIGKILL after that many removals, moves and manifest writes), 54 kills in all:
+// the folder never holds files of both sets, holds results.json only over a whole set, and the
+// next command finishes the publication into the whole new set.
+TEST_F(HostileInput, KilledAtEveryStepOfThePublicationNeverMixesTwoSets) {
+  const fs::path out = dir_ / "out", pristine = dir_ / "set_a";
+  ASSERT_EQ(Run("", pristine).status, 0);
+  // Every file of a set but the folder's bookkeeping, with its content.
+  auto files = [](const fs::path& folder) {
+    std::map<std::string, std::string> set;
+    for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+      const std::string relative = entry.path().lexically_relative(folder).string();
+      if (!entry.is_regular_file() || relative.rfind(".vesselid", 0) == 0 ||
+          relative.rfind("checkpoint", 0) == 0) {
+        continue;
+      }
+      set[relative] = ReadFile(entry.path());
+    }
+    return set;
+  };
+  const std::map<std::string, std::string> a = files(pristine);
+  EditConfig("name: fit", "name: refit");  // set B: other trace names, other results
+  ASSERT_EQ(Run("", dir_ / "set_b").status, 0);
+  std::set<std::string> b_names;
+  for (const auto& [name, text] : files(dir_ / "set_b")) b_names.insert(name);
+  int kills = 0;
+  for (int round = 0; kills < 50 && round < 20; ++round) {
+    for (int step = 1;; ++step) {
+      fs::remove_all(out);
+      fs::copy(pristine, out, fs::copy_options::recursive);
+      const Outcome killed =
+          Run("VESSELID_TEST_KILL_AT_PUBLISH_STEP=" + std::to_string(step) + " ", out);
+      if (killed.status == 0) break;  // the publication has fewer steps
+      ++kills;
+      SCOPED_TRACE("killed after step " + std::to_string(step));
+      int of_a = 0, of_b = 0;
+      const std::map<std::string, std::string> now = files(out);
+      for (const auto& [name, text] : now) {
+        const auto found = a.find(name);
+        (found != a.end() && found->second == text ? of_a : of_b) += 1;
+      }
+      EXPECT_FALSE(of_a > 0 && of_b > 0) << of_a << " files of set A beside " << of_b << " of B";
+      if (now.count("results.json") != 0) {
+        EXPECT_TRUE(now == a || of_b == static_cast<int>(b_names.size()))
+            << "results.json beside a partial set";
+      }
+      const Outcome next = Run("", out);
+      ASSERT_EQ(next.status, 0) << next.output;
+      std::set<std::string> names;
+      for (const auto& [name, text] : files(out)) names.insert(name);
+      EXPECT_EQ(names, b_names);
+      EXPECT_FALSE(fs::exists(out / kStagingFolder));
+    }
+  }
+  EXPECT_GE(kills, 50);
+}
+
+// --resume finds the checkpoint of the same config and data named by other spellings of
+// their paths (compared canonically).
+TEST_F(HostileInput, ResumeKnowsTheSameFilesByAnotherSpelling) {
+  ASSERT_EQ(Run().status, 0);
+  const std::string command = std::string(VESSELID_BINARY) + " run " + dir_.string() +
+                              "/./config.yaml --out " + dir_.string() + "/./out/ --resume 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  char buffer[512];
+  while (fgets(buffer, sizeof(buffer), pipe) != nullptr) output += buffer;
+  EXPECT_EQ(pclose(pipe), 0) << output;
+  EXPECT_EQ(output.find("another config or other data"), std::string::npos) << output;
+}
+
 // A link planted at the staging folder's name (to a forged journal and a file outside --out)
 // and at the lock's name: neither is followed; the files they point to stay as they were.
 TEST_F(HostileInput, LinksPlantedInOutAreNotFollowed) {

@@ -135,7 +135,7 @@ TEST_F(OutputStagingTest, StagingWithoutJournalIsRemovedByTheNextCommand) {
 TEST_F(OutputStagingTest, PublicationKilledAtAnyStepIsFinishedByTheNextCommand) {
   const std::map<std::string, std::string> b = {
       {"results.json", "B"}, {"report.txt", "B"}, {"traces/fit.b.csv", "B"}};
-  for (int moved = 0; moved <= 4; ++moved) {
+  for (int moved = 0; moved <= 6; ++moved) {
     SCOPED_TRACE(moved);
     fs::remove_all(out_);
     fs::create_directories(out_);
@@ -151,11 +151,10 @@ TEST_F(OutputStagingTest, PublicationKilledAtAnyStepIsFinishedByTheNextCommand) 
     // The steps in the order Publish takes them.
     if (moved >= 1) fs::remove(out_ / "results.json");
     if (moved >= 2) fs::remove(out_ / "report.html");
-    if (moved >= 3) fs::rename(staging / "report.txt", out_ / "report.txt");
-    if (moved >= 4) {
-      fs::remove_all(out_ / "traces");
-      fs::rename(staging / "traces", out_ / "traces");
-    }
+    if (moved >= 3) fs::remove(out_ / "report.txt");
+    if (moved >= 4) fs::remove_all(out_ / "traces");
+    if (moved >= 5) fs::rename(staging / "report.txt", out_ / "report.txt");
+    if (moved >= 6) fs::rename(staging / "traces", out_ / "traces");
     bool finished = false;
     ASSERT_TRUE(FinishPublication(out_.string(), &error, &finished)) << error;
     EXPECT_TRUE(finished);
