@@ -11,7 +11,8 @@
 namespace vesselid {
 
 // Empty when `file` (as the config writes it: relative to `folder` unless absolute) lies in
-// `folder`; else the data folder (absolute) it lies outside of.
+// `folder`, by its name and, with links resolved, by what it is; else the data folder
+// (absolute) it lies outside of.
 std::string DataFolderLeft(const std::string& file, const std::string& folder);
 
 // Empty when `file` lies in `folder` or the limits allow files outside it; else why it is

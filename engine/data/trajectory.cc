@@ -114,15 +114,37 @@ void ReserveRows(std::uint64_t rows, Trajectory* trajectory) {
 
 constexpr char kByteOrderMark[] = "\xEF\xBB\xBF";
 
-// The trimmed fields of `line` into *fields (views into the line).
+// The trimmed fields of `line` into *fields (views into the line). A field in double quotes
+// (RFC 4180, as pandas writes a note holding a comma) may hold the separator and "" for a
+// quote; its view is what lies between the quotes ("" left as it is: such a field is text,
+// which no read column takes).
 void SplitFields(std::string_view line, char separator, std::vector<std::string_view>* fields) {
   fields->clear();
   const char* p = line.data();
   const char* const end = p + line.size();
   while (true) {
+    const char* const start = p;
     const char* field = p;
+    while (field != end && (*field == ' ' || *field == '\t') && *field != separator) ++field;
+    if (field != end && *field == '"') {
+      const char* close = field + 1;
+      while (close != end && !(*close == '"' && (close + 1 == end || close[1] != '"'))) {
+        close += *close == '"' ? 2 : 1;  // "" inside: one quote
+      }
+      if (close != end) {
+        const char* after = close + 1;
+        while (after != end && *after != separator && (*after == ' ' || *after == '\t')) ++after;
+        if (after == end || *after == separator) {
+          fields->push_back(std::string_view(field + 1, close - field - 1));
+          if (after == end) break;
+          p = after + 1;
+          continue;
+        }
+      }
+      // No closing quote before the separator: read as plain text.
+    }
     while (p != end && *p != separator) ++p;
-    fields->push_back(Trim(std::string_view(field, p - field)));
+    fields->push_back(Trim(std::string_view(start, p - start)));
     if (p == end) break;
     ++p;
   }
@@ -170,7 +192,9 @@ bool CheckHeader(const std::vector<std::string>& header, std::string_view line,
   const std::set<std::string> wanted(options.columns.begin(), options.columns.end());
   const std::string& time_name = options.time_column;
   for (size_t i = 0; i < header.size(); ++i) {
-    if (header[i] == time_name) *time_column = static_cast<int>(i);
+    if (header[i] != time_name) continue;
+    if (*time_column >= 0) return fail("duplicate column '" + header[i] + "' (the time)");
+    *time_column = static_cast<int>(i);
   }
   if (*time_column < 0) {
     // A header split by another separator names the separator, not a missing column.

@@ -397,6 +397,22 @@ TEST_F(HostileInput, DataFilesOutsideTheDataFolderNeedOutsideData) {
   fs::remove(dir_.parent_path() / name);
 }
 
+// A link inside the data folder to a file, or to a folder, outside it leaves the folder as
+// "../" does.
+TEST_F(HostileInput, LinksOutOfTheDataFolderAreOutside) {
+  const fs::path elsewhere = dir_.string() + "_elsewhere";
+  fs::remove_all(elsewhere);
+  fs::create_directories(elsewhere);
+  fs::copy_file(dir_ / "data.csv", elsewhere / "data.csv");
+  fs::create_symlink(elsewhere / "data.csv", dir_ / "linked.csv");
+  EditConfig("file: data.csv", "file: linked.csv");
+  ExpectRejected("'linked\\.csv' is outside the data folder");
+  fs::create_directory_symlink(elsewhere, dir_ / "linked_folder");
+  EditConfig("file: data.csv", "file: linked_folder/data.csv");
+  ExpectRejected("'linked_folder/data\\.csv' is outside the data folder");
+  fs::remove_all(elsewhere);
+}
+
 // --- Where the results go ----------------------------------------------------------------
 
 TEST_F(HostileInput, OutEmptyOrTheRootFolderIsRefused) {
@@ -596,6 +612,29 @@ TEST_F(HostileInput, SemicolonSeparatorIsNamed) {
   EditConfig("    file: data.csv\n", "    file: data.csv\n    separator: \";\"\n");
   const Outcome outcome = Run();
   EXPECT_EQ(outcome.status, 0) << outcome.output;
+}
+
+// A note column as pandas writes it: quoted where it holds the separator or a quote (RFC 4180).
+TEST_F(HostileInput, QuotedFieldsHoldingTheSeparatorAreRead) {
+  std::stringstream text(ReadData());
+  std::string line, edited;
+  for (int n = 1; std::getline(text, line); ++n) {
+    edited += line + (n == 1 ? ",note" : n == 5 ? ",\"turned, then \"\"steady\"\"\"" : ",") + "\n";
+  }
+  WriteData(edited);
+  const Outcome outcome = Run();
+  EXPECT_EQ(outcome.status, 0) << outcome.output;
+}
+
+// A second time column is named a duplicate, also where the config reads named columns only.
+TEST_F(HostileInput, ASecondTimeColumnIsADuplicate) {
+  std::stringstream text(ReadData());
+  std::string line, edited;
+  for (int n = 1; std::getline(text, line); ++n) {
+    edited += line + "," + (n == 1 ? std::string("t") : line.substr(0, line.find(','))) + "\n";
+  }
+  WriteData(edited);
+  ExpectRejected("data\\.csv:1: duplicate column 't' \\(the time\\)");
 }
 
 TEST_F(HostileInput, TabSeparatorIsNamed) {
