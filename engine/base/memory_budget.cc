@@ -10,15 +10,20 @@ namespace vesselid {
 namespace {
 
 std::atomic<std::uint64_t> budget_in_force{0};  // 0: the default
+std::atomic<bool> budget_held{false};  // the configured budget was above the machine's
+
+// The machine's physical memory (4 GiB where sysconf cannot tell).
+std::uint64_t PhysicalMemory() {
+  const long pages = sysconf(_SC_PHYS_PAGES);
+  const long page = sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page <= 0) return std::uint64_t{4} << 30;
+  return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page);
+}
 
 }  // namespace
 
 std::uint64_t DefaultMemoryBudget() {
-  const long pages = sysconf(_SC_PHYS_PAGES);
-  const long page = sysconf(_SC_PAGE_SIZE);
-  const std::uint64_t gib = std::uint64_t{1} << 30;
-  if (pages <= 0 || page <= 0) return 4 * gib;
-  return std::max(gib, static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 2);
+  return std::max(std::uint64_t{1} << 30, PhysicalMemory() / 2);
 }
 
 std::uint64_t MemoryBudget() {
@@ -26,10 +31,19 @@ std::uint64_t MemoryBudget() {
   return bytes > 0 ? bytes : DefaultMemoryBudget();
 }
 
+// A configured budget above 90 % of the machine's memory is held there: what it admits would
+// end in std::bad_alloc or the kernel's out-of-memory killer, not in a refusal.
 ScopedMemoryBudget::ScopedMemoryBudget(std::uint64_t bytes)
-    : previous_(budget_in_force.exchange(bytes)) {}
+    : previous_(budget_in_force.load()), previous_held_(budget_held.load()) {
+  const std::uint64_t most = PhysicalMemory() / 10 * 9;
+  budget_held.store(bytes > most);
+  budget_in_force.store(std::min(bytes, most));
+}
 
-ScopedMemoryBudget::~ScopedMemoryBudget() { budget_in_force.store(previous_); }
+ScopedMemoryBudget::~ScopedMemoryBudget() {
+  budget_in_force.store(previous_);
+  budget_held.store(previous_held_);
+}
 
 std::string FormatBytes(double bytes) {
   const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
@@ -45,7 +59,9 @@ std::string FormatBytes(double bytes) {
 
 std::string OverBudget(const std::string& what, double bytes) {
   return what + " need " + FormatBytes(bytes) + ", more than the memory budget of " +
-         FormatBytes(static_cast<double>(MemoryBudget())) + " (limits.memory_mb)";
+         FormatBytes(static_cast<double>(MemoryBudget())) +
+         (budget_held.load() ? " (limits.memory_mb, held to 90 % of this machine's memory)"
+                             : " (limits.memory_mb)");
 }
 
 }  // namespace vesselid

@@ -16,7 +16,8 @@ std::uint64_t DefaultMemoryBudget();
 // The budget in force: the innermost ScopedMemoryBudget's, else DefaultMemoryBudget().
 std::uint64_t MemoryBudget();
 
-// Sets the budget for the scope of a run (0: the default), restoring the previous one.
+// Sets the budget for the scope of a run (0: the default; at most 90 % of the machine's
+// memory), restoring the previous one.
 class ScopedMemoryBudget {
  public:
   explicit ScopedMemoryBudget(std::uint64_t bytes);
@@ -26,6 +27,7 @@ class ScopedMemoryBudget {
 
  private:
   std::uint64_t previous_;
+  bool previous_held_;
 };
 
 // "812 MiB", "57.6 GiB" (the binary units of limits.memory_mb and file_mb, three digits).

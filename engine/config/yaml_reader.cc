@@ -2,7 +2,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <set>
+#include <string_view>
 
 #include "engine/base/file_name.h"
 #include "engine/base/input_file.h"
@@ -43,6 +46,39 @@ void CheckUniqueKeys(const YamlReader& reader, const YAML::Node& node, const std
   }
 }
 
+// Deepest flow nesting ([ and {) a config may have: yaml-cpp tokenises a whole document before
+// it finds one too deep, and 5 000 000 nested [ (10 MB) take it 1.35 GB.
+constexpr int kMaxFlowDepth = 64;
+
+// The 1-based line where `text`'s flow collections nest deeper than kMaxFlowDepth (brackets in
+// quotes and comments aside); 0 when they do not.
+int FlowTooDeep(const std::string& text) {
+  int depth = 0, line = 1;
+  char quote = 0;
+  bool comment = false;
+  char previous = '\n';
+  for (char c : text) {
+    if (c == '\n') {
+      ++line;
+      comment = false;
+    } else if (comment) {
+    } else if (quote != 0) {
+      if (c == quote) quote = 0;
+    } else if (c == '#' && (previous == ' ' || previous == '\t' || previous == '\n')) {
+      comment = true;
+    } else if ((c == '"' || c == '\'') &&
+               std::string_view(" \t\n[{,:-").find(previous) != std::string_view::npos) {
+      quote = c;  // a quoted scalar starts here (an apostrophe inside a word does not)
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxFlowDepth) return line;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+    previous = c;
+  }
+  return 0;
+}
+
 }  // namespace
 
 YAML::Node YamlReader::Load() const {
@@ -54,9 +90,19 @@ YAML::Node YamlReader::Load() const {
   if (!from_text_ && !CheckInputFile(file_, "config file", kMaxConfigBytes, "", &error)) {
     throw ConfigError(error);
   }
+  std::string text = text_;
+  if (!from_text_) {
+    std::ifstream in(file_, std::ios::binary);
+    if (!in) throw ConfigError(file_ + ": cannot open file");
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  if (const int line = FlowTooDeep(text); line > 0) {
+    throw ConfigError(file_ + ":" + std::to_string(line) + ": YAML lists or maps nested deeper than " +
+                      std::to_string(kMaxFlowDepth) + " levels");
+  }
   YAML::Node root;
   try {
-    root = from_text_ ? YAML::Load(text_) : YAML::LoadFile(file_);
+    root = YAML::Load(text);
   } catch (const YAML::BadFile&) {
     throw ConfigError(file_ + ": cannot open file");
   } catch (const YAML::DeepRecursion& e) {

@@ -244,7 +244,10 @@ bool CountRows(RowBlock* block) {
   const char* p = block->text.data();
   const char* const end = p + block->text.size();
   while (p != end) {
-    const char* newline = static_cast<const char*>(std::memchr(p, '\n', end - p));
+    // Looked for no further than a line may reach: a longer one is not read past.
+    const size_t reach = std::min<size_t>(end - p, LineReader::kMaxLine + 1);
+    const char* newline = static_cast<const char*>(std::memchr(p, '\n', reach));
+    if (newline == nullptr && reach < static_cast<size_t>(end - p)) return false;
     const char* line_end = newline != nullptr ? newline : end;
     if (static_cast<size_t>(line_end - p) > LineReader::kMaxLine) return false;
     ++block->lines;
@@ -298,6 +301,16 @@ bool ParseRowBlock(const RowBlock& block, const CsvReadOptions& options,
   return true;
 }
 
+// The end of the line at `from` in `text` (its newline, or the text's end), looked for no
+// further than LineReader::kMaxLine: npos for a longer line, which the sequential reader then
+// names.
+size_t LineEnd(std::string_view text, size_t from) {
+  const size_t limit = std::min(text.size(), from + LineReader::kMaxLine + 1);
+  const size_t newline = text.substr(0, limit).find('\n', from);
+  if (newline != std::string_view::npos) return newline;
+  return limit == text.size() ? text.size() : std::string_view::npos;
+}
+
 // ReadTrajectoryCsv's fast path for a file of many rows: read whole, cut into blocks at line
 // ends, the blocks parsed on the machine's cores and joined in order. False, with nothing
 // reported, for anything the sequential reader would reject or that needs its care (a file
@@ -306,8 +319,9 @@ bool ParseRowBlock(const RowBlock& block, const CsvReadOptions& options,
 bool ReadTrajectoryCsvInBlocks(const std::string& path, const CsvReadOptions& options,
                                Trajectory* trajectory) {
   const int threads = ParallelThreads(0);
-  // The file mapped, not copied: its pages are the page cache's (MAP_POPULATE maps them all
-  // at once rather than a fault per page).
+  // The file mapped, not copied: its pages are the page cache's, read ahead (MADV_WILLNEED)
+  // but mapped only as the parse reaches them, so that a file the parse gives up on early (a
+  // line beyond kMaxLine) never becomes resident whole.
   struct Mapping {
     void* data = MAP_FAILED;
     size_t length = 0;
@@ -323,7 +337,8 @@ bool ReadTrajectoryCsvInBlocks(const std::string& path, const CsvReadOptions& op
         static_cast<std::uint64_t>(info.st_size) >= std::max<std::uint64_t>(options.parallel_bytes, 2) &&
         static_cast<std::uint64_t>(info.st_size) <= options.max_bytes) {
       mapping.length = static_cast<size_t>(info.st_size);
-      mapping.data = ::mmap(nullptr, mapping.length, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+      mapping.data = ::mmap(nullptr, mapping.length, PROT_READ, MAP_PRIVATE, fd, 0);
+      if (mapping.data != MAP_FAILED) ::madvise(mapping.data, mapping.length, MADV_WILLNEED);
     }
     ::close(fd);
     if (mapping.data == MAP_FAILED) return false;
@@ -334,7 +349,7 @@ bool ReadTrajectoryCsvInBlocks(const std::string& path, const CsvReadOptions& op
   int header_line = 0;
   std::string_view line;
   while (begin < text.size()) {
-    const size_t newline = text.find('\n', begin);
+    const size_t newline = LineEnd(text, begin);
     if (newline == std::string_view::npos) return false;
     line = text.substr(begin, newline - begin);
     begin = newline + 1;
@@ -360,7 +375,8 @@ bool ReadTrajectoryCsvInBlocks(const std::string& path, const CsvReadOptions& op
     size_t at = begin;
     std::string_view first;
     while (at < text.size()) {
-      const size_t newline = std::min(text.find('\n', at), text.size());
+      const size_t newline = LineEnd(text, at);
+      if (newline == std::string_view::npos) return false;
       first = text.substr(at, newline - at);
       at = newline + 1;
       if (!Trim(first).empty()) break;
@@ -379,8 +395,9 @@ bool ReadTrajectoryCsvInBlocks(const std::string& path, const CsvReadOptions& op
   for (size_t from = begin; from < text.size();) {
     size_t to = std::min(text.size(), from + size);
     if (to < text.size()) {
-      const size_t newline = text.find('\n', to - 1);
-      to = newline == std::string_view::npos ? text.size() : newline + 1;
+      const size_t newline = LineEnd(text, to - 1);
+      if (newline == std::string_view::npos) return false;
+      to = newline + 1;
     }
     blocks.emplace_back();
     blocks.back().text = text.substr(from, to - from);

@@ -311,7 +311,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     run.final_validation = std::move(answers[0].fits);
     run.final_held_out_parameters = std::move(answers[0].parameters);
     run.final_validation_residuals = std::move(answers[0].residuals);
-    if (!SetPredictionBands(config, model, options, &cache, &run, error)) {
+    if (!SetPredictionBands(config, model, v.experiments, options, &cache, &run, error)) {
       *error = "final validation: " + *error;
       return false;
     }

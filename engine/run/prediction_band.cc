@@ -251,9 +251,9 @@ PredictionBand BandOf(const ModelHandle& model, Experiment experiment, const Exp
 }  // namespace
 
 bool SetPredictionBands(const RunConfig& config, const ModelHandle& model,
-                        const ExperimentOptions& options, TrajectoryCache* cache, RunResult* run,
-                        std::string* error) {
-  std::vector<std::string> names;
+                        const std::vector<std::string>& records, const ExperimentOptions& options,
+                        TrajectoryCache* cache, RunResult* run, std::string* error) {
+  std::vector<std::string> names;  // the runs (a record's segments are runs of their own)
   std::vector<int> fits;
   for (size_t k = 0; k < run->final_validation.size(); ++k) {
     const ExperimentFit& fit = run->final_validation[k];
@@ -267,7 +267,7 @@ bool SetPredictionBands(const RunConfig& config, const ModelHandle& model,
   const std::map<std::string, TrainingLevel> levels = TrainingLevels(*run);
   if (names.empty() || levels.empty()) return true;
   std::vector<Experiment> experiments;
-  if (!PrepareExperiments(config, names, model, options, cache, &experiments, error)) return false;
+  if (!PrepareExperiments(config, records, model, options, cache, &experiments, error)) return false;
   std::vector<int> shared;
   const Eigen::MatrixXd covariance = SharedCovariance(*run, &shared);
   const int count = static_cast<int>(fits.size());

@@ -26,12 +26,12 @@
 
 namespace vesselid {
 
-// Sets `band` of every fit of run->final_validation flown from its measured start, from the
-// last accepted output-error stage's fit and run->parameters. Runs that diverged, were
-// refitted, or whose outputs the training fit did not compare are left without. False with
-// `error` only when the records cannot be prepared.
+// Sets `band` of every fit of run->final_validation flown from its measured start (the runs
+// of the configured `records`), from the last accepted output-error stage's fit and
+// run->parameters. Runs that diverged, were refitted, or whose outputs the training fit did
+// not compare are left without. False with `error` only when the records cannot be prepared.
 bool SetPredictionBands(const RunConfig& config, const ModelHandle& model,
-                        const ExperimentOptions& options, TrajectoryCache* cache, RunResult* run,
-                        std::string* error);
+                        const std::vector<std::string>& records, const ExperimentOptions& options,
+                        TrajectoryCache* cache, RunResult* run, std::string* error);
 
 }  // namespace vesselid

@@ -132,6 +132,10 @@ bool ForEachRecordSpec(const RunConfig& config, const std::vector<std::string>& 
                        const TooShort& too_short, const Build& build, std::string* error) {
   for (const std::string& name : names) {
     const ExperimentSpec* spec = config.FindExperiment(name);
+    if (spec == nullptr) {  // the config reader checks the names a config gives
+      *error = "no experiment '" + name + "' in the config";
+      return false;
+    }
     const Trajectory* data = LoadCachedTrajectory(*spec, cache, error);
     std::vector<ExperimentSpec> pieces, specs;
     if (data == nullptr || !RecordSpecs(*spec, *data, segment_length, &pieces, error)) return false;

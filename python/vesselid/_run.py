@@ -5,7 +5,7 @@ import os
 import numpy as np
 
 from . import _core
-from ._errors import raise_for
+from ._errors import DataError, raise_for
 from ._result import Result
 
 
@@ -33,13 +33,26 @@ def _columns(name, frame):
                 # Epoch times: seconds since 1970 (the engine makes them relative).
                 values = series.dt.tz_localize(None) if series.dt.tz is not None else series
                 columns[str(column)] = values.astype("int64").to_numpy() / 1e9
+            elif pd.api.types.is_complex_dtype(series):
+                raise DataError("data['%s'] column '%s': complex values (the imaginary part "
+                                "would be lost); give its real part" % (name, column))
             elif pd.api.types.is_numeric_dtype(series) or pd.api.types.is_bool_dtype(series):
                 columns[str(column)] = series.to_numpy(dtype=np.float64, na_value=np.nan)
             # Text columns (a timestamp string, a note) are left out, as the CSV reader skips
             # columns it does not map.
         return columns
     if isinstance(frame, dict):
-        return {str(k): np.asarray(v, dtype=np.float64) for k, v in frame.items()}
+        columns = {}
+        for k, v in frame.items():
+            values = np.asarray(v)
+            if np.iscomplexobj(values):
+                raise DataError("data['%s'] column '%s': complex values (the imaginary part "
+                                "would be lost); give its real part" % (name, k))
+            if values.dtype.kind not in "biuf":
+                raise DataError("data['%s'] column '%s': %s values, not numbers"
+                                % (name, k, values.dtype))
+            columns[str(k)] = values.astype(np.float64)
+        return columns
     raise TypeError("data['%s'] must be a pandas DataFrame or a dict of columns, not %s"
                     % (name, type(frame).__name__))
 

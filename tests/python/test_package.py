@@ -152,6 +152,17 @@ def test_errors_carry_the_cli_messages(campaign):
         experiment.pop("file")
     with pytest.raises(vesselid.ConfigError, match="no data given for it"):
         vesselid.run(config, data={"zz10s_a": campaign["frames"]["zz10s_a"]})
+    # A complex column loses nothing silently; a dict column of text is named.
+    frames = dict(campaign["frames"])
+    complex_frame = frames["zz10s_a"].copy()
+    complex_frame["psi"] = complex_frame["psi"] + 1j
+    frames["zz10s_a"] = complex_frame
+    with pytest.raises(vesselid.DataError, match=r"data\['zz10s_a'\] column 'psi': complex"):
+        vesselid.run(campaign["path"], data=frames)
+    columns = {k: v.to_numpy() for k, v in campaign["frames"]["zz10s_a"].items()}
+    columns["delta"] = columns["delta"].astype(str)
+    with pytest.raises(vesselid.DataError, match=r"column 'delta': <U\d+ values, not numbers"):
+        vesselid.run(campaign["path"], data={"zz10s_a": columns})
 
 
 def test_load_config_returns_the_schema_as_data(campaign):

@@ -93,6 +93,9 @@ TEST_F(HostileInput, ConfigFileIsAFolder) {
 TEST_F(HostileInput, DataFileIsADevice) {
   fs::remove(dir_ / "data.csv");
   fs::create_symlink("/dev/zero", dir_ / "data.csv");
+  // A link out of the data folder leaves it; allowed, the device is still no data file.
+  ExpectRejected("'data\\.csv' is outside the data folder");
+  WriteConfig(std::string(kGoodConfig) + "limits: {outside_data: true}\n");
   ExpectRejected("data\\.csv: is a character device, not a data file");
 }
 
@@ -112,6 +115,23 @@ TEST_F(HostileInput, SparseFileLargerThanTheLimitIsNotRead) {
       "data\\.csv: the data file is 2\\.0 GiB, more than the limit of 1\\.0 GiB "
       "\\(limits\\.file_mb\\)");
   EXPECT_LT(ChildPeakMiB(), 1024.0);  // never read (the fingerprint used to read it whole)
+}
+
+// With file_mb raised, a 2 GiB line (a sparse file after the header) is refused at 16 MiB,
+// not mapped or read whole first.
+TEST_F(HostileInput, ALineOfGigabytesIsRefusedAtTheLineLimit) {
+  std::ofstream(dir_ / "data.csv") << "t,delta,psi\n0,0,0\n";
+  fs::resize_file(dir_ / "data.csv", std::uintmax_t{2} << 30);  // sparse: no disk used
+  WriteConfig(std::string(kGoodConfig) + "limits: {file_mb: 4096}\n");
+  ExpectRejected("data\\.csv:3: line longer than 16 MiB");
+  EXPECT_LT(ChildPeakMiB(), 1024.0);
+}
+
+// 5 000 000 nested [ in a 5 MB config: refused before yaml-cpp tokenises it.
+TEST_F(HostileInput, DeeplyNestedConfigIsRefusedBeforeItIsParsed) {
+  WriteConfig(std::string(kGoodConfig) + "description: " + std::string(5000000, '[') + "\n");
+  ExpectRejected("config\\.yaml:13: YAML lists or maps nested deeper than 64 levels");
+  EXPECT_LT(ChildPeakMiB(), 1024.0);
 }
 
 TEST_F(HostileInput, ValidHeadOfAFileLargerThanTheLimit) {
@@ -168,6 +188,16 @@ TEST_F(HostileInput, MemoryBudgetIsTheConfigs) {
              "    free_initial_states: [psi]\n    integration: {max_step: 1.0e-5}\n"
              "limits: {memory_mb: 1}\n");
   ExpectRejected("more than the memory budget of 1 MiB \\(limits\\.memory_mb\\)");
+}
+
+// limits.memory_mb above the machine's memory is held to 90 % of it: 6e9 steps (about 180 GiB
+// of input caches) under a budget of 1 TiB are refused, not met with std::bad_alloc.
+TEST_F(HostileInput, MemoryBudgetAboveTheMachinesIsHeldToIt) {
+  EditConfig("    free_initial_states: [psi]\n",
+             "    free_initial_states: [psi]\n    integration: {max_step: 1.0e-8}\n"
+             "limits: {memory_mb: 1048576, integration_steps: 1e10}\n");
+  ExpectRejected("\\(limits\\.memory_mb, held to 90 % of this machine's memory\\)");
+  EXPECT_LT(ChildPeakMiB(), 1024.0);
 }
 
 TEST_F(HostileInput, AbsurdLastTimeIsRefusedBeforeTheRun) {
