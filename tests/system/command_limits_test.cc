@@ -15,6 +15,7 @@
 
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
+#include "tests/support/run_command.h"
 
 namespace vesselid {
 namespace command_limits_test {
@@ -22,20 +23,12 @@ namespace command_limits_test {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-struct Outcome {
-  int status;
-  std::string output;
-};
+using testing::CommandOutcome;
 
-Outcome Command(const std::string& arguments) {
-  // `timeout`: a command that blocks (a FIFO opened for reading) fails the test, not CI.
-  const std::string command = "timeout 60 " + std::string(VESSELID_BINARY) + " " + arguments + " 2>&1";
-  Outcome outcome{0, ""};
-  FILE* pipe = popen(command.c_str(), "r");
-  char buffer[512];
-  while (fgets(buffer, sizeof(buffer), pipe) != nullptr) outcome.output += buffer;
-  outcome.status = pclose(pipe);
-  return outcome;
+// `vesselid <arguments>`; `timeout`: a command that blocks (a FIFO opened for reading) fails the
+// test, not CI.
+CommandOutcome Command(const std::string& arguments) {
+  return testing::RunCommand("timeout 60 " + std::string(VESSELID_BINARY) + " " + arguments);
 }
 
 // Largest resident set of any child process so far, MiB.
@@ -56,7 +49,7 @@ class CommandLimits : public ::testing::Test {
     fs::remove_all(dir_);
     const std::string config = std::string(VESSELID_SOURCE_DIR) + "/configs/design_cargo.yaml";
     ASSERT_EQ(Command("simulate " + config + " --out " + (dir_ / "data").string()).status, 0);
-    const Outcome run = Command("run " + config + " --data " + (dir_ / "data").string() +
+    const CommandOutcome run = Command("run " + config + " --data " + (dir_ / "data").string() +
                                 " --out " + (dir_ / "run").string() + " --quiet --no-report");
     ASSERT_EQ(run.status, 0) << run.output;
   }
@@ -72,7 +65,7 @@ class CommandLimits : public ::testing::Test {
     std::ofstream(copy / "results.json") << results.dump();
     return copy.string();
   }
-  static void ExpectRefused(const Outcome& outcome, const std::string& pattern) {
+  static void ExpectRefused(const CommandOutcome& outcome, const std::string& pattern) {
     EXPECT_NE(outcome.status, 0) << outcome.output;
     EXPECT_TRUE(std::regex_search(outcome.output, std::regex(pattern)))
         << "expected /" << pattern << "/ in:\n" << outcome.output;

@@ -10,6 +10,7 @@
 
 #include <csignal>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <map>
 #include <set>
@@ -18,6 +19,7 @@
 #include "engine/base/atomic_file.h"
 #include "engine/output/output_staging.h"
 #include "tests/support/bad_input_fixture.h"
+#include "tests/support/run_command.h"
 
 namespace vesselid {
 namespace hostile_input_test {
@@ -68,6 +70,16 @@ class HostileInput : public BadInput {
     struct rusage usage;
     ::getrusage(RUSAGE_CHILDREN, &usage);
     return usage.ru_maxrss / 1024.0;
+  }
+  // Appends a column `name` to data.csv, its cell on data line n (2: the first row) cell(n, row).
+  void AppendColumn(const std::string& name,
+                    const std::function<std::string(int, const std::string&)>& cell) {
+    std::stringstream text(ReadData());
+    std::string line, edited;
+    for (int n = 1; std::getline(text, line); ++n) {
+      edited += line + "," + (n == 1 ? name : cell(n, line)) + "\n";
+    }
+    WriteData(edited);
   }
   // The data's last line (1-based).
   int LastLine() {
@@ -577,14 +589,12 @@ TEST_F(HostileInput, KilledAtEveryStepOfThePublicationNeverMixesTwoSets) {
 // their paths (compared canonically).
 TEST_F(HostileInput, ResumeKnowsTheSameFilesByAnotherSpelling) {
   ASSERT_EQ(Run().status, 0);
-  const std::string command = std::string(VESSELID_BINARY) + " run " + dir_.string() +
-                              "/./config.yaml --out " + dir_.string() + "/./out/ --resume 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  char buffer[512];
-  while (fgets(buffer, sizeof(buffer), pipe) != nullptr) output += buffer;
-  EXPECT_EQ(pclose(pipe), 0) << output;
-  EXPECT_EQ(output.find("another config or other data"), std::string::npos) << output;
+  const testing::CommandOutcome resumed =
+      testing::RunCommand(std::string(VESSELID_BINARY) + " run " + dir_.string() +
+                          "/./config.yaml --out " + dir_.string() + "/./out/ --resume");
+  EXPECT_EQ(resumed.status, 0) << resumed.output;
+  EXPECT_EQ(resumed.output.find("another config or other data"), std::string::npos)
+      << resumed.output;
 }
 
 // A link planted at the staging folder's name (to a forged journal and a file outside --out)
@@ -647,24 +657,16 @@ TEST_F(HostileInput, SemicolonSeparatorIsNamed) {
 
 // A note column as pandas writes it: quoted where it holds the separator or a quote (RFC 4180).
 TEST_F(HostileInput, QuotedFieldsHoldingTheSeparatorAreRead) {
-  std::stringstream text(ReadData());
-  std::string line, edited;
-  for (int n = 1; std::getline(text, line); ++n) {
-    edited += line + (n == 1 ? ",note" : n == 5 ? ",\"turned, then \"\"steady\"\"\"" : ",") + "\n";
-  }
-  WriteData(edited);
+  AppendColumn("note", [](int n, const std::string&) {
+    return n == 5 ? std::string("\"turned, then \"\"steady\"\"\"") : std::string();
+  });
   const Outcome outcome = Run();
   EXPECT_EQ(outcome.status, 0) << outcome.output;
 }
 
 // A second time column is named a duplicate, also where the config reads named columns only.
 TEST_F(HostileInput, ASecondTimeColumnIsADuplicate) {
-  std::stringstream text(ReadData());
-  std::string line, edited;
-  for (int n = 1; std::getline(text, line); ++n) {
-    edited += line + "," + (n == 1 ? std::string("t") : line.substr(0, line.find(','))) + "\n";
-  }
-  WriteData(edited);
+  AppendColumn("t", [](int, const std::string& row) { return row.substr(0, row.find(',')); });
   ExpectRejected("data\\.csv:1: duplicate column 't' \\(the time\\)");
 }
 
