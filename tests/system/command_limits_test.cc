@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
+#include <map>
 #include <regex>
 #include <string>
 
@@ -154,6 +156,55 @@ TEST_F(CommandLimits, APlannedLogBeyondTheBudgetIsRefused) {
     ExpectRefused(Command("design " + config.string() + " --from " + (dir_ / "run").string()),
                   "design.duration / design.sample_time: a planned log of [0-9.e+]+ samples");
   }
+}
+
+// `export --format c` (three files) killed with SIGKILL after every step of its publication,
+// over an earlier export of other ensemble draws: the folder never holds files of both, and
+// the next export ends in the whole new set.
+TEST_F(CommandLimits, ExportKilledAtEveryStepOfItsPublicationNeverMixesTwoSets) {
+  const std::string run = (dir_ / "run").string();
+  const fs::path out = dir_ / "export", pristine = dir_ / "export_a";
+  // Each published file by its inode: a file of the earlier set keeps the inode it was copied
+  // to, a file of the new one is renamed in with its own.
+  auto files = [](const fs::path& folder) {
+    std::map<std::string, ino_t> set;
+    for (const auto& entry : fs::directory_iterator(folder)) {
+      const std::string name = entry.path().filename().string();
+      struct stat info;
+      if (!entry.is_regular_file() || name.rfind(".vesselid", 0) == 0 ||
+          ::stat(entry.path().c_str(), &info) != 0) {
+        continue;
+      }
+      set[name] = info.st_ino;
+    }
+    return set;
+  };
+  ASSERT_EQ(Command("export " + run + " --format c --seed 1 --out " + pristine.string()).status, 0);
+  ASSERT_EQ(files(pristine).size(), 3u);
+  int kills = 0;
+  for (int step = 1; step < 20; ++step) {
+    fs::remove_all(out);
+    fs::copy(pristine, out, fs::copy_options::recursive);
+    const std::map<std::string, ino_t> a = files(out);
+    const CommandOutcome killed =
+        testing::RunCommand("VESSELID_TEST_KILL_AT_PUBLISH_STEP=" + std::to_string(step) + " " +
+                            VESSELID_BINARY + " export " + run + " --format c --seed 2 --out " +
+                            out.string());
+    if (killed.status == 0) break;
+    ++kills;
+    SCOPED_TRACE("killed after step " + std::to_string(step));
+    int of_a = 0, of_b = 0;
+    for (const auto& [name, inode] : files(out)) {
+      const auto found = a.find(name);
+      (found != a.end() && found->second == inode ? of_a : of_b) += 1;
+    }
+    EXPECT_FALSE(of_a > 0 && of_b > 0) << of_a << " files of the first export beside " << of_b;
+    ASSERT_EQ(Command("export " + run + " --format c --seed 2 --out " + out.string()).status, 0);
+    // (Not by inode here: the earlier set's, freed, may be the new one's.)
+    EXPECT_EQ(files(out).size(), 3u);
+    EXPECT_FALSE(fs::exists(out / ".vesselid-staging"));
+  }
+  EXPECT_GE(kills, 5);
 }
 
 }  // namespace command_limits_test
