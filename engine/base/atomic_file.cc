@@ -17,6 +17,10 @@ bool WriteFileAtomically(const std::string& path, const std::function<void(std::
                          std::string* error) {
   const std::string temporary = path + ".tmp";
   {
+    // Whatever is at the temporary's name goes first (a link planted there is removed, never
+    // written through), so that the file opened is a new one.
+    std::error_code removed;
+    fs::remove(temporary, removed);
     errno = 0;
     std::ofstream out(temporary, std::ios::binary);
     try {

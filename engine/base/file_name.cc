@@ -44,4 +44,15 @@ std::string FileNameOf(std::string_view name) {
   return file;
 }
 
+std::string OutputFileNameProblem(const std::string& name, const std::string& key) {
+  if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos) {
+    return key + ": '" + name + "' is not a plain file name: a simulated record is written into " +
+           "--out under its own name (no folder part, not absolute)";
+  }
+  if (name.rfind(".vesselid", 0) == 0) {
+    return key + ": '" + name + "' is a name vesselid keeps for its own files in --out";
+  }
+  return "";
+}
+
 }  // namespace vesselid

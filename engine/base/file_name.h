@@ -22,4 +22,9 @@ std::string NameProblem(std::string_view name);
 // names give distinct file names; '.' is escaped because it joins names in a file name.
 std::string FileNameOf(std::string_view name);
 
+// Empty when `name` is a plain file name a command may write into its own folder (no folder
+// part, not absolute, not . or .., not one of vesselid's own .vesselid* files); else why not.
+// `key` names where it came from ("simulation.steps_file").
+std::string OutputFileNameProblem(const std::string& name, const std::string& key);
+
 }  // namespace vesselid

@@ -534,7 +534,14 @@ int main(int argc, char** argv) {
   if (design->parsed()) return Design(config_path, run_dir, out_dir, design_threads, design_quiet);
   if (simulate->parsed()) return Simulate(config_path, out_dir);
   if (export_model->parsed()) return Export(run_dir, format, out_dir, members, seed);
-  if (predict->parsed()) return Predict(run_dir, out_dir, conditions, members, seed);
+  if (predict->parsed()) {
+    // NaN stands for "not given" inside: a NaN given is refused as the number it is not.
+    for (const char* flag : {"--length", "--speed"}) {
+      const double value = std::string(flag) == "--length" ? conditions.length : conditions.speed;
+      if (predict->count(flag) > 0 && std::isnan(value)) return Fail(std::string(flag) + " nan: not a number");
+    }
+    return Predict(run_dir, out_dir, conditions, members, seed);
+  }
   if (findings->parsed()) {
     std::cout << vesselid::FindingCatalogueMarkdown();
     return 0;

@@ -627,6 +627,7 @@ std::string SeparatorName(char separator) {
 
 bool WriteTrajectoryCsv(const std::string& path, const Trajectory& trajectory, std::string* error) {
   const std::string temporary = path + ".tmp";
+  std::remove(temporary.c_str());  // a link at the temporary's name is removed, not written through
   std::FILE* file = std::fopen(temporary.c_str(), "w");
   if (file == nullptr) {
     *error = path + ": cannot write file";

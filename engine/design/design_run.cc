@@ -311,6 +311,7 @@ bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& opti
     r.notes.push_back(note);
   }
   if (!PlannedLogFits(info, r.duration, r.sample_time, error)) return false;
+  if (!StepsFitTheSearch(options, r.duration, error)) return false;
   if (!MakeDesignLayout(info, options, r.duration, &c.layout, error)) return false;
 
   SearchResult search;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -11,6 +12,10 @@ namespace vesselid {
 namespace {
 
 constexpr double kDesignPi = 3.14159265358979323846;
+
+// The most levels a steps input may have: each is a variable of the search (NLopt's and the
+// multistart's), and each evaluation simulates the plan; the shipped plans have 10-20.
+constexpr int kMaxStepsPerInput = 256;
 
 double Hold(const DesignInput& in, double duration) {
   return in.hold > 0.0 ? in.hold : duration / 12.0;
@@ -25,8 +30,9 @@ std::vector<double> Periods(const DesignInput& in, double duration) {
 
 int VariableCount(const DesignInput& in, double duration) {
   switch (in.family) {
-    case DesignInput::Family::kSteps:
-      return std::max(1, static_cast<int>(std::ceil(duration / Hold(in, duration) - 1e-9)));
+    case DesignInput::Family::kSteps:  // beyond the search's most, StepsFitTheSearch refuses
+      return static_cast<int>(std::clamp(std::ceil(duration / Hold(in, duration) - 1e-9), 1.0,
+                                         kMaxStepsPerInput + 1.0));
     case DesignInput::Family::kMultisine:
       return 2 * static_cast<int>(Periods(in, duration).size());
     case DesignInput::Family::kZigzag:
@@ -86,6 +92,24 @@ Manoeuvre Holding(std::vector<double> nominal,
 }
 
 }  // namespace
+
+bool StepsFitTheSearch(const DesignOptions& options, double duration, std::string* error) {
+  for (const DesignInput& in : options.inputs) {
+    if (in.family != DesignInput::Family::kSteps ||
+        duration / Hold(in, duration) <= kMaxStepsPerInput) {
+      continue;
+    }
+    char text[256];
+    std::snprintf(text, sizeof(text),
+                  ".hold: %.4g s over a %.4g s plan makes %.4g steps, more than the %d one "
+                  "search can plan; hold each level at least %.4g s",
+                  Hold(in, duration), duration, duration / Hold(in, duration), kMaxStepsPerInput,
+                  duration / kMaxStepsPerInput);
+    *error = "design.inputs." + in.name + text;
+    return false;
+  }
+  return true;
+}
 
 bool MakeDesignLayout(const ModelInfo& info, const DesignOptions& options, double duration,
                       DesignLayout* layout, std::string* error) {

@@ -31,6 +31,11 @@ struct DesignLayout {
   int num_inputs = 0;  // the model's
 };
 
+// False, naming the input and the shortest hold, when a steps input's levels over `duration`
+// (duration / hold) are more than one search plans (each level is a variable of NLopt's and
+// the multistart's search, each evaluation a simulation of the plan).
+bool StepsFitTheSearch(const DesignOptions& options, double duration, std::string* error);
+
 // Checks the inputs against the model (every input planned once, a zigzag needs `delta` and
 // `psi`) and lays out z; false with a message naming the key.
 bool MakeDesignLayout(const ModelInfo& info, const DesignOptions& options, double duration,

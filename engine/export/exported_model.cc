@@ -228,7 +228,27 @@ bool ReadExportedModel(const std::string& out_folder, const ModelRegistry& regis
     std::map<std::string, int> row;
     if (correlated != nullptr) {
       const std::vector<std::string> names = correlated->at("correlation").at("names");
+      const json& matrix = correlated->at("correlation").at("matrix");
+      // A square matrix, a row and a column per name, ones on its diagonal.
+      bool square = matrix.is_array() && matrix.size() == names.size();
+      for (size_t r = 0; square && r < names.size(); ++r) {
+        square = matrix[r].is_array() && matrix[r].size() == names.size() &&
+                 (matrix[r][r].is_null() ||  // undetermined
+                  (matrix[r][r].is_number() && std::abs(matrix[r][r].get<double>() - 1.0) < 1e-9));
+      }
+      if (!square) {
+        *error = path + ": stages' correlation: not a correlation matrix of its " +
+                 std::to_string(names.size()) +
+                 " names (as many rows and columns as names, 1 on the diagonal)";
+        return false;
+      }
       for (size_t r = 0; r < names.size(); ++r) row[names[r]] = static_cast<int>(r);
+    }
+    for (size_t i = 0; i < info.parameters.size(); ++i) {
+      if (m.std_errors[i] < 0.0) {
+        *error = path + ": parameters: the std_error of " + info.parameters[i] + " is negative";
+        return false;
+      }
     }
     for (int a = 0; a < n; ++a) {
       for (int b = 0; b < n; ++b) {

@@ -124,14 +124,30 @@ std::string CheckpointNotOwned(const std::string& out_dir) {
   std::error_code ec;
   const fs::file_type type = fs::symlink_status(folder, ec).type();
   if (type == fs::file_type::not_found) return "";
+  json manifest;
+  std::string unread;
   if (type == fs::file_type::directory &&
-      fs::symlink_status(folder / kManifest, ec).type() == fs::file_type::regular) {
-    bool links = false;
-    for (auto it = fs::recursive_directory_iterator(folder, ec);
-         !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
-      links |= it->is_symlink();
+      fs::symlink_status(folder / kManifest, ec).type() == fs::file_type::regular &&
+      ReadManifest(folder, &manifest, &unread)) {
+    // Its files: the manifest, the stages it lists and the next one (written, not yet listed,
+    // when a run was killed between the two), and their temporaries.
+    std::set<std::string> own = {kManifest};
+    const size_t listed = manifest["stages"].size();
+    for (size_t k = 0; k <= listed; ++k) own.insert(StageFile(k));
+    std::string foreign;
+    for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator();
+         it.increment(ec)) {
+      std::string name = it->path().filename().string();
+      if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0) name.resize(name.size() - 4);
+      if (it->is_symlink() || !it->is_regular_file() || own.count(name) == 0) {
+        foreign = it->path().filename().string();
+        break;
+      }
     }
-    if (!links) return "";
+    if (foreign.empty()) return "";
+    return (folder / foreign).string() + ": vesselid keeps a run's checkpoint in " +
+           folder.string() + ", but did not write this: move it away or choose another --out " +
+           "(nothing was changed)";
   }
   return folder.string() + ": vesselid keeps a run's checkpoint here, but did not write what is "
          "there (no checkpoint manifest, or a link): move it away or choose another --out "

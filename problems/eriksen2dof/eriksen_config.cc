@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "engine/base/file_name.h"
 #include "engine/config/family_simulation.h"
 #include "problems/eriksen2dof/campaign.h"
 #include "problems/eriksen2dof/handles.h"
@@ -115,6 +116,11 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
                          o.validation_runs * (o.validation_duration + o.warm_up);
   reader.CheckLimit(simulation, path, seconds / o.step, reader.limits().integration_steps,
                     "limits.integration_steps; the campaign's longest duration over its step");
+  for (const auto& [name, key] : {std::pair{steps_file, "simulation.steps_file"},
+                                  std::pair{validation_file, "simulation.validation_file"}}) {
+    *error = OutputFileNameProblem(name, key);
+    if (!error->empty()) return false;
+  }
   if (check_only) return true;
   if (!CreateSimulationFolder(out_dir, error)) return false;
   const CraftParameters craft;

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "engine/base/file_name.h"
 #include "engine/config/family_simulation.h"
 #include "problems/erunsal6dof/campaign.h"
 #include "problems/erunsal6dof/handles.h"
@@ -150,6 +151,8 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
       *error = run.file + ": " + *error;
       return false;
     }
+    *error = OutputFileNameProblem(run.file, "simulation.experiments[].file");
+    if (!error->empty()) return false;
     const std::string target = (fs::path(out_dir) / run.file).string();
     if (!WriteTrajectoryCsv(target, trajectory, error)) return false;
   }

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <utility>
 
+#include "engine/base/file_name.h"
 #include "engine/config/family_simulation.h"
 #include "problems/input_gain/campaign.h"
 #include "problems/input_gain/field_log.h"
@@ -207,6 +208,8 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
                             : SimulateCampaign(QuadraticUsvParameters(), options, &campaign, error);
   if (!simulated) return false;
   if (field_log && !MakeFieldLog(campaign, log, options.seed, &campaign, error)) return false;
+  *error = OutputFileNameProblem(file, "simulation.file");
+  if (!error->empty()) return false;
   return WriteTrajectoryCsv((fs::path(out_dir) / file).string(), campaign, error);
 }
 

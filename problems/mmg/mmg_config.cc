@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "engine/base/file_name.h"
 #include "engine/config/family_simulation.h"
 #include "problems/mmg/campaign.h"
 #include "problems/mmg/handles.h"
@@ -147,6 +148,8 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
         }
       }
     }
+    *error = OutputFileNameProblem(file, "simulation.experiments[].file");
+    if (!error->empty()) return false;
     if (!WriteTrajectoryCsv((fs::path(out_dir) / file).string(), trajectory, error)) return false;
   }
   return true;

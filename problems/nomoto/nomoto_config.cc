@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "engine/base/file_name.h"
 #include "engine/config/family_simulation.h"
 #include "engine/data/trajectory.h"
 #include "problems/nomoto/closed_loop_simulator.h"
@@ -211,6 +212,8 @@ bool Simulate(const YamlReader& reader, const YAML::Node& simulation, const Mode
         for (double& value : trajectory.columns[c]) value /= kDegree;
       }
     }
+    *error = OutputFileNameProblem(file, "simulation.experiments[].file");
+    if (!error->empty()) return false;
     const std::string target = (fs::path(out_dir) / file).string();
     if (!WriteTrajectoryCsv(target, trajectory, error)) return false;
   }

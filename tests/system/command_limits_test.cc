@@ -158,6 +158,58 @@ TEST_F(CommandLimits, APlannedLogBeyondTheBudgetIsRefused) {
   }
 }
 
+// A simulated file named outside --out (a folder part, an absolute path) is refused; the
+// file it names stays as it was.
+TEST_F(CommandLimits, SimulatedFilesStayInsideOut) {
+  std::ifstream in(std::string(VESSELID_SOURCE_DIR) + "/configs/design_cargo.yaml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string from = "file: cargo_zigzag_10.csv";  // the simulation section's, first
+  ASSERT_NE(text.find(from), std::string::npos);
+  std::ofstream(dir_ / "victim.csv") << "precious\n";
+  for (const std::string& name : {std::string("../victim.csv"), (dir_ / "victim.csv").string()}) {
+    std::string edited = text;
+    edited.replace(edited.find(from), from.size(), "file: " + name);
+    const fs::path config = dir_ / "outside.yaml";
+    std::ofstream(config) << edited;
+    ExpectRefused(Command("simulate " + config.string() + " --out " + (dir_ / "sim").string()),
+                  "simulation.experiments\\[\\]\\.file: '.*victim\\.csv' is not a plain file name");
+    std::ifstream victim(dir_ / "victim.csv");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(victim), std::istreambuf_iterator<char>()),
+              "precious\n");
+  }
+}
+
+// A steps input held for 1 ms over a 20/20 zigzag's duration: refused, not 300 000 variables.
+TEST_F(CommandLimits, ADesignHoldTooShortIsRefused) {
+  std::ifstream in(std::string(VESSELID_SOURCE_DIR) + "/configs/design_cargo.yaml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string from = "hold: 30";
+  ASSERT_NE(text.find(from), std::string::npos);
+  text.replace(text.find(from), from.size(), "hold: 0.001");
+  const fs::path config = dir_ / "hold.yaml";
+  std::ofstream(config) << text;
+  ExpectRefused(Command("design " + config.string() + " --from " + (dir_ / "run").string()),
+                "design\\.inputs\\.delta\\.hold: 0\\.001 s over a .* plan makes .* steps");
+}
+
+// A correlation matrix cut short or with a diagonal that is not 1, a negative standard error.
+TEST_F(CommandLimits, ACorrelationOfTheWrongShapeIsRefused) {
+  const std::string cut = EditedRun("cut", [](json* r) {
+    for (json& stage : (*r)["stages"]) {
+      if (stage.contains("correlation") && stage["correlation"]["names"].size() > 2) {
+        stage["correlation"]["names"].erase(stage["correlation"]["names"].size() - 1);
+      }
+    }
+  });
+  ExpectRefused(Command("predict " + cut), "not a correlation matrix of its [0-9]+ names");
+  const std::string negative = EditedRun("negative", [](json* r) {
+    for (json& p : (*r)["parameters"]) {
+      if (p["name"] == "K") p["std_error"] = -1.0;
+    }
+  });
+  ExpectRefused(Command("export " + negative + " --format json"), "the std_error of K is negative");
+}
+
 // `export --format c` (three files) killed with SIGKILL after every step of its publication,
 // over an earlier export of other ensemble draws: the folder never holds files of both, and
 // the next export ends in the whole new set.

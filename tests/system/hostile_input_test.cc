@@ -597,6 +597,27 @@ TEST_F(HostileInput, ResumeKnowsTheSameFilesByAnotherSpelling) {
       << resumed.output;
 }
 
+// A file the user puts into the run's checkpoint folder, and a link planted at the name of a
+// manifest's temporary, are theirs: the next run refuses, or removes the link without writing
+// through it.
+TEST_F(HostileInput, CheckpointAndTemporariesOfTheUsersAreKept) {
+  ASSERT_EQ(Run().status, 0);
+  std::ofstream(dir_ / "out" / "checkpoint" / "notes.txt") << "mine\n";
+  Outcome outcome = Run();
+  EXPECT_NE(outcome.status, 0);
+  EXPECT_NE(outcome.output.find("checkpoint/notes.txt: vesselid keeps a run's checkpoint"),
+            std::string::npos)
+      << outcome.output;
+  EXPECT_EQ(ReadFile(dir_ / "out" / "checkpoint" / "notes.txt"), "mine\n");
+  fs::remove(dir_ / "out" / "checkpoint" / "notes.txt");
+  std::ofstream(dir_ / "victim.txt") << "precious\n";
+  fs::create_symlink(dir_ / "victim.txt", dir_ / "out" / ".vesselid-run.set.tmp");
+  outcome = Run();
+  EXPECT_EQ(outcome.status, 0) << outcome.output;
+  EXPECT_EQ(ReadFile(dir_ / "victim.txt"), "precious\n");
+  EXPECT_FALSE(fs::is_symlink(dir_ / "out" / ".vesselid-run.set"));
+}
+
 // A link planted at the staging folder's name (to a forged journal and a file outside --out)
 // and at the lock's name: neither is followed; the files they point to stay as they were.
 TEST_F(HostileInput, LinksPlantedInOutAreNotFollowed) {
