@@ -67,6 +67,17 @@ class CommandLimits : public ::testing::Test {
     std::ofstream(copy / "results.json") << results.dump();
     return copy.string();
   }
+  // configs/design_cargo.yaml with the first `from` replaced by `to`, written as `name`.
+  std::string EditedDesignConfig(const std::string& from, const std::string& to,
+                                 const std::string& name) {
+    std::ifstream in(std::string(VESSELID_SOURCE_DIR) + "/configs/design_cargo.yaml");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    std::ofstream(dir_ / name) << text;
+    return (dir_ / name).string();
+  }
   static void ExpectRefused(const CommandOutcome& outcome, const std::string& pattern) {
     EXPECT_NE(outcome.status, 0) << outcome.output;
     EXPECT_TRUE(std::regex_search(outcome.output, std::regex(pattern)))
@@ -143,17 +154,12 @@ TEST_F(CommandLimits, ResultsLargerThanARunWritesAreNotRead) {
 // A planned log of 1e10 samples (a sample interval of 0.1 us over a zigzag's duration) is
 // refused before a sample is allocated, naming both keys.
 TEST_F(CommandLimits, APlannedLogBeyondTheBudgetIsRefused) {
-  std::ifstream in(std::string(VESSELID_SOURCE_DIR) + "/configs/design_cargo.yaml");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string from = "design:\n  duration: zigzag_20_20\n  sample_time: 0.5";
-  ASSERT_NE(text.find(from), std::string::npos);
   for (const std::string& planned : {std::string("duration: zigzag_20_20\n  sample_time: 1e-7"),
                                      std::string("duration: 1000\n  sample_time: 1e-7")}) {
-    std::string edited = text;
-    edited.replace(edited.find(from), from.size(), "design:\n  " + planned);
-    const fs::path config = dir_ / "design_huge.yaml";
-    std::ofstream(config) << edited;
-    ExpectRefused(Command("design " + config.string() + " --from " + (dir_ / "run").string()),
+    const std::string config = EditedDesignConfig(
+        "design:\n  duration: zigzag_20_20\n  sample_time: 0.5", "design:\n  " + planned,
+        "design_huge.yaml");
+    ExpectRefused(Command("design " + config + " --from " + (dir_ / "run").string()),
                   "design.duration / design.sample_time: a planned log of [0-9.e+]+ samples");
   }
 }
@@ -161,17 +167,12 @@ TEST_F(CommandLimits, APlannedLogBeyondTheBudgetIsRefused) {
 // A simulated file named outside --out (a folder part, an absolute path) is refused; the
 // file it names stays as it was.
 TEST_F(CommandLimits, SimulatedFilesStayInsideOut) {
-  std::ifstream in(std::string(VESSELID_SOURCE_DIR) + "/configs/design_cargo.yaml");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string from = "file: cargo_zigzag_10.csv";  // the simulation section's, first
-  ASSERT_NE(text.find(from), std::string::npos);
   std::ofstream(dir_ / "victim.csv") << "precious\n";
   for (const std::string& name : {std::string("../victim.csv"), (dir_ / "victim.csv").string()}) {
-    std::string edited = text;
-    edited.replace(edited.find(from), from.size(), "file: " + name);
-    const fs::path config = dir_ / "outside.yaml";
-    std::ofstream(config) << edited;
-    ExpectRefused(Command("simulate " + config.string() + " --out " + (dir_ / "sim").string()),
+    // The simulation section's file, the first in the config.
+    const std::string config =
+        EditedDesignConfig("file: cargo_zigzag_10.csv", "file: " + name, "outside.yaml");
+    ExpectRefused(Command("simulate " + config + " --out " + (dir_ / "sim").string()),
                   "simulation.experiments\\[\\]\\.file: '.*victim\\.csv' is not a plain file name");
     std::ifstream victim(dir_ / "victim.csv");
     EXPECT_EQ(std::string(std::istreambuf_iterator<char>(victim), std::istreambuf_iterator<char>()),
@@ -181,14 +182,8 @@ TEST_F(CommandLimits, SimulatedFilesStayInsideOut) {
 
 // A steps input held for 1 ms over a 20/20 zigzag's duration: refused, not 300 000 variables.
 TEST_F(CommandLimits, ADesignHoldTooShortIsRefused) {
-  std::ifstream in(std::string(VESSELID_SOURCE_DIR) + "/configs/design_cargo.yaml");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string from = "hold: 30";
-  ASSERT_NE(text.find(from), std::string::npos);
-  text.replace(text.find(from), from.size(), "hold: 0.001");
-  const fs::path config = dir_ / "hold.yaml";
-  std::ofstream(config) << text;
-  ExpectRefused(Command("design " + config.string() + " --from " + (dir_ / "run").string()),
+  const std::string config = EditedDesignConfig("hold: 30", "hold: 0.001", "hold.yaml");
+  ExpectRefused(Command("design " + config + " --from " + (dir_ / "run").string()),
                 "design\\.inputs\\.delta\\.hold: 0\\.001 s over a .* plan makes .* steps");
 }
 
