@@ -205,53 +205,70 @@ TEST_F(CommandLimits, ACorrelationOfTheWrongShapeIsRefused) {
   ExpectRefused(Command("export " + negative + " --format json"), "the std_error of K is negative");
 }
 
-// `export --format c` (three files) killed with SIGKILL after every step of its publication,
-// over an earlier export of other ensemble draws: the folder never holds files of both, and
-// the next export ends in the whole new set.
-TEST_F(CommandLimits, ExportKilledAtEveryStepOfItsPublicationNeverMixesTwoSets) {
-  const std::string run = (dir_ / "run").string();
-  const fs::path out = dir_ / "export", pristine = dir_ / "export_a";
-  // Each published file by its inode: a file of the earlier set keeps the inode it was copied
-  // to, a file of the new one is renamed in with its own.
-  auto files = [](const fs::path& folder) {
-    std::map<std::string, ino_t> set;
-    for (const auto& entry : fs::directory_iterator(folder)) {
-      const std::string name = entry.path().filename().string();
-      struct stat info;
-      if (!entry.is_regular_file() || name.rfind(".vesselid", 0) == 0 ||
-          ::stat(entry.path().c_str(), &info) != 0) {
-        continue;
-      }
-      set[name] = info.st_ino;
+// Each published file of `folder` by its inode: a file of an earlier set keeps the inode it
+// was copied to, a file of a new one is renamed in with its own.
+std::map<std::string, ino_t> PublishedFiles(const fs::path& folder) {
+  std::map<std::string, ino_t> set;
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    const std::string name = entry.path().filename().string();
+    struct stat info;
+    if (!entry.is_regular_file() || name.rfind(".vesselid", 0) == 0 ||
+        ::stat(entry.path().c_str(), &info) != 0) {
+      continue;
     }
-    return set;
-  };
-  ASSERT_EQ(Command("export " + run + " --format c --seed 1 --out " + pristine.string()).status, 0);
-  ASSERT_EQ(files(pristine).size(), 3u);
+    set[name] = info.st_ino;
+  }
+  return set;
+}
+
+// `first` then `again` (the same command publishing another set into `out`), `again` killed
+// with SIGKILL after every step of its publication: the folder never holds files of both sets,
+// and `again` run whole afterwards ends in a whole set of `files` files. The number of kills.
+int KillEveryPublicationStep(const std::string& first, const std::string& again,
+                             const fs::path& out, size_t files) {
+  const fs::path pristine = out.string() + "_first";
+  EXPECT_EQ(Command(first + " --out " + pristine.string()).status, 0) << first;
+  EXPECT_EQ(PublishedFiles(pristine).size(), files);
   int kills = 0;
-  for (int step = 1; step < 20; ++step) {
+  for (int step = 1; step < 40; ++step) {
     fs::remove_all(out);
     fs::copy(pristine, out, fs::copy_options::recursive);
-    const std::map<std::string, ino_t> a = files(out);
+    const std::map<std::string, ino_t> a = PublishedFiles(out);
     const CommandOutcome killed =
         testing::RunCommand("VESSELID_TEST_KILL_AT_PUBLISH_STEP=" + std::to_string(step) + " " +
-                            VESSELID_BINARY + " export " + run + " --format c --seed 2 --out " +
-                            out.string());
+                            VESSELID_BINARY + " " + again + " --out " + out.string());
     if (killed.status == 0) break;
     ++kills;
-    SCOPED_TRACE("killed after step " + std::to_string(step));
+    SCOPED_TRACE(again + ", killed after step " + std::to_string(step));
     int of_a = 0, of_b = 0;
-    for (const auto& [name, inode] : files(out)) {
+    for (const auto& [name, inode] : PublishedFiles(out)) {
       const auto found = a.find(name);
       (found != a.end() && found->second == inode ? of_a : of_b) += 1;
     }
-    EXPECT_FALSE(of_a > 0 && of_b > 0) << of_a << " files of the first export beside " << of_b;
-    ASSERT_EQ(Command("export " + run + " --format c --seed 2 --out " + out.string()).status, 0);
+    EXPECT_FALSE(of_a > 0 && of_b > 0) << of_a << " files of the first set beside " << of_b;
+    EXPECT_EQ(Command(again + " --out " + out.string()).status, 0);
     // (Not by inode here: the earlier set's, freed, may be the new one's.)
-    EXPECT_EQ(files(out).size(), 3u);
+    EXPECT_EQ(PublishedFiles(out).size(), files);
     EXPECT_FALSE(fs::exists(out / ".vesselid-staging"));
   }
-  EXPECT_GE(kills, 5);
+  return kills;
+}
+
+// export (three C files), predict (its text and JSON) and simulate (the tanker campaign's 13
+// records) over an earlier set of their own, killed at every step of the publication.
+TEST_F(CommandLimits, EveryCommandKilledWhilePublishingNeverMixesTwoSets) {
+  const std::string run = (dir_ / "run").string();
+  EXPECT_GE(KillEveryPublicationStep("export " + run + " --format c --seed 1",
+                                     "export " + run + " --format c --seed 2", dir_ / "export", 3),
+            5);
+  EXPECT_GE(KillEveryPublicationStep("predict " + run + " --members 2 --seed 1",
+                                     "predict " + run + " --members 2 --seed 2", dir_ / "predict",
+                                     2),
+            4);
+  const std::string tanker = std::string(VESSELID_SOURCE_DIR) + "/configs/nomoto_tanker.yaml";
+  EXPECT_GE(KillEveryPublicationStep("simulate " + tanker, "simulate " + tanker,
+                                     dir_ / "simulated", 13),
+            20);
 }
 
 }  // namespace command_limits_test
