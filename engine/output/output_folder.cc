@@ -150,7 +150,7 @@ std::unique_ptr<OutputFolder> OutputFolder::Open(const std::string& path, std::s
     return refuse("another vesselid process" + (pid.empty() ? "" : " (pid " + pid + ")") +
                   " is writing into this folder; wait for it or choose another --out");
   }
-  auto folder = std::unique_ptr<OutputFolder>(new OutputFolder(path, fd));
+  auto folder = std::unique_ptr<OutputFolder>(new OutputFolder(path, fd, !existed));
   const std::string marker_path = (fs::path(path) / kMarkerFile).string();
   const int marker = ::open(marker_path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (marker >= 0) {  // else it is there already (or a link, which is neither followed nor replaced)
@@ -179,6 +179,13 @@ OutputFolder::~OutputFolder() {
   std::error_code ec;
   fs::remove(fs::path(path_) / kLockFile, ec);
   ::close(lock_fd_);
+  if (!created_) return;
+  for (const auto& entry : fs::directory_iterator(path_, ec)) {
+    if (entry.path().filename() != kMarkerFile) return;  // something was written
+  }
+  if (ec) return;
+  fs::remove(fs::path(path_) / kMarkerFile, ec);
+  fs::remove(path_, ec);  // empty now, or left as it is
 }
 
 PlannedOutputs RunOutputs(const RunConfig& config) {

@@ -21,16 +21,20 @@ class OutputFolder {
 
   // Creates (if needed), checks and locks `path`; null with a message naming the folder.
   static std::unique_ptr<OutputFolder> Open(const std::string& path, std::string* error);
-  ~OutputFolder();  // unlocks and removes the lock file
+  // Unlocks and removes the lock file; a folder Open created that holds nothing but the marker
+  // (the command failed before publishing) is removed with it.
+  ~OutputFolder();
   OutputFolder(const OutputFolder&) = delete;
   OutputFolder& operator=(const OutputFolder&) = delete;
 
   const std::string& path() const { return path_; }
 
  private:
-  OutputFolder(std::string path, int lock_fd) : path_(std::move(path)), lock_fd_(lock_fd) {}
+  OutputFolder(std::string path, int lock_fd, bool created)
+      : path_(std::move(path)), lock_fd_(lock_fd), created_(created) {}
   std::string path_;
   int lock_fd_;
+  bool created_;
 };
 
 // What a command writes into its folder: files (relative names), folders it owns whole, and

@@ -177,6 +177,7 @@ TEST_F(CommandLimits, SimulatedFilesStayInsideOut) {
     std::ifstream victim(dir_ / "victim.csv");
     EXPECT_EQ(std::string(std::istreambuf_iterator<char>(victim), std::istreambuf_iterator<char>()),
               "precious\n");
+    EXPECT_FALSE(fs::exists(dir_ / "sim"));  // the folder it made for nothing is gone
   }
 }
 
