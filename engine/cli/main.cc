@@ -536,8 +536,8 @@ int main(int argc, char** argv) {
   if (export_model->parsed()) return Export(run_dir, format, out_dir, members, seed);
   if (predict->parsed()) {
     // NaN stands for "not given" inside: a NaN given is refused as the number it is not.
-    for (const char* flag : {"--length", "--speed"}) {
-      const double value = std::string(flag) == "--length" ? conditions.length : conditions.speed;
+    for (const auto& [flag, value] : {std::pair{"--length", conditions.length},
+                                      std::pair{"--speed", conditions.speed}}) {
       if (predict->count(flag) > 0 && std::isnan(value)) return Fail(std::string(flag) + " nan: not a number");
     }
     return Predict(run_dir, out_dir, conditions, members, seed);

@@ -103,8 +103,6 @@ YAML::Node YamlReader::Load() const {
   YAML::Node root;
   try {
     root = YAML::Load(text);
-  } catch (const YAML::BadFile&) {
-    throw ConfigError(file_ + ": cannot open file");
   } catch (const YAML::DeepRecursion& e) {
     // yaml-cpp's own message for this is "bad file".
     throw ConfigError(file_ + ":" + std::to_string(e.mark.line + 1) +

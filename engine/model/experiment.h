@@ -6,6 +6,7 @@
 // midpoint and end, so the simulation loop only reads an array.
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
@@ -118,6 +119,14 @@ struct Experiment {
     return input_corrections.empty()
                ? 0
                : input_corrections.back().offset + input_corrections.back().count;
+  }
+
+  // Noise SD of output `output`'s samples (channel_noise_power over its count); NaN when unknown.
+  double NoiseLevel(int output) const {
+    const int count = output_sample_count[output];
+    const double power = channel_noise_power[output];
+    return count > 0 && power > 0.0 ? std::sqrt(power / count)
+                                    : std::numeric_limits<double>::quiet_NaN();
   }
 
   bool Wrapped(int output) const {

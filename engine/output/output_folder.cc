@@ -39,10 +39,6 @@ std::string LockHolder(int fd) {
   return pid;
 }
 
-bool StartsWith(const std::string& text, const std::string& prefix) {
-  return text.compare(0, prefix.size(), prefix) == 0;
-}
-
 // False, saying why, when `path` names no folder of its own: empty, or the root folder.
 bool OutNamed(const std::string& path, std::string* error) {
   std::error_code ec;
@@ -155,9 +151,7 @@ std::unique_ptr<OutputFolder> OutputFolder::Open(const std::string& path, std::s
   const int marker = ::open(marker_path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (marker >= 0) {  // else it is there already (or a link, which is neither followed nor replaced)
     const char text[] = "written by vesselid: a later vesselid command may write into this folder\n";
-    if (::write(marker, text, sizeof(text) - 1) < 0) {
-      // An empty marker marks the folder as well.
-    }
+    [[maybe_unused]] const ssize_t written = ::write(marker, text, sizeof(text) - 1);  // empty marks too
     ::close(marker);
   }
   const std::string pid = std::to_string(::getpid()) + "\n";

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "engine/base/atomic_file.h"
+#include "engine/base/text_match.h"
 
 namespace vesselid {
 namespace {
@@ -137,7 +138,7 @@ bool JournalOwned(const fs::path& out, const fs::path& staging, const Journal& j
   return true;
 }
 
-// A test's kill point (tests/system/interrupt_test.cc): with VESSELID_TEST_KILL_AT_PUBLISH_STEP
+// A test's kill point (tests/system/hostile_input_test.cc, command_limits_test.cc): with VESSELID_TEST_KILL_AT_PUBLISH_STEP
 // set to k, the process sends itself SIGKILL once k of the publication's steps (each removal,
 // move and manifest write) are taken: a kill -9 at exactly that point. Unset in use.
 void StepTaken() {
@@ -167,15 +168,18 @@ bool Roll(const fs::path& out, const fs::path& staging, const Journal& j, std::s
   }
   // Every entry of the previous set this one replaces goes before any of this set arrives, so
   // that the folder never holds entries of both.
+  // Still staged (not moved by an earlier attempt), and not a link, which vesselid never stages.
+  auto staged = [&](const std::string& name) {
+    return name != j.last && Present(staging / name) && !IsLink(staging / name);
+  };
   for (const std::string& name : j.entries) {
-    if (name == j.last || !Present(staging / name) || IsLink(staging / name)) continue;
+    if (!staged(name)) continue;
     fs::remove_all(out / name, ec);
     if (ec) return Failed(out / name, "cannot remove the previous output", ec, error);
     StepTaken();
   }
   for (const std::string& name : j.entries) {
-    // Moved already; or a link, which vesselid never stages.
-    if (name == j.last || !fs::exists(staging / name, ec) || IsLink(staging / name)) continue;
+    if (!staged(name)) continue;
     fs::rename(staging / name, out / name, ec);
     if (ec) return Failed(out / name, "cannot publish", ec, error);
     StepTaken();
@@ -204,10 +208,7 @@ std::set<std::string> OwnedEntries(const std::string& out_dir) {
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(out_dir, ec)) {
     const std::string name = entry.path().filename().string();
-    if (name.rfind(".vesselid-", 0) != 0 || name.size() < 14 ||
-        name.compare(name.size() - 4, 4, ".set") != 0) {
-      continue;
-    }
+    if (!StartsWith(name, ".vesselid-") || !EndsWith(name, ".set")) continue;
     for (const std::string& line : Lines(entry.path())) {
       if (PlainPath(line)) owned.insert(line);
     }

@@ -200,13 +200,6 @@ int MeasuringOutput(const ModelInfo& info, const Experiment& experiment, size_t 
   return o >= 0 && experiment.output_sample_count[o] > 0 ? o : -1;
 }
 
-// Noise SD of output o's samples in `experiment` (NaN when unknown).
-double OutputNoise(const Experiment& experiment, int o) {
-  const int count = experiment.output_sample_count[o];
-  const double power = experiment.channel_noise_power[o];
-  return count > 0 && power > 0.0 ? std::sqrt(power / count) : std::nan("");
-}
-
 // The burn-in of `experiment` in s: `burn_in` if given, else kBurnInShare of the run; at least
 // kMinBurnInIntervals sample intervals and at most half the run either way (the report says
 // where a given one was changed).
@@ -336,7 +329,7 @@ std::vector<StartOffset> RefittedOffsets(const ModelInfo& info, const Experiment
     offset.state = info.states[s];
     offset.measured = experiment.initial_state[s];
     offset.refitted = x0[s];
-    offset.noise = OutputNoise(experiment, o);
+    offset.noise = experiment.NoiseLevel(o);
     // An unwrapped angle a whole turn off is a turn off; a wrapped one is compared modulo one.
     double d = offset.refitted - offset.measured;
     if (experiment.Wrapped(o)) d = std::remainder(d, 2.0 * M_PI);

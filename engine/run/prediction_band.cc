@@ -177,15 +177,15 @@ PredictionBand BandOf(const ModelHandle& model, Experiment experiment, const Exp
       double sd = e.initial_state_sigma.size() > static_cast<size_t>(v.index)
                       ? e.initial_state_sigma[v.index]
                       : std::nan("");
-      if (o >= 0 && e.output_sample_count[o] > 0 && e.channel_noise_power[o] > 0.0) {
-        const double noise = std::sqrt(e.channel_noise_power[o] / e.output_sample_count[o]);
-        sd = std::isfinite(sd) ? std::max(sd, noise) : noise;
-      }
+      const double noise = o >= 0 ? e.NoiseLevel(o) : std::nan("");
+      if (std::isfinite(noise)) sd = std::isfinite(sd) ? std::max(sd, noise) : noise;
       column.variance = std::isfinite(sd) ? sd * sd : 0.0;
     }
     if (std::isfinite(column.variance) && column.variance > 0.0) columns.push_back(column);
   }
   const int n = static_cast<int>(columns.size());
+  std::vector<int> column_of(solution.variables.size(), -1);  // Jacobian column -> S's
+  for (int m = 0; m < n; ++m) column_of[columns[m].variable] = m;
   Eigen::MatrixXd covariance = Eigen::MatrixXd::Zero(n, n);
   for (int c = 0; c < n; ++c) covariance(c, c) = columns[c].variance;
   if (static_cast<int>(shared_column.size()) == shared_covariance.rows()) {
@@ -202,7 +202,6 @@ PredictionBand BandOf(const ModelHandle& model, Experiment experiment, const Exp
   // Scored samples: physical residual r_i = residual / w and sensitivity row s_i (per unit
   // of each value: the Jacobian is per unit of value / scale).
   const double scored_from = e.node_time.front() + fit.start.burn_in;
-  std::vector<double> row_value(solution.jacobian.values.size());
   Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(n, n);
   Eigen::VectorXd gradient = Eigen::VectorXd::Zero(n);
   double q0 = 0.0;
@@ -219,11 +218,9 @@ PredictionBand BandOf(const ModelHandle& model, Experiment experiment, const Exp
       s.setZero();
       for (int j = solution.jacobian.rows[i]; j < solution.jacobian.rows[i + 1]; ++j) {
         const int c = solution.jacobian.cols[j];
-        for (int m = 0; m < n; ++m) {
-          if (columns[m].variable != c) continue;
-          const Variable& v = problem->variables()[solution.variables[c]];
-          s(m) = solution.jacobian.values[j] / (sample.weight * v.scale * sigma);
-        }
+        if (column_of[c] < 0) continue;
+        const Variable& v = problem->variables()[solution.variables[c]];
+        s(column_of[c]) = solution.jacobian.values[j] / (sample.weight * v.scale * sigma);
       }
       normal.selfadjointView<Eigen::Lower>().rankUpdate(s);
       gradient += s * r;
