@@ -67,6 +67,7 @@ enum class FindingKind {
   kFinalHeldOutFailed,
   kImplausibleStart,
   kHeldOutBeyondBand,
+  kHeldOutInconsistent,
 };
 
 const char* FindingKindToString(FindingKind kind);  // snake_case, e.g. "at_bound"

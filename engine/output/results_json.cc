@@ -202,7 +202,14 @@ json BandsToJson(const std::vector<ExperimentFit>& fits) {
     bands[fit.experiment] = {{"samples", b.samples},
                              {"ratio", JsonNumber(b.ratio)},
                              {"raw_ratio", JsonNumber(b.raw_ratio)},
-                             {"output_raw_ratio", outputs}};
+                             {"output_raw_ratio", outputs},
+                             {"consistency", JsonNumber(b.consistency)},
+                             {"consistency_dof", b.consistency_dof},
+                             {"consistency_p", JsonNumber(b.consistency_p)}};
+    if (!b.worst_parameter.empty()) {
+      bands[fit.experiment]["largest_shift"] = {{"parameter", b.worst_parameter},
+                                                {"std_errors", JsonNumber(b.worst_shift)}};
+    }
   }
   return bands;
 }

@@ -284,6 +284,7 @@ def judged_z(case, results):
                     c = 1.0 if a == b else matrix[names.index(a)][names.index(b)]
                     var += wa * wb * c * se[a] * se[b]
             z[name] = (est - truth) / math.sqrt(var) if var > 0 else None
+            z[name + "_relative_se"] = math.sqrt(var) / abs(est) if var > 0 and est else None
         except (KeyError, ValueError, TypeError, IndexError):
             z[name] = None
     return z
@@ -324,6 +325,9 @@ def run_case(case, binary, root):
         if held and held_analysis:
             band = final.get("prediction_band", {}).get("test", {})
             result["held_out"] = {"band": band.get("ratio"), "raw_band": band.get("raw_ratio"),
+                                  "consistency": band.get("consistency"),
+                                  "consistency_dof": band.get("consistency_dof"),
+                                  "consistency_p": band.get("consistency_p"),
                                   "rmse_over_noise": held[0]["rmse"] / held[0]["noise"]
                                   if held[0].get("noise") else None,
                                   "lag1": held_analysis[0].get("lag1"),
