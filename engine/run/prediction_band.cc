@@ -264,10 +264,18 @@ PredictionBand BandOf(const ModelHandle& model, Experiment experiment, const Exp
   // wrong structure that the values could absorb only far outside their intervals.
   const Eigen::VectorXd shift = root * y;
   Eigen::MatrixXd scores = Eigen::MatrixXd::Zero(nodes, n);
+  double noise_square = 0.0;  // sum e^2 / sigma^2
   for_each_sample([&](int node, int, double r, const Eigen::VectorXd& row) {
-    scores.row(node) += row.transpose() * (r - row.dot(shift));
+    const double e = r - row.dot(shift);
+    scores.row(node) += row.transpose() * e;
+    noise_square += e * e;
   });
-  const Eigen::MatrixXd omega = LongRunCovariance(HacOptions(), scores, nullptr);
+  // The noise part is at least what white noise at the training fit's level gives (N): a run
+  // quieter than the training records (a simulation's truth) does not hold the estimates to
+  // more than their fit's own residual level allows.
+  const double quiet = std::max(0.0, 1.0 - noise_square / band.samples);
+  const Eigen::MatrixXd omega =
+      LongRunCovariance(HacOptions(), scores, nullptr) + quiet * full;
   const Eigen::MatrixXd c = full * covariance * full + omega;
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ceigen(c);
   const double largest = ceigen.eigenvalues().cwiseAbs().maxCoeff();
