@@ -270,6 +270,15 @@ const Row kRows[] = {
      "The model's values depend on the run: compare the runs' amplitudes, speeds and "
      "conditions, and give the structure what distinguishes them (a nonlinear term, speed "
      "dependence) or train on runs that span them."},
+    {K::kWorseThanReference, "worse_than_reference", S::kWarning,
+     "The final values predict the final validation's held-out runs, flown from their "
+     "measured starts, worse than the reference model `final_validation: {reference: "
+     "<folder>}` names (another run's results.json, flown alike): more runs diverge, or the "
+     "mean over the outputs of the MAE ratio final / reference is above 1.01. A model "
+     "identified from fewer runs, or with another structure's restriction, is held against "
+     "the one the user already trusts.",
+     "Keep the reference model, or find out what the new runs or settings cost: identify "
+     "from the reference's runs and the new ones together."},
 };
 
 // The value of `values` whose name is `text`.

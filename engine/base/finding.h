@@ -68,6 +68,7 @@ enum class FindingKind {
   kImplausibleStart,
   kHeldOutBeyondBand,
   kHeldOutInconsistent,
+  kWorseThanReference,
 };
 
 const char* FindingKindToString(FindingKind kind);  // snake_case, e.g. "at_bound"

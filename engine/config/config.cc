@@ -725,7 +725,7 @@ bool LoadConfig(const ConfigSource& source, const ModelRegistry& registry, Confi
     if (const YAML::Node final = root["final_validation"]) {
       reader.CheckMap(final, "final_validation",
                       {"experiments", "outputs", "model", "free_initial_states", "per_experiment",
-                       "held_out", "initial_state_prior"});
+                       "held_out", "initial_state_prior", "reference"});
       FinalValidationConfig& v = result.final_validation;
       result.has_final_validation = true;
       if (final["model"]) {
@@ -751,6 +751,17 @@ bool LoadConfig(const ConfigSource& source, const ModelRegistry& registry, Confi
       }
       if (const YAML::Node n = final["held_out"]) {
         ReadHeldOutStart(reader, n, "final_validation.held_out", &v.held_out);
+      }
+      if (const YAML::Node n = final["reference"]) {
+        // A run's output folder, relative to the config's own folder.
+        const fs::path folder = reader.String(n, "final_validation.reference");
+        const fs::path resolved =
+            folder.is_absolute() ? folder : fs::path(path).parent_path() / folder;
+        std::string why;
+        if (!ReadReferenceModel(resolved.string(), registry, result.family, final_info,
+                                &v.reference, &why)) {
+          reader.Fail(n, "final_validation.reference", why);
+        }
       }
       if (final["free_initial_states"]) {
         const std::string key = "final_validation.free_initial_states";

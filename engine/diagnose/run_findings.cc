@@ -11,6 +11,7 @@
 #include "engine/diagnose/stage_findings.h"
 #include "engine/diagnose/start_findings.h"
 #include "engine/diagnose/unit_findings.h"
+#include "engine/run/held_out.h"
 
 namespace vesselid {
 namespace {
@@ -251,6 +252,20 @@ void DiagnoseRun(const RunConfig& config, RunResult* run, TrajectoryCache* recor
   AddFinalHeldOutFindings(*run, &findings);
   AddImplausibleStartFindings(run->final_validation, "final", output_unit_of, &findings);
   AddPredictionBandFindings(*run, &findings);
+  if (run->reference_check.done && run->reference_check.worse) {
+    const std::string held_out_run =
+        run->final_validation.empty() ? "" : run->final_validation[0].experiment;
+    Finding f = MakeFinding(FindingKind::kWorseThanReference,
+                            "the final values predict the held-out runs worse than " +
+                                run->reference_check.BaselineText() + " (" +
+                                DescribeHeldOut(run->reference_check, output_unit_of,
+                                                held_out_run) +
+                                ")");
+    f.stage = "final";
+    f.value = MeanMaeRatio(run->reference_check);
+    f.threshold = kHeldOutTolerance;
+    findings.push_back(std::move(f));
+  }
   AddFreeRunFindings(run->final_velocity_validation, "final", FindingSeverity::kFailure,
                      &findings);
   findings = FoldFindings(findings);

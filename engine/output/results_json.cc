@@ -1,4 +1,5 @@
 #include "engine/output/results_json.h"
+#include "engine/run/held_out.h"
 
 #include <map>
 #include <sstream>
@@ -510,6 +511,22 @@ json RunResultDocument(const RunConfig& config, const RunResult& result, JsonSpl
     if (!result.final_validation_residuals.empty()) {
       j["final_validation"]["residual_analysis"] =
           ResidualAnalysesToJson(result.final_validation_residuals, splices);
+    }
+    if (result.reference_check.done) {
+      const HeldOutCheck& check = result.reference_check;
+      json outputs = json::array();
+      for (size_t i = 0; i < check.outputs.size(); ++i) {
+        outputs.push_back({{"output", check.outputs[i]},
+                           {"reference_mae", JsonNumber(check.start_mae[i])},
+                           {"final_mae", JsonNumber(check.stage_mae[i])}});
+      }
+      j["final_validation"]["reference"] = {
+          {"folder", config.final_validation.reference.folder},
+          {"outputs", outputs},
+          {"reference_diverged", check.start_diverged},
+          {"final_diverged", check.stage_diverged},
+          {"mean_mae_ratio", JsonNumber(MeanMaeRatio(check))},
+          {"worse", check.worse}};
     }
   }
   if (result.final_held_out_parameters.active()) {

@@ -273,6 +273,11 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
         << ResidualAnalysesText(result.final_validation_residuals, "  ")
         << HeldOutParametersText(result.final_held_out_parameters, result.final_validation, "  ",
                                  ParameterUnits(config));
+    if (result.reference_check.done) {
+      out << "  against the reference model (" << config.final_validation.reference.folder
+          << "): " << DescribeHeldOut(result.reference_check)
+          << (result.reference_check.worse ? " (worse)" : " (not worse)") << "\n";
+    }
   }
   if (!result.final_velocity_validation.empty()) {
     out << "final validation of the velocities\n"

@@ -303,14 +303,27 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     request.start = v.held_out;
     request.values = final_values;
     request.parameters = request.residuals = true;
+    std::vector<HeldOutRequest> requests{request};
+    if (!v.reference.folder.empty()) {  // the reference model, flown alike
+      HeldOutRequest reference = request;
+      reference.values = v.reference.values;
+      reference.parameters = reference.residuals = false;
+      requests.push_back(std::move(reference));
+    }
     std::vector<HeldOutAnswer> answers;
-    if (!memo.Fit(config, {request}, &cache, &answers, error)) {
+    if (!memo.Fit(config, requests, &cache, &answers, error)) {
       *error = "final validation: " + *error;
       return false;
     }
     run.final_validation = std::move(answers[0].fits);
     run.final_held_out_parameters = std::move(answers[0].parameters);
     run.final_validation_residuals = std::move(answers[0].residuals);
+    if (answers.size() > 1) {
+      run.reference_validation = std::move(answers[1].fits);
+      for (ExperimentFit& fit : run.reference_validation) fit.trace = Trajectory();
+      run.reference_check = CompareHeldOut(run.reference_validation, run.final_validation);
+      run.reference_check.baseline = "reference";
+    }
     if (!SetPredictionBands(config, model, v.experiments, options, &cache, &run, error)) {
       *error = "final validation: " + *error;
       return false;

@@ -23,6 +23,7 @@
 #include "engine/regression/least_squares.h"
 #include "engine/regression/regression_data.h"
 #include "engine/run/fusion.h"
+#include "engine/run/reference_model.h"
 #include "engine/run/search_horizons.h"
 #include "engine/solve/output_error_problem.h"
 #include "engine/solve/parameter.h"
@@ -148,6 +149,9 @@ struct FinalValidationConfig {
   // Per-experiment parameters of the last stage that estimated them.
   HeldOutPerExperiment per_experiment = HeldOutPerExperiment::kFit;
   HeldOutStart held_out;  // with final_validation's initial_state_prior
+  // `reference`: another run's model flown beside the final values (reference_model.h);
+  // folder empty when none.
+  ReferenceModel reference;
 };
 
 // Which estimate a stage that is worse on its held-out data than its start leaves to the

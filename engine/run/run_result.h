@@ -61,7 +61,9 @@ struct HeldOutCheck {
   // set aside against "previous" leaves those values to the next stage.
   std::string baseline = "start";
   // "its start" or "the previous stages' values", for messages.
+  // "reference": the final validation against `final_validation.reference`.
   std::string BaselineText() const {
+    if (baseline == "reference") return "the reference model";
     return baseline == "previous" ? "the previous stages' values" : "its start";
   }
 };
@@ -203,6 +205,10 @@ struct RunResult {
   std::vector<ExperimentFit> final_validation;
   std::vector<ResidualAnalysis> final_validation_residuals;  // reported only
   HeldOutParameters final_held_out_parameters;  // per-experiment parameters of final_validation
+  // With `final_validation.reference`: the reference model's fits of the same runs (no
+  // traces), and the final values held against them (baseline "reference").
+  std::vector<ExperimentFit> reference_validation;
+  HeldOutCheck reference_check;
   std::vector<ChannelMetrics> final_velocity_validation;
   std::vector<ZigzagRun> zigzags;  // every zigzag fit of the stages and the final validation
   std::vector<TurningRun> turning_circles;  // every turning circle fit, likewise

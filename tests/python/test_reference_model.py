@@ -1,0 +1,119 @@
+"""`final_validation: {reference: <folder>}` (engine/run/reference_model.h): the final values
+are flown beside another run's model on the same held-out run, from its measured start, and
+`worse_than_reference` warns when they predict it worse. Records from the independent
+corpus's simulator (tests/corpus/simulators.py), not from the engine's models: a model
+identified from the first 40 s of the training zigzag is held against the one identified from
+the whole of it, and the other way round."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+import pytest
+
+SOURCE = os.environ["VESSELID_SOURCE_DIR"]
+BINARY = os.environ["VESSELID_BINARY"]
+sys.path.insert(0, os.path.join(SOURCE, "tests", "corpus"))
+import corpus  # noqa: E402
+
+KIND, INDEX = "correct_second_order", 0
+
+
+@pytest.fixture(scope="module")
+def folder():
+    case = corpus.make_case(KIND, INDEX, 1000 * (list(corpus.CLASSES).index(KIND) + 1) + INDEX)
+    with tempfile.TemporaryDirectory() as root:
+        corpus.write_case(case, root)
+        with open(os.path.join(root, "config.yaml")) as f:
+            whole = f.read()
+        assert "{name: train, file: train.csv," in whole
+        short = whole.replace("{name: train, file: train.csv,",
+                              "{name: train, file: train.csv, window: [0, 40],")
+        write(root, "whole.yaml", whole)
+        write(root, "short.yaml", short)
+        for name in ("whole", "short"):
+            run(root, name + ".yaml", name)
+        yield root
+
+
+def write(root, name, text):
+    with open(os.path.join(root, name), "w") as f:
+        f.write(text)
+
+
+def run(root, config, out):
+    return subprocess.run([BINARY, "run", os.path.join(root, config), "--out",
+                           os.path.join(root, out), "--quiet", "--no-report"],
+                          capture_output=True, text=True)
+
+
+def with_reference(root, config, reference, name):
+    with open(os.path.join(root, config)) as f:
+        text = f.read()
+    old = "final_validation: {experiments: [test]}"
+    assert old in text
+    write(root, name, text.replace(old, "final_validation: {experiments: [test], reference: %s}"
+                                   % reference))
+    return name
+
+
+def results(root, out):
+    with open(os.path.join(root, out, "results.json")) as f:
+        return json.load(f)
+
+
+def reference_findings(r):
+    return [f for f in r["findings"] if f["kind"] == "worse_than_reference"]
+
+
+def test_a_model_from_fewer_data_is_held_against_the_reference(folder):
+    config = with_reference(folder, "short.yaml", "whole", "short_vs_whole.yaml")
+    status = run(folder, config, "short_vs_whole")
+    assert status.returncode == 0, status.stderr
+    r = results(folder, "short_vs_whole")
+    check = r["final_validation"]["reference"]
+    assert check["worse"] and check["mean_mae_ratio"] > 1.01, check
+    assert check["folder"].endswith("whole")
+    found = reference_findings(r)
+    assert len(found) == 1 and found[0]["severity"] == "warning", r["findings"]
+    assert "reference model" in found[0]["message"]
+    assert r["verdict"] != "good"
+    assert "worse_than_reference" in status.stderr
+
+
+def test_the_better_model_stays_quiet(folder):
+    config = with_reference(folder, "whole.yaml", "short", "whole_vs_short.yaml")
+    status = run(folder, config, "whole_vs_short")
+    assert status.returncode == 0, status.stderr
+    r = results(folder, "whole_vs_short")
+    check = r["final_validation"]["reference"]
+    assert not check["worse"] and check["mean_mae_ratio"] < 1.0, check
+    assert not reference_findings(r)
+    # The reference changes nothing else: the same estimates as without it.
+    plain = {p["name"]: p["value"] for p in results(folder, "whole")["parameters"]}
+    assert {p["name"]: p["value"] for p in r["parameters"]} == plain
+    assert r["verdict"] == results(folder, "whole")["verdict"]
+
+
+@pytest.mark.parametrize("reference,why", [
+    ("nowhere", "results.json"),
+    ("first_order", "the reference is a nomoto model"),
+])
+def test_a_reference_that_cannot_serve_is_refused(folder, reference, why):
+    if reference == "first_order":
+        with open(os.path.join(folder, "whole.yaml")) as f:
+            text = f.read()
+        first = text.replace("type: second_order", "type: first_order")
+        lines = [l for l in first.split("\n") if not l.strip().startswith(("T1:", "T2:", "T3:"))]
+        first = "\n".join(lines).replace("      K:", "      T: {start: 20, lower: 0.5, upper: 1000}\n      K:")
+        write(folder, "first_order.yaml", first)
+        status = run(folder, "first_order.yaml", "first_order")
+        assert status.returncode == 0, status.stderr
+    config = with_reference(folder, "whole.yaml", reference, "bad_%s.yaml" % reference)
+    out = "bad_" + reference
+    status = run(folder, config, out)
+    assert status.returncode != 0
+    assert "final_validation.reference" in status.stderr and why in status.stderr, status.stderr
+    assert config in status.stderr
+    assert not os.path.exists(os.path.join(folder, out))
