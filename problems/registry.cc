@@ -1,5 +1,7 @@
 #include "problems/registry.h"
 
+#include "engine/export/reference_model.h"
+
 #include "problems/eriksen2dof/eriksen_config.h"
 #include "problems/erunsal6dof/erunsal_config.h"
 #include "problems/input_gain/input_gain_config.h"
@@ -15,6 +17,7 @@ ModelRegistry DefaultRegistry() {
   registry.Register(input_gain::InputGainFamily());
   registry.Register(eriksen2dof::EriksenFamily());
   registry.Register(mmg::MmgFamily());
+  registry.SetReferenceReader(ReadReferenceModel);
   return registry;
 }
 

@@ -147,12 +147,9 @@ Outcome RunStages(const std::string& config, bool is_text, const std::string& na
   std::string error;
   std::unique_ptr<OutputFolder> folder;
   if (!out_dir.empty()) {
-    std::vector<std::string> inputs;
-    if (!is_text) inputs.push_back(config);
-    for (const ExperimentSpec& spec : run.experiments) {
-      if (!spec.file.empty()) inputs.push_back(spec.file);
+    if (!CheckInputsSurvive(out_dir, RunOutputs(run), RunInputs(run, !is_text), &error)) {
+      return Failure("run", error);
     }
-    if (!CheckInputsSurvive(out_dir, RunOutputs(run), inputs, &error)) return Failure("run", error);
     folder = OutputFolder::Open(out_dir, &error);
     if (folder == nullptr) return Failure("run", error);
   }

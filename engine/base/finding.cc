@@ -256,20 +256,6 @@ const Row kRows[] = {
      "Compare the run's traces with the training runs': what it shows that they do not (larger "
      "rudder angles, speed loss in the turns, another speed) is what the model's structure or "
      "its training data lack; add that to the structure or to the training runs."},
-    {K::kHeldOutInconsistent, "held_out_inconsistent", S::kWarning,
-     "A held-out run of the final validation, flown from its measured start, asks for other "
-     "values than the training runs gave: its scores g = S' r (the residuals' sensitivities to "
-     "the estimates, its start and its own values) against their covariance for a correct "
-     "model, C = S'S P S'S + the long-run (HAC) covariance of the noise's scores, give "
-     "g' C^+ g, chi-square with rank(C) degrees of freedom; the finding fires below p = 1e-4. "
-     "Unlike the band's ratio it does not thin out over a long run: a structure the values "
-     "absorb only far outside their intervals (a first-order model of a nonlinear ship, a "
-     "speed loss) shows however small its share of the error. `prediction_band.<run>` in "
-     "results.json holds `consistency`, its degrees of freedom, p and the estimate asked to "
-     "move most (in its standard errors).",
-     "The model's values depend on the run: compare the runs' amplitudes, speeds and "
-     "conditions, and give the structure what distinguishes them (a nonlinear term, speed "
-     "dependence) or train on runs that span them."},
     {K::kWorseThanReference, "worse_than_reference", S::kWarning,
      "The final values predict the final validation's held-out runs, flown from their "
      "measured starts, worse than the reference model `final_validation: {reference: "

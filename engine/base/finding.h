@@ -67,7 +67,6 @@ enum class FindingKind {
   kFinalHeldOutFailed,
   kImplausibleStart,
   kHeldOutBeyondBand,
-  kHeldOutInconsistent,
   kWorseThanReference,
 };
 

@@ -69,13 +69,6 @@ bool Load(const std::string& config_path, const std::string& data_dir,
   return vesselid::LoadConfigFile(config_path, data_dir, Registry(), config, error);
 }
 
-// The config and every data file it names: what no output may replace.
-std::vector<std::string> InputFiles(const vesselid::RunConfig& config) {
-  std::vector<std::string> inputs{config.path};
-  for (const vesselid::ExperimentSpec& spec : config.experiments) inputs.push_back(spec.file);
-  return inputs;
-}
-
 // Locks --out after checking it, and that nothing written there replaces an input.
 std::unique_ptr<vesselid::OutputFolder> OpenOutput(const std::string& out_dir,
                                                    const vesselid::PlannedOutputs& planned,
@@ -247,7 +240,7 @@ int RunConfigured(const vesselid::RunConfig& config, const std::string& config_p
   std::string error, fingerprint;
   if (!vesselid::RunFingerprint(config, &fingerprint, &error)) return Fail(error);
   const auto folder =
-      OpenOutput(out_dir, vesselid::RunOutputs(config), InputFiles(config), &error);
+      OpenOutput(out_dir, vesselid::RunOutputs(config), vesselid::RunInputs(config), &error);
   if (folder == nullptr) return Fail(error);
   // report.html's gnuplots start now, while the stages run: one per group of figures
   // (RenderFigures draws at most one group per core).
@@ -377,7 +370,7 @@ int Study(const std::string& config_path, const std::string& data_dir, const std
   // (an early return there would leave the other ranks waiting in the study's collectives).
   std::unique_ptr<vesselid::OutputFolder> folder;
   auto open_output = [&] {
-    folder = OpenOutput(out_dir, vesselid::RunOutputs(config.run), InputFiles(config.run), &error);
+    folder = OpenOutput(out_dir, vesselid::RunOutputs(config.run), vesselid::RunInputs(config.run), &error);
     return folder != nullptr;
   };
   if (group.size() == 1 && !open_output()) return Fail(error);

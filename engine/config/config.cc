@@ -758,8 +758,11 @@ bool LoadConfig(const ConfigSource& source, const ModelRegistry& registry, Confi
         const fs::path resolved =
             folder.is_absolute() ? folder : fs::path(path).parent_path() / folder;
         std::string why;
-        if (!ReadReferenceModel(resolved.string(), registry, result.family, final_info,
-                                &v.reference, &why)) {
+        if (!registry.reference_reader()) {
+          reader.Fail(n, "final_validation.reference", "no reader of runs' results here");
+        }
+        if (!registry.reference_reader()(resolved.string(), registry, result.family, final_info,
+                                         &v.reference, &why)) {
           reader.Fail(n, "final_validation.reference", why);
         }
       }

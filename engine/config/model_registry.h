@@ -3,12 +3,14 @@
 // experiments of its `simulation` map (model_family.h, for the families themselves).
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "engine/model/model_handle.h"
+#include "engine/run/reference_model.h"
 
 namespace vesselid {
 
@@ -29,7 +31,17 @@ class ModelRegistry {
                                                const std::map<std::string, std::string>& options,
                                                std::string* error) const;
 
+  // Reads `final_validation.reference` (another run's output folder) for a run of `family`
+  // with model `info`: set by the shipped registry (the reader lives above the config, with
+  // `vesselid export`); without one a config naming a reference is refused.
+  using ReferenceReader = std::function<bool(
+      const std::string& folder, const ModelRegistry& registry, const std::string& family,
+      const ModelInfo& info, ReferenceModel* reference, std::string* error)>;
+  void SetReferenceReader(ReferenceReader reader) { reference_reader_ = std::move(reader); }
+  const ReferenceReader& reference_reader() const { return reference_reader_; }
+
  private:
+  ReferenceReader reference_reader_;
   // Shared: the registry copies and moves where the families' type is not known.
   std::vector<std::shared_ptr<const ModelFamily>> families_;
 };

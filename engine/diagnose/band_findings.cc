@@ -3,18 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <string>
 
 namespace vesselid {
-namespace {
-
-std::string FormatShift(double standard_errors) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.1f of its standard errors", standard_errors);
-  return text;
-}
-
-}  // namespace
 
 double PredictionBandLimit(const RunResult& run) {
   double share = 0.0;
@@ -33,28 +23,6 @@ void AddPredictionBandFindings(const RunResult& run, std::vector<Finding>* findi
   const double limit = PredictionBandLimit(run);
   for (const ExperimentFit& fit : run.final_validation) {
     const PredictionBand& band = fit.band;
-    if (band.done && band.consistency_p < kConsistencyLimitP) {
-      char text[640];
-      std::snprintf(text, sizeof(text),
-                    "held-out run '%s', flown from its measured start, asks for other values "
-                    "than the training runs gave: chi-square %.3g on %d degrees of freedom "
-                    "(p = %.2g, limit %.2g)%s%s%s: the values depend on the run, which the "
-                    "model's structure does not represent",
-                    fit.experiment.c_str(), band.consistency, band.consistency_dof,
-                    band.consistency_p, kConsistencyLimitP,
-                    band.worst_parameter.empty() ? "" : "; refitted on it, ",
-                    band.worst_parameter.c_str(),
-                    band.worst_parameter.empty()
-                        ? ""
-                        : (" would move by " + FormatShift(band.worst_shift)).c_str());
-      Finding f = MakeFinding(FindingKind::kHeldOutInconsistent, text);
-      f.stage = "final";
-      f.experiment = fit.experiment;
-      if (!band.worst_parameter.empty()) f.parameter = band.worst_parameter;
-      f.value = band.consistency_p;
-      f.threshold = kConsistencyLimitP;
-      findings->push_back(std::move(f));
-    }
     if (!band.done || !(band.ratio > limit)) continue;
     // The output whose own error is largest against the training fit's.
     size_t worst = 0;

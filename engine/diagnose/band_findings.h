@@ -10,9 +10,6 @@
 // fit's, and the part logged input noise makes (a random walk of the heading, a handful of
 // degrees of freedom over a run) the 99 % point of a chi-square with 2 degrees of freedom
 // over its mean (9.21 / 2).
-//
-// held_out_inconsistent: the same run's scores against their covariance (the band's
-// `consistency`, chi-square) beyond p = kConsistencyLimitP.
 #pragma once
 
 #include <vector>
@@ -24,9 +21,6 @@ namespace vesselid {
 
 inline constexpr double kBandWhiteLimit = 1.25;
 inline constexpr double kBandInputNoiseLimit = 4.6;
-// One run in 10 000 of a correct model: the independent corpus's correct fits (162 runs) reach
-// p = 1.2e-4; wrong structures that fit their training run reach 1e-35.
-inline constexpr double kConsistencyLimitP = 1e-4;
 
 // The limit for `run`'s final validation (above).
 double PredictionBandLimit(const RunResult& run);

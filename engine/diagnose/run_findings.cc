@@ -258,8 +258,10 @@ void DiagnoseRun(const RunConfig& config, RunResult* run, TrajectoryCache* recor
     Finding f = MakeFinding(FindingKind::kWorseThanReference,
                             "the final values predict the held-out runs worse than " +
                                 run->reference_check.BaselineText() + " (" +
-                                DescribeHeldOut(run->reference_check, output_unit_of,
-                                                held_out_run) +
+                                DescribeReferenceCheck(
+                                    run->reference_check,
+                                    static_cast<int>(run->final_validation.size()),
+                                    output_unit_of, held_out_run) +
                                 ")");
     f.stage = "final";
     f.value = MeanMaeRatio(run->reference_check);

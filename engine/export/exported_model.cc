@@ -311,7 +311,11 @@ bool ReadExportedModel(const std::string& out_folder, const ModelRegistry& regis
     if (parsed != nullptr) *parsed = std::move(results);
     return true;
   } catch (const json::exception& e) {
-    *error = path + ": " + e.what();
+    // nlohmann's text without its "[json.exception.type_error.302] " tag.
+    std::string what = e.what();
+    const size_t tag = what.find("] ");
+    if (what.rfind("[json.exception.", 0) == 0 && tag != std::string::npos) what.erase(0, tag + 2);
+    *error = path + ": not the results.json of a finished `vesselid run` (" + what + ")";
     return false;
   }
 }

@@ -195,6 +195,19 @@ PlannedOutputs RunOutputs(const RunConfig& config) {
   return planned;
 }
 
+std::vector<std::string> RunInputs(const RunConfig& config, bool config_is_file) {
+  std::vector<std::string> inputs;
+  if (config_is_file && !config.path.empty()) inputs.push_back(config.path);
+  for (const ExperimentSpec& spec : config.experiments) {
+    if (!spec.file.empty()) inputs.push_back(spec.file);
+  }
+  const std::string& reference = config.final_validation.reference.folder;
+  if (config.has_final_validation && !reference.empty()) {
+    inputs.push_back((fs::path(reference) / "results.json").string());
+  }
+  return inputs;
+}
+
 bool CheckInputsSurvive(const std::string& out_dir, const PlannedOutputs& planned,
                         const std::vector<std::string>& inputs, std::string* error) {
   if (!OutNamed(out_dir, error)) return false;

@@ -49,6 +49,11 @@ struct PlannedOutputs {
 // step-regression stages add tables "<stage>.*.csv").
 PlannedOutputs RunOutputs(const RunConfig& config);
 
+// What a run reads and no output may replace: its config file (unless `config_is_file` is
+// false: a config given as text), every data file, and the results.json of its reference
+// model (final_validation.reference).
+std::vector<std::string> RunInputs(const RunConfig& config, bool config_is_file = true);
+
 // False, naming both, when one of `inputs` is a file the command would write (or its
 // temporary) in `out_dir` (an output never replaces an input), or lies in a subfolder of
 // `out_dir` the command does not write (--out is a parent of the data); or when `out_dir`

@@ -203,14 +203,7 @@ json BandsToJson(const std::vector<ExperimentFit>& fits) {
     bands[fit.experiment] = {{"samples", b.samples},
                              {"ratio", JsonNumber(b.ratio)},
                              {"raw_ratio", JsonNumber(b.raw_ratio)},
-                             {"output_raw_ratio", outputs},
-                             {"consistency", JsonNumber(b.consistency)},
-                             {"consistency_dof", b.consistency_dof},
-                             {"consistency_p", JsonNumber(b.consistency_p)}};
-    if (!b.worst_parameter.empty()) {
-      bands[fit.experiment]["largest_shift"] = {{"parameter", b.worst_parameter},
-                                                {"std_errors", JsonNumber(b.worst_shift)}};
-    }
+                             {"output_raw_ratio", outputs}};
   }
   return bands;
 }
@@ -515,14 +508,19 @@ json RunResultDocument(const RunConfig& config, const RunResult& result, JsonSpl
     if (result.reference_check.done) {
       const HeldOutCheck& check = result.reference_check;
       json outputs = json::array();
-      for (size_t i = 0; i < check.outputs.size(); ++i) {
+      const std::string first =
+          result.final_validation.empty() ? "" : result.final_validation[0].experiment;
+      for (size_t i = 0; i < check.outputs.size(); ++i) {  // in the metrics' display units
+        const DisplayUnit unit = OutputDisplayUnit(config, first, check.outputs[i]);
         outputs.push_back({{"output", check.outputs[i]},
-                           {"reference_mae", JsonNumber(check.start_mae[i])},
-                           {"final_mae", JsonNumber(check.stage_mae[i])}});
+                           {"unit", unit.unit},
+                           {"reference_mae", JsonNumber(unit.scale * check.start_mae[i])},
+                           {"final_mae", JsonNumber(unit.scale * check.stage_mae[i])}});
       }
       j["final_validation"]["reference"] = {
           {"folder", config.final_validation.reference.folder},
           {"outputs", outputs},
+          {"runs", result.final_validation.size()},
           {"reference_diverged", check.start_diverged},
           {"final_diverged", check.stage_diverged},
           {"mean_mae_ratio", JsonNumber(MeanMaeRatio(check))},

@@ -275,7 +275,13 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
                                  ParameterUnits(config));
     if (result.reference_check.done) {
       out << "  against the reference model (" << config.final_validation.reference.folder
-          << "): " << DescribeHeldOut(result.reference_check)
+          << "): "
+          << DescribeReferenceCheck(result.reference_check,
+                                    static_cast<int>(result.final_validation.size()),
+                                    OutputUnits(config),
+                                    result.final_validation.empty()
+                                        ? ""
+                                        : result.final_validation[0].experiment)
           << (result.reference_check.worse ? " (worse)" : " (not worse)") << "\n";
     }
   }

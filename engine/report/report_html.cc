@@ -410,6 +410,14 @@ void FinalSection(const RunConfig& config, const RunResult& result, ReportPage* 
   if (!result.final_validation.empty() || !result.final_velocity_validation.empty()) {
     html << "<h3 id=\"final-validation\">Final validation</h3>\n"
          << HeldOutStartHtml(result.final_validation);
+    if (result.reference_check.done) {
+      html << "<p>Against the reference model (" << HtmlEscape(config.final_validation.reference.folder)
+           << "): "
+           << HtmlEscape(DescribeReferenceCheck(
+                  result.reference_check, static_cast<int>(result.final_validation.size()),
+                  OutputUnits(config), result.final_validation[0].experiment))
+           << (result.reference_check.worse ? " (worse)" : " (not worse)") << ".</p>\n";
+    }
     if (result.final_validation.size() > 1) {
       html << RunFitTableHtml(PerRunFits(config, result.final_validation));
     }

@@ -611,4 +611,19 @@ std::string DescribeHeldOut(const HeldOutCheck& check, const DisplayUnitOf& unit
   return text;
 }
 
+std::string DescribeReferenceCheck(const HeldOutCheck& check, int runs,
+                                   const DisplayUnitOf& unit_of, const std::string& experiment) {
+  std::string text = DescribeHeldOut(check, unit_of, experiment);
+  const std::string of = " of " + std::to_string(runs) + " run(s)";
+  if (check.start_diverged > 0) {
+    text += (text.empty() ? "" : "; ") + std::string("the reference diverged on ") +
+            std::to_string(check.start_diverged) + of;
+  }
+  if (check.stage_diverged > 0 && check.stage_diverged <= check.start_diverged) {
+    text += "; the final values diverged on " + std::to_string(check.stage_diverged) + of;
+  }
+  if (check.outputs.empty()) text += "; no run both simulate to compare";
+  return text;
+}
+
 }  // namespace vesselid

@@ -4,9 +4,7 @@
 #include <map>
 
 #include "Eigen/Dense"
-#include "engine/base/chi_square.h"
 #include "engine/base/parallel_for.h"
-#include "engine/solve/hac_covariance.h"
 #include "engine/solve/solution_jacobian.h"
 
 namespace vesselid {
@@ -202,106 +200,47 @@ PredictionBand BandOf(const ModelHandle& model, Experiment experiment, const Exp
       eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
 
   // Scored samples: physical residual r_i = residual / w and sensitivity row s_i (per unit
-  // of each value: the Jacobian is per unit of value / scale), visited node by node.
+  // of each value: the Jacobian is per unit of value / scale).
   const double scored_from = e.node_time.front() + fit.start.burn_in;
-  Eigen::VectorXd s(n);
-  auto for_each_sample = [&](auto&& visit) {
-    int node = 0;
-    for (int k = 0; k + 1 < static_cast<int>(e.node_first_sample.size()); ++k) {
-      if (e.node_time[k] <= scored_from && fit.start.burn_in > 0.0) continue;
-      bool any = false;
-      for (int i = e.node_first_sample[k]; i < e.node_first_sample[k + 1]; ++i) {
-        const ExperimentSample& sample = e.samples[i];
-        if (sample.weight == 0.0) continue;
-        if (!(variance[sample.output] > 0.0)) continue;
-        const double sigma = std::sqrt(variance[sample.output]);
-        const double r = solution.residuals[i] / sample.weight / sigma;
-        s.setZero();
-        for (int j = solution.jacobian.rows[i]; j < solution.jacobian.rows[i + 1]; ++j) {
-          const int c = solution.jacobian.cols[j];
-          if (column_of[c] < 0) continue;
-          const Variable& v = problem->variables()[solution.variables[c]];
-          s(column_of[c]) = solution.jacobian.values[j] / (sample.weight * v.scale * sigma);
-        }
-        visit(node, sample.output, r, s);
-        any = true;
-      }
-      if (any) ++node;
-    }
-    return node;
-  };
   Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(n, n);
   Eigen::VectorXd gradient = Eigen::VectorXd::Zero(n);
   double q0 = 0.0;
   std::map<int, std::pair<double, int>> per_output;  // sum r^2 / sigma^2, samples
-  const int nodes = for_each_sample([&](int, int output, double r, const Eigen::VectorXd& row) {
-    normal.selfadjointView<Eigen::Lower>().rankUpdate(row);
-    gradient += row * r;
-    q0 += r * r;
-    per_output[output].first += r * r;
-    per_output[output].second += 1;
-    ++band.samples;
-  });
+  Eigen::VectorXd s(n);
+  for (int k = 0; k + 1 < static_cast<int>(e.node_first_sample.size()); ++k) {
+    if (e.node_time[k] <= scored_from && fit.start.burn_in > 0.0) continue;
+    for (int i = e.node_first_sample[k]; i < e.node_first_sample[k + 1]; ++i) {
+      const ExperimentSample& sample = e.samples[i];
+      if (sample.weight == 0.0) continue;
+      if (!(variance[sample.output] > 0.0)) continue;
+      const double sigma = std::sqrt(variance[sample.output]);
+      const double r = solution.residuals[i] / sample.weight / sigma;
+      s.setZero();
+      for (int j = solution.jacobian.rows[i]; j < solution.jacobian.rows[i + 1]; ++j) {
+        const int c = solution.jacobian.cols[j];
+        if (column_of[c] < 0) continue;
+        const Variable& v = problem->variables()[solution.variables[c]];
+        s(column_of[c]) = solution.jacobian.values[j] / (sample.weight * v.scale * sigma);
+      }
+      normal.selfadjointView<Eigen::Lower>().rankUpdate(s);
+      gradient += s * r;
+      q0 += r * r;
+      per_output[sample.output].first += r * r;
+      per_output[sample.output].second += 1;
+      ++band.samples;
+    }
+  }
   if (band.samples == 0) return band;
   const Eigen::MatrixXd full = normal.selfadjointView<Eigen::Lower>();
   const Eigen::MatrixXd a = Eigen::MatrixXd::Identity(n, n) + root.transpose() * full * root;
   const Eigen::VectorXd b = root.transpose() * gradient;
-  const Eigen::VectorXd y = a.ldlt().solve(b);
-  const double explained = b.dot(y);
+  const double explained = b.dot(a.ldlt().solve(b));
   band.done = true;
   band.ratio = std::max(0.0, q0 - explained) / band.samples;
   band.raw_ratio = q0 / band.samples;
   for (const auto& [o, sum] : per_output) {
     band.outputs.push_back(info.outputs[o]);
     band.output_ratio.push_back(sum.first / std::max(1, sum.second));
-  }
-
-  // Consistency: g = S' r has, for a correct model, covariance C = N P N + Omega, with
-  // N = S'S and Omega the long-run covariance of the noise's scores S_k' e_k over the nodes
-  // (HAC: the residuals of a noisy rudder are a random walk, not white), e = r - S d* after
-  // the best adjustment d* = L y. g' C^+ g is then chi-square with rank(C) degrees of
-  // freedom, however many samples the run has: unlike Q / samples it does not thin out a
-  // wrong structure that the values could absorb only far outside their intervals.
-  const Eigen::VectorXd shift = root * y;
-  Eigen::MatrixXd scores = Eigen::MatrixXd::Zero(nodes, n);
-  double noise_square = 0.0;  // sum e^2 / sigma^2
-  for_each_sample([&](int node, int, double r, const Eigen::VectorXd& row) {
-    const double e = r - row.dot(shift);
-    scores.row(node) += row.transpose() * e;
-    noise_square += e * e;
-  });
-  // The noise part is at least what white noise at the training fit's level gives (N): a run
-  // quieter than the training records (a simulation's truth) does not hold the estimates to
-  // more than their fit's own residual level allows.
-  const double quiet = std::max(0.0, 1.0 - noise_square / band.samples);
-  const Eigen::MatrixXd omega =
-      LongRunCovariance(HacOptions(), scores, nullptr) + quiet * full;
-  const Eigen::MatrixXd c = full * covariance * full + omega;
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ceigen(c);
-  const double largest = ceigen.eigenvalues().cwiseAbs().maxCoeff();
-  const Eigen::VectorXd projected = ceigen.eigenvectors().transpose() * gradient;
-  double statistic = 0.0;
-  int dof = 0;
-  for (int k = 0; k < n; ++k) {
-    const double lambda = ceigen.eigenvalues()(k);
-    if (!(lambda > 1e-10 * largest)) continue;
-    statistic += projected(k) * projected(k) / lambda;
-    ++dof;
-  }
-  if (dof > 0) {
-    band.consistency = statistic;
-    band.consistency_dof = dof;
-    band.consistency_p = ChiSquareUpperTail(statistic, dof);
-  }
-  for (size_t k = 0; k < shared_column.size(); ++k) {
-    const int m = shared_column[k];
-    const double sd = std::sqrt(covariance(m, m));
-    if (!(sd > 0.0)) continue;
-    const double z = shift(m) / sd;
-    if (!(std::abs(z) <= std::abs(band.worst_shift))) {
-      band.worst_shift = z;
-      band.worst_parameter = run.parameters[shared[k]].name;
-    }
   }
   return band;
 }

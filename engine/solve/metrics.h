@@ -124,13 +124,6 @@ struct PredictionBand {
   double raw_ratio = 0.0;  // sum r^2 / sigma^2 / samples: before the adjustment
   std::vector<std::string> outputs;
   std::vector<double> output_ratio;  // per output: its raw ratio
-  // Whether the run asks for other values than the training's (prediction_band.h):
-  // g' C^+ g, chi-square with `consistency_dof` degrees of freedom for a correct model.
-  double consistency = std::nan("");
-  int consistency_dof = 0;
-  double consistency_p = std::nan("");  // P(chi2 > consistency)
-  std::string worst_parameter;          // whose asked-for move is largest in its SEs
-  double worst_shift = std::nan("");    // that move, in its standard errors
 };
 
 struct ExperimentFit {

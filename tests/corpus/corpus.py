@@ -325,9 +325,6 @@ def run_case(case, binary, root):
         if held and held_analysis:
             band = final.get("prediction_band", {}).get("test", {})
             result["held_out"] = {"band": band.get("ratio"), "raw_band": band.get("raw_ratio"),
-                                  "consistency": band.get("consistency"),
-                                  "consistency_dof": band.get("consistency_dof"),
-                                  "consistency_p": band.get("consistency_p"),
                                   "rmse_over_noise": held[0]["rmse"] / held[0]["noise"]
                                   if held[0].get("noise") else None,
                                   "lag1": held_analysis[0].get("lag1"),

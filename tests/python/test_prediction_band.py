@@ -2,11 +2,7 @@
 simulators (tests/corpus/simulators.py), not of the engine's models: a second-order Nomoto
 fit of a ship that loses speed in its turns fits its training zigzag with white-looking
 residuals and misses the held-out run, and the finding says so; correct fits of the linear
-sway-yaw ship and of Norrbin's ship stay quiet, with their band ratio near 1.
-
-held_out_inconsistent (the same run's scores against their covariance, chi-square) on the
-structures whose error the estimates could absorb only far outside their intervals: the band's
-ratio stays near 1 there, the consistency test does not."""
+sway-yaw ship and of Norrbin's ship stay quiet, with their band ratio near 1."""
 import json
 import os
 import sys
@@ -35,10 +31,6 @@ def band_findings(result):
     return [f for f in result["findings"] if "held_out_beyond_band" in f]
 
 
-def inconsistent_findings(result):
-    return [f for f in result["findings"] if "held_out_inconsistent" in f]
-
-
 @pytest.mark.parametrize("index", [13, 14, 18])  # speed loss 8-11 %: the training fit looks good
 def test_a_speed_loss_the_model_has_not_is_found_on_the_held_out_run(index):
     case, result = run("speed_loss_large", index)
@@ -55,20 +47,4 @@ def test_correct_fits_stay_within_their_band(kind, index):
     assert result["good"]
     assert 0.7 < result["held_out"]["band"] < 1.2
     assert not band_findings(result), result["findings"]
-    assert result["held_out"]["consistency_p"] > 1e-3
-    assert not inconsistent_findings(result), result["findings"]
     assert result["verdict"] == "good"
-
-
-# A first-order model of a ship with a strong cubic yaw damping, and a speed loss of 17 %:
-# the held-out run's error is within 1.4x the training fit's (band), but it asks the estimates
-# to move many of their standard errors.
-@pytest.mark.parametrize("kind,index", [("first_order_of_nonlinear_ship", 13),
-                                        ("speed_loss_large", 1)])
-def test_a_run_that_asks_for_other_values_is_found(kind, index):
-    case, result = run(kind, index)
-    assert not result["good"]
-    assert result["held_out"]["band"] < 1.45
-    assert result["held_out"]["consistency_p"] < 1e-4
-    assert inconsistent_findings(result), result["findings"]
-    assert result["verdict"] != "good"

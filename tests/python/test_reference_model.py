@@ -117,3 +117,88 @@ def test_a_reference_that_cannot_serve_is_refused(folder, reference, why):
     assert "final_validation.reference" in status.stderr and why in status.stderr, status.stderr
     assert config in status.stderr
     assert not os.path.exists(os.path.join(folder, out))
+
+
+def tree_digest(folder):
+    import hashlib
+    digest = hashlib.sha256()
+    for base, dirs, files in sorted(os.walk(folder)):
+        dirs.sort()
+        for name in sorted(files):
+            path = os.path.join(base, name)
+            digest.update(path.encode())
+            with open(path, "rb") as f:
+                digest.update(f.read())
+    return digest.hexdigest()
+
+
+def copy_reference(root, source, name, edit=None):
+    import shutil
+    target = os.path.join(root, name)
+    shutil.rmtree(target, ignore_errors=True)
+    shutil.copytree(os.path.join(root, source), target)
+    if edit is not None:
+        path = os.path.join(target, "results.json")
+        with open(path) as f:
+            r = json.load(f)
+        edit(r)
+        with open(path, "w") as f:
+            json.dump(r, f)
+    return name
+
+
+def test_out_at_the_reference_folder_is_refused_and_the_reference_kept(folder):
+    reference = copy_reference(folder, "whole", "kept")
+    before = tree_digest(os.path.join(folder, reference))
+    config = with_reference(folder, "short.yaml", reference, "onto_reference.yaml")
+    status = run(folder, config, reference)
+    assert status.returncode != 0
+    assert "results.json" in status.stderr and "--out" in status.stderr, status.stderr
+    assert tree_digest(os.path.join(folder, reference)) == before
+
+
+@pytest.mark.parametrize("reference,why", [
+    ("no_K", "parameters: the reference reports no 'K'"),
+    ("whole/results.json", "name the reference run's output folder"),
+    ("garbled", "not the results.json of a finished `vesselid run`"),
+])
+def test_a_reference_with_less_than_a_model_is_refused(folder, reference, why):
+    if reference == "no_K":
+        copy_reference(folder, "whole", "no_K", lambda r: r.update(
+            parameters=[p for p in r["parameters"] if p["name"] != "K"]))
+    if reference == "garbled":
+        copy_reference(folder, "whole", "garbled", lambda r: r["model"].update(family=7))
+    config = with_reference(folder, "whole.yaml", reference, "less_%s.yaml" % len(why))
+    status = run(folder, config, "less")
+    assert status.returncode != 0
+    assert why in status.stderr and "final_validation.reference" in status.stderr, status.stderr
+    assert "[json.exception" not in status.stderr
+    assert not os.path.exists(os.path.join(folder, "less"))
+
+
+def test_a_reference_that_diverges_is_said_to(folder):
+    def unstable(r):
+        for p in r["parameters"]:
+            if p["name"] == "T1":
+                p["value"] = -5.0  # a negative time constant: the heading runs away
+    reference = copy_reference(folder, "whole", "unstable", unstable)
+    config = with_reference(folder, "whole.yaml", reference, "whole_vs_unstable.yaml")
+    status = subprocess.run([BINARY, "run", os.path.join(folder, config), "--out",
+                             os.path.join(folder, "whole_vs_unstable"), "--quiet"],
+                            capture_output=True, text=True)
+    assert status.returncode == 0, status.stderr
+    r = results(folder, "whole_vs_unstable")
+    check = r["final_validation"]["reference"]
+    assert check["reference_diverged"] == check["runs"] == 1 and not check["worse"], check
+    assert not reference_findings(r)
+    for name in ("report.txt", "report.html"):
+        with open(os.path.join(folder, "whole_vs_unstable", name)) as f:
+            assert "the reference diverged on 1 of 1 run(s)" in f.read(), name
+
+
+def test_the_reference_figures_are_in_the_metrics_units(folder):
+    r = results(folder, "short_vs_whole")
+    (output,) = r["final_validation"]["reference"]["outputs"]
+    (metric,) = [m for m in r["final_validation"]["metrics"] if m["output"] == output["output"]]
+    assert output["unit"] == metric.get("unit", output["unit"])
+    assert output["final_mae"] == pytest.approx(metric["mae"], rel=0.05)

@@ -215,7 +215,7 @@ TEST_F(ConfigTemplates, ErrorsNameTheLineWhereTheTextIs) {
                             "final_validation: {<<: *first, experiments: held_out,")),
             file +
                 ":18: final_validation.name: unknown key (allowed: experiments, outputs, "
-                "model, free_initial_states, per_experiment, held_out, initial_state_prior)");
+                "model, free_initial_states, per_experiment, held_out, initial_state_prior, reference)");
   // Two experiments of one name, one from a pattern: the pattern's line.
   EXPECT_EQ(Refusal(replace(kShortForm, "name: zz_3,", "name: zz_1,")),
             file + ":11: experiments[1].name: duplicate experiment name 'zz_1'");

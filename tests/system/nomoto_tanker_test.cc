@@ -188,21 +188,16 @@ namespace nomoto_tanker_test {
 // model lacks (a slow yaw disturbance, a rate-limited gear): the output-error stage's
 // residuals keep a lag-1 of 0.89-0.98 at up to 8 x the compass's noise level, which no noise
 // gives. Flown from their measured starts, the held-out zigzags drift with the disturbance
-// far beyond what the fit and its intervals explain (held_out_beyond_band), and ask for other
-// values than the training zigzags gave (held_out_inconsistent). Those warnings make the
-// verdict doubtful; nothing fails.
+// far beyond what the fit and its intervals explain (held_out_beyond_band). Those warnings
+// make the verdict doubtful; nothing fails.
 TEST_F(NomotoTanker, WhatTheModelLacksIsAWarning) {
   EXPECT_EQ((*results_)["verdict"], "doubtful") << testing::JsonFindingsText(*results_);
-  int coloured = 0, beyond_band = 0, inconsistent = 0;
+  int coloured = 0, beyond_band = 0;
   for (const json& f : testing::JsonFindings(*results_)) {
     EXPECT_NE(f["severity"], "failure") << f.dump();
     if (f["severity"] != "warning") continue;
     if (f["kind"] == "held_out_beyond_band") {
       ++beyond_band;
-      continue;
-    }
-    if (f["kind"] == "held_out_inconsistent") {
-      ++inconsistent;
       continue;
     }
     ++coloured;
@@ -211,7 +206,6 @@ TEST_F(NomotoTanker, WhatTheModelLacksIsAWarning) {
   }
   EXPECT_GE(coloured, 1);
   EXPECT_GE(beyond_band, 1);
-  EXPECT_GE(inconsistent, 1);
 }
 
 }  // namespace nomoto_tanker_test
