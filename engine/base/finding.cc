@@ -185,9 +185,14 @@ const Row kRows[] = {
      "and unmodelled disturbances reach 0.3-0.95 and 1.2-2.1 x). The RMSE is taken without the "
      "part that "
      "noise on a measured input can make (the 99 % quantile over the input noise refits): "
-     "a rudder's noise integrated into the heading is noise, not structure.",
+     "a rudder's noise integrated into the heading is noise, not structure. A sensor's own slow "
+     "noise (a compass's error with a time constant of seconds, the independent corpus's "
+     "correct_coloured_heading_noise class) looks the same: the warning fires on every such "
+     "run and says so where no residual is correlated with the inputs.",
      "A note: for the intervals use sandwich_hac. A warning: the model leaves out what drives "
-     "the residual; try a richer structure, free what is held, or model the disturbance."},
+     "the residual; try a richer structure (vesselid select), free what is held, or model the "
+     "disturbance. If the residuals are not correlated with the inputs, log the sensor at rest: "
+     "noise that wanders there is the sensor's, and the intervals are too narrow."},
     {K::kInputCorrelatedResiduals, "input_correlated_residuals", S::kInfo,
      "Residuals correlate with past inputs: dynamics the model leaves out, or noise on a "
      "measured input.",

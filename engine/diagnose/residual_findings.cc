@@ -149,6 +149,7 @@ void AddResidualFindings(const StageResult& stage, std::vector<Finding>* finding
   std::map<std::string, std::vector<const ResidualAnalysis*>> coloured, correlated;
   std::map<std::string, int> analysed;
   std::map<std::string, double> strong;  // output: the largest RMSE / noise where strong
+  std::set<std::string> strong_and_correlated;  // outputs strong in an input-correlated run
   for (const ResidualAnalysis& a : stage.residuals) {
     if (!a.tested() || a.noise_free || failed.count({a.experiment, a.output}) > 0) continue;
     if (analysed[a.output]++ == 0) outputs.push_back(a.output);
@@ -159,7 +160,10 @@ void AddResidualFindings(const StageResult& stage, std::vector<Finding>* finding
       // What the residual would be without the noise on the measured inputs (its share from
       // the input noise refits): that part is noise, not structure the model leaves out.
       const double ratio = m->second->rmse * std::sqrt(1.0 - a.input_noise_share) / m->second->noise;
-      if (ratio > kStrongNoiseRatio) strong[a.output] = std::max(strong[a.output], ratio);
+      if (ratio > kStrongNoiseRatio) {
+        strong[a.output] = std::max(strong[a.output], ratio);
+        if (a.input_correlated) strong_and_correlated.insert(a.output);
+      }
     }
   }
   for (const std::string& output : outputs) {
@@ -188,6 +192,15 @@ void AddResidualFindings(const StageResult& stage, std::vector<Finding>* finding
                       "what drives the residual",
                       kStrongLag1, strong[output]);
         f.message += text;
+        if (strong_and_correlated.count(output) == 0) {
+          // Slow noise of the sensor itself (a compass's drift, an AR(1) of seconds) looks the
+          // same and is not correlated with the inputs; the intervals then hold for neither.
+          f.message += ", or the measurement's own noise is slow (a compass's or GNSS "
+                       "heading's error of seconds to minutes): the residuals are not "
+                       "correlated with the inputs beyond the band, as such noise leaves them; "
+                       "either way the standard errors are too narrow (about 1.8x on the "
+                       "independent corpus's compass-noise class)";
+        }
         f.severity = FindingSeverity::kWarning;
         f.value = strong[output];
         f.threshold = kStrongNoiseRatio;

@@ -42,7 +42,11 @@ CLASSES = {
     "weak_cubic_term": 20,
     "speed_loss_small": 20,
     "speed_loss_large": 20,
+    "correct_coloured_heading_noise": 20,
 }
+# Classes whose false alarms are a known limitation of the verdict (docs/verdict.md): printed
+# and counted in the table, left out of --max-false-alarms / --max-misses.
+KNOWN_LIMITS = {"correct_coloured_heading_noise"}
 
 
 def fleet_ship(rng):
@@ -152,6 +156,9 @@ def make_case(kind, index, seed):
                                   spec("alpha", alpha * near() if alpha else 0.0,
                                        -10 * a_scale, 10 * a_scale)]
             case["judged"] = {"T": t, "K": k, "alpha": float(alpha)}
+    if kind == "correct_coloured_heading_noise":  # a compass's slow error, AR(1)
+        case["heading_noise_tau"] = float(rng.uniform(2.0, 20.0))
+        case["noise"] = (float(rng.uniform(0.1, 0.3)), case["noise"][1])
     if kind == "rudder_degrees_read_as_radians":
         case["degrees_logged"] = True
         case["list_degrees"] = False
@@ -217,7 +224,8 @@ def write_case(case, folder):
                                    case["seed"] * 2 + part, gear_lag=case["gear_lag"],
                                    bias=case["bias"], disturbance=case["disturbance"],
                                    heading_noise_deg=case["noise"][0],
-                                   rudder_noise_deg=case["noise"][1])
+                                   rudder_noise_deg=case["noise"][1],
+                                   heading_noise_tau=case.get("heading_noise_tau", 0.0))
         if case["degrees_logged"]:
             rows[:, 1:] /= DEG
         rows[:, 0] *= case["time_scale"]
@@ -406,8 +414,11 @@ def main():
     if args.json:
         with open(args.json, "w") as out:
             json.dump(results, out, indent=1)
-    false_alarms = 100 * totals[3] / max(1, totals[1])
-    misses = 100 * totals[4] / max(1, totals[2])
+    _, limited = table([r for r in results if r["class"] not in KNOWN_LIMITS])
+    false_alarms = 100 * limited[3] / max(1, limited[1])
+    misses = 100 * limited[4] / max(1, limited[2])
+    print("\nthresholds over the classes but %s: false alarms %.1f %%, misses %.1f %%"
+          % (", ".join(sorted(KNOWN_LIMITS)), false_alarms, misses))
     if args.max_false_alarms is not None and false_alarms > args.max_false_alarms:
         return 1
     if args.max_misses is not None and misses > args.max_misses:

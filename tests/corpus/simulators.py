@@ -159,9 +159,13 @@ def command(excitation, t, psi, state):
 
 def simulate(ship, excitation, duration, seed, gear_lag=1.0, rate_limit_deg=2.5, bias=0.0,
              disturbance=0.0, disturbance_period=200.0, heading_noise_deg=0.1,
-             rudder_noise_deg=0.1, step=0.05, log_every=4):
-    """Columns t, delta (rad, the gear's angle with noise), psi (rad, with noise)."""
+             rudder_noise_deg=0.1, step=0.05, log_every=4, heading_noise_tau=0.0):
+    """Columns t, delta (rad, the gear's angle with noise), psi (rad, with noise). With
+    heading_noise_tau > 0 the heading's noise is coloured: an AR(1) of that time constant (s)
+    and standard deviation heading_noise_deg, as a compass or a GNSS heading logs it."""
     rng = np.random.default_rng(seed)
+    colour = math.exp(-step * log_every / heading_noise_tau) if heading_noise_tau > 0 else 0.0
+    drift = None  # the AR(1) noise's current value
     excitation = dict(excitation)
     excitation["sign"] = ship.gain_sign()
     phase = rng.uniform(0, 2 * math.pi)
@@ -183,8 +187,12 @@ def simulate(ship, excitation, duration, seed, gear_lag=1.0, rate_limit_deg=2.5,
         t = k * step
         psi = x[-1]
         if k % log_every == 0:
-            rows.append((t, delta + rng.normal(0, math.radians(rudder_noise_deg)),
-                         psi + rng.normal(0, math.radians(heading_noise_deg))))
+            rudder_noise = rng.normal(0, math.radians(rudder_noise_deg))
+            noise = rng.normal(0, math.radians(heading_noise_deg))
+            if colour > 0.0:  # n_k = c n_(k-1) + sqrt(1 - c^2) w_k: stationary, same SD
+                drift = noise if drift is None else colour * drift + math.sqrt(1 - colour ** 2) * noise
+                noise = drift
+            rows.append((t, delta + rudder_noise, psi + noise))
         if k == steps:
             break
         target = command(excitation, t, psi, zig)
