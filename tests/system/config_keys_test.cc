@@ -675,6 +675,8 @@ const std::map<std::string, std::string> kShownElsewhere = {
     {"outside_data", "tests/system/hostile_input_test.cc"},
     {"memory_mb", "tests/system/hostile_input_test.cc"},
     {"max_profile_evaluations", "tests/system/thrust_law_fit_test.cc"},
+    // Needs another run's output folder.
+    {"reference", "tests/python/test_reference_model.py"},
 };
 // Every documented key has a case here that adds it (more occurrences in `with` than in
 // `base`), is the template's skeleton, or is shown by a named test that names it.
