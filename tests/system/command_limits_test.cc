@@ -255,8 +255,10 @@ int KillEveryPublicationStep(const std::string& first, const std::string& again,
   return kills;
 }
 
-// export (three C files), predict (its text and JSON) and simulate (the tanker campaign's 13
-// records) over an earlier set of their own, killed at every step of the publication.
+// export (three C files), predict (its text and JSON), design (its plan, five files), study
+// (study.txt and study.json) and simulate (the tanker campaign's 13 records) over an earlier
+// set of their own, killed at every step of the publication. (`select` publishes as `run`
+// does, whose kills HostileInput.KilledAtEveryStepOfThePublicationNeverMixesTwoSets counts.)
 TEST_F(CommandLimits, EveryCommandKilledWhilePublishingNeverMixesTwoSets) {
   const std::string run = (dir_ / "run").string();
   EXPECT_GE(KillEveryPublicationStep("export " + run + " --format c --seed 1",
@@ -266,6 +268,19 @@ TEST_F(CommandLimits, EveryCommandKilledWhilePublishingNeverMixesTwoSets) {
                                      "predict " + run + " --members 2 --seed 2", dir_ / "predict",
                                      2),
             4);
+  const std::string cargo = std::string(VESSELID_SOURCE_DIR) + "/configs/design_cargo.yaml";
+  const std::string design = "design " + cargo + " --from " + run + " --quiet";
+  EXPECT_GE(KillEveryPublicationStep(design, design, dir_ / "design", 5), 8);
+  // The shipped cargo config with a study of two start points, on the run's records.
+  const fs::path study_config = dir_ / "study.yaml";
+  {
+    std::ifstream in(cargo);
+    std::ofstream out(study_config);
+    out << in.rdbuf() << "\nstudy:\n  seed: 1\n  starts: {runs: 2}\n";
+  }
+  const std::string study =
+      "study " + study_config.string() + " --data " + (dir_ / "data").string() + " --quiet";
+  EXPECT_GE(KillEveryPublicationStep(study, study, dir_ / "study", 2), 3);
   const std::string tanker = std::string(VESSELID_SOURCE_DIR) + "/configs/nomoto_tanker.yaml";
   EXPECT_GE(KillEveryPublicationStep("simulate " + tanker, "simulate " + tanker,
                                      dir_ / "simulated", 13),
