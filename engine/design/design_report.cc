@@ -8,6 +8,7 @@
 #include "engine/base/atomic_file.h"
 #include "engine/base/json_number.h"
 #include "engine/design/design_names.h"
+#include "engine/output/output_folder.h"
 #include "engine/output/published_set.h"
 #include "engine/report/report_figures.h"
 #include "engine/report/report_plots.h"
@@ -392,7 +393,7 @@ std::string DesignHtml(const DesignResult& r) {
 }
 
 bool WriteDesign(const DesignResult& r, std::string out_dir, std::string* error) {
-  if (out_dir.empty()) out_dir = (std::filesystem::path(r.run) / "design").string();
+  if (out_dir.empty() && !DefaultOutFolder(r.run, "design", &out_dir, error)) return false;
   std::error_code same_error;
   if (std::filesystem::equivalent(out_dir, r.run, same_error)) {
     *error = "--out " + out_dir + ": the run's own folder (its report.html would be replaced); "

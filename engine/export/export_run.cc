@@ -14,6 +14,7 @@
 #include "engine/export/exported_model.h"
 #include "engine/export/fmu_package.h"
 #include "engine/output/held_out_zigzags.h"
+#include "engine/output/output_folder.h"
 #include "engine/output/published_set.h"
 
 namespace vesselid {
@@ -31,7 +32,7 @@ bool ExportRun(const ModelRegistry& registry, const std::string& run_dir, const 
     *error = "--members must be >= 0";
     return false;
   }
-  if (out_dir.empty()) out_dir = (fs::path(run_dir) / "export").string();
+  if (out_dir.empty() && !DefaultOutFolder(run_dir, "export", &out_dir, error)) return false;
   ExportedModel model;
   if (!ReadExportedModel(run_dir, registry, members, seed, &model, error)) return false;
   std::vector<std::pair<std::string, std::function<bool(const std::string&, std::string*)>>> files;
@@ -101,7 +102,7 @@ bool PredictRun(const ModelRegistry& registry, const std::string& run_dir,
   (*predictions)["model"] = model.model;
   (*predictions)["results"] = model.results;
   if (!write) return true;
-  if (out_dir.empty()) out_dir = (fs::path(run_dir) / "predict").string();
+  if (out_dir.empty() && !DefaultOutFolder(run_dir, "predict", &out_dir, error)) return false;
   const std::string json_text = predictions->dump(2) + "\n";
   auto text_file = [&](const std::string& file, std::string* message) {
     return WriteFileAtomically(file, *text, message);

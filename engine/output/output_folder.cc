@@ -195,6 +195,19 @@ PlannedOutputs RunOutputs(const RunConfig& config) {
   return planned;
 }
 
+bool DefaultOutFolder(const std::string& run_dir, const std::string& name, std::string* out_dir,
+                      std::string* error) {
+  const fs::path folder = fs::path(run_dir) / name;
+  std::error_code ec;
+  if (fs::is_symlink(fs::symlink_status(folder, ec))) {
+    *error = folder.string() + ": a link, where the default --out of this command is made "
+                               "inside the run's folder; name --out to write elsewhere";
+    return false;
+  }
+  *out_dir = folder.string();
+  return true;
+}
+
 std::vector<std::string> RunInputs(const RunConfig& config, bool config_is_file) {
   std::vector<std::string> inputs;
   if (config_is_file && !config.path.empty()) inputs.push_back(config.path);

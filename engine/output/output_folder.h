@@ -49,6 +49,12 @@ struct PlannedOutputs {
 // step-regression stages add tables "<stage>.*.csv").
 PlannedOutputs RunOutputs(const RunConfig& config);
 
+// The folder a command writes into when --out is not given: `<run_dir>/<name>` (export,
+// predict, design). False when that name is a link: the default stays inside the run's folder
+// and a link planted there would lead the command's files elsewhere.
+bool DefaultOutFolder(const std::string& run_dir, const std::string& name, std::string* out_dir,
+                      std::string* error);
+
 // What a run reads and no output may replace: its config file (unless `config_is_file` is
 // false: a config given as text), every data file, and the results.json of its reference
 // model (final_validation.reference).

@@ -206,6 +206,27 @@ TEST_F(CommandLimits, ACorrelationOfTheWrongShapeIsRefused) {
   ExpectRefused(Command("export " + negative + " --format json"), "the std_error of K is negative");
 }
 
+// The default --out of export, predict and design (<run>/export, /predict, /design) planted as
+// a link to a folder elsewhere: refused, nothing written through it.
+TEST_F(CommandLimits, ADefaultFolderThatIsALinkIsRefused) {
+  const fs::path run = dir_ / "run", elsewhere = dir_ / "elsewhere";
+  fs::create_directories(elsewhere);
+  const std::string cargo = std::string(VESSELID_SOURCE_DIR) + "/configs/design_cargo.yaml";
+  const std::map<std::string, std::string> commands = {
+      {"export", "export " + run.string() + " --format json"},
+      {"predict", "predict " + run.string() + " --members 2"},
+      {"design", "design " + cargo + " --from " + run.string() + " --quiet"}};
+  for (const auto& [name, command] : commands) {
+    SCOPED_TRACE(command);
+    fs::create_directory_symlink(elsewhere, run / name);
+    ExpectRefused(Command(command), "a link, where the default --out of this command is made");
+    EXPECT_TRUE(fs::is_empty(elsewhere));
+    fs::remove(run / name);
+    EXPECT_EQ(Command(command).status, 0);  // made inside the run's folder
+    EXPECT_TRUE(fs::is_directory(fs::symlink_status(run / name)));
+  }
+}
+
 // Each published file of `folder` by its inode: a file of an earlier set keeps the inode it
 // was copied to, a file of a new one is renamed in with its own.
 std::map<std::string, ino_t> PublishedFiles(const fs::path& folder) {
