@@ -1,7 +1,9 @@
 #include "engine/report/report_figures.h"
 
 #include <stdlib.h>
+#include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -186,11 +188,33 @@ std::string SeriesData(const std::vector<SeriesPiece>& pieces, size_t max_points
   return out;
 }
 
+// The plots' temporary folders, "vesselid_report_<pid>_XXXXXX" in the temporary directory,
+// of processes no longer alive (killed while drawing): removed before a new one is made.
+static void RemoveStaleFigureFolders() {
+  std::error_code ec;
+  for (const fs::directory_entry& entry : fs::directory_iterator(fs::temp_directory_path(), ec)) {
+    const std::string name = entry.path().filename().string();
+    const std::string prefix = "vesselid_report_";
+    if (name.rfind(prefix, 0) != 0 || !entry.is_directory(ec) || entry.is_symlink(ec)) continue;
+    const size_t end = name.find('_', prefix.size());
+    if (end == std::string::npos || end == prefix.size()) continue;
+    const std::string digits = name.substr(prefix.size(), end - prefix.size());
+    if (digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 9) continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(digits));
+    if (pid <= 0 || ::kill(pid, 0) == 0 || errno != ESRCH) continue;  // alive, or not ours
+    std::error_code ignored;
+    fs::remove_all(entry.path(), ignored);
+  }
+}
+
 FigureRendering RenderFigures(const std::vector<Figure>& figures) {
   FigureRendering result;
   result.svg.assign(figures.size(), "");
   if (figures.empty()) return result;
-  std::string pattern = (fs::temp_directory_path() / "vesselid_report_XXXXXX").string();
+  RemoveStaleFigureFolders();
+  std::string pattern = (fs::temp_directory_path() /
+                         ("vesselid_report_" + std::to_string(::getpid()) + "_XXXXXX"))
+                            .string();
   if (mkdtemp(pattern.data()) == nullptr) {
     result.error =
         "cannot create a temporary folder for the plots in " + fs::temp_directory_path().string();

@@ -4,6 +4,9 @@
 #include "engine/config/config.h"
 #include "engine/report/report_html.h"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -115,6 +118,33 @@ TEST(RenderFiguresTest, FiguresAfterAFailingOneAreStillDrawn) {
   EXPECT_NE(rendering.svg[2].find("</svg>"), std::string::npos);
   EXPECT_NE(rendering.error.find("figure broken"), std::string::npos) << rendering.error;
   EXPECT_NE(rendering.svg[0].find("it's a_b"), std::string::npos);
+}
+
+// A process killed while drawing leaves its "vesselid_report_<pid>_*" folder in the temporary
+// directory: the next rendering removes it, and keeps one whose process is alive (this one's).
+TEST(RenderFiguresTest, FoldersOfKilledProcessesAreRemoved) {
+  ASSERT_TRUE(HaveProgram("gnuplot")) << kNoGnuplot;
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ASSERT_GT(child, 0);
+  ::waitpid(child, nullptr, 0);  // gone: its pid names a dead process
+  const fs::path stale = fs::temp_directory_path() /
+                         ("vesselid_report_" + std::to_string(child) + "_killed");
+  const fs::path alive = fs::temp_directory_path() /
+                         ("vesselid_report_" + std::to_string(::getpid()) + "_drawing");
+  for (const fs::path& folder : {stale, alive}) {
+    fs::create_directories(folder);
+    std::ofstream(folder / "D0.dat") << "0 1\n";
+  }
+  Figure figure;
+  figure.width = 300;
+  figure.height = 200;
+  figure.data = {"0 1\n1 2\n"};
+  figure.script = "plot D0 using 1:2 with lines";
+  EXPECT_TRUE(RenderFigures({figure}).error.empty());
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_TRUE(fs::exists(alive / "D0.dat"));
+  fs::remove_all(alive);
 }
 
 // gnuplots started ahead (as a run that writes report.html does) draw the same figures as
