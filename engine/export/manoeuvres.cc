@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "engine/base/json_number.h"
+#include "engine/base/parallel_for.h"
 #include "engine/data/zigzag_figures.h"
 
 namespace vesselid {
@@ -250,10 +251,11 @@ bool PredictManoeuvres(const ExportedModel& exported, const ModelHandle& model,
                                           "pull_out.residual_rate"};
   const std::vector<double> estimate =
       FiguresOf(model, layout, c.speed, c.length, exported.values, c);
-  std::vector<std::vector<double>> members;
-  for (const std::vector<double>& p : exported.ensemble) {
-    members.push_back(FiguresOf(model, layout, c.speed, c.length, p, c));
-  }
+  // Every member flies the manoeuvres on its own: on every core.
+  std::vector<std::vector<double>> members(exported.ensemble.size());
+  ParallelFor(static_cast<int>(members.size()), 0, [&](int k) {
+    members[k] = FiguresOf(model, layout, c.speed, c.length, exported.ensemble[k], c);
+  });
   // Delta method: J by central differences of one standard error each side.
   const int n = static_cast<int>(exported.covariance_names.size());
   Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(names.size(), n);
