@@ -67,12 +67,17 @@ def reference_findings(r):
     return [f for f in r["findings"] if f["kind"] == "worse_than_reference"]
 
 
-def test_a_model_from_fewer_data_is_held_against_the_reference(folder):
-    config = with_reference(folder, "short.yaml", "whole", "short_vs_whole.yaml")
-    status = run(folder, config, "short_vs_whole")
+def run_against(root, config, reference, out):
+    """`config` run with `reference` as its final validation's reference: the process, its
+    results.json and their `final_validation.reference`."""
+    status = run(root, with_reference(root, config, reference, out + ".yaml"), out)
     assert status.returncode == 0, status.stderr
-    r = results(folder, "short_vs_whole")
-    check = r["final_validation"]["reference"]
+    r = results(root, out)
+    return status, r, r["final_validation"]["reference"]
+
+
+def test_a_model_from_fewer_data_is_held_against_the_reference(folder):
+    status, r, check = run_against(folder, "short.yaml", "whole", "short_vs_whole")
     assert check["worse"] and check["mean_mae_ratio"] > 1.01, check
     assert check["folder"].endswith("whole")
     found = reference_findings(r)
@@ -83,11 +88,7 @@ def test_a_model_from_fewer_data_is_held_against_the_reference(folder):
 
 
 def test_the_better_model_stays_quiet(folder):
-    config = with_reference(folder, "whole.yaml", "short", "whole_vs_short.yaml")
-    status = run(folder, config, "whole_vs_short")
-    assert status.returncode == 0, status.stderr
-    r = results(folder, "whole_vs_short")
-    check = r["final_validation"]["reference"]
+    _, r, check = run_against(folder, "whole.yaml", "short", "whole_vs_short")
     assert not check["worse"] and check["mean_mae_ratio"] < 1.0, check
     assert not reference_findings(r)
     # The reference changes nothing else: the same estimates as without it.
