@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -31,6 +32,12 @@ using testing::CommandOutcome;
 // test, not CI.
 CommandOutcome Command(const std::string& arguments) {
   return testing::RunCommand("timeout 60 " + std::string(VESSELID_BINARY) + " " + arguments);
+}
+
+// A file's bytes ("" when it cannot be read).
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 // Largest resident set of any child process so far, MiB.
@@ -224,6 +231,44 @@ TEST_F(CommandLimits, ADefaultFolderThatIsALinkIsRefused) {
     fs::remove(run / name);
     EXPECT_EQ(Command(command).status, 0);  // made inside the run's folder
     EXPECT_TRUE(fs::is_directory(fs::symlink_status(run / name)));
+  }
+}
+
+// A full disk (a 17 MiB tmpfs: past the 16 MiB the folder's check asks for, short of the 19 MB
+// the cargo campaign's run writes) under a folder holding an earlier set and a user's file: the
+// run fails naming the cause, and leaves the earlier set, the user's file and no temporary.
+TEST_F(CommandLimits, AFullDiskLeavesTheEarlierSetAndTheUsersFiles) {
+  const fs::path disk = dir_ / "disk", out = disk / "out";
+  fs::create_directories(disk);
+  if (std::system(("mount -t tmpfs -o size=17m tmpfs " + disk.string() + " 2>/dev/null").c_str()) !=
+      0) {
+    GTEST_SKIP() << "no tmpfs can be mounted here (needs root)";
+  }
+  struct Unmount {
+    fs::path path;
+    ~Unmount() { [[maybe_unused]] const int status = std::system(("umount " + path.string()).c_str()); }
+  } unmount{disk};
+  const std::string source = std::string(VESSELID_SOURCE_DIR) + "/configs/";
+  ASSERT_EQ(Command("run " + source + "design_cargo.yaml --data " + (dir_ / "data").string() +
+                    " --out " + out.string() + " --quiet --no-report")
+                .status,
+            0);
+  std::ofstream(out / "notes.txt") << "the user's own notes\n";
+  std::map<std::string, std::string> before;
+  for (const char* name : {"results.json", "report.txt", "notes.txt"}) {
+    before[name] = ReadText(out / name);
+  }
+  const std::string big = (dir_ / "big").string();
+  ASSERT_EQ(Command("simulate " + source + "nomoto_cargo.yaml --out " + big).status, 0);
+  const CommandOutcome full = Command("run " + source + "nomoto_cargo.yaml --data " + big +
+                                     " --out " + out.string() + " --quiet --no-report");
+  EXPECT_NE(full.status, 0);
+  EXPECT_NE(full.output.find("No space left on device"), std::string::npos) << full.output;
+  for (const auto& [name, text] : before) EXPECT_EQ(ReadText(out / name), text) << name;
+  for (const auto& entry : fs::recursive_directory_iterator(out)) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_FALSE(name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0) << name;
+    EXPECT_NE(name, ".vesselid-staging");
   }
 }
 
