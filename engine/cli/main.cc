@@ -65,8 +65,9 @@ const vesselid::ModelRegistry& Registry() {
 }
 
 bool Load(const std::string& config_path, const std::string& data_dir,
-          vesselid::ConfigFile* config, std::string* error) {
-  return vesselid::LoadConfigFile(config_path, data_dir, Registry(), config, error);
+          vesselid::ConfigFile* config, std::string* error, bool read_reference = true) {
+  return vesselid::LoadConfigFile(config_path, data_dir, Registry(), config, error,
+                                  read_reference);
 }
 
 // Locks --out after checking it, and that nothing written there replaces an input.
@@ -82,7 +83,8 @@ int Simulate(const std::string& config_path, const std::string& out_dir) {
   vesselid::ConfigFile config;
   std::string error;
   // The simulation section is checked whole before --out is touched.
-  if (!Load(config_path, out_dir, &config, &error) ||
+  // The records are made before any run: a reference run need not exist yet.
+  if (!Load(config_path, out_dir, &config, &error, /*read_reference=*/false) ||
       !vesselid::SimulateConfig(config, out_dir, &error, /*check_only=*/true)) {
     return Fail(error);
   }

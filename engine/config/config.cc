@@ -636,10 +636,12 @@ WorkLimits ReadLimits(const YamlReader& reader, const YAML::Node& node) {
 }  // namespace
 
 bool LoadConfigFile(const std::string& path, const std::string& data_dir,
-                    const ModelRegistry& registry, ConfigFile* config, std::string* error) {
+                    const ModelRegistry& registry, ConfigFile* config, std::string* error,
+                    bool read_reference) {
   ConfigSource source;
   source.path = path;
   source.data_dir = data_dir;
+  source.read_reference = read_reference;
   return LoadConfig(source, registry, config, error);
 }
 
@@ -758,11 +760,12 @@ bool LoadConfig(const ConfigSource& source, const ModelRegistry& registry, Confi
         const fs::path resolved =
             folder.is_absolute() ? folder : fs::path(path).parent_path() / folder;
         std::string why;
-        if (!registry.reference_reader()) {
+        if (!source.read_reference) {
+          v.reference.folder = resolved.string();  // not read: no values, not flown
+        } else if (!registry.reference_reader()) {
           reader.Fail(n, "final_validation.reference", "no reader of runs' results here");
-        }
-        if (!registry.reference_reader()(resolved.string(), registry, result.family, final_info,
-                                         &v.reference, &why)) {
+        } else if (!registry.reference_reader()(resolved.string(), registry, result.family,
+                                                final_info, &v.reference, &why)) {
           reader.Fail(n, "final_validation.reference", why);
         }
       }

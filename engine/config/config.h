@@ -56,6 +56,10 @@ struct ConfigSource {
   // Experiments whose records the caller hands over in memory (ExperimentSpec::table, as
   // the Python package does): their `file` key may be absent.
   std::set<std::string> in_memory;
+  // Read `final_validation.reference` (another run's results.json). False for a command that
+  // does not validate (simulate): the reference run need not exist yet, and only its folder
+  // is kept.
+  bool read_reference = true;
 };
 
 bool LoadConfig(const ConfigSource& source, const ModelRegistry& registry, ConfigFile* config,
@@ -64,7 +68,8 @@ bool LoadConfig(const ConfigSource& source, const ModelRegistry& registry, Confi
 // Experiment files are resolved against data_dir when it is not empty, else against the
 // config file's folder. The registry must outlive `config` (config->family points into it).
 bool LoadConfigFile(const std::string& path, const std::string& data_dir,
-                    const ModelRegistry& registry, ConfigFile* config, std::string* error);
+                    const ModelRegistry& registry, ConfigFile* config, std::string* error,
+                    bool read_reference = true);
 
 // The run part of a config file alone.
 bool LoadRunConfig(const std::string& path, const std::string& data_dir,

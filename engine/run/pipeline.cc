@@ -304,7 +304,7 @@ bool RunIdentification(const RunConfig& config, RunResult* result, std::string* 
     request.values = final_values;
     request.parameters = request.residuals = true;
     std::vector<HeldOutRequest> requests{request};
-    if (!v.reference.folder.empty()) {  // the reference model, flown alike
+    if (!v.reference.values.empty()) {  // the reference model, flown alike
       HeldOutRequest reference = request;
       reference.values = v.reference.values;
       reference.parameters = reference.residuals = false;

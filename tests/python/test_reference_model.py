@@ -203,3 +203,17 @@ def test_the_reference_figures_are_in_the_metrics_units(folder):
     (metric,) = [m for m in r["final_validation"]["metrics"] if m["output"] == output["output"]]
     assert output["unit"] == metric.get("unit", output["unit"])
     assert output["final_mae"] == pytest.approx(metric["mae"], rel=0.05)
+
+
+def test_simulate_does_not_need_the_reference_yet(folder):
+    """The records are simulated before any run: a reference not made yet is no refusal."""
+    with open(os.path.join(SOURCE, "configs", "design_cargo.yaml")) as f:
+        text = f.read()
+    assert "final_validation" not in text
+    write(folder, "simulated.yaml",
+          text + "\nfinal_validation: {experiments: [zigzag_10], reference: not_made_yet}\n")
+    status = subprocess.run([BINARY, "simulate", os.path.join(folder, "simulated.yaml"), "--out",
+                             os.path.join(folder, "simulated")], capture_output=True, text=True)
+    assert status.returncode == 0, status.stderr
+    status = run(folder, "simulated.yaml", "simulated_run")  # the run needs it
+    assert status.returncode != 0 and "final_validation.reference" in status.stderr
