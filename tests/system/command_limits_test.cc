@@ -288,6 +288,47 @@ std::map<std::string, ino_t> PublishedFiles(const fs::path& folder) {
   return set;
 }
 
+// A structure selection small enough to kill at every step: two simulated zigzags of the
+// cargo ship, its second-order model against a first-order one, two folds by run.
+const char kSelectConfig[] = R"(model: {family: nomoto, type: second_order}
+simulation:
+  truth: {T1: 45.0, T2: 6.0, T3: 10.0, K: 0.09}
+  steering_gear: {Tm: 1.0, kp: 0.12, rudder_limit_deg: 35, rate_limit_deg_s: 2.3}
+  sample_time: 0.5
+  experiments:
+    - {file: a.csv, duration: 300, excitation: {type: zigzag, rudder_deg: 10, heading_deg: 10},
+       noise: {rudder_deg: 0.1, heading_deg: 0.1}, seed: 21}
+    - {file: b.csv, duration: 300, excitation: {type: zigzag, rudder_deg: 20, heading_deg: 20},
+       noise: {rudder_deg: 0.1, heading_deg: 0.1}, seed: 22}
+experiment_defaults: {inputs: {delta: delta}, outputs: {psi: psi}}
+experiments:
+  - {name: a, file: a.csv}
+  - {name: b, file: b.csv}
+stages:
+  - name: fit
+    experiments: [a, b]
+    free_initial_states: [psi]
+    parameters:
+      T1: {start: 60.0, lower: 1.0, upper: 500.0}
+      T2: {start: 4.0, lower: 0.1, upper: 100.0}
+      T3: {start: 6.0, lower: 0.0, upper: 100.0}
+      K: {start: 0.05, lower: 0.001, upper: 2.0}
+select:
+  experiments: [a, b]
+  folds: 2
+  candidates:
+    - name: second_order
+    - name: first_order
+      model: {family: nomoto, type: first_order}
+      stages:
+        - name: fit
+          experiments: [a, b]
+          free_initial_states: [psi]
+          parameters:
+            T: {start: 40.0, lower: 1.0, upper: 500.0}
+            K: {start: 0.05, lower: 0.001, upper: 2.0}
+)";
+
 // `first` then `again` (the same command publishing another set into `out`), `again` killed
 // with SIGKILL after every step of its publication: the folder never holds files of both sets,
 // and `again` run whole afterwards ends in a whole set of `files` files. The number of kills.
@@ -322,9 +363,9 @@ int KillEveryPublicationStep(const std::string& first, const std::string& again,
 }
 
 // export (three C files), predict (its text and JSON), design (its plan, five files), study
-// (study.txt and study.json) and simulate (the tanker campaign's 13 records) over an earlier
-// set of their own, killed at every step of the publication. (`select` publishes as `run`
-// does, whose kills HostileInput.KilledAtEveryStepOfThePublicationNeverMixesTwoSets counts.)
+// (study.txt and study.json), select (the chosen candidate's results.json and report.txt) and
+// simulate (the tanker campaign's 13 records) over an earlier set of their own, killed at
+// every step of the publication.
 TEST_F(CommandLimits, EveryCommandKilledWhilePublishingNeverMixesTwoSets) {
   const std::string run = (dir_ / "run").string();
   EXPECT_GE(KillEveryPublicationStep("export " + run + " --format c --seed 1",
@@ -347,6 +388,16 @@ TEST_F(CommandLimits, EveryCommandKilledWhilePublishingNeverMixesTwoSets) {
   const std::string study =
       "study " + study_config.string() + " --data " + (dir_ / "data").string() + " --quiet";
   EXPECT_GE(KillEveryPublicationStep(study, study, dir_ / "study", 2), 3);
+  // select: two zigzags, second against first order, cross-validated by run (0.4 s).
+  const fs::path select_config = dir_ / "select" / "select.yaml";
+  fs::create_directories(select_config.parent_path());
+  std::ofstream(select_config) << kSelectConfig;
+  ASSERT_EQ(Command("simulate " + select_config.string() + " --out " +
+                    select_config.parent_path().string())
+                .status,
+            0);
+  const std::string select = "select " + select_config.string() + " --quiet --no-report";
+  EXPECT_GE(KillEveryPublicationStep(select, select, dir_ / "selected", 2), 3);
   const std::string tanker = std::string(VESSELID_SOURCE_DIR) + "/configs/nomoto_tanker.yaml";
   EXPECT_GE(KillEveryPublicationStep("simulate " + tanker, "simulate " + tanker,
                                      dir_ / "simulated", 13),
