@@ -253,16 +253,10 @@ void DiagnoseRun(const RunConfig& config, RunResult* run, TrajectoryCache* recor
   AddImplausibleStartFindings(run->final_validation, "final", output_unit_of, &findings);
   AddPredictionBandFindings(*run, &findings);
   if (run->reference_check.done && run->reference_check.worse) {
-    const std::string held_out_run =
-        run->final_validation.empty() ? "" : run->final_validation[0].experiment;
     Finding f = MakeFinding(FindingKind::kWorseThanReference,
                             "the final values predict the held-out runs worse than " +
                                 run->reference_check.BaselineText() + " (" +
-                                DescribeReferenceCheck(
-                                    run->reference_check,
-                                    static_cast<int>(run->final_validation.size()),
-                                    output_unit_of, held_out_run) +
-                                ")");
+                                DescribeReferenceCheck(*run, output_unit_of) + ")");
     f.stage = "final";
     f.value = MeanMaeRatio(run->reference_check);
     f.threshold = kHeldOutTolerance;

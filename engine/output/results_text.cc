@@ -276,12 +276,7 @@ std::string RunResultToText(const RunConfig& config, const RunResult& result) {
     if (result.reference_check.done) {
       out << "  against the reference model (" << config.final_validation.reference.folder
           << "): "
-          << DescribeReferenceCheck(result.reference_check,
-                                    static_cast<int>(result.final_validation.size()),
-                                    OutputUnits(config),
-                                    result.final_validation.empty()
-                                        ? ""
-                                        : result.final_validation[0].experiment)
+          << DescribeReferenceCheck(result, OutputUnits(config))
           << (result.reference_check.worse ? " (worse)" : " (not worse)") << "\n";
     }
   }

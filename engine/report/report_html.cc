@@ -413,9 +413,7 @@ void FinalSection(const RunConfig& config, const RunResult& result, ReportPage* 
     if (result.reference_check.done) {
       html << "<p>Against the reference model (" << HtmlEscape(config.final_validation.reference.folder)
            << "): "
-           << HtmlEscape(DescribeReferenceCheck(
-                  result.reference_check, static_cast<int>(result.final_validation.size()),
-                  OutputUnits(config), result.final_validation[0].experiment))
+           << HtmlEscape(DescribeReferenceCheck(result, OutputUnits(config)))
            << (result.reference_check.worse ? " (worse)" : " (not worse)") << ".</p>\n";
     }
     if (result.final_validation.size() > 1) {

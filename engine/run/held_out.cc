@@ -611,10 +611,11 @@ std::string DescribeHeldOut(const HeldOutCheck& check, const DisplayUnitOf& unit
   return text;
 }
 
-std::string DescribeReferenceCheck(const HeldOutCheck& check, int runs,
-                                   const DisplayUnitOf& unit_of, const std::string& experiment) {
-  std::string text = DescribeHeldOut(check, unit_of, experiment);
-  const std::string of = " of " + std::to_string(runs) + " run(s)";
+std::string DescribeReferenceCheck(const RunResult& run, const DisplayUnitOf& unit_of) {
+  const HeldOutCheck& check = run.reference_check;
+  std::string text = DescribeHeldOut(
+      check, unit_of, run.final_validation.empty() ? "" : run.final_validation[0].experiment);
+  const std::string of = " of " + std::to_string(run.final_validation.size()) + " run(s)";
   if (check.start_diverged > 0) {
     text += (text.empty() ? "" : "; ") + std::string("the reference diverged on ") +
             std::to_string(check.start_diverged) + of;

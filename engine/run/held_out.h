@@ -114,12 +114,10 @@ HeldOutCheck CompareHeldOut(const std::vector<ExperimentFit>& start,
 // "worse on held-out data than its start: MAE psi 0.01 -> 0.03, ...", each output's MAE in
 // the unit `unit_of` gives it (empty: the model's; the record the unit is judged on is
 // `experiment`, a held-out run).
-// The final validation against a reference model (run_result.h: reference_check), with the
-// runs each diverged on: "held-out MAE psi 0.14 -> 0.22 deg; the reference diverged on 2 of
-// 2 runs".
-std::string DescribeReferenceCheck(const HeldOutCheck& check, int runs,
-                                   const DisplayUnitOf& unit_of = {},
-                                   const std::string& experiment = "");
+// The final validation against a reference model (RunResult::reference_check), with the runs
+// each diverged on, in the units `unit_of` gives the first held-out run: "held-out MAE psi
+// 0.14 -> 0.22 deg; the reference diverged on 2 of 2 runs".
+std::string DescribeReferenceCheck(const RunResult& run, const DisplayUnitOf& unit_of = {});
 
 std::string DescribeHeldOut(const HeldOutCheck& check, const DisplayUnitOf& unit_of = {},
                             const std::string& experiment = "");

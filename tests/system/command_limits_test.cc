@@ -305,7 +305,8 @@ experiments:
   - {name: a, file: a.csv}
   - {name: b, file: b.csv}
 stages:
-  - name: fit
+  - &fit
+    name: fit
     experiments: [a, b]
     free_initial_states: [psi]
     parameters:
@@ -321,12 +322,9 @@ select:
     - name: first_order
       model: {family: nomoto, type: first_order}
       stages:
-        - name: fit
-          experiments: [a, b]
-          free_initial_states: [psi]
-          parameters:
-            T: {start: 40.0, lower: 1.0, upper: 500.0}
-            K: {start: 0.05, lower: 0.001, upper: 2.0}
+        - <<: *fit  # the stage with the first-order model's parameters
+          parameters: {T: {start: 40.0, lower: 1.0, upper: 500.0},
+                       K: {start: 0.05, lower: 0.001, upper: 2.0}}
 )";
 
 // `first` then `again` (the same command publishing another set into `out`), `again` killed
