@@ -18,6 +18,7 @@
 #include <sstream>
 
 #include "engine/base/parallel_for.h"
+#include "engine/base/text_match.h"
 #include "engine/report/decimation.h"
 #include "engine/report/started_gnuplots.h"
 
@@ -190,12 +191,14 @@ std::string SeriesData(const std::vector<SeriesPiece>& pieces, size_t max_points
 
 // The plots' temporary folders, "vesselid_report_<pid>_XXXXXX" in the temporary directory,
 // of processes no longer alive (killed while drawing): removed before a new one is made.
+constexpr char kFolderPrefix[] = "vesselid_report_";
+
 static void RemoveStaleFigureFolders() {
+  const std::string prefix = kFolderPrefix;
   std::error_code ec;
   for (const fs::directory_entry& entry : fs::directory_iterator(fs::temp_directory_path(), ec)) {
     const std::string name = entry.path().filename().string();
-    const std::string prefix = "vesselid_report_";
-    if (name.rfind(prefix, 0) != 0 || !entry.is_directory(ec) || entry.is_symlink(ec)) continue;
+    if (!StartsWith(name, prefix) || !entry.is_directory(ec) || entry.is_symlink(ec)) continue;
     const size_t end = name.find('_', prefix.size());
     if (end == std::string::npos || end == prefix.size()) continue;
     const std::string digits = name.substr(prefix.size(), end - prefix.size());
@@ -213,7 +216,7 @@ FigureRendering RenderFigures(const std::vector<Figure>& figures) {
   if (figures.empty()) return result;
   RemoveStaleFigureFolders();
   std::string pattern = (fs::temp_directory_path() /
-                         ("vesselid_report_" + std::to_string(::getpid()) + "_XXXXXX"))
+                         (kFolderPrefix + std::to_string(::getpid()) + "_XXXXXX"))
                             .string();
   if (mkdtemp(pattern.data()) == nullptr) {
     result.error =
