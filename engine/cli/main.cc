@@ -225,12 +225,14 @@ int Interrupted(const std::string& config_path, const std::string& data_dir,
             " of " + std::to_string(total) + "); " +
             // Resume is advised only where it goes on from this run's own checkpoint.
             (stage == 0 ? "no stage finished: `" + again + "` starts it again"
-                        : std::to_string(stage) + " finished stage(s) are in " + out_dir +
-                              "/checkpoint: `" + resume + "` goes on from stage '" +
+                        : std::to_string(stage) + " finished stage(s) are in its checkpoint (" +
+                              out_dir + "/" + vesselid::kWorkingCheckpoint + "): `" + resume +
+                              "` goes on from stage '" +
                               config.stages[stage].options.name + "'");
   } else {
-    where = "before its results were published; its stages are in " + out_dir + "/checkpoint: `" +
-            resume + "` writes them without solving again";
+    where = "before its results were published; its stages are in its checkpoint (" + out_dir +
+            "/" + vesselid::kWorkingCheckpoint + "): `" + resume +
+            "` writes them without solving again";
   }
   std::fprintf(stderr, "vesselid: interrupted by %s %s (no results published: %s is as before)\n",
                name.c_str(), where.c_str(), out_dir.c_str());
@@ -256,6 +258,7 @@ int RunConfigured(const vesselid::RunConfig& config, const std::string& config_p
       vesselid::TerminalProgress::ChooseMode(stderr, flags.quiet, flags.verbose), stderr,
       config.stages.size());
   std::vector<vesselid::StageResult> finished;
+  if (!vesselid::AdoptUnpublishedCheckpoint(out_dir, &error)) return Fail(error);
   if (flags.resume && !vesselid::LoadCheckpoint(out_dir, fingerprint, &finished, &error)) {
     return Fail(error);
   }
@@ -299,11 +302,13 @@ int RunConfigured(const vesselid::RunConfig& config, const std::string& config_p
   if (!complete && result.stages.empty()) return Fail(error);
   result.selection = std::move(selection);
   std::string write_error;
-  if (!vesselid::WriteRunResults(config, result, out_dir, &write_error, !flags.no_report)) {
+  if (!vesselid::WriteRunResults(config, result, out_dir, &write_error, !flags.no_report,
+                                 /*with_checkpoint=*/true)) {
     if (stop_signal != 0)
       return Interrupted(config_path, data_dir, out_dir, config, interrupted_stage);
     return Fail(write_error);
   }
+  vesselid::RemoveWorkingCheckpoint(out_dir);  // published with the results
   if (!flags.quiet) std::cout << vesselid::RunResultToText(config, result);
   // Failures and warnings on stderr, never silenced (notes too with --verbose), the verdict
   // last.

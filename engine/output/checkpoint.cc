@@ -11,6 +11,8 @@
 #include "engine/base/content_hash.h"
 #include "engine/base/input_file.h"
 #include "engine/base/work_limits.h"
+#include "engine/output/output_staging.h"
+#include "engine/output/reserved_names.h"
 #include "engine/output/stage_result_archive.h"
 #include "nlohmann/json.hpp"
 
@@ -20,8 +22,17 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-constexpr char kFolder[] = "checkpoint";
 constexpr char kManifest[] = "manifest.json";
+
+// The checkpoint a run at work writes, and the one published with a run's results.
+fs::path WorkingFolder(const std::string& out_dir) { return fs::path(out_dir) / kWorkingCheckpoint; }
+fs::path PublishedFolder(const std::string& out_dir) { return fs::path(out_dir) / kCheckpointFolder; }
+
+bool HasManifest(const fs::path& folder) {
+  std::error_code ec;
+  return fs::symlink_status(folder, ec).type() == fs::file_type::directory &&
+         fs::symlink_status(folder / kManifest, ec).type() == fs::file_type::regular;
+}
 
 bool ReadBytes(const std::string& path, std::string* bytes, std::string* error) {
   std::ifstream in(path, std::ios::binary);
@@ -92,35 +103,8 @@ bool ReadManifest(const fs::path& folder, json* manifest, std::string* error) {
   return true;
 }
 
-}  // namespace
-
-bool RunFingerprint(const RunConfig& config, std::string* fingerprint, std::string* error) {
-  ContentHash hash;
-  if (!HashFile(config.path, "config file", kMaxConfigBytes, "", &hash, error)) return false;
-  std::set<std::string> hashed;  // each file once (windows of one log name it 10 000 times)
-  for (const ExperimentSpec& spec : config.experiments) {
-    AddPiece(spec.name, &hash);
-    // The file by its canonical path: `--data out` and `--data ./out/` name the same files.
-    std::error_code canonical_ec;
-    const fs::path canonical = fs::weakly_canonical(spec.file, canonical_ec);
-    AddPiece(canonical_ec ? spec.file : canonical.string(), &hash);
-    // A missing file counts as absent: the run itself reports it when it needs the data.
-    std::error_code ec;
-    if (!fs::exists(spec.file, ec)) {
-      AddPiece("absent", &hash);
-      continue;
-    }
-    if (!hashed.insert(spec.file).second) continue;
-    if (!HashFile(spec.file, "data file", spec.csv.max_bytes, "limits.file_mb", &hash, error)) return false;
-  }
-  char hex[20];
-  std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(hash.Digest()));
-  *fingerprint = hex;
-  return true;
-}
-
-std::string CheckpointNotOwned(const std::string& out_dir) {
-  const fs::path folder = fs::path(out_dir) / kFolder;
+// "" when `folder` is absent or a checkpoint vesselid wrote; else why not.
+std::string FolderNotOwned(const fs::path& folder) {
   std::error_code ec;
   const fs::file_type type = fs::symlink_status(folder, ec).type();
   if (type == fs::file_type::not_found) return "";
@@ -154,9 +138,66 @@ std::string CheckpointNotOwned(const std::string& out_dir) {
          "(nothing was changed)";
 }
 
+// `to` made afresh with the files of the checkpoint `from`, as hard links where the file system
+// has them.
+bool CopyCheckpoint(const fs::path& from, const fs::path& to, std::string* error) {
+  std::error_code ec;
+  fs::remove_all(to, ec);
+  fs::create_directory(to, ec);
+  for (auto it = fs::directory_iterator(from, ec); !ec && it != fs::directory_iterator();
+       it.increment(ec)) {
+    if (!it->is_regular_file() || it->is_symlink()) continue;
+    const fs::path target = to / it->path().filename();
+    std::error_code link_ec;
+    fs::create_hard_link(it->path(), target, link_ec);
+    if (link_ec) fs::copy_file(it->path(), target, link_ec);
+    if (link_ec) {
+      *error = target.string() + ": cannot copy the checkpoint: " + link_ec.message();
+      return false;
+    }
+  }
+  if (ec) {
+    *error = to.string() + ": cannot copy the checkpoint: " + ec.message();
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool RunFingerprint(const RunConfig& config, std::string* fingerprint, std::string* error) {
+  ContentHash hash;
+  if (!HashFile(config.path, "config file", kMaxConfigBytes, "", &hash, error)) return false;
+  std::set<std::string> hashed;  // each file once (windows of one log name it 10 000 times)
+  for (const ExperimentSpec& spec : config.experiments) {
+    AddPiece(spec.name, &hash);
+    // The file by its canonical path: `--data out` and `--data ./out/` name the same files.
+    std::error_code canonical_ec;
+    const fs::path canonical = fs::weakly_canonical(spec.file, canonical_ec);
+    AddPiece(canonical_ec ? spec.file : canonical.string(), &hash);
+    // A missing file counts as absent: the run itself reports it when it needs the data.
+    std::error_code ec;
+    if (!fs::exists(spec.file, ec)) {
+      AddPiece("absent", &hash);
+      continue;
+    }
+    if (!hashed.insert(spec.file).second) continue;
+    if (!HashFile(spec.file, "data file", spec.csv.max_bytes, "limits.file_mb", &hash, error)) return false;
+  }
+  char hex[20];
+  std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(hash.Digest()));
+  *fingerprint = hex;
+  return true;
+}
+
+std::string CheckpointNotOwned(const std::string& out_dir) {
+  const std::string published = FolderNotOwned(PublishedFolder(out_dir));
+  return published.empty() ? FolderNotOwned(WorkingFolder(out_dir)) : published;
+}
+
 bool StartCheckpoint(const std::string& out_dir, const std::string& fingerprint,
                      std::string* error) {
-  const fs::path folder = fs::path(out_dir) / kFolder;
+  const fs::path folder = WorkingFolder(out_dir);
   std::error_code ec;
   *error = CheckpointNotOwned(out_dir);
   if (!error->empty()) return false;
@@ -171,7 +212,7 @@ bool StartCheckpoint(const std::string& out_dir, const std::string& fingerprint,
 
 bool SaveStageCheckpoint(const std::string& out_dir, const std::string& fingerprint, size_t index,
                          const StageResult& stage, std::string* error) {
-  const fs::path folder = fs::path(out_dir) / kFolder;
+  const fs::path folder = WorkingFolder(out_dir);
   json manifest;
   if (!ReadManifest(folder, &manifest, error)) return false;
   std::vector<std::string> stages = manifest["stages"].get<std::vector<std::string>>();
@@ -191,8 +232,15 @@ bool SaveStageCheckpoint(const std::string& out_dir, const std::string& fingerpr
 bool LoadCheckpoint(const std::string& out_dir, const std::string& fingerprint,
                     std::vector<StageResult>* finished, std::string* error) {
   finished->clear();
-  const fs::path folder = fs::path(out_dir) / kFolder;
-  if (!fs::exists(folder / kManifest)) return true;
+  // The checkpoint of a run stopped before it published, else the one published with the last
+  // run's results; the run goes on in a working copy of the latter (hard links: every
+  // checkpoint file is replaced by a rename, never written in place).
+  fs::path folder = WorkingFolder(out_dir);
+  if (!HasManifest(folder)) {
+    folder = PublishedFolder(out_dir);
+    if (!HasManifest(folder)) return true;
+    if (!CopyCheckpoint(folder, WorkingFolder(out_dir), error)) return false;
+  }
   json manifest;
   if (!ReadManifest(folder, &manifest, error)) return false;
   if (manifest["fingerprint"] != fingerprint) {
@@ -223,6 +271,33 @@ bool LoadCheckpoint(const std::string& out_dir, const std::string& fingerprint,
     finished->push_back(std::move(stage));
   }
   return true;
+}
+
+
+bool AdoptUnpublishedCheckpoint(const std::string& out_dir, std::string* error) {
+  const fs::path published = PublishedFolder(out_dir), working = WorkingFolder(out_dir);
+  std::error_code ec;
+  if (!HasManifest(published) || OwnedEntries(out_dir).count(kCheckpointFolder) != 0 ||
+      fs::symlink_status(working, ec).type() != fs::file_type::not_found) {
+    return true;
+  }
+  fs::rename(published, working, ec);
+  if (ec) {
+    *error = published.string() + ": cannot take over the checkpoint: " + ec.message();
+    return false;
+  }
+  return true;
+}
+
+bool StageCheckpoint(const std::string& out_dir, const std::string& staging, std::string* error) {
+  const fs::path working = WorkingFolder(out_dir);
+  if (!HasManifest(working)) return true;
+  return CopyCheckpoint(working, fs::path(staging) / kCheckpointFolder, error);
+}
+
+void RemoveWorkingCheckpoint(const std::string& out_dir) {
+  std::error_code ec;
+  if (HasManifest(WorkingFolder(out_dir))) fs::remove_all(WorkingFolder(out_dir), ec);
 }
 
 }  // namespace vesselid

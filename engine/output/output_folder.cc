@@ -18,16 +18,13 @@
 #include "engine/base/text_match.h"
 #include "engine/output/checkpoint.h"
 #include "engine/output/output_staging.h"
+#include "engine/output/reserved_names.h"
 
 namespace vesselid {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr char kLockFile[] = ".vesselid.lock";
-// Left in every folder vesselid has written into: what makes a non-empty folder an earlier
-// output, which a later command may write into again.
-constexpr char kMarkerFile[] = ".vesselid";
 constexpr char kTemporarySuffix[] = ".tmp";
 
 // The pid written into a lock file, or "" when it cannot be read.
@@ -78,7 +75,7 @@ std::string PlannedNotOwned(const std::string& out, const PlannedOutputs& planne
     if (f != kLockFile) names.push_back(f);
   }
   for (const std::string& f : planned.folders) {
-    if (f != "checkpoint") names.push_back(f);
+    if (f != kCheckpointFolder) names.push_back(f);
   }
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(out, ec)) {
@@ -91,7 +88,7 @@ std::string PlannedNotOwned(const std::string& out, const PlannedOutputs& planne
     const std::string why = NotOwned(out, name, owned);
     if (!why.empty()) return why;
   }
-  if (std::find(planned.folders.begin(), planned.folders.end(), "checkpoint") !=
+  if (std::find(planned.folders.begin(), planned.folders.end(), kCheckpointFolder) !=
       planned.folders.end()) {
     return CheckpointNotOwned(out);
   }
@@ -186,7 +183,7 @@ PlannedOutputs RunOutputs(const RunConfig& config) {
   PlannedOutputs planned;
   planned.files = {"results.json", "report.txt", "report.html", "study.json", "study.txt",
                    kLockFile};
-  planned.folders = {"traces", "checkpoint", "surfaces"};
+  planned.folders = {"traces", kCheckpointFolder, "surfaces"};
   for (const StageConfig& stage : config.stages) {
     if (stage.kind == StageConfig::Kind::kStepRegression) {
       planned.csv_prefixes.push_back(FileNameOf(stage.options.name) + ".");

@@ -1,24 +1,22 @@
 #include "engine/output/output_staging.h"
 
 #include <algorithm>
-#include <csignal>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
 
 #include "engine/base/atomic_file.h"
 #include "engine/base/text_match.h"
+#include "engine/output/publish_step.h"
+#include "engine/output/swap_publication.h"
 
 namespace vesselid {
 namespace {
 
 namespace fs = std::filesystem;
 
-// In the staging folder once every output is in it: what the publication does, one line each
-// ("set <name>", "last <entry>", "remove <entry>", "entry <entry>"). Its presence is what
-// makes a staging folder complete.
-constexpr char kJournal[] = ".publish";
+// The journal (kJournal) holds one line each: "set <name>", "last <entry>", "remove <entry>",
+// "entry <entry>". Its presence is what makes a staging folder complete.
 
 struct Journal {
   std::string set, last;
@@ -138,33 +136,34 @@ bool JournalOwned(const fs::path& out, const fs::path& staging, const Journal& j
   return true;
 }
 
-// A test's kill point (tests/system/hostile_input_test.cc, command_limits_test.cc): with VESSELID_TEST_KILL_AT_PUBLISH_STEP
-// set to k, the process sends itself SIGKILL once k of the publication's steps (each removal,
-// move and manifest write) are taken: a kill -9 at exactly that point. Unset in use.
-void StepTaken() {
-  static const int kill_at = [] {
-    const char* text = std::getenv("VESSELID_TEST_KILL_AT_PUBLISH_STEP");
-    return text != nullptr ? std::atoi(text) : 0;
-  }();
-  static int taken = 0;
-  if (kill_at > 0 && ++taken == kill_at) ::raise(SIGKILL);
+// The set's manifest: every entry and everything under it, where it is now (entry by entry:
+// still staged or moved already; `staged_only`: all still staged, for the exchange).
+std::string ManifestText(const fs::path& out, const fs::path& staging, const Journal& j,
+                         bool staged_only) {
+  std::vector<std::string> lines;
+  for (const std::string& name : j.entries) {
+    ListEntry(staged_only || !Present(out / name) ? staging : out, name, &lines);
+  }
+  std::string text;
+  for (const std::string& line : lines) text += line + "\n";
+  return text;
 }
 
-// Carries out `j` from wherever an earlier attempt stopped: every step can be repeated.
+// Publishes entry by entry, from wherever an earlier attempt stopped: every step can be
+// repeated.
 bool Roll(const fs::path& out, const fs::path& staging, const Journal& j, std::string* error) {
-  if (!JournalOwned(out, staging, j, error)) return false;
   std::error_code ec;
   // The previous set's completion file goes first: from here until the end, --out holds no
   // results.json, so nobody reads a mixture as a whole set.
   if (fs::exists(staging / j.last, ec)) {
     fs::remove(out / j.last, ec);
     if (ec) return Failed(out / j.last, "cannot remove the previous results", ec, error);
-    StepTaken();
+    PublishStepTaken();
   }
   for (const std::string& name : j.remove) {
     fs::remove_all(out / name, ec);
     if (ec) return Failed(out / name, "cannot remove the previous output", ec, error);
-    StepTaken();
+    PublishStepTaken();
   }
   // Every entry of the previous set this one replaces goes before any of this set arrives, so
   // that the folder never holds entries of both.
@@ -176,29 +175,41 @@ bool Roll(const fs::path& out, const fs::path& staging, const Journal& j, std::s
     if (!staged(name)) continue;
     fs::remove_all(out / name, ec);
     if (ec) return Failed(out / name, "cannot remove the previous output", ec, error);
-    StepTaken();
+    PublishStepTaken();
   }
   for (const std::string& name : j.entries) {
     if (!staged(name)) continue;
     fs::rename(staging / name, out / name, ec);
     if (ec) return Failed(out / name, "cannot publish", ec, error);
-    StepTaken();
+    PublishStepTaken();
   }
-  // The manifest: every entry and everything under it, wherever it is now.
-  std::vector<std::string> lines;
-  for (const std::string& name : j.entries) ListEntry(Present(out / name) ? out : staging, name, &lines);
-  std::string text;
-  for (const std::string& line : lines) text += line + "\n";
-  if (!WriteFileAtomically(ManifestPath(out.string(), j.set).string(), text, error)) return false;
-  StepTaken();
+  if (!WriteFileAtomically(ManifestPath(out.string(), j.set).string(), ManifestText(out, staging, j, false),
+                           error)) {
+    return false;
+  }
+  PublishStepTaken();
   if (fs::exists(staging / j.last, ec) && !IsLink(staging / j.last)) {
     fs::rename(staging / j.last, out / j.last, ec);
     if (ec) return Failed(out / j.last, "cannot publish", ec, error);
-    StepTaken();
+    PublishStepTaken();
   }
   fs::remove_all(staging, ec);
   if (ec) return Failed(staging, "cannot remove", ec, error);
   return true;
+}
+
+// Carries out `j`: by exchanging the whole folder where nothing else is at stake
+// (swap_publication.h), else entry by entry.
+bool Complete(const fs::path& out, const fs::path& staging, const Journal& j, std::string* error) {
+  if (!JournalOwned(out, staging, j, error)) return false;
+  bool swapped = false;
+  if (!PublishBySwap(out.string(), {j.entries.begin(), j.entries.end()},
+                     {j.remove.begin(), j.remove.end()},
+                     ManifestPath(out.string(), j.set).filename().string(),
+                     ManifestText(out, staging, j, true), &swapped, error)) {
+    return false;
+  }
+  return swapped || Roll(out, staging, j, error);
 }
 
 }  // namespace
@@ -308,13 +319,14 @@ bool OutputStaging::Publish(const std::string& last, std::string* error) {
     }
   }
   if (!WriteFileAtomically((staging / kJournal).string(), JournalText(j), error)) return false;
-  published_ = Roll(out, staging, j, error);
+  published_ = Complete(out, staging, j, error);
   return published_;
 }
 
 bool PublicationUnfinished(const std::string& out_dir) {
   const fs::path staging = fs::path(out_dir) / kStagingFolder;
   std::error_code ec;
+  if (SwapUnfinished(out_dir)) return true;
   return fs::symlink_status(staging, ec).type() == fs::file_type::directory &&
          fs::symlink_status(staging / kJournal, ec).type() == fs::file_type::regular;
 }
@@ -323,6 +335,7 @@ bool FinishPublication(const std::string& out_dir, std::string* error, bool* fin
   if (finished != nullptr) *finished = false;
   const fs::path out(out_dir), staging = fs::path(out_dir) / kStagingFolder;
   std::error_code ec;
+  if (!FinishSwap(out_dir, error)) return false;
   if (!Present(staging)) return true;
   if (IsLink(staging)) {
     // Not vesselid's: what it points to is neither read nor touched; the link goes.
@@ -339,7 +352,7 @@ bool FinishPublication(const std::string& out_dir, std::string* error, bool* fin
   }
   Journal j;
   if (!ReadJournal(staging / kJournal, &j, error)) return false;
-  if (!Roll(out, staging, j, error)) return false;
+  if (!Complete(out, staging, j, error)) return false;
   if (finished != nullptr) *finished = true;
   return true;
 }

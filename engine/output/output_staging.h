@@ -23,6 +23,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/output/reserved_names.h"
+
 namespace vesselid {
 
 class OutputStaging {
@@ -69,8 +71,5 @@ std::string NotOwned(const std::string& out_dir, const std::string& name,
 // Whether `out_dir` holds a publication a killed process left (a staging folder, not a link,
 // with its journal): the next command on the folder finishes it (OutputFolder::Open).
 bool PublicationUnfinished(const std::string& out_dir);
-
-// The staging folder's name inside --out.
-inline constexpr char kStagingFolder[] = ".vesselid-staging";
 
 }  // namespace vesselid

@@ -7,6 +7,7 @@
 #include "engine/base/parallel_for.h"
 #include "engine/base/stop_request.h"
 #include "engine/data/trajectory.h"
+#include "engine/output/checkpoint.h"
 #include "engine/output/output_staging.h"
 #include "engine/output/results_json_text.h"
 #include "engine/output/results_text.h"
@@ -41,7 +42,7 @@ bool WriteTraces(const std::string& folder, const RunConfig& config, const RunRe
 }  // namespace
 
 bool WriteRunResults(const RunConfig& config, const RunResult& result, const std::string& out_dir,
-                     std::string* error, bool html_report) {
+                     std::string* error, bool html_report, bool with_checkpoint) {
   const std::unique_ptr<OutputStaging> staging =
       OutputStaging::Begin(out_dir, "run", error);
   if (staging == nullptr) return false;
@@ -73,7 +74,7 @@ bool WriteRunResults(const RunConfig& config, const RunResult& result, const std
     WriteRunResultJson(config, result, 2, &out);
     out << '\n';
   };
-  if (!written ||
+  if (!written || (with_checkpoint && !StageCheckpoint(out_dir, folder, error)) ||
       !WriteFileAtomically((fs::path(folder) / "results.json").string(), results_json, error)) {
     return false;
   }

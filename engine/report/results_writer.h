@@ -5,7 +5,9 @@
 // that fails while writing (a full disk, a name, a stop request) leaves the previous set
 // whole, and a folder with results.json holds one whole set. Without `html_report`
 // (`vesselid run --no-report`, batch use) report.html and its plots are not formed, and an
-// earlier run's report.html leaves the folder with the rest of the earlier set.
+// earlier run's report.html leaves the folder with the rest of the earlier set. With
+// `with_checkpoint` (`vesselid run`) the run's working checkpoint is published with them as
+// checkpoint/ (checkpoint.h).
 #pragma once
 
 #include <string>
@@ -17,6 +19,7 @@
 namespace vesselid {
 
 bool WriteRunResults(const RunConfig& config, const RunResult& result, const std::string& out_dir,
-                     std::string* error, bool html_report = true);
+                     std::string* error, bool html_report = true,
+                     bool with_checkpoint = false);
 
 }  // namespace vesselid

@@ -31,6 +31,7 @@ using testing::Outcome;
 
 class HostileInput : public BadInput {
  protected:
+  int KillEveryPublicationStep(int min_kills, bool users_file);
   static std::string ReadFile(const fs::path& path) {
     std::ifstream in(path);
     std::stringstream text;
@@ -529,19 +530,23 @@ TEST_F(HostileInput, UsersFilesBesideAndInsideOutSurvive) {
 }
 
 // kill -9 at every step of the publication (VESSELID_TEST_KILL_AT_PUBLISH_STEP: the process
-// sends itself SIGKILL after that many removals, moves and manifest writes), 54 kills in all:
-// the folder never holds files of both sets, holds results.json only over a whole set, and the
-// next command finishes the publication into the whole new set.
-TEST_F(HostileInput, KilledAtEveryStepOfThePublicationNeverMixesTwoSets) {
-  const fs::path out = dir_ / "out", pristine = dir_ / "set_a";
-  ASSERT_EQ(Run("", pristine).status, 0);
-  // Every file of a set but the folder's bookkeeping, with its content.
+// sends itself SIGKILL after that many removals, moves, exchanges and manifest writes), in
+// rounds until `min_kills`: the folder never holds files of both sets, and the next command
+// finishes the publication into the whole new set. With nothing but vesselid's outputs in the
+// folder the set is exchanged whole (the whole of set A or of set B at every instant); with a
+// user's file beside them it is published entry by entry (results.json only over a whole set),
+// and the user's file is kept. The number of kills.
+int HostileInput::KillEveryPublicationStep(int min_kills, bool users_file) {
+  const fs::path dir = dir_, out = dir_ / "out", pristine = dir_ / "set_a";
+  EXPECT_EQ(Run("", pristine).status, 0);
+  if (users_file) std::ofstream(pristine / "notes.txt") << "field notes\n";
+  // Every file of a set but the folder's bookkeeping and the user's, with its content.
   auto files = [](const fs::path& folder) {
     std::map<std::string, std::string> set;
     for (const auto& entry : fs::recursive_directory_iterator(folder)) {
       const std::string relative = entry.path().lexically_relative(folder).string();
       if (!entry.is_regular_file() || relative.rfind(".vesselid", 0) == 0 ||
-          relative.rfind("checkpoint", 0) == 0) {
+          relative == kJournal || relative == "notes.txt" || relative.rfind("checkpoint", 0) == 0) {
         continue;
       }
       set[relative] = ReadFile(entry.path());
@@ -550,11 +555,11 @@ TEST_F(HostileInput, KilledAtEveryStepOfThePublicationNeverMixesTwoSets) {
   };
   const std::map<std::string, std::string> a = files(pristine);
   EditConfig("name: fit", "name: refit");  // set B: other trace names, other results
-  ASSERT_EQ(Run("", dir_ / "set_b").status, 0);
+  EXPECT_EQ(Run("", dir / "set_b").status, 0);
   std::set<std::string> b_names;
-  for (const auto& [name, text] : files(dir_ / "set_b")) b_names.insert(name);
+  for (const auto& [name, text] : files(dir / "set_b")) b_names.insert(name);
   int kills = 0;
-  for (int round = 0; kills < 50 && round < 20; ++round) {
+  for (int round = 0; kills < min_kills && round < 20; ++round) {
     for (int step = 1;; ++step) {
       fs::remove_all(out);
       fs::copy(pristine, out, fs::copy_options::recursive);
@@ -565,24 +570,37 @@ TEST_F(HostileInput, KilledAtEveryStepOfThePublicationNeverMixesTwoSets) {
       SCOPED_TRACE("killed after step " + std::to_string(step));
       int of_a = 0, of_b = 0;
       const std::map<std::string, std::string> now = files(out);
+      std::set<std::string> names;
       for (const auto& [name, text] : now) {
         const auto found = a.find(name);
         (found != a.end() && found->second == text ? of_a : of_b) += 1;
+        names.insert(name);
       }
       EXPECT_FALSE(of_a > 0 && of_b > 0) << of_a << " files of set A beside " << of_b << " of B";
-      if (now.count("results.json") != 0) {
-        EXPECT_TRUE(now == a || of_b == static_cast<int>(b_names.size()))
-            << "results.json beside a partial set";
+      if (!users_file) {
+        EXPECT_TRUE(now == a || (of_a == 0 && names == b_names))
+            << of_a << " files of set A, " << of_b << " of B (of " << b_names.size() << ")";
+      } else if (now.count("results.json") != 0) {
+        EXPECT_TRUE(now == a || names == b_names) << "results.json beside a partial set";
       }
       const Outcome next = Run("", out);
-      ASSERT_EQ(next.status, 0) << next.output;
-      std::set<std::string> names;
+      EXPECT_EQ(next.status, 0) << next.output;
+      names.clear();
       for (const auto& [name, text] : files(out)) names.insert(name);
       EXPECT_EQ(names, b_names);
       EXPECT_FALSE(fs::exists(out / kStagingFolder));
+      if (users_file) EXPECT_EQ(ReadFile(out / "notes.txt"), "field notes\n");
     }
   }
-  EXPECT_GE(kills, 50);
+  return kills;
+}
+
+TEST_F(HostileInput, KilledAtEveryStepOfThePublicationNeverMixesTwoSets) {
+  EXPECT_GE(KillEveryPublicationStep(50, /*users_file=*/false), 50);
+}
+
+TEST_F(HostileInput, KilledBesideAUsersFileNeverMixesTwoSetsAndKeepsTheFile) {
+  EXPECT_GE(KillEveryPublicationStep(1, /*users_file=*/true), 10);
 }
 
 // --resume finds the checkpoint of the same config and data named by other spellings of

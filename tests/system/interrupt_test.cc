@@ -45,7 +45,8 @@ class Interrupt : public BadInput {
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
   static int FinishedStages(const fs::path& out) {
-    const fs::path manifest = out / "checkpoint" / "manifest.json";
+    // The checkpoint of the run at work (published as checkpoint/ with its results).
+    const fs::path manifest = out / ".vesselid-checkpoint" / "manifest.json";
     if (!fs::exists(manifest)) return 0;
     const auto j = nlohmann::json::parse(ReadFile(manifest), nullptr, false);
     return j.is_discarded() ? 0 : static_cast<int>(j["stages"].size());
@@ -67,11 +68,9 @@ class Interrupt : public BadInput {
                           const_cast<char* const*>(argv.data()), environ),
               0);
     posix_spawn_file_actions_destroy(&actions);
-    // The first run's checkpoint is replaced once this run's first stage is done.
+    // This run's working checkpoint holds its first stage.
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
-    const std::string before = ReadFile(out / "checkpoint" / "manifest.json");
-    while (std::chrono::steady_clock::now() < deadline &&
-           (FinishedStages(out) < 1 || ReadFile(out / "checkpoint" / "manifest.json") == before)) {
+    while (std::chrono::steady_clock::now() < deadline && FinishedStages(out) < 1) {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
@@ -96,6 +95,8 @@ TEST_F(Interrupt, SignalStopsTheRunSaysWhereAndPublishesNothing) {
     ASSERT_EQ(Run("", out).status, 0);
     const std::string earlier_results = ReadFile(out / "results.json");
     const std::string earlier_report = ReadFile(out / "report.txt");
+    const std::string earlier_checkpoint = ReadFile(out / "checkpoint" / "manifest.json");
+    ASSERT_FALSE(earlier_checkpoint.empty());
     WriteConfig(kTwoStages);
 
     const Outcome outcome = RunAndSignal(out, signal);
@@ -105,14 +106,16 @@ TEST_F(Interrupt, SignalStopsTheRunSaysWhereAndPublishesNothing) {
     EXPECT_TRUE(std::regex_search(
         outcome.output,
         std::regex("vesselid: interrupted by " + name +
-                   " in stage 'search' \\(2 of 2\\); 1 finished stage\\(s\\) are in .*"
-                   "checkpoint: `vesselid run .*config.yaml --out .* --resume` goes on from "
+                   " in stage 'search' \\(2 of 2\\); 1 finished stage\\(s\\) are in its "
+                   "checkpoint \\(.*/\\.vesselid-checkpoint\\): `vesselid run .*config.yaml --out .* --resume` goes on from "
                    "stage 'search' \\(no results published")))
         << outcome.output;
     // The multistart stops at its next batch, not after its 400 candidates.
     EXPECT_LT(stopped_seconds_, 30.0);
     EXPECT_EQ(ReadFile(out / "results.json"), earlier_results);
     EXPECT_EQ(ReadFile(out / "report.txt"), earlier_report);
+    // The earlier set keeps its own checkpoint: none of the stopped run's beside its results.
+    EXPECT_EQ(ReadFile(out / "checkpoint" / "manifest.json"), earlier_checkpoint);
     EXPECT_FALSE(fs::exists(out / ".vesselid-staging"));
     EXPECT_EQ(FinishedStages(out), 1);  // the stage cut short is not saved
   }
@@ -136,6 +139,10 @@ TEST_F(Interrupt, ResumeFinishesAStoppedRun) {
   EXPECT_NE(output.find("resuming after stage 'fit'"), std::string::npos) << output;
   const auto results = nlohmann::json::parse(ReadFile(out / "results.json"));
   EXPECT_EQ(results["stages"].size(), 2u);
+  // The checkpoint is published with the results; none is left at work.
+  const auto checkpoint = nlohmann::json::parse(ReadFile(out / "checkpoint" / "manifest.json"));
+  EXPECT_EQ(checkpoint["stages"].size(), 2u);
+  EXPECT_FALSE(fs::exists(out / ".vesselid-checkpoint"));
 }
 
 // An obstacle where the outputs go (here a folder of the user's where report.txt goes) is

@@ -50,13 +50,11 @@ json WithoutTimes(json j) {
   return j;
 }
 
-json Manifest(const fs::path& out) {
-  return json::parse(ReadFile(out / "checkpoint" / "manifest.json"), nullptr, false);
-}
-
-int FinishedStages(const fs::path& out) {
-  if (!fs::exists(out / "checkpoint" / "manifest.json")) return 0;
-  const json manifest = Manifest(out);
+// The stages in a checkpoint: the run's at work (`folder` ".vesselid-checkpoint") or the one
+// published with its results ("checkpoint").
+int FinishedStages(const fs::path& out, const std::string& folder = ".vesselid-checkpoint") {
+  if (!fs::exists(out / folder / "manifest.json")) return 0;
+  const json manifest = json::parse(ReadFile(out / folder / "manifest.json"), nullptr, false);
   return manifest.is_discarded() ? 0 : static_cast<int>(manifest["stages"].size());
 }
 
@@ -117,7 +115,8 @@ TEST(ResumeTest, KilledRunResumesToTheUninterruptedResults) {
     ++traces;
   }
   EXPECT_GT(traces, 0);
-  EXPECT_EQ(FinishedStages(killed), 7);
+  EXPECT_EQ(FinishedStages(killed, "checkpoint"), 7);
+  EXPECT_FALSE(fs::exists(killed / ".vesselid-checkpoint"));
 
   // A damaged stage file is named, not silently rerun.
   std::ofstream(killed / "checkpoint" / "stage_003.cbor", std::ios::trunc) << "damaged";

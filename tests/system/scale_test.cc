@@ -182,7 +182,8 @@ TEST(Scale, HalfAMillionSegmentsOverTheBudgetAreRefusedBeforeTheFirstStage) {
       << output;
   EXPECT_NE(output.find("limits.memory_mb"), std::string::npos) << output;
   EXPECT_FALSE(fs::exists(dir / "out" / "results.json"));
-  EXPECT_FALSE(fs::exists(dir / "out" / "checkpoint" / "stage_001.cbor"));
+  EXPECT_FALSE(fs::exists(dir / "out" / ".vesselid-checkpoint" / "stage_001.cbor"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "checkpoint"));
   fs::remove_all(dir);
 }
 

@@ -1,0 +1,215 @@
+#include "engine/output/swap_publication.h"
+
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include "engine/base/atomic_file.h"
+#include "engine/base/text_match.h"
+#include "engine/output/folder_exchange.h"
+#include "engine/output/publish_step.h"
+#include "engine/output/reserved_names.h"
+
+namespace vesselid {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr char kNewSide[] = "new";  // the token of the staged folder, exchanged in
+constexpr char kOldSide[] = "old";  // the token of the earlier folder, exchanged out
+
+fs::file_type TypeOf(const fs::path& path) {
+  std::error_code ec;
+  return fs::symlink_status(path, ec).type();
+}
+
+bool IsManifest(const std::string& name) {
+  return StartsWith(name, std::string(kReservedPrefix) + "-") && EndsWith(name, ".set");
+}
+
+// What the folder's bookkeeping carries into the new folder: the marker, the lock and the
+// manifests (plain files; a link planted at one of these names is not vesselid's).
+bool Carried(const std::string& name) {
+  return name == kMarkerFile || name == kLockFile || IsManifest(name);
+}
+
+// vesselid's working entries, left in the earlier folder and removed with it: the staging
+// folder itself, a stale token, a run's working checkpoint (published as checkpoint/) and
+// temporaries of its own files.
+bool Working(const std::string& name) {
+  return name == kStagingFolder || name == kSwapToken || name == kWorkingCheckpoint ||
+         (StartsWith(name, kReservedPrefix) && EndsWith(name, ".tmp"));
+}
+
+// The canonical --out and its sibling that the staged folder passes through.
+bool SwapPaths(const std::string& out_dir, fs::path* out, fs::path* sibling) {
+  std::error_code ec;
+  *out = fs::canonical(out_dir, ec);
+  if (ec || !out->has_parent_path() || *out == out->root_path()) return false;
+  *sibling = out->parent_path() / ("." + out->filename().string() + ".vesselid-swap");
+  return true;
+}
+
+std::string TokenText(const char* side, const fs::path& out) {
+  return std::string(side) + "\n" + out.string() + "\n";
+}
+
+// The side a token at `path` names for `out` ("" when it is not vesselid's token for it).
+std::string TokenSide(const fs::path& path, const fs::path& out) {
+  if (TypeOf(path) != fs::file_type::regular) return "";
+  std::ifstream in(path);
+  std::string side, folder;
+  std::getline(in, side);
+  std::getline(in, folder);
+  if (folder != out.string() || (side != kNewSide && side != kOldSide)) return "";
+  return side;
+}
+
+// Removes the earlier folder at `sibling`: its token last, so that a process killed midway
+// leaves a folder the next command still knows as vesselid's.
+bool RemoveSwappedOut(const fs::path& sibling, std::string* error) {
+  std::error_code ec;
+  for (auto it = fs::directory_iterator(sibling, ec); !ec && it != fs::directory_iterator();
+       it.increment(ec)) {
+    if (it->path().filename() == kSwapToken) continue;
+    std::error_code remove_ec;
+    fs::remove_all(it->path(), remove_ec);
+    if (remove_ec) {
+      *error = it->path().string() + ": cannot remove the earlier output: " + remove_ec.message();
+      return false;
+    }
+  }
+  fs::remove(sibling / kSwapToken, ec);
+  fs::remove(sibling, ec);
+  if (ec) {
+    *error = sibling.string() + ": cannot remove the earlier output: " + ec.message();
+    return false;
+  }
+  return true;
+}
+
+// The tokens and the journal that travel with the new folder: gone once it is --out.
+void RemoveSwapLeftovers(const fs::path& out) {
+  std::error_code ec;
+  for (const char* name : {kSwapToken, kJournal}) {
+    if (TypeOf(out / name) == fs::file_type::regular) fs::remove(out / name, ec);
+  }
+}
+
+// Whether `out` holds nothing the exchange would leave behind (see the header).
+bool OnlyVesselidsEntries(const fs::path& out, const std::set<std::string>& entries,
+                          const std::set<std::string>& removed) {
+  std::error_code ec;
+  for (auto it = fs::directory_iterator(out, ec); !ec && it != fs::directory_iterator();
+       it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (Carried(name) || Working(name) || entries.count(name) != 0 || removed.count(name) != 0) {
+      continue;
+    }
+    return false;
+  }
+  return !ec;
+}
+
+}  // namespace
+
+bool PublishBySwap(const std::string& out_dir, const std::set<std::string>& entries,
+                   const std::set<std::string>& removed, const std::string& manifest_name,
+                   const std::string& manifest_text, bool* swapped, std::string* error) {
+  *swapped = false;
+  fs::path out, sibling;
+  if (!SwapPaths(out_dir, &out, &sibling)) return true;
+  const fs::path staging = out / kStagingFolder;
+  if (TypeOf(sibling) != fs::file_type::not_found || !OnlyVesselidsEntries(out, entries, removed) ||
+      SomeoneWorksInside(out.string())) {
+    return true;
+  }
+  for (const std::string& name : entries) {
+    if (TypeOf(staging / name) == fs::file_type::not_found) return true;  // moved in already
+  }
+  std::error_code ec;
+  // The new folder's bookkeeping (what a killed earlier attempt put there is made afresh).
+  std::string unused;
+  if (!WriteFileAtomically((staging / manifest_name).string(), manifest_text, &unused)) return true;
+  for (auto it = fs::directory_iterator(out, ec); !ec && it != fs::directory_iterator();
+       it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (!Carried(name) || name == manifest_name || !it->is_regular_file()) continue;
+    std::error_code link_ec;
+    fs::remove(staging / name, link_ec);
+    fs::create_hard_link(it->path(), staging / name, link_ec);
+    if (link_ec) return true;
+  }
+  if (ec || !WriteFileAtomically((staging / kSwapToken).string(), TokenText(kNewSide, out), &unused) ||
+      !WriteFileAtomically((out / kSwapToken).string(), TokenText(kOldSide, out), &unused)) {
+    fs::remove(out / kSwapToken, ec);
+    return true;
+  }
+  PublishStepTaken();
+  fs::rename(staging, sibling, ec);
+  if (ec) {  // another file system beside --out (a mount point), or a parent without write access
+    fs::remove(out / kSwapToken, ec);
+    return true;
+  }
+  PublishStepTaken();
+  std::string exchange_error;
+  if (!ExchangeFolders(sibling.string(), out.string(), &exchange_error)) {
+    // The file system cannot exchange: the staged folder goes back where it was.
+    fs::rename(sibling, staging, ec);
+    if (ec) {
+      *error = sibling.string() + ": cannot return the staged outputs to " + staging.string() +
+               ": " + ec.message() + " (the next vesselid command on the folder does)";
+      return false;
+    }
+    fs::remove(out / kSwapToken, ec);
+    return true;
+  }
+  *swapped = true;
+  PublishStepTaken();
+  RemoveSwapLeftovers(out);
+  PublishStepTaken();
+  return RemoveSwappedOut(sibling, error);
+}
+
+bool SwapUnfinished(const std::string& out_dir) {
+  fs::path out, sibling;
+  if (!SwapPaths(out_dir, &out, &sibling)) return false;
+  return !TokenSide(out / kSwapToken, out).empty() ||
+         (TypeOf(sibling) == fs::file_type::directory && !TokenSide(sibling / kSwapToken, out).empty());
+}
+
+bool FinishSwap(const std::string& out_dir, std::string* error) {
+  fs::path out, sibling;
+  if (!SwapPaths(out_dir, &out, &sibling)) return true;
+  const std::string side = TypeOf(sibling) == fs::file_type::directory
+                               ? TokenSide(sibling / kSwapToken, out)
+                               : std::string();
+  std::error_code ec;
+  if (side == kNewSide) {
+    // Killed before the exchange: --out holds the whole earlier set; the staged set goes back
+    // to the staging folder, whose journal publishes it.
+    const fs::path staging = out / kStagingFolder;
+    if (TypeOf(staging) != fs::file_type::not_found) {
+      *error = staging.string() + " and " + sibling.string() +
+               ": two staged sets; remove the one that is not wanted";
+      return false;
+    }
+    fs::rename(sibling, staging, ec);
+    if (ec) {
+      *error = sibling.string() + ": cannot return the staged outputs: " + ec.message();
+      return false;
+    }
+    fs::remove(staging / kSwapToken, ec);
+  } else if (side == kOldSide) {
+    // Killed after the exchange: --out holds the whole new set; the earlier one goes.
+    if (!RemoveSwappedOut(sibling, error)) return false;
+  }
+  if (TokenSide(out / kSwapToken, out) == kNewSide) {
+    RemoveSwapLeftovers(out);
+  } else if (!TokenSide(out / kSwapToken, out).empty()) {
+    fs::remove(out / kSwapToken, ec);
+  }
+  return true;
+}
+
+}  // namespace vesselid
