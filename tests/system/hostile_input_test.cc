@@ -615,6 +615,29 @@ TEST_F(HostileInput, ResumeKnowsTheSameFilesByAnotherSpelling) {
       << resumed.output;
 }
 
+// A checkpoint/ no manifest names (as an earlier vesselid left it beside its results) is
+// vesselid's by its own manifest: the next run takes it over (--resume goes on from it) and
+// publishes its own, named by the set's manifest, in its place.
+TEST_F(HostileInput, ACheckpointNoManifestNamesIsTakenOver) {
+  ASSERT_EQ(Run().status, 0);
+  const fs::path out = dir_ / "out", manifest = out / ".vesselid-run.set";
+  std::string kept;
+  {
+    std::ifstream in(manifest);
+    for (std::string line; std::getline(in, line);) {
+      if (line.rfind("checkpoint", 0) != 0) kept += line + "\n";
+    }
+  }
+  std::ofstream(manifest, std::ios::trunc) << kept;
+  const testing::CommandOutcome resumed = testing::RunCommand(std::string(VESSELID_BINARY) + " run " +
+                                              (dir_ / "config.yaml").string() + " --out " +
+                                              out.string() + " --resume");
+  EXPECT_EQ(resumed.status, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("resuming after stage"), std::string::npos) << resumed.output;
+  EXPECT_NE(ReadFile(manifest).find("checkpoint/manifest.json"), std::string::npos);
+  EXPECT_FALSE(fs::exists(out / kWorkingCheckpoint));
+}
+
 // A file the user puts into the run's checkpoint folder, and a link planted at the name of a
 // manifest's temporary, are theirs: the next run refuses, or removes the link without writing
 // through it.

@@ -4,6 +4,9 @@
 // does not name is replaced or removed, whatever a journal or a link says.
 #include "engine/output/output_staging.h"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -63,6 +66,14 @@ class OutputStagingTest : public ::testing::Test {
     }
     return files;
   }
+
+  // The folder's inode: a new one once the publication exchanged the whole folder.
+  ino_t FolderInode() const {
+    struct stat info {};
+    ::stat(out_.c_str(), &info);
+    return info.st_ino;
+  }
+  fs::path Sibling() const { return out_.parent_path() / ("." + out_.filename().string() + ".vesselid-swap"); }
 
   fs::path out_;
 };
@@ -246,6 +257,82 @@ TEST_F(OutputStagingTest, AManifestThatIsALinkIsNotTrusted) {
   EXPECT_EQ(Read(out_ / "report.txt"), "my own report");
   EXPECT_TRUE(OwnedEntries(out_.string()).empty());
   fs::remove(forged);
+}
+
+// A folder of vesselid's outputs only is exchanged whole (a new folder at its path, so a
+// reader sees the earlier set or the new one, never a mixture and never neither), carrying
+// the marker and the lock (the same files: the lock held stays held); no sibling, token or
+// journal is left.
+TEST_F(OutputStagingTest, AFolderOfVesselidsOutputsOnlyIsExchangedWhole) {
+  std::string error;
+  Write(out_ / kMarkerFile, "marker");
+  Write(out_ / kLockFile, "123\n");
+  ASSERT_TRUE(Stage("A", {"fit.a.csv"}, true)->Publish("results.json", &error)) << error;
+  const ino_t before = FolderInode();
+  struct stat lock_before {};
+  ::stat((out_ / kLockFile).c_str(), &lock_before);
+  ASSERT_TRUE(Stage("B", {"fit.b.csv"}, false)->Publish("results.json", &error)) << error;
+  EXPECT_NE(FolderInode(), before);
+  EXPECT_EQ(Set(), (std::map<std::string, std::string>{
+                       {"results.json", "B"}, {"report.txt", "B"}, {"traces/fit.b.csv", "B"}}));
+  struct stat lock_after {};
+  ASSERT_EQ(::stat((out_ / kLockFile).c_str(), &lock_after), 0);
+  EXPECT_EQ(lock_after.st_ino, lock_before.st_ino);
+  EXPECT_EQ(Read(out_ / kMarkerFile), "marker");
+  EXPECT_FALSE(fs::exists(Sibling()));
+  EXPECT_FALSE(fs::exists(out_ / kSwapToken));
+  EXPECT_FALSE(fs::exists(out_ / kJournal));
+  EXPECT_FALSE(fs::exists(out_ / kStagingFolder));
+  // The new folder's manifest names the new set: a third set replaces it whole again.
+  ASSERT_TRUE(Stage("C", {"fit.a.csv"}, false)->Publish("results.json", &error)) << error;
+  EXPECT_EQ(Set(), (std::map<std::string, std::string>{
+                       {"results.json", "C"}, {"report.txt", "C"}, {"traces/fit.a.csv", "C"}}));
+}
+
+// A user's file beside the outputs would be left behind by an exchange: the set is published
+// entry by entry into the same folder, and the file is kept.
+TEST_F(OutputStagingTest, AUsersFileBesideTheOutputsKeepsTheFolder) {
+  std::string error;
+  ASSERT_TRUE(Stage("A", {"fit.a.csv"}, true)->Publish("results.json", &error)) << error;
+  Write(out_ / "notes.txt", "mine");
+  const ino_t before = FolderInode();
+  ASSERT_TRUE(Stage("B", {"fit.b.csv"}, false)->Publish("results.json", &error)) << error;
+  EXPECT_EQ(FolderInode(), before);
+  EXPECT_EQ(Set(), (std::map<std::string, std::string>{{"notes.txt", "mine"},
+                                                       {"results.json", "B"},
+                                                       {"report.txt", "B"},
+                                                       {"traces/fit.b.csv", "B"}}));
+}
+
+// A process working inside the folder (a shell at its prompt there) would be left in a removed
+// folder: no exchange while one does.
+TEST_F(OutputStagingTest, AProcessWorkingInsideKeepsTheFolder) {
+  std::string error;
+  ASSERT_TRUE(Stage("A", {"fit.a.csv"}, true)->Publish("results.json", &error)) << error;
+  const fs::path was = fs::current_path();
+  fs::create_directories(out_ / "traces");
+  fs::current_path(out_ / "traces");
+  const ino_t before = FolderInode();
+  const bool published = Stage("B", {"fit.a.csv"}, false)->Publish("results.json", &error);
+  fs::current_path(was);
+  ASSERT_TRUE(published) << error;
+  EXPECT_EQ(FolderInode(), before);
+  EXPECT_EQ(Read(out_ / "results.json"), "B");
+}
+
+// An entry at the sibling's name that is not vesselid's (no token naming this folder) is the
+// user's: left as it is, and the set published entry by entry.
+TEST_F(OutputStagingTest, AUsersEntryAtTheSiblingsNameIsKept) {
+  std::string error;
+  ASSERT_TRUE(Stage("A", {"fit.a.csv"}, true)->Publish("results.json", &error)) << error;
+  Write(Sibling() / "mine.txt", "mine");
+  Write(Sibling() / kSwapToken, "old\n/somewhere/else\n");
+  const ino_t before = FolderInode();
+  ASSERT_TRUE(Stage("B", {"fit.a.csv"}, false)->Publish("results.json", &error)) << error;
+  EXPECT_EQ(FolderInode(), before);
+  EXPECT_EQ(Read(out_ / "results.json"), "B");
+  EXPECT_EQ(Read(Sibling() / "mine.txt"), "mine");
+  fs::remove_all(Sibling());
 }
 
 }  // namespace output_staging_test
