@@ -1,6 +1,8 @@
 // A command's outputs appear together or not at all. They are written into a staging folder
 // inside --out (OUT/.vesselid-staging/, same file system, so every move is a rename) and then
-// published: a journal in the staging folder lists the set; the previous set's completion file
+// published: a journal in the staging folder lists the set. Where --out holds nothing but
+// vesselid's outputs the whole folder is exchanged for the staged one in one step
+// (swap_publication.h); otherwise, entry by entry: the previous set's completion file
 // (results.json for `run`) is removed first, then every entry of the previous set (those this
 // set replaces and those it lacks), then the staged entries are moved in, the set's manifest
 // (OUT/.vesselid-<set>.set) is rewritten, and the completion file is renamed in last: the

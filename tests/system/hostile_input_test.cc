@@ -592,6 +592,7 @@ int HostileInput::KillEveryPublicationStep(int min_kills, bool users_file) {
       if (users_file) EXPECT_EQ(ReadFile(out / "notes.txt"), "field notes\n");
     }
   }
+  std::printf("%d kills (%s)\n", kills, users_file ? "beside a user's file" : "exchanged whole");
   return kills;
 }
 
