@@ -109,7 +109,8 @@ std::string ModelDescriptionXml(const ExportedModel& m, const std::string& guid)
            "RK4 steps of at most this length within a communication step (0: one step)",
            "<Real start=\"" + Number(m.max_step) + "\" unit=\"s\"/>");
   variable("ensemble_member", FmuLayout::kEnsembleMember, "parameter", "fixed", "exact",
-           "0: the estimate; k: the k-th parameter draw from the covariance",
+           "0: the estimate; k: the k-th parameter draw from the covariance (a parameter the "
+           "master sets to a value of its own keeps it, set before or after)",
            "<Integer start=\"0\" min=\"0\" max=\"" + std::to_string(m.ensemble.size()) + "\"/>");
   xml << "  </ModelVariables>\n  <ModelStructure>\n    <Outputs>\n";
   for (int i : outputs) xml << "      <Unknown index=\"" << i << "\"/>\n";

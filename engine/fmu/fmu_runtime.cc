@@ -36,6 +36,11 @@ struct Instance {
   std::shared_ptr<const ModelHandle> model;
   std::unique_ptr<FmuLayout> layout;
   std::vector<double> p, x, x0, u;
+  // Parameters the master set to a value of its own: ensemble_member leaves them as set,
+  // whichever comes first (fmpy sets start values in modelDescription order, the parameters
+  // before ensemble_member). Setting a parameter to the value it holds (its start value, as a
+  // master applying every start value does) is no choice of its own.
+  std::vector<bool> p_chosen;
   std::vector<double> du[3];  // the inputs' first, second and third derivatives
   std::vector<double> k1, k2, k3, k4, xs, u0, u_mid, u1;  // a step's scratch, sized once
   int member = 0;
@@ -116,6 +121,7 @@ Instance* Of(fmi2Component c) { return static_cast<Instance*>(c); }
 void Start(Instance* instance) {
   const ExportedModel& m = instance->exported;
   instance->p = m.values;
+  instance->p_chosen.assign(m.values.size(), false);
   instance->x0.assign(m.states.size(), 0.0);
   instance->u.assign(m.inputs.size(), 0.0);
   for (std::vector<double>& d : instance->du) d.assign(m.inputs.size(), 0.0);
@@ -253,7 +259,9 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
       // A new value holds until its derivatives are set.
       for (std::vector<double>& d : instance->du) d[r - l.first_input] = 0.0;
     } else if (r >= l.first_parameter && r < l.first_initial_state) {
-      instance->p[r - l.first_parameter] = value[k];
+      const size_t i = r - l.first_parameter;
+      if (value[k] != instance->p[i]) instance->p_chosen[i] = true;
+      instance->p[i] = value[k];
     } else if (r >= l.first_initial_state && r < l.max_step &&
                instance->phase != Phase::kStepping) {
       instance->x0[r - l.first_initial_state] = value[k];
@@ -280,7 +288,8 @@ fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
   return fmi2OK;
 }
 
-// ensemble_member k > 0 sets every parameter to the k-th draw, 0 to the estimate.
+// ensemble_member k > 0 sets every parameter the master has not chosen (p_chosen) to the k-th
+// draw, 0 to the estimate.
 fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           const fmi2Integer value[]) {
   Instance* instance = vesselid::Of(c);
@@ -296,7 +305,10 @@ fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
                                 std::to_string(m.ensemble.size()) + "]");
     }
     instance->member = value[k];
-    instance->p = value[k] == 0 ? m.values : m.ensemble[value[k] - 1];
+    const std::vector<double>& source = value[k] == 0 ? m.values : m.ensemble[value[k] - 1];
+    for (size_t i = 0; i < source.size(); ++i) {
+      if (!instance->p_chosen[i]) instance->p[i] = source[i];
+    }
   }
   return fmi2OK;
 }

@@ -367,6 +367,29 @@ TEST_P(ModelExport, FmuAndCReproduceTheEnginesSimulationOfTheFirstRecord) {
   }
   EXPECT_NE(member.SetInteger(member.Reference("ensemble_member"), 3), fmi2OK);
 
+  // A parameter the master sets to a value of its own keeps it, before or after
+  // ensemble_member (fmpy sets start values in modelDescription order: parameters first); set
+  // to its start value (a master applying every start value) it takes the draw.
+  const std::string& chosen = info.parameters.front();
+  const double own = exported.values.front() * 1.5 + 0.1;
+  for (bool before : {true, false}) {
+    SCOPED_TRACE(before ? "set before ensemble_member" : "set after ensemble_member");
+    testing::FmuLoader order;
+    ASSERT_TRUE(order.Open((dir / "model.fmu").string(), (dir / "order").string(), &error));
+    ASSERT_TRUE(order.Instantiate());
+    for (size_t i = 1; i < info.parameters.size(); ++i) {
+      ASSERT_EQ(order.SetReal(order.Reference(info.parameters[i]), exported.values[i]), fmi2OK);
+    }
+    if (before) ASSERT_EQ(order.SetReal(order.Reference(chosen), own), fmi2OK);
+    ASSERT_EQ(order.SetInteger(order.Reference("ensemble_member"), 2), fmi2OK);
+    if (!before) ASSERT_EQ(order.SetReal(order.Reference(chosen), own), fmi2OK);
+    EXPECT_EQ(order.GetReal(order.Reference(chosen)), own);
+    for (size_t i = 1; i < info.parameters.size(); ++i) {
+      EXPECT_EQ(order.GetReal(order.Reference(info.parameters[i])), exported.ensemble[1][i])
+          << info.parameters[i];
+    }
+  }
+
   CheckCModel(config, *stage, *model, exported, e, x0, reference, dir);
   fs::remove_all(dir);
 }
