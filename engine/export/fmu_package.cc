@@ -6,8 +6,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <string>
+#include <vector>
 
+#include "engine/export/fmu_documentation.h"
 #include "engine/export/model_description.h"
+#include "engine/export/shared_library_needs.h"
 
 namespace vesselid {
 namespace {
@@ -24,6 +28,7 @@ std::uint64_t Fnv1a(const std::string& text, std::uint64_t basis) {
   return hash;
 }
 
+// `content` is read at zip_close: it must outlive the archive.
 bool AddBuffer(zip_t* archive, const std::string& name, const std::string& content,
                std::string* error) {
   zip_source_t* source = zip_source_buffer(archive, content.data(), content.size(), 0);
@@ -70,6 +75,10 @@ bool WriteFmu(const ExportedModel& model, const std::string& runtime, const std:
               std::string* error) {
   const std::string model_json = ExportedModelToJson(model).dump(2) + "\n";
   const std::string description = ModelDescriptionXml(model, FmuGuid(model_json));
+  std::vector<std::string> needs;
+  if (!SharedLibraryNeeds(runtime, &needs, error)) return false;
+  // Held until zip_close: the archive reads its buffers then.
+  const std::string documentation = FmuDocumentationHtml(model, needs);
   const std::string temporary = fmu_path + ".tmp";
   std::error_code ec;
   fs::remove(temporary, ec);
@@ -84,7 +93,8 @@ bool WriteFmu(const ExportedModel& model, const std::string& runtime, const std:
   }
   const std::string library = std::string("binaries/linux64/") + kFmuModelIdentifier + ".so";
   bool added = AddBuffer(archive, "modelDescription.xml", description, error) &&
-               AddBuffer(archive, "resources/model.json", model_json, error);
+               AddBuffer(archive, "resources/model.json", model_json, error) &&
+               AddBuffer(archive, "documentation/index.html", documentation, error);
   if (added) {
     zip_source_t* so = zip_source_file(archive, runtime.c_str(), 0, -1);
     added = so != nullptr && zip_file_add(archive, library.c_str(), so, ZIP_FL_ENC_UTF_8) >= 0;

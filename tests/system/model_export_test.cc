@@ -26,6 +26,7 @@
 #include "engine/export/c_model.h"
 #include "engine/export/exported_model.h"
 #include "engine/export/fmu_package.h"
+#include "engine/export/shared_library_needs.h"
 #include "engine/run/records.h"
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
@@ -465,6 +466,22 @@ TEST(ExportCommand, TakesARunsModelOutAsJsonAndFmu) {
   for (const std::string& name : names) {
     EXPECT_EQ(fmu.GetReal(fmu.Reference(name)), value[name]) << name;
   }
+  // The binary needs nothing from the host but the C library and yaml-cpp (no solver, no
+  // MPI, no libstdc++ of the host's version), and its documentation says so.
+  std::vector<std::string> needs;
+  ASSERT_TRUE(SharedLibraryNeeds(
+      (dir / "unpacked" / "binaries" / "linux64" / "vesselid_model.so").string(), &needs, &error))
+      << error;
+  const std::set<std::string> allowed = {"libyaml-cpp.so.0.7", "libm.so.6", "libc.so.6",
+                                         "ld-linux-x86-64.so.2"};
+  std::ifstream documentation_file(dir / "unpacked" / "documentation" / "index.html");
+  const std::string documentation((std::istreambuf_iterator<char>(documentation_file)),
+                                  std::istreambuf_iterator<char>());
+  for (const std::string& library : needs) {
+    EXPECT_EQ(allowed.count(library), 1u) << library;
+    EXPECT_NE(documentation.find("<code>" + library + "</code>"), std::string::npos) << library;
+  }
+  EXPECT_NE(documentation.find("Runtime dependencies"), std::string::npos);
 
   // A run whose covariance is a bootstrap's carries its replicates: the ensemble is theirs.
   nlohmann::json boot = results;
