@@ -74,6 +74,54 @@ struct ChannelSums {
   Eigen::VectorXd dy2, dr2;  // per shared parameter: sum (dy/dp)^2, sum (dr/dp)^2
 };
 
+// Adds the size of each channel of `experiment` about its mean (angles from the first sample)
+// to `sums`.
+void AddChannelVariation(const Experiment& experiment, std::vector<ChannelSums>* sums) {
+  const size_t num_outputs = sums->size();
+  std::vector<double> first(num_outputs, kNaN), sum(num_outputs, 0.0), sum2(num_outputs, 0.0);
+  std::vector<int> count(num_outputs, 0);
+  for (const ExperimentSample& sample : experiment.samples) {
+    const int c = sample.output;
+    if (std::isnan(first[c])) first[c] = sample.value;
+    double y = sample.value;
+    if (experiment.Wrapped(c)) y = WrapAngle(y - first[c]);
+    sum[c] += y;
+    sum2[c] += y * y;
+    ++count[c];
+  }
+  for (size_t c = 0; c < num_outputs; ++c) {
+    if (count[c] == 0) continue;
+    (*sums)[c].count += count[c];
+    (*sums)[c].variation += std::max(0.0, sum2[c] - sum[c] * sum[c] / count[c]);
+  }
+}
+
+// The k-th eigen-direction `v` of the normalised information (eigenvalue ratio `ratio`) as a
+// combination of the parameters led by its largest component; `s` the residual SD.
+WeakDirection Direction(const LocalAnalysisOptions& options, const LocalAnalysis& a,
+                        const Eigen::VectorXd& v, const Eigen::VectorXd& inverse_d, double ratio,
+                        double s, int k) {
+  const int ns = static_cast<int>(v.size());
+  int lead = 0;
+  v.cwiseAbs().maxCoeff(&lead);
+  const double lead_step = v(lead) * inverse_d[lead];  // dp_lead per unit normalised step
+  WeakDirection w;
+  w.coefficients.assign(ns, 0.0);
+  for (int i = 0; i < ns; ++i) {
+    if (i == lead || std::abs(v(i)) >= options.min_component)
+      w.coefficients[i] = v(i) * inverse_d[i] / lead_step;
+  }
+  w.combination = CombinationText(a.names, w.coefficients, v);
+  w.eigenvalue_ratio = ratio;
+  const double lambda = a.eigenvalues[k];
+  w.std_dev_normalised = lambda > 0 ? s / std::sqrt(lambda) : kInf;
+  w.std_dev = std::abs(lead_step) * w.std_dev_normalised;
+  w.status = ratio < options.undetermined_ratio ? DirectionStatus::kUndetermined
+             : ratio < options.poor_ratio       ? DirectionStatus::kPoorlyDetermined
+                                                : DirectionStatus::kDetermined;
+  return w;
+}
+
 }  // namespace
 
 const char* DirectionStatusToString(DirectionStatus status) {
@@ -187,23 +235,7 @@ bool ComputeLocalAnalysis(const LocalAnalysisOptions& options, OutputErrorProble
       const Eigen::MatrixXd b = g.topRightCorner(ns, locals[e]);
       schur += b * PseudoInverse(g.bottomRightCorner(locals[e], locals[e])) * b.transpose();
     }
-    // Size of each channel about its mean in this experiment (angles from the first sample).
-    std::vector<double> first(num_outputs, kNaN), sum(num_outputs, 0.0), sum2(num_outputs, 0.0);
-    std::vector<int> count(num_outputs, 0);
-    for (const ExperimentSample& sample : experiment.samples) {
-      const int c = sample.output;
-      if (std::isnan(first[c])) first[c] = sample.value;
-      double y = sample.value;
-      if (experiment.Wrapped(c)) y = WrapAngle(y - first[c]);
-      sum[c] += y;
-      sum2[c] += y * y;
-      ++count[c];
-    }
-    for (int c = 0; c < num_outputs; ++c) {
-      if (count[c] == 0) continue;
-      sums[c].count += count[c];
-      sums[c].variation += std::max(0.0, sum2[c] - sum[c] * sum[c] / count[c]);
-    }
+    AddChannelVariation(experiment, &sums);
   }
   a->information = ipp - schur;
   a->information = 0.5 * (a->information + a->information.transpose()).eval();
@@ -247,24 +279,7 @@ bool ComputeLocalAnalysis(const LocalAnalysisOptions& options, OutputErrorProble
   for (int k = 0; k < ns; ++k) {
     const double ratio = ratio_of(k);
     if (k > 0 && ratio >= options.poor_ratio) break;
-    int lead = 0;
-    v.col(k).cwiseAbs().maxCoeff(&lead);
-    const double lead_step = v(lead, k) * inverse_d[lead];  // dp_lead per unit normalised step
-    WeakDirection w;
-    w.coefficients.assign(ns, 0.0);
-    for (int i = 0; i < ns; ++i) {
-      if (i == lead || std::abs(v(i, k)) >= options.min_component)
-        w.coefficients[i] = v(i, k) * inverse_d[i] / lead_step;
-    }
-    w.combination = CombinationText(a->names, w.coefficients, v.col(k));
-    w.eigenvalue_ratio = ratio;
-    const double lambda = a->eigenvalues[k];
-    w.std_dev_normalised = lambda > 0 ? s / std::sqrt(lambda) : kInf;
-    w.std_dev = std::abs(lead_step) * w.std_dev_normalised;
-    w.status = ratio < options.undetermined_ratio ? DirectionStatus::kUndetermined
-               : ratio < options.poor_ratio       ? DirectionStatus::kPoorlyDetermined
-                                                  : DirectionStatus::kDetermined;
-    a->directions.push_back(w);
+    a->directions.push_back(Direction(options, *a, v.col(k), inverse_d, ratio, s, k));
   }
 
   // Sensitivities of the compared channels.
