@@ -137,109 +137,105 @@ bool FitLatentInput(const ExperimentSpec& spec, const std::string& input,
   return true;
 }
 
-}  // namespace
+// The experiment's time window within its record.
+struct Window {
+  double t0, t_end;
+};
 
-bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
-                     const ModelInfo& info, const ExperimentOptions& options,
-                     Experiment* experiment, std::string* error) {
-  RecordChannels channels(trajectory);
-  return BuildExperiment(spec, &channels, info, options, experiment, error);
-}
+// A selected output and the channel of its column.
+struct OutputChannel {
+  int output;
+  double weight;
+  const Channel* channel;
+};
 
-bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* record_channels,
-                     const ModelInfo& info, const ExperimentOptions& options,
-                     Experiment* experiment, std::string* error) {
+// The outputs compared (options.outputs, else every mapped one) and their channels; the
+// wrapped outputs marked in `e`. False with `what` (without the experiment's name).
+bool SelectOutputs(const ExperimentSpec& spec, RecordChannels* record_channels,
+                   const ModelInfo& info, const ExperimentOptions& options, const Window& window,
+                   Experiment* e, std::vector<OutputChannel>* channels, std::string* what) {
   const Trajectory& trajectory = record_channels->trajectory();
-  auto fail = [&](const std::string& what) {
-    *error = "experiment '" + spec.name + "' (" + trajectory.source + "): " + what;
-    return false;
-  };
-  Experiment e;
-  e.name = spec.name;
-  e.num_inputs = static_cast<int>(info.inputs.size());
-  const double t0 = std::max(spec.t_begin, trajectory.t.front());
-  const double t_end = std::min(spec.t_end, trajectory.t.back());
-  if (!(t_end > t0)) return fail("empty time window");
-
-  // Selected outputs and their channels.
   std::vector<std::string> selected = options.outputs;
   if (selected.empty()) {
     for (const auto& [output, column] : spec.outputs) selected.push_back(output);
   }
-  if (selected.empty()) return fail("no outputs mapped to columns");
-  struct OutputChannel {
-    int output;
-    double weight;
-    const Channel* channel;
-  };
-  e.wrapped_outputs.assign(info.outputs.size(), false);
+  if (selected.empty()) return (*what = "no outputs mapped to columns", false);
+  e->wrapped_outputs.assign(info.outputs.size(), false);
   for (const std::string& output : spec.wrapped_outputs) {
     const int index = info.OutputIndex(output);
-    if (index >= 0) e.wrapped_outputs[index] = true;
+    if (index >= 0) e->wrapped_outputs[index] = true;
   }
-  std::vector<OutputChannel> channels;
   for (const std::string& output : selected) {
     int index = info.OutputIndex(output);
     if (index < 0) {
-      return fail("unknown output '" + output + "' (model " + info.name + " has " +
-                  JoinNames(info.outputs) + ")");
+      *what = "unknown output '" + output + "' (model " + info.name + " has " +
+              JoinNames(info.outputs) + ")";
+      return false;
     }
     auto mapped = spec.outputs.find(output);
     if (mapped == spec.outputs.end())
-      return fail("output '" + output + "' is not mapped to a column");
+      return (*what = "output '" + output + "' is not mapped to a column", false);
     int column = trajectory.Find(mapped->second);
-    if (column < 0) return fail("no column '" + mapped->second + "' for output '" + output + "'");
+    if (column < 0)
+      return (*what = "no column '" + mapped->second + "' for output '" + output + "'", false);
     auto weight = spec.output_weights.find(output);
     OutputChannel oc{index, weight == spec.output_weights.end() ? 1.0 : weight->second, nullptr};
-    if (!OutputChannelOf(record_channels, column, info, index, e.Wrapped(index),
-                         spec.IsDegreeColumn(trajectory.names[column]), t0, t_end,
-                         &oc.channel, error)) {
-      return fail(*error);
+    if (!OutputChannelOf(record_channels, column, info, index, e->Wrapped(index),
+                         spec.IsDegreeColumn(trajectory.names[column]), window.t0, window.t_end,
+                         &oc.channel, what)) {
+      return false;
     }
-    if (oc.channel->t.empty()) return fail("column '" + mapped->second + "' has no samples");
-    channels.push_back(std::move(oc));
+    if (oc.channel->t.empty())
+      return (*what = "column '" + mapped->second + "' has no samples", false);
+    channels->push_back(std::move(oc));
   }
+  return true;
+}
 
-  // Nodes: t0 and every output sample time inside the window (one output's are in order).
-  std::vector<double> times{t0};
+// The nodes (t0 and every output sample time inside the window) and the samples grouped by
+// node, weighted (normalised by the record's length if asked), each weighted value checked
+// against overflow.
+bool PlaceSamples(const ExperimentSpec& spec, const ModelInfo& info,
+                  const ExperimentOptions& options, const Window& window,
+                  const std::vector<OutputChannel>& channels, Experiment* e, std::string* what) {
+  // One output's sample times are in order.
+  std::vector<double> times{window.t0};
   for (const OutputChannel& oc : channels) {
-    const auto [first, last] = InWindow(oc.channel->t, t0, t_end);
+    const auto [first, last] = InWindow(oc.channel->t, window.t0, window.t_end);
     times.insert(times.end(), oc.channel->t.begin() + first, oc.channel->t.begin() + last);
   }
   if (!std::is_sorted(times.begin(), times.end())) std::sort(times.begin(), times.end());
   for (double t : times) {
-    if (e.node_time.empty() || t - e.node_time.back() > kNodeTimeTolerance)
-      e.node_time.push_back(t);
+    if (e->node_time.empty() || t - e->node_time.back() > kNodeTimeTolerance)
+      e->node_time.push_back(t);
   }
-  const int nodes = e.num_nodes();
-  if (nodes < 2) return fail("fewer than two sample times in the window");
-
-  // Samples grouped by node.
+  const int nodes = e->num_nodes();
+  if (nodes < 2) return (*what = "fewer than two sample times in the window", false);
   std::vector<std::vector<ExperimentSample>> by_node(nodes);
-  e.output_sample_count.assign(info.outputs.size(), 0);
-  e.channel_weight.assign(info.outputs.size(), 1.0);
-  e.channel_noise_power.assign(info.outputs.size(), 0.0);
+  e->output_sample_count.assign(info.outputs.size(), 0);
+  e->channel_weight.assign(info.outputs.size(), 1.0);
+  e->channel_noise_power.assign(info.outputs.size(), 0.0);
   for (const OutputChannel& oc : channels) {
     size_t k = 0;
-    const auto [first, last] = InWindow(oc.channel->t, t0, t_end);
+    const auto [first, last] = InWindow(oc.channel->t, window.t0, window.t_end);
     for (size_t i = first; i < last; ++i) {
       const double t = oc.channel->t[i];
-      while (e.node_time[k] < t - kNodeTimeTolerance) ++k;
+      while (e->node_time[k] < t - kNodeTimeTolerance) ++k;
       by_node[k].push_back({oc.output, oc.channel->value[i], oc.weight});
-      ++e.output_sample_count[oc.output];
+      ++e->output_sample_count[oc.output];
     }
-    e.channel_weight[oc.output] = oc.weight;
+    e->channel_weight[oc.output] = oc.weight;
   }
   for (int k = 0; k < nodes; ++k) {
-    e.node_first_sample.push_back(e.num_samples());
-    e.samples.insert(e.samples.end(), by_node[k].begin(), by_node[k].end());
+    e->node_first_sample.push_back(e->num_samples());
+    e->samples.insert(e->samples.end(), by_node[k].begin(), by_node[k].end());
   }
-  e.node_first_sample.push_back(e.num_samples());
+  e->node_first_sample.push_back(e->num_samples());
   if (options.normalize_by_length) {
-    const double scale = 1.0 / std::sqrt(static_cast<double>(e.num_samples()));
-    for (ExperimentSample& s : e.samples) s.weight *= scale;
+    const double scale = 1.0 / std::sqrt(static_cast<double>(e->num_samples()));
+    for (ExperimentSample& s : e->samples) s.weight *= scale;
   }
-  for (const ExperimentSample& s : e.samples) {
+  for (const ExperimentSample& s : e->samples) {
     // A weighted residual this large squares to an overflowing cost.
     if (std::abs(s.weight * s.value) <= kMaxDataMagnitude && s.weight <= kMaxDataMagnitude) {
       continue;
@@ -252,15 +248,21 @@ bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* record_channels
                   "stay below 1e100",
                   output.c_str(), weight == spec.output_weights.end() ? 1.0 : weight->second,
                   s.weight * s.value);
-    return fail(text);
+    return (*what = text, false);
   }
+  return true;
+}
 
-  // Step sizes.
+// Equal RK4 steps of at most the step bound (options.max_step, else the median interval) per
+// interval, counted in double before anything is allocated for them (and before a count
+// overflows int), within the step and memory limits; each step's start and midpoint (right
+// limits) and end (left limit) times, then the last node.
+bool PlanSteps(const ExperimentOptions& options, Experiment* e, std::vector<double>* right_times,
+               std::vector<double>* end_times, std::string* what) {
+  const int nodes = e->num_nodes();
   std::vector<double> intervals;
-  for (int k = 0; k + 1 < nodes; ++k) intervals.push_back(e.node_time[k + 1] - e.node_time[k]);
+  for (int k = 0; k + 1 < nodes; ++k) intervals.push_back(e->node_time[k + 1] - e->node_time[k]);
   const double max_step = options.max_step > 0 ? options.max_step : UpperMedian(intervals, 0.0);
-  // Equal steps of at most max_step per interval (in double: counted before anything is
-  // allocated for them, and before a count overflows int).
   std::vector<double> substeps;
   double total_steps = 0.0;
   for (double interval : intervals) {
@@ -273,58 +275,69 @@ bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* record_channels
                   "%.3g s in steps of at most %.3g s is %.3g integration steps, more than the "
                   "limit of %.3g (limits.integration_steps; the step is integration.max_step, "
                   "else the median sample interval)",
-                  e.node_time.back() - e.node_time.front(), max_step, total_steps,
+                  e->node_time.back() - e->node_time.front(), max_step, total_steps,
                   static_cast<double>(options.max_steps));
-    return fail(text);
+    return (*what = text, false);
   }
-  const double step_bytes = IntegrationStepBytes(total_steps, e.num_inputs);
+  const double step_bytes = IntegrationStepBytes(total_steps, e->num_inputs);
   if (step_bytes > static_cast<double>(MemoryBudget())) {
     char text[120];
     std::snprintf(text, sizeof(text),
                   "%.3g integration steps (the step is integration.max_step, "
                   "else the median sample interval)",
                   total_steps);
-    return fail(OverBudget(text, step_bytes));
+    return (*what = OverBudget(text, step_bytes), false);
   }
-  // Per step: start and midpoint (right limits), end (left limit); then the last node.
-  std::vector<double> right_times, end_times;
   for (int k = 0; k + 1 < nodes; ++k) {
     const int m = static_cast<int>(substeps[k]);
     double h = intervals[k] / m;
-    e.node_substeps.push_back(m);
-    e.node_step.push_back(h);
+    e->node_substeps.push_back(m);
+    e->node_step.push_back(h);
     for (int s = 0; s < m; ++s) {
-      right_times.push_back(e.node_time[k] + s * h);
-      right_times.push_back(e.node_time[k] + (s + 0.5) * h);
-      end_times.push_back(s + 1 == m ? e.node_time[k + 1] : e.node_time[k] + (s + 1) * h);
+      right_times->push_back(e->node_time[k] + s * h);
+      right_times->push_back(e->node_time[k] + (s + 0.5) * h);
+      end_times->push_back(s + 1 == m ? e->node_time[k + 1] : e->node_time[k] + (s + 1) * h);
     }
   }
-  right_times.push_back(e.node_time.back());
-  const size_t steps = end_times.size();
+  right_times->push_back(e->node_time.back());
+  return true;
+}
 
-  // Input cache.
-  const int nu = e.num_inputs;
-  e.input_cache.assign((3 * steps + 1) * nu, 0.0);
+// The input cache: every input at each step's start, midpoint and end (its interpolation, or
+// its latent fit where the input has a noise model), then at the last node; an absent
+// optional input is NaN throughout.
+bool CacheInputs(const ExperimentSpec& spec, RecordChannels* record_channels,
+                 const ModelInfo& info, const Window& window,
+                 const std::vector<double>& right_times, const std::vector<double>& end_times,
+                 Experiment* e, std::string* what) {
+  const Trajectory& trajectory = record_channels->trajectory();
+  const size_t steps = end_times.size();
+  const int nu = e->num_inputs;
+  e->input_cache.assign((3 * steps + 1) * nu, 0.0);
   for (int i = 0; i < nu; ++i) {
     const std::string& input = info.inputs[i];
     auto mapped = spec.inputs.find(input);
     if (mapped == spec.inputs.end() && info.InputOptional(i)) {
       for (size_t j = 0; j < 3 * steps + 1; ++j) {
-        e.input_cache[j * nu + i] = std::numeric_limits<double>::quiet_NaN();
+        e->input_cache[j * nu + i] = std::numeric_limits<double>::quiet_NaN();
       }
       continue;
     }
-    if (mapped == spec.inputs.end()) return fail("input '" + input + "' is not mapped to a column");
+    if (mapped == spec.inputs.end())
+      return (*what = "input '" + input + "' is not mapped to a column", false);
     int column = trajectory.Find(mapped->second);
-    if (column < 0) return fail("no column '" + mapped->second + "' for input '" + input + "'");
+    if (column < 0)
+      return (*what = "no column '" + mapped->second + "' for input '" + input + "'", false);
     const Channel& channel = record_channels->Extracted(column);
-    if (channel.t.empty()) return fail("input column '" + mapped->second + "' has no samples");
+    if (channel.t.empty())
+      return (*what = "input column '" + mapped->second + "' has no samples", false);
     for (size_t k = 0; k < channel.t.size() && info.InputPositive(i); ++k) {
       if (channel.value[k] > 0.0) continue;
       char text[64];
       std::snprintf(text, sizeof(text), "%g at t = %g s", channel.value[k], channel.t[k]);
-      return fail("input '" + input + "' (column '" + mapped->second + "') is " + text +
-                  ": the model needs it > 0");
+      *what = "input '" + input + "' (column '" + mapped->second + "') is " + text +
+              ": the model needs it > 0";
+      return false;
     }
     auto method = spec.interpolation.find(input);
     Interpolation interpolation =
@@ -334,22 +347,30 @@ bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* record_channels
     if (noise == spec.input_noise.end()) {
       right = InterpolateAt(channel, interpolation, right_times);
       end = InterpolateAt(channel, interpolation, end_times, true);
-    } else if (!FitLatentInput(spec, input, mapped->second, i, channel, t0, t_end, right_times,
-                               end_times, &e, &right, &end, error)) {
+    } else if (!FitLatentInput(spec, input, mapped->second, i, channel, window.t0, window.t_end,
+                               right_times, end_times, e, &right, &end, what)) {
       const std::string& key = noise->second.key;
-      return fail("input '" + input + "': " + (key.empty() ? "" : key + ": ") + *error);
+      *what = "input '" + input + "': " + (key.empty() ? "" : key + ": ") + *what;
+      return false;
     }
     for (size_t j = 0; j < steps; ++j) {
-      e.input_cache[(3 * j) * nu + i] = right[2 * j];
-      e.input_cache[(3 * j + 1) * nu + i] = right[2 * j + 1];
-      e.input_cache[(3 * j + 2) * nu + i] = end[j];
+      e->input_cache[(3 * j) * nu + i] = right[2 * j];
+      e->input_cache[(3 * j + 1) * nu + i] = right[2 * j + 1];
+      e->input_cache[(3 * j + 2) * nu + i] = end[j];
     }
-    e.input_cache[(3 * steps) * nu + i] = right.back();
+    e->input_cache[(3 * steps) * nu + i] = right.back();
   }
+  return true;
+}
 
-  // Initial state: every mapped output's value (linear interpolation) and rate at t0; the
-  // same-named outputs as defaults, the model's guess over them for start values, given
-  // values over both.
+// Initial state: every mapped output's value (linear interpolation) and rate at t0; the
+// same-named outputs as defaults, the model's guess over them for start values (with each
+// guess's standard error: the start fits' errors propagated one at a time), given values over
+// both.
+bool StartStates(const ExperimentSpec& spec, RecordChannels* record_channels,
+                 const ModelInfo& info, const ExperimentOptions& options, const Window& window,
+                 Experiment* e, std::string* what) {
+  const Trajectory& trajectory = record_channels->trajectory();
   const size_t ny = info.outputs.size();
   std::vector<double> y0(ny, std::numeric_limits<double>::quiet_NaN()), ydot0 = y0;
   std::vector<double> y0_sigma(ny, 0.0), ydot0_sigma(ny, 0.0);
@@ -358,17 +379,17 @@ bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* record_channels
     const int column = trajectory.Find(column_name);
     if (o < 0 || column < 0) continue;
     const Channel* extracted = nullptr;
-    if (!OutputChannelOf(record_channels, column, info, o, e.Wrapped(o),
-                         spec.IsDegreeColumn(column_name), t0, t_end, &extracted,
-                         error)) {
-      return fail(*error);
+    if (!OutputChannelOf(record_channels, column, info, o, e->Wrapped(o),
+                         spec.IsDegreeColumn(column_name), window.t0, window.t_end, &extracted,
+                         what)) {
+      return false;
     }
     const Channel& channel = *extracted;
     if (channel.t.empty()) continue;
-    y0[o] = InterpolateAt(channel, Interpolation::kLinear, {t0})[0];
+    y0[o] = InterpolateAt(channel, Interpolation::kLinear, {window.t0})[0];
     const bool angle = o < static_cast<int>(info.angle_outputs.size()) && info.angle_outputs[o];
     StartFit fit;
-    if (FitStart(channel, t0, options.rate_window, angle, &fit)) {
+    if (FitStart(channel, window.t0, options.rate_window, angle, &fit)) {
       ydot0[o] = fit.rate;
       y0_sigma[o] = fit.value_sigma;
       ydot0_sigma[o] = fit.rate_sigma;
@@ -384,13 +405,12 @@ bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* record_channels
     if (options.state_guess) options.state_guess(y.data(), ydot.data(), x.data());
     return x;
   };
-  e.initial_state.assign(info.states.size(), 0.0);
+  e->initial_state.assign(info.states.size(), 0.0);
   for (size_t s = 0; s < info.states.size(); ++s) {
     const int o = info.OutputIndex(info.states[s]);
-    if (o >= 0 && std::isfinite(y0[o])) e.initial_state[s] = y0[o];
+    if (o >= 0 && std::isfinite(y0[o])) e->initial_state[s] = y0[o];
   }
-  e.initial_state_guess = guess(y0, ydot0);
-  // Each guess's standard error: the start fits' errors propagated one at a time.
+  e->initial_state_guess = guess(y0, ydot0);
   std::vector<double> variance(info.states.size(), 0.0);
   bool known = true;
   for (size_t o = 0; o < ny; ++o) {
@@ -402,40 +422,80 @@ bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* record_channels
       (values == &y0 ? y : ydot)[o] += (*sigma)[o];
       const std::vector<double> moved = guess(y, ydot);
       for (size_t s = 0; s < moved.size(); ++s) {
-        const double d = moved[s] - e.initial_state_guess[s];
+        const double d = moved[s] - e->initial_state_guess[s];
         if (std::isfinite(d)) variance[s] += d * d;
       }
     }
   }
-  e.initial_state_sigma.assign(info.states.size(), std::numeric_limits<double>::quiet_NaN());
+  e->initial_state_sigma.assign(info.states.size(), std::numeric_limits<double>::quiet_NaN());
   for (size_t s = 0; s < info.states.size() && known; ++s) {
-    if (variance[s] > 0.0) e.initial_state_sigma[s] = std::sqrt(variance[s]);
+    if (variance[s] > 0.0) e->initial_state_sigma[s] = std::sqrt(variance[s]);
   }
   for (size_t s = 0; s < info.states.size(); ++s) {
     auto given = spec.initial_state.find(info.states[s]);
     if (given == spec.initial_state.end()) continue;
-    e.initial_state[s] = given->second;
-    e.initial_state_guess[s] = given->second;
-    e.initial_state_sigma[s] = std::numeric_limits<double>::quiet_NaN();
+    e->initial_state[s] = given->second;
+    e->initial_state_guess[s] = given->second;
+    e->initial_state_sigma[s] = std::numeric_limits<double>::quiet_NaN();
   }
-  // Prior weight: the outputs' weighted noise level (second differences of the samples).
+  return true;
+}
+
+// Prior weight: the outputs' weighted noise level (second differences of the samples).
+void SetPriorWeight(const ExperimentOptions& options, const Window& window,
+                    const std::vector<OutputChannel>& channels, Experiment* e) {
   double noise2 = 0.0;
   int counted = 0;
   for (const OutputChannel& oc : channels) {
     NoiseLevel level;
-    const auto [first, last] = InWindow(oc.channel->t, t0, t_end);
+    const auto [first, last] = InWindow(oc.channel->t, window.t0, window.t_end);
     for (size_t i = first; i < last; ++i) level.Add(oc.channel->value[i]);
     const double sigma = level.Sigma();
     if (!std::isfinite(sigma)) continue;
-    e.channel_noise_power[oc.output] = level.count() * sigma * sigma;
+    e->channel_noise_power[oc.output] = level.count() * sigma * sigma;
     noise2 += level.count() * (oc.weight * sigma) * (oc.weight * sigma);
     counted += level.count();
   }
   if (counted > 0) {
-    e.prior_weight = std::sqrt(noise2 / counted);
+    e->prior_weight = std::sqrt(noise2 / counted);
     if (options.normalize_by_length)
-      e.prior_weight /= std::sqrt(static_cast<double>(e.num_samples()));
+      e->prior_weight /= std::sqrt(static_cast<double>(e->num_samples()));
   }
+}
+
+}  // namespace
+
+bool BuildExperiment(const ExperimentSpec& spec, const Trajectory& trajectory,
+                     const ModelInfo& info, const ExperimentOptions& options,
+                     Experiment* experiment, std::string* error) {
+  RecordChannels channels(trajectory);
+  return BuildExperiment(spec, &channels, info, options, experiment, error);
+}
+
+bool BuildExperiment(const ExperimentSpec& spec, RecordChannels* record_channels,
+                     const ModelInfo& info, const ExperimentOptions& options,
+                     Experiment* experiment, std::string* error) {
+  const Trajectory& trajectory = record_channels->trajectory();
+  Experiment e;
+  e.name = spec.name;
+  e.num_inputs = static_cast<int>(info.inputs.size());
+  const Window window{std::max(spec.t_begin, trajectory.t.front()),
+                      std::min(spec.t_end, trajectory.t.back())};
+  std::vector<OutputChannel> channels;
+  std::vector<double> right_times, end_times;
+  std::string what;
+  const bool built =
+      (window.t_end > window.t0 || (what = "empty time window", false)) &&
+      SelectOutputs(spec, record_channels, info, options, window, &e, &channels, &what) &&
+      PlaceSamples(spec, info, options, window, channels, &e, &what) &&
+      PlanSteps(options, &e, &right_times, &end_times, &what) &&
+      CacheInputs(spec, record_channels, info, window, right_times, end_times, &e, &what) &&
+      StartStates(spec, record_channels, info, options, window, &e, &what);
+  if (!built) {
+    *error = "experiment '" + spec.name + "' (" + trajectory.source + "): " + what;
+    return false;
+  }
+  SetPriorWeight(options, window, channels, &e);
   *experiment = std::move(e);
   return true;
 }

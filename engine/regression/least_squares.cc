@@ -177,6 +177,434 @@ struct MinimumDistance {
   }
 };
 
+// One least-squares stage's work (RunLeastSquares): the parameters' roles, the equation data,
+// each equation's regression, the profile search, the minimum distance from the identified
+// coefficients to the parameters and the parameters' covariance.
+class LeastSquaresRun {
+ public:
+  LeastSquaresRun(const ModelHandle& model, const std::vector<ParameterSpec>& specs,
+                  const LeastSquaresOptions& options, std::vector<RegressionRecord>* records,
+                  LeastSquaresSummary* summary)
+      : model_(model), info_(model.info()), form_(*model.regression_form()), specs_(specs),
+        options_(options), records_(records), summary_(summary), data_(model, options),
+        np_(static_cast<int>(info_.parameters.size())), nc_(form_.num_coefficients()),
+        equations_(static_cast<int>(form_.states.size())), fits_(equations_),
+        columns_(equations_), offset_(equations_ + 1, 0) {
+    for (int i = 0; i < equations_; ++i) {
+      offset_[i + 1] = offset_[i] + static_cast<int>(form_.coefficients[i].size());
+    }
+  }
+
+  // Roles: profiled (searched), regressed (from the coefficients), held; per-experiment
+  // parameters' coefficients get one column per experiment (group).
+  bool Roles() {
+    if (static_cast<int>(specs_.size()) != np_) return Fail("parameter list does not match model");
+    p_.resize(np_);
+    std::vector<bool> estimated(np_, false), profiled(np_, false);
+    for (int i = 0; i < np_; ++i) {
+      p_[i] = specs_[i].start;
+      estimated[i] = specs_[i].role != ParameterRole::kFixed;
+      if (specs_[i].role == ParameterRole::kPerExperiment) per_experiment_.push_back(i);
+    }
+    for (int i : form_.profiled) profiled[i] = estimated[i];
+    depends_ = Dependence(model_, np_, nc_);
+    coefficient_free_.assign(nc_, false);
+    for (int j = 0; j < nc_; ++j) {
+      for (int i = 0; i < np_; ++i) coefficient_free_[j] = coefficient_free_[j] || (depends_(j, i) && estimated[i]);
+    }
+    for (int i = 0; i < np_; ++i) {
+      if (!estimated[i]) continue;
+      if (profiled[i] && specs_[i].role == ParameterRole::kPerExperiment) {
+        return Fail("parameter '" + info_.parameters[i] +
+                    "' enters the regressors and cannot be "
+                    "per_experiment in a least-squares stage");
+      }
+      if (profiled[i]) {
+        searched_.push_back(i);
+        continue;
+      }
+      if (depends_.col(i).sum() == 0) {
+        return Fail("parameter '" + info_.parameters[i] +
+                    "' does not enter the equation-error form of " + info_.name + "; hold it");
+      }
+      if (specs_[i].role != ParameterRole::kPerExperiment) regressed_.push_back(i);
+    }
+    if (regressed_.empty() && per_experiment_.empty()) return Fail("no parameter to regress");
+    if (!per_experiment_.empty()) SetGroups();
+    return true;
+  }
+
+  // 1. The profiled parameters searched (BOBYQA within their bounds) on plain regressions.
+  bool Profile() {
+    if (searched_.empty()) return true;
+    const int n = static_cast<int>(searched_.size());
+    nlopt::opt optimizer(nlopt::LN_BOBYQA, n);
+    std::vector<double> lower(n), upper(n), z(n);
+    for (int k = 0; k < n; ++k) {
+      const ParameterSpec& s = specs_[searched_[k]];
+      if (!std::isfinite(s.lower) || !std::isfinite(s.upper)) {
+        return Fail("parameter '" + s.name + "' is searched (it enters the regressors) and "
+                    "needs finite bounds");
+      }
+      lower[k] = s.lower;
+      upper[k] = s.upper;
+      z[k] = s.start;
+    }
+    optimizer.set_lower_bounds(lower);
+    optimizer.set_upper_bounds(upper);
+    optimizer.set_maxeval(options_.max_profile_evaluations);
+    optimizer.set_xtol_rel(1e-4);
+    struct Context {
+      std::function<double(const std::vector<double>&)> f;
+    } context;
+    bool failed = false;
+    const RegressionOptions plain;
+    context.f = [&](const std::vector<double>& values) {
+      std::vector<double> q = p_;
+      for (int k = 0; k < n; ++k) q[searched_[k]] = values[k];
+      double objective;
+      ++summary_->profile_evaluations;
+      if (!Regress(q, plain, &objective)) {
+        failed = true;
+        return std::numeric_limits<double>::max();
+      }
+      return objective;
+    };
+    optimizer.set_min_objective(
+        [](const std::vector<double>& x, std::vector<double>&, void* c) {
+          return static_cast<Context*>(c)->f(x);
+        },
+        &context);
+    double best;
+    try {
+      optimizer.optimize(z, best);
+    } catch (const std::exception& e) {
+      return Fail(std::string("profile search: ") + e.what());
+    }
+    if (failed && !std::isfinite(best)) return Fail(regression_error_);
+    for (int k = 0; k < n; ++k) p_[searched_[k]] = z[k];
+    return true;
+  }
+
+  // 2. The regressions with the stage's options, summarised equation by equation.
+  bool Regressions() {
+    if (!Regress(p_, options_.regression, &summary_->objective)) return Fail(regression_error_);
+    std::vector<double> theta_now(nc_);
+    model_.Coefficients(p_.data(), theta_now.data());
+    for (int i = 0; i < equations_; ++i) {
+      EquationSummary e;
+      e.state = info_.states[form_.states[i]];
+      const int m = static_cast<int>(data_.design(i).size());
+      e.theta = Eigen::VectorXd::Constant(m, kNaN);
+      e.std_errors = Eigen::VectorXd::Constant(m, kNaN);
+      for (int j = 0; j < m; ++j) {
+        const DesignColumn& d = data_.design(i)[j];
+        e.coefficients.push_back(form_.coefficients[i][d.coefficient] +
+                                 (d.group < 0 ? "" : "[" + groups_[d.group] + "]"));
+        const int c = offset_[i] + d.coefficient;
+        if (!coefficient_free_[c]) e.theta(j) = theta_now[c];
+      }
+      e.regressed.assign(m, false);
+      for (size_t j = 0; j < columns_[i].size(); ++j) {
+        e.regressed[columns_[i][j]] = true;
+        e.theta(columns_[i][j]) = fits_[i].theta(j);
+        e.std_errors(columns_[i][j]) = fits_[i].std_errors(j);
+      }
+      e.samples = static_cast<int>(data_.y(i).size());
+      e.rejected = fits_[i].rejected;
+      e.lambda = fits_[i].lambda;
+      e.r2 = fits_[i].r2;
+      e.residual_rms = fits_[i].residual_rms;
+      summary_->equations.push_back(e);
+    }
+    return true;
+  }
+
+  // 3. The regressed parameters (shared, then per experiment group by group) nearest to the
+  // identified coefficients in their covariance's metric, and their covariance.
+  bool Distance(LeastSquaresResult* result) {
+    MinimumDistance* distance = NewDistance();
+    const int identified = static_cast<int>(distance->target.size());
+    const int nr = distance->size();
+    StartBlock(nr);
+    auto* cost = new ceres::DynamicNumericDiffCostFunction<MinimumDistance, ceres::CENTRAL>(
+        distance, ceres::TAKE_OWNERSHIP);
+    cost->AddParameterBlock(nr);
+    cost->SetNumResiduals(identified);
+    ceres::Problem problem;
+    problem.AddResidualBlock(cost, nullptr, block_.data());
+    for (int k = 0; k < nr; ++k) {
+      const ParameterSpec& s = specs_[block_parameter_[k]];
+      if (std::isfinite(s.lower)) problem.SetParameterLowerBound(block_.data(), k, s.lower);
+      if (std::isfinite(s.upper)) problem.SetParameterUpperBound(block_.data(), k, s.upper);
+    }
+    ceres::Solver::Options solver;
+    solver.linear_solver_type = ceres::DENSE_QR;
+    solver.max_num_iterations = 200;
+    solver.function_tolerance = 1e-14;
+    solver.parameter_tolerance = 1e-12;
+    ceres::Solver::Summary solved;
+    ceres::Solve(solver, &problem, &solved);
+    if (!solved.IsSolutionUsable()) return Fail("minimum distance: " + solved.message);
+    const int shared = static_cast<int>(regressed_.size());
+    const int num_groups = static_cast<int>(groups_.size());
+    for (int k = 0; k < shared; ++k) p_[regressed_[k]] = block_[k];
+    for (size_t m = 0; m < per_experiment_.size(); ++m) {  // the mean serves the regressors
+      double sum = 0.0;
+      for (int g = 0; g < num_groups; ++g) sum += block_[shared + m * num_groups + g];
+      if (num_groups > 0) p_[per_experiment_[m]] = sum / num_groups;
+    }
+    // The Jacobian of the whitened distance at the solution.
+    double cost_value;
+    std::vector<double> jacobian(static_cast<size_t>(identified) * nr);
+    double* jacobians[1] = {jacobian.data()};
+    std::vector<double> residuals(identified);
+    const double* parameters[1] = {block_.data()};
+    problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost_value, nullptr, nullptr, nullptr);
+    cost->Evaluate(parameters, residuals.data(), jacobians);
+    Covariance(Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+                   jacobian.data(), identified, nr),
+               result);
+    return true;
+  }
+
+  // Notes on the searched parameters; the records' internal states left at the final values.
+  void Finish() {
+    for (int i : searched_) {
+      summary_->notes.push_back("'" + info_.parameters[i] + "' searched in [" +
+                                std::to_string(specs_[i].lower) + ", " +
+                                std::to_string(specs_[i].upper) + "]: " + std::to_string(p_[i]));
+      // A search that ends on a bound is an at_bound finding (diagnose/), from the estimate.
+    }
+    data_.Build(p_, records_);
+  }
+
+ private:
+  bool Fail(const std::string& what) {
+    summary_->message = what;
+    return false;
+  }
+
+  // Per-experiment parameters: their coefficients get one column per experiment (group).
+  void SetGroups() {
+    std::vector<int> group_of;
+    for (const RegressionRecord& record : *records_) {
+      const auto found = std::find(groups_.begin(), groups_.end(), record.name);
+      group_of.push_back(static_cast<int>(found - groups_.begin()));
+      if (found == groups_.end()) groups_.push_back(record.name);
+    }
+    std::vector<std::vector<bool>> expanded;
+    for (int i = 0, c = 0; i < equations_; ++i) {
+      expanded.emplace_back();
+      for (size_t j = 0; j < form_.coefficients[i].size(); ++j, ++c) {
+        bool by_experiment = false;
+        for (int m : per_experiment_) by_experiment |= depends_(c, m) != 0;
+        expanded.back().push_back(by_experiment);
+      }
+    }
+    data_.SetGroups(expanded, static_cast<int>(groups_.size()), group_of);
+  }
+
+  // Each equation's regression at `values`; `objective` = sum_i n_i log(RSS_i / n_i).
+  bool Regress(const std::vector<double>& values, const RegressionOptions& regression,
+               double* objective) {
+    data_.Build(values, records_);
+    std::vector<double> theta(nc_);
+    model_.Coefficients(values.data(), theta.data());
+    *objective = 0.0;
+    for (int i = 0; i < equations_; ++i) {
+      const Eigen::MatrixXd& x = data_.x(i);
+      Eigen::VectorXd y = data_.y(i);
+      columns_[i].clear();
+      const double largest = x.rows() > 0 && x.cols() > 0 ? x.colwise().norm().maxCoeff() : 0.0;
+      for (int j = 0; j < x.cols(); ++j) {
+        const int c = offset_[i] + data_.design(i)[j].coefficient;
+        if (!coefficient_free_[c]) {
+          y -= x.col(j) * theta[c];  // held: to the left-hand side
+        } else if (x.col(j).norm() > 1e-9 * largest) {
+          columns_[i].push_back(j);
+        }
+      }
+      Eigen::MatrixXd xi(x.rows(), columns_[i].size());
+      for (size_t j = 0; j < columns_[i].size(); ++j) xi.col(j) = x.col(columns_[i][j]);
+      RegressionOptions equation = regression;
+      if (regression.penalty != Penalty::kNone &&
+          i < static_cast<int>(options_.equation_lambda.size())) {
+        equation.lambda = options_.equation_lambda[i];  // held by a bootstrap replicate
+      }
+      if (!SolveRegression(xi, y, equation, &fits_[i], &regression_error_)) {
+        regression_error_ = form_.coefficients[i].empty()
+                                ? regression_error_
+                                : "equation " + info_.states[form_.states[i]] + "': " + regression_error_;
+        return false;
+      }
+      const double n = static_cast<double>(y.size());
+      const double rss = std::max(fits_[i].residual_rms * fits_[i].residual_rms * n, 1e-300);
+      *objective += n * std::log(rss / n);
+    }
+    return true;
+  }
+
+  // The equation's whitening: the inverse Cholesky factor of its coefficients' covariance.
+  Eigen::MatrixXd Whitening(int i) const {
+    const int m = static_cast<int>(columns_[i].size());
+    const RegressionResult& fit = fits_[i];
+    Eigen::LLT<Eigen::MatrixXd> llt(fit.covariance);
+    if (fit.covariance.rows() == m && fit.covariance.allFinite() && llt.info() == Eigen::Success) {
+      return llt.matrixL().solve(Eigen::MatrixXd::Identity(m, m));
+    }
+    if (fit.std_errors.size() == m && fit.std_errors.allFinite() &&
+        (fit.std_errors.array() > 0.0).all()) {
+      // A covariance not positive definite to rounding: each coefficient at its own standard
+      // error (the residual level alone would give every coefficient the same one, whatever
+      // its regressor's unit).
+      return fit.std_errors.cwiseInverse().asDiagonal();
+    }
+    // No covariance (lasso): equal weights at the equation's residual level.
+    return Eigen::MatrixXd::Identity(m, m) / std::max(fit.residual_rms, 1e-12);
+  }
+
+  // The distance from the identified coefficients, whitened equation by equation.
+  MinimumDistance* NewDistance() const {
+    auto* distance = new MinimumDistance;
+    distance->model = &model_;
+    distance->base = p_;
+    distance->free = regressed_;
+    distance->per_experiment = per_experiment_;
+    distance->groups = static_cast<int>(groups_.size());
+    distance->num_coefficients = nc_;
+    int identified = 0;
+    for (int i = 0; i < equations_; ++i) {
+      for (int j : columns_[i]) {
+        const DesignColumn& d = data_.design(i)[j];
+        distance->coefficient.push_back(offset_[i] + d.coefficient);
+        distance->group.push_back(d.group);
+      }
+      identified += static_cast<int>(columns_[i].size());
+    }
+    distance->target.resize(identified);
+    distance->whitening = Eigen::MatrixXd::Zero(identified, identified);
+    for (int i = 0, row = 0; i < equations_; ++i) {
+      const int m = static_cast<int>(columns_[i].size());
+      if (m == 0) continue;
+      distance->target.segment(row, m) = fits_[i].theta;
+      distance->whitening.block(row, row, m, m) = Whitening(i);
+      row += m;
+    }
+    return distance;
+  }
+
+  // The block's start: shared regressed parameters at their values, then per-experiment ones
+  // group by group, each from its experiment's carried value (ParameterSpec::experiment_starts).
+  void StartBlock(int nr) {
+    const int shared = static_cast<int>(regressed_.size());
+    const int num_groups = static_cast<int>(groups_.size());
+    block_parameter_.assign(nr, 0);
+    block_.assign(nr, 0.0);
+    for (int k = 0; k < shared; ++k) {
+      block_parameter_[k] = regressed_[k];
+      block_[k] = p_[regressed_[k]];
+    }
+    for (size_t m = 0; m < per_experiment_.size(); ++m) {
+      const ParameterSpec& spec = specs_[per_experiment_[m]];
+      for (int g = 0; g < num_groups; ++g) {
+        const int k = shared + static_cast<int>(m) * num_groups + g;
+        block_parameter_[k] = per_experiment_[m];
+        const auto carried = spec.experiment_starts.find(groups_[g]);
+        block_[k] = carried != spec.experiment_starts.end()
+                        ? std::clamp(carried->second, spec.lower, spec.upper)
+                        : spec.start;
+      }
+    }
+  }
+
+  std::string BlockName(int k) const {
+    const int shared = static_cast<int>(regressed_.size());
+    const std::string& name = info_.parameters[block_parameter_[k]];
+    return k < shared ? name : name + "[" + groups_[(k - shared) % groups_.size()] + "]";
+  }
+
+  // Covariance of the regressed parameters from the distance's Jacobian `j`: (J^T J)^-1 over
+  // the determined ones; the result's values, standard errors and per-experiment values.
+  void Covariance(const Eigen::MatrixXd& j, LeastSquaresResult* result) {
+    const int nr = static_cast<int>(j.cols());
+    const int shared = static_cast<int>(regressed_.size());
+    const int num_groups = static_cast<int>(groups_.size());
+    result->values = p_;
+    result->std_errors.assign(np_, kNaN);
+    result->undetermined.assign(np_, false);
+    result->free.clear();
+    result->per_experiment.clear();
+    std::vector<int> determined;
+    for (int k = 0; k < nr; ++k) {
+      if (j.col(k).norm() > 1e-12) {
+        determined.push_back(k);
+      } else {
+        if (k < shared) result->undetermined[regressed_[k]] = true;
+        summary_->notes.push_back("'" + BlockName(k) +
+                                  "' enters no identified coefficient (no data in its regions); "
+                                  "held at its start");
+      }
+    }
+    Eigen::MatrixXd jd(j.rows(), determined.size());
+    for (size_t k = 0; k < determined.size(); ++k) jd.col(k) = j.col(determined[k]);
+    const Eigen::MatrixXd information = jd.transpose() * jd;
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(information);
+    Eigen::MatrixXd covariance;
+    if (lu.rank() < information.rows()) {
+      summary_->notes.push_back("the coefficients do not determine every parameter (rank " +
+                                std::to_string(lu.rank()) + " of " +
+                                std::to_string(information.rows()) + ")");
+      covariance = Eigen::MatrixXd::Constant(information.rows(), information.rows(), kNaN);
+    } else {
+      covariance = information.inverse();
+    }
+    int determined_shared = 0;
+    for (size_t k = 0; k < determined.size(); ++k) {
+      if (determined[k] >= shared) continue;
+      ++determined_shared;
+      const int i = regressed_[determined[k]];
+      result->free.push_back(i);
+      result->std_errors[i] = std::sqrt(covariance(k, k));
+    }
+    // Determined shared entries come first in `determined`: their block is the covariance.
+    result->covariance = covariance.topLeftCorner(determined_shared, determined_shared);
+    for (int k = shared; k < nr; ++k) {
+      ExperimentValue v;
+      v.parameter = block_parameter_[k];
+      v.experiment = groups_[(k - shared) % num_groups];
+      v.value = block_[k];
+      const auto at = std::find(determined.begin(), determined.end(), k);
+      v.undetermined = at == determined.end();
+      const int row = static_cast<int>(at - determined.begin());
+      v.std_error = v.undetermined ? kNaN : std::sqrt(covariance(row, row));
+      result->per_experiment.push_back(v);
+    }
+    for (int i : searched_) result->free.push_back(i);  // searched: no standard error
+  }
+
+  const ModelHandle& model_;
+  const ModelInfo& info_;
+  const RegressionForm& form_;
+  const std::vector<ParameterSpec>& specs_;
+  const LeastSquaresOptions& options_;
+  std::vector<RegressionRecord>* records_;
+  LeastSquaresSummary* summary_;
+  EquationData data_;
+  const int np_, nc_, equations_;
+  std::vector<double> p_;  // the parameters as the stage goes
+  std::vector<int> per_experiment_, regressed_, searched_;
+  Eigen::MatrixXi depends_;
+  std::vector<bool> coefficient_free_;
+  std::vector<std::string> groups_;  // the experiments of per-experiment parameters
+  std::vector<RegressionResult> fits_;
+  std::vector<std::vector<int>> columns_;  // identified coefficient columns per equation
+  std::vector<int> offset_;                // each equation's first coefficient
+  std::string regression_error_;
+  std::vector<int> block_parameter_;  // the model parameter of each minimum-distance entry
+  std::vector<double> block_;
+};
+
 }  // namespace
 
 std::string LeastSquaresSummary::BriefReport() const {
@@ -198,372 +626,15 @@ bool RunLeastSquares(const ModelHandle& model, const std::vector<ParameterSpec>&
                      LeastSquaresResult* result, LeastSquaresSummary* summary) {
   const auto start_time = std::chrono::steady_clock::now();
   *summary = LeastSquaresSummary();
-  auto fail = [&](const std::string& what) {
-    summary->message = what;
+  if (model.regression_form() == nullptr) {
+    summary->message = "model " + model.info().name + " has no equation-error form";
     return false;
-  };
-  const ModelInfo& info = model.info();
-  const RegressionForm* form = model.regression_form();
-  if (form == nullptr) return fail("model " + info.name + " has no equation-error form");
-  const int np = static_cast<int>(info.parameters.size());
-  const int nc = form->num_coefficients();
-  const int equations = static_cast<int>(form->states.size());
-  if (static_cast<int>(specs.size()) != np) return fail("parameter list does not match model");
-
-  // Roles: profiled (searched), regressed (from the coefficients), held.
-  std::vector<double> p(np);
-  std::vector<bool> estimated(np, false), profiled(np, false);
-  std::vector<int> per_experiment;
-  for (int i = 0; i < np; ++i) {
-    p[i] = specs[i].start;
-    estimated[i] = specs[i].role != ParameterRole::kFixed;
-    if (specs[i].role == ParameterRole::kPerExperiment) per_experiment.push_back(i);
   }
-  for (int i : form->profiled) profiled[i] = estimated[i];
-  const Eigen::MatrixXi depends = Dependence(model, np, nc);
-  std::vector<bool> coefficient_free(nc, false);
-  for (int j = 0; j < nc; ++j) {
-    for (int i = 0; i < np; ++i) coefficient_free[j] = coefficient_free[j] || (depends(j, i) && estimated[i]);
-  }
-  std::vector<int> regressed, searched;
-  for (int i = 0; i < np; ++i) {
-    if (!estimated[i]) continue;
-    if (profiled[i] && specs[i].role == ParameterRole::kPerExperiment) {
-      return fail("parameter '" + info.parameters[i] +
-                  "' enters the regressors and cannot be "
-                  "per_experiment in a least-squares stage");
-    }
-    if (profiled[i]) {
-      searched.push_back(i);
-      continue;
-    }
-    if (depends.col(i).sum() == 0) {
-      return fail("parameter '" + info.parameters[i] +
-                  "' does not enter the equation-error form of " + info.name + "; hold it");
-    }
-    if (specs[i].role != ParameterRole::kPerExperiment) regressed.push_back(i);
-  }
-  if (regressed.empty() && per_experiment.empty()) return fail("no parameter to regress");
-
-  // Per-experiment parameters: their coefficients get one column per experiment (group).
-  std::vector<std::string> groups;
-  std::vector<int> group_of;
-  EquationData data(model, options);
-  if (!per_experiment.empty()) {
-    for (const RegressionRecord& record : *records) {
-      const auto found = std::find(groups.begin(), groups.end(), record.name);
-      group_of.push_back(static_cast<int>(found - groups.begin()));
-      if (found == groups.end()) groups.push_back(record.name);
-    }
-    std::vector<std::vector<bool>> expanded;
-    for (int i = 0, c = 0; i < equations; ++i) {
-      expanded.emplace_back();
-      for (size_t j = 0; j < form->coefficients[i].size(); ++j, ++c) {
-        bool by_experiment = false;
-        for (int m : per_experiment) by_experiment |= depends(c, m) != 0;
-        expanded.back().push_back(by_experiment);
-      }
-    }
-    data.SetGroups(expanded, static_cast<int>(groups.size()), group_of);
-  }
-  auto column_name = [&](int i, const DesignColumn& c) {
-    return form->coefficients[i][c.coefficient] + (c.group < 0 ? "" : "[" + groups[c.group] + "]");
-  };
-
-  // Each equation's regression at p; returns sum_i n_i log(RSS_i / n_i).
-  std::vector<int> offset(equations + 1, 0);
-  for (int i = 0; i < equations; ++i) {
-    offset[i + 1] = offset[i] + static_cast<int>(form->coefficients[i].size());
-  }
-  std::vector<RegressionResult> fits(equations);
-  std::vector<std::vector<int>> columns(equations);  // identified coefficient columns
-  std::string regression_error;
-  auto regress = [&](const std::vector<double>& values, const RegressionOptions& regression,
-                     double* objective) {
-    data.Build(values, records);
-    std::vector<double> theta(nc);
-    model.Coefficients(values.data(), theta.data());
-    *objective = 0.0;
-    for (int i = 0; i < equations; ++i) {
-      const Eigen::MatrixXd& x = data.x(i);
-      Eigen::VectorXd y = data.y(i);
-      columns[i].clear();
-      const double largest = x.rows() > 0 && x.cols() > 0 ? x.colwise().norm().maxCoeff() : 0.0;
-      for (int j = 0; j < x.cols(); ++j) {
-        const int c = offset[i] + data.design(i)[j].coefficient;
-        if (!coefficient_free[c]) {
-          y -= x.col(j) * theta[c];  // held: to the left-hand side
-        } else if (x.col(j).norm() > 1e-9 * largest) {
-          columns[i].push_back(j);
-        }
-      }
-      Eigen::MatrixXd xi(x.rows(), columns[i].size());
-      for (size_t j = 0; j < columns[i].size(); ++j) xi.col(j) = x.col(columns[i][j]);
-      RegressionOptions equation = regression;
-      if (regression.penalty != Penalty::kNone &&
-          i < static_cast<int>(options.equation_lambda.size())) {
-        equation.lambda = options.equation_lambda[i];  // held by a bootstrap replicate
-      }
-      if (!SolveRegression(xi, y, equation, &fits[i], &regression_error)) {
-        regression_error = form->coefficients[i].empty() ? regression_error
-                           : "equation " + info.states[form->states[i]] + "': " + regression_error;
-        return false;
-      }
-      const double n = static_cast<double>(y.size());
-      const double rss = std::max(fits[i].residual_rms * fits[i].residual_rms * n, 1e-300);
-      *objective += n * std::log(rss / n);
-    }
-    return true;
-  };
-
-  // 1. Profiled parameters: bounded search on plain regressions.
-  RegressionOptions plain;
-  if (!searched.empty()) {
-    const int n = static_cast<int>(searched.size());
-    nlopt::opt optimizer(nlopt::LN_BOBYQA, n);
-    std::vector<double> lower(n), upper(n), z(n);
-    for (int k = 0; k < n; ++k) {
-      const ParameterSpec& s = specs[searched[k]];
-      if (!std::isfinite(s.lower) || !std::isfinite(s.upper)) {
-        return fail("parameter '" + s.name + "' is searched (it enters the regressors) and "
-                    "needs finite bounds");
-      }
-      lower[k] = s.lower;
-      upper[k] = s.upper;
-      z[k] = s.start;
-    }
-    optimizer.set_lower_bounds(lower);
-    optimizer.set_upper_bounds(upper);
-    optimizer.set_maxeval(options.max_profile_evaluations);
-    optimizer.set_xtol_rel(1e-4);
-    struct Context {
-      std::function<double(const std::vector<double>&)> f;
-    } context;
-    bool failed = false;
-    context.f = [&](const std::vector<double>& values) {
-      std::vector<double> q = p;
-      for (int k = 0; k < n; ++k) q[searched[k]] = values[k];
-      double objective;
-      ++summary->profile_evaluations;
-      if (!regress(q, plain, &objective)) {
-        failed = true;
-        return std::numeric_limits<double>::max();
-      }
-      return objective;
-    };
-    optimizer.set_min_objective(
-        [](const std::vector<double>& x, std::vector<double>&, void* c) {
-          return static_cast<Context*>(c)->f(x);
-        },
-        &context);
-    double best;
-    try {
-      optimizer.optimize(z, best);
-    } catch (const std::exception& e) {
-      return fail(std::string("profile search: ") + e.what());
-    }
-    if (failed && !std::isfinite(best)) return fail(regression_error);
-    for (int k = 0; k < n; ++k) p[searched[k]] = z[k];
-  }
-
-  // 2. The regressions with the stage's options.
-  if (!regress(p, options.regression, &summary->objective)) return fail(regression_error);
-  std::vector<double> theta_now(nc);
-  model.Coefficients(p.data(), theta_now.data());
-  for (int i = 0; i < equations; ++i) {
-    EquationSummary e;
-    e.state = info.states[form->states[i]];
-    const int m = static_cast<int>(data.design(i).size());
-    e.theta = Eigen::VectorXd::Constant(m, kNaN);
-    e.std_errors = Eigen::VectorXd::Constant(m, kNaN);
-    for (int j = 0; j < m; ++j) {
-      const DesignColumn& d = data.design(i)[j];
-      e.coefficients.push_back(column_name(i, d));
-      const int c = offset[i] + d.coefficient;
-      if (!coefficient_free[c]) e.theta(j) = theta_now[c];
-    }
-    e.regressed.assign(m, false);
-    for (size_t j = 0; j < columns[i].size(); ++j) {
-      e.regressed[columns[i][j]] = true;
-      e.theta(columns[i][j]) = fits[i].theta(j);
-      e.std_errors(columns[i][j]) = fits[i].std_errors(j);
-    }
-    e.samples = static_cast<int>(data.y(i).size());
-    e.rejected = fits[i].rejected;
-    e.lambda = fits[i].lambda;
-    e.r2 = fits[i].r2;
-    e.residual_rms = fits[i].residual_rms;
-    summary->equations.push_back(e);
-  }
-
-  // 3. Minimum distance from the coefficients to the regressed parameters.
-  auto* distance = new MinimumDistance;
-  distance->model = &model;
-  distance->base = p;
-  distance->free = regressed;
-  distance->per_experiment = per_experiment;
-  distance->groups = static_cast<int>(groups.size());
-  distance->num_coefficients = nc;
-  std::vector<Eigen::MatrixXd> blocks;
-  int identified = 0;
-  for (int i = 0; i < equations; ++i) {
-    const int m = static_cast<int>(columns[i].size());
-    if (m == 0) continue;
-    Eigen::MatrixXd w;
-    Eigen::LLT<Eigen::MatrixXd> llt(fits[i].covariance);
-    if (fits[i].covariance.rows() == m && fits[i].covariance.allFinite() &&
-        llt.info() == Eigen::Success) {
-      w = llt.matrixL().solve(Eigen::MatrixXd::Identity(m, m));
-    } else if (fits[i].std_errors.size() == m && fits[i].std_errors.allFinite() &&
-               (fits[i].std_errors.array() > 0.0).all()) {
-      // A covariance not positive definite to rounding: each coefficient at its own standard
-      // error (the residual level alone would give every coefficient the same one, whatever
-      // its regressor's unit).
-      w = fits[i].std_errors.cwiseInverse().asDiagonal();
-    } else {  // no covariance (lasso): equal weights at the equation's residual level
-      w = Eigen::MatrixXd::Identity(m, m) / std::max(fits[i].residual_rms, 1e-12);
-    }
-    blocks.push_back(w);
-    for (int j = 0; j < m; ++j) {
-      const DesignColumn& d = data.design(i)[columns[i][j]];
-      distance->coefficient.push_back(offset[i] + d.coefficient);
-      distance->group.push_back(d.group);
-    }
-    identified += m;
-  }
-  distance->target.resize(identified);
-  distance->whitening = Eigen::MatrixXd::Zero(identified, identified);
-  {
-    int row = 0, b = 0;
-    for (int i = 0; i < equations; ++i) {
-      const int m = static_cast<int>(columns[i].size());
-      if (m == 0) continue;
-      distance->target.segment(row, m) = fits[i].theta;
-      distance->whitening.block(row, row, m, m) = blocks[b++];
-      row += m;
-    }
-  }
-  // The block: shared regressed parameters, then per-experiment ones group by group, each
-  // started from its experiment's carried value (ParameterSpec::experiment_starts).
-  const int nr = distance->size();
-  const int shared = static_cast<int>(regressed.size());
-  const int num_groups = static_cast<int>(groups.size());
-  std::vector<int> block_parameter(nr);  // model parameter of each block entry
-  std::vector<double> block(nr);
-  for (int k = 0; k < shared; ++k) {
-    block_parameter[k] = regressed[k];
-    block[k] = p[regressed[k]];
-  }
-  for (size_t m = 0; m < per_experiment.size(); ++m) {
-    const ParameterSpec& spec = specs[per_experiment[m]];
-    for (int g = 0; g < num_groups; ++g) {
-      const int k = shared + static_cast<int>(m) * num_groups + g;
-      block_parameter[k] = per_experiment[m];
-      const auto carried = spec.experiment_starts.find(groups[g]);
-      block[k] = carried != spec.experiment_starts.end()
-                     ? std::clamp(carried->second, spec.lower, spec.upper)
-                     : spec.start;
-    }
-  }
-  auto block_name = [&](int k) {
-    const std::string& name = info.parameters[block_parameter[k]];
-    return k < shared ? name : name + "[" + groups[(k - shared) % num_groups] + "]";
-  };
-  auto* cost = new ceres::DynamicNumericDiffCostFunction<MinimumDistance, ceres::CENTRAL>(
-      distance, ceres::TAKE_OWNERSHIP);
-  cost->AddParameterBlock(nr);
-  cost->SetNumResiduals(identified);
-  ceres::Problem problem;
-  problem.AddResidualBlock(cost, nullptr, block.data());
-  for (int k = 0; k < nr; ++k) {
-    const ParameterSpec& s = specs[block_parameter[k]];
-    if (std::isfinite(s.lower)) problem.SetParameterLowerBound(block.data(), k, s.lower);
-    if (std::isfinite(s.upper)) problem.SetParameterUpperBound(block.data(), k, s.upper);
-  }
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.max_num_iterations = 200;
-  solver.function_tolerance = 1e-14;
-  solver.parameter_tolerance = 1e-12;
-  ceres::Solver::Summary solved;
-  ceres::Solve(solver, &problem, &solved);
-  if (!solved.IsSolutionUsable()) return fail("minimum distance: " + solved.message);
-  for (int k = 0; k < shared; ++k) p[regressed[k]] = block[k];
-  for (size_t m = 0; m < per_experiment.size(); ++m) {  // the mean serves the regressors
-    double sum = 0.0;
-    for (int g = 0; g < num_groups; ++g) sum += block[shared + m * num_groups + g];
-    if (num_groups > 0) p[per_experiment[m]] = sum / num_groups;
-  }
-
-  // Covariance of the regressed parameters: (J^T J)^-1 over the determined ones.
-  double cost_value;
-  std::vector<double> jacobian(static_cast<size_t>(identified) * nr);
-  double* jacobians[1] = {jacobian.data()};
-  std::vector<double> residuals(identified);
-  const double* parameters[1] = {block.data()};
-  problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost_value, nullptr, nullptr, nullptr);
-  cost->Evaluate(parameters, residuals.data(), jacobians);
-  const Eigen::MatrixXd j =
-      Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-          jacobian.data(), identified, nr);
-  result->values = p;
-  result->std_errors.assign(np, kNaN);
-  result->undetermined.assign(np, false);
-  result->free.clear();
-  result->per_experiment.clear();
-  std::vector<int> determined;
-  for (int k = 0; k < nr; ++k) {
-    if (j.col(k).norm() > 1e-12) {
-      determined.push_back(k);
-    } else {
-      if (k < shared) result->undetermined[regressed[k]] = true;
-      summary->notes.push_back("'" + block_name(k) +
-                               "' enters no identified coefficient (no data in its regions); "
-                               "held at its start");
-    }
-  }
-  Eigen::MatrixXd jd(identified, determined.size());
-  for (size_t k = 0; k < determined.size(); ++k) jd.col(k) = j.col(determined[k]);
-  const Eigen::MatrixXd information = jd.transpose() * jd;
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(information);
-  Eigen::MatrixXd covariance;
-  if (lu.rank() < information.rows()) {
-    summary->notes.push_back("the coefficients do not determine every parameter (rank " +
-                             std::to_string(lu.rank()) + " of " +
-                             std::to_string(information.rows()) + ")");
-    covariance = Eigen::MatrixXd::Constant(information.rows(), information.rows(), kNaN);
-  } else {
-    covariance = information.inverse();
-  }
-  int determined_shared = 0;
-  for (size_t k = 0; k < determined.size(); ++k) {
-    if (determined[k] >= shared) continue;
-    ++determined_shared;
-    const int i = regressed[determined[k]];
-    result->free.push_back(i);
-    result->std_errors[i] = std::sqrt(covariance(k, k));
-  }
-  // Determined shared entries come first in `determined`: their block is the covariance.
-  result->covariance = covariance.topLeftCorner(determined_shared, determined_shared);
-  for (int k = shared; k < nr; ++k) {
-    ExperimentValue v;
-    v.parameter = block_parameter[k];
-    v.experiment = groups[(k - shared) % num_groups];
-    v.value = block[k];
-    const auto at = std::find(determined.begin(), determined.end(), k);
-    v.undetermined = at == determined.end();
-    const int row = static_cast<int>(at - determined.begin());
-    v.std_error = v.undetermined ? kNaN : std::sqrt(covariance(row, row));
-    result->per_experiment.push_back(v);
-  }
-  for (int i : searched) {
-    result->free.push_back(i);  // searched: no standard error from the regression
-    summary->notes.push_back("'" + info.parameters[i] + "' searched in [" +
-                             std::to_string(specs[i].lower) + ", " +
-                             std::to_string(specs[i].upper) + "]: " + std::to_string(p[i]));
-    // A search that ends on a bound is an at_bound finding (diagnose/), from the estimate.
-  }
-  data.Build(p, records);  // leaves the internal states of the records at the final values
+  LeastSquaresRun run(model, specs, options, records, summary);
+  // 1. Profiled parameters: bounded search on plain regressions; 2. the regressions with the
+  // stage's options; 3. minimum distance from the coefficients to the regressed parameters.
+  if (!run.Roles() || !run.Profile() || !run.Regressions() || !run.Distance(result)) return false;
+  run.Finish();
   summary->usable = true;
   summary->time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
