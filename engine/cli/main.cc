@@ -271,6 +271,9 @@ int RunConfigured(const vesselid::RunConfig& config, const std::string& config_p
   }
   vesselid::RunObserver observer;
   size_t interrupted_stage = config.stages.size();  // the stage a signal cut short
+  // A checkpoint that cannot be written (a full disk) fails the run like any write: nothing
+  // is published, and the earlier set stays whole.
+  bool checkpoint_failed = false;
   observer.stage_started = [&](size_t index, const std::string& name) {
     progress.StageStarted(index, name);
   };
@@ -284,8 +287,12 @@ int RunConfigured(const vesselid::RunConfig& config, const std::string& config_p
     }
     progress.StageFinished(stage);
     // A fresh run replaces an earlier checkpoint once its first stage is done.
-    if (index == 0 && !vesselid::StartCheckpoint(out_dir, fingerprint, error)) return false;
-    return vesselid::SaveStageCheckpoint(out_dir, fingerprint, index, stage, error);
+    if ((index == 0 && !vesselid::StartCheckpoint(out_dir, fingerprint, error)) ||
+        !vesselid::SaveStageCheckpoint(out_dir, fingerprint, index, stage, error)) {
+      checkpoint_failed = true;
+      return false;
+    }
+    return true;
   };
   vesselid::RunResult result;
   CatchStopSignals();
@@ -297,6 +304,10 @@ int RunConfigured(const vesselid::RunConfig& config, const std::string& config_p
       interrupted_stage = result.stages.size();
     }
     return Interrupted(config_path, data_dir, out_dir, config, interrupted_stage);
+  }
+  if (checkpoint_failed) {
+    return Fail(error + " (the checkpoint could not be written; nothing published: " + out_dir +
+                " is as before)");
   }
   // A run that stopped after finishing a stage still writes what it finished.
   if (!complete && result.stages.empty()) return Fail(error);
@@ -317,7 +328,8 @@ int RunConfigured(const vesselid::RunConfig& config, const std::string& config_p
     if (f.severity == vesselid::FindingSeverity::kInfo && !flags.verbose) continue;
     std::fprintf(stderr, "vesselid: %s\n", vesselid::DescribeFinding(f).c_str());
   }
-  std::printf("\nresults written to %s/results.json\n", out_dir.c_str());
+  std::printf("\nresults written to %s\n",
+              (std::filesystem::path(out_dir) / "results.json").lexically_normal().c_str());
   if (!complete) {
     return Fail("the run stopped in stage '" + result.stopped_stage + "': " + error + "; the " +
                 std::to_string(result.stages.size()) + " finished stage(s) are in " + out_dir +

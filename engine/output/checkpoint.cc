@@ -103,11 +103,34 @@ bool ReadManifest(const fs::path& folder, json* manifest, std::string* error) {
   return true;
 }
 
-// "" when `folder` is absent or a checkpoint vesselid wrote; else why not.
-std::string FolderNotOwned(const fs::path& folder) {
+// Whether every entry of the folder is a plain file of a checkpoint's names (the manifest, a
+// stage file, their temporaries): a working checkpoint a kill left half made or half removed
+// (no manifest yet, or no more).
+bool OnlyCheckpointFiles(const fs::path& folder) {
+  std::error_code ec;
+  for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator();
+       it.increment(ec)) {
+    std::string name = it->path().filename().string();
+    if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0) name.resize(name.size() - 4);
+    const bool stage = name.size() > 11 && name.rfind("stage_", 0) == 0 &&
+                       name.compare(name.size() - 5, 5, ".cbor") == 0 &&
+                       name.find_first_not_of("0123456789", 6) == name.size() - 5;
+    if (it->is_symlink() || !it->is_regular_file() || !(stage || name == kManifest)) return false;
+  }
+  return !ec;
+}
+
+// "" when `folder` is absent or a checkpoint vesselid wrote (`working`: also one half made or
+// half removed); else why not.
+std::string FolderNotOwned(const fs::path& folder, bool working) {
   std::error_code ec;
   const fs::file_type type = fs::symlink_status(folder, ec).type();
   if (type == fs::file_type::not_found) return "";
+  if (working && type == fs::file_type::directory &&
+      fs::symlink_status(folder / kManifest, ec).type() == fs::file_type::not_found &&
+      OnlyCheckpointFiles(folder)) {
+    return "";
+  }
   json manifest;
   std::string unread;
   if (type == fs::file_type::directory &&
@@ -191,8 +214,8 @@ bool RunFingerprint(const RunConfig& config, std::string* fingerprint, std::stri
 }
 
 std::string CheckpointNotOwned(const std::string& out_dir) {
-  const std::string published = FolderNotOwned(PublishedFolder(out_dir));
-  return published.empty() ? FolderNotOwned(WorkingFolder(out_dir)) : published;
+  const std::string published = FolderNotOwned(PublishedFolder(out_dir), false);
+  return published.empty() ? FolderNotOwned(WorkingFolder(out_dir), true) : published;
 }
 
 bool StartCheckpoint(const std::string& out_dir, const std::string& fingerprint,
@@ -235,8 +258,14 @@ bool LoadCheckpoint(const std::string& out_dir, const std::string& fingerprint,
   // The checkpoint of a run stopped before it published, else the one published with the last
   // run's results; the run goes on in a working copy of the latter (hard links: every
   // checkpoint file is replaced by a rename, never written in place).
+  // A working checkpoint of another config or other data (a run of another config stopped
+  // there) gives way to a published one of this run's.
   fs::path folder = WorkingFolder(out_dir);
-  if (!HasManifest(folder)) {
+  json working;
+  std::string unread;
+  if (!HasManifest(folder) || (HasManifest(PublishedFolder(out_dir)) &&
+                               ReadManifest(folder, &working, &unread) &&
+                               working["fingerprint"] != fingerprint)) {
     folder = PublishedFolder(out_dir);
     if (!HasManifest(folder)) return true;
     if (!CopyCheckpoint(folder, WorkingFolder(out_dir), error)) return false;

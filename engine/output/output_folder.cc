@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <sys/resource.h>
 #include <sys/statvfs.h>
 #include <unistd.h>
@@ -34,6 +35,11 @@ std::string LockHolder(int fd) {
   std::string pid(text, n > 0 ? static_cast<size_t>(n) : 0);
   pid.erase(std::remove(pid.begin(), pid.end(), '\n'), pid.end());
   return pid;
+}
+
+std::string AnotherProcess(const std::string& pid) {
+  return "another vesselid process" + (pid.empty() || pid == "?" ? "" : " (pid " + pid + ")") +
+         " is writing into this folder; wait for it or choose another --out";
 }
 
 // False, saying why, when `path` names no folder of its own: empty, or the root folder.
@@ -133,15 +139,26 @@ std::unique_ptr<OutputFolder> OutputFolder::Open(const std::string& path, std::s
                   " is less than " + ByteCount(kFirstWriteBytes) + " for the results");
   }
   const std::string lock_path = (fs::path(path) / kLockFile).string();
-  // O_NOFOLLOW: a link planted at the lock's name would have its target truncated.
-  const int fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
-  if (fd < 0)
-    return refuse("cannot write into the output folder: " + std::string(std::strerror(errno)));
-  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-    const std::string pid = LockHolder(fd);
+  int fd = -1;
+  for (int attempt = 0;; ++attempt) {
+    // O_NOFOLLOW: a link planted at the lock's name would have its target truncated.
+    fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (fd < 0)
+      return refuse("cannot write into the output folder: " + std::string(std::strerror(errno)));
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      const std::string pid = LockHolder(fd);
+      ::close(fd);
+      return refuse(AnotherProcess(pid));
+    }
+    // The file locked must still be the one at the lock's name: a process that ended between
+    // our open and our lock removed it, and the next process would lock a new one beside us.
+    struct stat held, named;
+    if (::fstat(fd, &held) == 0 && ::lstat(lock_path.c_str(), &named) == 0 &&
+        held.st_dev == named.st_dev && held.st_ino == named.st_ino) {
+      break;
+    }
     ::close(fd);
-    return refuse("another vesselid process" + (pid.empty() ? "" : " (pid " + pid + ")") +
-                  " is writing into this folder; wait for it or choose another --out");
+    if (attempt == 16) return refuse("cannot take the folder's lock: its lock file keeps changing");
   }
   auto folder = std::unique_ptr<OutputFolder>(new OutputFolder(path, fd, !existed));
   const std::string marker_path = (fs::path(path) / kMarkerFile).string();
@@ -218,8 +235,43 @@ std::vector<std::string> RunInputs(const RunConfig& config, bool config_is_file)
   return inputs;
 }
 
+namespace {
+
+// The pid of another process holding the lock of `out_dir` ("?" when it cannot be read), or
+// "" when none holds it. A probe: a shared lock tried and let go at once.
+std::string LockedBy(const std::string& out_dir) {
+  const std::string lock_path = (fs::path(out_dir) / kLockFile).string();
+  const int fd = ::open(lock_path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+  if (fd < 0) return "";
+  std::string holder;
+  if (::flock(fd, LOCK_SH | LOCK_NB) != 0) {
+    holder = LockHolder(fd);
+    if (holder.empty()) holder = "?";
+  } else {
+    ::flock(fd, LOCK_UN);
+  }
+  ::close(fd);
+  return holder;
+}
+
+bool InputsSurvive(const std::string& out_dir, const PlannedOutputs& planned,
+                   const std::vector<std::string>& inputs, std::string* error);
+
+}  // namespace
+
 bool CheckInputsSurvive(const std::string& out_dir, const PlannedOutputs& planned,
                         const std::vector<std::string>& inputs, std::string* error) {
+  if (InputsSurvive(out_dir, planned, inputs, error)) return true;
+  // What another vesselid process is writing there right now is not in the way: say that.
+  const std::string pid = LockedBy(out_dir);
+  if (!pid.empty()) *error = out_dir + ": " + AnotherProcess(pid);
+  return false;
+}
+
+namespace {
+
+bool InputsSurvive(const std::string& out_dir, const PlannedOutputs& planned,
+                   const std::vector<std::string>& inputs, std::string* error) {
   if (!OutNamed(out_dir, error)) return false;
   std::error_code ec;
   const fs::path out = fs::weakly_canonical(out_dir, ec);
@@ -278,5 +330,7 @@ bool CheckInputsSurvive(const std::string& out_dir, const PlannedOutputs& planne
   }
   return true;
 }
+
+}  // namespace
 
 }  // namespace vesselid

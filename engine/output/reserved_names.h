@@ -11,7 +11,7 @@ inline constexpr char kLockFile[] = ".vesselid.lock";
 // Where a command writes its outputs before they are published (output_staging.h).
 inline constexpr char kStagingFolder[] = ".vesselid-staging";
 // In the staging folder once every output is in it: what the publication does.
-inline constexpr char kJournal[] = ".publish";
+inline constexpr char kJournal[] = ".vesselid-publish";
 // Names the folder swapped out or in while a publication exchanges the whole folder.
 inline constexpr char kSwapToken[] = ".vesselid-swap";
 // A run's checkpoint while the run is at work; published with its results as checkpoint/.

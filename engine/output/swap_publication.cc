@@ -1,12 +1,18 @@
 #include "engine/output/swap_publication.h"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <vector>
 
 #include "engine/base/atomic_file.h"
 #include "engine/base/text_match.h"
+#include "engine/output/checkpoint.h"
 #include "engine/output/folder_exchange.h"
+#include "engine/output/output_staging.h"
 #include "engine/output/publish_step.h"
 #include "engine/output/reserved_names.h"
 
@@ -33,13 +39,6 @@ bool Carried(const std::string& name) {
   return name == kMarkerFile || name == kLockFile || IsManifest(name);
 }
 
-// vesselid's working entries, left in the earlier folder and removed with it: the staging
-// folder itself, a stale token, a run's working checkpoint (published as checkpoint/) and
-// temporaries of its own files.
-bool Working(const std::string& name) {
-  return name == kStagingFolder || name == kSwapToken || name == kWorkingCheckpoint ||
-         (StartsWith(name, kReservedPrefix) && EndsWith(name, ".tmp"));
-}
 
 // The canonical --out and its sibling that the staged folder passes through.
 bool SwapPaths(const std::string& out_dir, fs::path* out, fs::path* sibling) {
@@ -54,24 +53,45 @@ std::string TokenText(const char* side, const fs::path& out) {
   return std::string(side) + "\n" + out.string() + "\n";
 }
 
-// The side a token at `path` names for `out` ("" when it is not vesselid's token for it).
+// The side a token at `path` names for `out` ("" when it is not vesselid's token for it). The
+// folder is the rest of the file but its last newline: a folder's name may hold newlines.
 std::string TokenSide(const fs::path& path, const fs::path& out) {
   if (TypeOf(path) != fs::file_type::regular) return "";
-  std::ifstream in(path);
-  std::string side, folder;
-  std::getline(in, side);
-  std::getline(in, folder);
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t line = text.find('\n');
+  if (line == std::string::npos || text.back() != '\n') return "";
+  const std::string side = text.substr(0, line);
+  const std::string folder = text.substr(line + 1, text.size() - line - 2);
   if (folder != out.string() || (side != kNewSide && side != kOldSide)) return "";
   return side;
 }
 
-// Removes the earlier folder at `sibling`: its token last, so that a process killed midway
-// leaves a folder the next command still knows as vesselid's.
+// vesselid's working entries of `out`, left in the earlier folder and removed with it: the
+// staging folder itself (it becomes the new folder), a token of this folder's and a run's
+// working checkpoint (published as checkpoint/). Only entries vesselid can tell it wrote: a
+// temporary or a file of the user's at a reserved name keeps the folder from being exchanged.
+bool Working(const fs::path& out, const std::string& name) {
+  if (name == kStagingFolder) return true;
+  if (name == kSwapToken) return !TokenSide(out / name, out).empty();
+  if (name == kWorkingCheckpoint) return CheckpointNotOwned(out.string()).empty();
+  return false;
+}
+
+// Removes the earlier folder at `sibling`: what its manifests name and vesselid's bookkeeping,
+// its token last (a process killed midway leaves a folder the next command still knows as
+// vesselid's), then the folder if nothing else is in it. Anything else (a user's file put there
+// since) stays, with the folder.
 bool RemoveSwappedOut(const fs::path& sibling, std::string* error) {
+  const std::set<std::string> owned = OwnedEntries(sibling.string());
   std::error_code ec;
   for (auto it = fs::directory_iterator(sibling, ec); !ec && it != fs::directory_iterator();
        it.increment(ec)) {
-    if (it->path().filename() == kSwapToken) continue;
+    const std::string name = it->path().filename().string();
+    if (name == kSwapToken) continue;
+    if (!Carried(name) && !Working(sibling, name) && !NotOwned(sibling.string(), name, owned).empty()) {
+      continue;  // not vesselid's: kept
+    }
     std::error_code remove_ec;
     fs::remove_all(it->path(), remove_ec);
     if (remove_ec) {
@@ -79,7 +99,13 @@ bool RemoveSwappedOut(const fs::path& sibling, std::string* error) {
       return false;
     }
   }
+  for (auto it = fs::directory_iterator(sibling, ec); !ec && it != fs::directory_iterator();
+       it.increment(ec)) {
+    if (it->path().filename() != kSwapToken) return true;  // a user's entry: the folder stays
+  }
+  PublishStepTaken();
   fs::remove(sibling / kSwapToken, ec);
+  PublishStepTaken();
   fs::remove(sibling, ec);
   if (ec) {
     *error = sibling.string() + ": cannot remove the earlier output: " + ec.message();
@@ -88,12 +114,27 @@ bool RemoveSwappedOut(const fs::path& sibling, std::string* error) {
   return true;
 }
 
-// The tokens and the journal that travel with the new folder: gone once it is --out.
+// The journal and the token that travel with the new folder: gone once it is --out, the token
+// last (it is what tells the next command that the journal is vesselid's).
 void RemoveSwapLeftovers(const fs::path& out) {
   std::error_code ec;
-  for (const char* name : {kSwapToken, kJournal}) {
-    if (TypeOf(out / name) == fs::file_type::regular) fs::remove(out / name, ec);
+  for (const char* name : {kJournal, kSwapToken}) {
+    if (TypeOf(out / name) != fs::file_type::regular) continue;
+    fs::remove(out / name, ec);
+    PublishStepTaken();
   }
+}
+
+// The staged folder takes the permission bits, owner and group of --out (a folder made
+// private stays private); false when they cannot be given (then no exchange).
+bool TakeAttributes(const fs::path& out, const fs::path& staging) {
+  struct stat from, to;
+  if (::stat(out.c_str(), &from) != 0 || ::stat(staging.c_str(), &to) != 0) return false;
+  if ((from.st_uid != to.st_uid || from.st_gid != to.st_gid) &&
+      ::chown(staging.c_str(), from.st_uid, from.st_gid) != 0) {
+    return false;
+  }
+  return ::chmod(staging.c_str(), from.st_mode & 07777) == 0;
 }
 
 // Whether `out` holds nothing the exchange would leave behind (see the header).
@@ -103,7 +144,8 @@ bool OnlyVesselidsEntries(const fs::path& out, const std::set<std::string>& entr
   for (auto it = fs::directory_iterator(out, ec); !ec && it != fs::directory_iterator();
        it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    if (Carried(name) || Working(name) || entries.count(name) != 0 || removed.count(name) != 0) {
+    if (Carried(name) || Working(out, name) || entries.count(name) != 0 ||
+        removed.count(name) != 0) {
       continue;
     }
     return false;
@@ -140,7 +182,8 @@ bool PublishBySwap(const std::string& out_dir, const std::set<std::string>& entr
     fs::create_hard_link(it->path(), staging / name, link_ec);
     if (link_ec) return true;
   }
-  if (ec || !WriteFileAtomically((staging / kSwapToken).string(), TokenText(kNewSide, out), &unused) ||
+  if (ec || !TakeAttributes(out, staging) ||
+      !WriteFileAtomically((staging / kSwapToken).string(), TokenText(kNewSide, out), &unused) ||
       !WriteFileAtomically((out / kSwapToken).string(), TokenText(kOldSide, out), &unused)) {
     fs::remove(out / kSwapToken, ec);
     return true;
@@ -167,15 +210,17 @@ bool PublishBySwap(const std::string& out_dir, const std::set<std::string>& entr
   *swapped = true;
   PublishStepTaken();
   RemoveSwapLeftovers(out);
-  PublishStepTaken();
   return RemoveSwappedOut(sibling, error);
 }
 
 bool SwapUnfinished(const std::string& out_dir) {
   fs::path out, sibling;
   if (!SwapPaths(out_dir, &out, &sibling)) return false;
-  return !TokenSide(out / kSwapToken, out).empty() ||
-         (TypeOf(sibling) == fs::file_type::directory && !TokenSide(sibling / kSwapToken, out).empty());
+  if (!TokenSide(out / kSwapToken, out).empty()) return true;
+  if (TypeOf(sibling) != fs::file_type::directory) return false;
+  const std::string side = TokenSide(sibling / kSwapToken, out);
+  return side == kOldSide ||
+         (side == kNewSide && TypeOf(sibling / kJournal) == fs::file_type::regular);
 }
 
 bool FinishSwap(const std::string& out_dir, std::string* error) {
@@ -185,7 +230,10 @@ bool FinishSwap(const std::string& out_dir, std::string* error) {
                                ? TokenSide(sibling / kSwapToken, out)
                                : std::string();
   std::error_code ec;
-  if (side == kNewSide) {
+  if (side.empty() && TypeOf(sibling) == fs::file_type::directory && fs::is_empty(sibling, ec)) {
+    fs::remove(sibling, ec);  // killed after the earlier folder's token went: empty, so ours
+  }
+  if (side == kNewSide && TypeOf(sibling / kJournal) == fs::file_type::regular) {
     // Killed before the exchange: --out holds the whole earlier set; the staged set goes back
     // to the staging folder, whose journal publishes it.
     const fs::path staging = out / kStagingFolder;

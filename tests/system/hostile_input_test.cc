@@ -639,6 +639,37 @@ TEST_F(HostileInput, ACheckpointNoManifestNamesIsTakenOver) {
   EXPECT_FALSE(fs::exists(out / kWorkingCheckpoint));
 }
 
+// A working checkpoint a kill left half made or half removed (no manifest: only a stage file,
+// only the manifest's temporary, nothing) is vesselid's: the next run replaces it.
+TEST_F(HostileInput, AHalfMadeWorkingCheckpointIsReplaced) {
+  ASSERT_EQ(Run().status, 0);
+  const fs::path working = dir_ / "out" / kWorkingCheckpoint;
+  for (const std::string& left : {"stage_001.cbor", "manifest.json.tmp", ""}) {
+    SCOPED_TRACE(left.empty() ? "empty" : left);
+    fs::remove_all(working);
+    fs::create_directories(working);
+    if (!left.empty()) std::ofstream(working / left) << "partial";
+    const Outcome outcome = Run();
+    EXPECT_EQ(outcome.status, 0) << outcome.output;
+    EXPECT_FALSE(fs::exists(working));
+  }
+}
+
+// While another vesselid process holds the folder, a refusal says so, not what that process is
+// writing there (its outputs in the way, its checkpoint at work).
+TEST_F(HostileInput, ARefusalWhileAnotherProcessWritesNamesIt) {
+  ASSERT_EQ(Run().status, 0);
+  std::ofstream(dir_ / "out" / "traces" / "theirs.csv") << "t\n";  // in the way of this run
+  const int fd = ::open((dir_ / "out" / ".vesselid.lock").c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX), 0);
+  const Outcome outcome = Run();
+  ::close(fd);
+  EXPECT_NE(outcome.status, 0);
+  EXPECT_NE(outcome.output.find("another vesselid process"), std::string::npos) << outcome.output;
+  fs::remove(dir_ / "out" / "traces" / "theirs.csv");
+}
+
 // A file the user puts into the run's checkpoint folder, and a link planted at the name of a
 // manifest's temporary, are theirs: the next run refuses, or removes the link without writing
 // through it.
@@ -667,7 +698,7 @@ TEST_F(HostileInput, LinksPlantedInOutAreNotFollowed) {
   const fs::path outside = dir_ / "outside";
   fs::create_directories(outside);
   std::ofstream(outside / "precious.csv") << "keep\n";
-  std::ofstream(outside / ".publish") << "set run\nlast precious.csv\nentry precious.csv\n";
+  std::ofstream(outside / kJournal) << "set run\nlast precious.csv\nentry precious.csv\n";
   std::ofstream(outside / "lock_target") << "keep too\n";
   fs::create_directory_symlink(outside, dir_ / "out" / kStagingFolder);
   fs::create_symlink(outside / "lock_target", dir_ / "out" / ".vesselid.lock");

@@ -156,7 +156,7 @@ TEST_F(OutputStagingTest, PublicationKilledAtAnyStepIsFinishedByTheNextCommand) 
     Write(staging / "results.json", "B");
     Write(staging / "report.txt", "B");
     Write(staging / "traces" / "fit.b.csv", "B");
-    Write(staging / ".publish",
+    Write(staging / kJournal,
           "set run\nlast results.json\nremove report.html\n"
           "entry report.txt\nentry results.json\nentry traces\n");
     // The steps in the order Publish takes them.
@@ -222,7 +222,7 @@ TEST_F(OutputStagingTest, AStagingLinkIsNotFollowed) {
   const fs::path outside = out_.string() + "_outside";
   fs::remove_all(outside);
   Write(outside / "precious.csv", "outside");
-  Write(outside / ".publish", "set run\nlast precious.csv\nentry precious.csv\n");
+  Write(outside / kJournal, "set run\nlast precious.csv\nentry precious.csv\n");
   fs::create_directory_symlink(outside, out_ / kStagingFolder);
   std::string error;
   ASSERT_TRUE(FinishPublication(out_.string(), &error)) << error;
@@ -238,7 +238,7 @@ TEST_F(OutputStagingTest, AForgedJournalCannotRemoveAUsersFile) {
   ASSERT_TRUE(Stage("A", {}, false)->Publish("results.json", &error)) << error;
   Write(out_ / "notes.txt", "mine");
   Write(out_ / kStagingFolder / "results.json", "B");
-  Write(out_ / kStagingFolder / ".publish",
+  Write(out_ / kStagingFolder / kJournal,
         "set run\nlast results.json\nremove notes.txt\nentry results.json\n");
   EXPECT_FALSE(FinishPublication(out_.string(), &error));
   EXPECT_NE(error.find("notes.txt"), std::string::npos) << error;
@@ -333,6 +333,74 @@ TEST_F(OutputStagingTest, AUsersEntryAtTheSiblingsNameIsKept) {
   EXPECT_EQ(Read(out_ / "results.json"), "B");
   EXPECT_EQ(Read(Sibling() / "mine.txt"), "mine");
   fs::remove_all(Sibling());
+}
+
+// The exchanged folder keeps --out's permission bits (a folder made private stays private).
+TEST_F(OutputStagingTest, TheExchangedFolderKeepsItsPermissions) {
+  std::string error;
+  ASSERT_TRUE(Stage("A", {"fit.a.csv"}, true)->Publish("results.json", &error)) << error;
+  fs::permissions(out_, fs::perms::owner_all);
+  const ino_t before = FolderInode();
+  ASSERT_TRUE(Stage("B", {"fit.a.csv"}, false)->Publish("results.json", &error)) << error;
+  EXPECT_NE(FolderInode(), before);
+  EXPECT_EQ(fs::status(out_).permissions() & fs::perms::all, fs::perms::owner_all);
+}
+
+// A file of the user's at a reserved name that vesselid cannot tell it wrote (a token naming
+// no folder, a temporary) keeps the folder from being exchanged, and is kept.
+TEST_F(OutputStagingTest, AUsersFileAtAReservedNameIsNotExchangedAway) {
+  std::string error;
+  ASSERT_TRUE(Stage("A", {"fit.a.csv"}, true)->Publish("results.json", &error)) << error;
+  Write(out_ / kSwapToken, "my notes");
+  const ino_t before = FolderInode();
+  ASSERT_TRUE(Stage("B", {"fit.a.csv"}, false)->Publish("results.json", &error)) << error;
+  EXPECT_EQ(FolderInode(), before);
+  EXPECT_EQ(Read(out_ / kSwapToken), "my notes");
+  EXPECT_EQ(Read(out_ / "results.json"), "B");
+}
+
+// A folder at the sibling's name with a token naming this folder, but holding the user's
+// files: only what vesselid's manifests there name is removed, and the user's files stay
+// (with the folder); a "new" one without its journal is left alone.
+TEST_F(OutputStagingTest, AUsersFilesInAForgedSiblingAreKept) {
+  std::string error;
+  ASSERT_TRUE(Stage("A", {"fit.a.csv"}, true)->Publish("results.json", &error)) << error;
+  const std::string canonical = fs::canonical(out_).string();
+  for (const char* side : {"old", "new"}) {
+    SCOPED_TRACE(side);
+    Write(Sibling() / "thesis.tex", "thesis");
+    Write(Sibling() / "photos" / "a.jpg", "photo");
+    Write(Sibling() / kSwapToken, std::string(side) + "\n" + canonical + "\n");
+    ASSERT_TRUE(Stage("B", {"fit.a.csv"}, false)->Publish("results.json", &error)) << error;
+    EXPECT_EQ(Read(Sibling() / "thesis.tex"), "thesis");
+    EXPECT_EQ(Read(Sibling() / "photos" / "a.jpg"), "photo");
+    EXPECT_EQ(Read(out_ / "results.json"), "B");
+    fs::remove_all(Sibling());
+  }
+}
+
+// What a kill after the exchange leaves (the earlier folder at the sibling's name, the journal
+// and token in the new one) is finished by the next command, also for a folder whose name holds
+// a newline; an empty sibling (killed after its token went) is removed.
+TEST_F(OutputStagingTest, AKillAfterTheExchangeIsFinishedWhateverTheFoldersName) {
+  const fs::path odd = out_ / "o\nx";
+  fs::create_directories(odd);
+  const fs::path sibling = out_ / ".o\nx.vesselid-swap";
+  const std::string canonical = fs::canonical(odd).string();
+  Write(odd / kSwapToken, "new\n" + canonical + "\n");
+  Write(odd / kJournal, "set run\nlast results.json\nentry results.json\n");
+  Write(odd / "results.json", "B");
+  Write(sibling / kSwapToken, "old\n" + canonical + "\n");
+  Write(sibling / kMarkerFile, "marker");
+  std::string error;
+  ASSERT_TRUE(FinishPublication(odd.string(), &error)) << error;
+  EXPECT_FALSE(fs::exists(sibling));
+  EXPECT_FALSE(fs::exists(odd / kSwapToken));
+  EXPECT_FALSE(fs::exists(odd / kJournal));
+  EXPECT_EQ(Read(odd / "results.json"), "B");
+  fs::create_directories(sibling);
+  ASSERT_TRUE(FinishPublication(odd.string(), &error)) << error;
+  EXPECT_FALSE(fs::exists(sibling));
 }
 
 }  // namespace output_staging_test
