@@ -328,7 +328,7 @@ int RunConfigured(const vesselid::RunConfig& config, const std::string& config_p
     if (f.severity == vesselid::FindingSeverity::kInfo && !flags.verbose) continue;
     std::fprintf(stderr, "vesselid: %s\n", vesselid::DescribeFinding(f).c_str());
   }
-  std::printf("\nresults written to %s\n",
+  std::printf("%sresults written to %s\n", flags.quiet ? "" : "\n",
               (std::filesystem::path(out_dir) / "results.json").lexically_normal().c_str());
   if (!complete) {
     return Fail("the run stopped in stage '" + result.stopped_stage + "': " + error + "; the " +

@@ -427,6 +427,130 @@ void ReadHeldOutStart(const YamlReader& reader, const YAML::Node& n, const std::
   }
 }
 
+// The stage's type and the parameters it lists (a step-regression stage estimates every
+// parameter of the damping-inertia form and holds the rest, so it lists none).
+void ReadStageKindAndParameters(const YamlReader& reader, const YAML::Node& node,
+                                const std::string& path, const RunConfig& config,
+                                const ModelInfo& info, StageConfig* stage) {
+  const std::string type =
+      node["type"] ? reader.String(node["type"], Child(path, "type")) : "output_error";
+  if (!StringToStageKind(type, &stage->kind)) {
+    reader.Fail(node["type"], Child(path, "type"),
+                "unknown stage type '" + type + "' (output_error, least_squares, step_regression)");
+  }
+  if (stage->kind == StageConfig::Kind::kStepRegression &&
+      config.StageModel(*stage).damping_inertia_form() == nullptr) {
+    reader.Fail(node["type"], Child(path, "type"),
+                "model " + info.name + " has no damping-inertia form for a step-regression stage");
+  }
+  const bool lists_parameters = stage->kind != StageConfig::Kind::kStepRegression;
+  if (!lists_parameters && node["parameters"]) {
+    reader.Fail(node["parameters"], Child(path, "parameters"),
+                "a step-regression stage estimates every damping and inertia parameter; list none");
+  }
+  if (lists_parameters && !node["parameters"]) {
+    reader.Fail(node, path, "missing key 'parameters'");
+  }
+  const YAML::Node parameters = lists_parameters ? node["parameters"] : YAML::Node(YAML::NodeType::Map);
+  reader.CheckMap(parameters, Child(path, "parameters"), info.parameters);
+  for (const auto& item : parameters) {
+    const std::string name = item.first.as<std::string>();
+    stage->parameters.push_back(
+        ReadParameter(reader, item.second, Child(Child(path, "parameters"), name), name));
+  }
+}
+
+//   outliers: {action: note | downweight | drop, threshold: 5}
+void ReadOutliers(const YamlReader& reader, const YAML::Node& n, const std::string& key,
+                  OutlierOptions* outliers) {
+  reader.CheckMap(n, key, {"action", "threshold"});
+  if (n["action"]) {
+    const std::string action = reader.String(n["action"], Child(key, "action"));
+    if (action == "note")
+      outliers->action = OutlierOptions::Action::kNote;
+    else if (action == "downweight")
+      outliers->action = OutlierOptions::Action::kDownweight;
+    else if (action == "drop")
+      outliers->action = OutlierOptions::Action::kDrop;
+    else
+      reader.Fail(n["action"], Child(key, "action"), "expected note, downweight or drop");
+  }
+  reader.Read(n, key, "threshold", &outliers->threshold);
+  if (!(outliers->threshold > 0.0)) {
+    reader.Fail(n["threshold"], Child(key, "threshold"), "must be > 0");
+  }
+}
+
+// How the stage weighs its residuals: loss: {type, scale}, integration: {max_step},
+// normalize_by_length, weights: noise | given (stage_weights.h).
+void ReadResidualOptions(const YamlReader& reader, const YAML::Node& node, const std::string& path,
+                         StageConfig* stage) {
+  if (const YAML::Node loss = node["loss"]) {
+    reader.CheckMap(loss, Child(path, "loss"), {"type", "scale"});
+    reader.Read(loss, Child(path, "loss"), "type", &stage->problem.loss);
+    reader.Read(loss, Child(path, "loss"), "scale", &stage->problem.loss_scale);
+    const std::string& t = stage->problem.loss;
+    if (t != "none" && t != "huber" && t != "cauchy" && t != "soft_l1" && t != "arctan") {
+      reader.Fail(loss["type"], Child(path, "loss.type"),
+                  "unknown loss '" + t + "' (none, huber, cauchy, soft_l1, arctan)");
+    }
+    if (!(stage->problem.loss_scale > 0))
+      reader.Fail(loss, Child(path, "loss.scale"), "must be > 0");
+  }
+  if (const YAML::Node integration = node["integration"]) {
+    reader.CheckMap(integration, Child(path, "integration"), {"max_step"});
+    reader.Read(integration, Child(path, "integration"), "max_step", &stage->experiment.max_step);
+    if (!(stage->experiment.max_step >= 0)) {
+      reader.Fail(integration, Child(path, "integration.max_step"), "must be >= 0");
+    }
+  }
+  reader.Read(node, path, "normalize_by_length", &stage->experiment.normalize_by_length);
+  stage->normalize_by_length_set = static_cast<bool>(node["normalize_by_length"]);
+  if (const YAML::Node n = node["weights"]) {
+    const std::string text = reader.String(n, Child(path, "weights"));
+    if (text == "noise")
+      stage->weights = StageConfig::Weights::kNoise;
+    else if (text == "given")
+      stage->weights = StageConfig::Weights::kGiven;
+    else
+      reader.Fail(n, Child(path, "weights"), "unknown choice '" + text + "' (noise, given)");
+  }
+}
+
+// The sections of the regression stages (least_squares, step_regression), and the keys each
+// kind of stage does not use refused.
+void ReadRegressionSections(const YamlReader& reader, const YAML::Node& node,
+                            const std::string& path, const RunConfig& config, StageConfig* stage) {
+  const ModelHandle& model = config.StageModel(*stage);
+  if (const YAML::Node ls = node["least_squares"]) {
+    ReadLeastSquares(reader, ls, Child(path, "least_squares"), model, stage);
+  }
+  if (const YAML::Node sr = node["step_regression"]) {
+    if (stage->kind != StageConfig::Kind::kStepRegression) {
+      reader.Fail(sr, Child(path, "step_regression"), "only for stages of type step_regression");
+    }
+  }
+  if (stage->kind == StageConfig::Kind::kStepRegression) {
+    ReadStepRegression(reader, node["step_regression"], Child(path, "step_regression"), model,
+                       stage);
+    for (const char* key :
+         {"loss", "continuation", "global", "least_squares", "free_initial_states",
+          "normalize_by_length", "integration", "initial_state_prior", "outliers", "weights"}) {
+      if (node[key]) reader.Fail(node[key], Child(path, key), "not used by a step-regression stage");
+    }
+  }
+  if (stage->kind == StageConfig::Kind::kLeastSquares) {
+    if (model.regression_form() == nullptr) {
+      reader.Fail(node["type"], Child(path, "type"),
+                  "model " + model.info().name +
+                      " has no equation-error form for a least-squares stage");
+    }
+    for (const char* key : {"loss", "continuation", "global", "outliers", "weights"}) {
+      if (node[key]) reader.Fail(node[key], Child(path, key), "not used by a least-squares stage");
+    }
+  }
+}
+
 StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                       const RunConfig& config, const ModelFamily& family,
                       const YAML::Node& model_node, size_t index) {
@@ -466,34 +590,7 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
     CheckNames(reader, node["outputs"], Child(path, "outputs"), stage.experiment.outputs,
                info.outputs, "output", info);
   }
-  const std::string type =
-      node["type"] ? reader.String(node["type"], Child(path, "type")) : "output_error";
-  if (!StringToStageKind(type, &stage.kind)) {
-    reader.Fail(node["type"], Child(path, "type"),
-                "unknown stage type '" + type + "' (output_error, least_squares, step_regression)");
-  }
-  if (stage.kind == StageConfig::Kind::kStepRegression &&
-      config.StageModel(stage).damping_inertia_form() == nullptr) {
-    reader.Fail(node["type"], Child(path, "type"),
-                "model " + info.name + " has no damping-inertia form for a step-regression stage");
-  }
-  // A step-regression stage estimates every parameter of the damping-inertia form and holds
-  // the rest, so it lists none.
-  const bool lists_parameters = stage.kind != StageConfig::Kind::kStepRegression;
-  if (!lists_parameters && node["parameters"]) {
-    reader.Fail(node["parameters"], Child(path, "parameters"),
-                "a step-regression stage estimates every damping and inertia parameter; list none");
-  }
-  if (lists_parameters && !node["parameters"]) {
-    reader.Fail(node, path, "missing key 'parameters'");
-  }
-  const YAML::Node parameters = lists_parameters ? node["parameters"] : YAML::Node(YAML::NodeType::Map);
-  reader.CheckMap(parameters, Child(path, "parameters"), info.parameters);
-  for (const auto& item : parameters) {
-    const std::string name = item.first.as<std::string>();
-    stage.parameters.push_back(
-        ReadParameter(reader, item.second, Child(Child(path, "parameters"), name), name));
-  }
+  ReadStageKindAndParameters(reader, node, path, config, info, &stage);
   if (node["free_initial_states"]) {
     const std::string key = Child(path, "free_initial_states");
     stage.problem.free_initial_states = reader.Strings(node["free_initial_states"], key);
@@ -507,60 +604,13 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
   if (const YAML::Node n = node["held_out"]) {
     ReadHeldOutStart(reader, n, Child(path, "held_out"), &stage.held_out);
   }
-  //   outliers: {action: note | downweight | drop, threshold: 5}
   if (const YAML::Node n = node["outliers"]) {
-    const std::string key = Child(path, "outliers");
-    reader.CheckMap(n, key, {"action", "threshold"});
-    if (n["action"]) {
-      const std::string action = reader.String(n["action"], Child(key, "action"));
-      if (action == "note")
-        stage.outliers.action = OutlierOptions::Action::kNote;
-      else if (action == "downweight")
-        stage.outliers.action = OutlierOptions::Action::kDownweight;
-      else if (action == "drop")
-        stage.outliers.action = OutlierOptions::Action::kDrop;
-      else
-        reader.Fail(n["action"], Child(key, "action"), "expected note, downweight or drop");
-    }
-    reader.Read(n, key, "threshold", &stage.outliers.threshold);
-    if (!(stage.outliers.threshold > 0.0)) {
-      reader.Fail(n["threshold"], Child(key, "threshold"), "must be > 0");
-    }
+    ReadOutliers(reader, n, Child(path, "outliers"), &stage.outliers);
   }
   if (const YAML::Node continuation = node["continuation"]) {
     stage.continuation = ReadSegmentLengths(reader, continuation, Child(path, "continuation"));
   }
-  if (const YAML::Node loss = node["loss"]) {
-    reader.CheckMap(loss, Child(path, "loss"), {"type", "scale"});
-    reader.Read(loss, Child(path, "loss"), "type", &stage.problem.loss);
-    reader.Read(loss, Child(path, "loss"), "scale", &stage.problem.loss_scale);
-    const std::string& t = stage.problem.loss;
-    if (t != "none" && t != "huber" && t != "cauchy" && t != "soft_l1" && t != "arctan") {
-      reader.Fail(loss["type"], Child(path, "loss.type"),
-                  "unknown loss '" + t + "' (none, huber, cauchy, soft_l1, arctan)");
-    }
-    if (!(stage.problem.loss_scale > 0))
-      reader.Fail(loss, Child(path, "loss.scale"), "must be > 0");
-  }
-  if (const YAML::Node integration = node["integration"]) {
-    reader.CheckMap(integration, Child(path, "integration"), {"max_step"});
-    reader.Read(integration, Child(path, "integration"), "max_step", &stage.experiment.max_step);
-    if (!(stage.experiment.max_step >= 0)) {
-      reader.Fail(integration, Child(path, "integration.max_step"), "must be >= 0");
-    }
-  }
-  reader.Read(node, path, "normalize_by_length", &stage.experiment.normalize_by_length);
-  stage.normalize_by_length_set = static_cast<bool>(node["normalize_by_length"]);
-  //   weights: noise | given (stage_weights.h)
-  if (const YAML::Node n = node["weights"]) {
-    const std::string text = reader.String(n, Child(path, "weights"));
-    if (text == "noise")
-      stage.weights = StageConfig::Weights::kNoise;
-    else if (text == "given")
-      stage.weights = StageConfig::Weights::kGiven;
-    else
-      reader.Fail(n, Child(path, "weights"), "unknown choice '" + text + "' (noise, given)");
-  }
+  ReadResidualOptions(reader, node, path, &stage);
   if (node["global"]) {
     stage.options.use_global_start = true;
     ReadGlobal(reader, node["global"], Child(path, "global"), &stage.options.global,
@@ -575,33 +625,7 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
     ReadUncertainty(reader, n, Child(path, "uncertainty"), &stage.options);
     CheckBootstrapExperiments(reader, n, Child(path, "uncertainty"), config, stage);
   }
-  const ModelHandle& model = config.StageModel(stage);
-  if (const YAML::Node ls = node["least_squares"]) {
-    ReadLeastSquares(reader, ls, Child(path, "least_squares"), model, &stage);
-  }
-  if (const YAML::Node sr = node["step_regression"]) {
-    if (stage.kind != StageConfig::Kind::kStepRegression) {
-      reader.Fail(sr, Child(path, "step_regression"), "only for stages of type step_regression");
-    }
-  }
-  if (stage.kind == StageConfig::Kind::kStepRegression) {
-    ReadStepRegression(reader, node["step_regression"], Child(path, "step_regression"), model,
-                       &stage);
-    for (const char* key :
-         {"loss", "continuation", "global", "least_squares", "free_initial_states",
-          "normalize_by_length", "integration", "initial_state_prior", "outliers", "weights"}) {
-      if (node[key]) reader.Fail(node[key], Child(path, key), "not used by a step-regression stage");
-    }
-  }
-  if (stage.kind == StageConfig::Kind::kLeastSquares) {
-    if (model.regression_form() == nullptr) {
-      reader.Fail(node["type"], Child(path, "type"),
-                  "model " + info.name + " has no equation-error form for a least-squares stage");
-    }
-    for (const char* key : {"loss", "continuation", "global", "outliers", "weights"}) {
-      if (node[key]) reader.Fail(node[key], Child(path, key), "not used by a least-squares stage");
-    }
-  }
+  ReadRegressionSections(reader, node, path, config, &stage);
   return stage;
 }
 

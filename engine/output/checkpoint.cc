@@ -268,7 +268,13 @@ bool LoadCheckpoint(const std::string& out_dir, const std::string& fingerprint,
                                working["fingerprint"] != fingerprint)) {
     folder = PublishedFolder(out_dir);
     if (!HasManifest(folder)) return true;
-    if (!CopyCheckpoint(folder, WorkingFolder(out_dir), error)) return false;
+    json published;
+    if (!ReadManifest(folder, &published, error)) return false;
+    // Copied only to go on from it: a checkpoint of another config is refused below as it is.
+    if (published["fingerprint"] == fingerprint &&
+        !CopyCheckpoint(folder, WorkingFolder(out_dir), error)) {
+      return false;
+    }
   }
   json manifest;
   if (!ReadManifest(folder, &manifest, error)) return false;

@@ -264,8 +264,13 @@ bool CheckInputsSurvive(const std::string& out_dir, const PlannedOutputs& planne
   if (InputsSurvive(out_dir, planned, inputs, error)) return true;
   // What another vesselid process is writing there right now is not in the way: say that.
   const std::string pid = LockedBy(out_dir);
-  if (!pid.empty()) *error = out_dir + ": " + AnotherProcess(pid);
-  return false;
+  if (!pid.empty()) {
+    *error = out_dir + ": " + AnotherProcess(pid);
+    return false;
+  }
+  // Nor what one published between the check's reads (a manifest read before, its entries
+  // after): checked once more, the folder whole again.
+  return InputsSurvive(out_dir, planned, inputs, error);
 }
 
 namespace {

@@ -1,8 +1,11 @@
 #include "engine/output/swap_publication.h"
 
 #include <sys/stat.h>
+#include <sys/xattr.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -78,39 +81,51 @@ bool Working(const fs::path& out, const std::string& name) {
   return false;
 }
 
+bool Failed(const fs::path& path, const std::error_code& ec, std::string* error) {
+  *error = path.string() + ": cannot remove the earlier output: " + ec.message();
+  return false;
+}
+
 // Removes the earlier folder at `sibling`: what its manifests name and vesselid's bookkeeping,
 // its token last (a process killed midway leaves a folder the next command still knows as
 // vesselid's), then the folder if nothing else is in it. Anything else (a user's file put there
 // since) stays, with the folder.
 bool RemoveSwappedOut(const fs::path& sibling, std::string* error) {
   const std::set<std::string> owned = OwnedEntries(sibling.string());
+  // Outputs and working entries first, the manifests (which name the outputs), marker and lock
+  // after them: a kill midway leaves every output still named.
+  std::vector<fs::path> outputs, bookkeeping;
+  bool foreign = false;
   std::error_code ec;
   for (auto it = fs::directory_iterator(sibling, ec); !ec && it != fs::directory_iterator();
        it.increment(ec)) {
     const std::string name = it->path().filename().string();
     if (name == kSwapToken) continue;
-    if (!Carried(name) && !Working(sibling, name) && !NotOwned(sibling.string(), name, owned).empty()) {
-      continue;  // not vesselid's: kept
-    }
-    std::error_code remove_ec;
-    fs::remove_all(it->path(), remove_ec);
-    if (remove_ec) {
-      *error = it->path().string() + ": cannot remove the earlier output: " + remove_ec.message();
-      return false;
+    if (Carried(name)) {
+      bookkeeping.push_back(it->path());
+    } else if (Working(sibling, name) || NotOwned(sibling.string(), name, owned).empty()) {
+      outputs.push_back(it->path());
+    } else {
+      foreign = true;  // not vesselid's: kept
     }
   }
-  for (auto it = fs::directory_iterator(sibling, ec); !ec && it != fs::directory_iterator();
-       it.increment(ec)) {
-    if (it->path().filename() != kSwapToken) return true;  // a user's entry: the folder stays
+  if (ec) return Failed(sibling, ec, error);
+  for (const fs::path& path : outputs) {
+    fs::remove_all(path, ec);
+    if (ec) return Failed(path, ec, error);
+    PublishStepTaken();
+  }
+  if (foreign) return true;  // a user's entry: the folder stays, with what names vesselid's
+  for (const fs::path& path : bookkeeping) {
+    fs::remove(path, ec);
+    if (ec) return Failed(path, ec, error);
+    PublishStepTaken();
   }
   PublishStepTaken();
   fs::remove(sibling / kSwapToken, ec);
   PublishStepTaken();
   fs::remove(sibling, ec);
-  if (ec) {
-    *error = sibling.string() + ": cannot remove the earlier output: " + ec.message();
-    return false;
-  }
+  if (ec) return Failed(sibling, ec, error);
   return true;
 }
 
@@ -125,8 +140,49 @@ void RemoveSwapLeftovers(const fs::path& out) {
   }
 }
 
-// The staged folder takes the permission bits, owner and group of --out (a folder made
-// private stays private); false when they cannot be given (then no exchange).
+// The names of the extended attributes of `path` (its ACLs among them); false when they cannot
+// be listed.
+bool AttributeNames(const fs::path& path, std::vector<std::string>* names) {
+  names->clear();
+  const ssize_t size = ::listxattr(path.c_str(), nullptr, 0);
+  if (size < 0) return errno == ENOTSUP;  // a file system without them: none
+  std::string list(static_cast<size_t>(size), '\0');
+  const ssize_t got = ::listxattr(path.c_str(), list.data(), list.size());
+  if (got < 0) return false;
+  for (size_t at = 0; at < static_cast<size_t>(got);) {
+    const size_t end = list.find('\0', at);
+    names->push_back(list.substr(at, end - at));
+    at = end + 1;
+  }
+  return true;
+}
+
+// The staged folder's extended attributes made those of --out (its access and default ACLs, a
+// user's notes): the staged folder, made inside --out, may have inherited others.
+bool TakeExtendedAttributes(const fs::path& out, const fs::path& staging) {
+  std::vector<std::string> wanted, present;
+  if (!AttributeNames(out, &wanted) || !AttributeNames(staging, &present)) return false;
+  for (const std::string& name : present) {
+    if (std::find(wanted.begin(), wanted.end(), name) == wanted.end() &&
+        ::removexattr(staging.c_str(), name.c_str()) != 0) {
+      return false;
+    }
+  }
+  for (const std::string& name : wanted) {
+    const ssize_t size = ::getxattr(out.c_str(), name.c_str(), nullptr, 0);
+    if (size < 0) return false;
+    std::string value(static_cast<size_t>(size), '\0');
+    if (::getxattr(out.c_str(), name.c_str(), value.data(), value.size()) != size ||
+        ::setxattr(staging.c_str(), name.c_str(), value.data(), value.size(), 0) != 0) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// The staged folder takes the permission bits, owner, group and extended attributes (ACLs) of
+// --out (a folder made private stays private); false when they cannot be given (then no
+// exchange).
 bool TakeAttributes(const fs::path& out, const fs::path& staging) {
   struct stat from, to;
   if (::stat(out.c_str(), &from) != 0 || ::stat(staging.c_str(), &to) != 0) return false;
@@ -134,7 +190,7 @@ bool TakeAttributes(const fs::path& out, const fs::path& staging) {
       ::chown(staging.c_str(), from.st_uid, from.st_gid) != 0) {
     return false;
   }
-  return ::chmod(staging.c_str(), from.st_mode & 07777) == 0;
+  return ::chmod(staging.c_str(), from.st_mode & 07777) == 0 && TakeExtendedAttributes(out, staging);
 }
 
 // Whether `out` holds nothing the exchange would leave behind (see the header).

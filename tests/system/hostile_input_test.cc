@@ -655,6 +655,20 @@ TEST_F(HostileInput, AHalfMadeWorkingCheckpointIsReplaced) {
   }
 }
 
+// --resume of another config over a published checkpoint is refused and leaves no working
+// checkpoint behind.
+TEST_F(HostileInput, ARefusedResumeLeavesNoWorkingCheckpoint) {
+  ASSERT_EQ(Run().status, 0);
+  EditConfig("name: fit", "name: refit");
+  const testing::CommandOutcome resumed = testing::RunCommand(
+      std::string(VESSELID_BINARY) + " run " + (dir_ / "config.yaml").string() + " --out " +
+      (dir_ / "out").string() + " --resume");
+  EXPECT_NE(resumed.status, 0);
+  EXPECT_NE(resumed.output.find("another config or other data"), std::string::npos)
+      << resumed.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out" / kWorkingCheckpoint));
+}
+
 // While another vesselid process holds the folder, a refusal says so, not what that process is
 // writing there (its outputs in the way, its checkpoint at work).
 TEST_F(HostileInput, ARefusalWhileAnotherProcessWritesNamesIt) {

@@ -5,6 +5,7 @@
 #include "engine/output/output_staging.h"
 
 #include <sys/stat.h>
+#include <sys/xattr.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -344,6 +345,23 @@ TEST_F(OutputStagingTest, TheExchangedFolderKeepsItsPermissions) {
   ASSERT_TRUE(Stage("B", {"fit.a.csv"}, false)->Publish("results.json", &error)) << error;
   EXPECT_NE(FolderInode(), before);
   EXPECT_EQ(fs::status(out_).permissions() & fs::perms::all, fs::perms::owner_all);
+}
+
+// The exchanged folder keeps --out's extended attributes (a user's note; ACLs alike).
+TEST_F(OutputStagingTest, TheExchangedFolderKeepsItsExtendedAttributes) {
+  std::string error;
+  ASSERT_TRUE(Stage("A", {"fit.a.csv"}, true)->Publish("results.json", &error)) << error;
+  const std::string note = "field campaign 7";
+  if (::setxattr(out_.c_str(), "user.note", note.data(), note.size(), 0) != 0) {
+    GTEST_SKIP() << "no user extended attributes on this file system";
+  }
+  const ino_t before = FolderInode();
+  ASSERT_TRUE(Stage("B", {"fit.a.csv"}, false)->Publish("results.json", &error)) << error;
+  EXPECT_NE(FolderInode(), before);
+  char value[64] = {0};
+  ASSERT_EQ(::getxattr(out_.c_str(), "user.note", value, sizeof(value)),
+            static_cast<ssize_t>(note.size()));
+  EXPECT_EQ(std::string(value), note);
 }
 
 // A file of the user's at a reserved name that vesselid cannot tell it wrote (a token naming
