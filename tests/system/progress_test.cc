@@ -109,7 +109,7 @@ TEST_F(ProgressTest, QuietPrintsOnlyTheResultsPath) {
   // Failures and warnings are never silenced, nor is the verdict.
   EXPECT_EQ(Lines(err).size(), 3u) << err;
   EXPECT_EQ(err.rfind("vesselid: warning [poor_fit] stage 'gain'", 0), 0u) << err;
-  EXPECT_EQ(Lines(out).size(), 2u) << out;  // a blank line, then the path
+  EXPECT_EQ(Lines(out).size(), 1u) << out;  // the path alone
 }
 
 TEST_F(ProgressTest, VerboseShowsEveryPhaseAndIteration) {
