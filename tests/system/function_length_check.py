@@ -7,6 +7,7 @@ check too, so that it is struck off when the function is carved.
 Usage: function_length_check.py ROOT [ALLOWED]   (ALLOWED defaults to the list beside this script)
 """
 import json
+import re
 import pathlib
 import subprocess
 import sys
@@ -30,6 +31,8 @@ def long_functions(root):
         lines = tag["end"] - tag["line"] + 1
         if lines > LIMIT:
             name = tag["name"] if "scope" not in tag else tag["scope"] + "::" + tag["name"]
+            # An anonymous namespace's tag changes with the file: "(anonymous)" instead.
+            name = re.sub(r"__anon[0-9a-f]+", "(anonymous)", name)
             path = str(pathlib.Path(tag["path"]).relative_to(root))
             found[(path, name)] = max(lines, found.get((path, name), 0))
     return found
