@@ -15,7 +15,6 @@
 #include "engine/design/design_search.h"
 #include "engine/design/input_commands.h"
 #include "engine/export/exported_model.h"
-#include "nlohmann/json.hpp"
 
 namespace vesselid {
 namespace {
@@ -43,24 +42,19 @@ bool PlannedLogFits(const ModelInfo& info, double duration, double sample_time,
   return false;
 }
 
-using json = nlohmann::json;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-// Per model output: the RMS residual of the stage's fit pooled over its experiments, in the
-// model's units (the metrics are in the units the data came in: degrees back to radians).
-std::vector<double> FitNoise(const json* stage, const ModelInfo& info) {
+// Per model output: the RMS residual of the run's last model stage's fit pooled over its
+// experiments, in the model's units (the metrics are in the units the data came in: degrees
+// back to radians).
+std::vector<double> FitNoise(const RunDocument& run, const ModelInfo& info) {
   std::vector<double> sum(info.outputs.size(), 0.0), count(info.outputs.size(), 0.0);
-  if (stage != nullptr && stage->contains("fit")) {
-    for (const json& m : stage->at("fit").value("metrics", json::array())) {
-      const int o = NameIndex(info.outputs, m.value("output", ""));
-      const double rmse = NumberOr(m.value("rmse", json()), std::nan(""));
-      const double n = NumberOr(m.value("samples", json()), std::nan(""));
-      if (o < 0 || !std::isfinite(rmse) || !(n > 0)) continue;
-      const std::string unit = m.value("unit", "");
-      const double scale = unit == "deg" || unit == "deg/s" ? kDesignDegree : 1.0;
-      sum[o] += n * (rmse * scale) * (rmse * scale);
-      count[o] += n;
-    }
+  for (const RunDocument::Metric& m : run.fit_metrics) {
+    const int o = NameIndex(info.outputs, m.output);
+    if (o < 0 || !std::isfinite(m.rmse) || !(m.samples > 0)) continue;
+    const double scale = m.unit == "deg" || m.unit == "deg/s" ? kDesignDegree : 1.0;
+    sum[o] += m.samples * (m.rmse * scale) * (m.rmse * scale);
+    count[o] += m.samples;
   }
   std::vector<double> sigma(info.outputs.size(), std::nan(""));
   for (size_t o = 0; o < sigma.size(); ++o) {
@@ -126,23 +120,17 @@ void DescribeModel(const ExportedModel& model, const ModelInfo& info, const Desi
 // per-experiment ones); their values, standard errors and scales; today's information over
 // them (the covariance's pseudo-inverse: a parameter the run left undetermined has none); the
 // one known worst relative to its scale.
-bool DesignedParameters(const ExportedModel& model, const json& results, DesignContext* c,
+bool DesignedParameters(const ExportedModel& model, const RunDocument& run, DesignContext* c,
                         DesignResult* r, std::string* error) {
   const ModelInfo& info = c->model->info();
   std::map<std::string, int> index;
   for (size_t i = 0; i < info.parameters.size(); ++i)
     index[info.parameters[i]] = static_cast<int>(i);
-  try {
-    for (const json& p : results.at("parameters")) {
-      const auto found = index.find(p.at("name").get<std::string>());
-      if (found == index.end()) continue;
-      const std::string role = p.value("role", "");
-      if (role == "free") c->setup.parameters.push_back(found->second);
-      if (role == "per_experiment") c->setup.nuisance.push_back(found->second);
-    }
-  } catch (const json::exception& e) {
-    *error = model.results + ": parameters: " + e.what();
-    return false;
+  for (const RunDocument::Parameter& p : run.parameters) {
+    const auto found = index.find(p.name);
+    if (found == index.end()) continue;
+    if (p.role == "free") c->setup.parameters.push_back(found->second);
+    if (p.role == "per_experiment") c->setup.nuisance.push_back(found->second);
   }
   if (c->setup.parameters.empty()) {
     *error = model.results + ": the run estimated no model parameter to plan for";
@@ -183,7 +171,7 @@ bool DesignedParameters(const ExportedModel& model, const json& results, DesignC
 // The plan's log: its sample time (the logger's: the information grows with the samples), the
 // integration step, each output's noise (the fit's, or given), the start, the initial states
 // it estimates (given, or the run's last model stage's), the box and the criterion.
-bool PlanLog(const ExportedModel& model, const json* stage, const DesignOptions& options,
+bool PlanLog(const ExportedModel& model, const RunDocument& run, const DesignOptions& options,
              DesignContext* c, DesignResult* r, std::string* error) {
   const ModelInfo& info = c->model->info();
   r->sample_time = options.sample_time;
@@ -192,11 +180,12 @@ bool PlanLog(const ExportedModel& model, const json* stage, const DesignOptions&
     return false;
   }
   c->sample_time = r->sample_time;
-  c->setup.max_step =
-      stage != nullptr ? NumberOr(stage->value("integration_step", json()), 0.0) : 0.0;
+  c->setup.max_step = run.has_model_stage && std::isfinite(run.integration_step)
+                          ? run.integration_step
+                          : 0.0;
   if (!(c->setup.max_step > 0.0)) c->setup.max_step = model.max_step;
   if (!(c->setup.max_step > 0.0)) c->setup.max_step = r->sample_time;
-  const std::vector<double> fit_noise = FitNoise(stage, info);
+  const std::vector<double> fit_noise = FitNoise(run, info);
   r->noise.assign(info.outputs.size(), std::nan(""));
   for (size_t o = 0; o < info.outputs.size(); ++o) r->noise[o] = fit_noise[o];
   for (const auto& [name, sigma] : options.noise) {
@@ -218,13 +207,8 @@ bool PlanLog(const ExportedModel& model, const json* stage, const DesignOptions&
     c->x0[s] = value;
   }
   std::vector<std::string> free_states = options.free_initial_states;
-  if (!options.free_initial_states_given && stage != nullptr) {
-    for (const json& e : stage->at("estimates")) {
-      if (e.value("kind", "") != "initial_state" || e.value("role", "") != "free") continue;
-      // "x0.<state>[<experiment>]"
-      std::string name = e.value("name", "");
-      if (name.rfind("x0.", 0) == 0) name = name.substr(3);
-      name = name.substr(0, name.find('['));
+  if (!options.free_initial_states_given) {
+    for (const std::string& name : run.free_initial_states) {
       if (std::find(free_states.begin(), free_states.end(), name) == free_states.end()) {
         free_states.push_back(name);
       }
@@ -351,9 +335,9 @@ bool SearchAndCompare(const DesignOptions& options, const DesignContext& c, Desi
 bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& options,
                         const std::string& run_dir, DesignResult* result, std::string* error) {
   ExportedModel model;
-  json results;
+  RunDocument run;
   if (!ReadExportedModel(run_dir, registry, options.ensemble_members, options.seed, &model, error,
-                         &results)) {
+                         &run)) {
     return false;
   }
   if (!options.family.empty() && options.family != model.family) {
@@ -369,8 +353,7 @@ bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& opti
   DescribeModel(model, handle->info(), options, &r);
   DesignContext c;
   c.model = handle.get();
-  if (!DesignedParameters(model, results, &c, &r, error) ||
-      !PlanLog(model, LastModelStage(results), options, &c, &r, error) ||
+  if (!DesignedParameters(model, run, &c, &r, error) || !PlanLog(model, run, options, &c, &r, error) ||
       !PlanDuration(model, options, &c, &r, error) || !SearchAndCompare(options, c, &r, error)) {
     return false;
   }

@@ -80,8 +80,8 @@ bool PredictRun(const ModelRegistry& registry, const std::string& run_dir,
     return false;
   }
   ExportedModel model;
-  nlohmann::json results;
-  if (!ReadExportedModel(run_dir, registry, members, seed, &model, error, &results)) return false;
+  RunDocument run;
+  if (!ReadExportedModel(run_dir, registry, members, seed, &model, error, &run)) return false;
   // The model's own length (an n1-form Nomoto model on L) unless the conditions give one.
   const auto length = model.options.find("length");
   if (!std::isfinite(conditions.length) && length != model.options.end()) {
@@ -95,7 +95,7 @@ bool PredictRun(const ModelRegistry& registry, const std::string& run_dir,
   *text = ManoeuvresText(figures);
   *predictions = ManoeuvresToJson(figures);
   // The zigzags the run held out, measured against predicted.
-  const HeldOutZigzagCheck held_out = CheckHeldOutZigzags(results);
+  const HeldOutZigzagCheck held_out = CheckHeldOutZigzags(run.zigzags);
   const std::string held_out_text = HeldOutZigzagsText(held_out);
   if (!held_out_text.empty()) *text += "\n" + held_out_text;
   (*predictions)["held_out_zigzags"] = HeldOutZigzagsToJson(held_out);

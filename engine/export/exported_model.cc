@@ -47,7 +47,6 @@ std::vector<ExportedVariable> VariablesFromJson(const json& list) {
 
 // The largest results.json read: a run's holds its estimates, findings and metrics (the
 // traces are CSV files beside it), a few MiB; parsing one takes about twice its size.
-constexpr std::uintmax_t kMaxResultsBytes = 256ull << 20;
 
 // Bytes an ensemble of `members` draws of `n` parameters takes: the vectors, and the
 // model.json text and document an export makes of them.
@@ -87,16 +86,6 @@ std::string CovarianceProblem(const std::vector<std::string>& names,
 }
 
 }  // namespace
-
-// The last output-error stage (one with estimates and a model): the model the final values
-// were estimated with.
-const nlohmann::json* LastModelStage(const nlohmann::json& results) {
-  const json* last = nullptr;
-  for (const json& stage : results.at("stages")) {
-    if (stage.contains("estimates") && stage.contains("model")) last = &stage;
-  }
-  return last;
-}
 
 std::vector<std::vector<double>> DrawEnsemble(const ExportedModel& model, int members,
                                               unsigned seed) {
@@ -154,170 +143,113 @@ std::shared_ptr<const ModelHandle> MakeExportedModel(const ModelRegistry& regist
 }
 
 bool ReadExportedModel(const std::string& out_folder, const ModelRegistry& registry, int members,
-                       unsigned seed, ExportedModel* model, std::string* error, json* parsed) {
-  const std::string path = (std::filesystem::path(out_folder) / "results.json").string();
-  std::error_code ec;
-  // A run killed while publishing its results: finished first, under the folder's lock, as
-  // the next command writing into it would (output_staging.h).
-  if (PublicationUnfinished(out_folder) && OutputFolder::Open(out_folder, error) == nullptr) {
-    *error = out_folder + ": the run's interrupted publication cannot be finished: " + *error;
+                       unsigned seed, ExportedModel* model, std::string* error,
+                       RunDocument* document) {
+  RunDocument read;
+  if (!ReadRunDocument(out_folder, &read, error) ||
+      !ExportedModelOf(read, registry, members, seed, model, error)) {
     return false;
   }
-  const std::filesystem::file_status status = std::filesystem::status(path, ec);
-  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
-    // A FIFO or device would block or never end.
-    *error = path + ": not a regular file (the results.json of a finished `vesselid run`)";
+  if (document != nullptr) *document = std::move(read);
+  return true;
+}
+
+bool ExportedModelOf(const RunDocument& d, const ModelRegistry& registry, int members,
+                     unsigned seed, ExportedModel* model, std::string* error) {
+  const std::string& path = d.path;
+  ExportedModel m;
+  m.results = path;
+  m.family = d.family;
+  m.options = d.options;
+  const std::shared_ptr<const ModelHandle> handle =
+      MakeExportedModel(registry, m.family, m.options, &m, error);
+  if (handle == nullptr) {
+    *error = path + ": model: " + *error;
     return false;
   }
-  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
-  if (!ec && bytes > kMaxResultsBytes) {
-    *error = path + ": " + FormatBytes(static_cast<double>(bytes)) + ", more than the " +
-             FormatBytes(static_cast<double>(kMaxResultsBytes)) +
-             " a run's results.json can be (its traces are CSV files beside it)";
-    return false;
-  }
-  std::ifstream in(path);
-  if (!in) {
-    *error = path + ": cannot open (the folder of a finished `vesselid run`?)";
-    return false;
-  }
-  json results;
-  try {
-    results = json::parse(in);
-    ExportedModel m;
-    m.results = path;
-    const json& run_model = results.at("model");
-    m.family = run_model.at("family");
-    if (!run_model.contains("options")) {
-      *error = path + ": model.options: missing (results of a vesselid older than `export`; "
-                      "run the config again)";
+  const ModelInfo& info = handle->info();
+  std::map<std::string, int> index;
+  for (size_t i = 0; i < info.parameters.size(); ++i) index[info.parameters[i]] = static_cast<int>(i);
+  for (const RunDocument::Parameter& p : d.parameters) {
+    const auto found = index.find(p.name);
+    if (found == index.end()) continue;  // a per-experiment value, an initial state
+    if (std::isnan(p.value)) {
+      *error = path + ": not the results.json of a finished `vesselid run` (parameters: " +
+               p.name + " has no value)";
       return false;
     }
-    m.options = run_model.at("options").get<ModelOptions>();
-    const json* stage = LastModelStage(results);
-    if (stage != nullptr && stage->contains("model_options")) {
-      m.options = stage->at("model_options").get<ModelOptions>();
-    }
-    const std::shared_ptr<const ModelHandle> handle =
-        MakeExportedModel(registry, m.family, m.options, &m, error);
-    if (handle == nullptr) {
-      *error = path + ": model: " + *error;
+    // A parameter estimated per experiment (a run's rudder bias) takes the training runs'
+    // mean, as every other use of the results does (run_result.h, FinalParameter).
+    m.values[found->second] = p.value;
+    if (p.role == "free") m.std_errors[found->second] = p.std_error;
+  }
+  // The correlation of the last stage that has one, over the parameters with final SEs.
+  for (size_t i = 0; i < info.parameters.size(); ++i) {
+    if (std::isfinite(m.std_errors[i])) m.covariance_names.push_back(info.parameters[i]);
+  }
+  const int n = static_cast<int>(m.covariance_names.size());
+  m.covariance = Eigen::MatrixXd::Zero(n, n);
+  std::map<std::string, int> row;
+  for (size_t r = 0; r < d.correlation_names.size(); ++r) row[d.correlation_names[r]] = static_cast<int>(r);
+  for (size_t i = 0; i < info.parameters.size(); ++i) {
+    if (m.std_errors[i] < 0.0) {
+      *error = path + ": parameters: the std_error of " + info.parameters[i] + " is negative";
       return false;
     }
-    const ModelInfo& info = handle->info();
-    std::map<std::string, int> index;
-    for (size_t i = 0; i < info.parameters.size(); ++i) index[info.parameters[i]] = static_cast<int>(i);
-    for (const json& p : results.at("parameters")) {
-      const auto found = index.find(p.at("name").get<std::string>());
-      if (found == index.end()) continue;  // a per-experiment value, an initial state
-      // A parameter estimated per experiment (a run's rudder bias) takes the training runs'
-      // mean, as every other use of the results does (run_result.h, FinalParameter).
-      m.values[found->second] = p.at("value").get<double>();
-      if (p.at("role") == "free") m.std_errors[found->second] = NumberOr(p.at("std_error"), kNaN);
-    }
-    // The correlation of the last stage that has one, over the parameters with final SEs.
-    const json* correlated = nullptr;
-    for (const json& s : results.at("stages")) {
-      if (s.contains("correlation")) correlated = &s;
-    }
-    for (size_t i = 0; i < info.parameters.size(); ++i) {
-      if (std::isfinite(m.std_errors[i])) m.covariance_names.push_back(info.parameters[i]);
-    }
-    const int n = static_cast<int>(m.covariance_names.size());
-    m.covariance = Eigen::MatrixXd::Zero(n, n);
-    std::map<std::string, int> row;
-    if (correlated != nullptr) {
-      const std::vector<std::string> names = correlated->at("correlation").at("names");
-      const json& matrix = correlated->at("correlation").at("matrix");
-      // A square matrix, a row and a column per name, ones on its diagonal.
-      bool square = matrix.is_array() && matrix.size() == names.size();
-      for (size_t r = 0; square && r < names.size(); ++r) {
-        square = matrix[r].is_array() && matrix[r].size() == names.size() &&
-                 (matrix[r][r].is_null() ||  // undetermined
-                  (matrix[r][r].is_number() && std::abs(matrix[r][r].get<double>() - 1.0) < 1e-9));
+  }
+  for (int a = 0; a < n; ++a) {
+    for (int b = 0; b < n; ++b) {
+      const double sa = m.std_errors[index[m.covariance_names[a]]];
+      const double sb = m.std_errors[index[m.covariance_names[b]]];
+      double r = a == b ? 1.0 : 0.0;
+      const auto ra = row.find(m.covariance_names[a]), rb = row.find(m.covariance_names[b]);
+      if (a != b && ra != row.end() && rb != row.end()) {
+        const double listed = d.correlation(ra->second, rb->second);
+        r = std::isnan(listed) ? 0.0 : listed;
       }
-      if (!square) {
-        *error = path + ": stages' correlation: not a correlation matrix of its " +
-                 std::to_string(names.size()) +
-                 " names (as many rows and columns as names, 1 on the diagonal)";
-        return false;
-      }
-      for (size_t r = 0; r < names.size(); ++r) row[names[r]] = static_cast<int>(r);
+      m.covariance(a, b) = r * sa * sb;
     }
-    for (size_t i = 0; i < info.parameters.size(); ++i) {
-      if (m.std_errors[i] < 0.0) {
-        *error = path + ": parameters: the std_error of " + info.parameters[i] + " is negative";
-        return false;
-      }
-    }
-    for (int a = 0; a < n; ++a) {
-      for (int b = 0; b < n; ++b) {
-        const double sa = m.std_errors[index[m.covariance_names[a]]];
-        const double sb = m.std_errors[index[m.covariance_names[b]]];
-        double r = a == b ? 1.0 : 0.0;
-        const auto ra = row.find(m.covariance_names[a]), rb = row.find(m.covariance_names[b]);
-        if (a != b && ra != row.end() && rb != row.end()) {
-          r = NumberOr(correlated->at("correlation").at("matrix").at(ra->second).at(rb->second),
-                       0.0);
-        }
-        m.covariance(a, b) = r * sa * sb;
-      }
-    }
-    const std::string broken = CovarianceProblem(m.covariance_names, m.covariance);
-    if (!broken.empty()) {
-      *error = path + ": parameters and stages' correlation: " + broken +
-               "; no ensemble can be drawn from it";
-      return false;
-    }
-    const double need = EnsembleBytes(members, static_cast<int>(info.parameters.size()));
-    if (need > static_cast<double>(MemoryBudget())) {
-      *error = "--members " + std::to_string(members) + ": the ensemble's draws need " +
-               FormatBytes(need) + ", more than the memory budget of " +
-               FormatBytes(static_cast<double>(MemoryBudget())) +
-               " (half this machine's memory); ask for fewer members";
-      return false;
-    }
-    if (stage != nullptr) {
-      m.max_step = NumberOr(stage->value("integration_step", json()), 0.0);
-      if (!(m.max_step > 0.0)) m.max_step = NumberOr(stage->value("max_step", json()), 0.0);
-      const json methods = stage->value("interpolation", json::object());
-      for (size_t i = 0; i < m.inputs.size(); ++i) {
-        m.interpolation[i] = methods.value(m.inputs[i].name, m.interpolation[i]);
-      }
-    }
-    m.ensemble_seed = seed;
-    const json no_replicates = json::object();
-    const json& replicates =
-        correlated == nullptr
-            ? no_replicates
-            : correlated->value("uncertainty", json::object()).value("replicates", no_replicates);
-    if (replicates.contains("values") && !replicates.at("values").empty()) {
-      // The bootstrap's replicates (the first `members`), each a full parameter vector.
-      const std::vector<std::string> names = replicates.at("names");
-      m.ensemble_source = "bootstrap";
-      for (const json& values : replicates.at("values")) {
-        if (static_cast<int>(m.ensemble.size()) == members) break;
-        std::vector<double> member = m.values;
-        for (size_t k = 0; k < names.size() && k < values.size(); ++k) {
-          const auto found = index.find(names[k]);
-          if (found != index.end()) member[found->second] = NumberOr(values.at(k), kNaN);
-        }
-        m.ensemble.push_back(std::move(member));
-      }
-    } else {
-      m.ensemble = DrawEnsemble(m, members, seed);
-    }
-    *model = std::move(m);
-    if (parsed != nullptr) *parsed = std::move(results);
-    return true;
-  } catch (const json::exception& e) {
-    // nlohmann's text without its "[json.exception.type_error.302] " tag.
-    std::string what = e.what();
-    const size_t tag = what.find("] ");
-    if (what.rfind("[json.exception.", 0) == 0 && tag != std::string::npos) what.erase(0, tag + 2);
-    *error = path + ": not the results.json of a finished `vesselid run` (" + what + ")";
+  }
+  const std::string broken = CovarianceProblem(m.covariance_names, m.covariance);
+  if (!broken.empty()) {
+    *error = path + ": parameters and stages' correlation: " + broken +
+             "; no ensemble can be drawn from it";
     return false;
   }
+  const double need = EnsembleBytes(members, static_cast<int>(info.parameters.size()));
+  if (need > static_cast<double>(MemoryBudget())) {
+    *error = "--members " + std::to_string(members) + ": the ensemble's draws need " +
+             FormatBytes(need) + ", more than the memory budget of " +
+             FormatBytes(static_cast<double>(MemoryBudget())) +
+             " (half this machine's memory); ask for fewer members";
+    return false;
+  }
+  if (d.has_model_stage) {
+    m.max_step = std::isnan(d.integration_step) ? 0.0 : d.integration_step;
+    if (!(m.max_step > 0.0)) m.max_step = std::isnan(d.max_step) ? 0.0 : d.max_step;
+    for (size_t i = 0; i < m.inputs.size(); ++i) {
+      const auto method = d.interpolation.find(m.inputs[i].name);
+      if (method != d.interpolation.end()) m.interpolation[i] = method->second;
+    }
+  }
+  m.ensemble_seed = seed;
+  if (!d.replicate_values.empty()) {
+    // The bootstrap's replicates (the first `members`), each a full parameter vector.
+    m.ensemble_source = "bootstrap";
+    for (const std::vector<double>& values : d.replicate_values) {
+      if (static_cast<int>(m.ensemble.size()) == members) break;
+      std::vector<double> member = m.values;
+      for (size_t k = 0; k < d.replicate_names.size() && k < values.size(); ++k) {
+        const auto found = index.find(d.replicate_names[k]);
+        if (found != index.end()) member[found->second] = values[k];
+      }
+      m.ensemble.push_back(std::move(member));
+    }
+  } else {
+    m.ensemble = DrawEnsemble(m, members, seed);
+  }
+  *model = std::move(m);
+  return true;
 }
 
 json ExportedModelToJson(const ExportedModel& m) {

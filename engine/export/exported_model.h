@@ -12,6 +12,7 @@
 #include "Eigen/Core"
 #include "engine/config/model_registry.h"
 #include "engine/run/run_config.h"
+#include "engine/output/run_document.h"
 #include "nlohmann/json.hpp"
 
 namespace vesselid {
@@ -55,16 +56,16 @@ std::shared_ptr<const ModelHandle> MakeExportedModel(const ModelRegistry& regist
                                                      const ModelOptions& options,
                                                      ExportedModel* model, std::string* error);
 
-// The model of the run whose outputs are in `out_folder` (its results.json), with `members`
-// ensemble members drawn with `seed`. False with a message naming the file and key.
-// `results` (may be null) gets the parsed results.json for further reading.
+// The model of the run whose outputs are in `out_folder` (its results.json, read once by
+// run_document.h), with `members` ensemble members drawn with `seed`. False with a message
+// naming the file and key. `document` (may be null) gets what the run's results.json says.
 bool ReadExportedModel(const std::string& out_folder, const ModelRegistry& registry, int members,
                        unsigned seed, ExportedModel* model, std::string* error,
-                       nlohmann::json* results = nullptr);
+                       RunDocument* document = nullptr);
 
-// The last output-error stage of a results.json (one with estimates and a model), or null:
-// the stage the run's final model was estimated with.
-const nlohmann::json* LastModelStage(const nlohmann::json& results);
+// The same from a run's document.
+bool ExportedModelOf(const RunDocument& document, const ModelRegistry& registry, int members,
+                     unsigned seed, ExportedModel* model, std::string* error);
 
 // model.json and back.
 nlohmann::json ExportedModelToJson(const ExportedModel& model);

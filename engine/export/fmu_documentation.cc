@@ -18,6 +18,8 @@ std::string NumberCell(double value) {
 // What installs a library on Debian and Ubuntu, for the libraries vesselid's runtime can need.
 std::string Provider(const std::string& library) {
   if (library.rfind("libyaml-cpp.so.0.7", 0) == 0) return "package libyaml-cpp0.7";
+  if (library.rfind("libstdc++.so", 0) == 0) return "the GNU C++ runtime, package libstdc++6";
+  if (library.rfind("libgcc_s.so", 0) == 0) return "the GCC runtime, package libgcc-s1";
   if (library.rfind("libc.so", 0) == 0 || library.rfind("libm.so", 0) == 0 ||
       library.rfind("ld-linux", 0) == 0) {
     return "the C library (glibc), on every Linux system";

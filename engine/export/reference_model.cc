@@ -18,8 +18,8 @@ bool ReadReferenceModel(const std::string& folder, const ModelRegistry& registry
     return false;
   }
   ExportedModel model;
-  nlohmann::json results;
-  if (!ReadExportedModel(folder, registry, 0, 0, &model, error, &results)) return false;
+  RunDocument run;
+  if (!ReadExportedModel(folder, registry, 0, 0, &model, error, &run)) return false;
   const std::string file = (std::filesystem::path(folder) / "results.json").string();
   if (model.family != family || model.model != info.name) {
     *error = file + ": the reference is a " + model.family + " model (" + model.model +
@@ -31,15 +31,9 @@ bool ReadReferenceModel(const std::string& folder, const ModelRegistry& registry
   reference->values.clear();
   // Every parameter as the reference run reported it (the exported model would fill one it
   // lacks with the model's default, which is not the reference's).
-  const nlohmann::json* listed = results.contains("parameters") && results["parameters"].is_array()
-                                     ? &results["parameters"]
-                                     : nullptr;
   for (const std::string& name : info.parameters) {
     bool reported = false;
-    for (size_t i = 0; listed != nullptr && i < listed->size() && !reported; ++i) {
-      const nlohmann::json& p = (*listed)[i];
-      reported = p.is_object() && p.contains("name") && p["name"] == name;
-    }
+    for (const RunDocument::Parameter& p : run.parameters) reported = reported || p.name == name;
     size_t k = 0;
     while (k < model.parameters.size() && model.parameters[k].name != name) ++k;
     if (!reported || k == model.parameters.size()) {

@@ -14,24 +14,23 @@ using nlohmann::json;
 // Fewest training zigzags an interval is formed from (two degrees of freedom).
 constexpr int kMinTrainingRuns = 3;
 
-// The figure's value in a zigzag entry's `measured` or `simulated`; NaN when unknown.
-double FigureOf(const json& zigzag, const char* which, const std::string& figure) {
-  const json& figures = zigzag.value(which, json::object());
-  const json value = figures.value(figure + "_deg", json());
-  return value.is_number() ? value.get<double>() : std::nan("");
+// The figure (first or second overshoot, deg) measured or simulated; NaN when unknown.
+double FigureOf(const ZigzagEntry& z, bool measured, const std::string& figure) {
+  const bool first = figure == "first_overshoot";
+  return measured ? (first ? z.measured_first : z.measured_second)
+                  : (first ? z.simulated_first : z.simulated_second);
 }
 
 }  // namespace
 
-HeldOutZigzagCheck CheckHeldOutZigzags(const json& results) {
+HeldOutZigzagCheck CheckHeldOutZigzags(const std::vector<ZigzagEntry>& zigzags) {
   HeldOutZigzagCheck check;
-  const json zigzags = results.value("zigzags", json::array());
   // Held-out runs as the final values simulate them (else the last stage that has them);
   // training runs of the last stage that has them.
   std::string held_stage, training_stage;
-  for (const json& z : zigzags) {
-    const std::string stage = z.value("stage", "");
-    if (z.value("held_out", false)) {
+  for (const ZigzagEntry& z : zigzags) {
+    const std::string& stage = z.stage;
+    if (z.held_out) {
       if (held_stage != "final") held_stage = stage;
     } else if (stage != "final") {
       training_stage = stage;
@@ -44,9 +43,9 @@ HeldOutZigzagCheck CheckHeldOutZigzags(const json& results) {
   check.stage = held_stage;
   for (const std::string figure : {"first_overshoot", "second_overshoot"}) {
     std::vector<double> errors;
-    for (const json& z : zigzags) {
-      if (z.value("held_out", false) || z.value("stage", "") != training_stage) continue;
-      const double e = FigureOf(z, "measured", figure) - FigureOf(z, "simulated", figure);
+    for (const ZigzagEntry& z : zigzags) {
+      if (z.held_out || z.stage != training_stage) continue;
+      const double e = FigureOf(z, true, figure) - FigureOf(z, false, figure);
       if (std::isfinite(e)) errors.push_back(e);
     }
     HeldOutZigzagCheck::Error error;
@@ -63,17 +62,16 @@ HeldOutZigzagCheck CheckHeldOutZigzags(const json& results) {
     error.sd = std::sqrt(error.sd);
     error.t = StudentTQuantile(0.975, error.runs - 1);
     const double half = error.t * error.sd * std::sqrt(1.0 + 1.0 / error.runs);
-    for (const json& z : zigzags) {
-      if (!z.value("held_out", false) || z.value("stage", "") != held_stage) continue;
+    for (const ZigzagEntry& z : zigzags) {
+      if (!z.held_out || z.stage != held_stage) continue;
       HeldOutZigzag row;
-      row.experiment = z.value("experiment", "");
+      row.experiment = z.experiment;
       char test[64];
-      std::snprintf(test, sizeof(test), "%.1f/%.1f", NumberOr(z.value("rudder_deg", json()), NAN),
-                    NumberOr(z.value("heading_deg", json()), NAN));
+      std::snprintf(test, sizeof(test), "%.1f/%.1f", z.rudder_deg, z.heading_deg);
       row.test = test;
       row.figure = figure;
-      row.measured = FigureOf(z, "measured", figure);
-      row.predicted = FigureOf(z, "simulated", figure);
+      row.measured = FigureOf(z, true, figure);
+      row.predicted = FigureOf(z, false, figure);
       if (!std::isfinite(row.measured) || !std::isfinite(row.predicted)) continue;
       row.low = row.predicted + error.mean - half;
       row.high = row.predicted + error.mean + half;

@@ -16,6 +16,7 @@
 // have it; none with fewer than three.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -46,8 +47,19 @@ struct HeldOutZigzagCheck {
   std::string note;  // why there is no check (no held-out or too few training zigzags)
 };
 
-// The check of the run whose results.json is `results` (its `zigzags`).
-HeldOutZigzagCheck CheckHeldOutZigzags(const nlohmann::json& results);
+// A zigzag as results.json records it (zigzag_report.h writes it, run_document.h reads it):
+// its test and overshoots in degrees, NaN where unknown.
+struct ZigzagEntry {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  std::string stage, experiment;
+  bool held_out = false;
+  double rudder_deg = kNaN, heading_deg = kNaN;
+  double measured_first = kNaN, measured_second = kNaN;    // first and second overshoot
+  double simulated_first = kNaN, simulated_second = kNaN;
+};
+
+// The check of a run's zigzags (results.json `zigzags`, or a run's own in memory).
+HeldOutZigzagCheck CheckHeldOutZigzags(const std::vector<ZigzagEntry>& zigzags);
 
 std::string HeldOutZigzagsText(const HeldOutZigzagCheck& check);
 nlohmann::json HeldOutZigzagsToJson(const HeldOutZigzagCheck& check);

@@ -52,6 +52,29 @@ nlohmann::json ZigzagRunsToJson(const std::vector<ZigzagRun>& runs) {
   return j;
 }
 
+std::vector<ZigzagEntry> ZigzagEntries(const std::vector<ZigzagRun>& runs) {
+  std::vector<ZigzagEntry> entries;
+  // As results.json writes them: a figure that is not finite is unknown (null, NaN).
+  auto deg = [](double radians) {
+    const double value = radians * kToDegrees;
+    return std::isfinite(value) ? value : ZigzagEntry::kNaN;
+  };
+  for (const ZigzagRun& run : runs) {
+    ZigzagEntry e;
+    e.stage = run.stage;
+    e.experiment = run.experiment;
+    e.held_out = run.held_out;
+    e.rudder_deg = run.test.rudder * kToDegrees;
+    e.heading_deg = run.test.heading * kToDegrees;
+    e.measured_first = deg(run.measured.first_overshoot);
+    e.measured_second = deg(run.measured.second_overshoot);
+    e.simulated_first = deg(run.simulated.first_overshoot);
+    e.simulated_second = deg(run.simulated.second_overshoot);
+    entries.push_back(std::move(e));
+  }
+  return entries;
+}
+
 std::string ZigzagRunsText(const std::vector<ZigzagRun>& runs) {
   if (runs.empty()) return "";
   std::string out =
@@ -80,7 +103,7 @@ std::string ZigzagRunsText(const std::vector<ZigzagRun>& runs) {
     out += line;
   }
   // The held-out runs against their prediction intervals (held_out_zigzags.h).
-  const HeldOutZigzagCheck check = CheckHeldOutZigzags({{"zigzags", ZigzagRunsToJson(runs)}});
+  const HeldOutZigzagCheck check = CheckHeldOutZigzags(ZigzagEntries(runs));
   if (!check.rows.empty()) out += "\n" + HeldOutZigzagsText(check);
   return out;
 }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/output/held_out_zigzags.h"
 #include "engine/run/run_result.h"
 #include "nlohmann/json.hpp"
 
@@ -16,6 +17,10 @@ namespace vesselid {
 //   "simulated": {"first_overshoot_deg", "second_overshoot_deg", "time_to_first_check_s",
 //   "period_s", "executes_s"}}]; unknown figures are null.
 nlohmann::json ZigzagRunsToJson(const std::vector<ZigzagRun>& runs);
+
+// The runs as results.json records them (overshoots in degrees: the same numbers), for the
+// held-out check (held_out_zigzags.h).
+std::vector<ZigzagEntry> ZigzagEntries(const std::vector<ZigzagRun>& runs);
 
 // The figures' definitions (IMO MSC.137(76)), as the reports state them.
 extern const char kZigzagDefinitions[];

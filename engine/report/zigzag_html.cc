@@ -64,7 +64,7 @@ std::string ZigzagRunsHtml(const std::vector<ZigzagRun>& runs) {
       Th("period simulated [s]") + "</tr>\n" + rows + "</table></div>\n";
   return "<section id=\"zigzag\">\n<h2>Zigzag figures</h2>\n<p>" + HtmlEscape(kZigzagDefinitions) +
          "</p>\n" + Fold(table, runs.size(), std::to_string(runs.size()) + " zigzag fits", 24) +
-         HeldOutZigzagsHtml(CheckHeldOutZigzags({{"zigzags", ZigzagRunsToJson(runs)}})) +
+         HeldOutZigzagsHtml(CheckHeldOutZigzags(ZigzagEntries(runs))) +
          "</section>\n";
 }
 

@@ -1,4 +1,4 @@
-// The held-out zigzag check on a results.json `zigzags` list made up for it: the interval is
+// The held-out zigzag check on a list of zigzags made up for it: the interval is
 // the held-out run's simulation plus the training errors' mean, +- t(0.975, n-1) s sqrt(1+1/n);
 // a measurement outside it is called uncovered, and without held-out runs or with fewer than
 // three training zigzags there is no interval, with a note saying why.
@@ -12,27 +12,27 @@
 namespace vesselid {
 namespace held_out_zigzags_test {
 
-using nlohmann::json;
-
-json Zigzag(const std::string& experiment, bool held_out, double measured, double simulated,
-            const std::string& stage = "output_error") {
-  return {{"stage", stage},
-          {"experiment", experiment},
-          {"held_out", held_out},
-          {"rudder_deg", 10.0},
-          {"heading_deg", 10.0},
-          {"measured", {{"first_overshoot_deg", measured}, {"second_overshoot_deg", nullptr}}},
-          {"simulated", {{"first_overshoot_deg", simulated}, {"second_overshoot_deg", nullptr}}}};
+ZigzagEntry Zigzag(const std::string& experiment, bool held_out, double measured, double simulated,
+                   const std::string& stage = "output_error") {
+  ZigzagEntry z;
+  z.stage = stage;
+  z.experiment = experiment;
+  z.held_out = held_out;
+  z.rudder_deg = 10.0;
+  z.heading_deg = 10.0;
+  z.measured_first = measured;  // no second overshoot anywhere
+  z.simulated_first = simulated;
+  return z;
 }
 
 TEST(HeldOutZigzags, IntervalFromTheTrainingErrors) {
   // Training errors 0.5, -0.5, 1.0, 0.0: mean 0.25, SD sqrt(0.4167).
-  json results = {
-      {"zigzags",
-       {Zigzag("a", false, 5.5, 5.0), Zigzag("b", false, 6.5, 7.0), Zigzag("c", false, 9.0, 8.0),
-        Zigzag("d", false, 4.0, 4.0), Zigzag("near", true, 10.5, 10.0, "final"),
-        Zigzag("far", true, 14.0, 10.0, "final"), Zigzag("near", true, 0.0, 0.0)}}};
-  const HeldOutZigzagCheck check = CheckHeldOutZigzags(results);
+  const std::vector<ZigzagEntry> zigzags = {
+      Zigzag("a", false, 5.5, 5.0),   Zigzag("b", false, 6.5, 7.0),
+      Zigzag("c", false, 9.0, 8.0),   Zigzag("d", false, 4.0, 4.0),
+      Zigzag("near", true, 10.5, 10.0, "final"), Zigzag("far", true, 14.0, 10.0, "final"),
+      Zigzag("near", true, 0.0, 0.0)};
+  const HeldOutZigzagCheck check = CheckHeldOutZigzags(zigzags);
   EXPECT_EQ(check.stage, "final");
   ASSERT_EQ(check.errors.size(), 1u);  // no second overshoot anywhere
   EXPECT_NE(check.note.find("second_overshoot: 0 training zigzags"), std::string::npos)
@@ -54,7 +54,7 @@ TEST(HeldOutZigzags, IntervalFromTheTrainingErrors) {
 
 TEST(HeldOutZigzags, NoneWithoutHeldOutRuns) {
   const HeldOutZigzagCheck check =
-      CheckHeldOutZigzags({{"zigzags", {Zigzag("a", false, 5.5, 5.0)}}});
+      CheckHeldOutZigzags({Zigzag("a", false, 5.5, 5.0)});
   EXPECT_TRUE(check.rows.empty());
   EXPECT_EQ(check.note, "the run holds out no zigzag");
 }
