@@ -7,7 +7,6 @@
 #include <limits>
 #include <map>
 
-#include "engine/base/json_number.h"
 #include "engine/base/memory_budget.h"
 #include "engine/design/design_criterion.h"
 #include "engine/design/design_limits.h"

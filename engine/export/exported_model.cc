@@ -13,8 +13,6 @@
 #include "engine/base/json_number.h"
 #include "engine/base/memory_budget.h"
 #include "engine/data/interpolation.h"
-#include "engine/output/output_folder.h"
-#include "engine/output/output_staging.h"
 
 namespace vesselid {
 namespace {

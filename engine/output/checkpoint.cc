@@ -103,6 +103,12 @@ bool ReadManifest(const fs::path& folder, json* manifest, std::string* error) {
   return true;
 }
 
+// A checkpoint file's name without the ".tmp" of its temporary.
+std::string WithoutTemporarySuffix(std::string name) {
+  if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0) name.resize(name.size() - 4);
+  return name;
+}
+
 // Whether every entry of the folder is a plain file of a checkpoint's names (the manifest, a
 // stage file, their temporaries): a working checkpoint a kill left half made or half removed
 // (no manifest yet, or no more).
@@ -110,8 +116,7 @@ bool OnlyCheckpointFiles(const fs::path& folder) {
   std::error_code ec;
   for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator();
        it.increment(ec)) {
-    std::string name = it->path().filename().string();
-    if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0) name.resize(name.size() - 4);
+    const std::string name = WithoutTemporarySuffix(it->path().filename().string());
     const bool stage = name.size() > 11 && name.rfind("stage_", 0) == 0 &&
                        name.compare(name.size() - 5, 5, ".cbor") == 0 &&
                        name.find_first_not_of("0123456789", 6) == name.size() - 5;
@@ -144,8 +149,7 @@ std::string FolderNotOwned(const fs::path& folder, bool working) {
     std::string foreign;
     for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator();
          it.increment(ec)) {
-      std::string name = it->path().filename().string();
-      if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0) name.resize(name.size() - 4);
+      const std::string name = WithoutTemporarySuffix(it->path().filename().string());
       if (it->is_symlink() || !it->is_regular_file() || own.count(name) == 0) {
         foreign = it->path().filename().string();
         break;

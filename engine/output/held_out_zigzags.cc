@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include "engine/base/json_number.h"
 #include "engine/base/student_t.h"
 
 namespace vesselid {

@@ -206,7 +206,7 @@ bool Complete(const fs::path& out, const fs::path& staging, const Journal& j, st
   if (!PublishBySwap(out.string(), {j.entries.begin(), j.entries.end()},
                      {j.remove.begin(), j.remove.end()},
                      ManifestPath(out.string(), j.set).filename().string(),
-                     ManifestText(out, staging, j, true), &swapped, error)) {
+                     [&] { return ManifestText(out, staging, j, true); }, &swapped, error)) {
     return false;
   }
   return swapped || Roll(out, staging, j, error);

@@ -213,7 +213,8 @@ bool OnlyVesselidsEntries(const fs::path& out, const std::set<std::string>& entr
 
 bool PublishBySwap(const std::string& out_dir, const std::set<std::string>& entries,
                    const std::set<std::string>& removed, const std::string& manifest_name,
-                   const std::string& manifest_text, bool* swapped, std::string* error) {
+                   const std::function<std::string()>& manifest_text, bool* swapped,
+                   std::string* error) {
   *swapped = false;
   fs::path out, sibling;
   if (!SwapPaths(out_dir, &out, &sibling)) return true;
@@ -228,7 +229,7 @@ bool PublishBySwap(const std::string& out_dir, const std::set<std::string>& entr
   std::error_code ec;
   // The new folder's bookkeeping (what a killed earlier attempt put there is made afresh).
   std::string unused;
-  if (!WriteFileAtomically((staging / manifest_name).string(), manifest_text, &unused)) return true;
+  if (!WriteFileAtomically((staging / manifest_name).string(), manifest_text(), &unused)) return true;
   for (auto it = fs::directory_iterator(out, ec); !ec && it != fs::directory_iterator();
        it.increment(ec)) {
     const std::string name = it->path().filename().string();

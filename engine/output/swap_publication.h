@@ -16,19 +16,21 @@
 // (output_staging.h), which never mixes two sets either but holds no results.json meanwhile.
 #pragma once
 
+#include <functional>
 #include <set>
 #include <string>
 
 namespace vesselid {
 
 // Publishes the set staged in OUT/.vesselid-staging (journal written; `entries` its entries,
-// `removed` the earlier set's entries it removes) by the exchange. `manifest_name` and
-// `manifest_text` are the set's manifest. *swapped is false, with nothing changed, when the
-// exchange is not taken; false with a message when a step after the exchange failed (the next
-// command finishes it).
+// `removed` the earlier set's entries it removes) by the exchange. `manifest_name` is the
+// set's manifest; `manifest_text` gives its text (listed only when the exchange is taken).
+// *swapped is false, with nothing changed, when the exchange is not taken; false with a
+// message when a step after the exchange failed (the next command finishes it).
 bool PublishBySwap(const std::string& out_dir, const std::set<std::string>& entries,
                    const std::set<std::string>& removed, const std::string& manifest_name,
-                   const std::string& manifest_text, bool* swapped, std::string* error);
+                   const std::function<std::string()>& manifest_text, bool* swapped,
+                   std::string* error);
 
 // Finishes what a process killed inside PublishBySwap left: before the exchange, the staged
 // folder goes back to OUT/.vesselid-staging (its journal then publishes it); after it, the
