@@ -13,7 +13,8 @@
 #include "engine/design/design_names.h"
 #include "engine/design/design_search.h"
 #include "engine/design/input_commands.h"
-#include "engine/export/exported_model.h"
+#include "engine/export/model_json.h"
+#include "engine/export/run_folder_model.h"
 
 namespace vesselid {
 namespace {
@@ -97,7 +98,7 @@ PlanSummary Summarise(const std::string& name, PlanEvaluation e, const DesignRes
 }
 
 // The model's names and units in the result, the inputs planned in degrees marked.
-void DescribeModel(const ExportedModel& model, const ModelInfo& info, const DesignOptions& options,
+void DescribeModel(const IdentifiedModel& model, const ModelInfo& info, const DesignOptions& options,
                    DesignResult* r) {
   r->model = model.model;
   r->family = model.family;
@@ -119,7 +120,7 @@ void DescribeModel(const ExportedModel& model, const ModelInfo& info, const Desi
 // per-experiment ones); their values, standard errors and scales; today's information over
 // them (the covariance's pseudo-inverse: a parameter the run left undetermined has none); the
 // one known worst relative to its scale.
-bool DesignedParameters(const ExportedModel& model, const RunDocument& run, DesignContext* c,
+bool DesignedParameters(const IdentifiedModel& model, const RunDocument& run, DesignContext* c,
                         DesignResult* r, std::string* error) {
   const ModelInfo& info = c->model->info();
   std::map<std::string, int> index;
@@ -170,7 +171,7 @@ bool DesignedParameters(const ExportedModel& model, const RunDocument& run, Desi
 // The plan's log: its sample time (the logger's: the information grows with the samples), the
 // integration step, each output's noise (the fit's, or given), the start, the initial states
 // it estimates (given, or the run's last model stage's), the box and the criterion.
-bool PlanLog(const ExportedModel& model, const RunDocument& run, const DesignOptions& options,
+bool PlanLog(const IdentifiedModel& model, const RunDocument& run, const DesignOptions& options,
              DesignContext* c, DesignResult* r, std::string* error) {
   const ModelInfo& info = c->model->info();
   r->sample_time = options.sample_time;
@@ -246,7 +247,7 @@ bool PlanLog(const ExportedModel& model, const RunDocument& run, const DesignOpt
 
 // The ensemble flown, the layout and actuators, the settled start, and the duration: given, or
 // the current model's 20/20 zigzag to its fourth reversal; the planned log checked to fit.
-bool PlanDuration(const ExportedModel& model, const DesignOptions& options, DesignContext* c,
+bool PlanDuration(const IdentifiedModel& model, const DesignOptions& options, DesignContext* c,
                   DesignResult* r, std::string* error) {
   const ModelHandle& handle = *c->model;
   const ModelInfo& info = handle.info();
@@ -333,9 +334,9 @@ bool SearchAndCompare(const DesignOptions& options, const DesignContext& c, Desi
 
 bool PlanNextExperiment(const ModelRegistry& registry, const DesignOptions& options,
                         const std::string& run_dir, DesignResult* result, std::string* error) {
-  ExportedModel model;
+  IdentifiedModel model;
   RunDocument run;
-  if (!ReadExportedModel(run_dir, registry, options.ensemble_members, options.seed, &model, error,
+  if (!ReadIdentifiedModel(run_dir, registry, options.ensemble_members, options.seed, &model, error,
                          &run)) {
     return false;
   }

@@ -36,13 +36,13 @@ std::string List(const std::vector<T>& items, F text, const std::string& empty) 
   return out + "}";
 }
 
-std::string CNames(const std::vector<ExportedVariable>& v) {
+std::string CNames(const std::vector<ModelVariable>& v) {
   return List(
-      v, [](const ExportedVariable& x) { return Quoted(x.name); }, "\"\"");
+      v, [](const ModelVariable& x) { return Quoted(x.name); }, "\"\"");
 }
-std::string CUnits(const std::vector<ExportedVariable>& v) {
+std::string CUnits(const std::vector<ModelVariable>& v) {
   return List(
-      v, [](const ExportedVariable& x) { return Quoted(x.unit); }, "\"\"");
+      v, [](const ModelVariable& x) { return Quoted(x.unit); }, "\"\"");
 }
 std::string CNumbers(const std::vector<double>& v) {
   return List(
@@ -95,7 +95,7 @@ int InterpolationCode(const std::string& method) {
 }
 
 // The value the example holds an input at: 10 degrees of an angle, 5 m/s of a speed, else 0.5.
-double ExampleInput(const ExportedVariable& input) {
+double ExampleInput(const ModelVariable& input) {
   if (input.unit == "rad") return 0.17453292519943295;
   if (input.unit == "m/s") return 5.0;
   return 0.5;
@@ -293,7 +293,7 @@ std::string CIdentifier(const std::string& name) {
   return id;
 }
 
-bool MakeCModel(const ExportedModel& model, const ModelHandle& handle,
+bool MakeCModel(const IdentifiedModel& model, const ModelHandle& handle,
                 std::vector<CModelFile>* files, std::string* error) {
   ExpressionTape derivative_tape, output_tape;
   TracedFunction derivative, output;
@@ -324,7 +324,7 @@ bool MakeCModel(const ExportedModel& model, const ModelHandle& handle,
         InterpolationCode(i < model.interpolation.size() ? model.interpolation[i] : "linear"));
   }
   std::vector<double> example_inputs;
-  for (const ExportedVariable& input : model.inputs) {
+  for (const ModelVariable& input : model.inputs) {
     example_inputs.push_back(ExampleInput(input));
   }
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/export/exported_model.h"
+#include "engine/export/model_json.h"
 #include "engine/model/model_handle.h"
 
 namespace vesselid {
@@ -22,7 +22,7 @@ struct CModelFile {
 
 // The header, source and example of `model` (whose equations `handle` holds). False with a
 // message when the model's decisions take too many paths to write out.
-bool MakeCModel(const ExportedModel& model, const ModelHandle& handle,
+bool MakeCModel(const IdentifiedModel& model, const ModelHandle& handle,
                 std::vector<CModelFile>* files, std::string* error);
 
 // The C identifier the files and functions are named by (the model's name, e.g.

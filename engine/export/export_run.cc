@@ -11,7 +11,8 @@
 #include "engine/base/atomic_file.h"
 #include "engine/base/file_name.h"
 #include "engine/export/c_model.h"
-#include "engine/export/exported_model.h"
+#include "engine/export/model_json.h"
+#include "engine/export/run_folder_model.h"
 #include "engine/export/fmu_package.h"
 #include "engine/output/held_out_zigzags.h"
 #include "engine/output/output_folder.h"
@@ -33,8 +34,8 @@ bool ExportRun(const ModelRegistry& registry, const std::string& run_dir, const 
     return false;
   }
   if (out_dir.empty() && !DefaultOutFolder(run_dir, "export", &out_dir, error)) return false;
-  ExportedModel model;
-  if (!ReadExportedModel(run_dir, registry, members, seed, &model, error)) return false;
+  IdentifiedModel model;
+  if (!ReadIdentifiedModel(run_dir, registry, members, seed, &model, error)) return false;
   std::vector<std::pair<std::string, std::function<bool(const std::string&, std::string*)>>> files;
   std::vector<CModelFile> sources;
   if (format == "c") {
@@ -52,7 +53,7 @@ bool ExportRun(const ModelRegistry& registry, const std::string& run_dir, const 
                        return format == "fmu"
                                   ? WriteFmu(model, runtime, file, message)
                                   : WriteFileAtomically(
-                                        file, ExportedModelToJson(model).dump(2) + "\n", message);
+                                        file, IdentifiedModelToJson(model).dump(2) + "\n", message);
                      }});
   }
   if (!PublishSet(out_dir, "export." + format, model.results, files, error)) return false;
@@ -79,9 +80,9 @@ bool PredictRun(const ModelRegistry& registry, const std::string& run_dir,
              ": an approach speed in m/s, 0.001 to 50";
     return false;
   }
-  ExportedModel model;
+  IdentifiedModel model;
   RunDocument run;
-  if (!ReadExportedModel(run_dir, registry, members, seed, &model, error, &run)) return false;
+  if (!ReadIdentifiedModel(run_dir, registry, members, seed, &model, error, &run)) return false;
   // The model's own length (an n1-form Nomoto model on L) unless the conditions give one.
   const auto length = model.options.find("length");
   if (!std::isfinite(conditions.length) && length != model.options.end()) {

@@ -29,7 +29,7 @@ std::string Provider(const std::string& library) {
 
 }  // namespace
 
-std::string FmuDocumentationHtml(const ExportedModel& model, const std::vector<std::string>& needs) {
+std::string FmuDocumentationHtml(const IdentifiedModel& model, const std::vector<std::string>& needs) {
   std::string html = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" +
                      HtmlEscape(model.model) + "</title></head><body>\n<h1>" +
                      HtmlEscape(model.model) + "</h1>\n<p>Model family " +

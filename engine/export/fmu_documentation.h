@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "engine/export/exported_model.h"
+#include "engine/export/model_json.h"
 
 namespace vesselid {
 
 // `needs`: the binary's DT_NEEDED libraries (shared_library_needs.h).
-std::string FmuDocumentationHtml(const ExportedModel& model, const std::vector<std::string>& needs);
+std::string FmuDocumentationHtml(const IdentifiedModel& model, const std::vector<std::string>& needs);
 
 }  // namespace vesselid

@@ -13,17 +13,17 @@
 #include <string>
 #include <vector>
 
-#include "engine/export/exported_model.h"
+#include "engine/export/model_json.h"
 
 namespace vesselid {
 
 struct FmuLayout {
-  explicit FmuLayout(const ExportedModel& model) {
+  explicit FmuLayout(const IdentifiedModel& model) {
     const int nu = static_cast<int>(model.inputs.size());
     const int ny = static_cast<int>(model.outputs.size());
     for (size_t i = 0; i < model.states.size(); ++i) {
       bool output = false;
-      for (const ExportedVariable& o : model.outputs) output |= o.name == model.states[i].name;
+      for (const ModelVariable& o : model.outputs) output |= o.name == model.states[i].name;
       if (!output) state_outputs.push_back(static_cast<int>(i));
     }
     first_input = 0;

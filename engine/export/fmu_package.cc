@@ -71,9 +71,9 @@ std::string FindFmuRuntime(std::string* error) {
   return "";
 }
 
-bool WriteFmu(const ExportedModel& model, const std::string& runtime, const std::string& fmu_path,
+bool WriteFmu(const IdentifiedModel& model, const std::string& runtime, const std::string& fmu_path,
               std::string* error) {
-  const std::string model_json = ExportedModelToJson(model).dump(2) + "\n";
+  const std::string model_json = IdentifiedModelToJson(model).dump(2) + "\n";
   const std::string description = ModelDescriptionXml(model, FmuGuid(model_json));
   std::vector<std::string> needs;
   if (!SharedLibraryNeeds(runtime, &needs, error)) return false;

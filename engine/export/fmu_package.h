@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "engine/export/exported_model.h"
+#include "engine/export/model_json.h"
 
 namespace vesselid {
 
@@ -14,7 +14,7 @@ namespace vesselid {
 std::string FindFmuRuntime(std::string* error);
 
 // Writes `fmu_path` (replacing it whole or not at all).
-bool WriteFmu(const ExportedModel& model, const std::string& runtime, const std::string& fmu_path,
+bool WriteFmu(const IdentifiedModel& model, const std::string& runtime, const std::string& fmu_path,
               std::string* error);
 
 // The FMU's GUID: a digest of its model.json text, in the 8-4-4-4-12 hex form.

@@ -23,7 +23,7 @@ struct Layout {
   int delta = -1, speed = -1, psi = -1;
 };
 
-int IndexOf(const std::vector<ExportedVariable>& list, const std::string& name) {
+int IndexOf(const std::vector<ModelVariable>& list, const std::string& name) {
   for (size_t i = 0; i < list.size(); ++i) {
     if (list[i].name == name) return static_cast<int>(i);
   }
@@ -215,7 +215,7 @@ double Criterion(int f, double l_over_u, std::string* text) {
 
 }  // namespace
 
-bool PredictManoeuvres(const ExportedModel& exported, const ModelHandle& model,
+bool PredictManoeuvres(const IdentifiedModel& exported, const ModelHandle& model,
                        const ManoeuvreConditions& c, ManoeuvrePredictions* predictions,
                        std::string* error) {
   Layout layout;

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/export/exported_model.h"
+#include "engine/export/model_json.h"
 #include "engine/model/model_handle.h"
 
 namespace vesselid {
@@ -63,7 +63,7 @@ struct ManoeuvrePredictions {
 
 // False with a message when the model has no rudder input `delta` or heading output `psi`, or
 // needs an input nothing gives (the speed U without `speed`).
-bool PredictManoeuvres(const ExportedModel& model, const ModelHandle& handle,
+bool PredictManoeuvres(const IdentifiedModel& model, const ModelHandle& handle,
                        const ManoeuvreConditions& conditions, ManoeuvrePredictions* predictions,
                        std::string* error);
 

@@ -38,7 +38,7 @@ std::string UnitAttribute(const std::string& unit) {
 
 }  // namespace
 
-std::string ModelDescriptionXml(const ExportedModel& m, const std::string& guid) {
+std::string ModelDescriptionXml(const IdentifiedModel& m, const std::string& guid) {
   const FmuLayout layout(m);
   std::ostringstream xml;
   xml << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
@@ -52,7 +52,7 @@ std::string ModelDescriptionXml(const ExportedModel& m, const std::string& guid)
       << " canSerializeFMUstate=\"false\" providesDirectionalDerivative=\"false\"/>\n";
   std::set<std::string> units = {"s"};  // max_step's
   for (const auto* list : {&m.states, &m.inputs, &m.outputs, &m.parameters}) {
-    for (const ExportedVariable& v : *list) {
+    for (const ModelVariable& v : *list) {
       if (!v.unit.empty()) units.insert(v.unit);
     }
   }
@@ -87,7 +87,7 @@ std::string ModelDescriptionXml(const ExportedModel& m, const std::string& guid)
     outputs.push_back(index);
   }
   for (size_t k = 0; k < layout.state_outputs.size(); ++k) {
-    const ExportedVariable& state = m.states[layout.state_outputs[k]];
+    const ModelVariable& state = m.states[layout.state_outputs[k]];
     variable(state.name, layout.first_state_output + static_cast<int>(k), "output", "continuous",
              "calculated", "model state", "<Real" + UnitAttribute(state.unit) + "/>");
     outputs.push_back(index);

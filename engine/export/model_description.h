@@ -6,12 +6,12 @@
 
 #include <string>
 
-#include "engine/export/exported_model.h"
+#include "engine/export/model_json.h"
 
 namespace vesselid {
 
 inline constexpr char kFmuModelIdentifier[] = "vesselid_model";
 
-std::string ModelDescriptionXml(const ExportedModel& model, const std::string& guid);
+std::string ModelDescriptionXml(const IdentifiedModel& model, const std::string& guid);
 
 }  // namespace vesselid

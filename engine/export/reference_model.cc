@@ -4,7 +4,8 @@
 
 #include "nlohmann/json.hpp"
 
-#include "engine/export/exported_model.h"
+#include "engine/export/model_json.h"
+#include "engine/export/run_folder_model.h"
 
 namespace vesselid {
 
@@ -17,9 +18,9 @@ bool ReadReferenceModel(const std::string& folder, const ModelRegistry& registry
                       "its results.json)";
     return false;
   }
-  ExportedModel model;
+  IdentifiedModel model;
   RunDocument run;
-  if (!ReadExportedModel(folder, registry, 0, 0, &model, error, &run)) return false;
+  if (!ReadIdentifiedModel(folder, registry, 0, 0, &model, error, &run)) return false;
   const std::string file = (std::filesystem::path(folder) / "results.json").string();
   if (model.family != family || model.model != info.name) {
     *error = file + ": the reference is a " + model.family + " model (" + model.model +

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/export/exported_model.h"
+#include "engine/export/model_json.h"
 #include "engine/export/fmi2.h"
 #include "engine/export/fmu_layout.h"
 #include "problems/registry.h"
@@ -32,7 +32,7 @@ struct Instance {
   std::string name;
   fmi2CallbackLogger logger = nullptr;
   fmi2ComponentEnvironment environment = nullptr;
-  ExportedModel exported;
+  IdentifiedModel exported;
   std::shared_ptr<const ModelHandle> model;
   std::unique_ptr<FmuLayout> layout;
   std::vector<double> p, x, x0, u;
@@ -119,7 +119,7 @@ Instance* Of(fmi2Component c) { return static_cast<Instance*>(c); }
 // The instance as fmi2Instantiate leaves it (and fmi2Reset): the run's parameter values and
 // step bound, states and inputs zero, ensemble member 0.
 void Start(Instance* instance) {
-  const ExportedModel& m = instance->exported;
+  const IdentifiedModel& m = instance->exported;
   instance->p = m.values;
   instance->p_chosen.assign(m.values.size(), false);
   instance->x0.assign(m.states.size(), 0.0);
@@ -168,11 +168,11 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
   std::ifstream in(path);
   std::string error;
   nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-  if (j.is_discarded() || !vesselid::ExportedModelFromJson(j, &instance->exported, &error)) {
+  if (j.is_discarded() || !vesselid::IdentifiedModelFromJson(j, &instance->exported, &error)) {
     vesselid::Fail(instance.get(), fmi2Error, path + ": " + (error.empty() ? "not JSON" : error));
     return nullptr;
   }
-  const vesselid::ExportedModel& m = instance->exported;
+  const vesselid::IdentifiedModel& m = instance->exported;
   instance->model = vesselid::DefaultRegistry().MakeModel(m.family, m.options, &error);
   if (instance->model == nullptr) {
     vesselid::Fail(instance.get(), fmi2Error, path + ": " + error);
@@ -293,7 +293,7 @@ fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
 fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           const fmi2Integer value[]) {
   Instance* instance = vesselid::Of(c);
-  const vesselid::ExportedModel& m = instance->exported;
+  const vesselid::IdentifiedModel& m = instance->exported;
   for (size_t k = 0; k < nvr; ++k) {
     if (vr[k] != FmuLayout::kEnsembleMember || instance->phase == Phase::kStepping) {
       return vesselid::Fail(instance, fmi2Error, "Integer " + std::to_string(vr[k]) +

@@ -16,6 +16,7 @@
 #include "engine/output/results_json_text.h"
 #include "engine/output/run_fit_table.h"
 #include "engine/output/selection_report.h"
+#include "engine/output/stage_interpolation.h"
 #include "engine/output/step_regression_writer.h"
 #include "engine/output/turning_report.h"
 #include "engine/output/zigzag_report.h"
@@ -270,30 +271,6 @@ json LocalAnalysisToJson(const LocalAnalysis& a) {
   j["noise_sensitivity"] = table(a.noise_sensitivity);
   j["time_seconds"] = a.time_seconds;
   return j;
-}
-
-// Per model input, how the stage's experiments interpolate it (the method most of them use):
-// how a tool that simulates the model (the C export) reads a record as the run did.
-json StageInterpolation(const RunConfig& config, const StageConfig& stage) {
-  json methods = json::object();
-  for (const std::string& input : config.model->info().inputs) {
-    std::map<std::string, int> count;
-    for (const std::string& name : stage.experiments) {
-      for (const ExperimentSpec& spec : config.experiments) {
-        if (spec.name != name) continue;
-        const auto method = spec.interpolation.find(input);
-        ++count[InterpolationToString(
-            method == spec.interpolation.end() ? spec.default_interpolation : method->second)];
-      }
-    }
-    std::string most = InterpolationToString(Interpolation::kLinear);
-    int most_count = 0;
-    for (const auto& [method, n] : count) {
-      if (n > most_count) most = method, most_count = n;
-    }
-    methods[input] = most;
-  }
-  return methods;
 }
 
 json StageToJson(const RunConfig& config, const StageResult& stage, JsonSplices* splices) {

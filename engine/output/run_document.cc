@@ -10,6 +10,9 @@
 #include "engine/base/memory_budget.h"
 #include "engine/output/output_folder.h"
 #include "engine/output/output_staging.h"
+#include "engine/output/stage_interpolation.h"
+#include "engine/output/zigzag_report.h"
+#include "engine/run/display_units.h"
 #include "nlohmann/json.hpp"
 
 namespace vesselid {
@@ -26,6 +29,16 @@ constexpr std::uintmax_t kMaxResultsBytes = 256ull << 20;
 std::string Text(const json& j, const char* key) {
   const auto found = j.find(key);
   return found != j.end() && found->is_string() ? found->get<std::string>() : std::string();
+}
+
+// The state of an estimated start "x0.<state>[<experiment>]", once.
+void AddFreeState(std::string name, RunDocument* d) {
+  if (name.rfind("x0.", 0) == 0) name = name.substr(3);
+  name = name.substr(0, name.find('['));
+  if (std::find(d->free_initial_states.begin(), d->free_initial_states.end(), name) ==
+      d->free_initial_states.end()) {
+    d->free_initial_states.push_back(name);
+  }
 }
 
 // The last output-error stage (one with estimates and a model): the model the final values
@@ -57,13 +70,7 @@ void ReadModelStage(const json& stage, RunDocument* d) {
   }
   for (const json& e : stage.at("estimates")) {
     if (Text(e, "kind") != "initial_state" || Text(e, "role") != "free") continue;
-    std::string name = Text(e, "name");  // "x0.<state>[<experiment>]"
-    if (name.rfind("x0.", 0) == 0) name = name.substr(3);
-    name = name.substr(0, name.find('['));
-    if (std::find(d->free_initial_states.begin(), d->free_initial_states.end(), name) ==
-        d->free_initial_states.end()) {
-      d->free_initial_states.push_back(name);
-    }
+    AddFreeState(Text(e, "name"), d);
   }
 }
 
@@ -107,7 +114,64 @@ bool ReadCorrelation(const json& results, RunDocument* d, std::string* error) {
   return true;
 }
 
+// A number as results.json keeps it: not finite is unknown (null, read as NaN).
+double Kept(double value) { return std::isfinite(value) ? value : RunDocument::kNaN; }
+
+// The last stage's integration, interpolation, fit and estimated starts, as ReadModelStage
+// reads them back.
+void DescribeModelStage(const RunConfig& config, const StageResult& stage, RunDocument* d) {
+  d->has_model_stage = true;
+  d->integration_step = stage.integration_step > 0.0 ? stage.integration_step : RunDocument::kNaN;
+  for (const StageConfig& configured : config.stages) {
+    if (configured.options.name != stage.name) continue;
+    if (configured.model) d->options = configured.model_options;
+    d->max_step = configured.experiment.max_step;
+    d->interpolation = StageInterpolation(config, configured);
+  }
+  for (const ExperimentFit& fit : stage.summary.fits) {
+    for (const ChannelMetrics& m : fit.channels) {
+      const DisplayUnit unit = OutputDisplayUnit(config, m.experiment, m.output);
+      d->fit_metrics.push_back({m.output, unit.unit, Kept(unit.scale * m.rmse),
+                                static_cast<double>(m.samples)});
+    }
+  }
+  for (const Estimate& e : stage.estimates) {
+    if (e.kind == EstimateKind::kInitialState && e.role == ParameterRole::kFree) {
+      AddFreeState(e.name, d);
+    }
+  }
+}
+
 }  // namespace
+
+RunDocument RunDocumentOf(const RunConfig& config, const RunResult& result) {
+  RunDocument d;
+  d.path = config.path;
+  d.family = config.family;
+  d.options = config.model_options;
+  if (!result.stages.empty()) DescribeModelStage(config, result.stages.back(), &d);
+  for (const FinalParameter& f : result.parameters) {
+    d.parameters.push_back({f.name, ParameterRoleToString(f.role), Kept(f.value), Kept(f.std_error)});
+  }
+  for (const StageResult& stage : result.stages) {
+    const Uncertainty& u = stage.summary.uncertainty;
+    if (!u.available) continue;
+    d.correlation_names = stage.correlation_names;
+    d.correlation = stage.correlation.unaryExpr(&Kept);
+    d.replicate_names.clear();
+    d.replicate_values.clear();
+    if (u.bootstrap_runs > 0 && !u.replicates.empty()) {
+      d.replicate_names = u.replicate_names;
+      for (const std::vector<double>& values : u.replicates) {
+        std::vector<double> row;
+        for (double v : values) row.push_back(Kept(v));
+        d.replicate_values.push_back(std::move(row));
+      }
+    }
+  }
+  d.zigzags = ZigzagEntries(result.zigzags);
+  return d;
+}
 
 bool ReadRunDocument(const std::string& out_folder, RunDocument* document, std::string* error) {
   const std::string path = (fs::path(out_folder) / "results.json").string();

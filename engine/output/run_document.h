@@ -11,6 +11,7 @@
 #include "Eigen/Core"
 #include "engine/output/held_out_zigzags.h"
 #include "engine/run/run_config.h"
+#include "engine/run/run_result.h"
 
 namespace vesselid {
 
@@ -48,5 +49,9 @@ struct RunDocument {
 // The run whose outputs are in `out_folder` (its results.json); a publication a killed run
 // left is finished first. False with a message naming the file and the key.
 bool ReadRunDocument(const std::string& out_folder, RunDocument* document, std::string* error);
+
+// The same of a finished run in memory: what ReadRunDocument gives of the results.json it
+// writes (path: the run's config).
+RunDocument RunDocumentOf(const RunConfig& config, const RunResult& result);
 
 }  // namespace vesselid

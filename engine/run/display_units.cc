@@ -74,6 +74,20 @@ DisplayUnit ParameterDisplayUnit(const RunConfig& config, const std::string& nam
   return mapped ? InDegrees(shown.unit) : shown;
 }
 
+std::vector<std::string> DegreeChannels(const RunConfig& config) {
+  std::vector<std::string> names;
+  if (config.experiments.empty()) return names;
+  const ModelInfo& info = config.model->info();
+  for (const std::vector<std::string>* channels : {&info.inputs, &info.outputs}) {
+    for (const std::string& channel : *channels) {
+      if (ReadInDegrees(config.experiments.front(), channel).value_or(false)) {
+        names.push_back(channel);
+      }
+    }
+  }
+  return names;
+}
+
 DisplayUnitOf OutputUnits(const RunConfig& config) {
   return [&config](const std::string& experiment, const std::string& output) {
     return OutputDisplayUnit(config, experiment, output);

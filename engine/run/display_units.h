@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "engine/run/records.h"
 #include "engine/run/run_config.h"
@@ -43,6 +44,11 @@ using DisplayUnitOf =
 
 // The display unit of a parameter (ParameterDisplayUnit bound to a config).
 using ParameterUnitOf = std::function<DisplayUnit(const std::string& name)>;
+
+// The model inputs and outputs the run's first experiment reads in degrees (its `degrees:`):
+// what a user's tables for the model (Python's simulate, the traces) hold in degrees; a state
+// named as such an output is in degrees there too.
+std::vector<std::string> DegreeChannels(const RunConfig& config);
 
 // value x scale printed with `format`, then " unit" when the unit is stated: "2.5 deg".
 std::string ShownValue(double value, const DisplayUnit& unit, const char* format = "%.6g");

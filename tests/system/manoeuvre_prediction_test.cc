@@ -12,7 +12,8 @@
 #include <map>
 #include <string>
 
-#include "engine/export/exported_model.h"
+#include "engine/export/model_json.h"
+#include "engine/export/run_folder_model.h"
 #include "engine/export/manoeuvres.h"
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
@@ -60,10 +61,10 @@ TEST(ManoeuvrePrediction, CargoShipOvershootsAndTurningWithIntervalsHoldTheTruth
 
   // The truth's figures (configs/nomoto_cargo_noise.yaml: T1 45, T2 6, T3 10, K 0.09).
   const ModelRegistry registry = DefaultRegistry();
-  ExportedModel truth;
+  IdentifiedModel truth;
   std::string error;
   const auto model =
-      MakeExportedModel(registry, "nomoto", {{"type", "second_order"}}, &truth, &error);
+      MakeIdentifiedModel(registry, "nomoto", {{"type", "second_order"}}, &truth, &error);
   ASSERT_NE(model, nullptr) << error;
   const std::map<std::string, double> true_values = {
       {"T1", 45.0}, {"T2", 6.0}, {"T3", 10.0}, {"K", 0.09}, {"delta_0", 0.0}};
@@ -119,9 +120,9 @@ TEST(ManoeuvrePrediction, CargoShipOvershootsAndTurningWithIntervalsHoldTheTruth
 // branch of n1 r + n3 r^3 = 0, r = sqrt(-n1 / n3_nd) U/L.
 TEST(ManoeuvrePrediction, PullOutTellsTheUnstableTanker) {
   const ModelRegistry registry = DefaultRegistry();
-  ExportedModel tanker;
+  IdentifiedModel tanker;
   std::string error;
-  const auto model = MakeExportedModel(
+  const auto model = MakeIdentifiedModel(
       registry, "nomoto", {{"type", "norrbin_n1"}, {"length", "320"}}, &tanker, &error);
   ASSERT_NE(model, nullptr) << error;
   tanker.values = {2.2, 1.9, -0.3, 12.0, 0.0};  // T_nd, K_nd, n1, n3_nd, delta_0
@@ -144,10 +145,10 @@ TEST(ManoeuvrePrediction, PullOutTellsTheUnstableTanker) {
 // needs the speed as an input asks for it; a model without a rudder is refused.
 TEST(ManoeuvrePrediction, SaysWhatItCannotPredict) {
   const ModelRegistry registry = DefaultRegistry();
-  ExportedModel cargo;
+  IdentifiedModel cargo;
   std::string error;
   const auto model =
-      MakeExportedModel(registry, "nomoto", {{"type", "second_order"}}, &cargo, &error);
+      MakeIdentifiedModel(registry, "nomoto", {{"type", "second_order"}}, &cargo, &error);
   ASSERT_NE(model, nullptr) << error;
   cargo.values = {45.0, 6.0, 10.0, 0.09, 0.0};
   ManoeuvrePredictions predictions;
@@ -162,15 +163,15 @@ TEST(ManoeuvrePrediction, SaysWhatItCannotPredict) {
   ASSERT_FALSE(predictions.notes.empty());
   EXPECT_NE(predictions.notes.back().find("--length, --speed"), std::string::npos);
 
-  ExportedModel tanker;
-  const auto n1 = MakeExportedModel(registry, "nomoto", {{"type", "norrbin_n1"}, {"length", "320"}},
+  IdentifiedModel tanker;
+  const auto n1 = MakeIdentifiedModel(registry, "nomoto", {{"type", "norrbin_n1"}, {"length", "320"}},
                                     &tanker, &error);
   ASSERT_NE(n1, nullptr) << error;
   EXPECT_FALSE(PredictManoeuvres(tanker, *n1, ManoeuvreConditions(), &predictions, &error));
   EXPECT_NE(error.find("--speed"), std::string::npos) << error;
 
-  ExportedModel catamaran;
-  const auto six = MakeExportedModel(registry, "erunsal6dof", {}, &catamaran, &error);
+  IdentifiedModel catamaran;
+  const auto six = MakeIdentifiedModel(registry, "erunsal6dof", {}, &catamaran, &error);
   ASSERT_NE(six, nullptr) << error;
   EXPECT_FALSE(PredictManoeuvres(catamaran, *six, ManoeuvreConditions(), &predictions, &error));
   EXPECT_NE(error.find("rudder input 'delta'"), std::string::npos) << error;

@@ -24,7 +24,8 @@
 #include "Eigen/Dense"
 #include "engine/config/config.h"
 #include "engine/export/c_model.h"
-#include "engine/export/exported_model.h"
+#include "engine/export/model_json.h"
+#include "engine/export/run_folder_model.h"
 #include "engine/export/fmu_package.h"
 #include "engine/export/shared_library_needs.h"
 #include "engine/run/records.h"
@@ -111,7 +112,7 @@ double WorstDifference(const std::vector<double>& expected, const std::vector<do
 // The C export of `exported` (the model of `config`'s `stage`, whose first record `e` the
 // engine simulates from x0 as `reference`), built in dir/c and checked against the engine.
 void CheckCModel(const RunConfig& config, const StageConfig& stage, const ModelHandle& model,
-                 ExportedModel exported, const Experiment& e, const std::vector<double>& x0,
+                 IdentifiedModel exported, const Experiment& e, const std::vector<double>& x0,
                  const std::vector<double>& reference, const fs::path& dir) {
   const ModelInfo& info = model.info();
   const ExperimentSpec* spec = nullptr;
@@ -239,8 +240,8 @@ TEST_P(ModelExport, FmuAndCReproduceTheEnginesSimulationOfTheFirstRecord) {
     if (stage == nullptr && s.kind == StageConfig::Kind::kOutputError) stage = &s;
   }
   ASSERT_NE(stage, nullptr);
-  ExportedModel exported;
-  const std::shared_ptr<const ModelHandle> model = MakeExportedModel(
+  IdentifiedModel exported;
+  const std::shared_ptr<const ModelHandle> model = MakeIdentifiedModel(
       registry, config.family, config.StageModelOptions(*stage), &exported, &error);
   ASSERT_NE(model, nullptr) << error;
   const ModelInfo& info = model->info();

@@ -1,8 +1,6 @@
-#include "engine/export/exported_model.h"
+#include "engine/output/identified_model.h"
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <map>
@@ -10,41 +8,23 @@
 
 #include "Eigen/Cholesky"
 #include "Eigen/Eigenvalues"
-#include "engine/base/json_number.h"
 #include "engine/base/memory_budget.h"
+#include "engine/base/nan.h"
 #include "engine/data/interpolation.h"
+#include "engine/run/display_units.h"
 
 namespace vesselid {
 namespace {
 
-using nlohmann::json;
 
-constexpr int kFormatVersion = 1;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-std::vector<ExportedVariable> Variables(const std::vector<std::string>& names,
-                                        const std::function<std::string(int)>& unit) {
-  std::vector<ExportedVariable> variables;
+std::vector<ModelVariable> Variables(const std::vector<std::string>& names,
+                                     const std::function<std::string(int)>& unit) {
+  std::vector<ModelVariable> variables;
   for (size_t i = 0; i < names.size(); ++i) {
     variables.push_back({names[i], unit(static_cast<int>(i))});
   }
   return variables;
 }
-
-json VariablesToJson(const std::vector<ExportedVariable>& variables) {
-  json list = json::array();
-  for (const ExportedVariable& v : variables) list.push_back({{"name", v.name}, {"unit", v.unit}});
-  return list;
-}
-
-std::vector<ExportedVariable> VariablesFromJson(const json& list) {
-  std::vector<ExportedVariable> variables;
-  for (const json& v : list) variables.push_back({v.at("name"), v.at("unit")});
-  return variables;
-}
-
-// The largest results.json read: a run's holds its estimates, findings and metrics (the
-// traces are CSV files beside it), a few MiB; parsing one takes about twice its size.
 
 // Bytes an ensemble of `members` draws of `n` parameters takes: the vectors, and the
 // model.json text and document an export makes of them.
@@ -83,9 +63,20 @@ std::string CovarianceProblem(const std::vector<std::string>& names,
   return "";
 }
 
+// The model the run's final values belong to: the last stage's own restriction, else the
+// run's (what results.json names as the last model stage's model_options).
+std::shared_ptr<const ModelHandle> FinalModel(const RunConfig& config, const RunResult& result) {
+  if (!result.stages.empty()) {
+    for (const StageConfig& stage : config.stages) {
+      if (stage.options.name == result.stages.back().name && stage.model) return stage.model;
+    }
+  }
+  return config.model;
+}
+
 }  // namespace
 
-std::vector<std::vector<double>> DrawEnsemble(const ExportedModel& model, int members,
+std::vector<std::vector<double>> DrawEnsemble(const IdentifiedModel& model, int members,
                                               unsigned seed) {
   const int n = static_cast<int>(model.covariance_names.size());
   std::vector<int> index(n);
@@ -117,16 +108,13 @@ std::vector<std::vector<double>> DrawEnsemble(const ExportedModel& model, int me
   return ensemble;
 }
 
-std::shared_ptr<const ModelHandle> MakeExportedModel(const ModelRegistry& registry,
-                                                     const std::string& family,
-                                                     const ModelOptions& options,
-                                                     ExportedModel* m, std::string* error) {
-  std::shared_ptr<const ModelHandle> handle = registry.MakeModel(family, options, error);
-  if (handle == nullptr) return nullptr;
+void DescribeModel(std::shared_ptr<const ModelHandle> handle, const std::string& family,
+                   const ModelOptions& options, IdentifiedModel* m) {
   const ModelInfo& info = handle->info();
   m->family = family;
   m->options = options;
   m->model = info.name;
+  m->handle = std::move(handle);
   m->states = Variables(info.states, [&](int i) { return info.StateUnit(i); });
   m->inputs = Variables(info.inputs, [&](int i) { return info.InputUnit(i); });
   m->outputs = Variables(info.outputs, [&](int i) { return info.OutputUnit(i); });
@@ -137,35 +125,15 @@ std::shared_ptr<const ModelHandle> MakeExportedModel(const ModelRegistry& regist
   m->covariance_names.clear();
   m->covariance.resize(0, 0);
   m->ensemble.clear();
-  return handle;
 }
 
-bool ReadExportedModel(const std::string& out_folder, const ModelRegistry& registry, int members,
-                       unsigned seed, ExportedModel* model, std::string* error,
-                       RunDocument* document) {
-  RunDocument read;
-  if (!ReadRunDocument(out_folder, &read, error) ||
-      !ExportedModelOf(read, registry, members, seed, model, error)) {
-    return false;
-  }
-  if (document != nullptr) *document = std::move(read);
-  return true;
-}
-
-bool ExportedModelOf(const RunDocument& d, const ModelRegistry& registry, int members,
-                     unsigned seed, ExportedModel* model, std::string* error) {
+bool IdentifiedModelOf(const RunDocument& d, std::shared_ptr<const ModelHandle> handle,
+                       int members, unsigned seed, IdentifiedModel* model, std::string* error) {
   const std::string& path = d.path;
-  ExportedModel m;
+  IdentifiedModel m;
+  DescribeModel(std::move(handle), d.family, d.options, &m);
   m.results = path;
-  m.family = d.family;
-  m.options = d.options;
-  const std::shared_ptr<const ModelHandle> handle =
-      MakeExportedModel(registry, m.family, m.options, &m, error);
-  if (handle == nullptr) {
-    *error = path + ": model: " + *error;
-    return false;
-  }
-  const ModelInfo& info = handle->info();
+  const ModelInfo& info = m.handle->info();
   std::map<std::string, int> index;
   for (size_t i = 0; i < info.parameters.size(); ++i) index[info.parameters[i]] = static_cast<int>(i);
   for (const RunDocument::Parameter& p : d.parameters) {
@@ -250,94 +218,14 @@ bool ExportedModelOf(const RunDocument& d, const ModelRegistry& registry, int me
   return true;
 }
 
-json ExportedModelToJson(const ExportedModel& m) {
-  json parameters = json::array();
-  for (size_t i = 0; i < m.parameters.size(); ++i) {
-    parameters.push_back({{"name", m.parameters[i].name},
-                          {"unit", m.parameters[i].unit},
-                          {"value", m.values[i]},
-                          {"std_error", JsonNumber(m.std_errors[i])}});
-  }
-  json matrix = json::array();
-  for (int r = 0; r < m.covariance.rows(); ++r) {
-    json line = json::array();
-    for (int c = 0; c < m.covariance.cols(); ++c) line.push_back(m.covariance(r, c));
-    matrix.push_back(line);
-  }
-  json interpolation = json::object();
-  for (size_t i = 0; i < m.inputs.size() && i < m.interpolation.size(); ++i) {
-    interpolation[m.inputs[i].name] = m.interpolation[i];
-  }
-  return {{"format", "vesselid-model"},
-          {"version", kFormatVersion},
-          {"family", m.family},
-          {"model", m.model},
-          {"options", m.options},
-          {"states", VariablesToJson(m.states)},
-          {"inputs", VariablesToJson(m.inputs)},
-          {"outputs", VariablesToJson(m.outputs)},
-          {"parameters", parameters},
-          {"covariance", {{"names", m.covariance_names}, {"matrix", matrix}}},
-          {"ensemble",
-           {{"source", m.ensemble_source}, {"seed", m.ensemble_seed}, {"members", m.ensemble}}},
-          {"max_step", m.max_step},
-          {"interpolation", interpolation},
-          {"results", m.results}};
-}
-
-bool ExportedModelFromJson(const json& j, ExportedModel* model, std::string* error) {
-  try {
-    if (j.at("format") != "vesselid-model" || j.at("version") != kFormatVersion) {
-      *error = "not a vesselid model.json of version " + std::to_string(kFormatVersion);
-      return false;
-    }
-    ExportedModel m;
-    m.family = j.at("family");
-    m.model = j.at("model");
-    m.options = j.at("options").get<ModelOptions>();
-    m.states = VariablesFromJson(j.at("states"));
-    m.inputs = VariablesFromJson(j.at("inputs"));
-    m.outputs = VariablesFromJson(j.at("outputs"));
-    for (const json& p : j.at("parameters")) {
-      m.parameters.push_back({p.at("name"), p.at("unit")});
-      m.values.push_back(p.at("value"));
-      m.std_errors.push_back(NumberOr(p.at("std_error"), kNaN));
-    }
-    m.covariance_names = j.at("covariance").at("names").get<std::vector<std::string>>();
-    const json& matrix = j.at("covariance").at("matrix");
-    const int n = static_cast<int>(m.covariance_names.size());
-    m.covariance.resize(n, n);
-    for (int r = 0; r < n; ++r) {
-      for (int c = 0; c < n; ++c) m.covariance(r, c) = matrix.at(r).at(c);
-    }
-    m.ensemble = j.at("ensemble").at("members").get<std::vector<std::vector<double>>>();
-    m.ensemble_seed = j.at("ensemble").at("seed");
-    m.ensemble_source = j.at("ensemble").value("source", "covariance");
-    for (const std::vector<double>& member : m.ensemble) {
-      if (member.size() != m.values.size()) {
-        *error = "ensemble member of " + std::to_string(member.size()) + " values, expected " +
-                 std::to_string(m.values.size());
-        return false;
-      }
-    }
-    m.max_step = j.at("max_step");
-    const json methods = j.value("interpolation", json::object());
-    for (const ExportedVariable& input : m.inputs) {
-      Interpolation method = Interpolation::kLinear;
-      const std::string text = methods.value(input.name, InterpolationToString(method));
-      if (!StringToInterpolation(text, &method)) {
-        *error = "interpolation." + input.name + ": unknown method '" + text + "'";
-        return false;
-      }
-      m.interpolation.push_back(text);
-    }
-    m.results = j.value("results", "");
-    *model = std::move(m);
-    return true;
-  } catch (const json::exception& e) {
-    *error = std::string("model.json: ") + e.what();
+bool IdentifiedModelOf(const RunConfig& config, const RunResult& result, int members,
+                       unsigned seed, IdentifiedModel* model, std::string* error) {
+  if (!IdentifiedModelOf(RunDocumentOf(config, result), FinalModel(config, result), members,
+                         seed, model, error)) {
     return false;
   }
+  model->degree_names = DegreeChannels(config);
+  return true;
 }
 
 }  // namespace vesselid
