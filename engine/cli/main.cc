@@ -23,30 +23,25 @@
 #include <iostream>
 
 #include "CLI/CLI.hpp"
-#include "engine/base/atomic_file.h"
-#include "engine/base/file_name.h"
 #include "engine/base/parallel_for.h"
 #include "engine/base/stop_request.h"
 #include "engine/cli/terminal_progress.h"
+#include "engine/command/design_command.h"
+#include "engine/command/run_command.h"
+#include "engine/command/select_command.h"
+#include "engine/command/simulate_command.h"
+#include "engine/command/study_command.h"
 #include "engine/config/config.h"
-#include "engine/design/design_config.h"
 #include "engine/design/design_report.h"
-#include "engine/design/design_run.h"
 #include "engine/diagnose/run_findings.h"
 #include "engine/export/export_run.h"
 #include "engine/export/fmu_package.h"
 #include "engine/output/checkpoint.h"
 #include "engine/output/finding_report.h"
-#include "engine/output/output_folder.h"
-#include "engine/output/output_staging.h"
+#include "engine/output/reserved_names.h"
 #include "engine/output/results_text.h"
 #include "engine/output/selection_report.h"
-#include "engine/report/results_writer.h"
-#include "engine/report/started_gnuplots.h"
-#include "engine/run/pipeline.h"
-#include "engine/select/selection.h"
 #include "engine/select/selection_config.h"
-#include "engine/study/study_json.h"
 #include "engine/study/study_runner.h"
 #include "glog/logging.h"
 #include "problems/registry.h"
@@ -70,42 +65,13 @@ bool Load(const std::string& config_path, const std::string& data_dir,
                                   read_reference);
 }
 
-// Locks --out after checking it, and that nothing written there replaces an input.
-std::unique_ptr<vesselid::OutputFolder> OpenOutput(const std::string& out_dir,
-                                                   const vesselid::PlannedOutputs& planned,
-                                                   const std::vector<std::string>& inputs,
-                                                   std::string* error) {
-  if (!vesselid::CheckInputsSurvive(out_dir, planned, inputs, error)) return nullptr;
-  return vesselid::OutputFolder::Open(out_dir, error);
-}
-
 int Simulate(const std::string& config_path, const std::string& out_dir) {
   vesselid::ConfigFile config;
   std::string error;
-  // The simulation section is checked whole before --out is touched.
+  std::vector<std::string> files;
   // The records are made before any run: a reference run need not exist yet.
   if (!Load(config_path, out_dir, &config, &error, /*read_reference=*/false) ||
-      !vesselid::SimulateConfig(config, out_dir, &error, /*check_only=*/true)) {
-    return Fail(error);
-  }
-  // The simulated files are the config's experiment files, resolved into out_dir.
-  vesselid::PlannedOutputs planned;
-  for (const vesselid::ExperimentSpec& spec : config.run.experiments) {
-    planned.files.push_back(std::filesystem::path(spec.file).filename().string());
-  }
-  const auto folder = OpenOutput(out_dir, planned, {config_path}, &error);
-  if (folder == nullptr) return Fail(error);
-  // Staged and published as one set (output_staging.h): the files appear together, or the
-  // earlier ones stay as they were. The set is the config's: simulating it again replaces
-  // what it wrote before; other configs' files in the folder stay.
-  const std::string set =
-      "simulate." + vesselid::FileNameOf(std::filesystem::path(config_path).stem().string());
-  const auto staging = vesselid::OutputStaging::Begin(out_dir, set, &error);
-  if (staging == nullptr || !vesselid::SimulateConfig(config, staging->folder(), &error)) {
-    return Fail(error);
-  }
-  if (vesselid::StopRequested()) return Fail("stopped before the simulated files were published");
-  if (!planned.files.empty() && !staging->Publish(planned.files.back(), &error)) {
+      !vesselid::SimulateCommand(config, config_path, out_dir, true, &files, &error)) {
     return Fail(error);
   }
   std::printf("simulated experiments of %s into %s\n", config_path.c_str(), out_dir.c_str());
@@ -150,13 +116,10 @@ int Predict(const std::string& run_dir, const std::string& out_dir,
 // written into `out_dir` (default <run_dir>/design) as one set; design.txt printed.
 int Design(const std::string& config_path, const std::string& run_dir, const std::string& out_dir,
            int threads, bool quiet) {
-  vesselid::DesignOptions options;
-  std::string error;
-  if (!vesselid::LoadDesign(config_path, &options, &error)) return Fail(error);
-  if (threads > 0) options.threads = threads;
   vesselid::DesignResult result;
-  if (!vesselid::PlanNextExperiment(Registry(), options, run_dir, &result, &error) ||
-      !vesselid::WriteDesign(result, out_dir, &error)) {
+  std::string error;
+  if (!vesselid::DesignCommand(Registry(), config_path, "", run_dir, threads, true, out_dir,
+                               &result, &error)) {
     return Fail(error);
   }
   const std::string where =
@@ -239,90 +202,12 @@ int Interrupted(const std::string& config_path, const std::string& data_dir,
   return 128 + signal;
 }
 
-// A staged run: progress on stderr, a checkpoint in out_dir after each stage; with --resume,
-// the stages an earlier run of the same config and data finished are loaded, not rerun.
-// `selection` (may be null): the structure selection that chose `config` (`vesselid select`),
-// shown in every output.
-int RunConfigured(const vesselid::RunConfig& config, const std::string& config_path,
-                  const std::string& data_dir, const std::string& out_dir, const RunFlags& flags,
-                  std::shared_ptr<const vesselid::SelectionResult> selection = nullptr) {
-  std::string error, fingerprint;
-  if (!vesselid::RunFingerprint(config, &fingerprint, &error)) return Fail(error);
-  const auto folder =
-      OpenOutput(out_dir, vesselid::RunOutputs(config), vesselid::RunInputs(config), &error);
-  if (folder == nullptr) return Fail(error);
-  // report.html's gnuplots start now, while the stages run: one per group of figures
-  // (RenderFigures draws at most one group per core).
-  if (!flags.no_report) vesselid::StartGnuplots(vesselid::ParallelThreads(0));
-  vesselid::TerminalProgress progress(
-      vesselid::TerminalProgress::ChooseMode(stderr, flags.quiet, flags.verbose), stderr,
-      config.stages.size());
-  std::vector<vesselid::StageResult> finished;
-  if (!vesselid::AdoptUnpublishedCheckpoint(out_dir, &error)) return Fail(error);
-  if (flags.resume && !vesselid::LoadCheckpoint(out_dir, fingerprint, &finished, &error)) {
-    return Fail(error);
-  }
-  if (flags.resume) {
-    progress.Note(finished.empty() ? "no checkpoint in " + out_dir + ": starting from the first stage"
-                                   : "resuming after stage '" + finished.back().name + "' (" +
-                                         std::to_string(finished.size()) + " of " +
-                                         std::to_string(config.stages.size()) +
-                                         " stages from the checkpoint)");
-  }
-  vesselid::RunObserver observer;
-  size_t interrupted_stage = config.stages.size();  // the stage a signal cut short
-  // A checkpoint that cannot be written (a full disk) fails the run like any write: nothing
-  // is published, and the earlier set stays whole.
-  bool checkpoint_failed = false;
-  observer.stage_started = [&](size_t index, const std::string& name) {
-    progress.StageStarted(index, name);
-  };
-  observer.progress = [&](const vesselid::SolveProgress& p) { progress.Iteration(p); };
-  observer.stage_finished = [&](size_t index, const vesselid::StageResult& stage,
-                                std::string* error) {
-    if (stop_signal != 0) {
-      interrupted_stage = index;
-      *error = "interrupted";
-      return false;
-    }
-    progress.StageFinished(stage);
-    // A fresh run replaces an earlier checkpoint once its first stage is done.
-    if ((index == 0 && !vesselid::StartCheckpoint(out_dir, fingerprint, error)) ||
-        !vesselid::SaveStageCheckpoint(out_dir, fingerprint, index, stage, error)) {
-      checkpoint_failed = true;
-      return false;
-    }
-    return true;
-  };
-  vesselid::RunResult result;
-  CatchStopSignals();
-  const bool complete =
-      vesselid::Identify(config, &result, &error, observer, std::move(finished));
-  if (stop_signal != 0) {
-    // A solve the stop request ended fails its stage, which never reaches stage_finished.
-    if (!complete && interrupted_stage == config.stages.size()) {
-      interrupted_stage = result.stages.size();
-    }
-    return Interrupted(config_path, data_dir, out_dir, config, interrupted_stage);
-  }
-  if (checkpoint_failed) {
-    return Fail(error + " (the checkpoint could not be written; nothing published: " + out_dir +
-                " is as before)");
-  }
-  // A run that stopped after finishing a stage still writes what it finished.
-  if (!complete && result.stages.empty()) return Fail(error);
-  result.selection = std::move(selection);
-  std::string write_error;
-  if (!vesselid::WriteRunResults(config, result, out_dir, &write_error, !flags.no_report,
-                                 /*with_checkpoint=*/true)) {
-    if (stop_signal != 0)
-      return Interrupted(config_path, data_dir, out_dir, config, interrupted_stage);
-    return Fail(write_error);
-  }
-  vesselid::RemoveWorkingCheckpoint(out_dir);  // published with the results
+// What a finished run prints: the summary (unless quiet), its failures and warnings on stderr
+// (notes too with --verbose), the results path and the verdict last; the exit status.
+int Finished(const vesselid::RunConfig& config, const std::string& out_dir,
+             const RunFlags& flags, const vesselid::RunOutcome& outcome) {
+  const vesselid::RunResult& result = outcome.result;
   if (!flags.quiet) std::cout << vesselid::RunResultToText(config, result);
-  // Failures and warnings on stderr, never silenced (notes too with --verbose), the verdict
-  // last.
   const std::vector<vesselid::Finding> findings = vesselid::AllFindings(result);
   for (const vesselid::Finding& f : findings) {
     if (f.severity == vesselid::FindingSeverity::kInfo && !flags.verbose) continue;
@@ -330,15 +215,69 @@ int RunConfigured(const vesselid::RunConfig& config, const std::string& config_p
   }
   std::printf("%sresults written to %s\n", flags.quiet ? "" : "\n",
               (std::filesystem::path(out_dir) / "results.json").lexically_normal().c_str());
-  if (!complete) {
-    return Fail("the run stopped in stage '" + result.stopped_stage + "': " + error + "; the " +
-                std::to_string(result.stages.size()) + " finished stage(s) are in " + out_dir +
-                "/results.json");
+  if (outcome.status == vesselid::RunOutcome::Status::kStopped) {
+    return Fail("the run stopped in stage '" + result.stopped_stage + "': " + outcome.error +
+                "; the " + std::to_string(result.stages.size()) + " finished stage(s) are in " +
+                out_dir + "/results.json");
   }
   std::fprintf(stderr, "vesselid: %s\n", vesselid::VerdictLine(result.verdict, findings).c_str());
   if (flags.strict && result.verdict == vesselid::Verdict::kDoubtful) return kExitDoubtful;
   if (flags.strict && result.verdict == vesselid::Verdict::kFailed) return kExitFailed;
   return 0;
+}
+
+// How a run ended, for the shell: its outputs and verdict, or why it did not finish.
+int Ended(const vesselid::RunConfig& config, const std::string& config_path,
+          const std::string& data_dir, const std::string& out_dir, const RunFlags& flags,
+          const vesselid::RunOutcome& outcome) {
+  switch (outcome.status) {
+    case vesselid::RunOutcome::Status::kInterrupted:
+      return Interrupted(config_path, data_dir, out_dir, config, outcome.stage);
+    case vesselid::RunOutcome::Status::kFailed:
+      return Fail(outcome.error);
+    default:
+      return Finished(config, out_dir, flags, outcome);
+  }
+}
+
+// The request of a run from the command line: a checkpoint in out_dir after each stage; with
+// --resume, the stages an earlier run of the same config and data finished are loaded, not
+// rerun; a signal stops it after the current solver iteration.
+vesselid::RunRequest Request(const std::string& out_dir, const RunFlags& flags,
+                             vesselid::TerminalProgress* progress) {
+  vesselid::RunRequest request;
+  request.out_dir = out_dir;
+  request.resume = flags.resume;
+  request.html_report = !flags.no_report;
+  request.stop_requested = [] { return stop_signal != 0; };
+  request.note = [progress](const std::string& line) { progress->Note(line); };
+  return request;
+}
+
+// The observer that shows a run's progress on stderr.
+vesselid::RunObserver Observer(vesselid::TerminalProgress* progress) {
+  vesselid::RunObserver observer;
+  observer.stage_started = [progress](size_t index, const std::string& name) {
+    progress->StageStarted(index, name);
+  };
+  observer.progress = [progress](const vesselid::SolveProgress& p) { progress->Iteration(p); };
+  observer.stage_finished = [progress](size_t, const vesselid::StageResult& stage, std::string*) {
+    progress->StageFinished(stage);
+    return true;
+  };
+  return observer;
+}
+
+// A staged run (run_command.h): progress on stderr, the outputs and verdict at the end.
+int RunConfigured(const vesselid::RunConfig& config, const std::string& config_path,
+                  const std::string& data_dir, const std::string& out_dir, const RunFlags& flags) {
+  vesselid::TerminalProgress progress(
+      vesselid::TerminalProgress::ChooseMode(stderr, flags.quiet, flags.verbose), stderr,
+      config.stages.size());
+  vesselid::RunOutcome outcome;
+  CatchStopSignals();
+  vesselid::RunCommand(config, Request(out_dir, flags, &progress), Observer(&progress), &outcome);
+  return Ended(config, config_path, data_dir, out_dir, flags, outcome);
 }
 
 int Run(const std::string& config_path, const std::string& data_dir, const std::string& out_dir,
@@ -354,7 +293,7 @@ int Run(const std::string& config_path, const std::string& data_dir, const std::
 // run as `vesselid run` runs a config, its outputs showing the selection.
 int Select(const std::string& config_path, const std::string& data_dir, const std::string& out_dir,
            int threads, const RunFlags& flags) {
-  vesselid::ProcessGroup group(nullptr, nullptr);
+  const vesselid::ProcessGroup group(nullptr, nullptr);  // MPI under mpirun
   vesselid::SelectionSetup setup;
   std::string error;
   if (!vesselid::LoadSelection(config_path, data_dir, Registry(), &setup, &error)) {
@@ -362,18 +301,24 @@ int Select(const std::string& config_path, const std::string& data_dir, const st
   }
   if (threads > 0) setup.options.cases.threads = threads;
   const bool report = !flags.quiet && group.root();
-  auto progress = [report](const std::string& line) {
+  auto lines = [report](const std::string& line) {
     if (report) std::fprintf(stderr, "%s\n", line.c_str());
   };
-  auto selection = std::make_shared<vesselid::SelectionResult>();
-  if (!vesselid::RunSelection(setup.candidates, setup.options, selection.get(), &error, progress)) {
-    return group.root() ? Fail(error) : 1;
-  }
-  if (!group.root()) return 0;
-  if (selection->chosen < 0) return Fail("select: " + selection->reason);
-  if (!flags.quiet) std::cout << vesselid::SelectionText(*selection) << "\n";
-  const vesselid::RunConfig& chosen = setup.candidates[selection->chosen].config;
-  return RunConfigured(chosen, config_path, data_dir, out_dir, flags, selection);
+  // The chosen candidate's stages are shown as a run's.
+  vesselid::TerminalProgress progress(
+      vesselid::TerminalProgress::ChooseMode(stderr, flags.quiet, flags.verbose), stderr, 0);
+  vesselid::SelectOutcome outcome;
+  CatchStopSignals();
+  auto chosen = [&](const vesselid::SelectOutcome& selection) {
+    if (!flags.quiet) std::cout << vesselid::SelectionText(*selection.selection) << "\n";
+    progress.set_stages(selection.chosen->stages.size());
+  };
+  const bool selected =
+      vesselid::SelectCommand(setup, Request(out_dir, flags, &progress), Observer(&progress),
+                              lines, chosen, &outcome, &error);
+  if (!outcome.root) return selected ? 0 : 1;
+  if (!selected) return Fail(error);
+  return Ended(*outcome.chosen, config_path, data_dir, out_dir, flags, outcome.run);
 }
 
 // The config's `study` section on the config's data. Under `mpirun` every rank runs its share
@@ -381,44 +326,24 @@ int Select(const std::string& config_path, const std::string& data_dir, const st
 // part ran.
 int Study(const std::string& config_path, const std::string& data_dir, const std::string& out_dir,
           const std::vector<std::string>& only, int threads, bool quiet) {
-  vesselid::ProcessGroup group(nullptr, nullptr);
+  const vesselid::ProcessGroup group(nullptr, nullptr);  // MPI under mpirun
   vesselid::ConfigFile config;
   std::string error;
-  if (!Load(config_path, data_dir, &config, &error)) return group.root() ? Fail(error) : 1;
+  if (!Load(config_path, data_dir, &config, &error)) {
+    return group.root() ? Fail(error) : 1;
+  }
   if (threads > 0) config.study.execution.threads = threads;
   const bool report = !quiet && group.root();
   auto progress = [report](const std::string& line) {
     if (report) std::fprintf(stderr, "%s\n", line.c_str());
   };
-  // Checked and locked before the study; under mpirun by rank 0 once the study is done
-  // (an early return there would leave the other ranks waiting in the study's collectives).
-  std::unique_ptr<vesselid::OutputFolder> folder;
-  auto open_output = [&] {
-    folder = OpenOutput(out_dir, vesselid::RunOutputs(config.run), vesselid::RunInputs(config.run), &error);
-    return folder != nullptr;
-  };
-  if (group.size() == 1 && !open_output()) return Fail(error);
-  nlohmann::json result;
-  std::string text;
-  if (!vesselid::RunStudy(config.run, config.study, only, &result, &text, &error, progress)) {
-    return group.root() ? Fail(error) : 1;
-  }
-  if (!group.root()) return 0;
-  if (folder == nullptr && !open_output()) return Fail(error);
-  // study.txt and study.json appear together (output_staging.h).
-  const auto staging =
-      vesselid::OutputStaging::Begin(out_dir, "study", &error);
-  if (staging == nullptr) return Fail(error);
-  const std::filesystem::path out(staging->folder());
-  if (!vesselid::WriteFileAtomically((out / "study.txt").string(), text, &error) ||
-      !vesselid::WriteFileAtomically((out / "study.json").string(), result.dump(2) + "\n",
-                                     &error) ||
-      !staging->Publish("study.json", &error)) {
-    return Fail(error);
-  }
-  if (!quiet) std::cout << text;
+  vesselid::StudyOutcome outcome;
+  const bool ok = vesselid::StudyCommand(config, only, true, out_dir, true, progress, &outcome, &error);
+  if (!outcome.root) return ok ? 0 : 1;
+  if (!ok) return Fail(error);
+  if (!quiet) std::cout << outcome.text;
   // What a part found doubtful reaches stderr too, as a run's findings do.
-  for (const auto& [part, section] : result.items()) {
+  for (const auto& [part, section] : outcome.result.items()) {
     if (!section.is_object() || !section.contains("notes")) continue;
     for (const auto& note : section["notes"]) {
       std::fprintf(stderr, "note: study %s: %s\n", part.c_str(),

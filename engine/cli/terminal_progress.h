@@ -22,6 +22,8 @@ class TerminalProgress {
   TerminalProgress(Mode mode, std::FILE* stream, size_t stages);
 
   void StageStarted(size_t index, const std::string& name);
+  // The run's stage count, once known (`vesselid select`: the chosen candidate's).
+  void set_stages(size_t stages) { stages_ = stages; }
   void Iteration(const SolveProgress& progress);
   void StageFinished(const StageResult& stage);
   // A line of its own (resume notes), in every mode but quiet.

@@ -13,6 +13,7 @@
 #include "engine/data/latent_input.h"
 #include "engine/data/noise_level.h"
 #include "engine/data/record_start.h"
+#include "engine/model/step_plan.h"
 
 namespace vesselid {
 namespace {
@@ -262,11 +263,11 @@ bool PlanSteps(const ExperimentOptions& options, Experiment* e, std::vector<doub
   const int nodes = e->num_nodes();
   std::vector<double> intervals;
   for (int k = 0; k + 1 < nodes; ++k) intervals.push_back(e->node_time[k + 1] - e->node_time[k]);
-  const double max_step = options.max_step > 0 ? options.max_step : UpperMedian(intervals, 0.0);
+  const double max_step = StepBound(intervals, options.max_step);
   std::vector<double> substeps;
   double total_steps = 0.0;
   for (double interval : intervals) {
-    substeps.push_back(std::max(1.0, std::ceil(interval / max_step - 1e-6)));
+    substeps.push_back(StepsIn(interval, max_step));
     total_steps += substeps.back();
   }
   if (!(total_steps <= static_cast<double>(options.max_steps))) {

@@ -3,6 +3,9 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/base/work_limits.h"
+#include "engine/model/step_plan.h"
+
 namespace vesselid {
 
 bool SimulateOpenLoop(const ModelHandle& model, const std::vector<double>& parameters,
@@ -16,16 +19,36 @@ bool SimulateOpenLoop(const ModelHandle& model, const std::vector<double>& param
     *error = "initial state or parameter vector has the wrong size for " + info.name;
     return false;
   }
-  if (options.substeps < 1 || inputs.t.size() < 2) {
-    *error = "need substeps >= 1 and at least two input samples";
+  if (options.substeps < 0 || inputs.t.size() < 2) {
+    *error = "need substeps >= 0 and at least two input samples";
     return false;
   }
-  // Input values at every substep point and midpoint.
-  const int m = options.substeps;
   const size_t samples = inputs.t.size();
+  // Steps per sample interval.
+  std::vector<int> steps(samples - 1, options.substeps);
+  if (options.substeps == 0) {
+    std::vector<double> intervals;
+    for (size_t k = 0; k + 1 < samples; ++k) intervals.push_back(inputs.t[k + 1] - inputs.t[k]);
+    const double bound = StepBound(intervals, options.max_step);
+    double total = 0.0;
+    for (size_t k = 0; k + 1 < samples; ++k) total += StepsIn(intervals[k], bound);
+    if (!(bound > 0.0) || !(total <= static_cast<double>(WorkLimits().integration_steps))) {
+      *error = "steps of at most " + std::to_string(bound) + " s over the inputs' " +
+               std::to_string(inputs.t.back() - inputs.t.front()) +
+               " s are more than the integration step limit";
+      return false;
+    }
+    for (size_t k = 0; k + 1 < samples; ++k) steps[k] = static_cast<int>(StepsIn(intervals[k], bound));
+  }
+  if (!options.input_interpolation.empty() && options.input_interpolation.size() != info.inputs.size()) {
+    *error = "an interpolation per input of " + info.name + " is needed";
+    return false;
+  }
+  // Input values at every step's start and midpoint.
   // Per step: start, midpoint, end (left limit: a held command switches at the next step).
   std::vector<double> times, ends;
   for (size_t k = 0; k + 1 < samples; ++k) {
+    const int m = steps[k];
     const double h = (inputs.t[k + 1] - inputs.t[k]) / m;
     for (int s = 0; s < m; ++s) {
       times.push_back(inputs.t[k] + s * h);
@@ -47,8 +70,10 @@ bool SimulateOpenLoop(const ModelHandle& model, const std::vector<double>& param
       continue;
     }
     const Channel channel = ExtractChannel(inputs, column);
-    u[i] = InterpolateAt(channel, options.interpolation, times);
-    u_end[i] = InterpolateAt(channel, options.interpolation, ends, true);
+    const Interpolation method =
+        options.input_interpolation.empty() ? options.interpolation : options.input_interpolation[i];
+    u[i] = InterpolateAt(channel, method, times);
+    u_end[i] = InterpolateAt(channel, method, ends, true);
   }
 
   Trajectory out;
@@ -85,17 +110,20 @@ bool SimulateOpenLoop(const ModelHandle& model, const std::vector<double>& param
       for (int i = 0; i < nx; ++i) out.columns[first_state + i].push_back(x[i]);
     }
     if (k + 1 == samples) break;
+    const int m = steps[k];
     const double h = (inputs.t[k + 1] - inputs.t[k]) / m;
+    // Rk4Step's arithmetic, term for term (rk4.h).
+    const double half_h = 0.5 * h, sixth_h = h / 6.0;
     for (int s = 0; s < m; ++s, j += 2) {
       bool ok = model.Derivative(x.data(), input_at(j), parameters.data(), k1.data());
-      for (int i = 0; i < nx; ++i) xs[i] = x[i] + 0.5 * h * k1[i];
+      for (int i = 0; i < nx; ++i) xs[i] = x[i] + half_h * k1[i];
       ok = ok && model.Derivative(xs.data(), input_at(j + 1), parameters.data(), k2.data());
-      for (int i = 0; i < nx; ++i) xs[i] = x[i] + 0.5 * h * k2[i];
+      for (int i = 0; i < nx; ++i) xs[i] = x[i] + half_h * k2[i];
       ok = ok && model.Derivative(xs.data(), input_at(j + 1), parameters.data(), k3.data());
       for (int i = 0; i < nx; ++i) xs[i] = x[i] + h * k3[i];
       ok = ok && model.Derivative(xs.data(), input_end(j / 2), parameters.data(), k4.data());
       for (int i = 0; i < nx; ++i) {
-        x[i] += h / 6.0 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+        x[i] += sixth_h * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
         ok = ok && std::isfinite(x[i]);
       }
       if (!ok) {

@@ -2,13 +2,14 @@
 #
 #   base < data < model < solve < regression < step_regression < run < diagnose < {study, output}
 #        < report < config < {export, select} < design < engine/vesselid.h (the public API)
-#        < problems
+#        < {problems, command}
 #        < {cli, fmu}
 #
 # study and output are siblings (neither includes the other); output holds the result files
 # (results.json, report.txt, traces, checkpoints), report the HTML report above them; export
 # turns a run's results into a model to take out (model.json, C, FMU). Only the command line
-# and the FMU's runtime library (fmu, siblings) may include problems/. Run as `cmake -DROOT=<source tree> -P layering_check.cmake`; every
+# and the FMU's runtime library (fmu, siblings) may include problems/. command holds the
+# commands (run, select, study, simulate, design) the command line and Python both call. Run as `cmake -DROOT=<source tree> -P layering_check.cmake`; every
 # upward include is listed as file:line and the script fails if there is one.
 if(NOT ROOT)
   message(FATAL_ERROR "layering_check: pass -DROOT=<source tree>")
@@ -31,6 +32,7 @@ set(rank_select 11)
 set(rank_design 12)
 set(rank_api 13)       # engine/vesselid.h
 set(rank_problems 14)
+set(rank_command 14)
 set(rank_cli 15)
 set(rank_fmu 15)
 
