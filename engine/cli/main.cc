@@ -25,6 +25,7 @@
 #include "CLI/CLI.hpp"
 #include "engine/base/parallel_for.h"
 #include "engine/base/stop_request.h"
+#include "engine/base/version.h"
 #include "engine/cli/terminal_progress.h"
 #include "engine/command/design_command.h"
 #include "engine/command/run_command.h"
@@ -364,6 +365,7 @@ int main(int argc, char** argv) {
   std::signal(SIGXFSZ, SIG_IGN);
   FLAGS_minloglevel = google::GLOG_FATAL;
   CLI::App app{"vesselid: output-error identification of vessel motion models"};
+  app.set_version_flag("--version", vesselid::kVersion);
   app.require_subcommand(1);
   std::string config_path, out_dir, data_dir;
   bool quiet = false;

@@ -27,11 +27,12 @@ bool RunCommand(const RunConfig& config, const RunRequest& request, const RunObs
   *outcome = RunOutcome();
   const std::string& out_dir = request.out_dir;
   const bool writes = request.write;
+  const bool checkpoints = writes && request.checkpoint;
   std::string error, fingerprint;
   std::unique_ptr<OutputFolder> folder;
   std::vector<StageResult> finished;
   if (writes) {
-    if (!RunFingerprint(config, &fingerprint, &error) ||
+    if ((checkpoints && !RunFingerprint(config, &fingerprint, &error)) ||
         !CheckInputsSurvive(out_dir, RunOutputs(config), RunInputs(config, request.config_is_file),
                             &error)) {
       return Fail(outcome, error);
@@ -42,7 +43,7 @@ bool RunCommand(const RunConfig& config, const RunRequest& request, const RunObs
     // (RenderFigures draws at most one group per core).
     if (request.html_report) StartGnuplots(ParallelThreads(0));
     if (!AdoptUnpublishedCheckpoint(out_dir, &error)) return Fail(outcome, error);
-    if (request.resume && !LoadCheckpoint(out_dir, fingerprint, &finished, &error)) {
+    if (checkpoints && request.resume && !LoadCheckpoint(out_dir, fingerprint, &finished, &error)) {
       return Fail(outcome, error);
     }
   }
@@ -67,7 +68,7 @@ bool RunCommand(const RunConfig& config, const RunRequest& request, const RunObs
       return false;
     }
     if (observer.stage_finished && !observer.stage_finished(index, stage, message)) return false;
-    if (!writes) return true;
+    if (!checkpoints) return true;
     // A fresh run replaces an earlier checkpoint once its first stage is done.
     if ((index == 0 && !StartCheckpoint(out_dir, fingerprint, message)) ||
         !SaveStageCheckpoint(out_dir, fingerprint, index, stage, message)) {
@@ -96,11 +97,11 @@ bool RunCommand(const RunConfig& config, const RunRequest& request, const RunObs
   if (writes) {
     std::string write_error;
     if (!WriteRunResults(config, result, out_dir, &write_error, request.html_report,
-                         /*with_checkpoint=*/true)) {
+                         /*with_checkpoint=*/checkpoints)) {
       if (StopRequestedBy(request)) return interrupt();
       return Fail(outcome, write_error);
     }
-    RemoveWorkingCheckpoint(out_dir);  // published with the results
+    if (checkpoints) RemoveWorkingCheckpoint(out_dir);  // published with the results
   }
   if (!complete) {
     outcome->status = RunOutcome::Status::kStopped;

@@ -20,6 +20,9 @@ struct RunRequest {
   bool write = true;            // false: no outputs (a notebook's run), out_dir unused
   std::string out_dir;          // checked: an empty one is refused
   bool config_is_file = true;   // the config is an input --out must not replace
+  // A checkpoint after each stage, published with the results (needs the config and records
+  // as files: it is keyed by their contents); Python's runs take theirs from memory.
+  bool checkpoint = true;
   bool resume = false;          // go on from the checkpoint in out_dir
   bool html_report = true;      // report.html beside results.json and report.txt
   // The structure selection that chose the config (`vesselid select`), shown in every output.

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "engine/base/json_number.h"
+#include "engine/base/version.h"
 #include "engine/data/time_base.h"
 #include "engine/output/bootstrap_report.h"
 #include "engine/output/finding_report.h"
@@ -420,7 +421,7 @@ json StageToJson(const RunConfig& config, const StageResult& stage, JsonSplices*
 // WriteRunResultJson).
 json RunResultDocument(const RunConfig& config, const RunResult& result, JsonSplices* splices) {
   json j;
-  j["vesselid_version"] = "0.1.0";
+  j["vesselid_version"] = kVersion;
   // The verdict first: a reader (or a script) sees it before anything else.
   j["config"] = config.path;
   // Enough to make the model again (ModelRegistry::MakeModel): `vesselid export`.

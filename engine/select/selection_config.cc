@@ -38,7 +38,17 @@ std::string CandidateText(const YAML::Node& root, const YAML::Node& candidate) {
 
 bool LoadSelection(const std::string& path, const std::string& data_dir,
                    const ModelRegistry& registry, SelectionSetup* setup, std::string* error) {
-  YamlReader reader(path);
+  ConfigSource source;
+  source.path = path;
+  source.data_dir = data_dir;
+  return LoadSelection(source, registry, setup, error);
+}
+
+bool LoadSelection(const ConfigSource& source, const ModelRegistry& registry,
+                   SelectionSetup* setup, std::string* error) {
+  const std::string& path = source.path;
+  const std::string& data_dir = source.data_dir;
+  const YamlReader reader = source.text.empty() ? YamlReader(path) : YamlReader(path, source.text);
   SelectionSetup out;
   std::vector<std::pair<std::string, std::string>> texts;  // name, config text
   YAML::Node select;
@@ -90,12 +100,13 @@ bool LoadSelection(const std::string& path, const std::string& data_dir,
   const std::string data =
       !data_dir.empty() ? data_dir : std::filesystem::path(path).parent_path().string();
   for (const auto& [name, text] : texts) {
-    ConfigSource source;
-    source.path = path + " (candidate '" + name + "')";
-    source.text = text;
-    source.data_dir = data.empty() ? "." : data;
+    ConfigSource candidate;
+    candidate.path = path + " (candidate '" + name + "')";
+    candidate.text = text;
+    candidate.data_dir = data.empty() ? "." : data;
+    candidate.in_memory = source.in_memory;
     ConfigFile file;
-    if (!LoadConfig(source, registry, &file, error)) return false;
+    if (!LoadConfig(candidate, registry, &file, error)) return false;
     file.run.path = path;  // the file the run's outputs and checkpoint name
     out.candidates.push_back({name, std::move(file.run)});
   }

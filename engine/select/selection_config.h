@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/config/config.h"
 #include "engine/config/model_registry.h"
 #include "engine/select/selection.h"
 
@@ -37,5 +38,10 @@ struct SelectionSetup {
 // file's folder. False with a message naming file, line and key.
 bool LoadSelection(const std::string& path, const std::string& data_dir,
                    const ModelRegistry& registry, SelectionSetup* setup, std::string* error);
+
+// The same from a config's text (source.text, named by source.path) and records given in
+// memory (source.in_memory: experiments whose tables the caller attaches to every candidate).
+bool LoadSelection(const ConfigSource& source, const ModelRegistry& registry,
+                   SelectionSetup* setup, std::string* error);
 
 }  // namespace vesselid

@@ -4,7 +4,6 @@ import json
 import os
 
 from . import _core
-from ._errors import raise_for
 from ._run import _config_arguments
 
 
@@ -16,12 +15,9 @@ def design(config, run_dir, out=None, threads=0):
     outputs the current model predicts on it under "predicted". `out` also writes the files of
     `vesselid design` there (planned_input.csv, predicted.csv, design.json, design.txt,
     report.html)."""
-    text, is_text, name = _config_arguments(config)
-    ok, kind, message, payload, planned, predicted = _core.design(
-        text, is_text, name, os.fspath(run_dir), out is not None, os.fspath(out) if out else "",
-        int(threads))
-    if not ok:
-        raise_for(kind, message)
+    message, payload, planned, predicted = _core.design(
+        _config_arguments(config), os.fspath(run_dir), out is not None,
+        os.fspath(out) if out else "", int(threads))
     result = json.loads(payload)
     result["text"] = message
     result["planned"] = _table(planned)

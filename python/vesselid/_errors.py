@@ -15,13 +15,3 @@ class DataError(VesselidError):
 
 class RunError(VesselidError):
     """The run could not finish (a stage failed, the output folder cannot be written)."""
-
-
-def raise_for(kind, message):
-    if kind == "config":
-        raise ConfigError(message)
-    if kind == "data":
-        raise DataError(message)
-    if kind == "interrupted":
-        raise KeyboardInterrupt(message)
-    raise RunError(message)

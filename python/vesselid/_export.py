@@ -4,7 +4,6 @@ import math
 import os
 
 from . import _core
-from ._errors import raise_for
 
 
 def export(run_dir, format="fmu", out=None, members=100, seed=1):
@@ -13,12 +12,8 @@ def export(run_dir, format="fmu", out=None, members=100, seed=1):
     (`"c"`: header, source and example) or model.json (`"json"`: family, options, parameters,
     covariance, `members` draws), written into `out` (default <run_dir>/export) as
     `vesselid export` writes it. Returns the file's path (the header for "c")."""
-    ok, kind, message, path = _core.export_model(os.fspath(run_dir), str(format),
-                                                 os.fspath(out) if out else "", int(members),
-                                                 int(seed))
-    if not ok:
-        raise_for(kind, message)
-    return path
+    return _core.export_model(os.fspath(run_dir), str(format), os.fspath(out) if out else "",
+                              int(members), int(seed))
 
 
 def predict(run_dir, length=None, speed=None, members=100, seed=1, out=None):
@@ -27,12 +22,10 @@ def predict(run_dir, length=None, speed=None, members=100, seed=1, out=None):
     method, held against the IMO criteria where the ship's `length` (m) and `speed` (m/s) are
     known: predictions.json as a dict, its text table under "text". `out` also writes
     predictions.txt and predictions.json there."""
-    ok, kind, text, payload = _core.predict(
+    text, payload = _core.predict(
         os.fspath(run_dir), math.nan if length is None else float(length),
         math.nan if speed is None else float(speed), int(members), int(seed), out is not None,
         os.fspath(out) if out else "")
-    if not ok:
-        raise_for(kind, text)
     predictions = json.loads(payload)
     predictions["text"] = text
     return predictions

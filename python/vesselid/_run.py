@@ -1,21 +1,20 @@
-"""vesselid.run and vesselid.load_config."""
+"""vesselid.run, select, study, simulate and load_config: the commands, as the CLI runs them."""
 import json
 import os
 
 import numpy as np
 
 from . import _core
-from ._errors import DataError, raise_for
-from ._result import Result
+from ._errors import DataError
 
 
 def _config_arguments(config):
-    """(config text or path, is_text, name) for the engine."""
+    """The config for the engine: a path, or a dict as its text (JSON is YAML: the dict is read
+    by the same reader as a file, keys and lines checked)."""
     if isinstance(config, dict):
-        # JSON is YAML: the dict is read by the same reader as a file, keys and lines checked.
-        return json.dumps(config, indent=1, allow_nan=False), True, "config"
+        return _core._Config(json.dumps(config, indent=1, allow_nan=False), True, "config")
     if isinstance(config, (str, os.PathLike)):
-        return os.fspath(config), False, os.fspath(config)
+        return _core._Config(os.fspath(config), False, os.fspath(config))
     raise TypeError("config must be a path or a dict, not %s" % type(config).__name__)
 
 
@@ -73,15 +72,47 @@ def _data_arguments(data):
     return "", {str(k): converted[id(v)] for k, v in data.items()}
 
 
+def _progress_callback(progress):
+    """(callback, bar): `progress` as the engine calls it; True shows a tqdm bar
+    (python3-tqdm) when it is there."""
+    if progress is True:
+        try:
+            from tqdm.auto import tqdm
+        except ImportError:
+            return None, None
+        bar = tqdm(desc="vesselid", unit=" iterations")
+
+        def tell(p):
+            bar.update(1)
+            if "cost" in p:
+                bar.set_postfix(phase=p["phase"], cost="%.4g" % p["cost"])
+        return tell, bar
+    if progress is False:
+        return None, None
+    return progress, None
+
+
+def _run_command(command, config, data, out, threads, report, progress):
+    callback, bar = _progress_callback(progress)
+    data_dir, tables = _data_arguments(data)
+    try:
+        return command(_config_arguments(config), data_dir, tables, out is not None,
+                       "" if out is None else os.fspath(out), report, int(threads), callback)
+    finally:
+        if bar is not None:
+            bar.close()
+
+
 def run(config, data=None, out=None, threads=0, report=True, progress=None):
-    """Runs a staged identification and returns its Result.
+    """Runs a staged identification and returns its RunResult.
 
     config:   a config file's path, or the same schema as a dict.
     data:     {experiment name: DataFrame or dict of numpy columns}, or a folder the
               experiments' files are resolved against (as `vesselid run --data`); experiments
               without data are read from their `file` as the CLI does.
-    out:      a folder to write results.json, report.txt, report.html (report=True) and the
-              traces into, as `vesselid run --out`; None writes nothing.
+    out:      a folder to write results.json, report.txt, report.html (report=True), the
+              traces and the checkpoint into, as `vesselid run --out` (same checks, lock and
+              publication); None writes nothing.
     threads:  threads of every stage's solves and global start (0: the config's, by default
               the machine's cores); the results are the same on any number.
     progress: called with {"phase", "iteration", "cost"} after each solver iteration; True
@@ -89,44 +120,22 @@ def run(config, data=None, out=None, threads=0, report=True, progress=None):
     Raises ConfigError, DataError or RunError with the CLI's message; Ctrl-C ends the current
     solve after its iteration and raises KeyboardInterrupt.
     """
-    text, is_text, name = _config_arguments(config)
-    data_dir, tables = _data_arguments(data)
-    bar = None
-    if progress is True:  # a tqdm bar when python3-tqdm is there, else none
-        try:
-            from tqdm.auto import tqdm
-            bar = tqdm(desc="vesselid", unit=" iterations")
-            progress = lambda p: (bar.update(1), bar.set_postfix(phase=p["phase"],
-                                                                 cost="%.4g" % p["cost"]))
-        except ImportError:
-            progress = None
-    elif progress is False:
-        progress = None
-    try:
-        ok, kind, message, payload, traces = _core.run(
-            text, is_text, name, data_dir, tables, "" if out is None else os.fspath(out), report,
-            int(threads), progress)
-    finally:
-        if bar is not None:
-            bar.close()
-    if not ok:
-        raise_for(kind, message)
-    if isinstance(config, dict):
-        config_data = config
-    else:
-        import yaml
-        with open(text, encoding="utf-8") as f:
-            config_data = yaml.safe_load(f)
-    return Result(json.loads(payload), payload, message, (text, is_text, name), config_data,
-                  traces)
+    return _run_command(_core.run, config, data, out, threads, report, progress)
+
+
+def select(config, data=None, out=None, threads=0, report=True, progress=None):
+    """The config's `select` section (as `vesselid select`): every candidate structure
+    cross-validated over the runs, then the chosen one run on every run. Returns the chosen
+    candidate's RunResult, its `selection` the cross-validation (scores, folds, the choice and
+    why). Arguments as for run(); `progress` also gets {"phase": "select", "message"} per
+    finished case."""
+    return _run_command(_core.select, config, data, out, threads, report, progress)
 
 
 def load_config(path):
     """A config file as a dict (merge keys resolved), after checking it as a run would."""
     import yaml
-    ok, kind, message, _ = _core.check_config(os.fspath(path))
-    if not ok:
-        raise_for(kind, message)
+    _core.check_config(_config_arguments(os.fspath(path)))
     with open(path, encoding="utf-8") as f:
         return yaml.safe_load(f)
 
@@ -138,36 +147,21 @@ def simulate(config):
     import tempfile
 
     import pandas as pd
-    text, is_text, name = _config_arguments(config)
     with tempfile.TemporaryDirectory(prefix="vesselid_simulate_") as folder:
-        ok, kind, message, _ = _core.simulate(text, is_text, name, folder)
-        if not ok:
-            raise_for(kind, message)
-        frames = {}
-        for file in sorted(os.listdir(folder)):
-            if file.endswith(".csv"):
-                frames[file[:-4]] = pd.read_csv(os.path.join(folder, file),
-                                                float_precision="round_trip")
-        return frames
+        files = _core.simulate(_config_arguments(config), folder)
+        return {file[:-4]: pd.read_csv(os.path.join(folder, file), float_precision="round_trip")
+                for file in sorted(files) if file.endswith(".csv")}
 
 
 def study(config, data=None, only=None, threads=0, out=None, progress=None):
     """The config's `study` section (as `vesselid study`): returns study.json as a dict (its
-    text report under the key "text"); `out` also writes study.json and study.txt there.
-    `data` as for run(); `progress` gets one line per finished case."""
-    text, is_text, name = _config_arguments(config)
+    text report under the key "text"); `out` also writes study.json and study.txt there, as
+    the CLI does (same checks, lock and publication). `data` as for run(); `progress` gets one
+    line per finished case."""
     data_dir, tables = _data_arguments(data)
-    ok, kind, message, payload = _core.study(text, is_text, name, data_dir, tables,
-                                             list(only or []), int(threads), progress)
-    if not ok:
-        raise_for(kind, message)
+    payload, text = _core.study(_config_arguments(config), data_dir, tables, list(only or []),
+                                out is not None, "" if out is None else os.fspath(out),
+                                int(threads), progress)
     result = json.loads(payload)
-    if out is not None:
-        os.makedirs(out, exist_ok=True)
-        with open(os.path.join(out, "study.json"), "w", encoding="utf-8") as f:
-            json.dump(result, f, indent=2)
-            f.write("\n")
-        with open(os.path.join(out, "study.txt"), "w", encoding="utf-8") as f:
-            f.write(message)
-    result["text"] = message
+    result["text"] = text
     return result

@@ -68,7 +68,8 @@ def test_result_tables(campaign):
     assert {"value", "std_error", "lower", "upper", "role", "unit"} <= set(parameters.columns)
     for p in campaign["expected"]["parameters"]:
         assert parameters.loc[p["name"], "value"] == p["value"]
-    assert list(result.stages.index) == [s["name"] for s in campaign["expected"]["stages"]]
+    assert list(result.stage_table.index) == [s["name"] for s in campaign["expected"]["stages"]]
+    assert [s.name for s in result.stages] == list(result.stage_table.index)
     fits = result.fits
     assert set(fits["role"]) >= {"fit", "validation"}
     assert set(fits["experiment"]) >= set(TRAINING + HELD_OUT)
@@ -327,3 +328,72 @@ def test_export_and_predict_take_the_runs_model_out(campaign, tmp_path):
     assert expected["length"] == 320.0  # the n1 form's own length
     with pytest.raises(vesselid.RunError, match="results.json"):
         vesselid.export(campaign["folder"], format="json", out=tmp_path / "none")
+
+
+def test_results_are_the_engines_types(campaign):
+    """The results are bound classes of the engine's types, not dicts or Python copies."""
+    result = vesselid.run(campaign["path"], data=campaign["frames"])
+    assert type(result) is vesselid.RunResult and type(result).__module__ == "vesselid._core"
+    assert type(result.model) is vesselid.IdentifiedModel
+    assert type(result.findings[0]) is vesselid.Finding
+    assert all(type(s) is vesselid.StageResult for s in result.stages)
+    stage = result.stages[-1]
+    assert stage.name == "output_error" and stage.verdict in ("good", "doubtful", "failed")
+    written = {e["name"]: e["value"] for e in campaign["expected"]["stages"][-1]["estimates"]}
+    assert stage.estimates.loc["n1", "value"] == written["n1"]
+    assert list(stage.correlation.index) == list(stage.correlation.columns)
+    with pytest.raises(AttributeError):
+        result.verdict = "good"  # read-only
+    assert vesselid.__version__ == campaign["expected"]["vesselid_version"]
+    version = subprocess.run([BINARY, "--version"], capture_output=True, text=True, check=True)
+    assert version.stdout.strip() == vesselid.__version__
+
+
+def test_model_flies_a_record_as_the_run_did(campaign):
+    """result.model.simulate on a training record, with the stage's values, from its estimated
+    start and with that run's own rudder bias, is the stage's trace of it (the run's step and
+    interpolation: nothing given but the record and the values)."""
+    result = vesselid.run(campaign["path"], data=campaign["frames"])
+    model = result.model
+    assert model.max_step == 0.0 and model.interpolation == {"delta": "linear", "U": "linear"}
+    assert model.degrees == {"delta", "psi"}
+    estimates = result.stages[-1].estimates
+    for run in TRAINING:
+        start = {s: estimates.loc["x0.%s[%s]" % (s, run), "value"] for s in ("psi", "r")}
+        start["psi"] *= 180 / np.pi  # the heading in the unit it was logged in
+        values = {p: estimates.loc[p, "value"] for p in ("T_nd", "K_nd", "n1", "n3_nd")}
+        values["delta_0"] = estimates.loc["delta_0[%s]" % run, "value"]
+        flown = model.simulate(campaign["frames"][run][["t", "delta", "U"]],
+                               initial_state=start, parameters=values)
+        trace = result.traces["output_error." + run]
+        assert len(flown) == len(trace)
+        np.testing.assert_allclose(flown["psi"], trace["psi_simulated [deg]"], rtol=0, atol=1e-9)
+    # Settings of its own: a finer step and held inputs change the flight.
+    coarse = model.simulate(campaign["frames"][run][["t", "delta", "U"]], initial_state=start,
+                            parameters=values, max_step=0.25, interpolation="zero_order_hold")
+    assert not np.allclose(coarse["psi"], flown["psi"])
+
+
+def test_select_chooses_and_runs_a_structure(campaign, tmp_path):
+    """vesselid.select cross-validates the candidates and runs the chosen one, as `vesselid
+    select` does; the CLI's results.json is the same."""
+    config = copy.deepcopy(campaign["config"])
+    config["select"]["folds"] = "leave_one_run_out"
+    config["select"]["candidates"] = config["select"]["candidates"][:2]
+    path = campaign["folder"] / "select.yaml"
+    path.write_text(yaml.safe_dump(config))
+    lines = []
+    result = vesselid.select(path, data=campaign["frames"], out=tmp_path / "py", report=False,
+                             progress=lambda p: lines.append(p) if p["phase"] == "select" else None)
+    assert type(result) is vesselid.RunResult
+    chosen = result.selection["chosen"]
+    assert chosen in [c["name"] for c in config["select"]["candidates"]]
+    # A case per candidate and fold, and one per candidate on every run.
+    assert len(lines) == 2 * (len(result.selection["folds"]) + 1)
+    subprocess.run([BINARY, "select", str(path), "--out", str(tmp_path / "cli"), "--quiet",
+                    "--no-report"], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    with open(tmp_path / "cli" / "results.json", encoding="utf-8") as f:
+        expected = json.load(f)
+    with open(tmp_path / "py" / "results.json", encoding="utf-8") as f:
+        written = json.load(f)
+    assert drop_times(result.json) == drop_times(expected) == drop_times(written)
