@@ -4,7 +4,6 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include <cstdlib>
 #include <map>
 
 #include "engine/base/stop_request.h"
@@ -292,13 +291,12 @@ std::vector<std::string> Simulate(const ConfigArgument& config, const std::strin
   return files;
 }
 
-// `vesselid export`: the written file's path. The FMU runtime is the one built with this
-// package unless VESSELID_FMU_RUNTIME names another.
+// `vesselid export`: the written file's path; `runtime` the FMU runtime to pack (the
+// package's copy).
 std::string Export(const std::string& run_dir, const std::string& format,
-                   const std::string& out_dir, int members, unsigned seed) {
+                   const std::string& out_dir, int members, unsigned seed,
+                   const std::string& runtime) {
   std::string error, path;
-  std::string runtime = VESSELID_FMU_RUNTIME_BUILT;
-  if (const char* given = std::getenv("VESSELID_FMU_RUNTIME")) runtime = given;
   bool ok = false;
   {
     py::gil_scoped_release release;
@@ -366,7 +364,7 @@ void BindCommands(py::module_& m) {
   m.def("check_config", [](const ConfigArgument& config) { LoadModelOnly(config); },
         py::arg("config"));
   m.def("export_model", &Export, py::arg("run_dir"), py::arg("format"), py::arg("out_dir"),
-        py::arg("members"), py::arg("seed"));
+        py::arg("members"), py::arg("seed"), py::arg("runtime"));
   m.def("predict", &Predict, py::arg("run_dir"), py::arg("length"), py::arg("speed"),
         py::arg("members"), py::arg("seed"), py::arg("write"), py::arg("out_dir"));
   m.def("design", &Design, py::arg("config"), py::arg("run_dir"), py::arg("write"),

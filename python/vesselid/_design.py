@@ -7,7 +7,8 @@ from . import _core
 from ._run import _config_arguments
 
 
-def design(config, run_dir, out=None, threads=0):
+def design(config: "os.PathLike | str | dict", run_dir: "os.PathLike | str",
+           out: "os.PathLike | str | None" = None, threads: int = 0) -> dict:
     """Plans the next experiment from the run whose outputs are in `run_dir` as the config's
     `design:` section asks (a path, or a dict of the YAML schema): design.json as a dict, with
     its text table under "text" and the plan under "planned" (t and every input, in the

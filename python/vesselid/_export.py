@@ -6,17 +6,23 @@ import os
 from . import _core
 
 
-def export(run_dir, format="fmu", out=None, members=100, seed=1):
+def export(run_dir: "os.PathLike | str", format: str = "fmu", out: "os.PathLike | str | None" = None,
+           members: int = 100, seed: int = 1) -> str:
     """The model of the run whose outputs are in `run_dir` (`vesselid run --out`, or
     vesselid.run(..., out=...)) as an FMI 2.0 co-simulation FMU (`format="fmu"`), C99 code
     (`"c"`: header, source and example) or model.json (`"json"`: family, options, parameters,
     covariance, `members` draws), written into `out` (default <run_dir>/export) as
     `vesselid export` writes it. Returns the file's path (the header for "c")."""
+    # The FMU runtime installed with the package (VESSELID_FMU_RUNTIME names another).
+    runtime = os.path.join(os.path.dirname(__file__), "libvesselid_fmu.so")
     return _core.export_model(os.fspath(run_dir), str(format), os.fspath(out) if out else "",
-                              int(members), int(seed))
+                              int(members), int(seed),
+                              os.environ.get("VESSELID_FMU_RUNTIME", runtime))
 
 
-def predict(run_dir, length=None, speed=None, members=100, seed=1, out=None):
+def predict(run_dir: "os.PathLike | str", length: "float | None" = None,
+            speed: "float | None" = None, members: int = 100, seed: int = 1,
+            out: "os.PathLike | str | None" = None) -> dict:
     """The standard manoeuvres (IMO 10/10 and 20/20 zigzag overshoots, initial turning ability)
     the run's model predicts, with 95 % intervals from `members` parameter draws and the delta
     method, held against the IMO criteria where the ship's `length` (m) and `speed` (m/s) are

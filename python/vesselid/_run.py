@@ -4,8 +4,16 @@ import os
 
 import numpy as np
 
+from typing import Any, Callable, Mapping, Union
+
 from . import _core
 from ._errors import DataError
+
+# A config: a file's path or the schema as a dict; records: {experiment: DataFrame or dict of
+# numpy columns}, or a folder; progress: a callable of a dict, or True for a tqdm bar.
+Config = Union[str, os.PathLike, dict]
+Data = Union[None, str, os.PathLike, Mapping[str, Any]]
+Progress = Union[None, bool, Callable[[dict], Any]]
 
 
 def _config_arguments(config):
@@ -103,7 +111,8 @@ def _run_command(command, config, data, out, threads, report, progress):
             bar.close()
 
 
-def run(config, data=None, out=None, threads=0, report=True, progress=None):
+def run(config: Config, data: Data = None, out: "os.PathLike | str | None" = None,
+        threads: int = 0, report: bool = True, progress: Progress = None) -> "_core.RunResult":
     """Runs a staged identification and returns its RunResult.
 
     config:   a config file's path, or the same schema as a dict.
@@ -123,7 +132,9 @@ def run(config, data=None, out=None, threads=0, report=True, progress=None):
     return _run_command(_core.run, config, data, out, threads, report, progress)
 
 
-def select(config, data=None, out=None, threads=0, report=True, progress=None):
+def select(config: Config, data: Data = None, out: "os.PathLike | str | None" = None,
+           threads: int = 0, report: bool = True,
+           progress: Progress = None) -> "_core.RunResult":
     """The config's `select` section (as `vesselid select`): every candidate structure
     cross-validated over the runs, then the chosen one run on every run. Returns the chosen
     candidate's RunResult, its `selection` the cross-validation (scores, folds, the choice and
@@ -132,7 +143,7 @@ def select(config, data=None, out=None, threads=0, report=True, progress=None):
     return _run_command(_core.select, config, data, out, threads, report, progress)
 
 
-def load_config(path):
+def load_config(path: "os.PathLike | str") -> dict:
     """A config file as a dict (merge keys resolved), after checking it as a run would."""
     import yaml
     _core.check_config(_config_arguments(os.fspath(path)))
@@ -140,7 +151,7 @@ def load_config(path):
         return yaml.safe_load(f)
 
 
-def simulate(config):
+def simulate(config: Config) -> "dict[str, Any]":
     """A config's synthetic experiments (its `simulation` section, as `vesselid simulate`):
     {file name without .csv: DataFrame}, read back with round-trip float parsing so that
     the frames hold the numbers the engine would read from the files."""
@@ -153,7 +164,9 @@ def simulate(config):
                 for file in sorted(files) if file.endswith(".csv")}
 
 
-def study(config, data=None, only=None, threads=0, out=None, progress=None):
+def study(config: Config, data: Data = None, only: "list[str] | None" = None, threads: int = 0,
+          out: "os.PathLike | str | None" = None,
+          progress: "Callable[[str], Any] | None" = None) -> dict:
     """The config's `study` section (as `vesselid study`): returns study.json as a dict (its
     text report under the key "text"); `out` also writes study.json and study.txt there, as
     the CLI does (same checks, lock and publication). `data` as for run(); `progress` gets one
