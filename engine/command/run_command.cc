@@ -103,6 +103,10 @@ bool RunCommand(const RunConfig& config, const RunRequest& request, const RunObs
     }
     if (checkpoints) RemoveWorkingCheckpoint(out_dir);  // published with the results
   }
+  outcome->model = std::make_shared<IdentifiedModel>();
+  if (!IdentifiedModelOf(config, result, 0, 1, outcome->model.get(), &error)) {
+    return Fail(outcome, error);
+  }
   if (!complete) {
     outcome->status = RunOutcome::Status::kStopped;
     outcome->error = error;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/output/identified_model.h"
 #include "engine/run/pipeline.h"
 #include "engine/run/run_config.h"
 #include "engine/run/run_result.h"
@@ -43,6 +44,9 @@ struct RunOutcome {
   };
   Status status = Status::kFailed;
   RunResult result;
+  // kFinished and kStopped: the identified model of the final values (no ensemble; what the
+  // run's results.json gives, output/identified_model.h).
+  std::shared_ptr<IdentifiedModel> model;
   std::string error;
   // kInterrupted: the stage cut short (config.stages.size(): after the last one, before
   // publication).

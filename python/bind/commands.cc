@@ -17,6 +17,7 @@
 #include "engine/design/design_report.h"
 #include "engine/export/export_run.h"
 #include "engine/output/results_json_text.h"
+#include "engine/output/zigzag_report.h"
 #include "engine/output/results_text.h"
 #include "problems/registry.h"
 #include "python/bind/errors.h"
@@ -192,6 +193,7 @@ std::shared_ptr<Run> Finished(const RunConfig& config, const RunOutcome& outcome
   auto run = std::make_shared<Run>();
   run->config = std::make_shared<const RunConfig>(config);
   run->result = outcome.result;
+  run->model = outcome.model;
   run->json = RunResultJsonText(config, run->result, -1);
   run->summary = RunResultToText(config, run->result);
   return run;
@@ -306,6 +308,52 @@ std::string Export(const std::string& run_dir, const std::string& format,
   return path;
 }
 
+// The model of a run in memory with `members` draws: what its results.json would give.
+IdentifiedModel DrawnModel(const Run& run, int members, unsigned seed) {
+  IdentifiedModel model;
+  std::string error;
+  if (members < 0) throw PackageError("run", "members must be >= 0");
+  if (!IdentifiedModelOf(*run.config, run.result, members, seed, &model, &error)) {
+    throw PackageError("run", error);
+  }
+  return model;
+}
+
+// `vesselid export` of a RunResult: no folder read.
+std::string ExportResult(const Run& run, const std::string& format, const std::string& out_dir,
+                         int members, unsigned seed, const std::string& runtime) {
+  const IdentifiedModel model = DrawnModel(run, members, seed);
+  std::string error, path;
+  bool ok = false;
+  {
+    py::gil_scoped_release release;
+    ok = ExportModel(model, format, out_dir, runtime, &path, &error);
+  }
+  if (!ok) throw PackageError("run", error);
+  return path;
+}
+
+// `vesselid predict` of a RunResult: (predictions.txt's text, predictions.json's).
+std::pair<std::string, std::string> PredictResult(const Run& run, double length, double speed,
+                                                  int members, unsigned seed, bool write,
+                                                  const std::string& out_dir) {
+  ManoeuvreConditions conditions;
+  conditions.length = length;
+  conditions.speed = speed;
+  std::string error, text;
+  if (!CheckPredictionArguments(conditions, members, &error)) throw PackageError("run", error);
+  const IdentifiedModel model = DrawnModel(run, members, seed);
+  const std::vector<ZigzagEntry> zigzags = ZigzagEntries(run.result.zigzags);
+  nlohmann::json predictions;
+  bool ok = false;
+  {
+    py::gil_scoped_release release;
+    ok = PredictModel(model, zigzags, conditions, write, out_dir, &predictions, &text, &error);
+  }
+  if (!ok) throw PackageError("run", error);
+  return {text, predictions.dump()};
+}
+
 // `vesselid predict`: (predictions.txt's text, predictions.json's).
 std::pair<std::string, std::string> Predict(const std::string& run_dir, double length,
                                             double speed, int members, unsigned seed, bool write,
@@ -365,6 +413,10 @@ void BindCommands(py::module_& m) {
         py::arg("config"));
   m.def("export_model", &Export, py::arg("run_dir"), py::arg("format"), py::arg("out_dir"),
         py::arg("members"), py::arg("seed"), py::arg("runtime"));
+  m.def("export_result", &ExportResult, py::arg("run"), py::arg("format"), py::arg("out_dir"),
+        py::arg("members"), py::arg("seed"), py::arg("runtime"));
+  m.def("predict_result", &PredictResult, py::arg("run"), py::arg("length"), py::arg("speed"),
+        py::arg("members"), py::arg("seed"), py::arg("write"), py::arg("out_dir"));
   m.def("predict", &Predict, py::arg("run_dir"), py::arg("length"), py::arg("speed"),
         py::arg("members"), py::arg("seed"), py::arg("write"), py::arg("out_dir"));
   m.def("design", &Design, py::arg("config"), py::arg("run_dir"), py::arg("write"),

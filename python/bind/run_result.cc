@@ -180,18 +180,6 @@ std::string Html(const Run& run) {
 
 }  // namespace
 
-std::shared_ptr<IdentifiedModel> ModelOf(Run& run) {
-  if (run.model == nullptr) {
-    auto model = std::make_shared<IdentifiedModel>();
-    std::string error;
-    if (!IdentifiedModelOf(*run.config, run.result, 0, 1, model.get(), &error)) {
-      throw std::runtime_error(error);
-    }
-    run.model = std::move(model);
-  }
-  return run.model;
-}
-
 void BindRunResult(py::module_& m) {
   py::class_<Run, std::shared_ptr<Run>>(
       m, "RunResult",
@@ -240,7 +228,7 @@ void BindRunResult(py::module_& m) {
       .def_property_readonly("parameters", &Parameters)
       .def_property_readonly("fits", &Fits)
       .def_property_readonly("traces", &Traces)
-      .def_property_readonly("model", &ModelOf)
+      .def_readonly("model", &Run::model)
       .def_property_readonly("selection",
                              [](const Run& r) -> py::object {
                                if (!r.result.selection) return py::none();

@@ -7,7 +7,6 @@
 #include <pybind11/pybind11.h>
 
 #include <memory>
-#include <mutex>
 #include <string>
 
 #include "engine/output/identified_model.h"
@@ -24,7 +23,7 @@ struct Run {
   RunResult result;
   std::string json;     // results.json's text, unindented (RunResult.to_json())
   std::string summary;  // report.txt's text
-  std::shared_ptr<IdentifiedModel> model;  // made when first asked for
+  std::shared_ptr<IdentifiedModel> model;  // the run's (RunOutcome::model)
 };
 
 void BindFinding(py::module_& m);
@@ -32,8 +31,5 @@ void BindStageResult(py::module_& m);
 void BindRunResult(py::module_& m);
 void BindIdentifiedModel(py::module_& m);
 void BindCommands(py::module_& m);
-
-// The run's model (IdentifiedModelOf, no ensemble), made once.
-std::shared_ptr<IdentifiedModel> ModelOf(Run& run);
 
 }  // namespace vesselid::python

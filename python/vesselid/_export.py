@@ -6,32 +6,40 @@ import os
 from . import _core
 
 
-def export(run_dir: "os.PathLike | str", format: str = "fmu", out: "os.PathLike | str | None" = None,
-           members: int = 100, seed: int = 1) -> str:
-    """The model of the run whose outputs are in `run_dir` (`vesselid run --out`, or
-    vesselid.run(..., out=...)) as an FMI 2.0 co-simulation FMU (`format="fmu"`), C99 code
-    (`"c"`: header, source and example) or model.json (`"json"`: family, options, parameters,
-    covariance, `members` draws), written into `out` (default <run_dir>/export) as
-    `vesselid export` writes it. Returns the file's path (the header for "c")."""
+def export(run: "_core.RunResult | os.PathLike | str", format: str = "fmu",
+           out: "os.PathLike | str | None" = None, members: int = 100, seed: int = 1) -> str:
+    """The model of a run (a RunResult, or the folder of `vesselid run --out`) as an FMI 2.0
+    co-simulation FMU (`format="fmu"`), C99 code (`"c"`: header, source and example) or
+    model.json (`"json"`: family, options, parameters, covariance, `members` draws), written
+    into `out` (default <run folder>/export; needed for a RunResult) as `vesselid export`
+    writes it. Returns the file's path (the header for "c")."""
     # The FMU runtime installed with the package (VESSELID_FMU_RUNTIME names another).
-    runtime = os.path.join(os.path.dirname(__file__), "libvesselid_fmu.so")
-    return _core.export_model(os.fspath(run_dir), str(format), os.fspath(out) if out else "",
-                              int(members), int(seed),
-                              os.environ.get("VESSELID_FMU_RUNTIME", runtime))
+    runtime = os.environ.get("VESSELID_FMU_RUNTIME",
+                             os.path.join(os.path.dirname(__file__), "libvesselid_fmu.so"))
+    if isinstance(run, _core.RunResult):
+        if out is None:
+            raise TypeError("export of a RunResult needs `out`, the folder to write into")
+        return _core.export_result(run, str(format), os.fspath(out), int(members), int(seed),
+                                   runtime)
+    return _core.export_model(os.fspath(run), str(format), os.fspath(out) if out else "",
+                              int(members), int(seed), runtime)
 
 
-def predict(run_dir: "os.PathLike | str", length: "float | None" = None,
+def predict(run: "_core.RunResult | os.PathLike | str", length: "float | None" = None,
             speed: "float | None" = None, members: int = 100, seed: int = 1,
             out: "os.PathLike | str | None" = None) -> dict:
     """The standard manoeuvres (IMO 10/10 and 20/20 zigzag overshoots, initial turning ability)
     the run's model predicts, with 95 % intervals from `members` parameter draws and the delta
     method, held against the IMO criteria where the ship's `length` (m) and `speed` (m/s) are
-    known: predictions.json as a dict, its text table under "text". `out` also writes
-    predictions.txt and predictions.json there."""
-    text, payload = _core.predict(
-        os.fspath(run_dir), math.nan if length is None else float(length),
-        math.nan if speed is None else float(speed), int(members), int(seed), out is not None,
-        os.fspath(out) if out else "")
+    known: predictions.json as a dict, its text table under "text". `run`: a RunResult or a
+    run's folder. `out` also writes predictions.txt and predictions.json there."""
+    conditions = (math.nan if length is None else float(length),
+                  math.nan if speed is None else float(speed), int(members), int(seed),
+                  out is not None, os.fspath(out) if out else "")
+    if isinstance(run, _core.RunResult):
+        text, payload = _core.predict_result(run, *conditions)
+    else:
+        text, payload = _core.predict(os.fspath(run), *conditions)
     predictions = json.loads(payload)
     predictions["text"] = text
     return predictions

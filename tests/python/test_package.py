@@ -329,6 +329,21 @@ def test_export_and_predict_take_the_runs_model_out(campaign, tmp_path):
     with pytest.raises(vesselid.RunError, match="results.json"):
         vesselid.export(campaign["folder"], format="json", out=tmp_path / "none")
 
+    # From a RunResult in memory: the same model and predictions, no folder read.
+    result = vesselid.run(campaign["path"], data=campaign["frames"])
+    from_memory = json.loads(open(vesselid.export(result, format="json", out=tmp_path / "mem"),
+                                  encoding="utf-8").read())
+    assert from_memory.pop("results") == str(campaign["path"])
+    model.pop("results")
+    assert from_memory == model
+    in_memory = vesselid.predict(result, speed=7.7)
+    in_memory.pop("text")
+    assert in_memory.pop("results") == str(campaign["path"])
+    expected.pop("results")
+    assert in_memory == expected
+    with pytest.raises(TypeError, match="needs `out`"):
+        vesselid.export(result, format="json")
+
 
 def test_results_are_the_engines_types(campaign):
     """The results are bound classes of the engine's types, not dicts or Python copies."""
