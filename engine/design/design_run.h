@@ -1,6 +1,6 @@
 // `vesselid design <config> --from <run-out>` (and vesselid.design in Python): the next
 // experiment planned from a finished run. The run's model, estimate and covariance
-// (exported_model.h) give today's information I_0 = C^+ over the parameters the run estimated
+// (output/identified_model.h) give today's information I_0 = C^+ over the parameters the run estimated
 // (a parameter it could not determine contributes none); the config's `design:` section
 // (design_config.h) says what may be planned. The result is written by design_report.h.
 #pragma once

@@ -10,7 +10,7 @@
 // goes to +delta_z at t = 0 at the steering gear's rate and is reversed each time the heading
 // change reaches +-psi_z; the figures are measured on the heading as data/zigzag_figures.h
 // measures a trial's. Intervals: the 2.5 and 97.5 percentiles of the figure over the model's
-// ensemble members (draws from the covariance, exported_model.h), and the delta method
+// ensemble members (draws from the covariance, output/identified_model.h), and the delta method
 // (value +- 1.96 sqrt(J C J^T), J by central differences), with whether the two agree (their
 // half-widths within a factor 1.5). Where the ship's length L and speed U are known, each
 // figure is held against its IMO criterion for L/U.

@@ -1,6 +1,6 @@
 // The FMI 2.0 co-simulation runtime of every exported vesselid FMU (libvesselid_fmu.so, copied
 // into the FMU as binaries/linux64/<modelIdentifier>.so). fmi2Instantiate reads the FMU's
-// resources/model.json (export/exported_model.h) and makes the model with the families the
+// resources/model.json (export/model_json.h) and makes the model with the families the
 // vesselid program knows; fmi2DoStep integrates it as a run simulates a record: RK4 steps of
 // at most max_step, equal within the communication step, the inputs at each step's start,
 // midpoint and end taken from the value set at the communication point and its first three
