@@ -103,9 +103,12 @@ bool RunCommand(const RunConfig& config, const RunRequest& request, const RunObs
     }
     if (checkpoints) RemoveWorkingCheckpoint(out_dir);  // published with the results
   }
+  // The model is part of the product, never a reason to fail a run that wrote its results
+  // (null where the final values make none: a parameter without a value).
   outcome->model = std::make_shared<IdentifiedModel>();
-  if (!IdentifiedModelOf(config, result, 0, 1, outcome->model.get(), &error)) {
-    return Fail(outcome, error);
+  std::string model_error;
+  if (!IdentifiedModelOf(config, result, 0, 1, outcome->model.get(), &model_error)) {
+    outcome->model = nullptr;
   }
   if (!complete) {
     outcome->status = RunOutcome::Status::kStopped;

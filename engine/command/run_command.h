@@ -45,7 +45,7 @@ struct RunOutcome {
   Status status = Status::kFailed;
   RunResult result;
   // kFinished and kStopped: the identified model of the final values (no ensemble; what the
-  // run's results.json gives, output/identified_model.h).
+  // run's results.json gives, output/identified_model.h); null where they make none.
   std::shared_ptr<IdentifiedModel> model;
   std::string error;
   // kInterrupted: the stage cut short (config.stages.size(): after the last one, before

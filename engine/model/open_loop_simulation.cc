@@ -1,6 +1,7 @@
 #include "engine/model/open_loop_simulation.h"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "engine/base/work_limits.h"
@@ -23,6 +24,11 @@ bool SimulateOpenLoop(const ModelHandle& model, const std::vector<double>& param
     *error = "need substeps >= 0 and at least two input samples";
     return false;
   }
+  if (!(options.max_step >= 0.0 && std::isfinite(options.max_step))) {
+    *error = "max_step " + std::to_string(options.max_step) +
+             ": a step bound in s, >= 0 (0: the median sample interval)";
+    return false;
+  }
   const size_t samples = inputs.t.size();
   // Steps per sample interval.
   std::vector<int> steps(samples - 1, options.substeps);
@@ -33,9 +39,13 @@ bool SimulateOpenLoop(const ModelHandle& model, const std::vector<double>& param
     double total = 0.0;
     for (size_t k = 0; k + 1 < samples; ++k) total += StepsIn(intervals[k], bound);
     if (!(bound > 0.0) || !(total <= static_cast<double>(WorkLimits().integration_steps))) {
-      *error = "steps of at most " + std::to_string(bound) + " s over the inputs' " +
-               std::to_string(inputs.t.back() - inputs.t.front()) +
-               " s are more than the integration step limit";
+      char text[200];
+      std::snprintf(text, sizeof(text),
+                    "steps of at most %g s over the inputs' %g s are %g, more than the limit of "
+                    "%g integration steps",
+                    bound, inputs.t.back() - inputs.t.front(), total,
+                    static_cast<double>(WorkLimits().integration_steps));
+      *error = text;
       return false;
     }
     for (size_t k = 0; k + 1 < samples; ++k) steps[k] = static_cast<int>(StepsIn(intervals[k], bound));
@@ -70,6 +80,10 @@ bool SimulateOpenLoop(const ModelHandle& model, const std::vector<double>& param
       continue;
     }
     const Channel channel = ExtractChannel(inputs, column);
+    if (channel.t.empty()) {
+      *error = "input '" + info.inputs[i] + "' has no samples (every value is missing)";
+      return false;
+    }
     const Interpolation method =
         options.input_interpolation.empty() ? options.interpolation : options.input_interpolation[i];
     u[i] = InterpolateAt(channel, method, times);
@@ -127,7 +141,9 @@ bool SimulateOpenLoop(const ModelHandle& model, const std::vector<double>& param
         ok = ok && std::isfinite(x[i]);
       }
       if (!ok) {
-        *error = info.name + " simulation diverged at t = " + std::to_string(inputs.t[k] + s * h);
+        char text[80];
+        std::snprintf(text, sizeof(text), " simulation diverged at t = %.9g s", inputs.t[k] + s * h);
+        *error = info.name + text;
         return false;
       }
     }

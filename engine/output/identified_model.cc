@@ -176,7 +176,9 @@ bool IdentifiedModelOf(const RunDocument& d, std::shared_ptr<const ModelHandle> 
       m.covariance(a, b) = r * sa * sb;
     }
   }
-  const std::string broken = CovarianceProblem(m.covariance_names, m.covariance);
+  // The covariance as the run found it; an ensemble is drawn only from a proper one.
+  const std::string broken =
+      members > 0 ? CovarianceProblem(m.covariance_names, m.covariance) : std::string();
   if (!broken.empty()) {
     *error = path + ": parameters and stages' correlation: " + broken +
              "; no ensemble can be drawn from it";

@@ -64,8 +64,9 @@ void DescribeModel(std::shared_ptr<const ModelHandle> handle, const std::string&
                    const ModelOptions& options, IdentifiedModel* model);
 
 // The model a run's document describes, made by `handle` (family and options as the
-// document says), with `members` ensemble members drawn with `seed`. False with a message
-// naming the document and key.
+// document says), with `members` ensemble members drawn with `seed` (members > 0: refused
+// where the covariance is none, as a run whose correlations are not finite, symmetric and
+// within [-1, 1] may report). False with a message naming the document and key.
 bool IdentifiedModelOf(const RunDocument& document, std::shared_ptr<const ModelHandle> handle,
                        int members, unsigned seed, IdentifiedModel* model, std::string* error);
 

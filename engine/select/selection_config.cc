@@ -54,8 +54,9 @@ bool LoadSelection(const ConfigSource& source, const ModelRegistry& registry,
   YAML::Node select;
   try {
     const YAML::Node root = reader.Load();
-    select = root["select"];
-    if (!select) reader.Fail(root, "select", "missing: the config has no select section");
+    // Checked before it is held: a node of a missing key cannot be assigned.
+    if (!root["select"]) reader.Fail(root, "select", "missing: the config has no select section");
+    select.reset(root["select"]);
     reader.CheckMap(select, "select", {"experiments", "folds", "outputs", "threads", "candidates"});
     if (const YAML::Node folds = select["folds"]) {
       if (folds.IsScalar() && folds.Scalar() == "leave_one_run_out") {

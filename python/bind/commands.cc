@@ -134,6 +134,7 @@ void SetThreads(int threads, RunConfig* run) {
 struct PythonWatch {
   py::object progress;
   bool interrupted = false;
+  py::object raised;  // what the progress callback raised: raised again once the run stopped
 
   bool Interrupted() {
     if (!interrupted) {
@@ -151,10 +152,19 @@ struct PythonWatch {
     py::gil_scoped_acquire gil;
     try {
       progress(what);
-    } catch (const py::error_already_set&) {
-      interrupted = true;  // a failing callback stops the run, as Ctrl-C does
+    } catch (const py::error_already_set& e) {
+      raised = e.value();  // a failing callback stops the run, as Ctrl-C does
+      interrupted = true;
       RequestStop();
     }
+  }
+  // After the run: the callback's own exception, else KeyboardInterrupt when interrupted.
+  void RaiseIfStopped(const char* what) {
+    if (raised) {
+      PyErr_SetObject(reinterpret_cast<PyObject*>(Py_TYPE(raised.ptr())), raised.ptr());
+      throw py::error_already_set();
+    }
+    if (interrupted) throw PackageError("interrupted", what);
   }
   RunObserver Observer() {
     RunObserver observer;
@@ -213,7 +223,7 @@ std::shared_ptr<Run> RunConfigured(const ConfigArgument& config, const std::stri
                &outcome);
   }
   ClearStopRequest();
-  if (watch.interrupted) throw PackageError("interrupted", "the run was interrupted");
+  watch.RaiseIfStopped("the run was interrupted");
   return Finished(file.run, outcome);
 }
 
@@ -246,7 +256,7 @@ std::shared_ptr<Run> Select(const ConfigArgument& config, const std::string& dat
                              watch.Observer(), line, nullptr, &outcome, &error);
   }
   ClearStopRequest();
-  if (watch.interrupted) throw PackageError("interrupted", "the selection was interrupted");
+  watch.RaiseIfStopped("the selection was interrupted");
   if (!selected) throw PackageError("run", error);
   return Finished(*outcome.chosen, outcome.run);
 }

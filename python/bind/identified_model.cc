@@ -38,19 +38,6 @@ py::object Series(const std::vector<ModelVariable>& names, const std::vector<dou
                                py::arg("dtype") = "float64");
 }
 
-py::object Covariance(const IdentifiedModel& m) {
-  if (m.covariance_names.empty()) return py::none();
-  const py::module_ pandas = py::module_::import("pandas");
-  const Eigen::MatrixXd& c = m.covariance;
-  py::array_t<double> matrix({c.rows(), c.cols()});
-  auto view = matrix.mutable_unchecked<2>();
-  for (int r = 0; r < c.rows(); ++r) {
-    for (int k = 0; k < c.cols(); ++k) view(r, k) = c(r, k);
-  }
-  return pandas.attr("DataFrame")(matrix, py::arg("index") = m.covariance_names,
-                                  py::arg("columns") = m.covariance_names);
-}
-
 // Replaces values of `variables` by name from `given` (a mapping); a name not among them
 // raises KeyError naming the choices. Angles in degrees where `degrees`.
 void Override(const IdentifiedModel& m, const std::vector<ModelVariable>& variables,
@@ -65,7 +52,14 @@ void Override(const IdentifiedModel& m, const std::vector<ModelVariable>& variab
       for (const ModelVariable& v : variables) choices += (choices.empty() ? "" : ", ") + v.name;
       throw py::key_error(m.model + " has no " + what + " '" + name + "' (" + choices + ")");
     }
-    (*values)[i] = value.cast<double>() * (degrees && InDegrees(m, name) ? kDegree : 1.0);
+    double number = 0.0;
+    try {
+      number = value.cast<double>();
+    } catch (const py::cast_error&) {
+      throw py::type_error(std::string(what) + " '" + name + "': a number, not " +
+                           std::string(py::str(py::type::of(value).attr("__name__"))));
+    }
+    (*values)[i] = number * (degrees && InDegrees(m, name) ? kDegree : 1.0);
   }
 }
 
@@ -94,6 +88,9 @@ std::vector<Interpolation> Methods(const IdentifiedModel& m, const py::object& g
   return methods;
 }
 
+// A step bound given in Python (a number).
+double MaxStepOf(const py::object& given) { return py::float_(given).cast<double>(); }
+
 py::object Simulate(const IdentifiedModel& m, const py::object& inputs,
                     const py::object& initial_state, const py::object& parameters,
                     const py::object& max_step, const py::object& interpolation) {
@@ -101,17 +98,15 @@ py::object Simulate(const IdentifiedModel& m, const py::object& inputs,
   Override(m, m.parameters, "parameter", parameters, false, &values);
   std::vector<double> x0(m.states.size(), 0.0);
   Override(m, m.states, "state", initial_state, true, &x0);
-  // t and the model's inputs, in SI units.
-  const std::shared_ptr<Trajectory> given = TableFromColumns("inputs", inputs);
+  // t and the model's inputs, in SI units (other columns are not read).
   Trajectory table;
   table.source = "inputs";
-  for (size_t c = 0; c < given->names.size(); ++c) {
-    const std::string& name = given->names[c];
+  for (const std::string& name : ColumnNames(inputs, "inputs")) {
     const bool input = std::any_of(m.inputs.begin(), m.inputs.end(),
                                    [&](const ModelVariable& v) { return v.name == name; });
     if (name != "t" && !input) continue;
     table.names.push_back(name);
-    table.columns.push_back(given->columns[c]);
+    table.columns.push_back(ColumnValues(inputs, name, "inputs"));
     if (input && InDegrees(m, name)) {
       for (double& v : table.columns.back()) v *= kDegree;
     }
@@ -121,9 +116,20 @@ py::object Simulate(const IdentifiedModel& m, const py::object& inputs,
   if (!TrajectoryFromTable(table, CsvReadOptions(), &record, &error)) {
     throw PackageError("data", error);
   }
+  for (size_t c = 0; c < record.names.size(); ++c) {
+    if (std::none_of(record.columns[c].begin(), record.columns[c].end(),
+                     [](double v) { return std::isfinite(v); })) {
+      throw PackageError("data", "inputs: input '" + record.names[c] +
+                                     "' has no samples (every value is missing)");
+    }
+  }
+  if (!max_step.is_none() && !(MaxStepOf(max_step) >= 0.0)) {
+    throw PackageError("data", "max_step " + std::string(py::str(max_step)) +
+                                   ": a step bound in s, >= 0 (0: the median sample interval)");
+  }
   OpenLoopOptions options;
   options.substeps = 0;  // steps as the run planned them
-  options.max_step = max_step.is_none() ? m.max_step : max_step.cast<double>();
+  options.max_step = max_step.is_none() ? m.max_step : MaxStepOf(max_step);
   options.input_interpolation = Methods(m, interpolation);
   options.record_states = true;
   bool ok = false;
@@ -192,7 +198,9 @@ void BindIdentifiedModel(py::module_& m) {
       .def_property_readonly("std_errors", [](const IdentifiedModel& x) {
         return Series(x.parameters, x.std_errors, "std_error");
       })
-      .def_property_readonly("covariance", &Covariance)
+      .def_property_readonly("covariance", [](const IdentifiedModel& x) {
+        return MatrixFrame(x.covariance, x.covariance_names);
+      })
       .def_readonly("max_step", &IdentifiedModel::max_step)
       .def_property_readonly("interpolation",
                              [](const IdentifiedModel& x) {
@@ -209,7 +217,14 @@ void BindIdentifiedModel(py::module_& m) {
                              })
       .def("simulate", &Simulate, py::arg("inputs"), py::arg("initial_state") = py::none(),
            py::arg("parameters") = py::none(), py::arg("max_step") = py::none(),
-           py::arg("interpolation") = py::none())
+           py::arg("interpolation") = py::none(),
+           "Flies the model open loop under `inputs` (a DataFrame or dict with a time column t "
+           "and a column per model input, degrees where the run read degrees) from "
+           "`initial_state` (zeros where not given) and returns t, the inputs, the outputs and "
+           "the states ('x.<state>'). It integrates as the run did (its step bound and "
+           "interpolation); `parameters` overrides values by name, `max_step` (s, 0: the "
+           "median sample interval) and `interpolation` (a method, or one per input) the "
+           "run's settings.")
       .def("to_json", [](const IdentifiedModel& x) { return IdentifiedModelToJson(x).dump(); },
            "model.json's text (`vesselid export --format json`, without ensemble members).")
       .def("__repr__", [](const IdentifiedModel& x) {

@@ -10,6 +10,7 @@
 #include "engine/output/parameter_summary.h"
 #include "engine/output/run_traces.h"
 #include "engine/output/selection_report.h"
+#include "engine/report/report_tables.h"
 #include "engine/run/display_units.h"
 #include "python/bind/frames.h"
 #include "python/bind/types.h"
@@ -121,21 +122,6 @@ py::dict Traces(const Run& run) {
   return traces;
 }
 
-std::string Escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#x27;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 std::string Number(double value) {
   if (std::isnan(value)) return "";
   char text[32];
@@ -160,10 +146,10 @@ std::string Html(const Run& run) {
     const FinalParameter& f = result.parameters[i];
     const ParameterReport& r = reports[i];
     const DisplayUnit shown = ParameterDisplayUnit(*run.config, f.name);
-    html += "<tr><td>" + Escaped(f.name) + "</td><td>" + Number(shown.scale * f.value) +
+    html += "<tr><td>" + HtmlEscape(f.name) + "</td><td>" + Number(shown.scale * f.value) +
             "</td><td>" + Number(shown.scale * f.std_error) + "</td><td>" +
             Number(shown.scale * r.interval_low) + "</td><td>" +
-            Number(shown.scale * r.interval_high) + "</td><td>" + Escaped(shown.unit) +
+            Number(shown.scale * r.interval_high) + "</td><td>" + HtmlEscape(shown.unit) +
             "</td><td>" + ParameterRoleToString(f.role) + "</td><td>" +
             (r.bound < 0 ? "lower" : r.bound > 0 ? "upper" : "") + "</td></tr>\n";
   }
@@ -173,9 +159,36 @@ std::string Html(const Run& run) {
   for (const Finding& f : Findings(run)) {
     if (f.severity == FindingSeverity::kInfo || ++shown > 20) continue;
     items += "<li>" + std::string(FindingSeverityToString(f.severity)) + ": " +
-             Escaped(f.message) + "</li>";
+             HtmlEscape(f.message) + "</li>";
   }
   return html + (items.empty() ? "<p>no warnings</p>" : "<ul>" + items + "</ul>");
+}
+
+// The findings of one kind and/or severity; a kind or severity that does not exist is an
+// error, not an empty list (`vesselid findings` lists the kinds).
+std::vector<Finding> Find(const Run& run, const py::object& kind, const py::object& severity) {
+  std::string wanted_kind, wanted_severity;
+  if (!kind.is_none()) {
+    wanted_kind = py::str(kind);
+    FindingKind known;
+    if (!StringToFindingKind(wanted_kind, &known)) {
+      throw py::value_error("no finding kind '" + wanted_kind + "' (`vesselid findings` lists them)");
+    }
+  }
+  if (!severity.is_none()) {
+    wanted_severity = py::str(severity);
+    FindingSeverity known;
+    if (!StringToFindingSeverity(wanted_severity, &known)) {
+      throw py::value_error("no severity '" + wanted_severity + "' (info, warning, failure)");
+    }
+  }
+  std::vector<Finding> found;
+  for (const Finding& f : Findings(run)) {
+    if (!wanted_kind.empty() && wanted_kind != FindingKindToString(f.kind)) continue;
+    if (!wanted_severity.empty() && wanted_severity != FindingSeverityToString(f.severity)) continue;
+    found.push_back(f);
+  }
+  return found;
 }
 
 }  // namespace
@@ -199,19 +212,7 @@ void BindRunResult(py::module_& m) {
       "summary      report.txt's text; to_json(): results.json's text; json: it as a dict")
       .def_property_readonly("verdict", [](const Run& r) { return VerdictToString(r.result.verdict); })
       .def_property_readonly("findings", &Findings)
-      .def("find",
-           [](const Run& r, py::object kind, py::object severity) {
-             std::vector<Finding> found;
-             for (const Finding& f : Findings(r)) {
-               if (!kind.is_none() && py::str(kind).cast<std::string>() != FindingKindToString(f.kind)) continue;
-               if (!severity.is_none() &&
-                   py::str(severity).cast<std::string>() != FindingSeverityToString(f.severity)) {
-                 continue;
-               }
-               found.push_back(f);
-             }
-             return found;
-           },
+      .def("find", &Find,
            py::arg("kind") = py::none(), py::arg("severity") = py::none(),
            "The findings of one kind and/or severity.")
       .def_property_readonly(

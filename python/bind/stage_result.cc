@@ -41,20 +41,6 @@ py::object Estimates(const StageResult& stage) {
                "name");
 }
 
-// The correlation of the free variables (NaN where undetermined), or None.
-py::object Correlation(const StageResult& stage) {
-  if (stage.correlation.size() == 0) return py::none();
-  const py::module_ pandas = py::module_::import("pandas");
-  const Eigen::MatrixXd& c = stage.correlation;
-  py::array_t<double> matrix({c.rows(), c.cols()});
-  auto view = matrix.mutable_unchecked<2>();
-  for (int r = 0; r < c.rows(); ++r) {
-    for (int k = 0; k < c.cols(); ++k) view(r, k) = c(r, k);
-  }
-  return pandas.attr("DataFrame")(matrix, py::arg("index") = stage.correlation_names,
-                                  py::arg("columns") = stage.correlation_names);
-}
-
 }  // namespace
 
 void BindStageResult(py::module_& m) {
@@ -75,7 +61,10 @@ void BindStageResult(py::module_& m) {
                              [](const StageResult& s) { return s.summary.uncertainty.method; })
       .def_readonly("findings", &StageResult::findings)
       .def_property_readonly("estimates", &Estimates)
-      .def_property_readonly("correlation", &Correlation)
+      .def_property_readonly("correlation",
+                             [](const StageResult& s) {  // NaN where undetermined
+                               return MatrixFrame(s.correlation, s.correlation_names);
+                             })
       .def("__repr__", [](const StageResult& s) {
         return "<vesselid.StageResult '" + s.name + "' verdict=" + VerdictToString(s.verdict) + ">";
       });

@@ -4,6 +4,7 @@ import json
 import os
 
 from . import _core
+from ._run import _out_argument
 from ._run import _config_arguments
 
 
@@ -18,7 +19,7 @@ def design(config: "os.PathLike | str | dict", run_dir: "os.PathLike | str",
     report.html)."""
     message, payload, planned, predicted = _core.design(
         _config_arguments(config), os.fspath(run_dir), out is not None,
-        os.fspath(out) if out else "", int(threads))
+        _out_argument(out), int(threads))
     result = json.loads(payload)
     result["text"] = message
     result["planned"] = _table(planned)

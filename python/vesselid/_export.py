@@ -4,6 +4,7 @@ import math
 import os
 
 from . import _core
+from ._run import _out_argument
 
 
 def export(run: "_core.RunResult | os.PathLike | str", format: str = "fmu",
@@ -19,9 +20,9 @@ def export(run: "_core.RunResult | os.PathLike | str", format: str = "fmu",
     if isinstance(run, _core.RunResult):
         if out is None:
             raise TypeError("export of a RunResult needs `out`, the folder to write into")
-        return _core.export_result(run, str(format), os.fspath(out), int(members), int(seed),
-                                   runtime)
-    return _core.export_model(os.fspath(run), str(format), os.fspath(out) if out else "",
+        return _core.export_result(run, str(format), _out_argument(out), int(members),
+                                   int(seed), runtime)
+    return _core.export_model(os.fspath(run), str(format), _out_argument(out),
                               int(members), int(seed), runtime)
 
 
@@ -35,7 +36,7 @@ def predict(run: "_core.RunResult | os.PathLike | str", length: "float | None" =
     run's folder. `out` also writes predictions.txt and predictions.json there."""
     conditions = (math.nan if length is None else float(length),
                   math.nan if speed is None else float(speed), int(members), int(seed),
-                  out is not None, os.fspath(out) if out else "")
+                  out is not None, _out_argument(out))
     if isinstance(run, _core.RunResult):
         text, payload = _core.predict_result(run, *conditions)
     else:

@@ -95,9 +95,22 @@ def _progress_callback(progress):
             if "cost" in p:
                 bar.set_postfix(phase=p["phase"], cost="%.4g" % p["cost"])
         return tell, bar
-    if progress is False:
+    if progress is False or progress is None:
         return None, None
+    if not callable(progress):
+        raise TypeError("progress must be callable, True or None, not %s"
+                        % type(progress).__name__)
     return progress, None
+
+
+def _out_argument(out):
+    """`out` for the engine: "" for none; an empty path is refused, as the CLI refuses it."""
+    if out is None:
+        return ""
+    out = os.fspath(out)
+    if not out:
+        raise ValueError("out: an empty path; give a folder, or None to write nothing")
+    return out
 
 
 def _run_command(command, config, data, out, threads, report, progress):
@@ -105,7 +118,7 @@ def _run_command(command, config, data, out, threads, report, progress):
     data_dir, tables = _data_arguments(data)
     try:
         return command(_config_arguments(config), data_dir, tables, out is not None,
-                       "" if out is None else os.fspath(out), report, int(threads), callback)
+                       _out_argument(out), report, int(threads), callback)
     finally:
         if bar is not None:
             bar.close()
@@ -172,8 +185,10 @@ def study(config: Config, data: Data = None, only: "list[str] | None" = None, th
     the CLI does (same checks, lock and publication). `data` as for run(); `progress` gets one
     line per finished case."""
     data_dir, tables = _data_arguments(data)
+    if isinstance(only, str):
+        only = [only]
     payload, text = _core.study(_config_arguments(config), data_dir, tables, list(only or []),
-                                out is not None, "" if out is None else os.fspath(out),
+                                out is not None, _out_argument(out),
                                 int(threads), progress)
     result = json.loads(payload)
     result["text"] = text

@@ -412,3 +412,45 @@ def test_select_chooses_and_runs_a_structure(campaign, tmp_path):
     with open(tmp_path / "py" / "results.json", encoding="utf-8") as f:
         written = json.load(f)
     assert drop_times(result.json) == drop_times(expected) == drop_times(written)
+
+
+def test_misuse_is_named_not_fatal(campaign, tmp_path):
+    """What a new user gets wrong is a clear error of the right class, never a dead process."""
+    result = vesselid.run(campaign["path"], data=campaign["frames"])
+    model = result.model
+    frame = campaign["frames"]["zz20s_b"][["t", "delta", "U"]]
+    with pytest.raises(vesselid.DataError, match="input 'delta' has no samples"):
+        model.simulate(frame.assign(delta=np.nan))
+    with pytest.raises(vesselid.DataError, match="max_step"):
+        model.simulate(frame, max_step=-1.0)
+    with pytest.raises(TypeError, match="state 'psi': a number"):
+        model.simulate(frame, initial_state={"psi": "a"})
+    with pytest.raises(TypeError, match="DataFrame or a dict of columns"):
+        model.simulate([1, 2, 3])
+    # Epoch times as datetime64 are seconds, as run() reads them; other columns are not read.
+    stamped = frame.assign(t=pd.to_datetime(frame["t"], unit="s"), note="text")
+    pd.testing.assert_frame_equal(model.simulate(stamped).drop(columns="t"),
+                                  model.simulate(frame).drop(columns="t"))
+    with pytest.raises(ValueError, match="no severity 'WARNING'"):
+        result.find(severity="WARNING")
+    with pytest.raises(ValueError, match="no finding kind 'bogus'"):
+        result.find(kind="bogus")
+    with pytest.raises(ValueError, match="out: an empty path"):
+        vesselid.export(result, format="json", out="")
+    # The progress callback's own exception, not an interrupt; a non-callable one up front.
+    def fails(p):
+        raise ValueError("boom")
+    with pytest.raises(ValueError, match="boom"):
+        vesselid.run(campaign["path"], data=campaign["frames"], progress=fails)
+    with pytest.raises(TypeError, match="progress must be callable"):
+        vesselid.run(campaign["path"], data=campaign["frames"], progress=5)
+    # select on a config without a select section: a config error, from Python and the CLI.
+    config = copy.deepcopy(campaign["config"])
+    config.pop("select")
+    plain = campaign["folder"] / "no_select.yaml"
+    plain.write_text(yaml.safe_dump(config))
+    with pytest.raises(vesselid.ConfigError, match="no select section"):
+        vesselid.select(plain, data=campaign["frames"])
+    cli = subprocess.run([BINARY, "select", str(plain), "--out",
+                          str(tmp_path / "select")], capture_output=True, text=True)
+    assert cli.returncode == 1 and "no select section" in cli.stderr, cli.stderr
