@@ -13,7 +13,8 @@
 // Each start's outcome is printed as it ends (a campaign takes minutes per start).
 // VESSELID_BENCHMARK_BINARY runs another vesselid binary (e.g. a copy, while the build tree
 // changes); VESSELID_BENCHMARK_KEEP=1 keeps the data, configs and outputs (their folder is
-// printed).
+// printed); VESSELID_BENCHMARK_STAGE_KEYS adds a line of stage keys to every engine config
+// (e.g. "local: {trust_region: dogleg}").
 //
 // A start succeeds when every parameter ends within 1 % of the value the same tool reaches
 // from the true values (run first, not counted; Yr ~ 0 within 1e-4). Scored by the
@@ -132,6 +133,10 @@ std::string Config(const std::map<std::string, double>& start, Variant variant) 
     text += "    continuation: [10, 30]\n    free_initial_states: [u, v, r]\n";
   }
   if (variant == Variant::kGlobal) text += "    global: {}\n";
+  // Stage keys of one's own to compare (e.g. "local: {trust_region: dogleg}").
+  if (const char* keys = std::getenv("VESSELID_BENCHMARK_STAGE_KEYS")) {
+    text += "    " + std::string(keys) + "\n";
+  }
   text += "    parameters:\n";
   for (const auto& [name, value] : start) {
     const std::string bound = Bounds(name);
