@@ -239,7 +239,8 @@ void ReadLocal(const YamlReader& reader, const YAML::Node& node, const std::stri
                LocalSolveOptions* local) {
   reader.CheckMap(node, path,
                   {"trust_region", "linear_solver", "max_iterations", "function_tolerance",
-                   "gradient_tolerance", "parameter_tolerance", "max_time", "num_threads"});
+                   "gradient_tolerance", "parameter_tolerance", "max_time", "num_threads",
+                   "initial_radius"});
   if (node["trust_region"]) {
     std::string text = reader.String(node["trust_region"], Child(path, "trust_region"));
     if (!ceres::StringToTrustRegionStrategyType(text, &local->trust_region)) {
@@ -260,6 +261,7 @@ void ReadLocal(const YamlReader& reader, const YAML::Node& node, const std::stri
     }
   }
   reader.Read(node, path, "max_iterations", &local->max_iterations);
+  reader.Read(node, path, "initial_radius", &local->initial_radius);
   reader.Read(node, path, "function_tolerance", &local->function_tolerance);
   reader.Read(node, path, "gradient_tolerance", &local->gradient_tolerance);
   reader.Read(node, path, "parameter_tolerance", &local->parameter_tolerance);

@@ -104,6 +104,8 @@ bool LocalSolveOptions::IsValid(std::string* error) const {
     *error = "stall_window and stall_tolerance must be >= 0";
   else if (num_threads < 0)
     *error = "num_threads must be >= 0 (0: the machine's cores)";
+  else if (!(initial_radius > 0.0 && std::isfinite(initial_radius)))
+    *error = "initial_radius must be a number > 0";
   else
     return true;
   return false;
@@ -232,6 +234,10 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   ceres_options.trust_region_strategy_type = options.trust_region;
   ceres_options.linear_solver_type = options.linear_solver.value_or(AutomaticLinearSolver(*problem));
   ceres_options.max_num_iterations = options.max_iterations;
+  ceres_options.initial_trust_region_radius = options.initial_radius;
+  // Ceres requires max_trust_region_radius >= the initial one.
+  ceres_options.max_trust_region_radius =
+      std::max(ceres_options.max_trust_region_radius, options.initial_radius);
   ceres_options.function_tolerance = options.function_tolerance;
   ceres_options.gradient_tolerance = options.gradient_tolerance;
   ceres_options.parameter_tolerance = options.parameter_tolerance;
