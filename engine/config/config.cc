@@ -243,9 +243,10 @@ void ReadLocal(const YamlReader& reader, const YAML::Node& node, const std::stri
                    "initial_radius"});
   if (node["trust_region"]) {
     std::string text = reader.String(node["trust_region"], Child(path, "trust_region"));
-    if (!ceres::StringToTrustRegionStrategyType(text, &local->trust_region)) {
+    if (!StringToTrustRegion(text, &local->trust_region)) {
       reader.Fail(node["trust_region"], Child(path, "trust_region"),
-                  "unknown trust region '" + text + "' (levenberg_marquardt, dogleg)");
+                  "unknown trust region '" + text +
+                      "' (levenberg_marquardt, dogleg, reflective)");
     }
   }
   if (node["linear_solver"]) {

@@ -8,6 +8,7 @@
 #include "engine/base/parallel_for.h"
 #include "engine/base/stop_request.h"
 #include "engine/solve/metrics.h"
+#include "engine/solve/reflective_local_solve.h"
 #include "engine/solve/start_failure.h"
 
 namespace vesselid {
@@ -87,7 +88,37 @@ class StallCheck : public ceres::IterationCallback {
   std::vector<double> best_;
 };
 
+// Ceres' solve, or the reflective trust region with Ceres' options.
+void Minimize(const ceres::Solver::Options& options, bool reflective,
+              OutputErrorProblem* problem, ceres::Solver::Summary* summary) {
+  if (reflective) {
+    SolveReflectiveProblem(options, problem, summary);
+  } else {
+    ceres::Solve(options, problem->problem(), summary);
+  }
+}
+
 }  // namespace
+
+const char* TrustRegionToString(TrustRegion method) {
+  switch (method) {
+    case TrustRegion::kLevenbergMarquardt: return "levenberg_marquardt";
+    case TrustRegion::kDogleg: return "dogleg";
+    case TrustRegion::kReflective: return "reflective";
+  }
+  return "levenberg_marquardt";
+}
+
+bool StringToTrustRegion(const std::string& text, TrustRegion* method) {
+  for (TrustRegion m :
+       {TrustRegion::kLevenbergMarquardt, TrustRegion::kDogleg, TrustRegion::kReflective}) {
+    if (text == TrustRegionToString(m)) {
+      *method = m;
+      return true;
+    }
+  }
+  return false;
+}
 
 bool LocalSolveOptions::IsValid(std::string* error) const {
   if (max_iterations < 0)
@@ -207,7 +238,7 @@ void ContinueWithBoundsHeld(ceres::Solver::Options options, const LocalSolveOpti
   options.callbacks.push_back(&stall);
   for (const Variable* v : held) problem->problem()->SetParameterBlockConstant(v->block);
   ceres::Solver::Summary again;
-  ceres::Solve(options, problem->problem(), &again);
+  Minimize(options, local.trust_region == TrustRegion::kReflective, problem, &again);
   for (const Variable* v : held) problem->problem()->SetParameterBlockVariable(v->block);
   double after_cost = 0.0;
   if (!again.IsSolutionUsable() || !problem->Cost(&after_cost) ||
@@ -231,7 +262,8 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
     return false;
   }
   ceres::Solver::Options ceres_options;
-  ceres_options.trust_region_strategy_type = options.trust_region;
+  ceres_options.trust_region_strategy_type =
+      options.trust_region == TrustRegion::kDogleg ? ceres::DOGLEG : ceres::LEVENBERG_MARQUARDT;
   ceres_options.linear_solver_type = options.linear_solver.value_or(AutomaticLinearSolver(*problem));
   ceres_options.max_num_iterations = options.max_iterations;
   ceres_options.initial_trust_region_radius = options.initial_radius;
@@ -269,7 +301,8 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   ceres_options.callbacks.push_back(&keeper);
   ceres_options.update_state_every_iteration = true;
   ceres::Solver::Summary ceres_summary;
-  ceres::Solve(ceres_options, problem->problem(), &ceres_summary);
+  Minimize(ceres_options, options.trust_region == TrustRegion::kReflective, problem,
+           &ceres_summary);
   if (threaded && ceres_summary.initial_cost >= 0.0 && ordered_initial >= 0.0) {
     ceres_summary.initial_cost = ordered_initial;
     if (!ceres_summary.iterations.empty()) ceres_summary.iterations.front().cost = ordered_initial;

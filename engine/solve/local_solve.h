@@ -12,9 +12,15 @@
 
 namespace vesselid {
 
+// The local solve's method: Ceres' Levenberg-Marquardt or dogleg trust region (bounds by
+// projection), or the reflective trust region (reflective_trust_region.h: strictly interior
+// iterates, Coleman-Li scaling, reflection off the bounds) on Ceres' evaluation of the problem.
+enum class TrustRegion { kLevenbergMarquardt, kDogleg, kReflective };
+const char* TrustRegionToString(TrustRegion method);
+bool StringToTrustRegion(const std::string& text, TrustRegion* method);
+
 struct LocalSolveOptions {
-  // Trust-region strategy: levenberg_marquardt or dogleg.
-  ceres::TrustRegionStrategyType trust_region = ceres::LEVENBERG_MARQUARDT;
+  TrustRegion trust_region = TrustRegion::kLevenbergMarquardt;
   // Linear solver; unset: AutomaticLinearSolver below.
   std::optional<ceres::LinearSolverType> linear_solver;
   int max_iterations = 200;

@@ -1,0 +1,117 @@
+#include "engine/solve/reflective_local_solve.h"
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "engine/solve/reflective_trust_region.h"
+
+namespace vesselid {
+namespace {
+
+// Ceres' getters give +-max double for an unbounded side.
+double Bound(double value) {
+  constexpr double kHuge = 0.5 * std::numeric_limits<double>::max();
+  if (value >= kHuge) return std::numeric_limits<double>::infinity();
+  if (value <= -kHuge) return -std::numeric_limits<double>::infinity();
+  return value;
+}
+
+ceres::TerminationType CeresTermination(ReflectiveSummary::End end) {
+  switch (end) {
+    case ReflectiveSummary::End::kConvergence: return ceres::CONVERGENCE;
+    case ReflectiveSummary::End::kNoConvergence: return ceres::NO_CONVERGENCE;
+    case ReflectiveSummary::End::kUserSuccess: return ceres::USER_SUCCESS;
+    case ReflectiveSummary::End::kUserFailure: return ceres::USER_FAILURE;
+    case ReflectiveSummary::End::kFailure: return ceres::FAILURE;
+  }
+  return ceres::FAILURE;
+}
+
+}  // namespace
+
+void SolveReflectiveProblem(const ceres::Solver::Options& options, OutputErrorProblem* problem,
+                            ceres::Solver::Summary* summary) {
+  *summary = ceres::Solver::Summary();
+  ceres::Problem* ceres_problem = problem->problem();
+  ceres::Problem::EvaluateOptions evaluate;
+  evaluate.num_threads = options.num_threads;
+  for (const Variable& v : problem->variables()) {
+    if (v.free && !ceres_problem->IsParameterBlockConstant(v.block)) {
+      evaluate.parameter_blocks.push_back(v.block);
+    }
+  }
+  const int n = static_cast<int>(evaluate.parameter_blocks.size());
+  Eigen::VectorXd x(n), lower(n), upper(n);
+  for (int i = 0; i < n; ++i) {
+    double* block = evaluate.parameter_blocks[i];
+    x[i] = *block;
+    lower[i] = Bound(ceres_problem->GetParameterLowerBound(block, 0));
+    upper[i] = Bound(ceres_problem->GetParameterUpperBound(block, 0));
+  }
+  auto set = [&](const Eigen::VectorXd& at) {
+    for (int i = 0; i < n; ++i) *evaluate.parameter_blocks[i] = at[i];
+  };
+  std::vector<double> residuals;
+  ceres::CRSMatrix crs;
+  // The cost is summed here in the problem's order (the losses are inside the experiments'
+  // residuals, so 1/2 |f|^2 is the cost), the same on any number of threads.
+  auto function = [&](const Eigen::VectorXd& at, double* cost, Eigen::VectorXd* f,
+                      Eigen::MatrixXd* jacobian) {
+    set(at);
+    double ceres_cost = 0.0;
+    if (!ceres_problem->Evaluate(evaluate, &ceres_cost, &residuals, nullptr, &crs)) return false;
+    *f = Eigen::Map<const Eigen::VectorXd>(residuals.data(), residuals.size());
+    *cost = 0.5 * f->squaredNorm();
+    jacobian->setZero(crs.num_rows, crs.num_cols);
+    for (int row = 0; row < crs.num_rows; ++row) {
+      for (int k = crs.rows[row]; k < crs.rows[row + 1]; ++k) {
+        (*jacobian)(row, crs.cols[k]) = crs.values[k];
+      }
+    }
+    return true;
+  };
+  auto callback = [&](int trial, bool accepted, double cost, const Eigen::VectorXd& at) {
+    set(at);
+    ceres::IterationSummary step;
+    step.iteration = trial + 1;
+    step.cost = cost;
+    step.step_is_successful = accepted;
+    step.step_is_valid = true;
+    summary->iterations.push_back(step);
+    for (ceres::IterationCallback* c : options.callbacks) {
+      const ceres::CallbackReturnType answer = (*c)(step);
+      if (answer == ceres::SOLVER_ABORT) return -1;
+      if (answer == ceres::SOLVER_TERMINATE_SUCCESSFULLY) return 1;
+    }
+    return 0;
+  };
+  ReflectiveOptions reflective;
+  reflective.max_evaluations = options.max_num_iterations + 1;  // the start's and each step's
+  reflective.function_tolerance = options.function_tolerance;
+  reflective.parameter_tolerance = options.parameter_tolerance;
+  reflective.gradient_tolerance = options.gradient_tolerance;
+  reflective.max_time_seconds = options.max_solver_time_in_seconds;
+  // Iteration 0: the start, as Ceres reports it.
+  summary->iterations.reserve(options.max_num_iterations + 1);
+  const size_t start_index = summary->iterations.size();
+  summary->iterations.emplace_back();
+  const ReflectiveSummary result =
+      SolveReflective(reflective, function, lower, upper, callback, &x);
+  set(x);
+  summary->iterations[start_index].cost = result.initial_cost;
+  summary->iterations[start_index].step_is_valid = result.initial_cost >= 0.0;
+  summary->initial_cost = result.initial_cost;
+  summary->final_cost = result.final_cost;
+  summary->termination_type = CeresTermination(result.end);
+  summary->message = result.message;
+  summary->num_successful_steps = result.accepted;
+  summary->num_unsuccessful_steps = result.rejected;
+  summary->num_residual_evaluations = result.evaluations;
+  summary->num_jacobian_evaluations = result.evaluations;
+  summary->jacobian_evaluation_time_in_seconds = result.evaluation_seconds;
+  summary->linear_solver_time_in_seconds = result.step_seconds;
+  summary->total_time_in_seconds = result.total_seconds;
+}
+
+}  // namespace vesselid
