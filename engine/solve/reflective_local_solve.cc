@@ -74,7 +74,7 @@ void SolveReflectiveProblem(const ceres::Solver::Options& options, OutputErrorPr
   auto callback = [&](int trial, bool accepted, double cost, const Eigen::VectorXd& at) {
     set(at);
     ceres::IterationSummary step;
-    step.iteration = trial + 1;
+    step.iteration = trial;
     step.cost = cost;
     step.step_is_successful = accepted;
     step.step_is_valid = true;

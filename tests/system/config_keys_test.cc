@@ -353,11 +353,15 @@ const KeyCase kCases[] = {
     // 2 samples has no run to remove but is read (an invalid count is refused).
     {"screen_stale", V, V.A(", screen: {stale: 1}"), "stale: must be >= 2"},
     // The local solver's settings.
-    {"local_function_tolerance", V, V.K("    local: {function_tolerance: 1e-2}")},
+    {"local_function_tolerance", V, V.K("    local: {function_tolerance: 0.5}")},
     {"local_gradient_tolerance", V, V.K("    local: {gradient_tolerance: 1e-1}")},
-    {"local_parameter_tolerance", V, V.K("    local: {parameter_tolerance: 1e-1}")},
+    {"local_parameter_tolerance", V, V.K("    local: {parameter_tolerance: 1}")},
     {"local_trust_region", V, V.K("    local: {trust_region: dogleg}")},
-    {"local_initial_radius", V, V.K("    local: {initial_radius: 1e-6}")},
+    {"local_trust_region_reflective", V.K("    local: {trust_region: levenberg_marquardt}"),
+     V.K("    local: {trust_region: reflective}")},
+    // The initial radius of Ceres' trust regions (the reflective one starts from |x0|).
+    {"local_initial_radius", V.K("    local: {trust_region: levenberg_marquardt}"),
+     V.K("    local: {trust_region: levenberg_marquardt, initial_radius: 1e-6}")},
     {"local_initial_radius_refused", V, V.K("    local: {initial_radius: 0}"),
      "initial_radius must be a number > 0"},
     {"global_population", V.K("    global: {algorithm: GN_CRS2_LM, max_evaluations: 40, seed: 1}"),

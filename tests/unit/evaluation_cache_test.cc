@@ -91,6 +91,9 @@ Solved Solve(bool cache, bool bounded) {
   if (problem == nullptr) return solved;
   LocalSolveOptions solve;
   solve.num_threads = 2;
+  // The cache serves Ceres' bounded line search (the reflective region evaluates each trial
+  // point once, with its Jacobian).
+  solve.trust_region = TrustRegion::kLevenbergMarquardt;
   EXPECT_TRUE(RunLocalSolve(solve, problem.get(), &solved.summary)) << solved.summary.message;
   solved.values = problem->Values();
   const EvaluationCounts& counts = problem->evaluation_counts();

@@ -29,6 +29,7 @@ TEST(LocalSolve, StallStopEndsACrawlAtItsBestPoint) {
   auto model = nomoto::MakeFirstOrderHandle();
   auto full = FarStart(*model);
   LocalSolveOptions options;
+  options.trust_region = TrustRegion::kLevenbergMarquardt;  // its crawl: > 6 iterations
   LocalSolveSummary converged;
   ASSERT_TRUE(RunLocalSolve(options, full.get(), &converged)) << converged.message;
   EXPECT_EQ(converged.termination, "CONVERGENCE");
@@ -91,6 +92,7 @@ TEST(LocalSolve, AStepWithoutDerivativesEndsTheSolveAtTheLastIterate) {
   const double scale = *t->block / t->value();
   problem->problem()->AddResidualBlock(new NoDerivativeBelow(3.0 * scale), nullptr, t->block);
   LocalSolveOptions options;
+  options.trust_region = TrustRegion::kLevenbergMarquardt;
   LocalSolveSummary summary;
   ASSERT_TRUE(RunLocalSolve(options, problem.get(), &summary)) << summary.message;
   EXPECT_EQ(summary.termination, kStoppedAtFailedStep);
@@ -101,6 +103,63 @@ TEST(LocalSolve, AStepWithoutDerivativesEndsTheSolveAtTheLastIterate) {
   ASSERT_TRUE(problem->Cost(&cost));
   EXPECT_DOUBLE_EQ(cost, summary.final_cost);
   EXPECT_LT(cost, summary.initial_cost);
+}
+
+// The reflective region evaluates each trial point with its derivatives: one it cannot
+// differentiate is a rejected step, and the solve goes on with a shorter one, ending as near
+// the truth as the derivatives allow.
+TEST(LocalSolve, ReflectiveShortensAStepWithoutDerivatives) {
+  auto model = nomoto::MakeFirstOrderHandle();
+  auto problem = FarStart(*model);
+  const Variable* t = nullptr;
+  for (const Variable& v : problem->variables()) {
+    if (v.name == "T") t = &v;
+  }
+  ASSERT_NE(t, nullptr);
+  const double scale = *t->block / t->value();
+  problem->problem()->AddResidualBlock(new NoDerivativeBelow(3.0 * scale), nullptr, t->block);
+  LocalSolveOptions options;
+  options.trust_region = TrustRegion::kReflective;
+  LocalSolveSummary summary;
+  ASSERT_TRUE(RunLocalSolve(options, problem.get(), &summary)) << summary.message;
+  EXPECT_GT(summary.unsuccessful_steps, 0);
+  EXPECT_GE(t->value(), 3.0);
+  EXPECT_LT(t->value(), 3.1);
+  double cost = 0.0;
+  ASSERT_TRUE(problem->Cost(&cost));
+  EXPECT_DOUBLE_EQ(cost, summary.final_cost);
+  EXPECT_LT(cost, 0.1 * summary.initial_cost);
+}
+
+// The stall check, the progress and the iteration count work alike on the reflective region:
+// its iterations are its trial points, each reported once.
+TEST(LocalSolve, ReflectiveReportsEachTrialAndStopsOnAStall) {
+  auto model = nomoto::MakeFirstOrderHandle();
+  auto full = FarStart(*model);
+  LocalSolveOptions options;
+  options.trust_region = TrustRegion::kReflective;
+  std::vector<int> reported;
+  options.progress = [&](const SolveProgress& p) { reported.push_back(p.iteration); };
+  LocalSolveSummary converged;
+  ASSERT_TRUE(RunLocalSolve(options, full.get(), &converged)) << converged.message;
+  EXPECT_EQ(converged.termination, "CONVERGENCE");
+  ASSERT_EQ(static_cast<int>(converged.cost_history.size()), converged.iterations + 1);
+  ASSERT_EQ(static_cast<int>(reported.size()), converged.iterations);
+  for (size_t i = 0; i < reported.size(); ++i) EXPECT_EQ(reported[i], static_cast<int>(i) + 1);
+  EXPECT_EQ(converged.successful_steps + converged.unsuccessful_steps, converged.iterations);
+  // Each trial evaluates residuals and Jacobian once: iterations + 1 evaluations.
+  EXPECT_EQ(converged.jacobian_evaluations, converged.iterations + 1);
+
+  auto stalled = FarStart(*model);
+  options.stall_window = 1;
+  options.stall_tolerance = 0.9;
+  LocalSolveSummary summary;
+  ASSERT_TRUE(RunLocalSolve(options, stalled.get(), &summary)) << summary.message;
+  EXPECT_EQ(summary.termination, "USER_SUCCESS");
+  EXPECT_LT(summary.iterations, converged.iterations);
+  double cost = 0.0;
+  ASSERT_TRUE(stalled->Cost(&cost));
+  EXPECT_DOUBLE_EQ(cost, summary.final_cost);
 }
 
 }  // namespace local_solve_test

@@ -84,10 +84,16 @@ TEST(StartFailure, NonFiniteDerivativeNamesTheVariable) {
   ASSERT_NE(problem, nullptr) << error;
   EXPECT_EQ(StartFailure(problem.get()),
             "at the start values, experiment 'run': its derivative by a is not finite");
-  // The solve that cannot begin says so.
+  // The solve that cannot begin says so (Ceres' trust regions evaluate the start on its bound).
+  LocalSolveOptions ceres;
+  ceres.trust_region = TrustRegion::kLevenbergMarquardt;
   LocalSolveSummary summary;
-  EXPECT_FALSE(RunLocalSolve(LocalSolveOptions(), problem.get(), &summary));
+  EXPECT_FALSE(RunLocalSolve(ceres, problem.get(), &summary));
   EXPECT_EQ(summary.message, StartFailure(problem.get()));
+  // The reflective region starts strictly inside the bounds, where the derivative exists.
+  LocalSolveOptions reflective;
+  reflective.trust_region = TrustRegion::kReflective;
+  EXPECT_TRUE(RunLocalSolve(reflective, problem.get(), &summary)) << summary.message;
 }
 
 TEST(StartFailure, DivergenceNamesTimeInputsAndBrokenConditions) {

@@ -1,0 +1,151 @@
+// The reflective trust region on problems whose solutions are known: linear least squares
+// with and without an active bound, Rosenbrock's valley with and without a bound across it,
+// and a region where the residuals cannot be evaluated.
+#include "engine/solve/reflective_trust_region.h"
+
+#include <cmath>
+#include <limits>
+
+#include "gtest/gtest.h"
+
+namespace vesselid {
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+const double kInfinity = std::numeric_limits<double>::infinity();
+
+// f = A x - b.
+ReflectiveFunction Linear(const MatrixXd& a, const VectorXd& b) {
+  return [a, b](const VectorXd& x, double* cost, VectorXd* f, MatrixXd* j) {
+    *f = a * x - b;
+    *j = a;
+    *cost = 0.5 * f->squaredNorm();
+    return true;
+  };
+}
+
+// Rosenbrock's function as residuals: f = (10 (x1 - x0^2), 1 - x0).
+bool Rosenbrock(const VectorXd& x, double* cost, VectorXd* f, MatrixXd* j) {
+  f->resize(2);
+  j->resize(2, 2);
+  (*f) << 10.0 * (x[1] - x[0] * x[0]), 1.0 - x[0];
+  (*j) << -20.0 * x[0], 10.0, -1.0, 0.0;
+  *cost = 0.5 * f->squaredNorm();
+  return true;
+}
+
+VectorXd Unbounded(int n, double sign) { return VectorXd::Constant(n, sign * kInfinity); }
+
+TEST(ReflectiveTrustRegion, SolvesLinearLeastSquares) {
+  MatrixXd a(4, 2);
+  a << 1, 0, 0, 2, 1, 1, 3, -1;
+  VectorXd b(4);
+  b << 1, 2, 3, 4;
+  const VectorXd exact = a.colPivHouseholderQr().solve(b);
+  VectorXd x = VectorXd::Zero(2);
+  x << 0.1, 0.1;
+  const ReflectiveSummary s =
+      SolveReflective({}, Linear(a, b), Unbounded(2, -1), Unbounded(2, 1), nullptr, &x);
+  EXPECT_EQ(s.end, ReflectiveSummary::End::kConvergence) << s.message;
+  EXPECT_LT((x - exact).norm(), 1e-10);
+  EXPECT_LE(s.evaluations, 8);  // the region doubles from |x0| = 0.14 to the solution
+}
+
+TEST(ReflectiveTrustRegion, EndsOnAnActiveBoundFromInside) {
+  // min |x - (-1, 2)| with x0 >= 0: x = (0, 2), reached from inside (x0 > 0 throughout).
+  const MatrixXd a = MatrixXd::Identity(2, 2);
+  VectorXd b(2), lower(2), x(2);
+  b << -1, 2;
+  lower << 0, -kInfinity;
+  x << 3, 0;
+  bool inside = true;
+  const ReflectiveSummary s = SolveReflective(
+      {}, Linear(a, b), lower, Unbounded(2, 1),
+      [&](int, bool, double, const VectorXd& at) {
+        inside = inside && at[0] > 0.0;
+        return 0;
+      },
+      &x);
+  EXPECT_NE(s.end, ReflectiveSummary::End::kNoConvergence) << s.message;
+  EXPECT_TRUE(inside);
+  EXPECT_GT(x[0], 0.0);
+  EXPECT_LT(x[0], 1e-6);
+  EXPECT_NEAR(x[1], 2.0, 1e-8);
+}
+
+TEST(ReflectiveTrustRegion, FollowsRosenbrocksValley) {
+  VectorXd x(2);
+  x << -1.2, 1.0;
+  const ReflectiveSummary s =
+      SolveReflective({}, Rosenbrock, Unbounded(2, -1), Unbounded(2, 1), nullptr, &x);
+  EXPECT_EQ(s.end, ReflectiveSummary::End::kConvergence) << s.message;
+  EXPECT_NEAR(x[0], 1.0, 1e-8);
+  EXPECT_NEAR(x[1], 1.0, 1e-8);
+  EXPECT_LT(s.evaluations, 60);
+  EXPECT_GT(s.accepted, 5);
+}
+
+TEST(ReflectiveTrustRegion, StopsAtABoundAcrossTheValley) {
+  // With x0 <= 0.5 the minimum is on the bound: x = (0.5, 0.25), cost 1/8.
+  VectorXd x(2), upper(2);
+  x << -1.2, 1.0;
+  upper << 0.5, kInfinity;
+  const ReflectiveSummary s =
+      SolveReflective({}, Rosenbrock, Unbounded(2, -1), upper, nullptr, &x);
+  EXPECT_NE(s.end, ReflectiveSummary::End::kNoConvergence) << s.message;
+  EXPECT_LE(x[0], 0.5);
+  EXPECT_NEAR(x[0], 0.5, 1e-6);
+  EXPECT_NEAR(x[1], 0.25, 1e-6);
+  EXPECT_NEAR(s.final_cost, 0.125, 1e-6);
+}
+
+TEST(ReflectiveTrustRegion, ShortensStepsWhoseResidualsCannotBeEvaluated) {
+  // f = x - 2, not evaluable beyond 1.5 (a simulation that diverges): the solve approaches
+  // 1.5 with shorter and shorter steps and never leaves the evaluable region.
+  const ReflectiveFunction f = [](const VectorXd& x, double* cost, VectorXd* r, MatrixXd* j) {
+    if (x[0] > 1.5) return false;
+    *r = x.array() - 2.0;
+    *j = MatrixXd::Identity(1, 1);
+    *cost = 0.5 * r->squaredNorm();
+    return true;
+  };
+  VectorXd x = VectorXd::Zero(1);
+  ReflectiveOptions options;
+  options.max_evaluations = 100;
+  const ReflectiveSummary s = SolveReflective(options, f, Unbounded(1, -1), Unbounded(1, 1),
+                                              nullptr, &x);
+  EXPECT_GT(s.rejected, 0);
+  EXPECT_LE(x[0], 1.5);
+  EXPECT_GT(x[0], 1.4);
+  EXPECT_EQ(s.evaluations, s.accepted + s.rejected + 1);
+}
+
+TEST(ReflectiveTrustRegion, ACallbackStopsOrAbandons) {
+  VectorXd x(2);
+  x << -1.2, 1.0;
+  const ReflectiveSummary abandoned = SolveReflective(
+      {}, Rosenbrock, Unbounded(2, -1), Unbounded(2, 1),
+      [](int trial, bool, double, const VectorXd&) { return trial == 3 ? -1 : 0; }, &x);
+  EXPECT_EQ(abandoned.end, ReflectiveSummary::End::kUserFailure);
+  EXPECT_EQ(abandoned.evaluations, 4);
+  x << -1.2, 1.0;
+  const ReflectiveSummary stopped = SolveReflective(
+      {}, Rosenbrock, Unbounded(2, -1), Unbounded(2, 1),
+      [](int trial, bool, double, const VectorXd&) { return trial == 2 ? 1 : 0; }, &x);
+  EXPECT_EQ(stopped.end, ReflectiveSummary::End::kUserSuccess);
+}
+
+TEST(ReflectiveTrustRegion, AStartThatCannotBeEvaluatedFails) {
+  const ReflectiveFunction f = [](const VectorXd&, double*, VectorXd*, MatrixXd*) {
+    return false;
+  };
+  VectorXd x = VectorXd::Ones(1);
+  const ReflectiveSummary s = SolveReflective({}, f, Unbounded(1, -1), Unbounded(1, 1),
+                                              nullptr, &x);
+  EXPECT_EQ(s.end, ReflectiveSummary::End::kFailure);
+  EXPECT_EQ(s.initial_cost, -1.0);
+}
+
+}  // namespace
+}  // namespace vesselid
