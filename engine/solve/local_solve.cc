@@ -88,13 +88,20 @@ class StallCheck : public ceres::IterationCallback {
   std::vector<double> best_;
 };
 
-// Whether the solve takes the reflective trust region (TrustRegion::kAuto: on dense problems).
+// Whether the solve takes the reflective trust region (TrustRegion::kAuto: on dense problems
+// with a bounded free unknown, where Ceres' projected steps end on bounds from far starts; an
+// unbounded problem keeps Levenberg-Marquardt, whose path every shipped config was tuned on).
 bool Reflective(const LocalSolveOptions& options, const OutputErrorProblem& problem) {
   if (options.trust_region != TrustRegion::kAuto) {
     return options.trust_region == TrustRegion::kReflective;
   }
-  return !options.linear_solver.has_value() &&
-         AutomaticLinearSolver(problem) == ceres::DENSE_QR;
+  if (options.linear_solver.has_value() || AutomaticLinearSolver(problem) != ceres::DENSE_QR) {
+    return false;
+  }
+  for (const Variable& v : problem.variables()) {
+    if (v.free && (std::isfinite(v.lower) || std::isfinite(v.upper))) return true;
+  }
+  return false;
 }
 
 // Ceres' solve, or the reflective trust region with Ceres' options.

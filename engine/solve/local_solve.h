@@ -15,8 +15,8 @@ namespace vesselid {
 // The local solve's method: Ceres' Levenberg-Marquardt or dogleg trust region (bounds by
 // projection), or the reflective trust region (reflective_trust_region.h: strictly interior
 // iterates, Coleman-Li scaling, reflection off the bounds) on Ceres' evaluation of the problem.
-// auto: reflective when the problem is dense (AutomaticLinearSolver below: dense_qr),
-// Levenberg-Marquardt with the sparse solver otherwise. The reflective region reaches the
+// auto: reflective when the problem is dense (AutomaticLinearSolver below: dense_qr) and
+// bounds a free unknown, Levenberg-Marquardt otherwise. The reflective region reaches the
 // optimum of the 3-DOF far-start benchmark from 10 of 11 starts where Levenberg-Marquardt
 // does from 2 (docs/benchmarks.md); its step factors the dense Jacobian.
 enum class TrustRegion { kAuto, kLevenbergMarquardt, kDogleg, kReflective };

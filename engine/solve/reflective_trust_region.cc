@@ -255,9 +255,22 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
   summary.initial_cost = summary.final_cost = cost;
   const int m = static_cast<int>(residuals.size());
   VectorXd g = jacobian.transpose() * residuals;
+  // scale_inv: the norms of the Jacobian's columns, never decreasing (1 for a zero column).
+  VectorXd scale_inv = VectorXd::Ones(n);
+  auto update_scale = [&](bool first) {
+    if (!options.jacobian_scaling) return;
+    for (int i = 0; i < n; ++i) {
+      const double norm = jacobian.col(i).norm();
+      scale_inv[i] = first ? (norm > 0.0 ? norm : 1.0) : std::max(scale_inv[i], norm);
+    }
+  };
+  update_scale(true);
   VectorXd v, dv;
   ScalingVector(x, g, lower, upper, &v, &dv);
-  double delta = x.cwiseQuotient(v.cwiseSqrt()).norm();
+  for (int i = 0; i < n; ++i) {
+    if (dv[i] != 0.0) v[i] *= scale_inv[i];
+  }
+  double delta = x.cwiseProduct(scale_inv).cwiseQuotient(v.cwiseSqrt()).norm();
   if (!(delta > 0.0) || !std::isfinite(delta)) delta = 1.0;
   double alpha = 0.0;
   summary.end = ReflectiveSummary::End::kNoConvergence;
@@ -275,8 +288,12 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
       break;
     }
     const auto step_start = std::chrono::steady_clock::now();
-    const VectorXd d = v.cwiseSqrt();
-    const VectorXd diag_h = g.cwiseProduct(dv);
+    // Coleman-Li's scaling applied in the unknowns scaled by the columns' norms.
+    for (int i = 0; i < n; ++i) {
+      if (dv[i] != 0.0) v[i] *= scale_inv[i];
+    }
+    const VectorXd d = v.cwiseSqrt().cwiseQuotient(scale_inv);
+    const VectorXd diag_h = g.cwiseProduct(dv).cwiseQuotient(scale_inv);
     const VectorXd g_h = d.cwiseProduct(g);
     augmented.topRows(m) = jacobian * d.asDiagonal();
     augmented.bottomRows(n) = diag_h.cwiseSqrt().asDiagonal();
@@ -340,6 +357,7 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
           residuals.swap(trial_residuals);
           jacobian.swap(trial_jacobian);
           g = jacobian.transpose() * residuals;
+          update_scale(false);
           ++summary.accepted;
         } else {
           ++summary.rejected;

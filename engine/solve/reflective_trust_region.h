@@ -30,6 +30,10 @@ struct ReflectiveOptions {
   double parameter_tolerance = 1e-12;
   double gradient_tolerance = 1e-14;
   double max_time_seconds = 3600.0;
+  // Scales each unknown by its Jacobian column's norm (the largest seen so far), as
+  // Marquardt's damping does: the trust region is then the same for any units of the
+  // unknowns. Off: the unknowns as given (the engine's value / scale).
+  bool jacobian_scaling = true;
 };
 
 // Evaluates the residuals f (size m) and their Jacobian J (m x n) at x; false when they cannot

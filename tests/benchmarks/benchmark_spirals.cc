@@ -7,8 +7,10 @@
 // Engine variants: a local solve from the start (plain), the continuation recipe
 // (`continuation: [10, 30]`) and the global start (`global: {}`).
 //
-//   build/tests/benchmarks/benchmark_spirals [starts] [variant]  (default 11 starts;
-//       variant: plain, continuation, global or scipy; default all)
+//   build/tests/benchmarks/benchmark_spirals [starts] [variant] [runs]  (default 11 starts;
+//       variant: plain, continuation, global or scipy, default all; runs: a, the five runs
+//       above, or b, six other runs (zigzags of 8 to 30 s, turns both ways), other noise
+//       and other corners; default a)
 //
 // Each start's outcome is printed as it ends (a campaign takes minutes per start).
 // VESSELID_BENCHMARK_BINARY runs another vesselid binary (e.g. a copy, while the build tree
@@ -67,7 +69,16 @@ double Tolerance(const std::string& name, double value) {
   return 0.01 * std::max(std::abs(value), name == "Yr" ? 0.02 : 0.0);
 }
 
-constexpr int kRuns = 5;
+// The run sets of reference_3dof.py: their number of runs and the seed of the corners.
+struct RunSet {
+  std::string name;
+  int runs;
+  unsigned seed;
+};
+RunSet RunSetNamed(const std::string& name) {
+  if (name == "b") return {"b", 6, 23};
+  return {"a", 5, 11};
+}
 const char* kPython = "/usr/bin/python3";  // Debian's, with python3-scipy and python3-numba
 
 double Timed(const std::string& command) {
@@ -119,10 +130,10 @@ std::map<std::string, double> Estimate(const json& results) {
 
 enum class Variant { kPlain, kContinuation, kGlobal };
 
-std::string Config(const std::map<std::string, double>& start, Variant variant) {
+std::string Config(const std::map<std::string, double>& start, Variant variant, int runs) {
   std::string text =
       "model: {family: erunsal6dof, active_dofs: [surge, sway, yaw]}\nexperiments:\n";
-  for (int k = 0; k < kRuns; ++k) {
+  for (int k = 0; k < runs; ++k) {
     const std::string run = "run" + std::to_string(k);
     text += "  - {name: " + run + ", file: " + run +
             ".csv, inputs: {c_L: c_L, c_R: c_R}, outputs: {x: x, y: y, psi: psi}, "
@@ -151,6 +162,7 @@ std::string Config(const std::map<std::string, double>& start, Variant variant) 
 int main(int argc, char** argv) {
   const int count = argc > 1 ? std::atoi(argv[1]) : 11;
   const std::string only = argc > 2 ? argv[2] : "";
+  const RunSet set = RunSetNamed(argc > 3 ? argv[3] : "a");
   const fs::path dir = fs::temp_directory_path() /
                        ("vesselid_benchmark_spirals_" + std::to_string(getpid()));
   fs::remove_all(dir);
@@ -159,14 +171,14 @@ int main(int argc, char** argv) {
   if (keep) std::fprintf(stderr, "files in %s\n", dir.c_str());
   const std::string script =
       std::string(VESSELID_SOURCE_DIR) + "/tests/benchmarks/reference_3dof.py";
-  if (Timed(std::string(kPython) + " " + script + " simulate " + dir.string() + " 2> " +
+  if (Timed(std::string(kPython) + " " + script + " simulate " + dir.string() + " " + set.name + " 2> " +
             (dir / "simulate.log").string()) < 0) {
     std::fprintf(stderr, "the reference simulation failed (is python3-scipy installed?)\n");
     return 1;
   }
   // Start 0 is the truth (each tool's reference end point); the others a random corner of
   // the +-30 % box each.
-  std::mt19937 random(11);
+  std::mt19937 random(set.seed);
   std::bernoulli_distribution up(0.5);
   std::vector<std::map<std::string, double>> starts(count + 1);
   json starts_json = json::array();
@@ -180,7 +192,7 @@ int main(int argc, char** argv) {
 
   std::printf(
       "surge-sway-yaw fit (15 parameters) of %d spiral/zigzag runs, %d starts 30 %% off the "
-      "truth\n", kRuns, count);
+      "truth (run set %s)\n", set.runs, count, set.name.c_str());
   std::printf("  %-34s %10s %8s %12s\n", "", "successes", "valley", "time/start");
   const std::tuple<Variant, const char*, const char*> variants[] = {
       {Variant::kPlain, "plain", "vesselid, local solve"},
@@ -194,7 +206,7 @@ int main(int argc, char** argv) {
     for (int i = 0; i <= count; ++i) {
       const fs::path config = dir / (std::string(name) + std::to_string(i) + ".yaml");
       const fs::path out = dir / (std::string(name) + "_out" + std::to_string(i));
-      std::ofstream(config) << Config(starts[i], variant);
+      std::ofstream(config) << Config(starts[i], variant, set.runs);
       const char* binary = std::getenv("VESSELID_BENCHMARK_BINARY");
       const double t = Timed(std::string(binary != nullptr ? binary : VESSELID_BINARY) + " run " +
                              config.string() + " --out " + out.string() +

@@ -3,8 +3,10 @@
 restriction of MODELS.md section 1 written from the spec alone (not from the engine), used
 to make the data and to fit it with SciPy.
 
-  simulate <dir>            spiral and zigzag runs of the reference tugboat: <dir>/run<k>.csv
-                            (t, c_L, c_R, x, y, psi with psi logged wrapped to (-pi, pi])
+  simulate <dir> [a|b]      spiral and zigzag runs of the reference tugboat: <dir>/run<k>.csv
+                            (t, c_L, c_R, x, y, psi with psi logged wrapped to (-pi, pi]);
+                            run set a (5 runs) or b (6 other runs, other noise), named in
+                            <dir>/runs.txt for the fit
   fit <dir> <starts.json>   scipy.optimize.least_squares (trust-region reflective, SciPy's
                             default tolerances) from each start; JSON on stdout: per start the
                             estimate, cost, evaluations and time
@@ -51,8 +53,15 @@ BOUNDS.update({"Iz": (0.0, None), "R_TS": (0.0, None), "L_TO": (None, None),
 STEP, SAMPLE = 0.02, 0.1  # RK4 step and log interval, s
 
 # Runs: (duration s, mean command, differential, zigzag period s or 0 for a spiral).
-RUNS = [(60.0, 0.6, 0.12, 0.0), (60.0, 0.5, -0.15, 0.0), (50.0, 0.8, 0.08, 0.0),
-        (60.0, 0.6, 0.2, 20.0), (40.0, 0.4, 0.25, 0.0)]
+RUN_SETS = {
+    "a": [(60.0, 0.6, 0.12, 0.0), (60.0, 0.5, -0.15, 0.0), (50.0, 0.8, 0.08, 0.0),
+          (60.0, 0.6, 0.2, 20.0), (40.0, 0.4, 0.25, 0.0)],
+    # Zigzags of other periods and amplitudes, turns the other way, slower and faster.
+    "b": [(50.0, 0.7, 0.10, 12.0), (60.0, 0.45, 0.2, 30.0), (45.0, 0.9, -0.1, 0.0),
+          (60.0, 0.55, 0.05, 8.0), (40.0, 0.3, -0.25, 0.0), (50.0, 0.65, 0.18, 20.0)],
+}
+NOISE_SEED = {"a": 7, "b": 8}
+RUNS = RUN_SETS["a"]
 
 
 @njit(cache=True)
@@ -124,8 +133,16 @@ def parameter_vector(values):
     return np.array([values.get(name, TRUTH[name]) for name in ORDER], dtype=float)
 
 
-def write_runs(folder):
-    rng = np.random.default_rng(7)
+def use_run_set(name):
+    global RUNS
+    RUNS = RUN_SETS[name]
+
+
+def write_runs(folder, run_set):
+    use_run_set(run_set)
+    with open(f"{folder}/runs.txt", "w") as f:
+        f.write(run_set)
+    rng = np.random.default_rng(NOISE_SEED[run_set])
     for i, run in enumerate(RUNS):
         y = simulate_run(parameter_vector(TRUTH), *run)
         t = np.arange(len(y)) * SAMPLE
@@ -143,6 +160,7 @@ def write_runs(folder):
 
 
 def read_runs(folder):
+    use_run_set(open(f"{folder}/runs.txt").read().strip())
     data = []
     for i in range(len(RUNS)):
         d = np.genfromtxt(f"{folder}/run{i}.csv", delimiter=",", names=True)
@@ -182,6 +200,6 @@ def fit(folder, starts_path):
 
 if __name__ == "__main__":
     if sys.argv[1] == "simulate":
-        write_runs(sys.argv[2])
+        write_runs(sys.argv[2], sys.argv[3] if len(sys.argv) > 3 else "a")
     else:
         fit(sys.argv[2], sys.argv[3])

@@ -86,6 +86,18 @@ TEST(ReflectiveTrustRegion, FollowsRosenbrocksValley) {
   EXPECT_GT(s.accepted, 5);
 }
 
+TEST(ReflectiveTrustRegion, FollowsTheValleyInTheUnknownsAsGiven) {
+  VectorXd x(2);
+  x << -1.2, 1.0;
+  ReflectiveOptions options;
+  options.jacobian_scaling = false;
+  const ReflectiveSummary s =
+      SolveReflective(options, Rosenbrock, Unbounded(2, -1), Unbounded(2, 1), nullptr, &x);
+  EXPECT_EQ(s.end, ReflectiveSummary::End::kConvergence) << s.message;
+  EXPECT_NEAR(x[0], 1.0, 1e-8);
+  EXPECT_NEAR(x[1], 1.0, 1e-8);
+}
+
 TEST(ReflectiveTrustRegion, StopsAtABoundAcrossTheValley) {
   // With x0 <= 0.5 the minimum is on the bound: x = (0.5, 0.25), cost 1/8.
   VectorXd x(2), upper(2);
