@@ -1,9 +1,11 @@
 #include "engine/solve/reflective_local_solve.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
+#include "engine/solve/normal_equations.h"
 #include "engine/solve/reflective_trust_region.h"
 
 namespace vesselid {
@@ -54,21 +56,36 @@ void SolveReflectiveProblem(const ceres::Solver::Options& options, OutputErrorPr
   };
   std::vector<double> residuals;
   ceres::CRSMatrix crs;
-  // The cost is summed here in the problem's order (the losses are inside the experiments'
-  // residuals, so 1/2 |f|^2 is the cost), the same on any number of threads.
-  auto function = [&](const Eigen::VectorXd& at, double* cost, Eigen::VectorXd* f,
-                      Eigen::MatrixXd* jacobian) {
+  // The cost functions evaluated directly (normal_equations.h), or, for a problem with a
+  // Ceres loss function, Problem::Evaluate and one pass over its Jacobian's rows. The cost is summed here in the
+  // problem's order (the losses are inside the experiments' residuals, so 1/2 |f|^2 is the
+  // cost), the same on any number of threads.
+  NormalEquationsEvaluator direct(ceres_problem, evaluate.parameter_blocks, options.num_threads);
+  auto function = [&](const Eigen::VectorXd& at, NormalEquations* out) {
     set(at);
+    if (direct.usable()) return direct.Evaluate(out);
     double ceres_cost = 0.0;
     if (!ceres_problem->Evaluate(evaluate, &ceres_cost, &residuals, nullptr, &crs)) return false;
-    *f = Eigen::Map<const Eigen::VectorXd>(residuals.data(), residuals.size());
-    *cost = 0.5 * f->squaredNorm();
-    jacobian->setZero(crs.num_rows, crs.num_cols);
+    out->residuals = static_cast<int>(residuals.size());
+    out->gradient.setZero(n);
+    out->normal.setZero(n, n);
+    double sum = 0.0;
     for (int row = 0; row < crs.num_rows; ++row) {
+      const double r = residuals[row];
+      sum += r * r;
       for (int k = crs.rows[row]; k < crs.rows[row + 1]; ++k) {
-        (*jacobian)(row, crs.cols[k]) = crs.values[k];
+        const int i = crs.cols[k];
+        const double a = crs.values[k];
+        out->gradient[i] += a * r;
+        for (int l = k; l < crs.rows[row + 1]; ++l) {
+          const int j = crs.cols[l];
+          out->normal(std::min(i, j), std::max(i, j)) += a * crs.values[l];
+        }
       }
     }
+    out->normal.triangularView<Eigen::StrictlyLower>() =
+        out->normal.transpose().triangularView<Eigen::StrictlyLower>();
+    out->cost = 0.5 * sum;
     return true;
   };
   auto callback = [&](int trial, bool accepted, double cost, const Eigen::VectorXd& at) {
@@ -103,6 +120,13 @@ void SolveReflectiveProblem(const ceres::Solver::Options& options, OutputErrorPr
   summary->iterations[start_index].step_is_valid = result.initial_cost >= 0.0;
   summary->initial_cost = result.initial_cost;
   summary->final_cost = result.final_cost;
+  // The final cost as the problem sums it (OutputErrorProblem::Cost), as the other methods
+  // report theirs: the same bits as any later evaluation at these values.
+  double ordered = 0.0;
+  if (result.end != ReflectiveSummary::End::kFailure && problem->Cost(&ordered)) {
+    summary->final_cost = ordered;
+    summary->iterations.back().cost = ordered;
+  }
   summary->termination_type = CeresTermination(result.end);
   summary->message = result.message;
   summary->num_successful_steps = result.accepted;

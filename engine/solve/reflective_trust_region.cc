@@ -79,20 +79,20 @@ double ToTrustRegion(const VectorXd& x, const VectorXd& s, double delta) {
   return std::max(q / a, c / q);
 }
 
-// The scaled model q(h) = 1/2 |J_h h|^2 + 1/2 h' diag(c) h + g_h' h.
+// The scaled model q(h) = 1/2 h' H h + g_h' h, H = D J'J D + diag(c) (the augmented
+// problem's normal matrix).
 struct ScaledModel {
-  const MatrixXd& jh;
+  const MatrixXd& h;
   const VectorXd& gh;
-  const VectorXd& c;
 
-  double Value(const VectorXd& h) const {
-    return 0.5 * (jh * h).squaredNorm() + 0.5 * h.cwiseProduct(h).dot(c) + gh.dot(h);
+  double Value(const VectorXd& step) const {
+    return 0.5 * step.dot(h * step) + gh.dot(step);
   }
   // q(h0 + t s) = a t^2 + b t + q(h0).
   void Along(const VectorXd& s, const VectorXd& h0, double* a, double* b) const {
-    const VectorXd js = jh * s;
-    *a = 0.5 * (js.squaredNorm() + s.cwiseProduct(s).dot(c));
-    *b = gh.dot(s) + (jh * h0).dot(js) + h0.cwiseProduct(s).dot(c);
+    const VectorXd hs = h * s;
+    *a = 0.5 * s.dot(hs);
+    *b = gh.dot(s) + h0.dot(hs);
   }
 };
 
@@ -111,31 +111,34 @@ std::pair<double, double> MinimizeOnInterval(double a, double b, double lo, doub
   return {best_t, best};
 }
 
-// The trust-region step of the augmented least-squares problem whose SVD is (s, V) and
-// uf = U' f: min |J h + f| with |h| <= Delta (Moré & Sorensen's secular equation on
-// alpha, Newton's iteration safeguarded in [alpha_lower, alpha_upper]). *alpha is the
-// previous solution on entry (0: none) and this one on exit.
-VectorXd TrustRegionStep(const VectorXd& uf, const VectorXd& s, const MatrixXd& v,
+// The trust-region step of the augmented least-squares problem min |J_a h + f_a|, |h| <= Delta,
+// from the eigen-decomposition of its normal matrix J_a'J_a = V diag(lambda) V' (lambda the
+// squared singular values of J_a) and vg = V' J_a'f_a = V' g_h: h(alpha) = -V vg / (lambda +
+// alpha) (Moré & Sorensen's secular equation on alpha, Newton's iteration safeguarded in
+// [alpha_lower, alpha_upper]). *alpha is the previous solution on entry (0: none) and this
+// one on exit.
+VectorXd TrustRegionStep(const VectorXd& lambda, const MatrixXd& v, const VectorXd& vg,
                          int residuals, double delta, double* alpha) {
-  const int n = static_cast<int>(s.size());
-  const VectorXd suf = s.cwiseProduct(uf);
+  const int n = static_cast<int>(lambda.size());
+  const double largest = lambda.maxCoeff(), smallest = std::max(0.0, lambda.minCoeff());
   const bool full_rank =
       residuals >= n && n > 0 &&
-      s[n - 1] > std::numeric_limits<double>::epsilon() * residuals * s[0];
+      std::sqrt(smallest) >
+          std::numeric_limits<double>::epsilon() * residuals * std::sqrt(std::max(0.0, largest));
   if (full_rank) {
-    const VectorXd p = -v * uf.cwiseQuotient(s);
+    const VectorXd p = -v * vg.cwiseQuotient(lambda);
     if (p.norm() <= delta) {
       *alpha = 0.0;
       return p;
     }
   }
   auto phi = [&](double a, double* derivative) {
-    const VectorXd denom = s.cwiseProduct(s).array() + a;
-    const double p_norm = suf.cwiseQuotient(denom).norm();
-    *derivative = -(suf.cwiseProduct(suf).array() / denom.array().cube()).sum() / p_norm;
+    const VectorXd denom = lambda.array() + a;
+    const double p_norm = vg.cwiseQuotient(denom).norm();
+    *derivative = -(vg.cwiseProduct(vg).array() / denom.array().cube()).sum() / p_norm;
     return p_norm - delta;
   };
-  double upper = suf.norm() / delta;
+  double upper = vg.norm() / delta;
   double lower = 0.0;
   if (full_rank) {
     double derivative = 0.0;
@@ -155,7 +158,7 @@ VectorXd TrustRegionStep(const VectorXd& uf, const VectorXd& s, const MatrixXd& 
     if (std::abs(value) < 0.01 * delta) break;
   }
   *alpha = a;
-  VectorXd p = -v * suf.cwiseQuotient(VectorXd(s.cwiseProduct(s).array() + a));
+  VectorXd p = -v * vg.cwiseQuotient(VectorXd(lambda.array() + a));
   const double norm = p.norm();
   if (norm > 0.0) p *= delta / norm;
   return p;
@@ -237,30 +240,30 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
   ReflectiveSummary summary;
   VectorXd x = StrictlyFeasible(*x_io, lower, upper, 1e-10);
   const int n = static_cast<int>(x.size());
-  VectorXd residuals;
-  MatrixXd jacobian;
-  double cost = 0.0;
-  auto evaluate = [&](const VectorXd& at, double* c, VectorXd* r, MatrixXd* j) {
+  NormalEquations at;
+  auto evaluate = [&](const VectorXd& point, NormalEquations* e) {
     const auto start = std::chrono::steady_clock::now();
     ++summary.evaluations;
-    const bool ok = f(at, c, r, j) && std::isfinite(*c) && r->allFinite() && j->allFinite();
+    const bool ok = f(point, e) && std::isfinite(e->cost) && e->gradient.allFinite() &&
+                    e->normal.allFinite();
     summary.evaluation_seconds += Seconds(start);
     return ok;
   };
-  if (!evaluate(x, &cost, &residuals, &jacobian)) {
+  if (!evaluate(x, &at)) {
     summary.message = "the residuals cannot be evaluated at the start";
     summary.total_seconds = Seconds(begin);
     return summary;
   }
+  double cost = at.cost;
   summary.initial_cost = summary.final_cost = cost;
-  const int m = static_cast<int>(residuals.size());
-  VectorXd g = jacobian.transpose() * residuals;
+  const int m = at.residuals;
+  VectorXd g = at.gradient;
   // scale_inv: the norms of the Jacobian's columns, never decreasing (1 for a zero column).
   VectorXd scale_inv = VectorXd::Ones(n);
   auto update_scale = [&](bool first) {
     if (!options.jacobian_scaling) return;
     for (int i = 0; i < n; ++i) {
-      const double norm = jacobian.col(i).norm();
+      const double norm = std::sqrt(std::max(0.0, at.normal(i, i)));
       scale_inv[i] = first ? (norm > 0.0 ? norm : 1.0) : std::max(scale_inv[i], norm);
     }
   };
@@ -275,10 +278,7 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
   double alpha = 0.0;
   summary.end = ReflectiveSummary::End::kNoConvergence;
   summary.message = "the maximum number of evaluations was reached";
-  MatrixXd augmented(m + n, n);
-  VectorXd f_augmented = VectorXd::Zero(m + n);
-  VectorXd trial_residuals;
-  MatrixXd trial_jacobian;
+  NormalEquations trial;
   bool done = false;
   while (!done) {
     ScalingVector(x, g, lower, upper, &v, &dv);
@@ -295,17 +295,12 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
     const VectorXd d = v.cwiseSqrt().cwiseQuotient(scale_inv);
     const VectorXd diag_h = g.cwiseProduct(dv).cwiseQuotient(scale_inv);
     const VectorXd g_h = d.cwiseProduct(g);
-    augmented.topRows(m) = jacobian * d.asDiagonal();
-    augmented.bottomRows(n) = diag_h.cwiseSqrt().asDiagonal();
-    f_augmented.head(m) = residuals;
-    f_augmented.tail(n).setZero();
-    const Eigen::HouseholderQR<MatrixXd> qr(augmented);
-    const MatrixXd r = qr.matrixQR().topRows(n).triangularView<Eigen::Upper>();
-    const VectorXd qf = (qr.householderQ().transpose() * f_augmented).head(n);
-    const Eigen::JacobiSVD<MatrixXd> svd(r, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    const VectorXd uf = svd.matrixU().transpose() * qf;
-    const MatrixXd jh = augmented.topRows(m);
-    const ScaledModel scaled{jh, g_h, diag_h};
+    // H = D J'J D + diag(diag_h), the normal matrix of [J D; diag(sqrt(diag_h))].
+    MatrixXd h = d.asDiagonal() * at.normal * d.asDiagonal();
+    h.diagonal() += diag_h;
+    const Eigen::SelfAdjointEigenSolver<MatrixXd> eigen(h);
+    const VectorXd vg = eigen.eigenvectors().transpose() * g_h;
+    const ScaledModel scaled{h, g_h};
     const double theta = std::max(0.995, 1.0 - g.cwiseProduct(v).lpNorm<Eigen::Infinity>());
     summary.step_seconds += Seconds(step_start);
     // Trial points until one lowers the cost (or a tolerance or limit ends the solve).
@@ -320,19 +315,18 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
         break;
       }
       const auto select_start = std::chrono::steady_clock::now();
-      const VectorXd p_h = TrustRegionStep(uf, svd.singularValues(), svd.matrixV(), m, delta,
-                                           &alpha);
+      const VectorXd p_h =
+          TrustRegionStep(eigen.eigenvalues(), eigen.eigenvectors(), vg, m, delta, &alpha);
       const Step step = SelectStep(x, scaled, p_h, d, delta, lower, upper, theta);
       const VectorXd x_new = StrictlyFeasible(x + step.x, lower, upper, 0.0);
       summary.step_seconds += Seconds(select_start);
       const double step_h_norm = step.h.norm();
-      double trial_cost = 0.0;
       bool accepted = false;
-      if (!evaluate(x_new, &trial_cost, &trial_residuals, &trial_jacobian)) {
+      if (!evaluate(x_new, &trial)) {
         ++summary.rejected;
         delta = 0.25 * step_h_norm;
       } else {
-        const double actual = cost - trial_cost;
+        const double actual = cost - trial.cost;
         double ratio = 0.0;
         if (step.predicted > 0.0) {
           ratio = actual / step.predicted;
@@ -353,10 +347,9 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
         accepted = actual > 0.0;
         if (accepted) {
           x = x_new;
-          cost = trial_cost;
-          residuals.swap(trial_residuals);
-          jacobian.swap(trial_jacobian);
-          g = jacobian.transpose() * residuals;
+          cost = trial.cost;
+          std::swap(at, trial);
+          g = at.gradient;
           update_scale(false);
           ++summary.accepted;
         } else {

@@ -7,7 +7,8 @@
 //
 //   min over h   1/2 |J D h + f|^2 + 1/2 h' diag(g dv) h,   |h| <= Delta,   D = diag(sqrt v),
 //
-// solved exactly (Moré's secular equation on the SVD of the augmented Jacobian). A step that
+// solved exactly (Moré's secular equation on the eigen-decomposition of the n x n normal
+// matrix, the squared singular values of the augmented Jacobian). A step that
 // leaves the box is cut at the bound and the best of three is taken: the cut step pulled
 // inside, its reflection off the bound, and the scaled gradient step. The radius shrinks to a
 // quarter of a step that predicted badly (or whose residuals could not be evaluated: a
@@ -36,11 +37,19 @@ struct ReflectiveOptions {
   bool jacobian_scaling = true;
 };
 
-// Evaluates the residuals f (size m) and their Jacobian J (m x n) at x; false when they cannot
-// be evaluated (a step the solve then shortens). `cost` is 1/2 |f|^2, or the robustified cost
-// when f and J are the loss's corrected ones (whose Gauss-Newton gradient J'f is exact).
-using ReflectiveFunction = std::function<bool(const Eigen::VectorXd& x, double* cost,
-                                              Eigen::VectorXd* f, Eigen::MatrixXd* jacobian)>;
+// What the solve needs of the residuals f (size m) and their Jacobian J at a point: the
+// cost, 1/2 |f|^2 (or the robustified cost when f and J are the loss's corrected ones, whose
+// Gauss-Newton gradient J'f is exact), g = J'f and J'J. Each step works on these n x n
+// quantities alone, so that a long record costs one pass over its Jacobian per evaluation.
+struct NormalEquations {
+  double cost = 0.0;
+  Eigen::VectorXd gradient;
+  Eigen::MatrixXd normal;
+  int residuals = 0;  // m
+};
+
+// Evaluates them at x; false when they cannot be evaluated (a step the solve then shortens).
+using ReflectiveFunction = std::function<bool(const Eigen::VectorXd& x, NormalEquations* out)>;
 
 // After each trial point: its number (1, 2, ...), whether it was accepted, the cost at the
 // current iterate and the iterate. Returns 0 to go on, 1 to stop successfully, -1 to abandon.
