@@ -246,7 +246,7 @@ void ReadLocal(const YamlReader& reader, const YAML::Node& node, const std::stri
     if (!StringToTrustRegion(text, &local->trust_region)) {
       reader.Fail(node["trust_region"], Child(path, "trust_region"),
                   "unknown trust region '" + text +
-                      "' (auto, levenberg_marquardt, dogleg, reflective)");
+                      "' (levenberg_marquardt, dogleg, reflective)");
     }
   }
   if (node["linear_solver"]) {

@@ -88,22 +88,6 @@ class StallCheck : public ceres::IterationCallback {
   std::vector<double> best_;
 };
 
-// Whether the solve takes the reflective trust region (TrustRegion::kAuto: on dense problems
-// with a bounded free unknown, where Ceres' projected steps end on bounds from far starts; an
-// unbounded problem keeps Levenberg-Marquardt, whose path every shipped config was tuned on).
-bool Reflective(const LocalSolveOptions& options, const OutputErrorProblem& problem) {
-  if (options.trust_region != TrustRegion::kAuto) {
-    return options.trust_region == TrustRegion::kReflective;
-  }
-  if (options.linear_solver.has_value() || AutomaticLinearSolver(problem) != ceres::DENSE_QR) {
-    return false;
-  }
-  for (const Variable& v : problem.variables()) {
-    if (v.free && (std::isfinite(v.lower) || std::isfinite(v.upper))) return true;
-  }
-  return false;
-}
-
 // Ceres' solve, or the reflective trust region with Ceres' options.
 void Minimize(const ceres::Solver::Options& options, bool reflective,
               OutputErrorProblem* problem, ceres::Solver::Summary* summary) {
@@ -118,7 +102,6 @@ void Minimize(const ceres::Solver::Options& options, bool reflective,
 
 const char* TrustRegionToString(TrustRegion method) {
   switch (method) {
-    case TrustRegion::kAuto: return "auto";
     case TrustRegion::kLevenbergMarquardt: return "levenberg_marquardt";
     case TrustRegion::kDogleg: return "dogleg";
     case TrustRegion::kReflective: return "reflective";
@@ -127,8 +110,8 @@ const char* TrustRegionToString(TrustRegion method) {
 }
 
 bool StringToTrustRegion(const std::string& text, TrustRegion* method) {
-  for (TrustRegion m : {TrustRegion::kAuto, TrustRegion::kLevenbergMarquardt,
-                        TrustRegion::kDogleg, TrustRegion::kReflective}) {
+  for (TrustRegion m :
+       {TrustRegion::kLevenbergMarquardt, TrustRegion::kDogleg, TrustRegion::kReflective}) {
     if (text == TrustRegionToString(m)) {
       *method = m;
       return true;
@@ -255,7 +238,7 @@ void ContinueWithBoundsHeld(ceres::Solver::Options options, const LocalSolveOpti
   options.callbacks.push_back(&stall);
   for (const Variable* v : held) problem->problem()->SetParameterBlockConstant(v->block);
   ceres::Solver::Summary again;
-  Minimize(options, Reflective(local, *problem), problem, &again);
+  Minimize(options, local.trust_region == TrustRegion::kReflective, problem, &again);
   for (const Variable* v : held) problem->problem()->SetParameterBlockVariable(v->block);
   double after_cost = 0.0;
   if (!again.IsSolutionUsable() || !problem->Cost(&after_cost) ||
@@ -318,7 +301,8 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   ceres_options.callbacks.push_back(&keeper);
   ceres_options.update_state_every_iteration = true;
   ceres::Solver::Summary ceres_summary;
-  Minimize(ceres_options, Reflective(options, *problem), problem, &ceres_summary);
+  Minimize(ceres_options, options.trust_region == TrustRegion::kReflective, problem,
+           &ceres_summary);
   if (threaded && ceres_summary.initial_cost >= 0.0 && ordered_initial >= 0.0) {
     ceres_summary.initial_cost = ordered_initial;
     if (!ceres_summary.iterations.empty()) ceres_summary.iterations.front().cost = ordered_initial;

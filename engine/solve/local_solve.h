@@ -12,19 +12,19 @@
 
 namespace vesselid {
 
-// The local solve's method: Ceres' Levenberg-Marquardt or dogleg trust region (bounds by
-// projection), or the reflective trust region (reflective_trust_region.h: strictly interior
-// iterates, Coleman-Li scaling, reflection off the bounds) on Ceres' evaluation of the problem.
-// auto: reflective when the problem is dense (AutomaticLinearSolver below: dense_qr) and
-// bounds a free unknown, Levenberg-Marquardt otherwise. The reflective region reaches the
-// optimum of the 3-DOF far-start benchmark from 10 of 11 starts where Levenberg-Marquardt
-// does from 2 (docs/benchmarks.md); its step factors the dense Jacobian.
-enum class TrustRegion { kAuto, kLevenbergMarquardt, kDogleg, kReflective };
+// The local solve's method: Ceres' Levenberg-Marquardt (the default) or dogleg trust region
+// (bounds by projection), or the reflective trust region (reflective_trust_region.h: strictly
+// interior iterates, Coleman-Li scaling, reflection off the bounds) on the problem's normal
+// equations (normal_equations.h; dense: for problems of up to some 60 unknowns). From far
+// starts the reflective region reaches the 3-DOF benchmark's optimum from 10 of 11 starts
+// where Levenberg-Marquardt does from 2; it also falls on the patrol's T1 = T2 ridge from
+// starts on bounds and crawls from a tanker's far start (docs/configs.md "The local solve").
+enum class TrustRegion { kLevenbergMarquardt, kDogleg, kReflective };
 const char* TrustRegionToString(TrustRegion method);
 bool StringToTrustRegion(const std::string& text, TrustRegion* method);
 
 struct LocalSolveOptions {
-  TrustRegion trust_region = TrustRegion::kAuto;
+  TrustRegion trust_region = TrustRegion::kLevenbergMarquardt;
   // Linear solver; unset: AutomaticLinearSolver below.
   std::optional<ceres::LinearSolverType> linear_solver;
   int max_iterations = 200;

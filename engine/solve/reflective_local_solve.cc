@@ -109,27 +109,24 @@ void SolveReflectiveProblem(const ceres::Solver::Options& options, OutputErrorPr
   reflective.parameter_tolerance = options.parameter_tolerance;
   reflective.gradient_tolerance = options.gradient_tolerance;
   reflective.max_time_seconds = options.max_solver_time_in_seconds;
-  // Iteration 0: the start, as Ceres reports it.
   summary->iterations.reserve(options.max_num_iterations + 1);
-  const size_t start_index = summary->iterations.size();
-  summary->iterations.emplace_back();
   const ReflectiveSummary result =
       SolveReflective(reflective, function, lower, upper, callback, &x);
   set(x);
-  summary->iterations[start_index].cost = result.initial_cost;
-  summary->iterations[start_index].step_is_valid = result.initial_cost >= 0.0;
   summary->initial_cost = result.initial_cost;
   summary->final_cost = result.final_cost;
   // The final cost as the problem sums it (OutputErrorProblem::Cost), as the other methods
   // report theirs: the same bits as any later evaluation at these values.
   double ordered = 0.0;
-  if (result.end != ReflectiveSummary::End::kFailure && problem->Cost(&ordered)) {
+  if (result.end != ReflectiveSummary::End::kFailure && !summary->iterations.empty() &&
+      problem->Cost(&ordered)) {
     summary->final_cost = ordered;
     summary->iterations.back().cost = ordered;
   }
   summary->termination_type = CeresTermination(result.end);
   summary->message = result.message;
-  summary->num_successful_steps = result.accepted;
+  // Ceres counts its start as a successful step.
+  summary->num_successful_steps = result.accepted + (result.initial_cost >= 0.0 ? 1 : 0);
   summary->num_unsuccessful_steps = result.rejected;
   summary->num_residual_evaluations = result.evaluations;
   summary->num_jacobian_evaluations = result.evaluations;

@@ -256,6 +256,16 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
   }
   double cost = at.cost;
   summary.initial_cost = summary.final_cost = cost;
+  if (callback) {
+    const int answer = callback(0, true, cost, x);
+    if (answer != 0) {
+      summary.end = answer > 0 ? ReflectiveSummary::End::kUserSuccess
+                               : ReflectiveSummary::End::kUserFailure;
+      summary.message = "stopped by a callback";
+      summary.total_seconds = Seconds(begin);
+      return summary;
+    }
+  }
   const int m = at.residuals;
   VectorXd g = at.gradient;
   // scale_inv: the norms of the Jacobian's columns, never decreasing (1 for a zero column).

@@ -51,8 +51,8 @@ struct NormalEquations {
 // Evaluates them at x; false when they cannot be evaluated (a step the solve then shortens).
 using ReflectiveFunction = std::function<bool(const Eigen::VectorXd& x, NormalEquations* out)>;
 
-// After each trial point: its number (1, 2, ...), whether it was accepted, the cost at the
-// current iterate and the iterate. Returns 0 to go on, 1 to stop successfully, -1 to abandon.
+// At the start (trial 0) and after each trial point (1, 2, ...): whether it was accepted, the
+// cost at the current iterate and the iterate. Returns 0 to go on, 1 to stop successfully, -1 to abandon.
 using ReflectiveCallback = std::function<int(int trial, bool accepted, double cost,
                                              const Eigen::VectorXd& x)>;
 

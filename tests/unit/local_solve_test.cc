@@ -144,9 +144,10 @@ TEST(LocalSolve, ReflectiveReportsEachTrialAndStopsOnAStall) {
   ASSERT_TRUE(RunLocalSolve(options, full.get(), &converged)) << converged.message;
   EXPECT_EQ(converged.termination, "CONVERGENCE");
   ASSERT_EQ(static_cast<int>(converged.cost_history.size()), converged.iterations + 1);
-  ASSERT_EQ(static_cast<int>(reported.size()), converged.iterations);
-  for (size_t i = 0; i < reported.size(); ++i) EXPECT_EQ(reported[i], static_cast<int>(i) + 1);
-  EXPECT_EQ(converged.successful_steps + converged.unsuccessful_steps, converged.iterations);
+  // Iteration 0 the start, as Ceres reports it (and counts it a successful step).
+  ASSERT_EQ(static_cast<int>(reported.size()), converged.iterations + 1);
+  for (size_t i = 0; i < reported.size(); ++i) EXPECT_EQ(reported[i], static_cast<int>(i));
+  EXPECT_EQ(converged.successful_steps + converged.unsuccessful_steps, converged.iterations + 1);
   // Each trial evaluates residuals and Jacobian once: iterations + 1 evaluations.
   EXPECT_EQ(converged.jacobian_evaluations, converged.iterations + 1);
 

@@ -15,23 +15,29 @@ using Eigen::MatrixXd;
 using Eigen::VectorXd;
 const double kInfinity = std::numeric_limits<double>::infinity();
 
+// The normal equations of residuals f with Jacobian j.
+void Normal(const VectorXd& f, const MatrixXd& j, NormalEquations* out) {
+  out->cost = 0.5 * f.squaredNorm();
+  out->gradient = j.transpose() * f;
+  out->normal = j.transpose() * j;
+  out->residuals = static_cast<int>(f.size());
+}
+
 // f = A x - b.
 ReflectiveFunction Linear(const MatrixXd& a, const VectorXd& b) {
-  return [a, b](const VectorXd& x, double* cost, VectorXd* f, MatrixXd* j) {
-    *f = a * x - b;
-    *j = a;
-    *cost = 0.5 * f->squaredNorm();
+  return [a, b](const VectorXd& x, NormalEquations* out) {
+    Normal(a * x - b, a, out);
     return true;
   };
 }
 
 // Rosenbrock's function as residuals: f = (10 (x1 - x0^2), 1 - x0).
-bool Rosenbrock(const VectorXd& x, double* cost, VectorXd* f, MatrixXd* j) {
-  f->resize(2);
-  j->resize(2, 2);
-  (*f) << 10.0 * (x[1] - x[0] * x[0]), 1.0 - x[0];
-  (*j) << -20.0 * x[0], 10.0, -1.0, 0.0;
-  *cost = 0.5 * f->squaredNorm();
+bool Rosenbrock(const VectorXd& x, NormalEquations* out) {
+  VectorXd f(2);
+  MatrixXd j(2, 2);
+  f << 10.0 * (x[1] - x[0] * x[0]), 1.0 - x[0];
+  j << -20.0 * x[0], 10.0, -1.0, 0.0;
+  Normal(f, j, out);
   return true;
 }
 
@@ -115,11 +121,9 @@ TEST(ReflectiveTrustRegion, StopsAtABoundAcrossTheValley) {
 TEST(ReflectiveTrustRegion, ShortensStepsWhoseResidualsCannotBeEvaluated) {
   // f = x - 2, not evaluable beyond 1.5 (a simulation that diverges): the solve approaches
   // 1.5 with shorter and shorter steps and never leaves the evaluable region.
-  const ReflectiveFunction f = [](const VectorXd& x, double* cost, VectorXd* r, MatrixXd* j) {
+  const ReflectiveFunction f = [](const VectorXd& x, NormalEquations* out) {
     if (x[0] > 1.5) return false;
-    *r = x.array() - 2.0;
-    *j = MatrixXd::Identity(1, 1);
-    *cost = 0.5 * r->squaredNorm();
+    Normal(x.array() - 2.0, MatrixXd::Identity(1, 1), out);
     return true;
   };
   VectorXd x = VectorXd::Zero(1);
@@ -149,9 +153,7 @@ TEST(ReflectiveTrustRegion, ACallbackStopsOrAbandons) {
 }
 
 TEST(ReflectiveTrustRegion, AStartThatCannotBeEvaluatedFails) {
-  const ReflectiveFunction f = [](const VectorXd&, double*, VectorXd*, MatrixXd*) {
-    return false;
-  };
+  const ReflectiveFunction f = [](const VectorXd&, NormalEquations*) { return false; };
   VectorXd x = VectorXd::Ones(1);
   const ReflectiveSummary s = SolveReflective({}, f, Unbounded(1, -1), Unbounded(1, 1),
                                               nullptr, &x);
