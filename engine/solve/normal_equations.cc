@@ -26,7 +26,8 @@ NormalEquationsEvaluator::NormalEquationsEvaluator(ceres::Problem* problem,
       if (problem->ParameterBlockSize(p) != 1) usable_ = false;
       const auto found = column.find(p);
       block.column.push_back(found == column.end() ? -1 : found->second);
-      if (found != column.end()) block.jacobian[block.column.size() - 1].resize(block.residuals.size());
+      if (found != column.end())
+        block.jacobian[block.column.size() - 1].resize(block.residuals.size());
     }
     blocks_.push_back(std::move(block));
   }
@@ -44,8 +45,8 @@ bool NormalEquationsEvaluator::Evaluate(NormalEquations* out) {
     for (size_t j = 0; j < jacobians.size(); ++j) {
       if (block.column[j] >= 0) jacobians[j] = block.jacobian[j].data();
     }
-    block.ok = block.cost->Evaluate(block.parameters.data(), block.residuals.data(),
-                                    jacobians.data());
+    block.ok =
+        block.cost->Evaluate(block.parameters.data(), block.residuals.data(), jacobians.data());
     if (!block.ok) return;
     const Eigen::Map<const Eigen::VectorXd> r(block.residuals.data(), block.residuals.size());
     normals[b].setZero(n, n);

@@ -21,11 +21,16 @@ double Bound(double value) {
 
 ceres::TerminationType CeresTermination(ReflectiveSummary::End end) {
   switch (end) {
-    case ReflectiveSummary::End::kConvergence: return ceres::CONVERGENCE;
-    case ReflectiveSummary::End::kNoConvergence: return ceres::NO_CONVERGENCE;
-    case ReflectiveSummary::End::kUserSuccess: return ceres::USER_SUCCESS;
-    case ReflectiveSummary::End::kUserFailure: return ceres::USER_FAILURE;
-    case ReflectiveSummary::End::kFailure: return ceres::FAILURE;
+    case ReflectiveSummary::End::kConvergence:
+      return ceres::CONVERGENCE;
+    case ReflectiveSummary::End::kNoConvergence:
+      return ceres::NO_CONVERGENCE;
+    case ReflectiveSummary::End::kUserSuccess:
+      return ceres::USER_SUCCESS;
+    case ReflectiveSummary::End::kUserFailure:
+      return ceres::USER_FAILURE;
+    case ReflectiveSummary::End::kFailure:
+      return ceres::FAILURE;
   }
   return ceres::FAILURE;
 }
@@ -57,9 +62,9 @@ void SolveReflectiveProblem(const ceres::Solver::Options& options, OutputErrorPr
   std::vector<double> residuals;
   ceres::CRSMatrix crs;
   // The cost functions evaluated directly (normal_equations.h), or, for a problem with a
-  // Ceres loss function, Problem::Evaluate and one pass over its Jacobian's rows. The cost is summed here in the
-  // problem's order (the losses are inside the experiments' residuals, so 1/2 |f|^2 is the
-  // cost), the same on any number of threads.
+  // Ceres loss function, Problem::Evaluate and one pass over its Jacobian's rows. The cost is
+  // summed here in the problem's order (the losses are inside the experiments' residuals, so 1/2
+  // |f|^2 is the cost), the same on any number of threads.
   NormalEquationsEvaluator direct(ceres_problem, evaluate.parameter_blocks, options.num_threads);
   auto function = [&](const Eigen::VectorXd& at, NormalEquations* out) {
     set(at);

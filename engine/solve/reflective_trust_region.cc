@@ -37,8 +37,7 @@ void ScalingVector(const VectorXd& x, const VectorXd& g, const VectorXd& lower,
 }
 
 // Moves x inside the bounds by a relative `step` (0: to the next representable number).
-VectorXd StrictlyFeasible(VectorXd x, const VectorXd& lower, const VectorXd& upper,
-                          double step) {
+VectorXd StrictlyFeasible(VectorXd x, const VectorXd& lower, const VectorXd& upper, double step) {
   for (int i = 0; i < x.size(); ++i) {
     if (x[i] <= lower[i]) {
       x[i] = step == 0.0 ? std::nextafter(lower[i], upper[i])
@@ -85,9 +84,7 @@ struct ScaledModel {
   const MatrixXd& h;
   const VectorXd& gh;
 
-  double Value(const VectorXd& step) const {
-    return 0.5 * step.dot(h * step) + gh.dot(step);
-  }
+  double Value(const VectorXd& step) const { return 0.5 * step.dot(h * step) + gh.dot(step); }
   // q(h0 + t s) = a t^2 + b t + q(h0).
   void Along(const VectorXd& s, const VectorXd& h0, double* a, double* b) const {
     const VectorXd hs = h * s;
@@ -121,10 +118,9 @@ VectorXd TrustRegionStep(const VectorXd& lambda, const MatrixXd& v, const Vector
                          int residuals, double delta, double* alpha) {
   const int n = static_cast<int>(lambda.size());
   const double largest = lambda.maxCoeff(), smallest = std::max(0.0, lambda.minCoeff());
-  const bool full_rank =
-      residuals >= n && n > 0 &&
-      std::sqrt(smallest) >
-          std::numeric_limits<double>::epsilon() * residuals * std::sqrt(std::max(0.0, largest));
+  const bool full_rank = residuals >= n && n > 0 &&
+                         std::sqrt(smallest) > std::numeric_limits<double>::epsilon() * residuals *
+                                                   std::sqrt(std::max(0.0, largest));
   if (full_rank) {
     const VectorXd p = -v * vg.cwiseQuotient(lambda);
     if (p.norm() <= delta) {
@@ -244,8 +240,8 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
   auto evaluate = [&](const VectorXd& point, NormalEquations* e) {
     const auto start = std::chrono::steady_clock::now();
     ++summary.evaluations;
-    const bool ok = f(point, e) && std::isfinite(e->cost) && e->gradient.allFinite() &&
-                    e->normal.allFinite();
+    const bool ok =
+        f(point, e) && std::isfinite(e->cost) && e->gradient.allFinite() && e->normal.allFinite();
     summary.evaluation_seconds += Seconds(start);
     return ok;
   };
@@ -259,8 +255,8 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
   if (callback) {
     const int answer = callback(0, true, cost, x);
     if (answer != 0) {
-      summary.end = answer > 0 ? ReflectiveSummary::End::kUserSuccess
-                               : ReflectiveSummary::End::kUserFailure;
+      summary.end =
+          answer > 0 ? ReflectiveSummary::End::kUserSuccess : ReflectiveSummary::End::kUserFailure;
       summary.message = "stopped by a callback";
       summary.total_seconds = Seconds(begin);
       return summary;
@@ -349,11 +345,9 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
         } else if (ratio > 0.75 && step_h_norm > 0.95 * delta) {
           next_delta = 2.0 * delta;
         }
-        const bool f_converged =
-            actual < options.function_tolerance * cost && ratio > 0.25;
-        const bool x_converged = (x_new - x).norm() <
-                                 options.parameter_tolerance *
-                                     (options.parameter_tolerance + x.norm());
+        const bool f_converged = actual < options.function_tolerance * cost && ratio > 0.25;
+        const bool x_converged = (x_new - x).norm() < options.parameter_tolerance *
+                                                          (options.parameter_tolerance + x.norm());
         accepted = actual > 0.0;
         if (accepted) {
           x = x_new;

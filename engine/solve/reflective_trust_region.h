@@ -52,17 +52,18 @@ struct NormalEquations {
 using ReflectiveFunction = std::function<bool(const Eigen::VectorXd& x, NormalEquations* out)>;
 
 // At the start (trial 0) and after each trial point (1, 2, ...): whether it was accepted, the
-// cost at the current iterate and the iterate. Returns 0 to go on, 1 to stop successfully, -1 to abandon.
-using ReflectiveCallback = std::function<int(int trial, bool accepted, double cost,
-                                             const Eigen::VectorXd& x)>;
+// cost at the current iterate and the iterate. Returns 0 to go on, 1 to stop successfully, -1 to
+// abandon.
+using ReflectiveCallback =
+    std::function<int(int trial, bool accepted, double cost, const Eigen::VectorXd& x)>;
 
 struct ReflectiveSummary {
   enum class End {
-    kConvergence,     // a tolerance was met
-    kNoConvergence,   // max_evaluations or max_time_seconds
-    kUserSuccess,     // the callback stopped it
-    kUserFailure,     // the callback abandoned it
-    kFailure,         // the start could not be evaluated
+    kConvergence,    // a tolerance was met
+    kNoConvergence,  // max_evaluations or max_time_seconds
+    kUserSuccess,    // the callback stopped it
+    kUserFailure,    // the callback abandoned it
+    kFailure,        // the start could not be evaluated
   };
   End end = End::kFailure;
   std::string message;
@@ -70,7 +71,7 @@ struct ReflectiveSummary {
   double final_cost = -1.0;
   int evaluations = 0;
   int accepted = 0;
-  int rejected = 0;       // a worse cost, or residuals that could not be evaluated
+  int rejected = 0;  // a worse cost, or residuals that could not be evaluated
   double evaluation_seconds = 0.0;
   double step_seconds = 0.0;  // the factorisations and step selection
   double total_seconds = 0.0;

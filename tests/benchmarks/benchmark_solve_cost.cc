@@ -7,7 +7,8 @@
 //      iteration with the free heading to that without it, and the time per iteration in
 //      simulations of the record in double (the engine's own simulator), the physical limit of
 //      a forward-mode Gauss-Newton iteration being about 2 (one residual evaluation, one Jet
-//      simulation).
+//      simulation). Both with Levenberg-Marquardt and with the reflective region (which
+//      evaluates residuals and Jacobian once per trial point and steps on the normal equations).
 //   2. Peak RSS of `vesselid run` on an input-gain campaign enlarged to ~200 000 training rows
 //      over ~110 segments (configs/input_gain_static.yaml, 157 segments over 80 minutes, the
 //      refinement limited to `iterations` iterations), measured on the child process.
@@ -58,7 +59,8 @@ testing::SeedVessel Cargo(bool multisine) {
   return vessel;
 }
 
-CargoTimes TimeCargo(const std::vector<std::string>& free_states, bool multisine = false) {
+CargoTimes TimeCargo(const std::vector<std::string>& free_states, bool multisine,
+                     TrustRegion method) {
   auto model = nomoto::MakeSecondOrderHandle();
   const testing::SeedVessel vessel = Cargo(multisine);
   Experiment e = testing::MakeExperiment(*model, vessel.truth, vessel.loop);
@@ -72,6 +74,7 @@ CargoTimes TimeCargo(const std::vector<std::string>& free_states, bool multisine
   auto problem = OutputErrorProblem::Create(model.get(), {e}, testing::FiftyPercentOff(vessel.truth),
                                             options, &error);
   StageOptions stage;
+  stage.local.trust_region = method;
   StageSummary summary;
   // The stage's local solve only (RunStage's solve runs first; its analysis evaluates after).
   long counted[3] = {0, 0, 0};
@@ -152,34 +155,42 @@ double PeakRssMb(const std::vector<std::string>& args) {
 int Main(int argc, char** argv) {
   const int iterations = argc > 1 ? std::atoi(argv[1]) : 2;
   TimeJetWidths();
-  std::printf("cargo, noise-free, 1.5x off   stage s  local s  iters  s/iter  eval share  "
-              "outside solve s  sim s  iter/sim  stage/local\n");
-  const CargoTimes plain = TimeCargo({});
-  const CargoTimes heading = TimeCargo({"psi"});
-  const CargoTimes multisine = TimeCargo({}, true);
-  for (const auto& [name, t] : {std::pair{"sine, parameters only", plain},
-                                {"sine, free initial psi", heading},
-                                {"multi-sine, parameters only", multisine}}) {
-    std::printf("  %-27s %8.3f %8.3f %6d %7.4f %10.1f%% %16.3f %6.3f %9.2f %12.2f\n", name,
-                t.stage, t.local, t.iterations, t.per_iteration, 100 * t.evaluation_share,
-                t.outside, t.simulation, t.per_iteration / t.simulation, t.stage / t.local);
+  for (TrustRegion method : {TrustRegion::kLevenbergMarquardt, TrustRegion::kReflective}) {
+    const char* solver = TrustRegionToString(method);
+    std::printf("cargo, noise-free, 1.5x off, %s\n", solver);
+    std::printf(
+        "                              stage s  local s  iters  s/iter  eval share  "
+        "outside solve s  sim s  iter/sim  stage/local\n");
+    const CargoTimes plain = TimeCargo({}, false, method);
+    const CargoTimes heading = TimeCargo({"psi"}, false, method);
+    const CargoTimes multisine = TimeCargo({}, true, method);
+    for (const auto& [name, t] : {std::pair{"sine, parameters only", plain},
+                                  {"sine, free initial psi", heading},
+                                  {"multi-sine, parameters only", multisine}}) {
+      std::printf("  %-27s %8.3f %8.3f %6d %7.4f %10.1f%% %16.3f %6.3f %9.2f %12.2f\n", name,
+                  t.stage, t.local, t.iterations, t.per_iteration, 100 * t.evaluation_share,
+                  t.outside, t.simulation, t.per_iteration / t.simulation, t.stage / t.local);
+    }
+    std::printf(
+        "  multi-sine: %d iterations, %d residual and %d Jacobian evaluations asked by "
+        "Ceres\n",
+        multisine.iterations, multisine.residual_evaluations, multisine.jacobian_evaluations);
+    std::printf(
+        "  multi-sine: %ld double and %ld Jet simulations, %ld copies from the evaluation "
+        "cache (to the solve's last iteration)\n",
+        multisine.simulations, multisine.jet_simulations, multisine.copies);
+    std::printf("  multi-sine: the whole stage %ld double and %ld Jet simulations, %ld copies\n",
+                multisine.stage_simulations, multisine.stage_jet_simulations,
+                multisine.stage_copies);
+    std::printf(
+        "  multi-sine: time per iteration %.2f double simulations (target <= 2.5), "
+        "stage / local solve %.2f (target <= 1.2)\n",
+        multisine.per_iteration / multisine.simulation, multisine.stage / multisine.local);
+    std::printf("  time per iteration, free psi / without: %.2f (target <= 1.3)\n",
+                heading.per_iteration / plain.per_iteration);
+    std::printf("  stage time outside the local solve / local solve: %.2f\n",
+                plain.outside / plain.local);
   }
-  std::printf("  multi-sine: %d iterations, %d residual and %d Jacobian evaluations asked by "
-              "Ceres\n", multisine.iterations, multisine.residual_evaluations,
-              multisine.jacobian_evaluations);
-  std::printf(
-      "  multi-sine: %ld double and %ld Jet simulations, %ld copies from the evaluation "
-      "cache (to the solve's last iteration)\n",
-      multisine.simulations, multisine.jet_simulations, multisine.copies);
-  std::printf("  multi-sine: the whole stage %ld double and %ld Jet simulations, %ld copies\n",
-              multisine.stage_simulations, multisine.stage_jet_simulations, multisine.stage_copies);
-  std::printf("  multi-sine: time per iteration %.2f double simulations (target <= 2.5), "
-              "stage / local solve %.2f (target <= 1.2)\n",
-              multisine.per_iteration / multisine.simulation, multisine.stage / multisine.local);
-  std::printf("  time per iteration, free psi / without: %.2f (target <= 1.3)\n",
-              heading.per_iteration / plain.per_iteration);
-  std::printf("  stage time outside the local solve / local solve: %.2f\n",
-              plain.outside / plain.local);
   if (iterations <= 0) return 0;
 
   // The enlarged input-gain campaign, through the command line.

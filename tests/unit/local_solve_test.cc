@@ -81,16 +81,22 @@ class NoDerivativeBelow : public ceres::SizedCostFunction<1, 1> {
   double threshold_;
 };
 
+// The far start with NoDerivativeBelow on T at T = 3; T's variable (nullptr if none).
+const Variable* WithoutDerivativeBelow3(OutputErrorProblem* problem) {
+  for (const Variable& v : problem->variables()) {
+    if (v.name != "T") continue;
+    const double scale = *v.block / v.value();
+    problem->problem()->AddResidualBlock(new NoDerivativeBelow(3.0 * scale), nullptr, v.block);
+    return &v;
+  }
+  return nullptr;
+}
+
 TEST(LocalSolve, AStepWithoutDerivativesEndsTheSolveAtTheLastIterate) {
   auto model = nomoto::MakeFirstOrderHandle();
   auto problem = FarStart(*model);
-  const Variable* t = nullptr;
-  for (const Variable& v : problem->variables()) {
-    if (v.name == "T") t = &v;
-  }
+  const Variable* t = WithoutDerivativeBelow3(problem.get());
   ASSERT_NE(t, nullptr);
-  const double scale = *t->block / t->value();
-  problem->problem()->AddResidualBlock(new NoDerivativeBelow(3.0 * scale), nullptr, t->block);
   LocalSolveOptions options;
   options.trust_region = TrustRegion::kLevenbergMarquardt;
   LocalSolveSummary summary;
@@ -111,13 +117,8 @@ TEST(LocalSolve, AStepWithoutDerivativesEndsTheSolveAtTheLastIterate) {
 TEST(LocalSolve, ReflectiveShortensAStepWithoutDerivatives) {
   auto model = nomoto::MakeFirstOrderHandle();
   auto problem = FarStart(*model);
-  const Variable* t = nullptr;
-  for (const Variable& v : problem->variables()) {
-    if (v.name == "T") t = &v;
-  }
+  const Variable* t = WithoutDerivativeBelow3(problem.get());
   ASSERT_NE(t, nullptr);
-  const double scale = *t->block / t->value();
-  problem->problem()->AddResidualBlock(new NoDerivativeBelow(3.0 * scale), nullptr, t->block);
   LocalSolveOptions options;
   options.trust_region = TrustRegion::kReflective;
   LocalSolveSummary summary;

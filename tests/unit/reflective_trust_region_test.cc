@@ -109,8 +109,7 @@ TEST(ReflectiveTrustRegion, StopsAtABoundAcrossTheValley) {
   VectorXd x(2), upper(2);
   x << -1.2, 1.0;
   upper << 0.5, kInfinity;
-  const ReflectiveSummary s =
-      SolveReflective({}, Rosenbrock, Unbounded(2, -1), upper, nullptr, &x);
+  const ReflectiveSummary s = SolveReflective({}, Rosenbrock, Unbounded(2, -1), upper, nullptr, &x);
   EXPECT_NE(s.end, ReflectiveSummary::End::kNoConvergence) << s.message;
   EXPECT_LE(x[0], 0.5);
   EXPECT_NEAR(x[0], 0.5, 1e-6);
@@ -129,8 +128,8 @@ TEST(ReflectiveTrustRegion, ShortensStepsWhoseResidualsCannotBeEvaluated) {
   VectorXd x = VectorXd::Zero(1);
   ReflectiveOptions options;
   options.max_evaluations = 100;
-  const ReflectiveSummary s = SolveReflective(options, f, Unbounded(1, -1), Unbounded(1, 1),
-                                              nullptr, &x);
+  const ReflectiveSummary s =
+      SolveReflective(options, f, Unbounded(1, -1), Unbounded(1, 1), nullptr, &x);
   EXPECT_GT(s.rejected, 0);
   EXPECT_LE(x[0], 1.5);
   EXPECT_GT(x[0], 1.4);
@@ -155,8 +154,8 @@ TEST(ReflectiveTrustRegion, ACallbackStopsOrAbandons) {
 TEST(ReflectiveTrustRegion, AStartThatCannotBeEvaluatedFails) {
   const ReflectiveFunction f = [](const VectorXd&, NormalEquations*) { return false; };
   VectorXd x = VectorXd::Ones(1);
-  const ReflectiveSummary s = SolveReflective({}, f, Unbounded(1, -1), Unbounded(1, 1),
-                                              nullptr, &x);
+  const ReflectiveSummary s =
+      SolveReflective({}, f, Unbounded(1, -1), Unbounded(1, 1), nullptr, &x);
   EXPECT_EQ(s.end, ReflectiveSummary::End::kFailure);
   EXPECT_EQ(s.initial_cost, -1.0);
 }

@@ -81,8 +81,19 @@ TEST(StageFindings, GoodStageIsQuiet) {
 TEST(StageFindings, IterationLimitAndNoProgress) {
   StageResult stage = GoodStage();
   stage.summary.refinements[0].termination = "NO_CONVERGENCE";
+  stage.summary.refinements[0].message = "Maximum number of iterations reached.";
   DiagnoseStage(Info(), true, &stage);
   EXPECT_EQ(Kinds(stage), std::vector<FindingKind>{FindingKind::kNoConvergence});
+  EXPECT_NE(stage.findings[0].message.find("(local.max_iterations)"), std::string::npos);
+  // Stopped by its time limit: the finding names that limit.
+  stage = GoodStage();
+  stage.summary.refinements[0].termination = "NO_CONVERGENCE";
+  stage.summary.refinements[0].message = "Maximum solver time reached.";
+  DiagnoseStage(Info(), true, &stage);
+  ASSERT_EQ(Kinds(stage), std::vector<FindingKind>{FindingKind::kNoConvergence});
+  EXPECT_NE(stage.findings[0].message.find("(its time limit, local.max_time)"),
+            std::string::npos)
+      << stage.findings[0].message;
   // No successful step from the start with a failed fit: it did not search.
   stage = GoodStage();
   stage.summary.refinements[0].successful_steps = 0;
