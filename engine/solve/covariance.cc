@@ -193,7 +193,12 @@ void SetStdErrorsAndCorrelation(Uncertainty* u) {
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
       const double d = u->std_errors[i] * u->std_errors[j];
-      if (i != j) u->correlation(i, j) = d > 0 ? u->covariance(i, j) / d : 0.0;
+      // A covariance that is not positive semi-definite in floating point (the sandwich of
+      // a near-singular Hessian) can give |c| > 1: the pair is correlated to round-off.
+      if (i != j) {
+        u->correlation(i, j) =
+            d > 0 ? std::clamp(u->covariance(i, j) / d, -1.0, 1.0) : 0.0;
+      }
     }
   }
 }

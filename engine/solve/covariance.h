@@ -69,7 +69,8 @@ struct Uncertainty {
   double StdError(int index) const;
 };
 
-// std_errors (NaN for undetermined_variables) and correlation from covariance.
+// std_errors (NaN for undetermined_variables) and correlation from covariance, within
+// [-1, 1].
 void SetStdErrorsAndCorrelation(Uncertainty* uncertainty);
 
 // `solution` (may be null): the Jacobian already evaluated at the current values

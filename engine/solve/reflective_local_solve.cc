@@ -135,6 +135,7 @@ void SolveReflectiveProblem(const ceres::Solver::Options& options, OutputErrorPr
   summary->num_unsuccessful_steps = result.rejected;
   summary->num_residual_evaluations = result.evaluations;
   summary->num_jacobian_evaluations = result.evaluations;
+  summary->residual_evaluation_time_in_seconds = 0.0;  // each evaluation forms both
   summary->jacobian_evaluation_time_in_seconds = result.evaluation_seconds;
   summary->linear_solver_time_in_seconds = result.step_seconds;
   summary->total_time_in_seconds = result.total_seconds;

@@ -16,7 +16,8 @@
 // VESSELID_BENCHMARK_BINARY runs another vesselid binary (e.g. a copy, while the build tree
 // changes); VESSELID_BENCHMARK_KEEP=1 keeps the data, configs and outputs (their folder is
 // printed); VESSELID_BENCHMARK_STAGE_KEYS adds a line of stage keys to every engine config
-// (e.g. "local: {trust_region: dogleg}").
+// (e.g. "local: {trust_region: reflective}"); VESSELID_BENCHMARK_SCIPY_VARIANT runs another of
+// SciPy's solvers (jac, nobounds, dogbox, lm: reference_3dof.py).
 //
 // A start succeeds when every parameter ends within 1 % of the value the same tool reaches
 // from the true values (run first, not counted; Yr ~ 0 within 1e-4). Scored by the
@@ -247,8 +248,12 @@ int main(int argc, char** argv) {
     return 0;
   }
   const fs::path fits = dir / "scipy.json";
-  const double scipy_time = Timed(std::string(kPython) + " " + script + " fit " + dir.string() +
-                                  " " + (dir / "starts.json").string() + " > " + fits.string());
+  // VESSELID_BENCHMARK_SCIPY_VARIANT: another of SciPy's solvers (reference_3dof.py VARIANTS).
+  const char* scipy_variant = std::getenv("VESSELID_BENCHMARK_SCIPY_VARIANT");
+  const double scipy_time =
+      Timed(std::string(kPython) + " " + script + " fit " + dir.string() + " " +
+            (dir / "starts.json").string() + " " + (scipy_variant ? scipy_variant : "trf") +
+            " > " + fits.string());
   std::ifstream in(fits);
   const json reference = json::parse(in, nullptr, false);
   if (scipy_time < 0 || reference.is_discarded()) {

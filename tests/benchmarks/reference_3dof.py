@@ -7,9 +7,11 @@ to make the data and to fit it with SciPy.
                             (t, c_L, c_R, x, y, psi with psi logged wrapped to (-pi, pi]);
                             run set a (5 runs) or b (6 other runs, other noise), named in
                             <dir>/runs.txt for the fit
-  fit <dir> <starts.json>   scipy.optimize.least_squares (trust-region reflective, SciPy's
+  fit <dir> <starts.json> [variant]
+                            scipy.optimize.least_squares (trust-region reflective, SciPy's
                             default tolerances) from each start; JSON on stdout: per start the
-                            estimate, cost, evaluations and time
+                            estimate, cost, evaluations and time; variant: trf (default), jac,
+                            nobounds, dogbox or lm (VARIANTS)
 
 The fit frees the 15 parameters of FREE (the thrust coefficients among them); the others stay
 at their true values. Residuals are x, y and psi (unwrapped measurement against the simulated
@@ -179,7 +181,14 @@ def residuals(theta, data):
     return np.where(np.isfinite(out), out, 1e3)
 
 
-def fit(folder, starts_path):
+# SciPy's solvers compared on the same starts (docs/benchmarks.md, "Why the local solve loses
+# from far"): trf as SciPy's defaults, trf with x_scale='jac', trf without bounds, dogbox, and
+# MINPACK's lm (which takes no bounds).
+VARIANTS = {"trf": {}, "jac": {"x_scale": "jac"}, "nobounds": {"bounds": None},
+            "dogbox": {"method": "dogbox"}, "lm": {"method": "lm", "bounds": None}}
+
+
+def fit(folder, starts_path, variant="trf"):
     data = read_runs(folder)
     starts = json.load(open(starts_path))
     lower = np.array([-np.inf if BOUNDS[n][0] is None else BOUNDS[n][0] for n in FREE])
@@ -190,7 +199,11 @@ def fit(folder, starts_path):
         x0 = np.array([start[n] for n in FREE])
         begin = time.perf_counter()
         cpu = time.process_time()
-        sol = least_squares(residuals, x0, args=(data,), bounds=(lower, upper), method="trf")
+        options = {"method": "trf", "bounds": (lower, upper)}
+        options.update(VARIANTS[variant])
+        if options["bounds"] is None:
+            del options["bounds"]
+        sol = least_squares(residuals, x0, args=(data,), **options)
         results.append({"estimate": dict(zip(FREE, sol.x.tolist())), "cost": sol.cost,
                         "evaluations": int(sol.nfev), "status": int(sol.status),
                         "seconds": time.perf_counter() - begin,
@@ -202,4 +215,4 @@ if __name__ == "__main__":
     if sys.argv[1] == "simulate":
         write_runs(sys.argv[2], sys.argv[3] if len(sys.argv) > 3 else "a")
     else:
-        fit(sys.argv[2], sys.argv[3])
+        fit(sys.argv[2], sys.argv[3], sys.argv[4] if len(sys.argv) > 4 else "trf")

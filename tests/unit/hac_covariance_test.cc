@@ -8,6 +8,7 @@
 #include <cmath>
 #include <random>
 
+#include "engine/solve/covariance.h"
 #include "gtest/gtest.h"
 
 namespace vesselid {
@@ -115,6 +116,21 @@ TEST(HacCovariance, FixedBandwidthUsesBartlettWeights) {
   const Eigen::MatrixXd scores = Eigen::MatrixXd::Ones(4, 1);
   EXPECT_NEAR(LongRunCovariance(options, scores, nullptr)(0, 0), 4.0 + 2.0 * (2.0 + 2.0 / 3.0),
               1e-12);
+}
+
+// A sandwich covariance that is not positive semi-definite in floating point (a near-singular
+// Hessian between two estimates) gives correlations within [-1, 1], at the limit.
+TEST(HacCovariance, CorrelationStaysWithinPlusMinusOne) {
+  Uncertainty u;
+  u.variables = {0, 1, 2};
+  u.covariance.resize(3, 3);
+  u.covariance << 1.0, 1.62, 0.1, 1.62, 1.0, -0.2, 0.1, -0.2, 4.0;
+  SetStdErrorsAndCorrelation(&u);
+  EXPECT_DOUBLE_EQ(u.correlation(0, 1), 1.0);
+  EXPECT_DOUBLE_EQ(u.correlation(1, 0), 1.0);
+  EXPECT_DOUBLE_EQ(u.correlation(0, 2), 0.05);
+  EXPECT_DOUBLE_EQ(u.correlation(1, 2), -0.1);
+  EXPECT_DOUBLE_EQ(u.std_errors[2], 2.0);
 }
 
 }  // namespace hac_covariance_test
