@@ -284,7 +284,10 @@ int main(int argc, char** argv) {
     valley += in_valley;
   }
   std::printf("  %-34s %7d/%-2d %8d %10.1f s  (%.0f s of Python in all)\n",
-              "SciPy least_squares (defaults)", successes, count, valley, fit_seconds / count,
+              (scipy_variant ? "SciPy least_squares, " + std::string(scipy_variant)
+                             : std::string("SciPy least_squares (defaults)"))
+                  .c_str(),
+              successes, count, valley, fit_seconds / count,
               scipy_time);
   if (!keep) fs::remove_all(dir);
   return 0;
