@@ -18,8 +18,8 @@ class NormalEquationsEvaluator {
   // `unknowns`: the parameter blocks (size 1 each) that are the columns, in order.
   NormalEquationsEvaluator(ceres::Problem* problem, std::vector<double*> unknowns, int threads);
 
-  // False when the problem has what this evaluator does not handle (a Ceres loss function on
-  // a residual block, a parameter block larger than 1): use Problem::Evaluate then.
+  // False when the problem has what this evaluator does not handle: a Ceres loss function on
+  // a residual block, or a parameter block larger than 1.
   bool usable() const { return usable_; }
 
   // At the blocks' current values; false when a block cannot be evaluated.

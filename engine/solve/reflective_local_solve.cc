@@ -1,6 +1,5 @@
 #include "engine/solve/reflective_local_solve.h"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -41,57 +40,32 @@ void SolveReflectiveProblem(const ceres::Solver::Options& options, OutputErrorPr
                             ceres::Solver::Summary* summary) {
   *summary = ceres::Solver::Summary();
   ceres::Problem* ceres_problem = problem->problem();
-  ceres::Problem::EvaluateOptions evaluate;
-  evaluate.num_threads = options.num_threads;
+  std::vector<double*> unknowns;
   for (const Variable& v : problem->variables()) {
-    if (v.free && !ceres_problem->IsParameterBlockConstant(v.block)) {
-      evaluate.parameter_blocks.push_back(v.block);
-    }
+    if (v.free && !ceres_problem->IsParameterBlockConstant(v.block)) unknowns.push_back(v.block);
   }
-  const int n = static_cast<int>(evaluate.parameter_blocks.size());
+  const int n = static_cast<int>(unknowns.size());
   Eigen::VectorXd x(n), lower(n), upper(n);
   for (int i = 0; i < n; ++i) {
-    double* block = evaluate.parameter_blocks[i];
-    x[i] = *block;
-    lower[i] = Bound(ceres_problem->GetParameterLowerBound(block, 0));
-    upper[i] = Bound(ceres_problem->GetParameterUpperBound(block, 0));
+    x[i] = *unknowns[i];
+    lower[i] = Bound(ceres_problem->GetParameterLowerBound(unknowns[i], 0));
+    upper[i] = Bound(ceres_problem->GetParameterUpperBound(unknowns[i], 0));
   }
   auto set = [&](const Eigen::VectorXd& at) {
-    for (int i = 0; i < n; ++i) *evaluate.parameter_blocks[i] = at[i];
+    for (int i = 0; i < n; ++i) *unknowns[i] = at[i];
   };
-  std::vector<double> residuals;
-  ceres::CRSMatrix crs;
-  // The cost functions evaluated directly (normal_equations.h), or, for a problem with a
-  // Ceres loss function, Problem::Evaluate and one pass over its Jacobian's rows. The cost is
-  // summed here in the problem's order (the losses are inside the experiments' residuals, so 1/2
-  // |f|^2 is the cost), the same on any number of threads.
-  NormalEquationsEvaluator direct(ceres_problem, evaluate.parameter_blocks, options.num_threads);
+  // The cost functions evaluated directly (normal_equations.h): the engine's problems keep
+  // their losses inside the experiments' residuals and give every unknown its own block.
+  NormalEquationsEvaluator direct(ceres_problem, unknowns, options.num_threads);
+  if (!direct.usable()) {
+    summary->termination_type = ceres::FAILURE;
+    summary->message =
+        "the reflective trust region needs scalar unknowns and no Ceres loss function";
+    return;
+  }
   auto function = [&](const Eigen::VectorXd& at, NormalEquations* out) {
     set(at);
-    if (direct.usable()) return direct.Evaluate(out);
-    double ceres_cost = 0.0;
-    if (!ceres_problem->Evaluate(evaluate, &ceres_cost, &residuals, nullptr, &crs)) return false;
-    out->residuals = static_cast<int>(residuals.size());
-    out->gradient.setZero(n);
-    out->normal.setZero(n, n);
-    double sum = 0.0;
-    for (int row = 0; row < crs.num_rows; ++row) {
-      const double r = residuals[row];
-      sum += r * r;
-      for (int k = crs.rows[row]; k < crs.rows[row + 1]; ++k) {
-        const int i = crs.cols[k];
-        const double a = crs.values[k];
-        out->gradient[i] += a * r;
-        for (int l = k; l < crs.rows[row + 1]; ++l) {
-          const int j = crs.cols[l];
-          out->normal(std::min(i, j), std::max(i, j)) += a * crs.values[l];
-        }
-      }
-    }
-    out->normal.triangularView<Eigen::StrictlyLower>() =
-        out->normal.transpose().triangularView<Eigen::StrictlyLower>();
-    out->cost = 0.5 * sum;
-    return true;
+    return direct.Evaluate(out);
   };
   auto callback = [&](int trial, bool accepted, double cost, const Eigen::VectorXd& at) {
     set(at);
