@@ -151,13 +151,13 @@ std::string LocalSolveSummary::BriefReport() const {
 }
 
 ceres::LinearSolverType AutomaticLinearSolver(const OutputErrorProblem& problem) {
-  constexpr int kDenseLimit = 60;  // free unknowns a dense QR handles in negligible time
+  constexpr int kDenseLimit = 60;  // free unknowns whose dense J'J costs little to form
   int per_experiment = 0;
   for (const Variable& v : problem.variables()) {
     if (v.free && v.experiment >= 0) ++per_experiment;
   }
   return per_experiment > 0 && problem.num_free() > kDenseLimit ? ceres::SPARSE_NORMAL_CHOLESKY
-                                                                 : ceres::DENSE_QR;
+                                                                 : ceres::DENSE_NORMAL_CHOLESKY;
 }
 
 namespace {

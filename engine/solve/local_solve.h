@@ -83,7 +83,10 @@ struct LocalSolveSummary {
   std::string BriefReport() const;
 };
 
-// dense_qr while the problem is small or has no per-experiment unknowns; otherwise
+// dense_normal_cholesky while the problem is small or has no per-experiment unknowns (a
+// record gives m >> n residuals: forming J'J costs m n^2 flops against 2 m n^2 for a QR of
+// J, and with Jacobi scaling and the damping the factored matrix stays well conditioned;
+// the MMG campaign's iteration, m = 2e4, n = 50: 23 against 35 ms); otherwise
 // sparse_normal_cholesky (SuiteSparse): per-experiment initial states and parameters make
 // J^T J an arrow matrix (a dense corner of shared parameters, a block diagonal of the
 // rest), which a sparse Cholesky factors in time linear in the number of experiments. Schur
