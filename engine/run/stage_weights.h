@@ -4,8 +4,9 @@
 //   noise: the per-channel noise model (noise_weights.h), every sample weighted 1/sigma_c of
 //          its channel. Maximum likelihood weighs each sample alike, so experiments weigh by
 //          their samples: length normalisation is off unless the stage sets
-//          normalize_by_length: true itself; the configured output weights serve only the
-//          first solve.
+//          normalize_by_length: true itself. The first solve weighs by the data's own noise
+//          levels (SetDataNoiseWeights), or by the configured output weights where the
+//          stage's experiments set any.
 // Default: noise for a stage comparing two or more outputs, given for one (whose estimate
 // does not depend on a channel weight).
 #pragma once

@@ -16,6 +16,33 @@ std::vector<double> NoiseModel::Weights(const ModelInfo& info) const {
   return weights;
 }
 
+bool SetDataNoiseWeights(OutputErrorProblem* problem) {
+  const size_t ny = problem->model().info().outputs.size();
+  std::vector<double> power(ny, 0.0), count(ny, 0.0);
+  for (const Experiment& e : problem->experiments()) {
+    for (size_t c = 0; c < ny && c < e.channel_noise_power.size(); ++c) {
+      if (e.output_sample_count[c] == 0) continue;
+      power[c] += e.channel_noise_power[c];
+      count[c] += std::isfinite(e.NoiseLevel(static_cast<int>(c))) ? e.output_sample_count[c]
+                                                                   : 0.0;
+    }
+  }
+  std::vector<double> weights(ny, std::numeric_limits<double>::quiet_NaN());
+  bool any = false;
+  for (const Experiment& e : problem->experiments()) {
+    for (size_t c = 0; c < ny; ++c) {
+      if (e.output_sample_count[c] == 0) continue;  // not compared here
+      const double sigma = count[c] > 0.0 ? std::sqrt(power[c] / count[c]) : 0.0;
+      if (!(sigma > 0.0) || !std::isfinite(sigma)) return false;
+      weights[c] = 1.0 / sigma;
+      any = true;
+    }
+  }
+  if (!any) return false;
+  problem->SetChannelWeights(weights);
+  return true;
+}
+
 bool EstimateChannelNoise(const OutputErrorProblem& problem, const std::vector<ExperimentFit>& fits,
                           NoiseModel* noise, std::string* error) {
   const ModelInfo& info = problem.model().info();

@@ -39,6 +39,14 @@ struct NoiseModel {
   std::vector<double> Weights(const ModelInfo& info) const;
 };
 
+// The first solve's weights under `weights: noise`: w_c = 1/sigma_c with sigma_c each compared
+// channel's noise level as the data alone show it (second differences, Experiment::NoiseLevel),
+// pooled over the experiments, sigma_c^2 = sum_e P_ce / sum_e m_ce. Unit weights make metres
+// outweigh a heading in radians by its noise ratio, and Levenberg-Marquardt crawls along the
+// valley that leaves (docs/benchmarks.md, the MMG campaign). False, the weights unchanged,
+// when a compared channel has no level (fewer than three samples, or an exact signal).
+bool SetDataNoiseWeights(OutputErrorProblem* problem);
+
 // sigma per compared output from the fit at the problem's current values (`fits` as
 // EvaluateFit made them). False (with `error`) when a channel has no residual to estimate it
 // from (no samples, or an exact fit).

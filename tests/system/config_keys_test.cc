@@ -354,7 +354,7 @@ const KeyCase kCases[] = {
     {"screen_stale", V, V.A(", screen: {stale: 1}"), "stale: must be >= 2"},
     // The local solver's settings.
     {"local_function_tolerance", V, V.K("    local: {function_tolerance: 0.5}")},
-    {"local_gradient_tolerance", V, V.K("    local: {gradient_tolerance: 1e-1}")},
+    {"local_gradient_tolerance", V, V.K("    local: {gradient_tolerance: 1e3}")},
     {"local_parameter_tolerance", V, V.K("    local: {parameter_tolerance: 1}")},
     {"local_trust_region", V, V.K("    local: {trust_region: dogleg}")},
     {"local_trust_region_reflective", V.K("    local: {trust_region: levenberg_marquardt}"),
