@@ -379,16 +379,7 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
   options.use_global_start = options.use_global_start && stage.continuation.empty();
   options.local.progress = progress;
   options.global.progress = progress;
-  // Under noise weights the first solve weighs each channel by the data's own noise level,
-  // unless the stage's experiments configure output weights for it.
-  bool configured_weights = false;
-  for (const ExperimentSpec& spec : config.experiments) {
-    if (std::find(stage.experiments.begin(), stage.experiments.end(), spec.name) !=
-        stage.experiments.end()) {
-      configured_weights = configured_weights || !spec.output_weights.empty();
-    }
-  }
-  if (noise_weights && !configured_weights) SetDataNoiseWeights(problem.get());
+  SetFirstSolveWeights(config, stage, problem.get());
   // The weights the first solve uses, by experiment, for the comparable cost.
   std::map<std::string, std::vector<double>> first_weights;
   {

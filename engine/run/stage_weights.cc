@@ -1,5 +1,8 @@
 #include "engine/run/stage_weights.h"
 
+#include "engine/solve/noise_weights.h"
+
+#include <algorithm>
 #include <set>
 #include <string>
 
@@ -39,6 +42,17 @@ ExperimentOptions StageExperimentOptions(const RunConfig& config, const StageCon
     options.normalize_by_length = false;
   }
   return options;
+}
+
+void SetFirstSolveWeights(const RunConfig& config, const StageConfig& stage,
+                          OutputErrorProblem* problem) {
+  if (!UsesNoiseWeights(config, stage)) return;
+  for (const ExperimentSpec& spec : config.experiments) {
+    const bool in_stage = std::find(stage.experiments.begin(), stage.experiments.end(),
+                                    spec.name) != stage.experiments.end();
+    if (in_stage && !spec.output_weights.empty()) return;
+  }
+  SetDataNoiseWeights(problem);
 }
 
 }  // namespace vesselid

@@ -12,6 +12,7 @@
 #pragma once
 
 #include "engine/run/run_config.h"
+#include "engine/solve/output_error_problem.h"
 
 namespace vesselid {
 
@@ -22,5 +23,11 @@ bool UsesNoiseWeights(const RunConfig& config, const StageConfig& stage);
 
 // The options the stage's experiments are prepared with (length normalisation as above).
 ExperimentOptions StageExperimentOptions(const RunConfig& config, const StageConfig& stage);
+
+// The first solve's weights on a problem of the stage (its continuation phases' and its own):
+// under noise weights each channel 1/sigma of the data's own noise level, unless the stage's
+// experiments configure output weights; otherwise the configured ones, unchanged.
+void SetFirstSolveWeights(const RunConfig& config, const StageConfig& stage,
+                          OutputErrorProblem* problem);
 
 }  // namespace vesselid

@@ -136,7 +136,7 @@ bool IterateNoiseWeights(const StageOptions& options, OutputErrorProblem* proble
     next.iterations = k;
     next.converged = change < kNoiseTolerance;
     current = std::move(next);
-    if (current.converged) break;
+    if (change < kNoiseTarget) break;
   }
   summary->time_seconds = time;
   if (!current.converged) {
