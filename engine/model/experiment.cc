@@ -450,7 +450,12 @@ void SetPriorWeight(const ExperimentOptions& options, const Window& window,
   for (const OutputChannel& oc : channels) {
     NoiseLevel level;
     const auto [first, last] = InWindow(oc.channel->t, window.t0, window.t_end);
-    for (size_t i = first; i < last; ++i) level.Add(oc.channel->value[i]);
+    // A wrapped angle's second differences jump by a turn where it wraps (a spiral's heading:
+    // 0.42 rad instead of its 0.0037 rad of noise), so they are taken modulo one.
+    const bool wrapped = e->Wrapped(oc.output);
+    for (size_t i = first; i < last; ++i) {
+      level.Add(oc.channel->value[i], [wrapped](double d) { return wrapped ? WrapAngle(d) : d; });
+    }
     const double sigma = level.Sigma();
     if (!std::isfinite(sigma)) continue;
     e->channel_noise_power[oc.output] = level.count() * sigma * sigma;

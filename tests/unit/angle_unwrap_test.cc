@@ -5,6 +5,7 @@
 // (not the engine's integrator), heading stored wrapped to (-pi, pi] as a compass logs it.
 #include <cmath>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -104,6 +105,22 @@ TEST_F(AngleTest, HeadingTurnsOffIsScoredAsTurnsOff) {
   const Experiment w = Build(wrapped, TurningRecord());
   EXPECT_LT(HeadingRmse(w, off), M_PI / std::sqrt(3.0) + 0.1);
   EXPECT_LE(std::abs(w.samples.back().value), M_PI);  // the samples stay as logged
+}
+
+// The data's own noise level of a wrapped heading (second differences, which jump by a turn
+// where the log wraps) is the unwrapped heading's: the first solve under noise weights and
+// the initial-state priors weigh by it.
+TEST_F(AngleTest, WrappedHeadingHasTheUnwrappedNoiseLevel) {
+  Trajectory data = TurningRecord();
+  std::mt19937 random(7);
+  std::normal_distribution<double> noise(0.0, 0.005);
+  for (double& psi : data.columns[1]) psi = WrapAngle(psi + noise(random));
+  const Experiment unwrapped = Build(Spec(), data);
+  ExperimentSpec spec = Spec();
+  spec.wrapped_outputs = {"psi"};
+  const Experiment wrapped = Build(spec, data);
+  EXPECT_NEAR(unwrapped.NoiseLevel(0), 0.005, 0.0005);
+  EXPECT_NEAR(wrapped.NoiseLevel(0), unwrapped.NoiseLevel(0), 1e-12);
 }
 
 // A jump between two windows (the unlogged gap between the segments of a record) is not the
