@@ -1,10 +1,10 @@
 #include "engine/run/stage_weights.h"
 
-#include "engine/solve/noise_weights.h"
-
 #include <algorithm>
 #include <set>
 #include <string>
+
+#include "engine/solve/noise_weights.h"
 
 namespace vesselid {
 

@@ -24,9 +24,10 @@ bool UsesNoiseWeights(const RunConfig& config, const StageConfig& stage);
 // The options the stage's experiments are prepared with (length normalisation as above).
 ExperimentOptions StageExperimentOptions(const RunConfig& config, const StageConfig& stage);
 
-// The first solve's weights on a problem of the stage (its continuation phases' and its own):
-// under noise weights each channel 1/sigma of the data's own noise level, unless the stage's
-// experiments configure output weights; otherwise the configured ones, unchanged.
+// The first solve's weights on the stage's problem: under noise weights each channel 1/sigma
+// of the data's own noise level, unless the stage's experiments configure output weights;
+// otherwise the configured ones, unchanged. Continuation phases keep the configured ones
+// (with the data's they were slower from far starts, docs/benchmarks.md).
 void SetFirstSolveWeights(const RunConfig& config, const StageConfig& stage,
                           OutputErrorProblem* problem);
 
