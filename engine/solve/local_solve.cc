@@ -8,7 +8,7 @@
 #include "engine/base/parallel_for.h"
 #include "engine/base/stop_request.h"
 #include "engine/solve/metrics.h"
-#include "engine/solve/reflective_local_solve.h"
+#include "engine/solve/dense_local_solve.h"
 #include "engine/solve/start_failure.h"
 
 namespace vesselid {
@@ -88,11 +88,18 @@ class StallCheck : public ceres::IterationCallback {
   std::vector<double> best_;
 };
 
-// Ceres' solve, or the reflective trust region with Ceres' options.
-void Minimize(const ceres::Solver::Options& options, bool reflective,
+// The minimiser a local solve runs: the reflective region; Levenberg-Marquardt on the normal
+// equations (levenberg_marquardt.h: one Jet simulation per trial point, where Ceres' bounded
+// line search evaluates a second Jacobian at each candidate) when the linear solver is the
+// automatic dense one; otherwise Ceres' own, with the configured or the sparse solver.
+void Minimize(const ceres::Solver::Options& options, const LocalSolveOptions& local,
               OutputErrorProblem* problem, ceres::Solver::Summary* summary) {
-  if (reflective) {
-    SolveReflectiveProblem(options, problem, summary);
+  if (local.trust_region == TrustRegion::kReflective) {
+    SolveOnNormalEquations(DenseMethod::kReflective, options, problem, summary);
+  } else if (local.trust_region == TrustRegion::kLevenbergMarquardt && !local.linear_solver &&
+             options.linear_solver_type == ceres::DENSE_NORMAL_CHOLESKY &&
+             CanSolveOnNormalEquations(problem)) {
+    SolveOnNormalEquations(DenseMethod::kLevenbergMarquardt, options, problem, summary);
   } else {
     ceres::Solve(options, problem->problem(), summary);
   }
@@ -238,7 +245,7 @@ void ContinueWithBoundsHeld(ceres::Solver::Options options, const LocalSolveOpti
   options.callbacks.push_back(&stall);
   for (const Variable* v : held) problem->problem()->SetParameterBlockConstant(v->block);
   ceres::Solver::Summary again;
-  Minimize(options, local.trust_region == TrustRegion::kReflective, problem, &again);
+  Minimize(options, local, problem, &again);
   for (const Variable* v : held) problem->problem()->SetParameterBlockVariable(v->block);
   double after_cost = 0.0;
   if (!again.IsSolutionUsable() || !problem->Cost(&after_cost) ||
@@ -301,8 +308,7 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   ceres_options.callbacks.push_back(&keeper);
   ceres_options.update_state_every_iteration = true;
   ceres::Solver::Summary ceres_summary;
-  Minimize(ceres_options, options.trust_region == TrustRegion::kReflective, problem,
-           &ceres_summary);
+  Minimize(ceres_options, options, problem, &ceres_summary);
   if (threaded && ceres_summary.initial_cost >= 0.0 && ordered_initial >= 0.0) {
     ceres_summary.initial_cost = ordered_initial;
     if (!ceres_summary.iterations.empty()) ceres_summary.iterations.front().cost = ordered_initial;

@@ -1,11 +1,12 @@
 #include "engine/solve/reflective_trust_region.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <utility>
 #include <vector>
+
+#include "engine/base/elapsed.h"
 
 namespace vesselid {
 namespace {
@@ -13,10 +14,6 @@ namespace {
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 constexpr double kNoBound = std::numeric_limits<double>::infinity();
-
-double Seconds(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
-}
 
 // Coleman-Li scaling: v_i = distance to the bound that -g_i points at (1 without one) and
 // dv_i = its derivative with respect to x_i (+-1, or 0).
@@ -229,25 +226,25 @@ Step SelectStep(const VectorXd& x, const ScaledModel& model, VectorXd p_h, const
 
 }  // namespace
 
-ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const ReflectiveFunction& f,
+DenseSolveSummary SolveReflective(const DenseSolveOptions& options, const NormalEquationsFunction& f,
                                   const VectorXd& lower, const VectorXd& upper,
-                                  const ReflectiveCallback& callback, VectorXd* x_io) {
-  const auto begin = std::chrono::steady_clock::now();
-  ReflectiveSummary summary;
+                                  const TrialCallback& callback, VectorXd* x_io) {
+  const auto begin = SteadyClock::now();
+  DenseSolveSummary summary;
   VectorXd x = StrictlyFeasible(*x_io, lower, upper, 1e-10);
   const int n = static_cast<int>(x.size());
   NormalEquations at;
   auto evaluate = [&](const VectorXd& point, NormalEquations* e) {
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = SteadyClock::now();
     ++summary.evaluations;
     const bool ok =
         f(point, e) && std::isfinite(e->cost) && e->gradient.allFinite() && e->normal.allFinite();
-    summary.evaluation_seconds += Seconds(start);
+    summary.evaluation_seconds += SecondsSince(start);
     return ok;
   };
   if (!evaluate(x, &at)) {
     summary.message = "the residuals cannot be evaluated at the start";
-    summary.total_seconds = Seconds(begin);
+    summary.total_seconds = SecondsSince(begin);
     return summary;
   }
   double cost = at.cost;
@@ -256,9 +253,9 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
     const int answer = callback(0, true, cost, x);
     if (answer != 0) {
       summary.end =
-          answer > 0 ? ReflectiveSummary::End::kUserSuccess : ReflectiveSummary::End::kUserFailure;
+          answer > 0 ? DenseSolveSummary::End::kUserSuccess : DenseSolveSummary::End::kUserFailure;
       summary.message = "stopped by a callback";
-      summary.total_seconds = Seconds(begin);
+      summary.total_seconds = SecondsSince(begin);
       return summary;
     }
   }
@@ -282,18 +279,18 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
   double delta = x.cwiseProduct(scale_inv).cwiseQuotient(v.cwiseSqrt()).norm();
   if (!(delta > 0.0) || !std::isfinite(delta)) delta = 1.0;
   double alpha = 0.0;
-  summary.end = ReflectiveSummary::End::kNoConvergence;
+  summary.end = DenseSolveSummary::End::kNoConvergence;
   summary.message = "the maximum number of evaluations was reached";
   NormalEquations trial;
   bool done = false;
   while (!done) {
     ScalingVector(x, g, lower, upper, &v, &dv);
     if (g.cwiseProduct(v).lpNorm<Eigen::Infinity>() < options.gradient_tolerance) {
-      summary.end = ReflectiveSummary::End::kConvergence;
+      summary.end = DenseSolveSummary::End::kConvergence;
       summary.message = "the scaled gradient is below gradient_tolerance";
       break;
     }
-    const auto step_start = std::chrono::steady_clock::now();
+    const auto step_start = SteadyClock::now();
     // Coleman-Li's scaling applied in the unknowns scaled by the columns' norms.
     for (int i = 0; i < n; ++i) {
       if (dv[i] != 0.0) v[i] *= scale_inv[i];
@@ -308,24 +305,24 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
     const VectorXd vg = eigen.eigenvectors().transpose() * g_h;
     const ScaledModel scaled{h, g_h};
     const double theta = std::max(0.995, 1.0 - g.cwiseProduct(v).lpNorm<Eigen::Infinity>());
-    summary.step_seconds += Seconds(step_start);
+    summary.step_seconds += SecondsSince(step_start);
     // Trial points until one lowers the cost (or a tolerance or limit ends the solve).
     for (;;) {
       if (summary.evaluations >= options.max_evaluations) {
         done = true;
         break;
       }
-      if (Seconds(begin) > options.max_time_seconds) {
+      if (SecondsSince(begin) > options.max_time_seconds) {
         summary.message = "the time limit was reached";
         done = true;
         break;
       }
-      const auto select_start = std::chrono::steady_clock::now();
+      const auto select_start = SteadyClock::now();
       const VectorXd p_h =
           TrustRegionStep(eigen.eigenvalues(), eigen.eigenvectors(), vg, m, delta, &alpha);
       const Step step = SelectStep(x, scaled, p_h, d, delta, lower, upper, theta);
       const VectorXd x_new = StrictlyFeasible(x + step.x, lower, upper, 0.0);
-      summary.step_seconds += Seconds(select_start);
+      summary.step_seconds += SecondsSince(select_start);
       const double step_h_norm = step.h.norm();
       bool accepted = false;
       if (!evaluate(x_new, &trial)) {
@@ -360,7 +357,7 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
           ++summary.rejected;
         }
         if (f_converged || x_converged) {
-          summary.end = ReflectiveSummary::End::kConvergence;
+          summary.end = DenseSolveSummary::End::kConvergence;
           summary.message = f_converged ? "the cost changed by less than function_tolerance"
                                         : "the step is below parameter_tolerance";
           done = true;
@@ -371,15 +368,15 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
       if (callback) {
         const int answer = callback(summary.evaluations - 1, accepted, cost, x);
         if (answer != 0) {
-          summary.end = answer > 0 ? ReflectiveSummary::End::kUserSuccess
-                                   : ReflectiveSummary::End::kUserFailure;
+          summary.end = answer > 0 ? DenseSolveSummary::End::kUserSuccess
+                                   : DenseSolveSummary::End::kUserFailure;
           summary.message = "stopped by a callback";
           done = true;
         }
       }
       if (done || accepted) break;
       if (!(delta > 0.0)) {
-        summary.end = ReflectiveSummary::End::kConvergence;
+        summary.end = DenseSolveSummary::End::kConvergence;
         summary.message = "the trust region shrank to nothing";
         done = true;
         break;
@@ -388,7 +385,7 @@ ReflectiveSummary SolveReflective(const ReflectiveOptions& options, const Reflec
   }
   summary.final_cost = cost;
   *x_io = x;
-  summary.total_seconds = Seconds(begin);
+  summary.total_seconds = SecondsSince(begin);
   return summary;
 }
 

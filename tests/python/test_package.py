@@ -266,6 +266,8 @@ records = vesselid.simulate(config)
 data = {e["name"]: records[e.pop("file")[:-4]] for e in config["experiments"]}
 config.pop("simulation")
 config.pop("study", None)
+# A search of 4000 points (the config's 32 take a fraction of a second): the signal lands in it.
+config["stages"][0]["global"]["points"] = 4000
 print("started", flush=True)
 begin = time.time()
 try:
@@ -279,8 +281,8 @@ sys.exit(1)
 
 
 def test_ctrl_c_stops_a_run(tmp_path):
-    # The patrol run's global start and refinements take several seconds: Ctrl-C after one
-    # ends the current solve after its iteration and the run after its stage.
+    # The patrol run with a long global start: Ctrl-C after one second ends the current solve
+    # after its iteration and the run after its stage.
     import signal
     import time
     script = tmp_path / "interrupted.py"

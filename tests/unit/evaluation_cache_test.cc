@@ -91,9 +91,11 @@ Solved Solve(bool cache, bool bounded) {
   if (problem == nullptr) return solved;
   LocalSolveOptions solve;
   solve.num_threads = 2;
-  // The cache serves Ceres' bounded line search (the reflective region evaluates each trial
-  // point once, with its Jacobian).
+  // The cache serves Ceres' bounded line search, which runs when a linear solver is named
+  // (the engine's own regions on the normal equations evaluate each trial point once, with
+  // its Jacobian).
   solve.trust_region = TrustRegion::kLevenbergMarquardt;
+  solve.linear_solver = ceres::DENSE_NORMAL_CHOLESKY;
   EXPECT_TRUE(RunLocalSolve(solve, problem.get(), &solved.summary)) << solved.summary.message;
   solved.values = problem->Values();
   const EvaluationCounts& counts = problem->evaluation_counts();

@@ -24,7 +24,7 @@ void Normal(const VectorXd& f, const MatrixXd& j, NormalEquations* out) {
 }
 
 // f = A x - b.
-ReflectiveFunction Linear(const MatrixXd& a, const VectorXd& b) {
+NormalEquationsFunction Linear(const MatrixXd& a, const VectorXd& b) {
   return [a, b](const VectorXd& x, NormalEquations* out) {
     Normal(a * x - b, a, out);
     return true;
@@ -51,9 +51,9 @@ TEST(ReflectiveTrustRegion, SolvesLinearLeastSquares) {
   const VectorXd exact = a.colPivHouseholderQr().solve(b);
   VectorXd x = VectorXd::Zero(2);
   x << 0.1, 0.1;
-  const ReflectiveSummary s =
+  const DenseSolveSummary s =
       SolveReflective({}, Linear(a, b), Unbounded(2, -1), Unbounded(2, 1), nullptr, &x);
-  EXPECT_EQ(s.end, ReflectiveSummary::End::kConvergence) << s.message;
+  EXPECT_EQ(s.end, DenseSolveSummary::End::kConvergence) << s.message;
   EXPECT_LT((x - exact).norm(), 1e-10);
   EXPECT_LE(s.evaluations, 8);  // the region doubles from |x0| = 0.14 to the solution
 }
@@ -66,14 +66,14 @@ TEST(ReflectiveTrustRegion, EndsOnAnActiveBoundFromInside) {
   lower << 0, -kInfinity;
   x << 3, 0;
   bool inside = true;
-  const ReflectiveSummary s = SolveReflective(
+  const DenseSolveSummary s = SolveReflective(
       {}, Linear(a, b), lower, Unbounded(2, 1),
       [&](int, bool, double, const VectorXd& at) {
         inside = inside && at[0] > 0.0;
         return 0;
       },
       &x);
-  EXPECT_NE(s.end, ReflectiveSummary::End::kNoConvergence) << s.message;
+  EXPECT_NE(s.end, DenseSolveSummary::End::kNoConvergence) << s.message;
   EXPECT_TRUE(inside);
   EXPECT_GT(x[0], 0.0);
   EXPECT_LT(x[0], 1e-6);
@@ -83,9 +83,9 @@ TEST(ReflectiveTrustRegion, EndsOnAnActiveBoundFromInside) {
 TEST(ReflectiveTrustRegion, FollowsRosenbrocksValley) {
   VectorXd x(2);
   x << -1.2, 1.0;
-  const ReflectiveSummary s =
+  const DenseSolveSummary s =
       SolveReflective({}, Rosenbrock, Unbounded(2, -1), Unbounded(2, 1), nullptr, &x);
-  EXPECT_EQ(s.end, ReflectiveSummary::End::kConvergence) << s.message;
+  EXPECT_EQ(s.end, DenseSolveSummary::End::kConvergence) << s.message;
   EXPECT_NEAR(x[0], 1.0, 1e-8);
   EXPECT_NEAR(x[1], 1.0, 1e-8);
   EXPECT_LT(s.evaluations, 60);
@@ -95,11 +95,11 @@ TEST(ReflectiveTrustRegion, FollowsRosenbrocksValley) {
 TEST(ReflectiveTrustRegion, FollowsTheValleyInTheUnknownsAsGiven) {
   VectorXd x(2);
   x << -1.2, 1.0;
-  ReflectiveOptions options;
+  DenseSolveOptions options;
   options.jacobian_scaling = false;
-  const ReflectiveSummary s =
+  const DenseSolveSummary s =
       SolveReflective(options, Rosenbrock, Unbounded(2, -1), Unbounded(2, 1), nullptr, &x);
-  EXPECT_EQ(s.end, ReflectiveSummary::End::kConvergence) << s.message;
+  EXPECT_EQ(s.end, DenseSolveSummary::End::kConvergence) << s.message;
   EXPECT_NEAR(x[0], 1.0, 1e-8);
   EXPECT_NEAR(x[1], 1.0, 1e-8);
 }
@@ -109,8 +109,8 @@ TEST(ReflectiveTrustRegion, StopsAtABoundAcrossTheValley) {
   VectorXd x(2), upper(2);
   x << -1.2, 1.0;
   upper << 0.5, kInfinity;
-  const ReflectiveSummary s = SolveReflective({}, Rosenbrock, Unbounded(2, -1), upper, nullptr, &x);
-  EXPECT_NE(s.end, ReflectiveSummary::End::kNoConvergence) << s.message;
+  const DenseSolveSummary s = SolveReflective({}, Rosenbrock, Unbounded(2, -1), upper, nullptr, &x);
+  EXPECT_NE(s.end, DenseSolveSummary::End::kNoConvergence) << s.message;
   EXPECT_LE(x[0], 0.5);
   EXPECT_NEAR(x[0], 0.5, 1e-6);
   EXPECT_NEAR(x[1], 0.25, 1e-6);
@@ -120,15 +120,15 @@ TEST(ReflectiveTrustRegion, StopsAtABoundAcrossTheValley) {
 TEST(ReflectiveTrustRegion, ShortensStepsWhoseResidualsCannotBeEvaluated) {
   // f = x - 2, not evaluable beyond 1.5 (a simulation that diverges): the solve approaches
   // 1.5 with shorter and shorter steps and never leaves the evaluable region.
-  const ReflectiveFunction f = [](const VectorXd& x, NormalEquations* out) {
+  const NormalEquationsFunction f = [](const VectorXd& x, NormalEquations* out) {
     if (x[0] > 1.5) return false;
     Normal(x.array() - 2.0, MatrixXd::Identity(1, 1), out);
     return true;
   };
   VectorXd x = VectorXd::Zero(1);
-  ReflectiveOptions options;
+  DenseSolveOptions options;
   options.max_evaluations = 100;
-  const ReflectiveSummary s =
+  const DenseSolveSummary s =
       SolveReflective(options, f, Unbounded(1, -1), Unbounded(1, 1), nullptr, &x);
   EXPECT_GT(s.rejected, 0);
   EXPECT_LE(x[0], 1.5);
@@ -139,24 +139,24 @@ TEST(ReflectiveTrustRegion, ShortensStepsWhoseResidualsCannotBeEvaluated) {
 TEST(ReflectiveTrustRegion, ACallbackStopsOrAbandons) {
   VectorXd x(2);
   x << -1.2, 1.0;
-  const ReflectiveSummary abandoned = SolveReflective(
+  const DenseSolveSummary abandoned = SolveReflective(
       {}, Rosenbrock, Unbounded(2, -1), Unbounded(2, 1),
       [](int trial, bool, double, const VectorXd&) { return trial == 3 ? -1 : 0; }, &x);
-  EXPECT_EQ(abandoned.end, ReflectiveSummary::End::kUserFailure);
+  EXPECT_EQ(abandoned.end, DenseSolveSummary::End::kUserFailure);
   EXPECT_EQ(abandoned.evaluations, 4);
   x << -1.2, 1.0;
-  const ReflectiveSummary stopped = SolveReflective(
+  const DenseSolveSummary stopped = SolveReflective(
       {}, Rosenbrock, Unbounded(2, -1), Unbounded(2, 1),
       [](int trial, bool, double, const VectorXd&) { return trial == 2 ? 1 : 0; }, &x);
-  EXPECT_EQ(stopped.end, ReflectiveSummary::End::kUserSuccess);
+  EXPECT_EQ(stopped.end, DenseSolveSummary::End::kUserSuccess);
 }
 
 TEST(ReflectiveTrustRegion, AStartThatCannotBeEvaluatedFails) {
-  const ReflectiveFunction f = [](const VectorXd&, NormalEquations*) { return false; };
+  const NormalEquationsFunction f = [](const VectorXd&, NormalEquations*) { return false; };
   VectorXd x = VectorXd::Ones(1);
-  const ReflectiveSummary s =
+  const DenseSolveSummary s =
       SolveReflective({}, f, Unbounded(1, -1), Unbounded(1, 1), nullptr, &x);
-  EXPECT_EQ(s.end, ReflectiveSummary::End::kFailure);
+  EXPECT_EQ(s.end, DenseSolveSummary::End::kFailure);
   EXPECT_EQ(s.initial_cost, -1.0);
 }
 

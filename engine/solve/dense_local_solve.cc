@@ -1,9 +1,10 @@
-#include "engine/solve/reflective_local_solve.h"
+#include "engine/solve/dense_local_solve.h"
 
 #include <cmath>
 #include <limits>
 #include <vector>
 
+#include "engine/solve/levenberg_marquardt.h"
 #include "engine/solve/normal_equations.h"
 #include "engine/solve/reflective_trust_region.h"
 
@@ -18,32 +19,44 @@ double Bound(double value) {
   return value;
 }
 
-ceres::TerminationType CeresTermination(ReflectiveSummary::End end) {
+ceres::TerminationType CeresTermination(DenseSolveSummary::End end) {
   switch (end) {
-    case ReflectiveSummary::End::kConvergence:
+    case DenseSolveSummary::End::kConvergence:
       return ceres::CONVERGENCE;
-    case ReflectiveSummary::End::kNoConvergence:
+    case DenseSolveSummary::End::kNoConvergence:
       return ceres::NO_CONVERGENCE;
-    case ReflectiveSummary::End::kUserSuccess:
+    case DenseSolveSummary::End::kUserSuccess:
       return ceres::USER_SUCCESS;
-    case ReflectiveSummary::End::kUserFailure:
+    case DenseSolveSummary::End::kUserFailure:
       return ceres::USER_FAILURE;
-    case ReflectiveSummary::End::kFailure:
+    case DenseSolveSummary::End::kFailure:
       return ceres::FAILURE;
   }
   return ceres::FAILURE;
 }
 
-}  // namespace
-
-void SolveReflectiveProblem(const ceres::Solver::Options& options, OutputErrorProblem* problem,
-                            ceres::Solver::Summary* summary) {
-  *summary = ceres::Solver::Summary();
-  ceres::Problem* ceres_problem = problem->problem();
+// The problem's free, non-constant blocks: the solve's unknowns.
+std::vector<double*> Unknowns(OutputErrorProblem* problem) {
   std::vector<double*> unknowns;
   for (const Variable& v : problem->variables()) {
-    if (v.free && !ceres_problem->IsParameterBlockConstant(v.block)) unknowns.push_back(v.block);
+    if (v.free && !problem->problem()->IsParameterBlockConstant(v.block)) {
+      unknowns.push_back(v.block);
+    }
   }
+  return unknowns;
+}
+
+}  // namespace
+
+bool CanSolveOnNormalEquations(OutputErrorProblem* problem) {
+  return NormalEquationsEvaluator(problem->problem(), Unknowns(problem), 1).usable();
+}
+
+void SolveOnNormalEquations(DenseMethod method, const ceres::Solver::Options& options,
+                            OutputErrorProblem* problem, ceres::Solver::Summary* summary) {
+  *summary = ceres::Solver::Summary();
+  ceres::Problem* ceres_problem = problem->problem();
+  const std::vector<double*> unknowns = Unknowns(problem);
   const int n = static_cast<int>(unknowns.size());
   Eigen::VectorXd x(n), lower(n), upper(n);
   for (int i = 0; i < n; ++i) {
@@ -60,7 +73,7 @@ void SolveReflectiveProblem(const ceres::Solver::Options& options, OutputErrorPr
   if (!direct.usable()) {
     summary->termination_type = ceres::FAILURE;
     summary->message =
-        "the reflective trust region needs scalar unknowns and no Ceres loss function";
+        "the engine's dense trust regions need scalar unknowns and no Ceres loss function";
     return;
   }
   auto function = [&](const Eigen::VectorXd& at, NormalEquations* out) {
@@ -82,22 +95,25 @@ void SolveReflectiveProblem(const ceres::Solver::Options& options, OutputErrorPr
     }
     return 0;
   };
-  ReflectiveOptions reflective;
-  reflective.max_evaluations = options.max_num_iterations + 1;  // the start's and each step's
-  reflective.function_tolerance = options.function_tolerance;
-  reflective.parameter_tolerance = options.parameter_tolerance;
-  reflective.gradient_tolerance = options.gradient_tolerance;
-  reflective.max_time_seconds = options.max_solver_time_in_seconds;
+  DenseSolveOptions dense;
+  dense.max_evaluations = options.max_num_iterations + 1;  // the start's and each step's
+  dense.function_tolerance = options.function_tolerance;
+  dense.parameter_tolerance = options.parameter_tolerance;
+  dense.gradient_tolerance = options.gradient_tolerance;
+  dense.max_time_seconds = options.max_solver_time_in_seconds;
+  dense.initial_radius = options.initial_trust_region_radius;
   summary->iterations.reserve(options.max_num_iterations + 1);
-  const ReflectiveSummary result =
-      SolveReflective(reflective, function, lower, upper, callback, &x);
+  const DenseSolveSummary result =
+      method == DenseMethod::kReflective
+          ? SolveReflective(dense, function, lower, upper, callback, &x)
+          : SolveLevenbergMarquardt(dense, function, lower, upper, callback, &x);
   set(x);
   summary->initial_cost = result.initial_cost;
   summary->final_cost = result.final_cost;
   // The final cost as the problem sums it (OutputErrorProblem::Cost), as the other methods
   // report theirs: the same bits as any later evaluation at these values.
   double ordered = 0.0;
-  if (result.end != ReflectiveSummary::End::kFailure && !summary->iterations.empty() &&
+  if (result.end != DenseSolveSummary::End::kFailure && !summary->iterations.empty() &&
       problem->Cost(&ordered)) {
     summary->final_cost = ordered;
     summary->iterations.back().cost = ordered;

@@ -1,0 +1,169 @@
+#include "engine/solve/levenberg_marquardt.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "engine/base/elapsed.h"
+
+namespace vesselid {
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+// Ceres' defaults: min_lm_diagonal, max_lm_diagonal, max_trust_region_radius,
+// min_trust_region_radius, min_relative_decrease.
+constexpr double kMinDiagonal = 1e-6;
+constexpr double kMaxDiagonal = 1e32;
+constexpr double kMaxRadius = 1e16;
+constexpr double kMinRadius = 1e-32;
+constexpr double kMinRelativeDecrease = 1e-3;
+// Steps rejected in a row without an evaluation (no finite step, or a projected step the
+// model does not expect to lower the cost) before the solve gives up.
+constexpr int kMaxUnformedSteps = 60;
+
+VectorXd Project(const VectorXd& x, const VectorXd& lower, const VectorXd& upper) {
+  return x.cwiseMax(lower).cwiseMin(upper);
+}
+
+}  // namespace
+
+DenseSolveSummary SolveLevenbergMarquardt(const DenseSolveOptions& options,
+                                          const NormalEquationsFunction& f,
+                                          const VectorXd& lower, const VectorXd& upper,
+                                          const TrialCallback& callback, VectorXd* x_io) {
+  using End = DenseSolveSummary::End;
+  const auto begin = SteadyClock::now();
+  DenseSolveSummary summary;
+  VectorXd x = Project(*x_io, lower, upper);
+  auto evaluate = [&](const VectorXd& point, NormalEquations* e) {
+    const auto start = SteadyClock::now();
+    ++summary.evaluations;
+    const bool ok =
+        f(point, e) && std::isfinite(e->cost) && e->gradient.allFinite() && e->normal.allFinite();
+    summary.evaluation_seconds += SecondsSince(start);
+    return ok;
+  };
+  auto finish = [&](End end, const char* message) {
+    summary.end = end;
+    summary.message = message;
+  };
+  NormalEquations at, trial;
+  if (!evaluate(x, &at)) {
+    summary.message = "the residuals cannot be evaluated at the start";
+    summary.total_seconds = SecondsSince(begin);
+    return summary;
+  }
+  double cost = at.cost;
+  summary.initial_cost = cost;
+  bool done = false;
+  auto ask = [&](int trial_index, bool accepted) {
+    if (!callback) return;
+    const int answer = callback(trial_index, accepted, cost, x);
+    if (answer != 0) {
+      finish(answer > 0 ? End::kUserSuccess : End::kUserFailure, "stopped by a callback");
+      done = true;
+    }
+  };
+  ask(0, true);
+  // Ceres' Jacobi scaling, fixed at the start: s_j = 1 / (1 + |J_j|).
+  const VectorXd scale =
+      (1.0 + at.normal.diagonal().cwiseMax(0.0).cwiseSqrt().array()).inverse().matrix();
+  double radius = options.initial_radius;
+  double decrease = 2.0;
+  VectorXd damping;  // d, refreshed after each accepted step
+  bool refresh = true;
+  int unformed = 0;
+  if (!done) finish(End::kNoConvergence, "the maximum number of evaluations was reached");
+  while (!done) {
+    const VectorXd projected_gradient = x - Project(x - at.gradient, lower, upper);
+    if (projected_gradient.lpNorm<Eigen::Infinity>() <= options.gradient_tolerance) {
+      finish(End::kConvergence, "the projected gradient is below gradient_tolerance");
+      break;
+    }
+    if (summary.evaluations >= options.max_evaluations) break;
+    if (SecondsSince(begin) > options.max_time_seconds) {
+      finish(End::kNoConvergence, "the time limit was reached");
+      break;
+    }
+    const auto step_start = SteadyClock::now();
+    MatrixXd a = scale.asDiagonal() * at.normal * scale.asDiagonal();
+    if (refresh) damping = a.diagonal().cwiseMax(kMinDiagonal).cwiseMin(kMaxDiagonal);
+    refresh = false;
+    a.diagonal() += damping / radius;
+    VectorXd rhs = -scale.cwiseProduct(at.gradient);
+    // An unknown on a bound that its gradient pushes it past stays there for this step (the
+    // binding set of projected Newton methods): otherwise the step is formed as if it could
+    // move, and its projection crawls along the bound.
+    for (int i = 0; i < rhs.size(); ++i) {
+      const bool binding = (x[i] <= lower[i] && at.gradient[i] > 0.0) ||
+                           (x[i] >= upper[i] && at.gradient[i] < 0.0);
+      if (!binding) continue;
+      a.row(i).setZero();
+      a.col(i).setZero();
+      a(i, i) = 1.0;
+      rhs[i] = 0.0;
+    }
+    const VectorXd y = a.ldlt().solve(rhs);
+    const VectorXd x_new = Project(x + scale.cwiseProduct(y), lower, upper);
+    const VectorXd p = x_new - x;
+    // The model's reduction for the step taken: -(g'p + p'J'Jp / 2).
+    const double predicted = -(at.gradient.dot(p) + 0.5 * p.dot(at.normal * p));
+    summary.step_seconds += SecondsSince(step_start);
+    auto reject = [&] {
+      radius /= decrease;
+      decrease *= 2.0;
+    };
+    if (!y.allFinite() || !(predicted > 0.0)) {
+      reject();
+      if (++unformed >= kMaxUnformedSteps || radius < kMinRadius) {
+        finish(End::kFailure, "no step that the model expects to lower the cost could be formed");
+        break;
+      }
+      continue;
+    }
+    unformed = 0;
+    if (p.norm() <= options.parameter_tolerance * (x.norm() + options.parameter_tolerance)) {
+      finish(End::kConvergence, "the step is below parameter_tolerance");
+      break;
+    }
+    bool accepted = false;
+    if (!evaluate(x_new, &trial)) {
+      ++summary.rejected;
+      reject();
+    } else {
+      const double actual = cost - trial.cost;
+      const double rho = actual / predicted;
+      accepted = rho > kMinRelativeDecrease;
+      if (std::abs(actual) <= options.function_tolerance * cost) {
+        finish(End::kConvergence, "the cost changed by less than function_tolerance");
+        done = true;
+        accepted = actual > 0.0;
+      }
+      if (accepted) {
+        x = x_new;
+        cost = trial.cost;
+        std::swap(at, trial);
+        ++summary.accepted;
+        radius = std::min(kMaxRadius, radius / std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3)));
+        decrease = 2.0;
+        refresh = true;
+      } else {
+        ++summary.rejected;
+        reject();
+      }
+    }
+    ask(summary.evaluations - 1, accepted);
+    if (!done && radius < kMinRadius) {
+      finish(End::kConvergence, "the trust region shrank to nothing");
+      break;
+    }
+  }
+  summary.final_cost = cost;
+  *x_io = x;
+  summary.total_seconds = SecondsSince(begin);
+  return summary;
+}
+
+}  // namespace vesselid
