@@ -7,41 +7,19 @@
 #include <limits>
 
 #include "gtest/gtest.h"
+#include "tests/support/dense_problems.h"
 
 namespace vesselid {
 namespace {
 
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
-const double kInfinity = std::numeric_limits<double>::infinity();
+using testing::kInfinity;
 
-// The normal equations of residuals f with Jacobian j.
-void Normal(const VectorXd& f, const MatrixXd& j, NormalEquations* out) {
-  out->cost = 0.5 * f.squaredNorm();
-  out->gradient = j.transpose() * f;
-  out->normal = j.transpose() * j;
-  out->residuals = static_cast<int>(f.size());
-}
-
-// f = A x - b.
-NormalEquationsFunction Linear(const MatrixXd& a, const VectorXd& b) {
-  return [a, b](const VectorXd& x, NormalEquations* out) {
-    Normal(a * x - b, a, out);
-    return true;
-  };
-}
-
-// Rosenbrock's function as residuals: f = (10 (x1 - x0^2), 1 - x0).
-bool Rosenbrock(const VectorXd& x, NormalEquations* out) {
-  VectorXd f(2);
-  MatrixXd j(2, 2);
-  f << 10.0 * (x[1] - x[0] * x[0]), 1.0 - x[0];
-  j << -20.0 * x[0], 10.0, -1.0, 0.0;
-  Normal(f, j, out);
-  return true;
-}
-
-VectorXd Unbounded(int n, double sign) { return VectorXd::Constant(n, sign * kInfinity); }
+using testing::Linear;
+using testing::Normal;
+using testing::Rosenbrock;
+using testing::Unbounded;
 
 TEST(ReflectiveTrustRegion, SolvesLinearLeastSquares) {
   MatrixXd a(4, 2);
