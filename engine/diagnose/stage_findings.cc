@@ -34,13 +34,17 @@ void AddSolveFindings(const StageResult& stage, std::vector<Finding>* findings) 
   const LocalSolveSummary& local = s.local();
   const bool not_converged = local.termination == "NO_CONVERGENCE";
   if (not_converged) {
-    // Ceres' message and the reflective region's name the limit: its time or its iterations.
+    // Ceres' message and the engine's regions' name the limit (its time or its iterations),
+    // or, from Levenberg-Marquardt, steps that no longer move the unknowns.
     const bool timed_out = local.message.find("time") != std::string::npos;
+    const bool stuck = local.message.find("resolution") != std::string::npos;
     Finding f = MakeFinding(
         FindingKind::kNoConvergence,
         "the solver stopped after " + std::to_string(local.iterations) +
             " iterations without converging (" +
-            (timed_out ? "its time limit, local.max_time" : "local.max_iterations") +
+            (stuck      ? local.message
+             : timed_out ? "its time limit, local.max_time"
+                         : "local.max_iterations") +
             "): the estimate may not be an optimum");
     f.stage = stage.name;
     f.value = local.iterations;

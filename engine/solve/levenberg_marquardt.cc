@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <utility>
+#include <cstdio>
+#include <cstdlib>
 
 #include "engine/base/elapsed.h"
 
@@ -68,8 +70,11 @@ DenseSolveSummary SolveLevenbergMarquardt(const DenseSolveOptions& options,
   };
   ask(0, true);
   // Ceres' Jacobi scaling, fixed at the start: s_j = 1 / (1 + |J_j|).
-  const VectorXd scale =
-      (1.0 + at.normal.diagonal().cwiseMax(0.0).cwiseSqrt().array()).inverse().matrix();
+  auto jacobi_scale = [](const NormalEquations& e) -> VectorXd {
+    return (1.0 + e.normal.diagonal().cwiseMax(0.0).cwiseSqrt().array()).inverse().matrix();
+  };
+  VectorXd scale = jacobi_scale(at);
+  bool rescaled = false;  // the scale taken again at the current iterate
   double radius = options.initial_radius;
   double decrease = 2.0;
   VectorXd damping;  // d, refreshed after each accepted step
@@ -111,14 +116,35 @@ DenseSolveSummary SolveLevenbergMarquardt(const DenseSolveOptions& options,
     // The model's reduction for the step taken: -(g'p + p'J'Jp / 2).
     const double predicted = -(at.gradient.dot(p) + 0.5 * p.dot(at.normal * p));
     summary.step_seconds += SecondsSince(step_start);
+    if (std::getenv("LM_TRACE")) std::fprintf(stderr, "LM ev %d cost %.9e radius %.3e pred %.3e |p| %.3e |g|inf %.3e pg %.3e\n", summary.evaluations, cost, radius, predicted, p.norm(), at.gradient.lpNorm<Eigen::Infinity>(), projected_gradient.lpNorm<Eigen::Infinity>());
     auto reject = [&] {
       radius /= decrease;
       decrease *= 2.0;
     };
+    if ((!y.allFinite() || !std::isfinite(predicted)) && !rescaled) {
+      // The Jacobian has grown by orders of magnitude since the start (a simulation near a
+      // blow-up), beyond what the damping's clamped diagonal can hold: scale from here.
+      scale = jacobi_scale(at);
+      refresh = true;
+      rescaled = true;
+      continue;
+    }
     if (!y.allFinite() || !(predicted > 0.0)) {
+      // No finite step; or, shortened until the binding set and the projection leave the
+      // steepest descent over the free unknowns, still none the model expects to lower the
+      // cost: the projected gradient is zero within rounding.
       reject();
       if (++unformed >= kMaxUnformedSteps || radius < kMinRadius) {
-        finish(End::kFailure, "no step that the model expects to lower the cost could be formed");
+        if (!y.allFinite()) {
+          finish(End::kFailure, "no finite step could be formed");
+        } else if (p.isZero(0.0)) {
+          // Not a stationary point: the steps the damping allows no longer move the unknowns.
+          finish(End::kNoConvergence,
+                 "the steps shrank below the unknowns' resolution where the gradient is still "
+                 "large, as near a simulation's blow-up");
+        } else {
+          finish(End::kConvergence, "no step lowers the model: a stationary point within rounding");
+        }
         break;
       }
       continue;
@@ -146,6 +172,7 @@ DenseSolveSummary SolveLevenbergMarquardt(const DenseSolveOptions& options,
         cost = trial.cost;
         std::swap(at, trial);
         ++summary.accepted;
+        rescaled = false;
         radius = std::min(kMaxRadius, radius / std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3)));
         decrease = 2.0;
         refresh = true;
