@@ -262,7 +262,11 @@ void ReadLocal(const YamlReader& reader, const YAML::Node& node, const std::stri
     }
   }
   reader.Read(node, path, "max_iterations", &local->max_iterations);
-  reader.Read(node, path, "initial_radius", &local->initial_radius);
+  if (node["initial_radius"]) {
+    double radius = 0.0;
+    reader.Read(node, path, "initial_radius", &radius);
+    local->initial_radius = radius;
+  }
   reader.Read(node, path, "function_tolerance", &local->function_tolerance);
   reader.Read(node, path, "gradient_tolerance", &local->gradient_tolerance);
   reader.Read(node, path, "parameter_tolerance", &local->parameter_tolerance);

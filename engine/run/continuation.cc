@@ -78,6 +78,7 @@ bool RunContinuation(const RunConfig& config, const StageConfig& stage, const Mo
     options.use_global_start = options.use_global_start && phase == 0;
     options.compute_uncertainty = false;
     options.local.hold_bounds_at_end = false;  // the whole records' refinement does that
+    if (phase > 0) options.local.initial_radius = kNearOptimumRadius;  // from the last phase
     if (progress) {
       options.local.progress = options.global.progress = [&progress, length](SolveProgress p) {
         p.segment_length = length;

@@ -31,6 +31,7 @@ StageOptions ReplicateOptions(const StageOptions& options) {
   replicate.use_global_start = false;
   replicate.compute_uncertainty = false;
   replicate.local.num_threads = 1;
+  replicate.local.initial_radius = kNearOptimumRadius;  // from the estimate
   replicate.local.progress = nullptr;
   replicate.global.progress = nullptr;
   return replicate;

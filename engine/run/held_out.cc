@@ -54,6 +54,7 @@ std::unique_ptr<OutputErrorProblem> HeldOutProblem(
   if (problem == nullptr) return nullptr;
   if (problem->num_free() > 0) {
     LocalSolveOptions own = local;
+    own.initial_radius = kNearOptimumRadius;  // from the measured states
     own.function_tolerance = std::max(own.function_tolerance, kHeldOutSolveTolerance);
     own.parameter_tolerance = std::max(own.parameter_tolerance, kHeldOutSolveTolerance);
     own.gradient_tolerance = std::max(own.gradient_tolerance, kHeldOutGradientTolerance);
@@ -438,6 +439,7 @@ bool SimulateHeldOutPasses(const RunConfig& config, const ModelHandle& model,
   std::vector<std::vector<Estimate>> estimates(num_passes * count);
   std::vector<std::vector<ResidualAnalysis>> analyses(num_passes * count);
   LocalSolveOptions one_run = local;
+  one_run.initial_radius = kNearOptimumRadius;
   if (tasks.size() > 1) one_run.num_threads = 1;
   ParallelFor(static_cast<int>(tasks.size()), local.num_threads, [&](int t) {
     const Task& task = tasks[t];

@@ -91,6 +91,7 @@ std::unique_ptr<OutputErrorProblem> RefineFrom(const OutputErrorProblem& solved,
     if (found != by_name.end()) v.set_value(std::clamp(found->second, v.lower, v.upper));
   }
   options.use_global_start = false;
+  options.local.initial_radius = kNearOptimumRadius;  // from the solved estimate
   StageSummary again;
   if (!RunStage(options, refined.get(), &again)) {
     *error = again.message;

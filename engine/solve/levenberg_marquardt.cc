@@ -21,6 +21,8 @@ constexpr double kMaxDiagonal = 1e32;
 constexpr double kMaxRadius = 1e16;
 constexpr double kMinRadius = 1e-32;
 constexpr double kMinRelativeDecrease = 1e-3;
+// The radius from which a step is Gauss-Newton's within 0.1 %.
+constexpr double kUndampedRadius = 1e3;
 // Steps rejected in a row without an evaluation (no finite step, or a projected step the
 // model does not expect to lower the cost) before the solve gives up.
 constexpr int kMaxUnformedSteps = 60;
@@ -80,6 +82,7 @@ DenseSolveSummary SolveLevenbergMarquardt(const DenseSolveOptions& options,
   VectorXd damping;  // d, refreshed after each accepted step
   bool refresh = true;
   int unformed = 0;
+  int small_changes = 0;  // trial points in a row that changed the cost by < function_tolerance
   if (!done) finish(End::kNoConvergence, "the maximum number of evaluations was reached");
   while (!done) {
     const VectorXd projected_gradient = x - Project(x - at.gradient, lower, upper);
@@ -162,7 +165,12 @@ DenseSolveSummary SolveLevenbergMarquardt(const DenseSolveOptions& options,
       const double actual = cost - trial.cost;
       const double rho = actual / predicted;
       accepted = rho > kMinRelativeDecrease;
-      if (std::abs(actual) <= options.function_tolerance * cost) {
+      // A step damped by more than 1e-3 (radius < 1e3: the damping is diag / radius) changes
+      // the cost little because it is short, not because the cost is flat there: it ends the
+      // solve only as the third such step in a row.
+      const bool flat = std::abs(actual) <= options.function_tolerance * cost;
+      small_changes = flat ? small_changes + 1 : 0;
+      if (flat && (radius >= kUndampedRadius || small_changes >= 3)) {
         finish(End::kConvergence, "the cost changed by less than function_tolerance");
         done = true;
         accepted = actual > 0.0;

@@ -92,13 +92,18 @@ class StallCheck : public ceres::IterationCallback {
 // equations (levenberg_marquardt.h: one Jet simulation per trial point, where Ceres' bounded
 // line search evaluates a second Jacobian at each candidate) when the linear solver is the
 // automatic dense one; otherwise Ceres' own, with the configured or the sparse solver.
+bool DenseLevenbergMarquardt(const LocalSolveOptions& local,
+                             const ceres::Solver::Options& options, OutputErrorProblem* problem) {
+  return local.trust_region == TrustRegion::kLevenbergMarquardt && !local.linear_solver &&
+         options.linear_solver_type == ceres::DENSE_NORMAL_CHOLESKY &&
+         CanSolveOnNormalEquations(problem);
+}
+
 void Minimize(const ceres::Solver::Options& options, const LocalSolveOptions& local,
               OutputErrorProblem* problem, ceres::Solver::Summary* summary) {
   if (local.trust_region == TrustRegion::kReflective) {
     SolveOnNormalEquations(DenseMethod::kReflective, options, problem, summary);
-  } else if (local.trust_region == TrustRegion::kLevenbergMarquardt && !local.linear_solver &&
-             options.linear_solver_type == ceres::DENSE_NORMAL_CHOLESKY &&
-             CanSolveOnNormalEquations(problem)) {
+  } else if (DenseLevenbergMarquardt(local, options, problem)) {
     SolveOnNormalEquations(DenseMethod::kLevenbergMarquardt, options, problem, summary);
   } else {
     ceres::Solve(options, problem->problem(), summary);
@@ -142,7 +147,7 @@ bool LocalSolveOptions::IsValid(std::string* error) const {
     *error = "stall_window and stall_tolerance must be >= 0";
   else if (num_threads < 0)
     *error = "num_threads must be >= 0 (0: the machine's cores)";
-  else if (!(initial_radius > 0.0 && std::isfinite(initial_radius)))
+  else if (initial_radius && !(*initial_radius > 0.0 && std::isfinite(*initial_radius)))
     *error = "initial_radius must be a number > 0";
   else
     return true;
@@ -273,10 +278,13 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
       options.trust_region == TrustRegion::kDogleg ? ceres::DOGLEG : ceres::LEVENBERG_MARQUARDT;
   ceres_options.linear_solver_type = options.linear_solver.value_or(AutomaticLinearSolver(*problem));
   ceres_options.max_num_iterations = options.max_iterations;
-  ceres_options.initial_trust_region_radius = options.initial_radius;
+  const double radius = options.initial_radius.value_or(
+      DenseLevenbergMarquardt(options, ceres_options, problem) ? kFarStartRadius
+                                                              : kNearOptimumRadius);
+  ceres_options.initial_trust_region_radius = radius;
   // Ceres requires max_trust_region_radius >= the initial one.
   ceres_options.max_trust_region_radius =
-      std::max(ceres_options.max_trust_region_radius, options.initial_radius);
+      std::max(ceres_options.max_trust_region_radius, radius);
   ceres_options.function_tolerance = options.function_tolerance;
   ceres_options.gradient_tolerance = options.gradient_tolerance;
   ceres_options.parameter_tolerance = options.parameter_tolerance;

@@ -23,16 +23,26 @@ enum class TrustRegion { kLevenbergMarquardt, kDogleg, kReflective };
 const char* TrustRegionToString(TrustRegion method);
 bool StringToTrustRegion(const std::string& text, TrustRegion* method);
 
+// Ceres' initial radius, nearly Gauss-Newton first steps: for the solves that start at or
+// near an optimum (noise re-solves, replicates and refits, continuation phases after the
+// first, held-out burn-ins, a multistart's short descents), whose first steps are the
+// Gauss-Newton moves they are for.
+inline constexpr double kNearOptimumRadius = 1e4;
+inline constexpr double kFarStartRadius = 1.0;
+
 struct LocalSolveOptions {
   TrustRegion trust_region = TrustRegion::kLevenbergMarquardt;
   // Linear solver; unset: AutomaticLinearSolver below.
   std::optional<ceres::LinearSolverType> linear_solver;
   int max_iterations = 200;
-  // The trust region's initial radius (Ceres' initial_trust_region_radius; Levenberg-Marquardt
-  // damps its first step by 1/radius). Ceres' 1e4 takes near Gauss-Newton steps from the
-  // start; from far starts a small one (1e-2) keeps the first steps short, and the radius
-  // grows by itself on success (docs/benchmarks.md, the 3-DOF far-start benchmark).
-  double initial_radius = 1e4;
+  // The trust region's initial radius (Levenberg-Marquardt damps its first step by
+  // 1/radius, relative to the scaled normal matrix's diagonal). Unset: kFarStartRadius on
+  // Levenberg-Marquardt on the normal equations (a configured start may be far: the first
+  // steps are damped by half, and the radius triples after each good step; the 3-DOF far
+  // starts: 11 of 11 where 1e4 reaches 10 and 8 of 11, docs/benchmarks.md), Ceres' 1e4 on
+  // Ceres' minimiser (sparse problems, a named linear solver, dogleg). Solves that start at
+  // or near an optimum set kNearOptimumRadius.
+  std::optional<double> initial_radius;
   double function_tolerance = 1e-12;
   double gradient_tolerance = 1e-14;
   double parameter_tolerance = 1e-12;

@@ -59,6 +59,8 @@ PointResult ShortSolve(const GlobalStartOptions& options, const SearchBox& box,
   problem->SetValues(start);
   LocalSolveOptions local;
   local.max_iterations = options.short_iterations;
+  // A short solve is a fast descent, and one that goes wrong is dropped.
+  local.initial_radius = kNearOptimumRadius;
   local.num_threads = 1;
   local.hold_bounds_at_end = false;  // a short solve: its refinement does that
   bool abandoned = false;

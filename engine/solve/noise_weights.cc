@@ -92,6 +92,7 @@ bool IterateNoiseWeights(const StageOptions& options, OutputErrorProblem* proble
   }
   StageOptions again_options = options;
   again_options.use_global_start = false;
+  again_options.local.initial_radius = kNearOptimumRadius;
   // The re-solves start from the first solve's optimum; its global search stays reported.
   const GlobalStartSummary first_global = summary->global;
   // The first solve's global search stays reported: its narrative and its finding.

@@ -360,8 +360,8 @@ const KeyCase kCases[] = {
     {"local_trust_region_reflective", V.K("    local: {trust_region: levenberg_marquardt}"),
      V.K("    local: {trust_region: reflective}")},
     // The initial radius of Ceres' trust regions (the reflective one starts from |x0|).
-    {"local_initial_radius", V.K("    local: {trust_region: levenberg_marquardt}"),
-     V.K("    local: {trust_region: levenberg_marquardt, initial_radius: 1e-6}")},
+    {"local_initial_radius", V.K("    local: {trust_region: levenberg_marquardt, max_iterations: 5}"),
+     V.K("    local: {trust_region: levenberg_marquardt, max_iterations: 5, initial_radius: 1e-6}")},
     {"local_initial_radius_refused", V, V.K("    local: {initial_radius: 0}"),
      "initial_radius must be a number > 0"},
     {"global_population", V.K("    global: {algorithm: GN_CRS2_LM, max_evaluations: 40, seed: 1}"),

@@ -29,7 +29,8 @@ TEST(LocalSolve, StallStopEndsACrawlAtItsBestPoint) {
   auto model = nomoto::MakeFirstOrderHandle();
   auto full = FarStart(*model);
   LocalSolveOptions options;
-  options.trust_region = TrustRegion::kLevenbergMarquardt;  // its crawl: > 6 iterations
+  options.trust_region = TrustRegion::kLevenbergMarquardt;
+  options.initial_radius = 1e4;  // nearly Gauss-Newton first steps, then a crawl: > 6 iterations
   LocalSolveSummary converged;
   ASSERT_TRUE(RunLocalSolve(options, full.get(), &converged)) << converged.message;
   EXPECT_EQ(converged.termination, "CONVERGENCE");
