@@ -1,4 +1,4 @@
-// Local refinement of an output-error problem with Ceres' trust-region solver.
+// Local refinement of an output-error problem: the engine's dense trust regions or Ceres' solver.
 #pragma once
 
 #include <functional>
@@ -12,13 +12,14 @@
 
 namespace vesselid {
 
-// The local solve's method: Ceres' Levenberg-Marquardt (the default) or dogleg trust region
+// The local solve's method: Levenberg-Marquardt (the default: on the dense problems the
+// engine's own on the normal equations, levenberg_marquardt.h, else Ceres'), Ceres' dogleg
 // (bounds by projection), or the reflective trust region (reflective_trust_region.h: strictly
-// interior iterates, Coleman-Li scaling, reflection off the bounds) on the problem's normal
-// equations (normal_equations.h; dense: for problems of up to some 60 unknowns). From far
-// starts the reflective region reaches the 3-DOF benchmark's optimum from 10 of 11 starts
-// where Levenberg-Marquardt does from 2; it also falls on the patrol's T1 = T2 ridge from
-// starts on bounds and crawls from a tanker's far start (docs/configs.md "The local solve").
+// interior iterates, Coleman-Li scaling, reflection off the bounds) on the normal equations
+// (normal_equations.h; dense: for problems of up to some 60 unknowns). From the 3-DOF
+// benchmark's far starts both engine regions reach the optimum from 10-11 of 11 starts; the
+// reflective one also falls on the patrol's T1 = T2 ridge from starts on bounds and crawls
+// from a tanker's far start (docs/configs.md "The local solve").
 enum class TrustRegion { kLevenbergMarquardt, kDogleg, kReflective };
 const char* TrustRegionToString(TrustRegion method);
 bool StringToTrustRegion(const std::string& text, TrustRegion* method);
