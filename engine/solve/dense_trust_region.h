@@ -6,10 +6,12 @@
 // and radius rules, bounds by projection).
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <string>
 
 #include "Eigen/Dense"
+#include "engine/base/elapsed.h"
 
 namespace vesselid {
 
@@ -69,5 +71,17 @@ struct DenseSolveSummary {
   double step_seconds = 0.0;  // the factorisations and step selection
   double total_seconds = 0.0;
 };
+
+// f at x, counted and timed in *summary; false when f fails or gives a non-finite cost,
+// gradient or normal matrix.
+inline bool EvaluateTrial(const NormalEquationsFunction& f, const Eigen::VectorXd& x,
+                          NormalEquations* e, DenseSolveSummary* summary) {
+  const auto start = SteadyClock::now();
+  ++summary->evaluations;
+  const bool ok =
+      f(x, e) && std::isfinite(e->cost) && e->gradient.allFinite() && e->normal.allFinite();
+  summary->evaluation_seconds += SecondsSince(start);
+  return ok;
+}
 
 }  // namespace vesselid

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <utility>
-#include <cstdio>
-#include <cstdlib>
 
 #include "engine/base/elapsed.h"
 
@@ -42,12 +40,7 @@ DenseSolveSummary SolveLevenbergMarquardt(const DenseSolveOptions& options,
   DenseSolveSummary summary;
   VectorXd x = Project(*x_io, lower, upper);
   auto evaluate = [&](const VectorXd& point, NormalEquations* e) {
-    const auto start = SteadyClock::now();
-    ++summary.evaluations;
-    const bool ok =
-        f(point, e) && std::isfinite(e->cost) && e->gradient.allFinite() && e->normal.allFinite();
-    summary.evaluation_seconds += SecondsSince(start);
-    return ok;
+    return EvaluateTrial(f, point, e, &summary);
   };
   auto finish = [&](End end, const char* message) {
     summary.end = end;
@@ -119,7 +112,6 @@ DenseSolveSummary SolveLevenbergMarquardt(const DenseSolveOptions& options,
     // The model's reduction for the step taken: -(g'p + p'J'Jp / 2).
     const double predicted = -(at.gradient.dot(p) + 0.5 * p.dot(at.normal * p));
     summary.step_seconds += SecondsSince(step_start);
-    if (std::getenv("LM_TRACE")) std::fprintf(stderr, "LM ev %d cost %.9e radius %.3e pred %.3e |p| %.3e |g|inf %.3e pg %.3e\n", summary.evaluations, cost, radius, predicted, p.norm(), at.gradient.lpNorm<Eigen::Infinity>(), projected_gradient.lpNorm<Eigen::Infinity>());
     auto reject = [&] {
       radius /= decrease;
       decrease *= 2.0;

@@ -235,12 +235,7 @@ DenseSolveSummary SolveReflective(const DenseSolveOptions& options, const Normal
   const int n = static_cast<int>(x.size());
   NormalEquations at;
   auto evaluate = [&](const VectorXd& point, NormalEquations* e) {
-    const auto start = SteadyClock::now();
-    ++summary.evaluations;
-    const bool ok =
-        f(point, e) && std::isfinite(e->cost) && e->gradient.allFinite() && e->normal.allFinite();
-    summary.evaluation_seconds += SecondsSince(start);
-    return ok;
+    return EvaluateTrial(f, point, e, &summary);
   };
   if (!evaluate(x, &at)) {
     summary.message = "the residuals cannot be evaluated at the start";

@@ -120,48 +120,5 @@ TEST(LevenbergMarquardt, ProjectsAnInfeasibleStart) {
   EXPECT_NEAR(x[1], 2.0, 1e-7);
 }
 
-TEST(LevenbergMarquardt, ShortensStepsWhoseResidualsCannotBeEvaluated) {
-  // f = x - 2, not evaluable beyond 1.5 (a simulation that diverges): the solve approaches
-  // 1.5 with shorter and shorter steps and never leaves the evaluable region.
-  const NormalEquationsFunction f = [](const VectorXd& x, NormalEquations* out) {
-    if (x[0] > 1.5) return false;
-    Normal(x.array() - 2.0, MatrixXd::Identity(1, 1), out);
-    return true;
-  };
-  VectorXd x = VectorXd::Zero(1);
-  DenseSolveOptions options;
-  options.max_evaluations = 100;
-  const DenseSolveSummary s =
-      SolveLevenbergMarquardt(options, f, Unbounded(1, -1), Unbounded(1, 1), nullptr, &x);
-  EXPECT_GT(s.rejected, 0);
-  EXPECT_LE(x[0], 1.5);
-  EXPECT_GT(x[0], 1.4);
-  EXPECT_EQ(s.evaluations, s.accepted + s.rejected + 1);
-}
-
-TEST(LevenbergMarquardt, ACallbackStopsOrAbandons) {
-  VectorXd x(2);
-  x << -1.2, 1.0;
-  const DenseSolveSummary abandoned = SolveLevenbergMarquardt(
-      {}, Rosenbrock, Unbounded(2, -1), Unbounded(2, 1),
-      [](int trial, bool, double, const VectorXd&) { return trial == 3 ? -1 : 0; }, &x);
-  EXPECT_EQ(abandoned.end, DenseSolveSummary::End::kUserFailure);
-  EXPECT_EQ(abandoned.evaluations, 4);
-  x << -1.2, 1.0;
-  const DenseSolveSummary stopped = SolveLevenbergMarquardt(
-      {}, Rosenbrock, Unbounded(2, -1), Unbounded(2, 1),
-      [](int trial, bool, double, const VectorXd&) { return trial == 2 ? 1 : 0; }, &x);
-  EXPECT_EQ(stopped.end, DenseSolveSummary::End::kUserSuccess);
-}
-
-TEST(LevenbergMarquardt, AStartThatCannotBeEvaluatedFails) {
-  const NormalEquationsFunction f = [](const VectorXd&, NormalEquations*) { return false; };
-  VectorXd x = VectorXd::Ones(1);
-  const DenseSolveSummary s =
-      SolveLevenbergMarquardt({}, f, Unbounded(1, -1), Unbounded(1, 1), nullptr, &x);
-  EXPECT_EQ(s.end, DenseSolveSummary::End::kFailure);
-  EXPECT_EQ(s.initial_cost, -1.0);
-}
-
 }  // namespace
 }  // namespace vesselid

@@ -1,6 +1,6 @@
 // The reflective trust region on problems whose solutions are known: linear least squares
 // with and without an active bound, Rosenbrock's valley with and without a bound across it,
-// and a region where the residuals cannot be evaluated.
+// (what both dense regions do alike: dense_trust_region_test.cc).
 #include "engine/solve/reflective_trust_region.h"
 
 #include <cmath>
@@ -93,49 +93,6 @@ TEST(ReflectiveTrustRegion, StopsAtABoundAcrossTheValley) {
   EXPECT_NEAR(x[0], 0.5, 1e-6);
   EXPECT_NEAR(x[1], 0.25, 1e-6);
   EXPECT_NEAR(s.final_cost, 0.125, 1e-6);
-}
-
-TEST(ReflectiveTrustRegion, ShortensStepsWhoseResidualsCannotBeEvaluated) {
-  // f = x - 2, not evaluable beyond 1.5 (a simulation that diverges): the solve approaches
-  // 1.5 with shorter and shorter steps and never leaves the evaluable region.
-  const NormalEquationsFunction f = [](const VectorXd& x, NormalEquations* out) {
-    if (x[0] > 1.5) return false;
-    Normal(x.array() - 2.0, MatrixXd::Identity(1, 1), out);
-    return true;
-  };
-  VectorXd x = VectorXd::Zero(1);
-  DenseSolveOptions options;
-  options.max_evaluations = 100;
-  const DenseSolveSummary s =
-      SolveReflective(options, f, Unbounded(1, -1), Unbounded(1, 1), nullptr, &x);
-  EXPECT_GT(s.rejected, 0);
-  EXPECT_LE(x[0], 1.5);
-  EXPECT_GT(x[0], 1.4);
-  EXPECT_EQ(s.evaluations, s.accepted + s.rejected + 1);
-}
-
-TEST(ReflectiveTrustRegion, ACallbackStopsOrAbandons) {
-  VectorXd x(2);
-  x << -1.2, 1.0;
-  const DenseSolveSummary abandoned = SolveReflective(
-      {}, Rosenbrock, Unbounded(2, -1), Unbounded(2, 1),
-      [](int trial, bool, double, const VectorXd&) { return trial == 3 ? -1 : 0; }, &x);
-  EXPECT_EQ(abandoned.end, DenseSolveSummary::End::kUserFailure);
-  EXPECT_EQ(abandoned.evaluations, 4);
-  x << -1.2, 1.0;
-  const DenseSolveSummary stopped = SolveReflective(
-      {}, Rosenbrock, Unbounded(2, -1), Unbounded(2, 1),
-      [](int trial, bool, double, const VectorXd&) { return trial == 2 ? 1 : 0; }, &x);
-  EXPECT_EQ(stopped.end, DenseSolveSummary::End::kUserSuccess);
-}
-
-TEST(ReflectiveTrustRegion, AStartThatCannotBeEvaluatedFails) {
-  const NormalEquationsFunction f = [](const VectorXd&, NormalEquations*) { return false; };
-  VectorXd x = VectorXd::Ones(1);
-  const DenseSolveSummary s =
-      SolveReflective({}, f, Unbounded(1, -1), Unbounded(1, 1), nullptr, &x);
-  EXPECT_EQ(s.end, DenseSolveSummary::End::kFailure);
-  EXPECT_EQ(s.initial_cost, -1.0);
 }
 
 }  // namespace
