@@ -25,6 +25,35 @@ std::unique_ptr<OutputErrorProblem> FarStart(const ModelHandle& model) {
   return problem;
 }
 
+// K of the wrong sign from T = 2 s (truth T = 20 s, K = 0.1): from radius 1, Levenberg-
+// Marquardt's steps toward T < 0 fail and it crawls near that edge; the solve from the start
+// again at radius 1e4 converges, and its lower cost is kept.
+TEST(LocalSolve, ACrawlFromRadiusOneIsSolvedAgainNearlyGaussNewton) {
+  auto model = nomoto::MakeFirstOrderHandle();
+  nomoto::ClosedLoopOptions loop = testing::ShortLoop(80.0, 1);
+  loop.duration = 600.0;
+  loop.sample_time = 0.5;
+  std::vector<Experiment> runs = {
+      testing::MakeExperiment(*model, {20.0, 0.1, 0.0}, loop, Interpolation::kCubic, "a")};
+  ParameterSpec t, k;
+  t.name = "T", t.start = 2.0, t.lower = 0.1, t.upper = 1000.0;
+  k.name = "K", k.start = -1.0, k.lower = -5.0, k.upper = 5.0;
+  std::string error;
+  auto problem = OutputErrorProblem::Create(model.get(), runs, {t, k}, {}, &error);
+  ASSERT_NE(problem, nullptr) << error;
+  LocalSolveOptions options;
+  LocalSolveSummary summary;
+  ASSERT_TRUE(RunLocalSolve(options, problem.get(), &summary)) << summary.message;
+  EXPECT_EQ(summary.termination, "CONVERGENCE");
+  EXPECT_NE(summary.message.find("from the start again at radius 1e4"), std::string::npos)
+      << summary.message;
+  EXPECT_GT(summary.iterations, options.max_iterations);  // the crawl's, then the retry's
+  for (const Variable& v : problem->variables()) {
+    if (v.name == "T") EXPECT_NEAR(v.value(), 20.0, 0.01);
+    if (v.name == "K") EXPECT_NEAR(v.value(), 0.1, 1e-4);
+  }
+}
+
 TEST(LocalSolve, StallStopEndsACrawlAtItsBestPoint) {
   auto model = nomoto::MakeFirstOrderHandle();
   auto full = FarStart(*model);
