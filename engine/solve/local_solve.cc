@@ -266,9 +266,11 @@ void ContinueWithBoundsHeld(ceres::Solver::Options options, const LocalSolveOpti
 // Levenberg-Marquardt on the normal equations from its first radius 1 can crawl where the
 // start lies near a region the simulation cannot run: a first-order model's K of the wrong
 // sign from T = 2 s ended at 0.15 after 200 iterations, where from 1e4 it converges in 8. A
-// solve from the configured start that ends without converging (not on its time limit) is
-// run again from that start at kNearOptimumRadius, and the lower cost is kept; its
-// iterations and time are counted either way.
+// solve from the configured start that ends without converging (not on its time limit), given
+// at least kRetryMinIterations, is run again from that start at kNearOptimumRadius, and the
+// lower cost is kept; its iterations and time are counted either way. A shorter
+// max_iterations is an early stop the config asks for (configs/eriksen_2dof.yaml).
+constexpr int kRetryMinIterations = 100;
 void RetryNearlyGaussNewton(ceres::Solver::Options options, const LocalSolveOptions& local,
                             const std::vector<double>& start, ProgressReporter* reporter,
                             OutputErrorProblem* problem, LocalSolveSummary* summary) {
@@ -387,6 +389,7 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   }
   if (!options.initial_radius && summary->usable && stopped_at.empty() &&
       ceres_summary.termination_type == ceres::NO_CONVERGENCE &&
+      options.max_iterations >= kRetryMinIterations &&
       ceres_summary.message.find("time") == std::string::npos &&
       DenseLevenbergMarquardt(options, ceres_options, problem)) {
     RetryNearlyGaussNewton(ceres_options, options, start, options.progress ? &reporter : nullptr,
