@@ -49,7 +49,7 @@ std::vector<double*> Unknowns(OutputErrorProblem* problem) {
 }  // namespace
 
 bool CanSolveOnNormalEquations(OutputErrorProblem* problem) {
-  return NormalEquationsEvaluator(problem->problem(), Unknowns(problem), 1).usable();
+  return NormalEquationsEvaluator::Handles(*problem->problem());
 }
 
 void SolveOnNormalEquations(DenseMethod method, const ceres::Solver::Options& options,

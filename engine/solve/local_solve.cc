@@ -88,25 +88,35 @@ class StallCheck : public ceres::IterationCallback {
   std::vector<double> best_;
 };
 
-// The minimiser a local solve runs: the reflective region; Levenberg-Marquardt on the normal
-// equations (levenberg_marquardt.h: one Jet simulation per trial point, where Ceres' bounded
-// line search evaluates a second Jacobian at each candidate) when the linear solver is the
-// automatic dense one; otherwise Ceres' own, with the configured or the sparse solver.
-bool DenseLevenbergMarquardt(const LocalSolveOptions& local,
-                             const ceres::Solver::Options& options, OutputErrorProblem* problem) {
-  return local.trust_region == TrustRegion::kLevenbergMarquardt && !local.linear_solver &&
-         options.linear_solver_type == ceres::DENSE_NORMAL_CHOLESKY &&
-         CanSolveOnNormalEquations(problem);
+// The minimiser a local solve runs, chosen once per RunLocalSolve: the reflective region;
+// Levenberg-Marquardt on the normal equations (levenberg_marquardt.h: one Jet simulation per
+// trial point, where Ceres' bounded line search evaluates a second Jacobian at each
+// candidate) when the linear solver is the automatic dense one; otherwise Ceres' own, with
+// the configured or the sparse solver.
+enum class Minimiser { kReflective, kDenseLevenbergMarquardt, kCeres };
+
+Minimiser ChooseMinimiser(const LocalSolveOptions& local, const ceres::Solver::Options& options,
+                          OutputErrorProblem* problem) {
+  if (local.trust_region == TrustRegion::kReflective) return Minimiser::kReflective;
+  const bool dense = local.trust_region == TrustRegion::kLevenbergMarquardt &&
+                     !local.linear_solver &&
+                     options.linear_solver_type == ceres::DENSE_NORMAL_CHOLESKY &&
+                     CanSolveOnNormalEquations(problem);
+  return dense ? Minimiser::kDenseLevenbergMarquardt : Minimiser::kCeres;
 }
 
-void Minimize(const ceres::Solver::Options& options, const LocalSolveOptions& local,
+void Minimize(const ceres::Solver::Options& options, Minimiser minimiser,
               OutputErrorProblem* problem, ceres::Solver::Summary* summary) {
-  if (local.trust_region == TrustRegion::kReflective) {
-    SolveOnNormalEquations(DenseMethod::kReflective, options, problem, summary);
-  } else if (DenseLevenbergMarquardt(local, options, problem)) {
-    SolveOnNormalEquations(DenseMethod::kLevenbergMarquardt, options, problem, summary);
-  } else {
-    ceres::Solve(options, problem->problem(), summary);
+  switch (minimiser) {
+    case Minimiser::kReflective:
+      SolveOnNormalEquations(DenseMethod::kReflective, options, problem, summary);
+      return;
+    case Minimiser::kDenseLevenbergMarquardt:
+      SolveOnNormalEquations(DenseMethod::kLevenbergMarquardt, options, problem, summary);
+      return;
+    case Minimiser::kCeres:
+      ceres::Solve(options, problem->problem(), summary);
+      return;
   }
 }
 
@@ -228,7 +238,7 @@ std::vector<const Variable*> AtBound(OutputErrorProblem* problem) {
 // with them held there, within the iterations and time the first solve left, and that is
 // kept when it lowers the cost (summed in the problem's own order, as the reported costs).
 void ContinueWithBoundsHeld(ceres::Solver::Options options, const LocalSolveOptions& local,
-                            ProgressReporter* reporter, OutputErrorProblem* problem,
+                            Minimiser minimiser, ProgressReporter* reporter, OutputErrorProblem* problem,
                             LocalSolveSummary* summary) {
   options.max_num_iterations = local.max_iterations - summary->iterations;
   options.max_solver_time_in_seconds = local.max_time_seconds - summary->time_seconds;
@@ -250,7 +260,7 @@ void ContinueWithBoundsHeld(ceres::Solver::Options options, const LocalSolveOpti
   options.callbacks.push_back(&stall);
   for (const Variable* v : held) problem->problem()->SetParameterBlockConstant(v->block);
   ceres::Solver::Summary again;
-  Minimize(options, local, problem, &again);
+  Minimize(options, minimiser, problem, &again);
   for (const Variable* v : held) problem->problem()->SetParameterBlockVariable(v->block);
   double after_cost = 0.0;
   if (!again.IsSolutionUsable() || !problem->Cost(&after_cost) ||
@@ -272,7 +282,7 @@ void ContinueWithBoundsHeld(ceres::Solver::Options options, const LocalSolveOpti
 // max_iterations is an early stop the config asks for (configs/eriksen_2dof.yaml).
 constexpr int kRetryMinIterations = 100;
 void RetryNearlyGaussNewton(ceres::Solver::Options options, const LocalSolveOptions& local,
-                            const std::vector<double>& start, ProgressReporter* reporter,
+                            Minimiser minimiser, const std::vector<double>& start, ProgressReporter* reporter,
                             OutputErrorProblem* problem, LocalSolveSummary* summary) {
   const std::vector<double> end = problem->Values();
   problem->SetValues(start);
@@ -283,7 +293,7 @@ void RetryNearlyGaussNewton(ceres::Solver::Options options, const LocalSolveOpti
   StallCheck stall(local.stall_window, local.stall_tolerance);
   if (local.stall_window > 0) options.callbacks.push_back(&stall);
   ceres::Solver::Summary again;
-  Minimize(options, local, problem, &again);
+  Minimize(options, minimiser, problem, &again);
   double cost = 0.0;
   if (!again.IsSolutionUsable() || !problem->Cost(&cost) || !(cost < summary->final_cost)) {
     problem->SetValues(end);
@@ -313,9 +323,9 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
       options.trust_region == TrustRegion::kDogleg ? ceres::DOGLEG : ceres::LEVENBERG_MARQUARDT;
   ceres_options.linear_solver_type = options.linear_solver.value_or(AutomaticLinearSolver(*problem));
   ceres_options.max_num_iterations = options.max_iterations;
+  const Minimiser minimiser = ChooseMinimiser(options, ceres_options, problem);
   const double radius = options.initial_radius.value_or(
-      DenseLevenbergMarquardt(options, ceres_options, problem) ? kFarStartRadius
-                                                              : kNearOptimumRadius);
+      minimiser == Minimiser::kDenseLevenbergMarquardt ? kFarStartRadius : kNearOptimumRadius);
   ceres_options.initial_trust_region_radius = radius;
   // Ceres requires max_trust_region_radius >= the initial one.
   ceres_options.max_trust_region_radius =
@@ -352,7 +362,7 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
   ceres_options.callbacks.push_back(&keeper);
   ceres_options.update_state_every_iteration = true;
   ceres::Solver::Summary ceres_summary;
-  Minimize(ceres_options, options, problem, &ceres_summary);
+  Minimize(ceres_options, minimiser, problem, &ceres_summary);
   if (threaded && ceres_summary.initial_cost >= 0.0 && ordered_initial >= 0.0) {
     ceres_summary.initial_cost = ordered_initial;
     if (!ceres_summary.iterations.empty()) ceres_summary.iterations.front().cost = ordered_initial;
@@ -391,16 +401,16 @@ bool RunLocalSolve(const LocalSolveOptions& options, OutputErrorProblem* problem
       ceres_summary.termination_type == ceres::NO_CONVERGENCE &&
       options.max_iterations >= kRetryMinIterations &&
       ceres_summary.message.find("time") == std::string::npos &&
-      DenseLevenbergMarquardt(options, ceres_options, problem)) {
-    RetryNearlyGaussNewton(ceres_options, options, start, options.progress ? &reporter : nullptr,
+      minimiser == Minimiser::kDenseLevenbergMarquardt) {
+    RetryNearlyGaussNewton(ceres_options, options, minimiser, start, options.progress ? &reporter : nullptr,
                            problem, summary);
   }
   // Not after an abandoned solve (keep_going: its caller wants it stopped).
   if (options.hold_bounds_at_end && summary->usable && stopped_at.empty() &&
       std::isfinite(summary->final_cost) &&
       ceres_summary.termination_type != ceres::USER_FAILURE) {
-    ContinueWithBoundsHeld(ceres_options, options, options.progress ? &reporter : nullptr,
-                           problem, summary);
+    ContinueWithBoundsHeld(ceres_options, options, minimiser,
+                           options.progress ? &reporter : nullptr, problem, summary);
   }
   if (!summary->usable && ceres_summary.initial_cost < 0) {
     // Name the experiment, time, outputs and inputs (the values are still the start values).

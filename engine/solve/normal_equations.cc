@@ -33,6 +33,20 @@ NormalEquationsEvaluator::NormalEquationsEvaluator(ceres::Problem* problem,
   }
 }
 
+bool NormalEquationsEvaluator::Handles(const ceres::Problem& problem) {
+  std::vector<ceres::ResidualBlockId> ids;
+  problem.GetResidualBlocks(&ids);
+  std::vector<double*> parameters;
+  for (ceres::ResidualBlockId id : ids) {
+    if (problem.GetLossFunctionForResidualBlock(id) != nullptr) return false;
+    problem.GetParameterBlocksForResidualBlock(id, &parameters);
+    for (double* p : parameters) {
+      if (problem.ParameterBlockSize(p) != 1) return false;
+    }
+  }
+  return true;
+}
+
 bool NormalEquationsEvaluator::Evaluate(NormalEquations* out) {
   const int n = unknowns_;
   const int count = static_cast<int>(blocks_.size());

@@ -19,8 +19,10 @@ class NormalEquationsEvaluator {
   NormalEquationsEvaluator(ceres::Problem* problem, std::vector<double*> unknowns, int threads);
 
   // False when the problem has what this evaluator does not handle: a Ceres loss function on
-  // a residual block, or a parameter block larger than 1.
+  // a residual block, or a parameter block larger than 1. Handles: the same, without forming
+  // the evaluator's buffers.
   bool usable() const { return usable_; }
+  static bool Handles(const ceres::Problem& problem);
 
   // At the blocks' current values; false when a block cannot be evaluated.
   bool Evaluate(NormalEquations* out);
