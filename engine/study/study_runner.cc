@@ -76,11 +76,26 @@ std::vector<json> GatherOnRoot(const json& mine) {
 
 }  // namespace
 
+bool StartedByMpiLauncher() {
+  // What the launchers set in every process they start: Open MPI's mpirun (OMPI_*, PMIx),
+  // MPICH's and Intel MPI's Hydra (PMI_*), Slurm's srun with PMI-2 or PMIx.
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"}) {
+    if (std::getenv(name) != nullptr) return true;
+  }
+  return false;
+}
+
 ProcessGroup::ProcessGroup(int* argc, char*** argv) {
 #ifdef VESSELID_WITH_OPENMP
   omp_set_num_threads(1);  // the solves a study runs outside RunCases too
 #endif
 #ifdef VESSELID_WITH_MPI
+  // A program started without a launcher is a group of one, as MPI's singleton start would
+  // make it, without the 0.3 s (wall) that Open MPI's start and finish take.
+  if (!StartedByMpiLauncher()) {
+    current_group = this;
+    return;
+  }
   const OpenMpiAllocations unchecked;
   int provided = 0;
   MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);

@@ -21,8 +21,9 @@ namespace vesselid {
 // The processes of a study: rank and size under MPI, 0 and 1 otherwise.
 class ProcessGroup {
  public:
-  // Initialises MPI when built with it (MPI_Init_thread, funneled) and finalises it on
-  // destruction; one per program, created before any study runs.
+  // Initialises MPI when built with it and started by an MPI launcher (mpirun, mpiexec,
+  // srun: StartedByMpiLauncher), and finalises it on destruction; one per program, created
+  // before any study runs. Started otherwise, the program is a group of one.
   ProcessGroup(int* argc, char*** argv);
   ~ProcessGroup();
   ProcessGroup(const ProcessGroup&) = delete;
@@ -45,6 +46,9 @@ class ProcessGroup {
   int local_size_ = 1;
   bool initialised_ = false;
 };
+
+// Whether an MPI launcher started this process (its environment names a rank).
+bool StartedByMpiLauncher();
 
 // CaseSeed (engine/base/case_seed.h): the seed of case `index` of a study part.
 
