@@ -98,7 +98,9 @@ void CompareInMemoryAndRead(const std::string& name, int bootstrap_runs) {
   RunDocument read;
   ASSERT_TRUE(ReadRunDocument(out.string(), &read, &error)) << error;
   ExpectSameDocument(RunDocumentOf(file.run, result), read);
-  if (bootstrap_runs > 0) EXPECT_FALSE(read.replicate_values.empty());
+  if (bootstrap_runs > 0) {
+    EXPECT_FALSE(read.replicate_values.empty());
+  }
 
   IdentifiedModel in_memory, from_file;
   ASSERT_TRUE(IdentifiedModelOf(file.run, result, 20, 7, &in_memory, &error)) << error;

@@ -19,6 +19,7 @@
 #include "nlohmann/json.hpp"
 #include "problems/registry.h"
 #include "tests/support/run_command.h"
+#include "tests/support/simulated_records.h"
 
 namespace vesselid {
 namespace manoeuvre_prediction_test {
@@ -37,10 +38,10 @@ void SimulateAndRun(const std::string& name, const fs::path& dir) {
   const std::string binary = VESSELID_BINARY;
   const std::string config = std::string(VESSELID_SOURCE_DIR) + "/configs/" + name + ".yaml";
   fs::remove_all(dir);
+  const fs::path data = testing::SimulatedRecords(name);
+  ASSERT_FALSE(data.empty()) << "vesselid simulate " << config;
   int status = 0;
-  Shell(binary + " simulate " + config + " --out " + (dir / "data").string(), &status);
-  ASSERT_EQ(status, 0);
-  Shell(binary + " run " + config + " --data " + (dir / "data").string() + " --out " +
+  Shell(binary + " run " + config + " --data " + data.string() + " --out " +
             (dir / "run").string() + " --quiet --no-report",
         &status);
   ASSERT_EQ(status, 0);

@@ -35,6 +35,7 @@
 #include "tests/support/c_model_loader.h"
 #include "tests/support/fmu_loader.h"
 #include "tests/support/run_command.h"
+#include "tests/support/simulated_records.h"
 
 #if defined(__has_feature)
 #if __has_feature(address_sanitizer)
@@ -224,15 +225,14 @@ TEST_P(ModelExport, FmuAndCReproduceTheEnginesSimulationOfTheFirstRecord) {
   const std::string name = GetParam();
   const fs::path dir = fs::temp_directory_path() / ("vesselid_fmu_" + name);
   fs::remove_all(dir);
+  fs::create_directories(dir);
   const std::string config_path = std::string(VESSELID_SOURCE_DIR) + "/configs/" + name + ".yaml";
-  const std::string simulate = std::string(VESSELID_BINARY) + " simulate " + config_path +
-                               " --out " + (dir / "data").string() + " > /dev/null";
-  ASSERT_EQ(std::system(simulate.c_str()), 0) << simulate;
+  const fs::path data = testing::SimulatedRecords(name);
+  ASSERT_FALSE(data.empty()) << "vesselid simulate " << config_path;
   const ModelRegistry registry = DefaultRegistry();
   RunConfig config;
   std::string error;
-  ASSERT_TRUE(LoadRunConfig(config_path, (dir / "data").string(), registry, &config, &error))
-      << error;
+  ASSERT_TRUE(LoadRunConfig(config_path, data.string(), registry, &config, &error)) << error;
   // The model of the first output-error stage, at its parameters' starts (the model's typical
   // values where a start is an earlier stage's estimate).
   const StageConfig* stage = nullptr;

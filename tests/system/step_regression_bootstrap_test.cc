@@ -12,6 +12,7 @@
 
 #include "gtest/gtest.h"
 #include "tests/support/findings.h"
+#include "tests/support/simulated_records.h"
 #include "nlohmann/json.hpp"
 
 namespace vesselid {
@@ -28,9 +29,8 @@ class StepRegressionBootstrap : public ::testing::Test {
     fs::remove_all(*dir_);
     fs::create_directories(*dir_);
     const std::string config = std::string(VESSELID_SOURCE_DIR) + "/configs/eriksen_2dof.yaml";
-    const std::string simulate = std::string(VESSELID_BINARY) + " simulate " + config +
-                                 " --out " + dir_->string() + " > /dev/null";
-    ASSERT_EQ(std::system(simulate.c_str()), 0) << simulate;
+    data_ = new fs::path(testing::SimulatedRecords("eriksen_2dof"));
+    ASSERT_FALSE(data_->empty()) << "vesselid simulate " << config;
     std::ifstream in(config);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     regression_ = new std::string(text.substr(0, text.find("  - name: refinement")));
@@ -38,6 +38,7 @@ class StepRegressionBootstrap : public ::testing::Test {
   static void TearDownTestSuite() {
     fs::remove_all(*dir_);
     delete dir_;
+    delete data_;
     delete regression_;
   }
 
@@ -51,7 +52,7 @@ class StepRegressionBootstrap : public ::testing::Test {
     const fs::path file = *dir_ / (name + ".yaml"), out = *dir_ / name;
     std::ofstream(file) << text;
     const std::string command = std::string(VESSELID_BINARY) + " run " + file.string() +
-                                " --data " + dir_->string() + " --out " + out.string() +
+                                " --data " + data_->string() + " --out " + out.string() +
                                 " --quiet > /dev/null 2> " + (out.string() + ".err");
     const int status = std::system(command.c_str());
     auto read = [](const fs::path& path) {
@@ -69,10 +70,12 @@ class StepRegressionBootstrap : public ::testing::Test {
   }
 
   static fs::path* dir_;
+  static fs::path* data_;  // the shipped config's simulated records, shared (read only)
   static std::string* regression_;
 };
 
 fs::path* StepRegressionBootstrap::dir_ = nullptr;
+fs::path* StepRegressionBootstrap::data_ = nullptr;
 std::string* StepRegressionBootstrap::regression_ = nullptr;
 
 TEST_F(StepRegressionBootstrap, EveryNonZeroEstimateGetsABootstrapStandardError) {
