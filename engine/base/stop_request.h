@@ -1,10 +1,13 @@
 // A request to stop the running identification early, made from outside it (the Python
 // package's Ctrl-C, which its progress callback notices): the local solves end after their
 // current iteration (as Ceres' USER_FAILURE), the multistart after its current batch, and the
-// caller's RunObserver::stage_finished then stops the run. One flag per process.
+// caller's RunObserver::stage_finished then stops the run. One flag per process; a global
+// start's screening also stops at the request, point by point.
 #pragma once
 
 #include <atomic>
+#include <functional>
+#include <utility>
 
 namespace vesselid {
 
@@ -15,5 +18,29 @@ inline std::atomic<bool>& StopFlag() {
 inline void RequestStop() { StopFlag().store(true); }
 inline void ClearStopRequest() { StopFlag().store(false); }
 inline bool StopRequested() { return StopFlag().load(std::memory_order_relaxed); }
+
+// The embedding program's own check for a stop, for work that runs long without reporting
+// progress (a global start's screening): the Python package's looks for a pending Ctrl-C,
+// which only Python's main thread can see. Set for the duration of a run by ScopedStopPoll.
+inline std::function<bool()>& StopPoll() {
+  static std::function<bool()> poll;
+  return poll;
+}
+
+// StopRequested(), after asking the embedding program's check, if any (call it on the thread
+// that started the run: that is where the check can see its program's signals).
+inline bool PollStopRequest() {
+  if (!StopRequested() && StopPoll() && StopPoll()()) RequestStop();
+  return StopRequested();
+}
+
+// Sets the embedding program's check while in scope.
+class ScopedStopPoll {
+ public:
+  explicit ScopedStopPoll(std::function<bool()> poll) { StopPoll() = std::move(poll); }
+  ~ScopedStopPoll() { StopPoll() = nullptr; }
+  ScopedStopPoll(const ScopedStopPoll&) = delete;
+  ScopedStopPoll& operator=(const ScopedStopPoll&) = delete;
+};
 
 }  // namespace vesselid

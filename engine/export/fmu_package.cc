@@ -18,7 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr zip_uint32_t kFmuCompressionLevel = 6;
+constexpr zip_uint32_t kFmuCompressionLevel = 1;
 
 // 64-bit FNV-1a of `text` from `basis`.
 std::uint64_t Fnv1a(const std::string& text, std::uint64_t basis) {
@@ -101,8 +101,8 @@ bool WriteFmu(const IdentifiedModel& model, const std::string& runtime, const st
     zip_source_t* so = zip_source_file(archive, runtime.c_str(), 0, -1);
     const zip_int64_t index =
         so != nullptr ? zip_file_add(archive, library.c_str(), so, ZIP_FL_ENC_UTF_8) : -1;
-    // zlib's default level, not libzip's best: the 8 MB runtime deflates in 0.56 s instead
-    // of 1.62 s, into an archive 1 % larger.
+    // zlib's fastest level, not libzip's best: the 8 MB runtime deflates in 0.15 s instead
+    // of 1.62 s (0.56 s at zlib's default, 6), into an archive of 3.3 MB instead of 2.8 MB.
     added = index >= 0 && zip_set_file_compression(archive, index, ZIP_CM_DEFLATE,
                                                    kFmuCompressionLevel) == 0;
     if (index < 0 && so != nullptr) zip_source_free(so);

@@ -6,6 +6,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <thread>
 
 #include "engine/base/parallel_for.h"
 #include "engine/base/stop_request.h"
@@ -120,9 +121,17 @@ bool RunMultistart(const GlobalStartOptions& options, OutputErrorProblem* proble
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   };
 
-  // Screening: the cost of every point, one simulation each.
+  // Screening: the cost of every point, one simulation each. A stop request (Ctrl-C) leaves
+  // the points not yet screened out: 4000 points of a long record take seconds.
   std::vector<double> screened(starts.size(), std::numeric_limits<double>::infinity());
+  std::vector<char> unscreened(starts.size(), 0);
+  const std::thread::id caller = std::this_thread::get_id();
   ParallelFor(options.points, threads, [&](int i) {
+    // The calling thread also asks the embedding program (a Python Ctrl-C), as progress would.
+    if (std::this_thread::get_id() == caller ? PollStopRequest() : StopRequested()) {
+      unscreened[i] = 1;
+      return;
+    }
     OutputErrorProblem* p = pool.Borrow();
     p->SetValues(starts[i]);
     double cost = 0.0;
@@ -133,7 +142,7 @@ bool RunMultistart(const GlobalStartOptions& options, OutputErrorProblem* proble
   for (int i = 0; i < options.points; ++i) {
     if (std::isfinite(screened[i])) {
       ranked.push_back(i);
-    } else {
+    } else if (!unscreened[i]) {
       ++summary->failed_evaluations;
     }
   }
@@ -187,7 +196,8 @@ bool RunMultistart(const GlobalStartOptions& options, OutputErrorProblem* proble
   }
   problem->SetValues(base);
   summary->run = true;
-  summary->evaluations = options.points;
+  summary->evaluations =
+      options.points - static_cast<int>(std::count(unscreened.begin(), unscreened.end(), 1));
   summary->short_solves = done;
   if (summary->result.empty()) summary->result = "multistart";
 

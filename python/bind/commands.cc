@@ -218,6 +218,7 @@ std::shared_ptr<Run> RunConfigured(const ConfigArgument& config, const std::stri
   RunOutcome outcome;
   ClearStopRequest();
   {
+    const ScopedStopPoll poll([&watch] { return watch.Interrupted(); });
     py::gil_scoped_release release;
     RunCommand(file.run, watch.Request(out_dir, write, report, !config.is_text), watch.Observer(),
                &outcome);
@@ -251,6 +252,7 @@ std::shared_ptr<Run> Select(const ConfigArgument& config, const std::string& dat
   bool selected = false;
   ClearStopRequest();
   {
+    const ScopedStopPoll poll([&watch] { return watch.Interrupted(); });
     py::gil_scoped_release release;
     selected = SelectCommand(setup, watch.Request(out_dir, write, report, !config.is_text),
                              watch.Observer(), line, nullptr, &outcome, &error);
