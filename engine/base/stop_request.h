@@ -21,14 +21,16 @@ inline bool StopRequested() { return StopFlag().load(std::memory_order_relaxed);
 
 // The embedding program's own check for a stop, for work that runs long without reporting
 // progress (a global start's screening): the Python package's looks for a pending Ctrl-C,
-// which only Python's main thread can see. Set for the duration of a run by ScopedStopPoll.
+// which only Python's main thread can see. Set on the thread that runs the work, for its
+// duration, by ScopedStopPoll: one per thread, so that runs on other threads neither replace
+// nor end it.
 inline std::function<bool()>& StopPoll() {
-  static std::function<bool()> poll;
+  thread_local std::function<bool()> poll;
   return poll;
 }
 
-// StopRequested(), after asking the embedding program's check, if any (call it on the thread
-// that started the run: that is where the check can see its program's signals).
+// StopRequested(), after asking this thread's embedding program's check, if any (the thread
+// that started the run: where the check can see its program's signals).
 inline bool PollStopRequest() {
   if (!StopRequested() && StopPoll() && StopPoll()()) RequestStop();
   return StopRequested();

@@ -57,8 +57,10 @@ std::string FmuGuid(const std::string& model_json) {
 
 std::string FindFmuRuntime(std::string* error) {
   if (const char* given = std::getenv("VESSELID_FMU_RUNTIME")) {
-    if (fs::exists(given)) return given;
-    *error = std::string("VESSELID_FMU_RUNTIME: ") + given + ": no such file";
+    std::error_code ec;
+    if (fs::is_regular_file(given, ec)) return given;
+    *error = std::string("VESSELID_FMU_RUNTIME: ") + given +
+             (fs::exists(given, ec) ? ": not a file" : ": no such file");
     return "";
   }
   std::error_code ec;
@@ -66,7 +68,7 @@ std::string FindFmuRuntime(std::string* error) {
   const fs::path folder = program.parent_path();
   for (const fs::path& candidate :
        {folder / "libvesselid_fmu.so", folder / ".." / "lib" / "vesselid" / "libvesselid_fmu.so"}) {
-    if (fs::exists(candidate, ec)) return candidate.string();
+    if (fs::is_regular_file(candidate, ec)) return candidate.string();
   }
   *error = "the FMU runtime libvesselid_fmu.so is not next to " + program.string() +
            " nor in ../lib/vesselid (build the target vesselid_fmu, or set VESSELID_FMU_RUNTIME)";

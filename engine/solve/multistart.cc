@@ -127,7 +127,8 @@ bool RunMultistart(const GlobalStartOptions& options, OutputErrorProblem* proble
   std::vector<char> unscreened(starts.size(), 0);
   const std::thread::id caller = std::this_thread::get_id();
   ParallelFor(options.points, threads, [&](int i) {
-    // The calling thread also asks the embedding program (a Python Ctrl-C), as progress would.
+    // The calling thread also asks the embedding program (a Python Ctrl-C), as progress would
+    // (its check is the calling thread's: stop_request.h).
     if (std::this_thread::get_id() == caller ? PollStopRequest() : StopRequested()) {
       unscreened[i] = 1;
       return;

@@ -4,6 +4,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <map>
 
 #include "engine/base/stop_request.h"
@@ -135,7 +136,16 @@ struct PythonWatch {
   py::object progress;
   bool interrupted = false;
   py::object raised;  // what the progress callback raised: raised again once the run stopped
+  std::chrono::steady_clock::time_point last_poll{};
 
+  // Interrupted(), at most every 50 ms: for the engine's polls (a global start's screening
+  // asks at every point), each of which takes the GIL, which another Python thread may hold.
+  bool PolledInterrupted() {
+    const auto now = std::chrono::steady_clock::now();
+    if (!interrupted && now - last_poll < std::chrono::milliseconds(50)) return false;
+    last_poll = now;
+    return Interrupted();
+  }
   bool Interrupted() {
     if (!interrupted) {
       py::gil_scoped_acquire gil;
@@ -218,7 +228,7 @@ std::shared_ptr<Run> RunConfigured(const ConfigArgument& config, const std::stri
   RunOutcome outcome;
   ClearStopRequest();
   {
-    const ScopedStopPoll poll([&watch] { return watch.Interrupted(); });
+    const ScopedStopPoll poll([&watch] { return watch.PolledInterrupted(); });
     py::gil_scoped_release release;
     RunCommand(file.run, watch.Request(out_dir, write, report, !config.is_text), watch.Observer(),
                &outcome);
@@ -252,7 +262,7 @@ std::shared_ptr<Run> Select(const ConfigArgument& config, const std::string& dat
   bool selected = false;
   ClearStopRequest();
   {
-    const ScopedStopPoll poll([&watch] { return watch.Interrupted(); });
+    const ScopedStopPoll poll([&watch] { return watch.PolledInterrupted(); });
     py::gil_scoped_release release;
     selected = SelectCommand(setup, watch.Request(out_dir, write, report, !config.is_text),
                              watch.Observer(), line, nullptr, &outcome, &error);

@@ -321,8 +321,9 @@ def test_export_and_predict_take_the_runs_model_out(campaign, tmp_path):
     assert header.endswith(".h") and (tmp_path / "c" / (stem + ".c")).exists()
     assert (tmp_path / "c" / (stem + "_example.c")).exists()
 
-    predictions = vesselid.predict(cli, speed=7.7, out=tmp_path / "predict")
-    subprocess.run([BINARY, "predict", str(cli), "--speed", "7.7", "--out",
+    # 20 draws, not the default 100: the same numbers either way is what is checked.
+    predictions = vesselid.predict(cli, speed=7.7, members=20, out=tmp_path / "predict")
+    subprocess.run([BINARY, "predict", str(cli), "--speed", "7.7", "--members", "20", "--out",
                     str(tmp_path / "cli_predict")], check=True, stdout=subprocess.DEVNULL)
     with open(tmp_path / "cli_predict" / "predictions.json", encoding="utf-8") as f:
         expected = json.load(f)
@@ -340,7 +341,7 @@ def test_export_and_predict_take_the_runs_model_out(campaign, tmp_path):
     assert from_memory.pop("results") == str(campaign["path"])
     model.pop("results")
     assert from_memory == model
-    in_memory = vesselid.predict(result, speed=7.7)
+    in_memory = vesselid.predict(result, speed=7.7, members=20)
     in_memory.pop("text")
     assert in_memory.pop("results") == str(campaign["path"])
     expected.pop("results")

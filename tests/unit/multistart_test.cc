@@ -6,7 +6,9 @@
 
 #include <cmath>
 #include <limits>
+#include <thread>
 
+#include "engine/base/stop_request.h"
 #include "engine/solve/halton_sequence.h"
 #include "engine/solve/search_box.h"
 #include "engine/solve/stage.h"
@@ -174,6 +176,33 @@ TEST(HaltonSequence, FillsTheCubeEvenlyAndDependsOnTheSeed) {
   for (const auto& q : quarters) {
     for (int n : q) EXPECT_NEAR(n, 16, 2);
   }
+}
+
+// A stop request (Ctrl-C) ends the screening at its next point: here the embedding program's
+// check (a Python Ctrl-C, stop_request.h) answers yes at the caller's 50th poll of 4000
+// points. The check is the thread's own: a run on another thread that sets and ends its own
+// leaves this one's in place.
+TEST(Multistart, AStopRequestEndsTheScreeningAtTheNextPoint) {
+  auto model = nomoto::MakeSecondOrderHandle();
+  Experiment e = RealisticPatrol(*model);
+  auto problem = Problem(*model, e, PatrolSpecs(3.0, 0.2, 0.3, -0.1));
+  int polls = 0;
+  const ScopedStopPoll poll([&polls] { return ++polls >= 50; });
+  std::thread([] { const ScopedStopPoll other([] { return false; }); }).join();
+  ASSERT_TRUE(StopPoll());
+  GlobalStartOptions options;
+  options.points = 4000;
+  options.threads = 2;
+  GlobalStartSummary summary;
+  ClearStopRequest();
+  RunGlobalStart(options, problem.get(), &summary);
+  const bool stopped = StopRequested();
+  ClearStopRequest();
+  EXPECT_TRUE(stopped);
+  EXPECT_EQ(polls, 50);  // asked no more once the request was made
+  EXPECT_GE(summary.evaluations, 50);
+  EXPECT_LT(summary.evaluations, 200);  // the other thread stops at its next point too
+  EXPECT_EQ(summary.failed_evaluations, 0);  // the points left out are not failures
 }
 
 TEST(Multistart, SameResultForAnyThreadCount) {
