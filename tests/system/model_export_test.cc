@@ -411,6 +411,22 @@ TEST_P(ModelExport, FmuAndCReproduceTheEnginesSimulationOfTheFirstRecord) {
   fs::remove_all(dir);
 }
 
+// VESSELID_FMU_RUNTIME names the runtime the FMU packs: a file, or a clear refusal (a folder
+// given there once aborted the export on an uncaught stream error).
+TEST(FmuRuntime, TheVariableNamesAFileOrIsRefused) {
+  std::string error;
+  ASSERT_EQ(setenv("VESSELID_FMU_RUNTIME", VESSELID_FMU_RUNTIME, 1), 0);
+  EXPECT_EQ(FindFmuRuntime(&error), VESSELID_FMU_RUNTIME) << error;
+  const fs::path folder = fs::temp_directory_path();
+  ASSERT_EQ(setenv("VESSELID_FMU_RUNTIME", folder.c_str(), 1), 0);
+  EXPECT_EQ(FindFmuRuntime(&error), "");
+  EXPECT_EQ(error, "VESSELID_FMU_RUNTIME: " + folder.string() + ": not a file");
+  ASSERT_EQ(setenv("VESSELID_FMU_RUNTIME", (folder / "no_such_runtime.so").c_str(), 1), 0);
+  EXPECT_EQ(FindFmuRuntime(&error), "");
+  EXPECT_NE(error.find(": no such file"), std::string::npos) << error;
+  unsetenv("VESSELID_FMU_RUNTIME");
+}
+
 // `vesselid export` on a finished run (the tanker's n1-form Nomoto model): the C files are
 // written beside; model.json holds the run's final values, the covariance of its estimates
 // (diagonal: their squared standard errors) and 100 draws around the values; the FMU starts its
