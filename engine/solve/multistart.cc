@@ -6,7 +6,6 @@
 #include <limits>
 #include <memory>
 #include <mutex>
-#include <thread>
 
 #include "engine/base/parallel_for.h"
 #include "engine/base/stop_request.h"
@@ -125,11 +124,10 @@ bool RunMultistart(const GlobalStartOptions& options, OutputErrorProblem* proble
   // the points not yet screened out: 4000 points of a long record take seconds.
   std::vector<double> screened(starts.size(), std::numeric_limits<double>::infinity());
   std::vector<char> unscreened(starts.size(), 0);
-  const std::thread::id caller = std::this_thread::get_id();
   ParallelFor(options.points, threads, [&](int i) {
-    // The calling thread also asks the embedding program (a Python Ctrl-C), as progress would
-    // (its check is the calling thread's: stop_request.h).
-    if (std::this_thread::get_id() == caller ? PollStopRequest() : StopRequested()) {
+    // On the calling thread this also asks the embedding program (a Python Ctrl-C), as
+    // progress would; the pool's threads have no check of their own (stop_request.h).
+    if (PollStopRequest()) {
       unscreened[i] = 1;
       return;
     }
