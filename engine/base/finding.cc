@@ -135,6 +135,15 @@ const Row kRows[] = {
      "Under `weights: noise` the per-channel noise model did not settle, or could not be "
      "estimated (the configured weights stay).",
      "Give `weights:` per output."},
+    {K::kDisturbanceModel, "disturbance_model", S::kInfo,
+     "The filter-error method (`noise:`) identified the disturbance with the ship: what the "
+     "model does not explain, named as the noise it is (a sensor's AR(1) noise with its time "
+     "constant and SD, wave yaw with its peak frequency, process noise on a state's equation, a "
+     "drifting bias), judged on the filter's innovations: white innovations say the colour of "
+     "output error's residuals was noise; coloured ones (coloured_residuals on the "
+     "innovations) say structure remains.",
+     "None: read the estimates beside the ship's. A process noise far above what the sea and "
+     "sensors can make stands for structure the model lacks."},
     {K::kGlobalStartDiverged, "global_start_diverged", S::kInfo,
      "Points of the global search whose simulation diverged were left out.",
      "None unless most diverged: then narrow the bounds."},

@@ -46,6 +46,7 @@ enum class FindingKind {
   kIntegrationStep,
   kOutliers,
   kNoiseModel,
+  kDisturbanceModel,
   kGlobalStartDiverged,
   kNarrowIntervals,
   kBootstrap,

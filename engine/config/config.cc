@@ -8,6 +8,7 @@
 #include "ceres/types.h"
 #include "engine/config/config_sections.h"
 #include "engine/config/data_folder.h"
+#include "engine/config/disturbance_config.h"
 #include "engine/config/experiment_data_config.h"
 #include "engine/config/experiment_templates.h"
 #include "engine/config/input_noise_config.h"
@@ -542,7 +543,8 @@ void ReadRegressionSections(const YamlReader& reader, const YAML::Node& node,
                        stage);
     for (const char* key :
          {"loss", "continuation", "global", "least_squares", "free_initial_states",
-          "normalize_by_length", "integration", "initial_state_prior", "outliers", "weights"}) {
+          "normalize_by_length", "integration", "initial_state_prior", "outliers", "weights",
+          "noise"}) {
       if (node[key]) reader.Fail(node[key], Child(path, key), "not used by a step-regression stage");
     }
   }
@@ -552,7 +554,7 @@ void ReadRegressionSections(const YamlReader& reader, const YAML::Node& node,
                   "model " + model.info().name +
                       " has no equation-error form for a least-squares stage");
     }
-    for (const char* key : {"loss", "continuation", "global", "outliers", "weights"}) {
+    for (const char* key : {"loss", "continuation", "global", "outliers", "weights", "noise"}) {
       if (node[key]) reader.Fail(node[key], Child(path, key), "not used by a least-squares stage");
     }
   }
@@ -566,7 +568,8 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
       {"name", "type", "least_squares", "step_regression", "model", "experiments", "validation",
        "validation_per_experiment", "outputs", "parameters", "free_initial_states", "loss",
        "integration", "normalize_by_length", "continuation", "global", "local", "uncertainty",
-       "initial_state_prior", "held_out", "outliers", "velocity_validation", "weights"});
+       "initial_state_prior", "held_out", "outliers", "velocity_validation", "weights",
+       "noise"});
   StageConfig stage;
   if (node["model"]) {
     stage.model = OverrideModel(reader, family, model_node, node["model"], Child(path, "model"),
@@ -618,6 +621,18 @@ StageConfig ReadStage(const YamlReader& reader, const YAML::Node& node, const st
     stage.continuation = ReadSegmentLengths(reader, continuation, Child(path, "continuation"));
   }
   ReadResidualOptions(reader, node, path, &stage);
+  if (const YAML::Node n = node["noise"]) {
+    ReadDisturbance(reader, n, Child(path, "noise"), info, &stage.problem.disturbance);
+    if (stage.problem.disturbance.active() && stage.problem.loss != "none") {
+      reader.Fail(n, Child(path, "noise"),
+                  "the filter-error method's likelihood is Gaussian: no robust loss with it");
+    }
+    if (stage.problem.disturbance.method == DisturbanceSpec::Method::kFilterError &&
+        node["weights"]) {
+      reader.Fail(node["weights"], Child(path, "weights"),
+                  "the filter-error method (noise.method) estimates each output's noise itself");
+    }
+  }
   if (node["global"]) {
     stage.options.use_global_start = true;
     ReadGlobal(reader, node["global"], Child(path, "global"), &stage.options.global,

@@ -150,11 +150,22 @@ void AddResidualFindings(const StageResult& stage, std::vector<Finding>* finding
   std::map<std::string, int> analysed;
   std::map<std::string, double> strong;  // output: the largest RMSE / noise where strong
   std::set<std::string> strong_and_correlated;  // outputs strong in an input-correlated run
+  std::set<std::string> innovation_outputs, innovations_strong;  // the filter-error method
   for (const ResidualAnalysis& a : stage.residuals) {
     if (!a.tested() || a.noise_free || failed.count({a.experiment, a.output}) > 0) continue;
     if (analysed[a.output]++ == 0) outputs.push_back(a.output);
     if (a.coloured()) coloured[a.output].push_back(&a);
     if (a.input_correlated) correlated[a.output].push_back(&a);
+    if (a.innovations) {
+      // A filter's normalised innovations: their RMS is 1 by construction, so the strength is
+      // in the colour alone, or in a correlation with the inputs (dynamics left out).
+      if (a.coloured() && (a.lag1 > kStrongLag1 || a.input_correlated)) {
+        strong[a.output] = std::max(strong[a.output], a.lag1);
+        innovations_strong.insert(a.output);
+      }
+      innovation_outputs.insert(a.output);
+      continue;
+    }
     const auto m = metrics.find({a.experiment, a.output});
     if (a.coloured() && a.lag1 > kStrongLag1 && m != metrics.end() && m->second->noise > 0.0) {
       // What the residual would be without the noise on the measured inputs (its share from
@@ -184,7 +195,19 @@ void AddResidualFindings(const StageResult& stage, std::vector<Finding>* finding
                       100.0 * share);
         f.message += text;
       }
-      if (strong.count(output) > 0) {
+      if (innovation_outputs.count(output) > 0) {
+        f.message = "the filter's innovations of " + output +
+                    " are coloured: the disturbance model (noise:) does not explain all that "
+                    "the ship model leaves" +
+                    f.message.substr(f.message.find(" in "));
+        if (innovations_strong.count(output) > 0) {
+          f.message += "; strongly (lag-1 above 0.3, or correlated with the inputs): structure "
+                       "remains that no noise model should absorb";
+          f.severity = FindingSeverity::kWarning;
+          f.value = strong[output];
+          f.threshold = kStrongLag1;
+        }
+      } else if (strong.count(output) > 0) {
         char text[240];
         std::snprintf(text, sizeof(text),
                       "; the structure is strong (lag-1 above %.1f with an RMSE up to %.3g x the "

@@ -17,6 +17,8 @@
 #include "engine/model/damping_inertia_form.h"
 #include "engine/model/experiment.h"
 #include "engine/model/experiment_cost.h"
+#include "engine/model/filter_error_cost.h"
+#include "engine/model/filter_innovations.h"
 #include "engine/model/expression.h"
 #include "engine/model/model.h"
 #include "engine/model/regression_form.h"
@@ -33,6 +35,22 @@ class ModelHandle {
                                                  std::vector<double> parameter_scales,
                                                  const ceres::LossFunction* loss,
                                                  ExperimentCostOptions options = {}) const = 0;
+
+  // The filter-error method's cost of one experiment (filter_error_cost.h for the block
+  // layout); `layout` and `offsets` must outlive it.
+  virtual ceres::CostFunction* NewFilterErrorCost(const Experiment* experiment,
+                                                  std::vector<double> parameter_scales,
+                                                  const DisturbanceLayout* layout,
+                                                  std::vector<double> noise_scales,
+                                                  std::vector<double> p0,
+                                                  const FilterOffsets* offsets) const = 0;
+
+  // The filter run in double (filter_innovations.h): innovations, their variances and the
+  // k-step-ahead predictions. False if the filter diverges.
+  virtual bool FilterInnovations(const Experiment& experiment, const double* p, const double* x0,
+                                 const double* p0, const DisturbanceLayout& layout,
+                                 const double* theta, int prediction_steps,
+                                 FilterRun* run) const = 0;
 
   // Simulates in double from x0 with parameters p; `outputs` gets every model output at every
   // node (row-major, nodes x outputs). False if the simulation diverges; the nodes it did not
@@ -158,6 +176,22 @@ class ModelAdapter final : public ModelHandle {
                                          ExperimentCostOptions options = {}) const override {
     return new ExperimentCost<Model>(model_, experiment, std::move(parameter_scales), loss,
                                      options);
+  }
+
+  ceres::CostFunction* NewFilterErrorCost(const Experiment* experiment,
+                                          std::vector<double> parameter_scales,
+                                          const DisturbanceLayout* layout,
+                                          std::vector<double> noise_scales, std::vector<double> p0,
+                                          const FilterOffsets* offsets) const override {
+    return new FilterErrorCost<Model>(model_, experiment, std::move(parameter_scales), layout,
+                                      std::move(noise_scales), std::move(p0), offsets);
+  }
+
+  bool FilterInnovations(const Experiment& experiment, const double* p, const double* x0,
+                         const double* p0, const DisturbanceLayout& layout, const double* theta,
+                         int prediction_steps, FilterRun* run) const override {
+    return RunFilterInnovations(model_, experiment, p, x0, p0, layout, theta, prediction_steps,
+                                run);
   }
 
   bool SimulateOutputs(const Experiment& e, const double* p, const double* x0,

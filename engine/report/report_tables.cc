@@ -33,7 +33,9 @@ std::string EstimateRow(const Estimate& e, bool with_experiment, const std::stri
   if (clipped) flag += (flag.empty() ? "" : "; ") + std::string("interval clipped");
   std::string row = std::string(flag.empty() ? "<tr>" : "<tr class=\"flagged\">") + Td(e.name);
   if (with_experiment) {
-    row += Td(e.experiment) + Td(e.kind == EstimateKind::kInitialState ? "initial state" : "parameter");
+    row += Td(e.experiment) + Td(e.kind == EstimateKind::kInitialState ? "initial state"
+                                        : e.kind == EstimateKind::kNoise ? "noise"
+                                                                         : "parameter");
   }
   return row + Td(ParameterRoleToString(e.role)) + Td(unit) + Num(HtmlNumber(e.value, "%.8g")) +
          Num(HtmlNumber(e.std_error, "%.4g")) +

@@ -93,4 +93,46 @@ std::vector<ResidualAnalysis> AnalyseFitResiduals(const ModelInfo& info,
   return analyses;
 }
 
+std::vector<ResidualAnalysis> AnalyseInnovations(const OutputErrorProblem& problem) {
+  std::vector<ResidualAnalysis> analyses;
+  if (!problem.filter_error()) return analyses;
+  const ModelInfo& info = problem.model().info();
+  for (size_t x = 0; x < problem.experiments().size(); ++x) {
+    const Experiment& experiment = problem.experiments()[x];
+    FilterRun run;
+    if (!problem.RunFilter(static_cast<int>(x), 0, &run)) continue;
+    const std::vector<size_t> rows = NodeInputRows(experiment);
+    const size_t num_inputs = static_cast<size_t>(experiment.num_inputs);
+    const size_t cache_rows = num_inputs > 0 ? experiment.input_cache.size() / num_inputs : 0;
+    for (size_t o = 0; o < info.outputs.size(); ++o) {
+      std::vector<double> t, e;
+      std::vector<std::vector<double>> inputs(num_inputs);
+      for (int k = 0; k < experiment.num_nodes(); ++k) {
+        for (int i = experiment.node_first_sample[k]; i < experiment.node_first_sample[k + 1]; ++i) {
+          if (experiment.samples[i].output != static_cast<int>(o)) continue;
+          t.push_back(experiment.node_time[k]);
+          e.push_back(run.innovation[i] / std::sqrt(run.variance[i]));
+          const size_t row = std::min(rows[k], cache_rows > 0 ? cache_rows - 1 : 0);
+          for (size_t u = 0; u < num_inputs && cache_rows > 0; ++u) {
+            inputs[u].push_back(experiment.input_cache[row * num_inputs + u]);
+          }
+        }
+      }
+      if (e.empty()) continue;
+      std::vector<std::string> names;
+      std::vector<std::vector<double>> fed;
+      for (size_t u = 0; u < inputs.size() && u < info.inputs.size(); ++u) {
+        const bool finite = std::all_of(inputs[u].begin(), inputs[u].end(),
+                                        [](double v) { return std::isfinite(v); });
+        if (!finite || inputs[u].size() != e.size()) continue;
+        names.push_back(info.inputs[u]);
+        fed.push_back(std::move(inputs[u]));
+      }
+      analyses.push_back(AnalyseResiduals(experiment.name, info.outputs[o], t, e, names, fed));
+      analyses.back().innovations = true;
+    }
+  }
+  return analyses;
+}
+
 }  // namespace vesselid

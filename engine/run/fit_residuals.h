@@ -9,6 +9,7 @@
 #include "engine/model/experiment.h"
 #include "engine/model/model.h"
 #include "engine/solve/metrics.h"
+#include "engine/solve/output_error_problem.h"
 #include "engine/solve/residual_analysis.h"
 
 namespace vesselid {
@@ -18,5 +19,10 @@ namespace vesselid {
 std::vector<ResidualAnalysis> AnalyseFitResiduals(const ModelInfo& info,
                                                   const std::vector<Experiment>& experiments,
                                                   const std::vector<ExperimentFit>& fits);
+
+// The same of a filter-error problem's normalised innovations nu / sqrt(S) at its current values
+// (a correct model and disturbance make them white, uncorrelated with the inputs); empty for an
+// output-error problem. Each analysis is marked `innovations`.
+std::vector<ResidualAnalysis> AnalyseInnovations(const OutputErrorProblem& problem);
 
 }  // namespace vesselid

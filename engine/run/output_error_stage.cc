@@ -16,6 +16,8 @@
 #include "engine/run/bootstrap_uncertainty.h"
 #include "engine/run/continuation.h"
 #include "engine/run/estimate_specs.h"
+#include "engine/run/disturbance_choice.h"
+#include "engine/run/disturbance_notes.h"
 #include "engine/run/fit_residuals.h"
 #include "engine/run/input_noise_notes.h"
 #include "engine/run/input_noise_uncertainty.h"
@@ -41,6 +43,7 @@ StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>
     Estimate e;
     e.name = v.name;
     e.kind = v.kind == Variable::Kind::kParameter ? EstimateKind::kParameter
+             : v.kind == Variable::Kind::kNoise   ? EstimateKind::kNoise
                                                   : EstimateKind::kInitialState;
     e.role = v.role;
     e.experiment = v.experiment >= 0 ? problem.experiments()[v.experiment].name : "";
@@ -378,6 +381,9 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
   if (on_pieces) extra_starts.push_back(starts);
   StageOptions options = stage.options;
   options.use_global_start = options.use_global_start && stage.continuation.empty();
+  if (stage.problem.disturbance.method == DisturbanceSpec::Method::kFilterError) {
+    options.uncertainty = FilterErrorUncertainty(options.uncertainty);
+  }
   options.local.progress = progress;
   options.global.progress = progress;
   SetFirstSolveWeights(config, stage, problem.get());
@@ -403,11 +409,22 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
       !HandleOutliers(stage, options, &problem, &summary, error)) {
     return false;
   }
+  if (stage.problem.disturbance.method == DisturbanceSpec::Method::kAuto) {
+    std::vector<DisturbanceCandidate> candidates;
+    if (!ChooseDisturbance(stage, options,
+                           AnalyseFitResiduals(model.info(), problem->experiments(), summary.fits),
+                           &problem, &summary, &candidates, error)) {
+      return false;
+    }
+  }
   if (options.compute_uncertainty && IsBootstrap(options.uncertainty.method)) {
     // On the final problem: after the noise weights, step reductions and outlier refinement.
     BootstrapStageUncertainty(options, stage.problem, problem.get(), &summary);
   }
-  AddInputNoiseSpread(config, cache, options, stage.problem, problem.get(), &summary);
+  // The filter-error method carries the inputs' noise as process noise, in its likelihood.
+  if (!problem->filter_error()) {
+    AddInputNoiseSpread(config, cache, options, stage.problem, problem.get(), &summary);
+  }
   summary.notes.insert(summary.notes.begin(), continuation_notes.begin(), continuation_notes.end());
   // The cost at the end point with the first solve's weights: under noise weights the
   // minimised cost is ~N/2 wherever the solve ends, this one ranks end points.
@@ -421,8 +438,14 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
     if (!problem->CostWithChannelWeights(weights, &comparable_cost)) comparable_cost = kUnknown;
   }
   const double integration_step = result->integration_step;
+  // Under the filter-error method the verdict reads the filter's innovations: a correct ship
+  // and disturbance leave them white whatever colour the free run's residuals have.
   std::vector<ResidualAnalysis> residuals =
-      AnalyseFitResiduals(model.info(), problem->experiments(), summary.fits);
+      problem->filter_error()
+          ? AnalyseInnovations(*problem)
+          : AnalyseFitResiduals(model.info(), problem->experiments(), summary.fits);
+  DisturbanceNotes(summary.name, *problem, summary.uncertainty, residuals, &summary.notes,
+                   &summary.findings);
   for (ResidualAnalysis& a : residuals) {
     const auto& share = summary.uncertainty.input_noise_share;
     const auto e = share.find(a.experiment);

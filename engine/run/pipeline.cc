@@ -16,6 +16,7 @@
 #include "engine/run/record_notes.h"
 #include "engine/run/records.h"
 #include "engine/run/step_regression_stage.h"
+#include "engine/run/filter_prediction.h"
 #include "engine/run/velocity_validation.h"
 #include "engine/run/work_size.h"
 
@@ -117,6 +118,7 @@ bool ValidateStage(const RunConfig& config, const StageConfig& stage, const Mode
           MakeFinding(FindingKind::kHeldOutDiverged, "velocity validation: " + d));
     }
   }
+  PredictHeldOutThroughFilter(config, stage, model, values, cache, result);
   return true;
 }
 

@@ -3,11 +3,20 @@
 namespace vesselid {
 
 const char* EstimateKindToString(EstimateKind kind) {
-  return kind == EstimateKind::kInitialState ? "initial_state" : "parameter";
+  switch (kind) {
+    case EstimateKind::kInitialState:
+      return "initial_state";
+    case EstimateKind::kNoise:
+      return "noise";
+    case EstimateKind::kParameter:
+      break;
+  }
+  return "parameter";
 }
 
 bool StringToEstimateKind(const std::string& text, EstimateKind* kind) {
-  for (EstimateKind k : {EstimateKind::kParameter, EstimateKind::kInitialState}) {
+  for (EstimateKind k : {EstimateKind::kParameter, EstimateKind::kInitialState,
+                         EstimateKind::kNoise}) {
     if (text == EstimateKindToString(k)) {
       *kind = k;
       return true;

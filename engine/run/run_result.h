@@ -23,10 +23,11 @@
 
 namespace vesselid {
 
-// What an estimate is of: a model parameter or an experiment's initial state.
-enum class EstimateKind { kParameter, kInitialState };
+// What an estimate is of: a model parameter, an experiment's initial state, or a parameter of
+// the filter-error method's disturbance model (model/disturbance.h).
+enum class EstimateKind { kParameter, kInitialState, kNoise };
 
-const char* EstimateKindToString(EstimateKind kind);  // "parameter", "initial_state"
+const char* EstimateKindToString(EstimateKind kind);  // "parameter", "initial_state", "noise"
 bool StringToEstimateKind(const std::string& text, EstimateKind* kind);
 
 // One estimated or fixed quantity of a stage as reported.

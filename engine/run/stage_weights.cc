@@ -25,6 +25,8 @@ int ComparedOutputCount(const RunConfig& config, const StageConfig& stage) {
 
 bool UsesNoiseWeights(const RunConfig& config, const StageConfig& stage) {
   if (stage.kind != StageConfig::Kind::kOutputError) return false;
+  // The filter-error method estimates each output's noise in its likelihood.
+  if (stage.problem.disturbance.method == DisturbanceSpec::Method::kFilterError) return false;
   switch (stage.weights) {
     case StageConfig::Weights::kNoise:
       return true;

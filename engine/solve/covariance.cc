@@ -106,7 +106,8 @@ bool BlockUncertainty(const OutputErrorProblem& problem, double final_cost,
     if (deficient) NameUndetermined(problem, sigma, v, norms, tolerance, u);
     c_pp = norms.cwiseInverse().asDiagonal() * pseudo * norms.cwiseInverse().asDiagonal();
   }
-  u->residual_variance = 2.0 * final_cost / (m - n);
+  // A likelihood (the filter-error method) is its own scale: J'J is the Fisher information.
+  u->residual_variance = problem.filter_error() ? 1.0 : 2.0 * final_cost / (m - n);
   Eigen::VectorXd scales(ns);
   for (int j = 0; j < ns; ++j) scales[j] = variables[u->variables[j]].scale;
   u->covariance = u->residual_variance * scales.asDiagonal() * c_pp * scales.asDiagonal();
@@ -285,7 +286,7 @@ bool ComputeUncertainty(OutputErrorProblem* problem, double final_cost, Uncertai
   }
   const Eigen::VectorXd inverse_norms = norms.cwiseInverse();
   const Eigen::MatrixXd c = inverse_norms.asDiagonal() * pseudo * inverse_norms.asDiagonal();
-  u->residual_variance = 2.0 * final_cost / (m - n);
+  u->residual_variance = problem->filter_error() ? 1.0 : 2.0 * final_cost / (m - n);
   Eigen::VectorXd scales(n);
   for (int i = 0; i < n; ++i) scales[i] = variables[u->variables[i]].scale;
   u->covariance = u->residual_variance * scales.asDiagonal() * c * scales.asDiagonal();

@@ -59,6 +59,63 @@ class PriorCost final : public ceres::SizedCostFunction<1, 1> {
 
 }  // namespace
 
+namespace {
+
+std::vector<double> NoiseScales(const DisturbanceLayout& layout) {
+  std::vector<double> scales;
+  for (const NoiseParameter& p : layout.parameters) scales.push_back(p.start);
+  return scales;
+}
+
+}  // namespace
+
+bool OutputErrorProblem::BuildLayout(const std::vector<ParameterSpec>& specs,
+                                     const OutputErrorOptions& options, OutputErrorProblem* p,
+                                     std::string* error) {
+  const ModelInfo& info = p->model_->info();
+  const size_t ny = info.outputs.size(), nx = info.states.size();
+  DisturbanceScales scales;
+  std::vector<double> power(ny, 0.0), count(ny, 0.0);
+  scales.state_magnitude.assign(nx, 0.0);
+  std::vector<double> parameters;
+  for (const ParameterSpec& spec : specs) parameters.push_back(spec.start);
+  std::vector<double> intervals;
+  p->initial_variance_.clear();
+  for (const Experiment& e : p->experiments_) {
+    for (size_t j = 0; j < ny; ++j) {
+      if (e.output_sample_count[j] == 0) continue;
+      count[j] += e.output_sample_count[j];
+      power[j] += e.channel_noise_power[j];
+    }
+    const std::vector<double>& x0 =
+        e.initial_state_guess.size() == nx ? e.initial_state_guess : e.initial_state;
+    p->model_->StateLimits(e, parameters.data(), x0.data(), scales.state_magnitude.data());
+    for (int k = 0; k + 1 < e.num_nodes(); ++k) {
+      intervals.push_back(e.node_time[k + 1] - e.node_time[k]);
+    }
+    // P0: the start's variance where the initial state is not estimated (NaN: exact).
+    std::vector<double> variance(nx, 0.0);
+    for (size_t s = 0; s < nx; ++s) {
+      const bool free = std::find(options.free_initial_states.begin(),
+                                  options.free_initial_states.end(),
+                                  info.states[s]) != options.free_initial_states.end();
+      const double sigma = s < e.initial_state_sigma.size() ? e.initial_state_sigma[s] : NAN;
+      if (!free && std::isfinite(sigma) && sigma > 0.0) variance[s] = sigma * sigma;
+    }
+    p->initial_variance_.push_back(variance);
+  }
+  for (size_t j = 0; j < ny; ++j) {
+    scales.noise_level.push_back(power[j] > 0.0 ? std::sqrt(power[j] / count[j]) : NAN);
+    if (count[j] > 0) scales.compared.push_back(static_cast<int>(j));
+  }
+  scales.sample_interval = intervals.empty() ? 1.0 : UpperMedian(intervals);
+  if (!BuildDisturbanceLayout(options.disturbance, info, scales, &p->layout_, error)) return false;
+  // log S + c >= 1 for every S above the floor (filter_error_cost.h).
+  p->offsets_->c.assign(ny, 0.0);
+  for (size_t j = 0; j < ny; ++j) p->offsets_->c[j] = 1.0 - std::log(p->layout_.outputs[j].floor);
+  return true;
+}
+
 void OutputErrorProblem::AddInitialStatePriors(const InitialStatePrior& prior,
                                                OutputErrorProblem* p) {
   if (prior.apply == InitialStatePrior::Apply::kOff) return;
@@ -93,7 +150,14 @@ void OutputErrorProblem::AddInitialStatePriors(const InitialStatePrior& prior,
       Variable& v = *states[i];
       const Experiment& e = p->experiments_[v.experiment];
       const double guess = guesses[i];
-      if (e.prior_weight > 0.0) {
+      // Under the filter-error method the prior is a Gaussian one in the likelihood's own
+      // units: r = (x0 - guess) / (scale sigma).
+      static const double kUnit = 1.0;
+      if (p->filter_error_) {
+        p->problem_->AddResidualBlock(
+            new PriorCost(&kUnit, 1.0 / (prior.scale * sigmas[i]), guess, v.scale), nullptr,
+            v.block);
+      } else if (e.prior_weight > 0.0) {
         p->problem_->AddResidualBlock(
             new PriorCost(&e.prior_weight, 1.0 / (prior.scale * sigmas[i]), guess, v.scale), nullptr,
             v.block);
@@ -139,6 +203,22 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
     return nullptr;
   }
   if (!MakeLoss(options, &p->loss_, error)) return nullptr;
+  p->filter_error_ = options.disturbance.method == DisturbanceSpec::Method::kFilterError;
+  if (p->filter_error_) {
+    if (options.loss != "none") {
+      *error = "a robust loss (" + options.loss +
+               ") with the filter-error method: the likelihood is Gaussian; use loss none";
+      return nullptr;
+    }
+    for (const Experiment& e : p->experiments_) {
+      if (e.num_input_corrections() > 0) {
+        *error = "experiment " + e.name +
+                 ": input noise (input corrections) with the filter-error method; model the "
+                 "input's noise as process noise instead";
+        return nullptr;
+      }
+    }
+  }
 
   // Specs by model parameter index; unnamed parameters fixed at their defaults.
   std::vector<ParameterSpec> specs(info.parameters.size());
@@ -172,8 +252,10 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
   // to be reproducible from run to run and thread to thread.
   size_t corrections = 0;
   for (const Experiment& e : p->experiments_) corrections += e.num_input_corrections();
+  if (p->filter_error_ && !BuildLayout(specs, options, p.get(), error)) return nullptr;
   p->storage_.reserve(specs.size() * (p->experiments_.size() + 1) +
-                      info.states.size() * p->experiments_.size() + corrections);
+                      info.states.size() * p->experiments_.size() + corrections +
+                      p->layout_.parameters.size());
   auto add_variable = [&](Variable v, double start) {
     p->storage_.push_back(start / v.scale);
     v.block = &p->storage_.back();
@@ -244,6 +326,24 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
     }
   }
 
+  // The disturbance's parameters: shared, after every other variable.
+  for (int k = 0; k < p->layout_.size(); ++k) {
+    const NoiseParameter& noise = p->layout_.parameters[k];
+    Variable v;
+    v.index = k;
+    v.name = noise.name;
+    v.kind = Variable::Kind::kNoise;
+    v.scale = noise.start;
+    v.lower = noise.lower;
+    v.upper = noise.upper;
+    auto carried = options.noise_starts.find(noise.name);
+    const double start = carried != options.noise_starts.end()
+                             ? std::clamp(carried->second, noise.lower, noise.upper)
+                             : noise.start;
+    const int index = add_variable(v, start);
+    for (int e = 0; e < num_experiments; ++e) p->block_of_[e].push_back(index);
+  }
+
   p->problem_ = std::make_unique<ceres::Problem>();
   // Only Ceres' bounded trust region asks twice at one point on Jets (its projected line
   // search, evaluation_cache.h); without bounds a cache would hold Jacobians per experiment
@@ -260,14 +360,18 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
     for (int index : p->block_of_[e]) blocks.push_back(p->variables_[index].block);
     ExperimentCostOptions cost_options;
     cost_options.counts = p->counts_.get();
-    if (options.evaluation_cache && bounded) {
+    if (options.evaluation_cache && bounded && !p->filter_error_) {
       p->caches_.push_back(std::make_unique<EvaluationCache>(p->experiments_[e].num_samples(),
                                                              static_cast<int>(blocks.size())));
       cost_options.cache = p->caches_.back().get();
     }
-    p->data_blocks_.push_back(p->problem_->AddResidualBlock(
-        model->NewExperimentCost(&p->experiments_[e], scales, p->loss_.get(), cost_options),
-        nullptr, blocks));
+    ceres::CostFunction* cost =
+        p->filter_error_
+            ? model->NewFilterErrorCost(&p->experiments_[e], scales, &p->layout_,
+                                        NoiseScales(p->layout_), p->initial_variance_[e],
+                                        p->offsets_.get())
+            : model->NewExperimentCost(&p->experiments_[e], scales, p->loss_.get(), cost_options);
+    p->data_blocks_.push_back(p->problem_->AddResidualBlock(cost, nullptr, blocks));
   }
   AddInitialStatePriors(options.prior, p.get());
   AddInputCorrectionPriors(p.get());
@@ -314,10 +418,58 @@ bool OutputErrorProblem::CostWithChannelWeights(const std::vector<std::vector<do
   return ok;
 }
 
-int OutputErrorProblem::num_residuals() const {
+int OutputErrorProblem::num_samples() const {
   int total = 0;
   for (const Experiment& e : experiments_) total += e.num_samples();
   return total;
+}
+
+int OutputErrorProblem::num_residuals() const {
+  return filter_error_ ? 2 * num_samples() : num_samples();
+}
+
+std::vector<double> OutputErrorProblem::NoiseValues() const {
+  std::vector<double> values;
+  for (const Variable& v : variables_) {
+    if (v.kind == Variable::Kind::kNoise) values.push_back(v.value());
+  }
+  return values;
+}
+
+bool OutputErrorProblem::RunFilter(int e, int steps, FilterRun* run) const {
+  if (!filter_error_) return false;
+  const std::vector<double> p = ParametersOf(e), x0 = InitialStateOf(e), theta = NoiseValues();
+  return model_->FilterInnovations(experiments_[e], p.data(), x0.data(),
+                                   initial_variance_[e].data(), layout_, theta.data(), steps, run);
+}
+
+double OutputErrorProblem::NegativeLogLikelihood() const {
+  if (!filter_error_) return std::numeric_limits<double>::quiet_NaN();
+  double total = 0.0;
+  for (size_t e = 0; e < experiments_.size(); ++e) {
+    FilterRun run;
+    if (!RunFilter(static_cast<int>(e), 0, &run)) return std::numeric_limits<double>::quiet_NaN();
+    total += run.negative_log_likelihood;
+  }
+  return total;
+}
+
+std::vector<double> OutputErrorProblem::CentreLikelihood() {
+  std::vector<double> solve = offsets_->c;
+  if (!filter_error_) return solve;
+  std::vector<double> lowest(solve.size(), std::numeric_limits<double>::infinity());
+  for (size_t e = 0; e < experiments_.size(); ++e) {
+    FilterRun run;
+    if (!RunFilter(static_cast<int>(e), 0, &run)) return solve;
+    for (int i = 0; i < experiments_[e].num_samples(); ++i) {
+      const int j = experiments_[e].samples[i].output;
+      lowest[j] = std::min(lowest[j], std::log(run.variance[i]));
+    }
+  }
+  for (size_t j = 0; j < lowest.size(); ++j) {
+    if (std::isfinite(lowest[j])) offsets_->c[j] = 1.0 - lowest[j];
+  }
+  return solve;
 }
 
 int OutputErrorProblem::num_free() const {
@@ -343,7 +495,8 @@ std::vector<double> OutputErrorProblem::InitialStateOf(int e) const {
 std::vector<double> OutputErrorProblem::InputCorrectionsOf(int e) const {
   std::vector<double> values;
   const size_t first = model_->info().parameters.size() + model_->info().states.size();
-  for (size_t j = first; j < block_of_[e].size(); ++j)
+  const size_t last = first + experiments_[e].num_input_corrections();
+  for (size_t j = first; j < last; ++j)
     values.push_back(variables_[block_of_[e][j]].value());
   return values;
 }

@@ -8,11 +8,13 @@
 // Ceres' Schur and SuiteSparse solvers exploit). Fixed quantities are constant blocks.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "ceres/ceres.h"
+#include "engine/model/disturbance.h"
 #include "engine/model/evaluation_cache.h"
 #include "engine/model/experiment.h"
 #include "engine/model/model_handle.h"
@@ -22,8 +24,9 @@ namespace vesselid {
 
 // One scalar unknown of the problem.
 struct Variable {
-  // kInputCorrection: one low-frequency correction value of a noisy input (input_noise.h).
-  enum class Kind { kParameter, kInitialState, kInputCorrection };
+  // kInputCorrection: one low-frequency correction value of a noisy input (input_noise.h);
+  // kNoise: a parameter of the filter-error method's disturbance model (disturbance.h).
+  enum class Kind { kParameter, kInitialState, kInputCorrection, kNoise };
   std::string name;  // "T1", "delta_0[run2]", "x0.psi[run2]", "c.delta#3[run2]"
   Kind kind = Kind::kParameter;
   int index = 0;        // parameter, state or input index in the model
@@ -66,6 +69,14 @@ struct OutputErrorOptions {
   // Each experiment's cost keeps its last evaluation of each kind and copies it when asked
   // again at the same values (evaluation_cache.h); off: every evaluation simulates.
   bool evaluation_cache = true;
+  // method filter_error: each experiment's cost is the Kalman filter's innovations likelihood
+  // (filter_error_cost.h) with the disturbance's parameters as shared variables (Kind::kNoise,
+  // after every other variable); method auto is the stage's to resolve before (a problem
+  // treats it as output error).
+  DisturbanceSpec disturbance;
+  // Starts a noise parameter takes instead of the layout's (by name, e.g. from an earlier
+  // stage or candidate).
+  std::map<std::string, double> noise_starts;
 };
 
 class OutputErrorProblem {
@@ -86,7 +97,26 @@ class OutputErrorProblem {
   const ModelHandle& model() const { return *model_; }
   const std::vector<Variable>& variables() const { return variables_; }
   const std::vector<Experiment>& experiments() const { return experiments_; }
-  int num_residuals() const;  // data samples (initial-state priors not counted)
+  // Rows of the experiments' residual blocks (initial-state priors not counted): the data
+  // samples, twice that under the filter-error method (two residuals per sample).
+  int num_residuals() const;
+  int num_samples() const;  // data samples
+
+  // The filter-error method: whether this problem is one, its disturbance's layout, and the
+  // noise parameters' current values (layout order, physical units).
+  bool filter_error() const { return filter_error_; }
+  const DisturbanceLayout& disturbance() const { return layout_; }
+  std::vector<double> NoiseValues() const;
+  // The filter run of experiment e at the current values (filter_innovations.h); false if it
+  // diverges. `steps`: the k of the k-step-ahead predictions (0: none).
+  bool RunFilter(int e, int steps, FilterRun* run) const;
+  // -log L of the innovations summed over the experiments at the current values (NaN when a
+  // filter diverges or this is not a filter-error problem).
+  double NegativeLogLikelihood() const;
+  // Sets the likelihood residuals' offsets so that J'J is the Fisher information at the
+  // current values (filter_error_cost.h) and returns the solve's, for RestoreOffsets.
+  std::vector<double> CentreLikelihood();
+  void RestoreOffsets(const std::vector<double>& offsets) { offsets_->c = offsets; }
   // The residual blocks of the experiments, in experiment order (without the priors).
   const std::vector<ceres::ResidualBlockId>& data_residual_blocks() const { return data_blocks_; }
   int num_free() const;
@@ -122,6 +152,10 @@ class OutputErrorProblem {
 
  private:
   OutputErrorProblem() = default;
+  // The filter-error method's disturbance layout, its initial variances and offsets.
+  static bool BuildLayout(const std::vector<ParameterSpec>& specs,
+                          const OutputErrorOptions& options, OutputErrorProblem* p,
+                          std::string* error);
   // Prior residuals and bounds of the free initial states (InitialStatePrior).
   static void AddInitialStatePriors(const InitialStatePrior& prior, OutputErrorProblem* p);
   // Prior residuals of the input corrections: r = prior_weight c / sigma_c (input_noise.h).
@@ -136,6 +170,10 @@ class OutputErrorProblem {
   std::vector<ceres::ResidualBlockId> data_blocks_;
   std::unique_ptr<EvaluationCounts> counts_ = std::make_unique<EvaluationCounts>();
   std::vector<std::unique_ptr<EvaluationCache>> caches_;  // per experiment (if enabled)
+  bool filter_error_ = false;
+  DisturbanceLayout layout_;
+  std::unique_ptr<FilterOffsets> offsets_ = std::make_unique<FilterOffsets>();
+  std::vector<std::vector<double>> initial_variance_;  // per experiment, per state (filter P0)
   std::vector<double> storage_;  // every block, reserved once: stable, ordered addresses
   std::vector<Variable> variables_;
   // block_of_[e][j]: variable index of block j (parameters, states, then input corrections) of

@@ -66,6 +66,9 @@ struct ResidualAnalysis {
   // quantile over the input noise refits, input_noise_uncertainty.h); 0 when no input was
   // found noisy.
   double input_noise_share = 0.0;
+  // The series are a filter's normalised innovations (the filter-error method), not a free
+  // run's residuals.
+  bool innovations = false;
 
   bool tested() const { return lags > 0; }
   // What the coloured_residuals finding says: whiteness rejected (Ljung-Box) and the lag-1

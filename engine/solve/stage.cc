@@ -300,6 +300,9 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
   OrderExchangeable(problem, &summary->notes);
 
   if (options.compute_uncertainty) {
+    // The filter-error method's J'J is the Fisher information once its likelihood residuals
+    // are centred at the optimum (filter_error_cost.h); the solve's offsets are put back after.
+    const std::vector<double> solve_offsets = problem->CentreLikelihood();
     // One Jet simulation at the optimum serves the HAC and the local analysis.
     SolutionJacobian solution;
     UncertaintyOptions uncertainty = options.uncertainty;
@@ -319,6 +322,7 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
                               evaluated ? &solution : nullptr)) {
       summary->notes.push_back("local analysis: " + summary->analysis.message);
     }
+    problem->RestoreOffsets(solve_offsets);
   }
   // The solve and the Jacobian at the optimum are done: the cached evaluations (a Jacobian
   // per experiment) are not kept with the results.

@@ -684,6 +684,22 @@ const std::map<std::string, std::string> kShownElsewhere = {
     {"max_profile_evaluations", "tests/system/thrust_law_fit_test.cc"},
     // Needs another run's output folder.
     {"reference", "tests/python/test_reference_model.py"},
+    // The filter-error method's section (docs/models.md "Disturbance models").
+    {"noise", "tests/system/filter_error_run_test.cc"},
+    {"method", "tests/system/filter_error_run_test.cc"},
+    {"angles", "tests/system/filter_error_run_test.cc"},
+    {"measurement", "tests/system/filter_error_run_test.cc"},
+    {"process", "tests/system/filter_error_run_test.cc"},
+    {"wave", "tests/system/filter_error_run_test.cc"},
+    {"bias", "tests/system/filter_error_run_test.cc"},
+    {"prediction_steps", "tests/system/filter_error_run_test.cc"},
+    {"tau", "tests/system/filter_error_run_test.cc"},
+    {"white", "tests/system/filter_error_run_test.cc"},
+    {"omega", "tests/system/filter_error_run_test.cc"},
+    {"zeta", "tests/system/filter_error_run_test.cc"},
+    {"q", "tests/system/filter_error_run_test.cc"},
+    {"initial_sd", "tests/system/filter_error_run_test.cc"},
+    {"sigma", "tests/system/filter_error_run_test.cc"},
 };
 // Every documented key has a case here that adds it (more occurrences in `with` than in
 // `base`), is the template's skeleton, or is shown by a named test that names it.

@@ -1,0 +1,279 @@
+#include "engine/run/disturbance_choice.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "engine/run/estimate_specs.h"
+
+namespace vesselid {
+namespace {
+
+// States whose equation the inputs drive: df_i/du != 0 at the first node of the first
+// experiment (forward differences of the model's right-hand side).
+std::vector<int> InputDrivenStates(const ModelHandle& model, const OutputErrorProblem& solved) {
+  const ModelInfo& info = model.info();
+  const size_t nx = info.states.size(), nu = info.inputs.size();
+  std::vector<int> states;
+  if (solved.experiments().empty() || nu == 0) return states;
+  const Experiment& e = solved.experiments().front();
+  const std::vector<double> p = solved.ParametersOf(0), x = solved.InitialStateOf(0);
+  std::vector<double> u(e.input_cache.begin(), e.input_cache.begin() + nu);
+  std::vector<double> f0(nx), f1(nx);
+  if (!model.Derivative(x.data(), u.data(), p.data(), f0.data())) return states;
+  std::vector<bool> driven(nx, false);
+  for (size_t i = 0; i < nu; ++i) {
+    if (!std::isfinite(u[i])) continue;
+    std::vector<double> v = u;
+    const double step = 1e-4 * std::max(1.0, std::abs(u[i]));
+    v[i] += step;
+    if (!model.Derivative(x.data(), v.data(), p.data(), f1.data())) continue;
+    for (size_t s = 0; s < nx; ++s) driven[s] = driven[s] || std::abs(f1[s] - f0[s]) > 1e-12;
+  }
+  for (size_t s = 0; s < nx; ++s) {
+    if (driven[s]) states.push_back(static_cast<int>(s));
+  }
+  return states;
+}
+
+// The stage's problem with `stage.problem`'s options built on `experiments` from the estimate of
+// `solved` (its variables carried by name, the noise parameters too where they exist), solved
+// locally; null (with `error`) when it cannot be built or solved.
+std::unique_ptr<OutputErrorProblem> RefineFromValues(const OutputErrorProblem& solved,
+                                                     std::vector<Experiment> experiments,
+                                                     const StageConfig& stage,
+                                                     StageOptions options, StageSummary* summary,
+                                                     std::string* error) {
+  std::unique_ptr<OutputErrorProblem> refined = OutputErrorProblem::Create(
+      &solved.model(), std::move(experiments), EstimateSpecs(solved), stage.problem, error);
+  if (refined == nullptr) return nullptr;
+  std::map<std::string, double> by_name;
+  for (const Variable& v : solved.variables()) by_name[v.name] = v.value();
+  for (const Variable& v : refined->variables()) {
+    auto found = by_name.find(v.name);
+    if (found != by_name.end()) v.set_value(std::clamp(found->second, v.lower, v.upper));
+  }
+  options.use_global_start = false;
+  options.local.initial_radius = kNearOptimumRadius;  // from the solved estimate
+  StageSummary again;
+  if (!RunStage(options, refined.get(), &again)) {
+    *error = again.message;
+    return nullptr;
+  }
+  again.notes.insert(again.notes.begin(), summary->notes.begin(), summary->notes.end());
+  for (const Finding& f : summary->findings) {
+    if (f.kind != FindingKind::kNarrowIntervals) again.findings.push_back(f);
+  }
+  again.name = summary->name;
+  *summary = std::move(again);
+  return refined;
+}
+
+}  // namespace
+
+std::vector<DisturbanceCandidate> DisturbanceCandidates(
+    const ModelHandle& model, const OutputErrorProblem& solved,
+    const std::vector<ResidualAnalysis>& residuals) {
+  const ModelInfo& info = model.info();
+  std::vector<DisturbanceCandidate> candidates;
+  DisturbanceCandidate oe;
+  oe.name = "output_error";
+  candidates.push_back(oe);
+  DisturbanceSpec base;
+  base.method = DisturbanceSpec::Method::kFilterError;
+  DisturbanceCandidate white;
+  white.name = "white";
+  white.spec = base;
+  candidates.push_back(white);
+  std::vector<std::string> coloured;
+  for (const ResidualAnalysis& a : residuals) {
+    if (a.coloured() &&
+        std::find(coloured.begin(), coloured.end(), a.output) == coloured.end()) {
+      coloured.push_back(a.output);
+    }
+  }
+  DisturbanceSpec ar1 = base;
+  for (const std::string& output : coloured) {
+    DisturbanceSpec::Measurement m;
+    m.output = output;
+    m.type = DisturbanceSpec::Measurement::Type::kAr1;
+    m.white_too = true;
+    ar1.measurement.push_back(m);
+  }
+  DisturbanceSpec process = base;
+  for (int s : InputDrivenStates(model, solved)) {
+    DisturbanceSpec::Process w;
+    w.state = info.states[s];
+    process.process.push_back(w);
+  }
+  if (!ar1.measurement.empty()) {
+    DisturbanceCandidate c;
+    c.spec = ar1;
+    c.name = "ar1(" + JoinNames(coloured) + ")";
+    candidates.push_back(c);
+  }
+  if (!process.process.empty()) {
+    DisturbanceCandidate c;
+    c.spec = process;
+    std::vector<std::string> names;
+    for (const auto& w : process.process) names.push_back(w.state);
+    c.name = "process(" + JoinNames(names) + ")";
+    candidates.push_back(c);
+    if (!ar1.measurement.empty()) {
+      DisturbanceCandidate both;
+      both.spec = ar1;
+      both.spec.process = process.process;
+      both.name = candidates[2].name + " + " + c.name;
+      candidates.push_back(both);
+    }
+  }
+  return candidates;
+}
+
+UncertaintyOptions FilterErrorUncertainty(UncertaintyOptions options) {
+  if (options.method == UncertaintyMethod::kAuto) options.method = UncertaintyMethod::kHessian;
+  options.input_noise = false;
+  return options;
+}
+
+double OutputErrorNegativeLogLikelihood(const OutputErrorProblem& problem) {
+  const ModelInfo& info = problem.model().info();
+  const size_t ny = info.outputs.size();
+  std::vector<double> sse(ny, 0.0), count(ny, 0.0);
+  std::vector<double> outputs;
+  for (size_t e = 0; e < problem.experiments().size(); ++e) {
+    const Experiment& x = problem.experiments()[e];
+    const std::vector<double> p = problem.ParametersOf(static_cast<int>(e));
+    const std::vector<double> x0 = problem.InitialStateOf(static_cast<int>(e));
+    const std::vector<double> c = problem.InputCorrectionsOf(static_cast<int>(e));
+    if (!problem.model().SimulateOutputs(x, p.data(), x0.data(), &outputs,
+                                         c.empty() ? nullptr : c.data())) {
+      return NAN;
+    }
+    for (int k = 0; k < x.num_nodes(); ++k) {
+      for (int i = x.node_first_sample[k]; i < x.node_first_sample[k + 1]; ++i) {
+        const ExperimentSample& s = x.samples[i];
+        double r = outputs[static_cast<size_t>(k) * ny + s.output] - s.value;
+        if (x.Wrapped(s.output)) r -= 2.0 * M_PI * std::round(r / (2.0 * M_PI));
+        sse[s.output] += r * r;
+        count[s.output] += 1.0;
+      }
+    }
+  }
+  double nll = 0.0;
+  for (size_t j = 0; j < ny; ++j) {
+    if (count[j] == 0.0) continue;
+    const double variance = std::max(sse[j] / count[j], 1e-300);
+    nll += 0.5 * count[j] * (std::log(2.0 * M_PI * variance) + 1.0);
+  }
+  return nll;
+}
+
+bool ChooseDisturbance(const StageConfig& stage, const StageOptions& options,
+                       const std::vector<ResidualAnalysis>& residuals,
+                       std::unique_ptr<OutputErrorProblem>* problem, StageSummary* summary,
+                       std::vector<DisturbanceCandidate>* candidates, std::string* error) {
+  OutputErrorProblem& oe = **problem;
+  candidates->clear();
+  const bool coloured = std::any_of(residuals.begin(), residuals.end(),
+                                    [](const ResidualAnalysis& a) { return a.coloured(); });
+  if (!coloured) {
+    summary->notes.push_back(
+        "noise auto: output error kept, its residuals are white (no disturbance model needed)");
+    return true;
+  }
+  *candidates = DisturbanceCandidates(oe.model(), oe, residuals);
+  const double n = oe.num_samples();
+  std::vector<std::unique_ptr<OutputErrorProblem>> solved(candidates->size());
+  std::vector<StageSummary> summaries(candidates->size());
+  std::map<std::string, double> oe_values;
+  for (const Variable& v : oe.variables()) oe_values[v.name] = v.value();
+  for (size_t c = 0; c < candidates->size(); ++c) {
+    DisturbanceCandidate& candidate = (*candidates)[c];
+    if (c == 0) {
+      candidate.negative_log_likelihood = OutputErrorNegativeLogLikelihood(oe);
+      // k: the free unknowns and one sigma per compared output.
+      int outputs = 0;
+      for (size_t j = 0; j < oe.model().info().outputs.size(); ++j) {
+        for (const Experiment& e : oe.experiments()) {
+          if (e.output_sample_count[j] > 0) {
+            ++outputs;
+            break;
+          }
+        }
+      }
+      candidate.unknowns = oe.num_free() + outputs;
+      candidate.solved = std::isfinite(candidate.negative_log_likelihood);
+    } else {
+      StageConfig with = stage;
+      with.problem.disturbance = candidate.spec;
+      with.problem.loss = "none";
+      StageSummary trial = *summary;
+      std::string why;
+      StageOptions quiet = options;
+      quiet.compute_uncertainty = false;  // only the chosen one's intervals, computed below
+      std::unique_ptr<OutputErrorProblem> p =
+          RefineFromValues(oe, oe.experiments(), with, quiet, &trial, &why);
+      if (p == nullptr) {
+        candidate.why = why;
+        continue;
+      }
+      candidate.negative_log_likelihood = p->NegativeLogLikelihood();
+      candidate.unknowns = p->num_free();
+      candidate.solved = std::isfinite(candidate.negative_log_likelihood);
+      solved[c] = std::move(p);
+      summaries[c] = std::move(trial);
+    }
+    candidate.bic = 2.0 * candidate.negative_log_likelihood + candidate.unknowns * std::log(n);
+  }
+  size_t best = 0;
+  for (size_t c = 1; c < candidates->size(); ++c) {
+    if ((*candidates)[c].solved && (*candidates)[c].bic < (*candidates)[best].bic) best = c;
+  }
+  std::string table = "noise auto: BIC (2 -log L + k log N, N " +
+                      std::to_string(static_cast<long>(n)) + ")";
+  for (size_t c = 0; c < candidates->size(); ++c) {
+    const DisturbanceCandidate& d = (*candidates)[c];
+    char text[160];
+    if (d.solved) {
+      std::snprintf(text, sizeof(text), "%s %s %.1f (k %d)%s", c == 0 ? ":" : ";", d.name.c_str(),
+                    d.bic, d.unknowns, c == best ? " chosen" : "");
+    } else {
+      std::snprintf(text, sizeof(text), "%s %s not solved (%s)", c == 0 ? ":" : ";",
+                    d.name.c_str(), d.why.c_str());
+    }
+    table += text;
+  }
+  if (best == 0) {
+    summary->notes.push_back(table);
+    return true;
+  }
+  // The winner solved again with its intervals.
+  StageOptions final_options = options;
+  final_options.uncertainty = FilterErrorUncertainty(options.uncertainty);
+  StageConfig with = stage;
+  with.problem.disturbance = (*candidates)[best].spec;
+  with.problem.loss = "none";
+  StageSummary chosen = *summary;
+  std::unique_ptr<OutputErrorProblem> p =
+      RefineFromValues(*solved[best], solved[best]->experiments(), with, final_options, &chosen,
+                       error);
+  if (p == nullptr) return false;
+  std::string beside = "noise auto: output error's estimates were";
+  for (size_t i = 0; i < oe.variables().size(); ++i) {
+    const Variable& v = oe.variables()[i];
+    if (v.kind != Variable::Kind::kParameter || !v.free || v.experiment >= 0) continue;
+    char text[96];
+    std::snprintf(text, sizeof(text), " %s %.6g (SE %.2g)", v.name.c_str(), v.value(),
+                  summary->uncertainty.StdError(static_cast<int>(i)));
+    beside += text;
+  }
+  chosen.notes.push_back(table);
+  chosen.notes.push_back(beside);
+  *problem = std::move(p);
+  *summary = std::move(chosen);
+  return true;
+}
+
+}  // namespace vesselid

@@ -1,0 +1,207 @@
+// The filter-error method (engine/model/filter_error_cost.h): its derivatives against finite
+// differences, its agreement with output error where the noise is white, and its recovery of a
+// ship and a coloured sensor noise that output error mistakes for structure.
+#include <cmath>
+#include <random>
+
+#include "engine/model/filter_error_cost.h"
+#include "engine/solve/output_error_problem.h"
+#include "engine/solve/stage.h"
+#include "gtest/gtest.h"
+#include "problems/nomoto/handles.h"
+#include "tests/support/nomoto_data.h"
+
+namespace vesselid {
+namespace filter_error_test {
+
+// a1 a0 b T3 delta_0 of a quick patrol-like vessel: T1 2 s, T2 0.3 s, T3 0.2 s, K -0.17 1/s.
+std::vector<double> Truth() {
+  const double t1 = 2.0, t2 = 0.3, k = -0.17;
+  return {1.0 / t1 + 1.0 / t2, 1.0 / (t1 * t2), k / (t1 * t2), 0.2, 0.0};
+}
+
+std::vector<ParameterSpec> Specs(double factor) {
+  const std::vector<double> truth = Truth();
+  const char* names[] = {"a1", "a0", "b", "T3"};
+  std::vector<ParameterSpec> specs;
+  for (int i = 0; i < 4; ++i) {
+    ParameterSpec s;
+    s.name = names[i];
+    s.start = truth[i] * factor;
+    specs.push_back(s);
+  }
+  return specs;
+}
+
+// A closed-loop record of the vessel, psi and r compared, with white rudder noise logged and
+// heading noise `white` plus a first-order Gauss-Markov part (SD ar_sigma, time constant tau)
+// added to the logged heading.
+Experiment Record(const ModelHandle& model, double white, double ar_sigma, double tau,
+                  unsigned seed, double duration = 240.0) {
+  nomoto::ClosedLoopOptions loop = testing::ShortLoop(20.0, seed);
+  loop.duration = duration;
+  loop.sample_time = 0.1;
+  loop.excitation.type = nomoto::Excitation::Type::kMultisine;
+  loop.excitation.periods = {40.0, 17.0, 9.0, 5.0};
+  loop.heading_noise = white;
+  Trajectory data;
+  std::string error;
+  EXPECT_TRUE(nomoto::SimulateClosedLoop(model, Truth(), loop, &data, &error)) << error;
+  std::mt19937 random(seed * 7 + 1);
+  std::normal_distribution<double> normal;
+  const int psi = data.Find("psi");
+  double z = ar_sigma * normal(random);
+  for (size_t k = 0; k < data.t.size(); ++k) {
+    if (k > 0) {
+      const double a = std::exp(-(data.t[k] - data.t[k - 1]) / tau);
+      z = a * z + ar_sigma * std::sqrt(1.0 - a * a) * normal(random);
+    }
+    data.columns[psi][k] += z;
+  }
+  ExperimentSpec spec;
+  spec.name = "run" + std::to_string(seed);
+  spec.inputs = {{"delta", "delta_true"}};
+  spec.outputs = {{"psi", "psi"}};
+  spec.default_interpolation = Interpolation::kLinear;
+  Experiment e;
+  EXPECT_TRUE(BuildExperiment(spec, data, model.info(), ExperimentOptions(), &e, &error)) << error;
+  return e;
+}
+
+double ValueOf(const OutputErrorProblem& p, const std::string& name) {
+  for (const Variable& v : p.variables()) {
+    if (v.name == name) return v.value();
+  }
+  ADD_FAILURE() << "no variable " << name;
+  return NAN;
+}
+
+double StdErrorOf(const OutputErrorProblem& p, const StageSummary& s, const std::string& name) {
+  for (size_t i = 0; i < p.variables().size(); ++i) {
+    if (p.variables()[i].name == name) return s.uncertainty.StdError(static_cast<int>(i));
+  }
+  return NAN;
+}
+
+OutputErrorOptions Ar1Heading() {
+  OutputErrorOptions options;
+  options.disturbance.method = DisturbanceSpec::Method::kFilterError;
+  DisturbanceSpec::Measurement m;
+  m.output = "psi";
+  m.type = DisturbanceSpec::Measurement::Type::kAr1;
+  m.white_too = true;
+  options.disturbance.measurement.push_back(m);
+  DisturbanceSpec::Process w;
+  w.state = "eta2";
+  options.disturbance.process.push_back(w);
+  return options;
+}
+
+TEST(FilterError, JetJacobianMatchesFiniteDifferences) {
+  auto model = nomoto::MakeSecondOrderRatesHandle();
+  std::vector<Experiment> runs = {Record(*model, 0.002, 0.004, 2.0, 3, 60.0)};
+  std::string error;
+  auto problem = OutputErrorProblem::Create(model.get(), runs, Specs(1.2), Ar1Heading(), &error);
+  ASSERT_NE(problem, nullptr) << error;
+  ASSERT_TRUE(problem->filter_error());
+  EXPECT_EQ(problem->disturbance().size(), 4);  // sigma.white, sigma.ar1, tau.ar1, q.eta2
+  ceres::Problem::EvaluateOptions options;
+  options.residual_blocks = problem->data_residual_blocks();
+  std::vector<double*> blocks;
+  for (const Variable& v : problem->variables()) {
+    if (v.free) blocks.push_back(v.block);
+  }
+  options.parameter_blocks = blocks;
+  double cost = 0.0;
+  std::vector<double> residuals;
+  ceres::CRSMatrix jacobian;
+  ASSERT_TRUE(problem->problem()->Evaluate(options, &cost, &residuals, nullptr, &jacobian));
+  // Dense Jacobian from CRS.
+  const int rows = jacobian.num_rows, cols = jacobian.num_cols;
+  std::vector<double> dense(static_cast<size_t>(rows) * cols, 0.0);
+  for (int r = 0; r < rows; ++r) {
+    for (int k = jacobian.rows[r]; k < jacobian.rows[r + 1]; ++k) {
+      dense[static_cast<size_t>(r) * cols + jacobian.cols[k]] = jacobian.values[k];
+    }
+  }
+  for (int c = 0; c < cols; ++c) {
+    const double saved = *blocks[c];
+    const double h = 1e-6 * std::max(1.0, std::abs(saved));
+    std::vector<double> plus, minus;
+    *blocks[c] = saved + h;
+    ASSERT_TRUE(problem->problem()->Evaluate(options, nullptr, &plus, nullptr, nullptr));
+    *blocks[c] = saved - h;
+    ASSERT_TRUE(problem->problem()->Evaluate(options, nullptr, &minus, nullptr, nullptr));
+    *blocks[c] = saved;
+    double worst = 0.0, scale = 0.0;
+    for (int r = 0; r < rows; ++r) {
+      const double fd = (plus[r] - minus[r]) / (2 * h);
+      worst = std::max(worst, std::abs(fd - dense[static_cast<size_t>(r) * cols + c]));
+      scale = std::max(scale, std::abs(fd));
+    }
+    EXPECT_LT(worst, 1e-4 * std::max(scale, 1.0)) << "column " << c;
+  }
+}
+
+TEST(FilterError, WhiteNoiseWithoutProcessNoiseIsOutputError) {
+  // Without process noise and with the start estimated (the filter's P0 zero) the gain is
+  // zero: the innovations are output error's residuals and the likelihood's estimate is output
+  // error's. (With the start taken from the first noisy sample the filter knows its variance,
+  // output error holds it exact: FilterError.AnUncertainStartWidensTheIntervals.)
+  auto model = nomoto::MakeSecondOrderRatesHandle();
+  std::vector<Experiment> runs = {Record(*model, 0.003, 0.0, 1.0, 5)};
+  std::string error;
+  OutputErrorOptions plain;
+  plain.free_initial_states = {"psi"};
+  plain.prior.apply = InitialStatePrior::Apply::kOff;
+  auto oe = OutputErrorProblem::Create(model.get(), runs, Specs(1.3), plain, &error);
+  ASSERT_NE(oe, nullptr) << error;
+  StageSummary oe_summary;
+  ASSERT_TRUE(RunStage(StageOptions(), oe.get(), &oe_summary)) << oe_summary.message;
+  OutputErrorOptions white = plain;
+  white.disturbance.method = DisturbanceSpec::Method::kFilterError;
+  auto fe = OutputErrorProblem::Create(model.get(), runs, Specs(1.3), white, &error);
+  ASSERT_NE(fe, nullptr) << error;
+  StageSummary fe_summary;
+  ASSERT_TRUE(RunStage(StageOptions(), fe.get(), &fe_summary)) << fe_summary.message;
+  for (const char* name : {"a1", "a0", "b", "T3"}) {
+    const double se = StdErrorOf(*oe, oe_summary, name);
+    EXPECT_NEAR(ValueOf(*fe, name), ValueOf(*oe, name), 0.05 * se) << name;
+    EXPECT_NEAR(StdErrorOf(*fe, fe_summary, name), se, 0.05 * se) << name;
+  }
+  EXPECT_NEAR(ValueOf(*fe, "sigma.white.psi"), 0.003, 0.0003);
+}
+
+TEST(FilterError, Ar1HeadingNoiseIsIdentifiedWithTheShip) {
+  auto model = nomoto::MakeSecondOrderRatesHandle();
+  const double sigma = 0.01, tau = 3.0;
+  std::vector<Experiment> runs = {Record(*model, 0.001, sigma, tau, 7, 600.0)};
+  std::string error;
+  auto fe = OutputErrorProblem::Create(model.get(), runs, Specs(1.3), Ar1Heading(), &error);
+  ASSERT_NE(fe, nullptr) << error;
+  StageSummary summary;
+  ASSERT_TRUE(RunStage(StageOptions(), fe.get(), &summary)) << summary.message;
+  const std::vector<double> truth = Truth();
+  const char* names[] = {"a1", "a0", "b", "T3"};
+  for (int i = 0; i < 4; ++i) {
+    const double se = StdErrorOf(*fe, summary, names[i]);
+    EXPECT_GT(se, 0.0) << names[i];
+    EXPECT_LT(std::abs(ValueOf(*fe, names[i]) - truth[i]), 3.5 * se) << names[i];
+  }
+  EXPECT_NEAR(ValueOf(*fe, "sigma.ar1.psi"), sigma, 0.35 * sigma);
+  EXPECT_NEAR(ValueOf(*fe, "tau.ar1.psi"), tau, 0.5 * tau);
+  // The innovations are white where the residuals of the free run are not.
+  FilterRun run;
+  ASSERT_TRUE(fe->RunFilter(0, 10, &run));
+  double lag1 = 0.0, power = 0.0;
+  for (size_t i = 1; i < run.innovation.size(); ++i) {
+    const double a = run.innovation[i] / std::sqrt(run.variance[i]);
+    const double b = run.innovation[i - 1] / std::sqrt(run.variance[i - 1]);
+    lag1 += a * b;
+    power += a * a;
+  }
+  EXPECT_LT(std::abs(lag1 / power), 0.1);
+}
+
+}  // namespace filter_error_test
+}  // namespace vesselid
