@@ -144,6 +144,15 @@ const Row kRows[] = {
      "innovations) say structure remains.",
      "None: read the estimates beside the ship's. A process noise far above what the sea and "
      "sensors can make stands for structure the model lacks."},
+    {K::kDisturbanceAbsorbsStructure, "disturbance_absorbs_structure", S::kWarning,
+     "Under `noise: {method: auto}` the chosen disturbance model moved the ship's estimates "
+     "from output error's by more than 10 combined standard errors (sqrt(SE_oe^2 + SE_fe^2)). "
+     "Where the ship model is right, the disturbance changes the estimates within their "
+     "errors (the independent corpus's sensor, gust and drift classes: at most 6.4); where it "
+     "lacks structure (a rudder dead band, backlash, a missing nonlinear term), process noise "
+     "absorbs what the model cannot do and the innovations come out white (9.5-56).",
+     "Look for the missing structure (vesselid select over richer families); the estimates "
+     "of neither method are to be trusted as they are."},
     {K::kGlobalStartDiverged, "global_start_diverged", S::kInfo,
      "Points of the global search whose simulation diverged were left out.",
      "None unless most diverged: then narrow the bounds."},

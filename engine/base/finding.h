@@ -47,6 +47,7 @@ enum class FindingKind {
   kOutliers,
   kNoiseModel,
   kDisturbanceModel,
+  kDisturbanceAbsorbsStructure,
   kGlobalStartDiverged,
   kNarrowIntervals,
   kBootstrap,

@@ -19,7 +19,7 @@ void ReadDisturbance(const YamlReader& reader, const YAML::Node& node, const std
                      const ModelInfo& info, DisturbanceSpec* spec) {
   reader.CheckMap(node, path,
                   {"method", "angles", "measurement", "process", "wave", "bias",
-                   "prediction_steps"});
+                   "prediction_steps", "gain"});
   spec->method = DisturbanceSpec::Method::kFilterError;
   if (const YAML::Node n = node["method"]) {
     const std::string text = reader.String(n, Child(path, "method"));
@@ -144,6 +144,15 @@ void ReadDisturbance(const YamlReader& reader, const YAML::Node& node, const std
       }
       spec->bias.push_back(bias);
     }
+  }
+  if (const YAML::Node g = node["gain"]) {
+    const std::string text = reader.String(g, Child(path, "gain"));
+    if (text == "auto")
+      spec->steady_gain = true;
+    else if (text == "time_varying")
+      spec->steady_gain = false;
+    else
+      reader.Fail(g, Child(path, "gain"), "expected auto or time_varying");
   }
   if (const YAML::Node k = node["prediction_steps"]) {
     spec->prediction_steps = reader.Int(k, Child(path, "prediction_steps"));

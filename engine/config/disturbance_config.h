@@ -8,6 +8,7 @@
 //     wave: {<output>: auto | {omega, zeta, sigma}}
 //     bias: {<output>: auto | {q, initial_sd}}
 //     prediction_steps: <k of the held-out k-step-ahead predictions>
+//     gain: auto | time_varying              steady-state gain once stationary (auto)
 #pragma once
 
 #include <string>

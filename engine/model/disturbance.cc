@@ -76,7 +76,11 @@ std::string DisturbanceLayout::Describe() const {
 
 namespace {
 
-std::string Squared(const std::string& unit) { return unit.empty() ? "" : unit + "^2"; }
+// "rad" -> "rad^2", "rad/s^2" -> "(rad/s^2)^2".
+std::string Squared(const std::string& unit) {
+  if (unit.empty()) return "";
+  return unit.find_first_of("/^*") == std::string::npos ? unit + "^2" : "(" + unit + ")^2";
+}
 
 }  // namespace
 
@@ -88,6 +92,7 @@ bool BuildDisturbanceLayout(const DisturbanceSpec& spec, const ModelInfo& info,
   const int nx = static_cast<int>(info.states.size());
   layout->outputs.assign(ny, {});
   layout->process.assign(nx, -1);
+  layout->steady_gain = spec.steady_gain;
   auto level = [&](int j) {
     const double l = j < static_cast<int>(scales.noise_level.size()) ? scales.noise_level[j] : NAN;
     return l > 0.0 && std::isfinite(l) ? l : 1e-3;

@@ -69,6 +69,9 @@ struct DisturbanceSpec {
   std::vector<Bias> bias;
   // Held-out k-step-ahead predictions through the filter (k nodes ahead).
   int prediction_steps = 10;
+  // auto: the steady-state gain once the filter has converged on a stationary stretch
+  // (kalman_filter.h); time_varying: the gain of every node computed.
+  bool steady_gain = true;
 
   bool active() const { return method != Method::kOutputError; }
   bool empty() const { return measurement.empty() && process.empty() && wave.empty() && bias.empty(); }
@@ -103,6 +106,8 @@ struct DisturbanceLayout {
   };
   std::vector<OutputNoise> outputs;  // per model output
   std::vector<int> process;          // per model state: q parameter index or -1
+  // Freeze the gains once the filter is steady (kalman_filter.h); false: time-varying always.
+  bool steady_gain = true;
 
   int size() const { return static_cast<int>(parameters.size()); }
   bool empty() const { return parameters.empty(); }

@@ -21,9 +21,20 @@
 //   H = [dg_j/dx (forward differences), 1 on output j's disturbance states]
 //   nu = y - g_j(x, u, p) - sum z_j   (wrapped for wrapped angle outputs)
 //   S = H P H' + sigma_j^2 + floor_j,  K = P H' / S,  X += K nu,  P -= (P H')(P H')' / S
-// and visit(sample, nu, S). The initial P is diag(p0) on the model states (the start's
-// variance where the state is not estimated, 0 where it is) and the disturbance's stationary
-// (ar1, wave) or initial (bias) variance.
+// and visit(sample, nu, S).
+//
+// The steady-state gain (layout.steady_gain, `noise: {gain: auto}`): once P after a node's
+// update equals P after the last one's (relative 1e-7) with the same samples, interval and F
+// (relative 1e-6), the filter is stationary and its gains K and variances S per sample of the
+// node are frozen: from then on only the mean moves (RK4 and x += K nu), at about output
+// error's cost per step. Every kSteadyRecheck nodes F is evaluated again; a model whose F
+// moves (a nonlinear one leaving the state it was frozen at), a node with other samples or
+// another interval thaws the filter, which goes on from the frozen P. The frozen gains are
+// Jets: their derivatives are the steady-state gain's.
+//
+// The initial P is diag(p0) on the model states (the start's variance where the state is not
+// estimated, 0 where it is) and the disturbance's stationary (ar1, wave) or initial (bias)
+// variance.
 #pragma once
 
 #include <algorithm>
@@ -38,267 +49,420 @@
 
 namespace vesselid {
 
-// Runs the filter; false when a state or variance stops being finite, the model rejects a
-// state, or an innovation variance is not positive. `p0` (model states) may be null: 0.
+// Nodes between the frozen filter's checks that F is still the one it was frozen with.
+inline constexpr int kSteadyRecheck = 25;
+
+template <class Model, class T>
+class KalmanFilter {
+ public:
+  static constexpr int n = Model::kNumStates;
+  static constexpr int ny = Model::kNumOutputs;
+  static constexpr int D = n + kMaxDisturbanceStates;  // augmented state, at most
+  static constexpr int Z = kMaxDisturbanceStates;
+  static_assert(ny <= 16 && n <= 32, "filter arrays");
+
+  // `p`, `x0` and `theta` (the noise parameters, layout order) must outlive Run; `p0` (model
+  // states' initial variances) may be null: 0.
+  KalmanFilter(const Model& model, const Experiment& e, const DisturbanceLayout& layout,
+               const T* p, const T* x0, const double* p0, const T* theta)
+      : model_(model), e_(e), layout_(layout), p_(p), theta_(theta) {
+    nz_ = layout.num_states;
+    d_ = n + nz_;
+    nu_ = e.num_inputs;
+    Start(x0, p0);
+  }
+
+  // visit(sample, nu, S) per sample; node_visit(node, X, u) after each node's update. False
+  // when a state or variance stops being finite, the model rejects a state, or S <= 0.
+  template <class Visitor, class NodeVisitor>
+  bool Run(Visitor&& visit, NodeVisitor&& node_visit) {
+    const double* u = e_.input_cache.data();
+    const int nodes = e_.num_nodes();
+    for (int k = 0; k < nodes; ++k) {
+      for (int i = 0; i < d_; ++i) {
+        if (!std::isfinite(ScalarPart(x_[i]))) return false;
+      }
+      if (!Update(k, u, visit)) return false;
+      node_visit(k, x_.data(), u);
+      if (k + 1 == nodes) break;
+      interval_before_ = interval_last_;
+      interval_last_ = e_.node_time[k + 1] - e_.node_time[k];
+      if (frozen_ && ++since_check_ >= kSteadyRecheck) {
+        since_check_ = 0;
+        frozen_ = SameJacobian(u);
+      }
+      if (frozen_ && nz_ > 0 && interval_last_ != disturbance_interval_) frozen_ = false;
+      if (!(frozen_ ? MoveMean(k, &u) : Propagate(k, &u))) return false;
+      PropagateDisturbance(interval_last_, !frozen_);
+    }
+    return true;
+  }
+
+ private:
+  T& P(int r, int c) { return cov_[r * D + c]; }
+
+  // x = x0, z = 0; P = diag(p0) and the disturbance's start variance; per output the white
+  // variance, per state the process noise.
+  void Start(const T* x0, const double* p0) {
+    for (int i = 0; i < n; ++i) {
+      x_[i] = x0[i];
+      if (p0 != nullptr) P(i, i) = T(p0[i]);
+    }
+    for (int i = n; i < d_; ++i) x_[i] = T(0.0);
+    for (int j = 0; j < ny; ++j) {
+      const DisturbanceLayout::OutputNoise& o = layout_.outputs[j];
+      white_[j] = T(o.floor);
+      if (o.white >= 0) white_[j] += theta_[o.white] * theta_[o.white];
+      if (o.ar1_state >= 0) {
+        P(n + o.ar1_state, n + o.ar1_state) = theta_[o.ar1_sigma] * theta_[o.ar1_sigma];
+      }
+      if (o.wave_state >= 0) {
+        const T s2 = theta_[o.wave_sigma] * theta_[o.wave_sigma];
+        const int w = n + o.wave_state;
+        P(w, w) = s2;
+        P(w + 1, w + 1) = theta_[o.wave_omega] * theta_[o.wave_omega] * s2;
+      }
+      if (o.bias_state >= 0) {
+        P(n + o.bias_state, n + o.bias_state) = T(o.bias_initial_sd * o.bias_initial_sd);
+      }
+    }
+    for (int i = 0; i < n; ++i) {
+      q_[i] = T(0.0);
+      if (layout_.process[i] >= 0) {
+        q_[i] = theta_[layout_.process[i]];
+        any_process_ = true;
+      }
+    }
+  }
+
+  static double FdStep(const T& v) { return 1e-6 * std::max(std::abs(ScalarPart(v)), 1e-3); }
+
+  // The disturbance states' part of output j's prediction, and H's entries for them.
+  T Disturbance(const DisturbanceLayout::OutputNoise& o, std::array<T, D>* h) const {
+    T sum = T(0.0);
+    for (int z : {o.ar1_state, o.wave_state, o.bias_state}) {
+      if (z < 0) continue;
+      sum += x_[n + z];
+      if (h != nullptr) (*h)[n + z] = T(1.0);
+    }
+    return sum;
+  }
+
+  T Innovation(const ExperimentSample& s, const T& predicted) const {
+    T nu = s.value - predicted;
+    if (e_.Wrapped(s.output)) nu -= 2.0 * M_PI * std::round(ScalarPart(nu) / (2.0 * M_PI));
+    return nu;
+  }
+
+  // Node k's samples, one scalar update each (frozen: with the frozen gains), then the test
+  // for a steady filter.
+  template <class Visitor>
+  bool Update(int k, const double* u, Visitor& visit) {
+    const int first = e_.node_first_sample[k], slots = e_.node_first_sample[k + 1] - first;
+    if (frozen_ && slots != frozen_slots_) frozen_ = false;  // another pattern of samples
+    for (int i = first; i < first + slots; ++i) {
+      const ExperimentSample& s = e_.samples[i];
+      const DisturbanceLayout::OutputNoise& o = layout_.outputs[s.output];
+      model_.Output(x_.data(), u, p_, y_.data());
+      if (frozen_) {
+        const T nu = Innovation(s, y_[s.output] + Disturbance(o, nullptr));
+        const int slot = i - first;
+        for (int r = 0; r < d_; ++r) x_[r] += gain_[slot * D + r] * nu;
+        visit(i, nu, gain_variance_[slot]);
+        continue;
+      }
+      for (int m = 0; m < d_; ++m) h_[m] = T(0.0);
+      for (int m = 0; m < n; ++m) {
+        xp_ = x_;
+        const double step = FdStep(x_[m]);
+        xp_[m] += step;
+        model_.Output(xp_.data(), u, p_, yp_.data());
+        h_[m] = (yp_[s.output] - y_[s.output]) / step;
+      }
+      const T nu = Innovation(s, y_[s.output] + Disturbance(o, &h_));
+      T S = white_[s.output];
+      for (int r = 0; r < d_; ++r) {
+        ph_[r] = T(0.0);
+        for (int c = 0; c < d_; ++c) ph_[r] += P(r, c) * h_[c];
+      }
+      for (int r = 0; r < d_; ++r) S += h_[r] * ph_[r];
+      if (!(ScalarPart(S) > 0.0) || !std::isfinite(ScalarPart(S))) return false;
+      const T inverse = 1.0 / S;
+      if (i - first < ny) {
+        for (int r = 0; r < d_; ++r) gain_[(i - first) * D + r] = ph_[r] * inverse;
+        gain_variance_[i - first] = S;
+      }
+      for (int r = 0; r < d_; ++r) x_[r] += ph_[r] * (nu * inverse);
+      for (int r = 0; r < d_; ++r) {
+        const T pr = ph_[r] * inverse;
+        for (int c = 0; c < d_; ++c) P(r, c) -= pr * ph_[c];
+      }
+      visit(i, nu, S);
+    }
+    if (!frozen_ && slots <= ny) TestSteady(slots);
+    return true;
+  }
+
+  // Freezes the gains when P after this node's update equals P after the last one's (relative
+  // 1e-7) with the same samples, interval and F.
+  void TestSteady(int slots) {
+    double change = 0.0, size = 0.0;
+    for (int r = 0; r < d_; ++r) {
+      for (int c = 0; c < d_; ++c) {
+        const double v = ScalarPart(P(r, c));
+        change = std::max(change, std::abs(v - p_last_[r * D + c]));
+        p_last_[r * D + c] = v;
+      }
+      size = std::max(size, std::abs(ScalarPart(P(r, r))));
+    }
+    if (layout_.steady_gain && f_steady_ && slots == last_slots_ &&
+        interval_last_ == interval_before_ && change <= 1e-7 * size) {
+      frozen_ = true;
+      frozen_slots_ = slots;
+      f_frozen_ = f_last_;
+      since_check_ = 0;
+    }
+    last_slots_ = slots;
+  }
+
+  // Whether F at the current state is still the frozen one (relative 1e-6).
+  bool SameJacobian(const double* u) {
+    if (!model_(x_.data(), u, p_, f0_.data())) return false;
+    double largest = 0.0, moved = 0.0;
+    for (int m = 0; m < n; ++m) {
+      xp_ = x_;
+      const double step = FdStep(x_[m]);
+      xp_[m] += step;
+      if (!model_(xp_.data(), u, p_, f1_.data())) return false;
+      for (int r = 0; r < n; ++r) {
+        const double v = ScalarPart(f1_[r] - f0_[r]) / step;
+        largest = std::max(largest, std::abs(f_frozen_[r * n + m]));
+        moved = std::max(moved, std::abs(v - f_frozen_[r * n + m]));
+      }
+    }
+    return moved <= 1e-6 * largest;
+  }
+
+  // The frozen filter between nodes: the model's mean alone (P and the gains stay).
+  bool MoveMean(int k, const double** u) {
+    const int steps = e_.node_substeps[k];
+    const double h = e_.node_step[k];
+    for (int st = 0; st < steps; ++st, *u += 3 * nu_) {
+      if (!Rk4Step(model_, *u, *u + nu_, *u + 2 * nu_, p_, h, x_.data())) return false;
+    }
+    return true;
+  }
+
+  // phi = I + A + A^2/2 + A^3/6 + A^4/24 with A = F h, F by forward differences at x (and
+  // whether F is the last step's, for TestSteady). False if the model rejects a state.
+  bool Transition(const double* u, double h) {
+    if (!model_(x_.data(), u, p_, f0_.data())) return false;
+    for (int m = 0; m < n; ++m) {
+      xp_ = x_;
+      const double step = FdStep(x_[m]);
+      xp_[m] += step;
+      if (!model_(xp_.data(), u, p_, f1_.data())) return false;
+      for (int r = 0; r < n; ++r) a_[r * n + m] = (f1_[r] - f0_[r]) * (h / step);
+    }
+    double largest = 0.0, moved = 0.0;
+    for (int r = 0; r < n * n; ++r) {
+      const double v = ScalarPart(a_[r]) / h;
+      largest = std::max(largest, std::abs(v));
+      moved = std::max(moved, std::abs(v - f_last_[r]));
+      f_last_[r] = v;
+    }
+    f_steady_ = moved <= 1e-6 * largest;
+    // Horner from the inside out: I + A (I + A/2 (I + A/3 (I + A/4))).
+    for (int r = 0; r < n * n; ++r) tmp_[r] = a_[r] * 0.25;
+    for (double divisor : {3.0, 2.0, 1.0}) {
+      for (int r = 0; r < n; ++r) tmp_[r * n + r] += 1.0;
+      for (int r = 0; r < n; ++r) {
+        for (int c = 0; c < n; ++c) {
+          T sum = T(0.0);
+          for (int m = 0; m < n; ++m) sum += a_[r * n + m] * tmp_[m * n + c];
+          tmp2_[r * n + c] = sum / divisor;
+        }
+      }
+      tmp_ = tmp2_;
+    }
+    for (int r = 0; r < n; ++r) tmp_[r * n + r] += 1.0;
+    phi_ = tmp_;
+    return true;
+  }
+
+  // P_xx <- phi P_xx phi' + h/2 (phi Q phi' + Q),  P_xz <- phi P_xz.
+  void PropagateCovariance(double h) {
+    for (int r = 0; r < n; ++r) {
+      for (int c = 0; c < n; ++c) {
+        T sum = T(0.0);
+        for (int m = 0; m < n; ++m) sum += phi_[r * n + m] * P(m, c);
+        tmp2_[r * n + c] = sum;
+      }
+    }
+    for (int r = 0; r < n; ++r) {
+      for (int c = r; c < n; ++c) {
+        T sum = T(0.0);
+        for (int m = 0; m < n; ++m) sum += tmp2_[r * n + m] * phi_[c * n + m];
+        if (any_process_) {
+          T noise = T(0.0);
+          for (int m = 0; m < n; ++m) noise += phi_[r * n + m] * q_[m] * phi_[c * n + m];
+          if (r == c) noise += q_[r];
+          sum += (0.5 * h) * noise;
+        }
+        P(r, c) = sum;
+        P(c, r) = sum;
+      }
+    }
+    for (int c = n; c < d_; ++c) {
+      for (int r = 0; r < n; ++r) {
+        T sum = T(0.0);
+        for (int m = 0; m < n; ++m) sum += phi_[r * n + m] * P(m, c);
+        xp_[r] = sum;
+      }
+      for (int r = 0; r < n; ++r) {
+        P(r, c) = xp_[r];
+        P(c, r) = xp_[r];
+      }
+    }
+  }
+
+  // The model's mean and covariance from node k to k + 1, step by step.
+  bool Propagate(int k, const double** u) {
+    const int steps = e_.node_substeps[k];
+    const double h = e_.node_step[k];
+    for (int st = 0; st < steps; ++st, *u += 3 * nu_) {
+      if (!Transition(*u, h)) return false;
+      if (!Rk4Step(model_, *u, *u + nu_, *u + 2 * nu_, p_, h, x_.data())) return false;
+      PropagateCovariance(h);
+    }
+    return true;
+  }
+
+  // phi_z and Q_z over `interval` (closed forms, disturbance.h).
+  void DisturbanceTransition(double interval) {
+    using std::cos;
+    using std::exp;
+    using std::sin;
+    using std::sqrt;
+    for (int r = 0; r < Z * Z; ++r) phi_z_[r] = q_z_[r] = T(0.0);
+    for (int j = 0; j < ny; ++j) {
+      const DisturbanceLayout::OutputNoise& o = layout_.outputs[j];
+      if (o.ar1_state >= 0) {
+        const int z = o.ar1_state;
+        const T decay = exp(-interval / theta_[o.ar1_tau]);
+        phi_z_[z * Z + z] = decay;
+        q_z_[z * Z + z] = theta_[o.ar1_sigma] * theta_[o.ar1_sigma] * (1.0 - decay * decay);
+      }
+      if (o.bias_state >= 0) {
+        const int z = o.bias_state;
+        phi_z_[z * Z + z] = T(1.0);
+        q_z_[z * Z + z] = theta_[o.bias_q] * interval;
+      }
+      if (o.wave_state >= 0) {
+        const int z = o.wave_state;
+        const T& omega = theta_[o.wave_omega];
+        const T& zeta = theta_[o.wave_zeta];
+        const T damped = omega * sqrt(1.0 - zeta * zeta);
+        const T envelope = exp(-zeta * omega * interval);
+        const T cosine = cos(damped * interval), sine = sin(damped * interval);
+        const T ratio = zeta * omega / damped;
+        const T f11 = envelope * (cosine + ratio * sine), f12 = envelope * sine / damped;
+        const T f21 = -envelope * omega * omega * sine / damped;
+        const T f22 = envelope * (cosine - ratio * sine);
+        phi_z_[z * Z + z] = f11;
+        phi_z_[z * Z + z + 1] = f12;
+        phi_z_[(z + 1) * Z + z] = f21;
+        phi_z_[(z + 1) * Z + z + 1] = f22;
+        const T s1 = theta_[o.wave_sigma] * theta_[o.wave_sigma];
+        const T s2 = omega * omega * s1;
+        // Q = S - Phi S Phi'
+        q_z_[z * Z + z] = s1 - (f11 * f11 * s1 + f12 * f12 * s2);
+        q_z_[z * Z + z + 1] = -(f11 * f21 * s1 + f12 * f22 * s2);
+        q_z_[(z + 1) * Z + z] = q_z_[z * Z + z + 1];
+        q_z_[(z + 1) * Z + z + 1] = s2 - (f21 * f21 * s1 + f22 * f22 * s2);
+      }
+    }
+  }
+
+  // z <- phi_z z over the node interval; with `covariance`, P_xz <- P_xz phi_z' and
+  // P_zz <- phi_z P_zz phi_z' + Q_z.
+  void PropagateDisturbance(double interval, bool covariance) {
+    if (nz_ == 0) return;
+    if (interval != disturbance_interval_) {
+      disturbance_interval_ = interval;
+      DisturbanceTransition(interval);
+    }
+    std::array<T, Z> zn;
+    for (int r = 0; r < nz_; ++r) {
+      zn[r] = T(0.0);
+      for (int c = 0; c < nz_; ++c) zn[r] += phi_z_[r * Z + c] * x_[n + c];
+    }
+    for (int r = 0; r < nz_; ++r) x_[n + r] = zn[r];
+    if (!covariance) return;
+    for (int r = 0; r < n; ++r) {
+      for (int c = 0; c < nz_; ++c) {
+        zn[c] = T(0.0);
+        for (int m = 0; m < nz_; ++m) zn[c] += P(r, n + m) * phi_z_[c * Z + m];
+      }
+      for (int c = 0; c < nz_; ++c) {
+        P(r, n + c) = zn[c];
+        P(n + c, r) = zn[c];
+      }
+    }
+    std::array<T, Z * Z> pz;
+    for (int r = 0; r < nz_; ++r) {
+      for (int c = 0; c < nz_; ++c) {
+        T sum = T(0.0);
+        for (int m = 0; m < nz_; ++m) sum += phi_z_[r * Z + m] * P(n + m, n + c);
+        pz[r * Z + c] = sum;
+      }
+    }
+    for (int r = 0; r < nz_; ++r) {
+      for (int c = r; c < nz_; ++c) {
+        T sum = q_z_[r * Z + c];
+        for (int m = 0; m < nz_; ++m) sum += pz[r * Z + m] * phi_z_[c * Z + m];
+        P(n + r, n + c) = sum;
+        P(n + c, n + r) = sum;
+      }
+    }
+  }
+
+  const Model& model_;
+  const Experiment& e_;
+  const DisturbanceLayout& layout_;
+  const T* p_;
+  const T* theta_;
+  int nz_ = 0, d_ = 0, nu_ = 0;
+  std::array<T, D> x_{};
+  std::array<T, D * D> cov_{};
+  std::array<T, ny> white_{};
+  std::array<T, n> q_{};
+  bool any_process_ = false;
+  // Work arrays (members: no allocation per step).
+  std::array<T, ny> y_{}, yp_{};
+  std::array<T, D> xp_{}, h_{}, ph_{};
+  std::array<T, n> f0_{}, f1_{};
+  std::array<T, n * n> phi_{}, a_{}, tmp_{}, tmp2_{};
+  std::array<T, Z * Z> phi_z_{}, q_z_{};
+  double disturbance_interval_ = -1.0;
+  // The steady-state filter.
+  bool frozen_ = false;
+  int frozen_slots_ = -1, last_slots_ = -2, since_check_ = 0;
+  std::array<T, ny * D> gain_{};
+  std::array<T, ny> gain_variance_{};
+  std::array<double, D * D> p_last_{};
+  std::array<double, n * n> f_last_{}, f_frozen_{};
+  bool f_steady_ = false;
+  double interval_last_ = -1.0, interval_before_ = -2.0;
+};
+
+// Runs the filter over `e` (see KalmanFilter::Run).
 template <class Model, class T, class Visitor, class NodeVisitor>
 bool RunKalmanFilter(const Model& model, const Experiment& e, const DisturbanceLayout& layout,
                      const T* p, const T* x0, const double* p0, const T* theta, Visitor&& visit,
                      NodeVisitor&& node_visit) {
-  using std::cos;
-  using std::exp;
-  using std::sin;
-  using std::sqrt;
-  constexpr int n = Model::kNumStates;
-  constexpr int ny = Model::kNumOutputs;
-  constexpr int D = n + kMaxDisturbanceStates;
-  static_assert(ny <= 16 && n <= 32, "filter arrays");
-  const int nz = layout.num_states;
-  const int d = n + nz;
-  const int nu = e.num_inputs;
-
-  std::array<T, D> x{};
-  std::array<T, D * D> P{};
-  auto at = [&P](int r, int c) -> T& { return P[r * D + c]; };
-  for (int i = 0; i < n; ++i) {
-    x[i] = x0[i];
-    if (p0 != nullptr) at(i, i) = T(p0[i]);
-  }
-  for (int i = n; i < d; ++i) x[i] = T(0.0);
-
-  std::array<T, ny> white{};
-  for (int j = 0; j < ny; ++j) {
-    const DisturbanceLayout::OutputNoise& o = layout.outputs[j];
-    white[j] = T(o.floor);
-    if (o.white >= 0) white[j] += theta[o.white] * theta[o.white];
-    if (o.ar1_state >= 0) at(n + o.ar1_state, n + o.ar1_state) = theta[o.ar1_sigma] * theta[o.ar1_sigma];
-    if (o.wave_state >= 0) {
-      const T s2 = theta[o.wave_sigma] * theta[o.wave_sigma];
-      const int w = n + o.wave_state;
-      at(w, w) = s2;
-      at(w + 1, w + 1) = theta[o.wave_omega] * theta[o.wave_omega] * s2;
-    }
-    if (o.bias_state >= 0) {
-      at(n + o.bias_state, n + o.bias_state) = T(o.bias_initial_sd * o.bias_initial_sd);
-    }
-  }
-  std::array<T, n> q{};
-  bool any_process = false;
-  for (int i = 0; i < n; ++i) {
-    q[i] = T(0.0);
-    if (layout.process[i] >= 0) {
-      q[i] = theta[layout.process[i]];
-      any_process = true;
-    }
-  }
-
-  std::array<T, ny> y, yp;
-  std::array<T, D> xp, h_row, ph;
-  std::array<T, n> f0, f1;
-  std::array<T, n * n> phi, a, tmp, tmp2;
-  const double* u = e.input_cache.data();
-  const int nodes = e.num_nodes();
-  double last_interval = -1.0;
-  // Disturbance transition over the last interval length (recomputed when it changes).
-  std::array<T, kMaxDisturbanceStates * kMaxDisturbanceStates> phi_z{}, q_z{};
-
-  auto fd_step = [](const T& v) { return 1e-6 * std::max(std::abs(ScalarPart(v)), 1e-3); };
-
-  for (int k = 0; k < nodes; ++k) {
-    for (int i = 0; i < d; ++i) {
-      if (!std::isfinite(ScalarPart(x[i]))) return false;
-    }
-    // Measurement update, one sample at a time.
-    for (int i = e.node_first_sample[k]; i < e.node_first_sample[k + 1]; ++i) {
-      const ExperimentSample& s = e.samples[i];
-      const int j = s.output;
-      const DisturbanceLayout::OutputNoise& o = layout.outputs[j];
-      model.Output(x.data(), u, p, y.data());
-      for (int m = 0; m < d; ++m) h_row[m] = T(0.0);
-      for (int m = 0; m < n; ++m) {
-        xp = x;
-        const double step = fd_step(x[m]);
-        xp[m] += step;
-        model.Output(xp.data(), u, p, yp.data());
-        h_row[m] = (yp[j] - y[j]) / step;
-      }
-      T predicted = y[j];
-      if (o.ar1_state >= 0) {
-        predicted += x[n + o.ar1_state];
-        h_row[n + o.ar1_state] = T(1.0);
-      }
-      if (o.wave_state >= 0) {
-        predicted += x[n + o.wave_state];
-        h_row[n + o.wave_state] = T(1.0);
-      }
-      if (o.bias_state >= 0) {
-        predicted += x[n + o.bias_state];
-        h_row[n + o.bias_state] = T(1.0);
-      }
-      T nu_k = s.value - predicted;
-      if (e.Wrapped(j)) nu_k -= 2.0 * M_PI * std::round(ScalarPart(nu_k) / (2.0 * M_PI));
-      T S = white[j];
-      for (int r = 0; r < d; ++r) {
-        ph[r] = T(0.0);
-        for (int c = 0; c < d; ++c) ph[r] += at(r, c) * h_row[c];
-      }
-      for (int r = 0; r < d; ++r) S += h_row[r] * ph[r];
-      if (!(ScalarPart(S) > 0.0) || !std::isfinite(ScalarPart(S))) return false;
-      const T inverse = 1.0 / S;
-      for (int r = 0; r < d; ++r) x[r] += ph[r] * (nu_k * inverse);
-      for (int r = 0; r < d; ++r) {
-        const T pr = ph[r] * inverse;
-        for (int c = 0; c < d; ++c) at(r, c) -= pr * ph[c];
-      }
-      visit(i, nu_k, S);
-    }
-    node_visit(k, x.data(), u);
-    if (k + 1 == nodes) break;
-
-    // Prediction of the model states and their covariance, step by step.
-    const int steps = e.node_substeps[k];
-    const double h = e.node_step[k];
-    for (int st = 0; st < steps; ++st, u += 3 * nu) {
-      if (!model(x.data(), u, p, f0.data())) return false;
-      for (int m = 0; m < n; ++m) {
-        xp = x;
-        const double step = fd_step(x[m]);
-        xp[m] += step;
-        if (!model(xp.data(), u, p, f1.data())) return false;
-        for (int r = 0; r < n; ++r) a[r * n + m] = (f1[r] - f0[r]) * (h / step);
-      }
-      // phi = I + A (I + A/2 (I + A/3 (I + A/4))), by Horner from the inside out.
-      for (int r = 0; r < n * n; ++r) tmp[r] = a[r] * 0.25;
-      for (double divisor : {3.0, 2.0, 1.0}) {
-        for (int r = 0; r < n; ++r) tmp[r * n + r] += 1.0;
-        for (int r = 0; r < n; ++r) {
-          for (int c = 0; c < n; ++c) {
-            T sum = T(0.0);
-            for (int m = 0; m < n; ++m) sum += a[r * n + m] * tmp[m * n + c];
-            tmp2[r * n + c] = sum / divisor;
-          }
-        }
-        tmp = tmp2;
-      }
-      for (int r = 0; r < n; ++r) tmp[r * n + r] += 1.0;
-      phi = tmp;
-      if (!Rk4Step(model, u, u + nu, u + 2 * nu, p, h, x.data())) return false;
-      // tmp2 = phi P_xx ; then P_xx = tmp2 phi' (+ noise)
-      for (int r = 0; r < n; ++r) {
-        for (int c = 0; c < n; ++c) {
-          T sum = T(0.0);
-          for (int m = 0; m < n; ++m) sum += phi[r * n + m] * at(m, c);
-          tmp2[r * n + c] = sum;
-        }
-      }
-      for (int r = 0; r < n; ++r) {
-        for (int c = r; c < n; ++c) {
-          T sum = T(0.0);
-          for (int m = 0; m < n; ++m) sum += tmp2[r * n + m] * phi[c * n + m];
-          if (any_process) {
-            T noise = T(0.0);
-            for (int m = 0; m < n; ++m) noise += phi[r * n + m] * q[m] * phi[c * n + m];
-            if (r == c) noise += q[r];
-            sum += (0.5 * h) * noise;
-          }
-          at(r, c) = sum;
-          at(c, r) = sum;
-        }
-      }
-      // P_xz <- phi P_xz (and its mirror)
-      for (int c = n; c < d; ++c) {
-        for (int r = 0; r < n; ++r) {
-          T sum = T(0.0);
-          for (int m = 0; m < n; ++m) sum += phi[r * n + m] * at(m, c);
-          xp[r] = sum;
-        }
-        for (int r = 0; r < n; ++r) {
-          at(r, c) = xp[r];
-          at(c, r) = xp[r];
-        }
-      }
-    }
-    if (nz == 0) continue;
-    // The disturbance over the node interval, exactly.
-    const double interval = e.node_time[k + 1] - e.node_time[k];
-    constexpr int Z = kMaxDisturbanceStates;
-    if (interval != last_interval) {
-      last_interval = interval;
-      for (int r = 0; r < Z * Z; ++r) phi_z[r] = q_z[r] = T(0.0);
-      for (int j = 0; j < ny; ++j) {
-        const DisturbanceLayout::OutputNoise& o = layout.outputs[j];
-        if (o.ar1_state >= 0) {
-          const int z = o.ar1_state;
-          const T decay = exp(-interval / theta[o.ar1_tau]);
-          phi_z[z * Z + z] = decay;
-          q_z[z * Z + z] = theta[o.ar1_sigma] * theta[o.ar1_sigma] * (1.0 - decay * decay);
-        }
-        if (o.bias_state >= 0) {
-          const int z = o.bias_state;
-          phi_z[z * Z + z] = T(1.0);
-          q_z[z * Z + z] = theta[o.bias_q] * interval;
-        }
-        if (o.wave_state >= 0) {
-          const int z = o.wave_state;
-          const T& omega = theta[o.wave_omega];
-          const T& zeta = theta[o.wave_zeta];
-          const T damped = omega * sqrt(1.0 - zeta * zeta);
-          const T envelope = exp(-zeta * omega * interval);
-          const T cosine = cos(damped * interval), sine = sin(damped * interval);
-          const T ratio = zeta * omega / damped;
-          const T f11 = envelope * (cosine + ratio * sine), f12 = envelope * sine / damped;
-          const T f21 = -envelope * omega * omega * sine / damped;
-          const T f22 = envelope * (cosine - ratio * sine);
-          phi_z[z * Z + z] = f11;
-          phi_z[z * Z + z + 1] = f12;
-          phi_z[(z + 1) * Z + z] = f21;
-          phi_z[(z + 1) * Z + z + 1] = f22;
-          const T s1 = theta[o.wave_sigma] * theta[o.wave_sigma];
-          const T s2 = omega * omega * s1;
-          // Q = S - Phi S Phi'
-          q_z[z * Z + z] = s1 - (f11 * f11 * s1 + f12 * f12 * s2);
-          q_z[z * Z + z + 1] = -(f11 * f21 * s1 + f12 * f22 * s2);
-          q_z[(z + 1) * Z + z] = q_z[z * Z + z + 1];
-          q_z[(z + 1) * Z + z + 1] = s2 - (f21 * f21 * s1 + f22 * f22 * s2);
-        }
-      }
-    }
-    // z <- Phi_z z
-    std::array<T, Z> zn;
-    for (int r = 0; r < nz; ++r) {
-      zn[r] = T(0.0);
-      for (int c = 0; c < nz; ++c) zn[r] += phi_z[r * Z + c] * x[n + c];
-    }
-    for (int r = 0; r < nz; ++r) x[n + r] = zn[r];
-    // P_xz <- P_xz Phi_z'
-    for (int r = 0; r < n; ++r) {
-      for (int c = 0; c < nz; ++c) {
-        zn[c] = T(0.0);
-        for (int m = 0; m < nz; ++m) zn[c] += at(r, n + m) * phi_z[c * Z + m];
-      }
-      for (int c = 0; c < nz; ++c) {
-        at(r, n + c) = zn[c];
-        at(n + c, r) = zn[c];
-      }
-    }
-    // P_zz <- Phi_z P_zz Phi_z' + Q_z
-    std::array<T, Z * Z> pz;
-    for (int r = 0; r < nz; ++r) {
-      for (int c = 0; c < nz; ++c) {
-        T sum = T(0.0);
-        for (int m = 0; m < nz; ++m) sum += phi_z[r * Z + m] * at(n + m, n + c);
-        pz[r * Z + c] = sum;
-      }
-    }
-    for (int r = 0; r < nz; ++r) {
-      for (int c = r; c < nz; ++c) {
-        T sum = q_z[r * Z + c];
-        for (int m = 0; m < nz; ++m) sum += pz[r * Z + m] * phi_z[c * Z + m];
-        at(n + r, n + c) = sum;
-        at(n + c, n + r) = sum;
-      }
-    }
-  }
-  return true;
+  KalmanFilter<Model, T> filter(model, e, layout, p, x0, p0, theta);
+  return filter.Run(visit, node_visit);
 }
 
 }  // namespace vesselid

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 
 #include "engine/run/estimate_specs.h"
@@ -70,6 +71,80 @@ std::unique_ptr<OutputErrorProblem> RefineFromValues(const OutputErrorProblem& s
   return refined;
 }
 
+// The disturbance_absorbs_structure finding when a shared free parameter of `chosen` lies more
+// than kStructureDisagreement combined SEs from output error's.
+void AddDisagreement(const OutputErrorProblem& oe, const Uncertainty& oe_uncertainty,
+                     const OutputErrorProblem& chosen, const Uncertainty& chosen_uncertainty,
+                     const std::string& name, StageSummary* summary) {
+  std::map<std::string, std::pair<double, double>> oe_values;  // name: value, SE
+  for (size_t i = 0; i < oe.variables().size(); ++i) {
+    const Variable& v = oe.variables()[i];
+    if (v.kind == Variable::Kind::kParameter && v.free && v.experiment < 0) {
+      oe_values[v.name] = {v.value(), oe_uncertainty.StdError(static_cast<int>(i))};
+    }
+  }
+  double worst = 0.0;
+  std::string which;
+  for (size_t i = 0; i < chosen.variables().size(); ++i) {
+    const Variable& v = chosen.variables()[i];
+    const auto found = oe_values.find(v.name);
+    if (v.kind != Variable::Kind::kParameter || found == oe_values.end()) continue;
+    const double se = chosen_uncertainty.StdError(static_cast<int>(i));
+    const double combined = std::hypot(se, found->second.second);
+    if (!(combined > 0.0) || !std::isfinite(combined)) continue;
+    const double z = std::abs(v.value() - found->second.first) / combined;
+    if (z > worst) {
+      worst = z;
+      which = v.name;
+    }
+  }
+  if (!(worst > kStructureDisagreement)) return;
+  char text[320];
+  std::snprintf(text, sizeof(text),
+                "the disturbance model chosen (%s) moves %s %.1f combined standard errors from "
+                "output error's estimate: the noise absorbs structure the ship model lacks (its "
+                "innovations can be white all the same)",
+                name.c_str(), which.c_str(), worst);
+  Finding f = MakeFinding(FindingKind::kDisturbanceAbsorbsStructure, text);
+  f.stage = summary->name;
+  f.parameter = which;
+  f.value = worst;
+  f.threshold = kStructureDisagreement;
+  summary->findings.push_back(std::move(f));
+}
+
+// The median interval between output j's samples over the problem's experiments (s).
+double SampleInterval(const OutputErrorProblem& problem, int j) {
+  std::vector<double> intervals;
+  for (const Experiment& e : problem.experiments()) {
+    double last = NAN;
+    for (int k = 0; k < e.num_nodes(); ++k) {
+      for (int i = e.node_first_sample[k]; i < e.node_first_sample[k + 1]; ++i) {
+        if (e.samples[i].output != j) continue;
+        if (std::isfinite(last)) intervals.push_back(e.node_time[k] - last);
+        last = e.node_time[k];
+      }
+    }
+  }
+  if (intervals.empty()) return NAN;
+  std::nth_element(intervals.begin(), intervals.begin() + intervals.size() / 2, intervals.end());
+  return intervals[intervals.size() / 2];
+}
+
+// omega of an oscillating autocorrelation (see the wave candidate), NaN when it does not
+// oscillate within its lags.
+double OscillationFrequency(const ResidualAnalysis& a, double dt) {
+  const std::vector<double>& r = a.autocorrelation;
+  for (size_t lag = 1; lag < r.size(); ++lag) {
+    if (!(r[lag] < 0.0)) continue;
+    const double crossing = lag - 1 + r[lag - 1] / (r[lag - 1] - r[lag]);  // linear
+    const double lowest = *std::min_element(r.begin() + lag, r.end());
+    if (lowest > -0.2 || !(dt > 0.0)) return NAN;
+    return M_PI / 2.0 / (crossing * dt);
+  }
+  return NAN;
+}
+
 }  // namespace
 
 std::vector<DisturbanceCandidate> DisturbanceCandidates(
@@ -111,6 +186,30 @@ std::vector<DisturbanceCandidate> DisturbanceCandidates(
     DisturbanceCandidate c;
     c.spec = ar1;
     c.name = "ar1(" + JoinNames(coloured) + ")";
+    candidates.push_back(c);
+  }
+  // Residuals that oscillate (their autocorrelation crosses zero and swings below -0.2): a
+  // narrow-band part, wave-frequency yaw, with its peak frequency started from the first
+  // zero crossing (r(t) ~ cos(omega t) e^(-zeta omega t) crosses at omega t = pi / 2).
+  DisturbanceSpec wave = base;
+  std::vector<std::string> waving;
+  for (const ResidualAnalysis& a : residuals) {
+    const int j = info.OutputIndex(a.output);
+    if (!a.coloured() || j < 0 || std::find(waving.begin(), waving.end(), a.output) != waving.end()) {
+      continue;
+    }
+    const double omega = OscillationFrequency(a, SampleInterval(solved, j));
+    if (!(omega > 0.0)) continue;
+    DisturbanceSpec::Wave w;
+    w.output = a.output;
+    w.omega = omega;
+    wave.wave.push_back(w);
+    waving.push_back(a.output);
+  }
+  if (!wave.wave.empty()) {
+    DisturbanceCandidate c;
+    c.spec = wave;
+    c.name = "wave(" + JoinNames(waving) + ")";
     candidates.push_back(c);
   }
   if (!process.process.empty()) {
@@ -209,12 +308,33 @@ bool ChooseDisturbance(const StageConfig& stage, const StageOptions& options,
       StageConfig with = stage;
       with.problem.disturbance = candidate.spec;
       with.problem.loss = "none";
-      StageSummary trial = *summary;
-      std::string why;
       StageOptions quiet = options;
       quiet.compute_uncertainty = false;  // only the chosen one's intervals, computed below
-      std::unique_ptr<OutputErrorProblem> p =
-          RefineFromValues(oe, oe.experiments(), with, quiet, &trial, &why);
+      // From output error's estimate, and a richer candidate also from each simpler one's
+      // solution (its noise parameters carried by name): the richer likelihood is then never
+      // below a simpler one's (nested models), which a start from output error alone did not
+      // guarantee (AR(1) + process noise stuck at the AR(1) optimum with q at its floor).
+      std::vector<const OutputErrorProblem*> starts = {&oe};
+      for (size_t earlier = 1; earlier < c; ++earlier) {
+        if (solved[earlier] != nullptr) starts.push_back(solved[earlier].get());
+      }
+      if (candidate.spec.process.empty() || candidate.spec.measurement.empty()) starts.resize(1);
+      std::unique_ptr<OutputErrorProblem> p;
+      StageSummary trial;
+      double best_nll = std::numeric_limits<double>::infinity();
+      std::string why;
+      for (const OutputErrorProblem* from : starts) {
+        StageSummary attempt = *summary;
+        std::unique_ptr<OutputErrorProblem> q =
+            RefineFromValues(*from, oe.experiments(), with, quiet, &attempt, &why);
+        if (q == nullptr) continue;
+        const double nll = q->NegativeLogLikelihood();
+        if (nll < best_nll) {
+          best_nll = nll;
+          p = std::move(q);
+          trial = std::move(attempt);
+        }
+      }
       if (p == nullptr) {
         candidate.why = why;
         continue;
@@ -260,6 +380,8 @@ bool ChooseDisturbance(const StageConfig& stage, const StageOptions& options,
       RefineFromValues(*solved[best], solved[best]->experiments(), with, final_options, &chosen,
                        error);
   if (p == nullptr) return false;
+  AddDisagreement(oe, summary->uncertainty, *p, chosen.uncertainty, (*candidates)[best].name,
+                  &chosen);
   std::string beside = "noise auto: output error's estimates were";
   for (size_t i = 0; i < oe.variables().size(); ++i) {
     const Variable& v = oe.variables()[i];

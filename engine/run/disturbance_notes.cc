@@ -56,9 +56,14 @@ std::string DescribeDisturbance(const OutputErrorProblem& problem, const Uncerta
             Amount(value[o.wave_sigma], se[o.wave_sigma], angle, unit));
     }
     if (o.bias_state >= 0) {
-      // A random walk's spread over a minute says more than its spectral density.
+      // A random walk's spread over a minute says more than its spectral density: its SD
+      // grows as sqrt(q t), so per square-root minute.
       const double minute = std::sqrt(value[o.bias_q] * 60.0);
-      piece("drifting bias, " + Amount(minute, NAN, angle, unit) + " per minute");
+      const double minute_se = std::isfinite(se[o.bias_q]) && value[o.bias_q] > 0.0
+                                   ? 0.5 * minute * se[o.bias_q] / value[o.bias_q]
+                                   : NAN;
+      piece("drifting bias (random walk), " + Amount(minute, minute_se, angle, unit) +
+            " per sqrt(minute)");
     }
     if (o.white >= 0) piece("white " + Amount(value[o.white], se[o.white], angle, unit));
     if (!part.empty()) add(info.outputs[j] + ": " + part);
@@ -67,8 +72,12 @@ std::string DescribeDisturbance(const OutputErrorProblem& problem, const Uncerta
     const int q = layout.process[s];
     if (q < 0) continue;
     const std::string unit = info.StateUnit(static_cast<int>(s));
+    const std::string squared = unit.empty() ? ""
+                                : unit.find_first_of("/^*") == std::string::npos
+                                    ? unit + "^2/s"
+                                    : "(" + unit + ")^2/s";
     add("process noise on " + info.states[s] + "'s equation, spectral density " +
-        Amount(value[q], se[q], false, unit.empty() ? "" : unit + "^2/s"));
+        Amount(value[q], se[q], false, squared));
   }
   return text.empty() ? "none" : text;
 }

@@ -15,8 +15,8 @@ written as a careful user would with NumPy/SciPy and the book's usual choices:
     zero-order-hold discretisation  Phi = expm(A dt), Gamma = int_0^dt expm(A s) ds B
     (scipy.linalg.expm of the augmented matrix [[A, B], [0, 0]] dt; the input is taken as
     held constant between samples);
-  * the gain from the book's steady-state Riccati equation (Jategaonkar eq. 5.15-5.17, there
-    solved by Potter's method, here by scipy.linalg.solve_continuous_are)
+  * the gain from the book's steady-state Riccati equation (there solved by Potter's method,
+    eigenvectors of the Hamiltonian, eq. 5.15-5.17; here by scipy.linalg.solve_continuous_are)
         A P + P A^T - (1/dt) P C^T R^-1 C P + F F^T = 0,      K = P C^T R^-1,
     where R is the covariance of the innovations (the book's R, not the sensor noise alone);
     the measurement noise follows as  G G^T = R - C P C^T, which must stay positive (the
@@ -36,12 +36,14 @@ written as a careful user would with NumPy/SciPy and the book's usual choices:
           differences of whole filter runs (central by default, forward with --fd forward;
           the gain is recomputed in every perturbed run, so its dependence on the parameters
           is included) and step halving when the cost or the G G^T > 0 constraint fails;
-  * warm-up: until the model parameters alone have nearly converged (their Gauss-Newton
-    step would lower -log L by less than 1; at most 20 iterations) the noise parameters are
-    held at their compensated starts - the book's advice to start the filter-error method
+  * warm-up: until the other parameters have nearly converged (their Gauss-Newton step
+    would lower -log L by less than 1; at most 20 iterations) the process-noise intensity q
+    is held at its (compensated) start - the book's advice to start the filter-error method
     from (near) output-error estimates, inside one run. From a start 30 % off, a free q
     otherwise jumps by orders of magnitude in the first step (a wrong model is best
-    "explained" by a large gain) and the fit runs off (--no-warmup to see it);
+    "explained" by a large gain) and the fit runs off (--no-warmup to see it). The AR(1)
+    parameters stay free: held at a poor start, the model bends to mimic the coloured
+    noise (T3 -> 30 s in the self test) and the fit then crawls back, or not at all;
   * converged when the Gauss-Newton step's predicted decrease of -log L is below 1e-3 and
     the closed-form R changed by less than 1e-4 (relative) in its last update; no descent in
     12 halvings, or --max-iterations steps, stops the fit as not converged;
@@ -202,9 +204,10 @@ def steady_state_gain(model, A, Qc, Phi, R, dt, riccati):
     """Kalman gain K = P C^T R^-1 and C P C^T at fixed innovation variance R."""
     C = model.C
     if riccati == "continuous":
-        # Jategaonkar eq. (5.15): A P + P A^T - P C^T (R dt)^-1 C P + F F^T = 0.
+        # The book's first-order form: A P + P A^T - P C^T (R dt)^-1 C P + F F^T = 0.
         try:
-            P = solve_continuous_are(A.T, C[:, None], Qc, np.array([[R * dt]]))
+            with np.errstate(all="ignore"):  # extreme trial values: judged by P below
+                P = solve_continuous_are(A.T, C[:, None], Qc, np.array([[R * dt]]))
         except (np.linalg.LinAlgError, ValueError) as error:
             raise Infeasible(str(error))
     else:
@@ -336,7 +339,7 @@ def fit(data, model, theta0, max_iterations=50, riccati="continuous", fd="centra
     converged = False
     iterations = 0
     all_free = np.array([i for i, name in enumerate(model.names) if name not in fixed], int)
-    model_free = np.array([i for i in all_free if not model.names[i].startswith("log_")], int)
+    model_free = np.array([i for i in all_free if model.names[i] != "log_q"], int)  # warm-up
     warming = warmup and len(model_free) > 0
     M = None
     halvings_total = 0
@@ -353,12 +356,12 @@ def fit(data, model, theta0, max_iterations=50, riccati="continuous", fd="centra
         cost = 0.5 * float(nu @ nu) / R
 
         # (3) Gauss-Newton at fixed R: gradient g = sum dnu^T R^-1 nu, M = sum dnu^T R^-1 dnu.
-        # Warm-up: the noise parameters stay at their (compensated) starts until the model
-        # parameters alone have nearly converged (their step would gain less than
+        # Warm-up: the process-noise intensity q stays at its (compensated) start until the
+        # other parameters have nearly converged (their step would gain less than
         # warmup_decrement in -log L) or max_warmup iterations have passed; a wrong model is
-        # best "explained" by a large gain, and free noise parameters run away from a poor
-        # start. This is the book's advice to start the filter-error method from (near)
-        # output-error estimates, done inside one run.
+        # best "explained" by a large gain, and a free q runs away from a poor start. This is
+        # the book's advice to start the filter-error method from (near) output-error
+        # estimates, done inside one run (see the module docstring).
         while True:
             free = model_free if warming else all_free
             jac = sensitivities(model, theta, R, data, riccati, nu, fd, free)
@@ -412,8 +415,16 @@ def fit(data, model, theta0, max_iterations=50, riccati="continuous", fd="centra
     se_theta = np.zeros(len(theta))  # fixed parameters: 0
     try:
         se_theta[all_free] = np.sqrt(np.maximum(np.diag(np.linalg.inv(M)), 0.0))
-    except np.linalg.LinAlgError:  # singular information: unidentifiable, no finite SE
-        se_theta[all_free] = np.inf
+    except np.linalg.LinAlgError:
+        # Singular information: parameters without any sensitivity (e.g. tau once the AR(1)
+        # part has vanished, sigma -> 0) get no finite SE; the others from the rest of M.
+        seen = np.diag(M) > 0.0
+        se_free = np.full(len(all_free), np.inf)
+        try:
+            se_free[seen] = np.sqrt(np.maximum(np.diag(np.linalg.inv(M[np.ix_(seen, seen)])), 0))
+        except np.linalg.LinAlgError:
+            pass
+        se_theta[all_free] = se_free
     cpu = time.process_time() - cpu0
     q, tau, sigma = model.noise(theta)
     estimates = {name: float(theta[i]) for i, name in enumerate(MODEL_NAMES)}
@@ -583,6 +594,15 @@ def selftest(args):
 
 
 # ---------------------------------------------------------------------------------------------
+def finite_or_null(value):
+    """The result with non-finite numbers (an unidentifiable parameter's SE) as JSON null."""
+    if isinstance(value, dict):
+        return {key: finite_or_null(item) for key, item in value.items()}
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--csv")
@@ -630,7 +650,7 @@ def main():
                      not args.no_fg_compensation, not args.no_warmup, verbose=args.verbose)
     except (Infeasible, np.linalg.LinAlgError) as error:
         result = {"converged": False, "error": f"{type(error).__name__}: {error}"}
-    text = json.dumps(result, indent=2)
+    text = json.dumps(finite_or_null(result), indent=2, allow_nan=False)
     print(text)
     if args.json:
         with open(args.json, "w") as handle:

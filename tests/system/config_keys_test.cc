@@ -656,7 +656,7 @@ int Occurrences(const std::string& text, const std::string& key) {
 // and set names, and prose in its comments ("default: all", "| hold: ...").
 const std::set<std::string> kNotKeys = {
     // names
-    "delta", "delta_0", "psi", "xi1", "u", "tau_m", "held_out", "training",
+    "delta", "delta_0", "psi", "xi1", "u", "tau_m", "held_out", "training", "xi2",
     // prose
     "default", "false", "true", "given", "hold", "last", "selected"};
 
@@ -699,6 +699,7 @@ const std::map<std::string, std::string> kShownElsewhere = {
     {"zeta", "tests/system/filter_error_run_test.cc"},
     {"q", "tests/system/filter_error_run_test.cc"},
     {"initial_sd", "tests/system/filter_error_run_test.cc"},
+    {"gain", "tests/system/filter_error_run_test.cc"},
     {"sigma", "tests/system/filter_error_run_test.cc"},
 };
 // Every documented key has a case here that adds it (more occurrences in `with` than in

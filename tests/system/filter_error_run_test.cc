@@ -6,7 +6,7 @@
 // its parameters as estimates of kind noise and is not called doubtful for the colour. `auto`
 // picks a disturbance model by BIC and names every candidate. Keys: noise, method, angles,
 // measurement (white, ar1: type, sigma, tau, white), process, wave (omega, zeta, sigma), bias
-// (q, initial_sd), prediction_steps.
+// (q, initial_sd), prediction_steps, gain.
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -52,7 +52,7 @@ stages:
     noise: )" + noise + "\n";
 }
 
-struct Run {
+struct CommandRun {
   int status = -1;
   json results;
   std::string report, stderr_text;
@@ -63,7 +63,7 @@ std::string ReadText(const fs::path& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-Run SimulateAndRun(const std::string& name, const std::string& noise) {
+CommandRun SimulateAndRun(const std::string& name, const std::string& noise) {
   const fs::path dir = fs::temp_directory_path() / ("vesselid_filter_error_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -75,7 +75,7 @@ Run SimulateAndRun(const std::string& name, const std::string& noise) {
   const std::string run = binary + " run " + config.string() + " --data " + dir.string() +
                           " --out " + (dir / "out").string() + " --quiet --no-report > /dev/null 2> " +
                           (dir / "stderr.txt").string();
-  Run result;
+  CommandRun result;
   EXPECT_EQ(std::system(simulate.c_str()), 0) << simulate;
   result.status = std::system(run.c_str());
   result.results = json::parse(ReadText(dir / "out" / "results.json"), nullptr, false);
@@ -93,9 +93,9 @@ const json* EstimateNamed(const json& results, const std::string& name) {
 }
 
 TEST(FilterErrorRun, ProcessNoiseOnTheRuddersEquationWhitensTheInnovations) {
-  const Run run = SimulateAndRun(
+  const CommandRun run = SimulateAndRun(
       "process", "{method: filter_error, angles: deg, measurement: {psi: {type: white, sigma: 0.1}}, "
-                 "process: {xi2: auto}, prediction_steps: 5}");
+                 "process: {xi2: auto}, prediction_steps: 5, gain: auto}");
   ASSERT_EQ(run.status, 0) << run.stderr_text;
   ASSERT_TRUE(run.results.is_object());
   const json* q = EstimateNamed(run.results, "q.process.xi2");
@@ -119,7 +119,7 @@ TEST(FilterErrorRun, ProcessNoiseOnTheRuddersEquationWhitensTheInnovations) {
 }
 
 TEST(FilterErrorRun, AutoNamesEveryCandidateAndKeepsTheBest) {
-  const Run run = SimulateAndRun("auto", "{method: auto}");
+  const CommandRun run = SimulateAndRun("auto", "{method: auto}");
   ASSERT_EQ(run.status, 0) << run.stderr_text;
   const std::string notes = run.results["stages"][0]["notes"].dump();
   EXPECT_NE(notes.find("noise auto: BIC"), std::string::npos) << notes;
@@ -133,12 +133,13 @@ TEST(FilterErrorRun, AutoNamesEveryCandidateAndKeepsTheBest) {
 TEST(FilterErrorRun, UnknownOutputsStatesAndValuesAreRefusedWithTheKey) {
   for (const auto& [noise, says] : std::vector<std::pair<std::string, std::string>>{
            {"{measurement: {r2: white}}", "r2"},
-           {"{process: {nope: auto}}", "unknown state 'nope'"},
+           {"{process: {nope: auto}}", "process.nope: unknown key (allowed: psi, xi1, xi2)"},
            {"{measurement: {psi: {type: pink}}}", "unknown measurement noise 'pink'"},
            {"{wave: {psi: {zeta: 1.5}}}", "must be in (0, 1)"},
            {"{bias: {psi: {q: -1, initial_sd: 1}}}", "must be > 0"},
            {"{method: sometimes}", "unknown method 'sometimes'"},
            {"{prediction_steps: 0}", "must be >= 1"},
+           {"{gain: sometimes}", "expected auto or time_varying"},
            {"{measurement: {psi: {type: ar1, sigma: 0, tau: 1, white: true}}}", "must be > 0"},
            {"{wave: {psi: {omega: -1, sigma: 1}}}", "must be > 0"}}) {
     const fs::path dir = fs::temp_directory_path() / "vesselid_filter_error_refused";

@@ -143,6 +143,30 @@ TEST(FilterError, JetJacobianMatchesFiniteDifferences) {
   }
 }
 
+TEST(FilterError, TheSteadyStateGainGivesTheTimeVaryingLikelihood) {
+  // A linear ship on a regularly sampled record: the filter converges and its frozen gains are
+  // the time-varying filter's to round-off, so are the likelihood and its gradient.
+  auto model = nomoto::MakeSecondOrderRatesHandle();
+  std::vector<Experiment> runs = {Record(*model, 0.002, 0.004, 2.0, 3, 120.0)};
+  std::string error;
+  OutputErrorOptions steady = Ar1Heading(), varying = Ar1Heading();
+  varying.disturbance.steady_gain = false;
+  auto a = OutputErrorProblem::Create(model.get(), runs, Specs(1.1), steady, &error);
+  auto b = OutputErrorProblem::Create(model.get(), runs, Specs(1.1), varying, &error);
+  ASSERT_NE(a, nullptr) << error;
+  ASSERT_NE(b, nullptr) << error;
+  const double la = a->NegativeLogLikelihood(), lb = b->NegativeLogLikelihood();
+  EXPECT_NEAR(la, lb, 1e-6 * std::abs(lb));
+  std::vector<double> ga, gb;
+  double ca = 0.0, cb = 0.0;
+  ASSERT_TRUE(a->problem()->Evaluate({}, &ca, nullptr, &ga, nullptr));
+  ASSERT_TRUE(b->problem()->Evaluate({}, &cb, nullptr, &gb, nullptr));
+  ASSERT_EQ(ga.size(), gb.size());
+  for (size_t i = 0; i < ga.size(); ++i) {
+    EXPECT_NEAR(ga[i], gb[i], 1e-4 * std::max(1.0, std::abs(gb[i]))) << i;
+  }
+}
+
 TEST(FilterError, WhiteNoiseWithoutProcessNoiseIsOutputError) {
   // Without process noise and with the start estimated (the filter's P0 zero) the gain is
   // zero: the innovations are output error's residuals and the likelihood's estimate is output
