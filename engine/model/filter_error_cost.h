@@ -32,9 +32,11 @@ namespace vesselid {
 // Jet sizes of the filter (each compiles the filter once per model).
 using FilterJetSizes = std::integer_sequence<int, 8, 16, 32>;
 
-// The likelihood residuals' offsets c_j per model output, shared by a problem's costs.
+// The likelihood residuals' offsets c_j per model output, shared by a problem's costs;
+// `revision` changes with them (the costs' cached evaluations are of the old ones).
 struct FilterOffsets {
   std::vector<double> c;
+  long revision = 0;
 };
 
 template <class Model>
@@ -45,19 +47,23 @@ class FilterErrorCost final : public ceres::CostFunction {
   FilterErrorCost(const Model& model, const Experiment* experiment,
                   std::vector<double> parameter_scales, const DisturbanceLayout* layout,
                   std::vector<double> noise_scales, std::vector<double> p0,
-                  const FilterOffsets* offsets)
+                  const FilterOffsets* offsets, ExperimentCostOptions options = {})
       : model_(model),
         experiment_(experiment),
         scales_(std::move(parameter_scales)),
         layout_(layout),
         noise_scales_(std::move(noise_scales)),
         p0_(std::move(p0)),
-        offsets_(offsets) {
+        offsets_(offsets),
+        counts_(options.counts),
+        cache_(options.cache) {
     num_parameters_ = static_cast<int>(scales_.size());
     VESSELID_CHECK(static_cast<int>(noise_scales_.size()) == layout_->size());
     VESSELID_CHECK(static_cast<int>(p0_.size()) == Model::kNumStates);
     for (int i = 0; i < NumBlocks(); ++i) mutable_parameter_block_sizes()->push_back(1);
     set_num_residuals(2 * experiment->num_samples());
+    VESSELID_CHECK(cache_ == nullptr || (cache_->num_residuals() == num_residuals() &&
+                                         cache_->num_blocks() == NumBlocks()));
   }
 
   bool Evaluate(double const* const* parameters, double* residuals,
@@ -66,13 +72,26 @@ class FilterErrorCost final : public ceres::CostFunction {
     if (jacobians != nullptr) {
       for (int b = 0; b < NumBlocks(); ++b) directions += jacobians[b] != nullptr;
     }
-    if (directions == 0) return Run<double>(parameters, residuals, nullptr, 0, 0);
-    const int passes = (directions + kMaxJetSize - 1) / kMaxJetSize;
-    const int width = (directions + passes - 1) / passes;
-    bool ok = true;
-    for (int first = 0; ok && first < directions; first += width) {
-      ok = Dispatch(FilterJetSizes{}, width, first, parameters, residuals, jacobians);
+    if (directions == 0) jacobians = nullptr;
+    // Ceres' bounded trust region asks twice at one point (evaluation_cache.h).
+    const long revision = offsets_->revision;
+    if (cache_ != nullptr && cache_->Lookup(parameters, revision, residuals, jacobians)) {
+      if (counts_ != nullptr) ++counts_->hits;
+      return true;
     }
+    bool ok = true;
+    if (directions == 0) {
+      if (counts_ != nullptr) ++counts_->simulations;
+      ok = Run<double>(parameters, residuals, nullptr, 0, 0);
+    } else {
+      const int passes = (directions + kMaxJetSize - 1) / kMaxJetSize;
+      const int width = (directions + passes - 1) / passes;
+      for (int first = 0; ok && first < directions; first += width) {
+        if (counts_ != nullptr) ++counts_->jet_simulations;
+        ok = Dispatch(FilterJetSizes{}, width, first, parameters, residuals, jacobians);
+      }
+    }
+    if (ok && cache_ != nullptr) cache_->Store(parameters, revision, residuals, jacobians);
     return ok;
   }
 
@@ -167,6 +186,8 @@ class FilterErrorCost final : public ceres::CostFunction {
   std::vector<double> noise_scales_;
   std::vector<double> p0_;
   const FilterOffsets* offsets_;
+  EvaluationCounts* counts_;
+  EvaluationCache* cache_;
   int num_parameters_ = 0;
 };
 

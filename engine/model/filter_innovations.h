@@ -64,6 +64,12 @@ bool RunFilterInnovations(const Model& model, const Experiment& e, const double*
       double predicted = y[j];
       if (o.ar1_state >= 0) predicted += x[n + o.ar1_state] * std::exp(-ahead / theta[o.ar1_tau]);
       if (o.bias_state >= 0) predicted += x[n + o.bias_state];
+      if (o.wave_state >= 0) {
+        const int w = n + o.wave_state;
+        const std::array<double, 4> f =
+            WaveTransition(theta[o.wave_omega], theta[o.wave_zeta], ahead);
+        predicted += f[0] * x[w] + f[1] * x[w + 1];
+      }
       run->prediction[i] = predicted;
     }
   };

@@ -52,6 +52,22 @@ namespace vesselid {
 // Nodes between the frozen filter's checks that F is still the one it was frozen with.
 inline constexpr int kSteadyRecheck = 25;
 
+// The wave part's transition over `interval` (z1' = z2, z2' = -omega^2 z1 - 2 zeta omega z2),
+// row-major {f11, f12, f21, f22}: the damped oscillator's closed form, 0 < zeta < 1.
+template <class T>
+std::array<T, 4> WaveTransition(const T& omega, const T& zeta, double interval) {
+  using std::cos;
+  using std::exp;
+  using std::sin;
+  using std::sqrt;
+  const T damped = omega * sqrt(1.0 - zeta * zeta);
+  const T envelope = exp(-zeta * omega * interval);
+  const T cosine = cos(damped * interval), sine = sin(damped * interval);
+  const T ratio = zeta * omega / damped;
+  return {envelope * (cosine + ratio * sine), envelope * sine / damped,
+          -envelope * omega * omega * sine / damped, envelope * (cosine - ratio * sine)};
+}
+
 template <class Model, class T>
 class KalmanFilter {
  public:
@@ -340,9 +356,7 @@ class KalmanFilter {
 
   // phi_z and Q_z over `interval` (closed forms, disturbance.h).
   void DisturbanceTransition(double interval) {
-    using std::cos;
     using std::exp;
-    using std::sin;
     using std::sqrt;
     for (int r = 0; r < Z * Z; ++r) phi_z_[r] = q_z_[r] = T(0.0);
     for (int j = 0; j < ny; ++j) {
@@ -362,13 +376,8 @@ class KalmanFilter {
         const int z = o.wave_state;
         const T& omega = theta_[o.wave_omega];
         const T& zeta = theta_[o.wave_zeta];
-        const T damped = omega * sqrt(1.0 - zeta * zeta);
-        const T envelope = exp(-zeta * omega * interval);
-        const T cosine = cos(damped * interval), sine = sin(damped * interval);
-        const T ratio = zeta * omega / damped;
-        const T f11 = envelope * (cosine + ratio * sine), f12 = envelope * sine / damped;
-        const T f21 = -envelope * omega * omega * sine / damped;
-        const T f22 = envelope * (cosine - ratio * sine);
+        const std::array<T, 4> f = WaveTransition(omega, zeta, interval);
+        const T &f11 = f[0], &f12 = f[1], &f21 = f[2], &f22 = f[3];
         phi_z_[z * Z + z] = f11;
         phi_z_[z * Z + z + 1] = f12;
         phi_z_[(z + 1) * Z + z] = f21;

@@ -43,7 +43,8 @@ class ModelHandle {
                                                   const DisturbanceLayout* layout,
                                                   std::vector<double> noise_scales,
                                                   std::vector<double> p0,
-                                                  const FilterOffsets* offsets) const = 0;
+                                                  const FilterOffsets* offsets,
+                                                  ExperimentCostOptions options = {}) const = 0;
 
   // The filter run in double (filter_innovations.h): innovations, their variances and the
   // k-step-ahead predictions. False if the filter diverges.
@@ -182,9 +183,10 @@ class ModelAdapter final : public ModelHandle {
                                           std::vector<double> parameter_scales,
                                           const DisturbanceLayout* layout,
                                           std::vector<double> noise_scales, std::vector<double> p0,
-                                          const FilterOffsets* offsets) const override {
+                                          const FilterOffsets* offsets,
+                                          ExperimentCostOptions options = {}) const override {
     return new FilterErrorCost<Model>(model_, experiment, std::move(parameter_scales), layout,
-                                      std::move(noise_scales), std::move(p0), offsets);
+                                      std::move(noise_scales), std::move(p0), offsets, options);
   }
 
   bool FilterInnovations(const Experiment& experiment, const double* p, const double* x0,

@@ -38,39 +38,6 @@ std::vector<int> InputDrivenStates(const ModelHandle& model, const OutputErrorPr
   return states;
 }
 
-// The stage's problem with `stage.problem`'s options built on `experiments` from the estimate of
-// `solved` (its variables carried by name, the noise parameters too where they exist), solved
-// locally; null (with `error`) when it cannot be built or solved.
-std::unique_ptr<OutputErrorProblem> RefineFromValues(const OutputErrorProblem& solved,
-                                                     std::vector<Experiment> experiments,
-                                                     const StageConfig& stage,
-                                                     StageOptions options, StageSummary* summary,
-                                                     std::string* error) {
-  std::unique_ptr<OutputErrorProblem> refined = OutputErrorProblem::Create(
-      &solved.model(), std::move(experiments), EstimateSpecs(solved), stage.problem, error);
-  if (refined == nullptr) return nullptr;
-  std::map<std::string, double> by_name;
-  for (const Variable& v : solved.variables()) by_name[v.name] = v.value();
-  for (const Variable& v : refined->variables()) {
-    auto found = by_name.find(v.name);
-    if (found != by_name.end()) v.set_value(std::clamp(found->second, v.lower, v.upper));
-  }
-  options.use_global_start = false;
-  options.local.initial_radius = kNearOptimumRadius;  // from the solved estimate
-  StageSummary again;
-  if (!RunStage(options, refined.get(), &again)) {
-    *error = again.message;
-    return nullptr;
-  }
-  again.notes.insert(again.notes.begin(), summary->notes.begin(), summary->notes.end());
-  for (const Finding& f : summary->findings) {
-    if (f.kind != FindingKind::kNarrowIntervals) again.findings.push_back(f);
-  }
-  again.name = summary->name;
-  *summary = std::move(again);
-  return refined;
-}
-
 // The disturbance_absorbs_structure finding when a shared free parameter of `chosen` lies more
 // than kStructureDisagreement combined SEs from output error's.
 void AddDisagreement(const OutputErrorProblem& oe, const Uncertainty& oe_uncertainty,
@@ -326,7 +293,7 @@ bool ChooseDisturbance(const StageConfig& stage, const StageOptions& options,
       for (const OutputErrorProblem* from : starts) {
         StageSummary attempt = *summary;
         std::unique_ptr<OutputErrorProblem> q =
-            RefineFromValues(*from, oe.experiments(), with, quiet, &attempt, &why);
+            RefineFromEstimate(*from, oe.experiments(), with.problem, quiet, &attempt, &why);
         if (q == nullptr) continue;
         const double nll = q->NegativeLogLikelihood();
         if (nll < best_nll) {
@@ -377,8 +344,8 @@ bool ChooseDisturbance(const StageConfig& stage, const StageOptions& options,
   with.problem.loss = "none";
   StageSummary chosen = *summary;
   std::unique_ptr<OutputErrorProblem> p =
-      RefineFromValues(*solved[best], solved[best]->experiments(), with, final_options, &chosen,
-                       error);
+      RefineFromEstimate(*solved[best], solved[best]->experiments(), with.problem, final_options,
+                         &chosen, error);
   if (p == nullptr) return false;
   AddDisagreement(oe, summary->uncertainty, *p, chosen.uncertainty, (*candidates)[best].name,
                   &chosen);

@@ -1,5 +1,8 @@
 #include "engine/run/estimate_specs.h"
 
+#include <algorithm>
+#include <map>
+
 namespace vesselid {
 
 std::vector<ParameterSpec> EstimateSpecs(const OutputErrorProblem& solved) {
@@ -50,6 +53,38 @@ std::unique_ptr<OutputErrorProblem> SolveReplicate(const OutputErrorProblem& sol
   StageSummary summary;
   if (!RunStage(options, p.get(), &summary)) return nullptr;
   return p;
+}
+
+std::unique_ptr<OutputErrorProblem> RefineFromEstimate(const OutputErrorProblem& solved,
+                                                       std::vector<Experiment> experiments,
+                                                       const OutputErrorOptions& problem_options,
+                                                       StageOptions options,
+                                                       StageSummary* summary, std::string* error) {
+  std::unique_ptr<OutputErrorProblem> refined = OutputErrorProblem::Create(
+      &solved.model(), std::move(experiments), EstimateSpecs(solved), problem_options, error);
+  if (refined == nullptr) return nullptr;
+  std::map<std::string, double> by_name;
+  for (const Variable& v : solved.variables()) by_name[v.name] = v.value();
+  for (const Variable& v : refined->variables()) {
+    auto found = by_name.find(v.name);
+    if (found != by_name.end()) v.set_value(std::clamp(found->second, v.lower, v.upper));
+  }
+  options.use_global_start = false;
+  options.local.initial_radius = kNearOptimumRadius;  // from the solved estimate
+  StageSummary again;
+  if (!RunStage(options, refined.get(), &again)) {
+    *error = again.message;
+    return nullptr;
+  }
+  again.notes.insert(again.notes.begin(), summary->notes.begin(), summary->notes.end());
+  // What the earlier solves found about the process stays; what they found about their own
+  // estimate (its intervals) the new solve finds again for its own.
+  for (const Finding& f : summary->findings) {
+    if (f.kind != FindingKind::kNarrowIntervals) again.findings.push_back(f);
+  }
+  again.name = summary->name;
+  *summary = std::move(again);
+  return refined;
 }
 
 }  // namespace vesselid

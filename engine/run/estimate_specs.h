@@ -27,4 +27,15 @@ std::unique_ptr<OutputErrorProblem> SolveReplicate(const OutputErrorProblem& sol
                                                    const OutputErrorOptions& problem_options,
                                                    const StageOptions& options);
 
+// The problem of `solved` with `problem_options` built on `experiments` from its estimate (its
+// variables carried by name, noise parameters too where both have them) and solved locally
+// from there (no global start, the near-optimum radius). The earlier `summary`'s notes come
+// first in the new one, and its findings but narrow_intervals (the new solve finds its own
+// intervals); null with `error` when it cannot be built or solved.
+std::unique_ptr<OutputErrorProblem> RefineFromEstimate(const OutputErrorProblem& solved,
+                                                       std::vector<Experiment> experiments,
+                                                       const OutputErrorOptions& problem_options,
+                                                       StageOptions options,
+                                                       StageSummary* summary, std::string* error);
+
 }  // namespace vesselid

@@ -126,12 +126,20 @@ void PredictHeldOutThroughFilter(const RunConfig& config, const StageConfig& sta
       }
       if (y.empty()) continue;
       const auto found = free_run.find({e.name, info.outputs[j]});
-      char text[240];
+      char ahead_text[80];
+      if (k + 2 <= e.num_nodes()) {
+        std::snprintf(ahead_text, sizeof(ahead_text), "%.1f %% (%.3g s ahead)",
+                      FitPercent(y, ahead), k * dt);
+      } else {
+        std::snprintf(ahead_text, sizeof(ahead_text), "none (the run has %d nodes)",
+                      e.num_nodes());
+      }
+      char text[320];
       std::snprintf(text, sizeof(text),
-                    "held-out through the filter: %s %s: %d-step-ahead fit %.1f %% (%.3g s "
-                    "ahead), one-step %.1f %%; free run from the measured start %.1f %%",
-                    e.name.c_str(), info.outputs[j].c_str(), k, FitPercent(y, ahead), k * dt,
-                    FitPercent(y, one), found != free_run.end() ? found->second : NAN);
+                    "held-out through the filter: %s %s: %d-step-ahead fit %s, one-step %.1f %%; "
+                    "free run from the measured start %.1f %%",
+                    e.name.c_str(), info.outputs[j].c_str(), k, ahead_text, FitPercent(y, one),
+                    found != free_run.end() ? found->second : NAN);
       result->summary.notes.push_back(text);
     }
   }

@@ -31,6 +31,20 @@ int Column(const Trajectory& trace, const std::string& name) {
   return -1;
 }
 
+// The inputs the experiment feeds, `count` samples each (an unmapped optional input is NaN
+// throughout and left out), moved from `inputs` into `names` and `fed`.
+void FedInputs(const ModelInfo& info, size_t count, std::vector<std::vector<double>>* inputs,
+               std::vector<std::string>* names, std::vector<std::vector<double>>* fed) {
+  for (size_t i = 0; i < inputs->size() && i < info.inputs.size(); ++i) {
+    std::vector<double>& input = (*inputs)[i];
+    const bool finite =
+        std::all_of(input.begin(), input.end(), [](double v) { return std::isfinite(v); });
+    if (!finite || input.size() != count) continue;
+    names->push_back(info.inputs[i]);
+    fed->push_back(std::move(input));
+  }
+}
+
 }  // namespace
 
 std::vector<ResidualAnalysis> AnalyseFitResiduals(const ModelInfo& info,
@@ -73,16 +87,9 @@ std::vector<ResidualAnalysis> AnalyseFitResiduals(const ModelInfo& info,
         }
       }
       if (e.empty()) continue;
-      // Inputs the experiment feeds (an unmapped optional input is NaN throughout).
       std::vector<std::string> names;
       std::vector<std::vector<double>> fed;
-      for (size_t i = 0; i < inputs.size() && i < info.inputs.size(); ++i) {
-        const bool finite = std::all_of(inputs[i].begin(), inputs[i].end(),
-                                        [](double v) { return std::isfinite(v); });
-        if (!finite || inputs[i].size() != e.size()) continue;
-        names.push_back(info.inputs[i]);
-        fed.push_back(std::move(inputs[i]));
-      }
+      FedInputs(info, e.size(), &inputs, &names, &fed);
       analyses.push_back(AnalyseResiduals(fit.experiment, info.outputs[o], t, e, names, fed));
       for (const ChannelMetrics& m : fit.channels) {
         if (m.output == info.outputs[o])
@@ -121,13 +128,7 @@ std::vector<ResidualAnalysis> AnalyseInnovations(const OutputErrorProblem& probl
       if (e.empty()) continue;
       std::vector<std::string> names;
       std::vector<std::vector<double>> fed;
-      for (size_t u = 0; u < inputs.size() && u < info.inputs.size(); ++u) {
-        const bool finite = std::all_of(inputs[u].begin(), inputs[u].end(),
-                                        [](double v) { return std::isfinite(v); });
-        if (!finite || inputs[u].size() != e.size()) continue;
-        names.push_back(info.inputs[u]);
-        fed.push_back(std::move(inputs[u]));
-      }
+      FedInputs(info, e.size(), &inputs, &names, &fed);
       analyses.push_back(AnalyseResiduals(experiment.name, info.outputs[o], t, e, names, fed));
       analyses.back().innovations = true;
     }

@@ -76,41 +76,6 @@ StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>
 
 constexpr int kMaxStepReductions = 2;
 
-// The stage solved again on `experiments` from the estimate of `solved`: parameters keep their
-// roles, bounds and scales; per-experiment values and initial states carry over by name.
-std::unique_ptr<OutputErrorProblem> RefineFrom(const OutputErrorProblem& solved,
-                                               std::vector<Experiment> experiments,
-                                               const StageConfig& stage, StageOptions options,
-                                               StageSummary* summary, std::string* error) {
-  const ModelHandle& model = solved.model();
-  const std::vector<ParameterSpec> specs = EstimateSpecs(solved);
-  std::unique_ptr<OutputErrorProblem> refined =
-      OutputErrorProblem::Create(&model, std::move(experiments), specs, stage.problem, error);
-  if (refined == nullptr) return nullptr;
-  std::map<std::string, double> by_name;
-  for (const Variable& v : solved.variables()) by_name[v.name] = v.value();
-  for (const Variable& v : refined->variables()) {
-    auto found = by_name.find(v.name);
-    if (found != by_name.end()) v.set_value(std::clamp(found->second, v.lower, v.upper));
-  }
-  options.use_global_start = false;
-  options.local.initial_radius = kNearOptimumRadius;  // from the solved estimate
-  StageSummary again;
-  if (!RunStage(options, refined.get(), &again)) {
-    *error = again.message;
-    return nullptr;
-  }
-  again.notes.insert(again.notes.begin(), summary->notes.begin(), summary->notes.end());
-  // What the earlier solves found about the process stays; what they found about their own
-  // estimate (its intervals) the new solve finds again for its own.
-  for (const Finding& f : summary->findings) {
-    if (f.kind != FindingKind::kNarrowIntervals) again.findings.push_back(f);
-  }
-  again.name = summary->name;
-  *summary = std::move(again);
-  return refined;
-}
-
 // While the estimate's dynamics are faster than the integration step can follow
 // (step_stability.h), prepares the experiments with a step that can and refines again from
 // the estimate; the step used goes to result->integration_step (0: the configured one).
@@ -164,8 +129,8 @@ bool FollowTheDynamics(const RunConfig& config, const StageConfig& stage, const 
     if (noise.active()) {  // the stage's noise weights, not the configured ones
       for (Experiment& e : experiments) SetChannelWeights(noise.Weights(model.info()), &e);
     }
-    std::unique_ptr<OutputErrorProblem> refined =
-        RefineFrom(**problem, std::move(experiments), stage, options, summary, error);
+    std::unique_ptr<OutputErrorProblem> refined = RefineFromEstimate(
+        **problem, std::move(experiments), stage.problem, options, summary, error);
     if (refined == nullptr) {
       *error = "refinement with the integration step reduced to " + std::to_string(finer.max_step) +
                " s: " + *error;
@@ -260,7 +225,7 @@ bool HandleOutliers(const StageConfig& stage, const StageOptions& options,
   summary->notes.push_back("outliers: the stage refined again with " + std::to_string(acted) +
                            " experiment(s) " + (drop ? "dropped" : "down-weighted"));
   std::unique_ptr<OutputErrorProblem> refined =
-      RefineFrom(solved, std::move(experiments), stage, options, summary, error);
+      RefineFromEstimate(solved, std::move(experiments), stage.problem, options, summary, error);
   if (refined == nullptr) {
     *error = "refinement without the outliers: " + *error;
     return false;

@@ -187,7 +187,11 @@ bool ComputeLocalAnalysis(const LocalAnalysisOptions& options, OutputErrorProble
   const ceres::CRSMatrix& jacobian = shared->jacobian;
   VESSELID_CHECK(shared->data_rows == a->num_residuals && jacobian.num_cols == a->num_free);
   const double cost = shared->DataCost();
-  a->residual_variance = 2.0 * cost / (a->num_residuals - a->num_free);
+  // Under the filter-error method the cost is a likelihood, its own scale (s^2 = 1), and each
+  // sample has two rows, the innovation's and its variance's (filter_error_cost.h).
+  const bool likelihood = problem->filter_error();
+  const int rows_per_sample = likelihood ? 2 : 1;
+  a->residual_variance = likelihood ? 1.0 : 2.0 * cost / (a->num_residuals - a->num_free);
   const double s = std::sqrt(a->residual_variance);
 
   // Experiment by experiment (rows in residual-block order, i.e. experiment then sample):
@@ -204,16 +208,18 @@ bool ComputeLocalAnalysis(const LocalAnalysisOptions& options, OutputErrorProble
   int row = 0;
   for (int e = 0; e < num_experiments; ++e) {
     const Experiment& experiment = experiments[e];
-    const int rows = experiment.num_samples(), width = ns + locals[e];
+    const int rows = experiment.num_samples() * rows_per_sample, width = ns + locals[e];
     Eigen::MatrixXd j = Eigen::MatrixXd::Zero(rows, width);
     for (int i = 0; i < rows; ++i, ++row) {
-      const ExperimentSample& sample = experiment.samples[i];
+      const ExperimentSample& sample = experiment.samples[i / rows_per_sample];
+      const bool own_row = i % rows_per_sample == 0;  // the sample's (innovation's) row
       ChannelSums& channel = sums[sample.output];
       for (int k = jacobian.rows[row]; k < jacobian.rows[row + 1]; ++k) {
         const Column& column = columns[jacobian.cols[k]];
         const double value = jacobian.values[k] * column.inverse_scale;
         if (column.shared >= 0) {
           j(i, column.shared) = value;
+          if (!own_row) continue;
           channel.dr2[column.shared] += value * value;
           if (sample.weight != 0.0) {
             const double dy = value / sample.weight;

@@ -360,16 +360,17 @@ std::unique_ptr<OutputErrorProblem> OutputErrorProblem::Create(
     for (int index : p->block_of_[e]) blocks.push_back(p->variables_[index].block);
     ExperimentCostOptions cost_options;
     cost_options.counts = p->counts_.get();
-    if (options.evaluation_cache && bounded && !p->filter_error_) {
-      p->caches_.push_back(std::make_unique<EvaluationCache>(p->experiments_[e].num_samples(),
-                                                             static_cast<int>(blocks.size())));
+    if (options.evaluation_cache && bounded) {
+      const int rows = (p->filter_error_ ? 2 : 1) * p->experiments_[e].num_samples();
+      p->caches_.push_back(
+          std::make_unique<EvaluationCache>(rows, static_cast<int>(blocks.size())));
       cost_options.cache = p->caches_.back().get();
     }
     ceres::CostFunction* cost =
         p->filter_error_
             ? model->NewFilterErrorCost(&p->experiments_[e], scales, &p->layout_,
                                         NoiseScales(p->layout_), p->initial_variance_[e],
-                                        p->offsets_.get())
+                                        p->offsets_.get(), cost_options)
             : model->NewExperimentCost(&p->experiments_[e], scales, p->loss_.get(), cost_options);
     p->data_blocks_.push_back(p->problem_->AddResidualBlock(cost, nullptr, blocks));
   }
@@ -454,6 +455,32 @@ double OutputErrorProblem::NegativeLogLikelihood() const {
   return total;
 }
 
+void OutputErrorProblem::ScanNoiseStarts() {
+  if (!filter_error_) return;
+  for (const Variable& v : variables_) {
+    if (v.kind != Variable::Kind::kNoise || !v.free) continue;
+    // A time constant or frequency is scanned over a narrower range than a variance scale.
+    const NoiseParameter::Kind kind = layout_.parameters[v.index].kind;
+    if (kind == NoiseParameter::Kind::kWaveZeta) continue;
+    const double start = v.value();
+    double best = start, best_nll = NegativeLogLikelihood();
+    for (double factor : {1e-4, 1e-3, 1e-2, 1e-1, 10.0, 100.0}) {
+      const bool narrow = kind == NoiseParameter::Kind::kAr1Tau ||
+                          kind == NoiseParameter::Kind::kWaveOmega;
+      if (narrow && (factor < 0.01 || factor > 10.0)) continue;
+      const double value = start * factor;
+      if (value < v.lower || value > v.upper) continue;
+      v.set_value(value);
+      const double nll = NegativeLogLikelihood();
+      if (nll < best_nll) {
+        best_nll = nll;
+        best = value;
+      }
+    }
+    v.set_value(best);
+  }
+}
+
 std::vector<double> OutputErrorProblem::CentreLikelihood() {
   std::vector<double> solve = offsets_->c;
   if (!filter_error_) return solve;
@@ -469,6 +496,7 @@ std::vector<double> OutputErrorProblem::CentreLikelihood() {
   for (size_t j = 0; j < lowest.size(); ++j) {
     if (std::isfinite(lowest[j])) offsets_->c[j] = 1.0 - lowest[j];
   }
+  ++offsets_->revision;
   return solve;
 }
 

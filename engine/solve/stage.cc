@@ -208,6 +208,9 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
   summary->name = options.name;
   const auto start_time = std::chrono::steady_clock::now();
   if (!options.IsValid(&summary->message)) return false;
+  // The disturbance's parameters start decades from where the likelihood wants them (a process
+  // noise's spectral density is known to no one beforehand); a scan in decades puts them there.
+  if (problem->filter_error()) problem->ScanNoiseStarts();
 
   std::vector<std::vector<double>> starts{problem->Values()};
   starts.insert(starts.end(), extra_starts.begin(), extra_starts.end());

@@ -196,6 +196,34 @@ TEST(FilterError, WhiteNoiseWithoutProcessNoiseIsOutputError) {
   EXPECT_NEAR(ValueOf(*fe, "sigma.white.psi"), 0.003, 0.0003);
 }
 
+TEST(FilterError, SeveralRunsWithTheirOwnStartsAreAnalysedSampleBySample) {
+  // Two residual rows per sample (the innovation's and its variance's) and a free heading per
+  // run: the local analysis reads each run's rows as its own, and its standard errors are the
+  // Fisher information's (s^2 = 1), as the stage's intervals are.
+  auto model = nomoto::MakeSecondOrderRatesHandle();
+  std::vector<Experiment> runs = {Record(*model, 0.003, 0.0, 1.0, 5, 120.0),
+                                  Record(*model, 0.003, 0.0, 1.0, 6, 120.0)};
+  std::string error;
+  OutputErrorOptions options;
+  options.free_initial_states = {"psi"};
+  options.prior.apply = InitialStatePrior::Apply::kOff;
+  options.disturbance.method = DisturbanceSpec::Method::kFilterError;
+  auto fe = OutputErrorProblem::Create(model.get(), runs, Specs(1.1), options, &error);
+  ASSERT_NE(fe, nullptr) << error;
+  StageSummary summary;
+  ASSERT_TRUE(RunStage(StageOptions(), fe.get(), &summary)) << summary.message;
+  ASSERT_TRUE(summary.analysis.available) << summary.analysis.message;
+  EXPECT_EQ(summary.analysis.residual_variance, 1.0);
+  ASSERT_EQ(summary.analysis.names.size(), summary.analysis.std_errors.size());
+  for (size_t i = 0; i < summary.analysis.names.size(); ++i) {
+    const std::string& name = summary.analysis.names[i];
+    if (name.rfind("sigma.", 0) == 0) continue;
+    EXPECT_NEAR(summary.analysis.std_errors[i], StdErrorOf(*fe, summary, name),
+                0.05 * StdErrorOf(*fe, summary, name))
+        << name;
+  }
+}
+
 TEST(FilterError, Ar1HeadingNoiseIsIdentifiedWithTheShip) {
   auto model = nomoto::MakeSecondOrderRatesHandle();
   const double sigma = 0.01, tau = 3.0;
