@@ -1,11 +1,15 @@
 #include "engine/run/disturbance_notes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
 
 namespace vesselid {
 namespace {
+
+// A noise parameter within this fraction of a bound is at it.
+constexpr double kNoiseBoundTolerance = 1e-3;
 
 // A value in the unit the user reads: an angle output's in degrees.
 std::string Amount(double value, double se, bool angle, const std::string& unit) {
@@ -28,11 +32,23 @@ std::string DescribeDisturbance(const OutputErrorProblem& problem, const Uncerta
   const ModelInfo& info = problem.model().info();
   const DisturbanceLayout& layout = problem.disturbance();
   std::vector<double> value(layout.size()), se(layout.size(), NAN);
+  std::vector<std::string> bounded;  // the noise parameters held at a bound
   for (size_t i = 0; i < problem.variables().size(); ++i) {
     const Variable& v = problem.variables()[i];
     if (v.kind != Variable::Kind::kNoise) continue;
     value[v.index] = v.value();
     se[v.index] = uncertainty.StdError(static_cast<int>(i));
+    // The noise parameters are positive with bounds decades apart: a relative test.
+    if (v.free && (v.value() <= v.lower * (1.0 + kNoiseBoundTolerance) ||
+                   v.value() >= v.upper * (1.0 - kNoiseBoundTolerance))) {
+      bounded.push_back(v.name);
+    }
+  }
+  // An AR(1) part slower than the longest record is a drift, not a sensor's noise: the record
+  // cannot tell it from a bias or from slow structure the ship model lacks.
+  double longest = 0.0;
+  for (const Experiment& e : problem.experiments()) {
+    if (e.num_nodes() > 1) longest = std::max(longest, e.node_time.back() - e.node_time.front());
   }
   auto angle_of = [&](int j) {
     return j < static_cast<int>(info.angle_outputs.size()) && info.angle_outputs[j];
@@ -46,8 +62,11 @@ std::string DescribeDisturbance(const OutputErrorProblem& problem, const Uncerta
     std::string part;
     auto piece = [&](const std::string& s) { part += (part.empty() ? "" : ", ") + s; };
     if (o.ar1_state >= 0) {
-      piece("sensor noise AR(1) tau " + Amount(value[o.ar1_tau], se[o.ar1_tau], false, "s") +
-            " SD " + Amount(value[o.ar1_sigma], se[o.ar1_sigma], angle, unit));
+      const bool drift = longest > 0.0 && value[o.ar1_tau] > longest;
+      piece(std::string(drift ? "a drift slower than the record (AR(1) tau "
+                              : "sensor noise AR(1) tau ") +
+            Amount(value[o.ar1_tau], se[o.ar1_tau], false, "s") + (drift ? ")" : "") + " SD " +
+            Amount(value[o.ar1_sigma], se[o.ar1_sigma], angle, unit));
     }
     if (o.wave_state >= 0) {
       piece("wave-frequency part, peak " +
@@ -78,6 +97,12 @@ std::string DescribeDisturbance(const OutputErrorProblem& problem, const Uncerta
                                     : "(" + unit + ")^2/s";
     add("process noise on " + info.states[s] + "'s equation, spectral density " +
         Amount(value[q], se[q], false, squared));
+  }
+  if (!bounded.empty()) {
+    std::string names;
+    for (const std::string& n : bounded) names += (names.empty() ? "" : ", ") + n;
+    add("at a bound (" + names + "): that part is not what the data show (at a lower bound, " +
+        "absent)");
   }
   return text.empty() ? "none" : text;
 }

@@ -321,19 +321,26 @@ def fit(data, model, theta0, max_iterations=50, riccati="continuous", fd="centra
     # Starting R: the closed-form estimate made consistent with the start's own gain (a few
     # fixed-point passes R <- mean nu^2 at the start values, q held at its start).
     R = max(float(np.var(np.diff(data["y"]))), 1e-12)
-    consistent = False
+    # The relaxation algorithm updates R after every step anyway: a start R that is feasible
+    # (the start's gain exists) is enough; the passes only bring it closer.
+    feasible = False
     for _ in range(40):
         try:
             nu, _ = run_filter(model, theta, R, data, riccati)
         except Infeasible:  # R below the start's own C P C^T: raise it and try again
             R *= 4.0
             continue
+        feasible = True
         R_new = float(np.mean(nu ** 2))
-        consistent = abs(R_new / R - 1.0) < 1e-3
+        try:
+            run_filter(model, theta, R_new, data, riccati)
+        except Infeasible:
+            break  # keep the last feasible R
+        converged = abs(R_new / R - 1.0) < 1e-3
         R = R_new
-        if consistent:
+        if converged:
             break
-    if not consistent:
+    if not feasible:
         raise Infeasible("no innovation variance consistent with the start values")
 
     converged = False

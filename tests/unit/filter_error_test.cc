@@ -5,6 +5,7 @@
 #include <random>
 
 #include "engine/model/filter_error_cost.h"
+#include "engine/run/disturbance_notes.h"
 #include "engine/solve/output_error_problem.h"
 #include "engine/solve/stage.h"
 #include "gtest/gtest.h"
@@ -222,6 +223,29 @@ TEST(FilterError, SeveralRunsWithTheirOwnStartsAreAnalysedSampleBySample) {
                 0.05 * StdErrorOf(*fe, summary, name))
         << name;
   }
+}
+
+TEST(FilterError, TheDescriptionNamesADriftAndAPartAtItsBound) {
+  // An AR(1) part slower than the record is a drift, not a sensor's noise; a part held at its
+  // bound is named as such. A time constant within the record stays sensor noise.
+  auto model = nomoto::MakeSecondOrderRatesHandle();
+  std::vector<Experiment> runs = {Record(*model, 0.002, 0.004, 2.0, 3, 60.0)};
+  std::string error;
+  auto problem = OutputErrorProblem::Create(model.get(), runs, Specs(1.0), Ar1Heading(), &error);
+  ASSERT_NE(problem, nullptr) << error;
+  const Uncertainty none;
+  EXPECT_NE(DescribeDisturbance(*problem, none).find("psi: sensor noise AR(1) tau 1 s"),
+            std::string::npos)
+      << DescribeDisturbance(*problem, none);
+  EXPECT_EQ(DescribeDisturbance(*problem, none).find("at a bound"), std::string::npos);
+  for (const Variable& v : problem->variables()) {  // set_value writes the solver's block
+    if (v.name == "tau.ar1.psi") v.set_value(600.0);
+    if (v.name == "q.process.eta2") v.set_value(v.lower);
+  }
+  const std::string text = DescribeDisturbance(*problem, none);
+  EXPECT_NE(text.find("a drift slower than the record (AR(1) tau 600 s)"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("at a bound (q.process.eta2)"), std::string::npos) << text;
 }
 
 TEST(FilterError, Ar1HeadingNoiseIsIdentifiedWithTheShip) {
