@@ -481,23 +481,39 @@ void OutputErrorProblem::ScanNoiseStarts() {
   }
 }
 
-std::vector<double> OutputErrorProblem::CentreLikelihood() {
-  std::vector<double> solve = offsets_->c;
-  if (!filter_error_) return solve;
-  std::vector<double> lowest(solve.size(), std::numeric_limits<double>::infinity());
+std::vector<double> OutputErrorProblem::LowestLogVariances() const {
+  std::vector<double> lowest(offsets_->c.size(), std::numeric_limits<double>::infinity());
   for (size_t e = 0; e < experiments_.size(); ++e) {
     FilterRun run;
-    if (!RunFilter(static_cast<int>(e), 0, &run)) return solve;
+    if (!RunFilter(static_cast<int>(e), 0, &run)) return {};
     for (int i = 0; i < experiments_[e].num_samples(); ++i) {
       const int j = experiments_[e].samples[i].output;
       lowest[j] = std::min(lowest[j], std::log(run.variance[i]));
     }
   }
+  return lowest;
+}
+
+std::vector<double> OutputErrorProblem::CentreLikelihood(double margin) {
+  std::vector<double> solve = offsets_->c;
+  if (!filter_error_) return solve;
+  const std::vector<double> lowest = LowestLogVariances();
   for (size_t j = 0; j < lowest.size(); ++j) {
-    if (std::isfinite(lowest[j])) offsets_->c[j] = 1.0 - lowest[j];
+    if (std::isfinite(lowest[j])) offsets_->c[j] = 1.0 + margin - lowest[j];
   }
   ++offsets_->revision;
   return solve;
+}
+
+double OutputErrorProblem::LowestLikelihoodTerm() const {
+  if (!filter_error_) return NAN;
+  const std::vector<double> lowest = LowestLogVariances();
+  if (lowest.empty()) return NAN;
+  double term = std::numeric_limits<double>::infinity();
+  for (size_t j = 0; j < lowest.size(); ++j) {
+    if (std::isfinite(lowest[j])) term = std::min(term, lowest[j] + offsets_->c[j]);
+  }
+  return term;
 }
 
 int OutputErrorProblem::num_free() const {

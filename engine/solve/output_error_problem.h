@@ -114,12 +114,20 @@ class OutputErrorProblem {
   // filter diverges or this is not a filter-error problem).
   double NegativeLogLikelihood() const;
   // Sets the likelihood residuals' offsets so that J'J is the Fisher information at the
-  // current values (filter_error_cost.h) and returns the solve's, for RestoreOffsets.
-  std::vector<double> CentreLikelihood();
+  // current values (filter_error_cost.h) and returns the previous ones, for RestoreOffsets.
+  // `margin` > 0 sets min log S + c_j = 1 + margin instead: room for the variances to fall
+  // while solving, at a Gauss-Newton curvature of log S at most 1 + margin times too low.
+  std::vector<double> CentreLikelihood(double margin = 0.0);
+  // min over the samples of log S_i + c_j at the current values: below 0 the likelihood's
+  // log-variance rows are clamped (NaN when a filter diverges or this is output error).
+  double LowestLikelihoodTerm() const;
   // Moves each noise parameter in turn to the best of its value times 10^-4 .. 10^2 (within
   // its bounds) by the likelihood at the other values held (a few filter runs in double): a
   // start decades off costs the solver tens of iterations crawling in linear steps.
   void ScanNoiseStarts();
+  // Per model output, the lowest log S over the samples (+inf without samples; empty when a
+  // filter diverges).
+  std::vector<double> LowestLogVariances() const;
   void RestoreOffsets(const std::vector<double>& offsets) {
     offsets_->c = offsets;
     ++offsets_->revision;

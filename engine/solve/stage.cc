@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include "engine/solve/search_box.h"
 
@@ -102,6 +103,71 @@ void EscapeExchangeRidge(const LocalSolveOptions& options, OutputErrorProblem* p
     *local = best;
     problem->SetValues(best_values);
   }
+}
+
+// The filter-error method's solve runs on offsets centred at its start (filter_error_cost.h):
+// from the floor's, the Gauss-Newton curvature of log S is too low by log(S / floor), and a
+// fit crawled for 30 iterations through the last thousandth of -log L, or stalled on a plateau
+// a third of a standard error from its optimum. The centred offsets leave the variances room
+// to fall by e^(1 + kSolveOffsetMargin); where they fell further (the log-variance rows are
+// clamped there, their gradient lost) the solve goes on re-centred, at most
+// kMaxRecentredSolves times. Costs are reported under the floor's offsets, so that
+// refinements compare on one scale: the two differ by a constant per solve.
+constexpr double kSolveOffsetMargin = 1.0;
+constexpr double kRecentreBelow = 0.25;
+constexpr int kMaxRecentredSolves = 3;
+
+// Shifts the costs of `local` from index `from` of its history by `shift`.
+void ShiftCosts(double shift, size_t from, LocalSolveSummary* local) {
+  for (size_t k = from; k < local->cost_history.size(); ++k) local->cost_history[k] += shift;
+  local->final_cost += shift;
+}
+
+// The floor's cost minus the centred one at the current values (a constant of the solve).
+double OffsetShift(const std::vector<double>& floor_offsets, OutputErrorProblem* problem) {
+  const std::vector<double> centred = problem->CentreLikelihood();  // the current ones
+  problem->RestoreOffsets(centred);
+  double on_centred = 0.0, on_floor = 0.0;
+  const bool ok = problem->Cost(&on_centred);
+  problem->RestoreOffsets(floor_offsets);
+  const bool ok_floor = problem->Cost(&on_floor);
+  problem->RestoreOffsets(centred);
+  return ok && ok_floor ? on_floor - on_centred : 0.0;
+}
+
+// `shift`: set before each solve to the floor's cost minus the centred one, for the callers'
+// comparisons of the costs the solve reports with costs on the floor's offsets.
+void RunCentredSolve(const LocalSolveOptions& options, OutputErrorProblem* problem,
+                     LocalSolveSummary* local,
+                     const std::function<void(LocalSolveSummary*)>& after_solve, double* shift) {
+  double start_cost = 0.0;
+  const bool started = problem->Cost(&start_cost);
+  const std::vector<double> floor_offsets = problem->CentreLikelihood(kSolveOffsetMargin);
+  *shift = OffsetShift(floor_offsets, problem);
+  const bool solved = RunLocalSolve(options, problem, local);
+  if (solved) after_solve(local);
+  if (local->usable) ShiftCosts(*shift, 0, local);
+  for (int pass = 0; local->usable && pass < kMaxRecentredSolves; ++pass) {
+    if (!(problem->LowestLikelihoodTerm() < kRecentreBelow)) break;
+    problem->CentreLikelihood(kSolveOffsetMargin);
+    *shift = OffsetShift(floor_offsets, problem);
+    LocalSolveSummary again;
+    if (!RunLocalSolve(options, problem, &again) || !again.usable) break;
+    const size_t from = local->cost_history.size();
+    local->cost_history.insert(local->cost_history.end(), again.cost_history.begin(),
+                               again.cost_history.end());
+    local->iterations += again.iterations;
+    local->successful_steps += again.successful_steps;
+    local->unsuccessful_steps += again.unsuccessful_steps;
+    local->time_seconds += again.time_seconds;
+    local->termination = again.termination;
+    local->message = again.message;
+    local->final_cost = again.final_cost;
+    ShiftCosts(*shift, from, local);
+  }
+  problem->RestoreOffsets(floor_offsets);
+  *shift = 0.0;
+  if (started && solved) local->initial_cost = start_cost;
 }
 
 // Solves for the free initial states with every free parameter held constant, where the
@@ -225,6 +291,7 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
   std::vector<std::vector<double>> optima;
   std::vector<double> optimum_costs;
   std::vector<int> optimum_refinement;
+  double centred_shift = 0.0;  // RunCentredSolve's, while a filter-error solve runs
   auto refine = [&](size_t i) {
     problem->SetValues(starts[i]);
     if (options.initial_states_first) SolveInitialStates(options.local, problem);
@@ -243,7 +310,7 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
       local_options.keep_going = [&](int, double cost) {
         const std::vector<double> now = problem->Values();
         for (size_t k = 0; k < optima.size() && joined < 0; ++k) {
-          if (cost >= (1.0 - kJoinSameCost) * optimum_costs[k] &&
+          if (cost + centred_shift >= (1.0 - kJoinSameCost) * optimum_costs[k] &&
               box.Distance(now, optima[k]) < kJoinDistance) {
             joined = optimum_refinement[k];
           }
@@ -256,7 +323,14 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
     // The multistart searched the ordered half of exchangeable pairs already: a candidate of
     // it that ends on their ridge is not split again (other candidates lie off it).
     const bool escape = i < first_candidate || summary->global.algorithm != "multistart";
-    if (RunLocalSolve(local_options, problem, &local) && escape) {
+    if (problem->filter_error()) {
+      RunCentredSolve(
+          local_options, problem, &local,
+          [&](LocalSolveSummary* solved) {
+            if (escape) EscapeExchangeRidge(local_options, problem, solved, &ridge_notes);
+          },
+          &centred_shift);
+    } else if (RunLocalSolve(local_options, problem, &local) && escape) {
       EscapeExchangeRidge(local_options, problem, &local, &ridge_notes);
     }
     if (joined >= 0) {
