@@ -109,19 +109,13 @@ void EscapeExchangeRidge(const LocalSolveOptions& options, OutputErrorProblem* p
 // from the floor's, the Gauss-Newton curvature of log S is too low by log(S / floor), and a
 // fit crawled for 30 iterations through the last thousandth of -log L, or stalled on a plateau
 // a third of a standard error from its optimum. The centred offsets leave the variances room
-// to fall by e^(1 + kSolveOffsetMargin); where they fell further (the log-variance rows are
-// clamped there, their gradient lost) the solve goes on re-centred, at most
-// kMaxRecentredSolves times. Costs are reported under the floor's offsets, so that
-// refinements compare on one scale: the two differ by a constant per solve.
+// to fall by e^(1 + kSolveOffsetMargin); a solve whose variances come within kRecentreBelow of
+// that (the log-variance rows are clamped beyond it, their gradient lost) pauses and goes on
+// re-centred, at most kMaxRecentredSolves times. Costs are reported under the floor's offsets,
+// so that refinements compare on one scale: the two differ by a constant per solve.
 constexpr double kSolveOffsetMargin = 1.0;
 constexpr double kRecentreBelow = 0.25;
-constexpr int kMaxRecentredSolves = 3;
-
-// Shifts the costs of `local` from index `from` of its history by `shift`.
-void ShiftCosts(double shift, size_t from, LocalSolveSummary* local) {
-  for (size_t k = from; k < local->cost_history.size(); ++k) local->cost_history[k] += shift;
-  local->final_cost += shift;
-}
+constexpr int kMaxRecentredSolves = 12;
 
 // The floor's cost minus the centred one at the current values (a constant of the solve).
 double OffsetShift(const std::vector<double>& floor_offsets, OutputErrorProblem* problem) {
@@ -135,39 +129,71 @@ double OffsetShift(const std::vector<double>& floor_offsets, OutputErrorProblem*
   return ok && ok_floor ? on_floor - on_centred : 0.0;
 }
 
-// `shift`: set before each solve to the floor's cost minus the centred one, for the callers'
-// comparisons of the costs the solve reports with costs on the floor's offsets.
-void RunCentredSolve(const LocalSolveOptions& options, OutputErrorProblem* problem,
-                     LocalSolveSummary* local,
-                     const std::function<void(LocalSolveSummary*)>& after_solve, double* shift) {
+// Adds a paused or final pass to the refinement's summary, its costs shifted by `shift`.
+void AddPass(const LocalSolveSummary& pass, double shift, bool first, LocalSolveSummary* local) {
+  if (first) {
+    *local = pass;
+    for (double& c : local->cost_history) c += shift;
+    local->final_cost += shift;
+    return;
+  }
+  // The pass starts where the last ended: its history's first entry is that point again.
+  for (size_t k = 1; k < pass.cost_history.size(); ++k) {
+    local->cost_history.push_back(pass.cost_history[k] + shift);
+  }
+  local->iterations += pass.iterations;
+  local->successful_steps += pass.successful_steps;
+  local->unsuccessful_steps += pass.unsuccessful_steps;
+  local->time_seconds += pass.time_seconds;
+  local->residual_seconds += pass.residual_seconds;
+  local->jacobian_seconds += pass.jacobian_seconds;
+  local->linear_solver_seconds += pass.linear_solver_seconds;
+  local->residual_evaluations += pass.residual_evaluations;
+  local->jacobian_evaluations += pass.jacobian_evaluations;
+  local->usable = pass.usable;
+  local->termination = pass.termination;
+  local->message = pass.message;
+  local->final_cost = pass.final_cost + shift;
+}
+
+// `shift`: set before each pass to the floor's cost minus the centred one, for the callers'
+// comparisons of the costs the solve reports with costs on the floor's offsets. Returns
+// RunLocalSolve's answer for the last pass.
+bool RunCentredSolve(const LocalSolveOptions& options, OutputErrorProblem* problem,
+                     LocalSolveSummary* local, double* shift) {
   double start_cost = 0.0;
   const bool started = problem->Cost(&start_cost);
   const std::vector<double> floor_offsets = problem->CentreLikelihood(kSolveOffsetMargin);
-  *shift = OffsetShift(floor_offsets, problem);
-  const bool solved = RunLocalSolve(options, problem, local);
-  if (solved) after_solve(local);
-  if (local->usable) ShiftCosts(*shift, 0, local);
-  for (int pass = 0; local->usable && pass < kMaxRecentredSolves; ++pass) {
-    if (!(problem->LowestLikelihoodTerm() < kRecentreBelow)) break;
-    problem->CentreLikelihood(kSolveOffsetMargin);
+  bool paused = false;
+  LocalSolveOptions pausing = options;
+  pausing.keep_going = [&](int iteration, double cost) {
+    if (problem->LowestLikelihoodTerm() < kRecentreBelow) {
+      paused = true;
+      return false;
+    }
+    return !options.keep_going || options.keep_going(iteration, cost);
+  };
+  bool ran = false;
+  for (int pass = 0; pass <= kMaxRecentredSolves; ++pass) {
+    if (pass > 0) problem->CentreLikelihood(kSolveOffsetMargin);
     *shift = OffsetShift(floor_offsets, problem);
-    LocalSolveSummary again;
-    if (!RunLocalSolve(options, problem, &again) || !again.usable) break;
-    const size_t from = local->cost_history.size();
-    local->cost_history.insert(local->cost_history.end(), again.cost_history.begin(),
-                               again.cost_history.end());
-    local->iterations += again.iterations;
-    local->successful_steps += again.successful_steps;
-    local->unsuccessful_steps += again.unsuccessful_steps;
-    local->time_seconds += again.time_seconds;
-    local->termination = again.termination;
-    local->message = again.message;
-    local->final_cost = again.final_cost;
-    ShiftCosts(*shift, from, local);
+    paused = false;
+    LocalSolveSummary one;
+    ran = RunLocalSolve(pass < kMaxRecentredSolves ? pausing : options, problem, &one);
+    if (paused) {
+      // Abandoned at an accepted iterate (the problem holds it): its cost, and on.
+      double cost = 0.0;
+      one.usable = problem->Cost(&cost);
+      one.final_cost = cost;
+      one.termination = "PAUSED";
+    }
+    AddPass(one, *shift, pass == 0, local);
+    if (!paused || !one.usable) break;
   }
   problem->RestoreOffsets(floor_offsets);
   *shift = 0.0;
-  if (started && solved) local->initial_cost = start_cost;
+  if (started && local->run) local->initial_cost = start_cost;
+  return ran || local->usable;
 }
 
 // Solves for the free initial states with every free parameter held constant, where the
@@ -324,12 +350,9 @@ bool RunStage(const StageOptions& options, OutputErrorProblem* problem, StageSum
     // it that ends on their ridge is not split again (other candidates lie off it).
     const bool escape = i < first_candidate || summary->global.algorithm != "multistart";
     if (problem->filter_error()) {
-      RunCentredSolve(
-          local_options, problem, &local,
-          [&](LocalSolveSummary* solved) {
-            if (escape) EscapeExchangeRidge(local_options, problem, solved, &ridge_notes);
-          },
-          &centred_shift);
+      if (RunCentredSolve(local_options, problem, &local, &centred_shift) && escape) {
+        EscapeExchangeRidge(local_options, problem, &local, &ridge_notes);
+      }
     } else if (RunLocalSolve(local_options, problem, &local) && escape) {
       EscapeExchangeRidge(local_options, problem, &local, &ridge_notes);
     }
