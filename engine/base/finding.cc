@@ -145,12 +145,17 @@ const Row kRows[] = {
      "None: read the estimates beside the ship's. A process noise far above what the sea and "
      "sensors can make stands for structure the model lacks."},
     {K::kDisturbanceAbsorbsStructure, "disturbance_absorbs_structure", S::kWarning,
-     "Under `noise: {method: auto}` the chosen disturbance model moved the ship's estimates "
-     "from output error's by more than 10 combined standard errors (sqrt(SE_oe^2 + SE_fe^2)). "
-     "Where the ship model is right, the disturbance changes the estimates within their "
-     "errors (the independent corpus's sensor, gust and drift classes: at most 6.4); where it "
-     "lacks structure (a rudder dead band, backlash, a missing nonlinear term), process noise "
-     "absorbs what the model cannot do and the innovations come out white (9.5-56).",
+     "A disturbance model absorbs structure the ship model lacks (a rudder dead band, backlash "
+     "or rate limit, a missing nonlinear term): process noise does what the model cannot and "
+     "the innovations come out white. Either of two signs: (1) the filter's normalised "
+     "innovations follow functions of the predicted motion and the inputs (s, s|s|, s^3 of the "
+     "output's predicted rate and of each input; N R^2 of the regression against chi^2, "
+     "p below 0.001 over the stage's tests), which under a correct model they cannot, whatever "
+     "the noise; (2) under `noise: {method: auto}` the chosen model moved the ship's estimates "
+     "from output error's by more than 10 combined standard errors (sqrt(SE_oe^2 + SE_fe^2); "
+     "the independent corpus's sensor, gust and drift classes: at most 6.4, its structure "
+     "classes 9.5-56; very strong gusts can reach it, as output error's own estimate is then "
+     "far off).",
      "Look for the missing structure (vesselid select over richer families); the estimates "
      "of neither method are to be trusted as they are."},
     {K::kGlobalStartDiverged, "global_start_diverged", S::kInfo,

@@ -114,6 +114,35 @@ json RunsToJson(const RunConfig& config, const std::vector<ExperimentFit>& fits)
       {"rows", runs}, {"summary", summary}, {"units", units}, {"worst_first", table.worst_first}};
 }
 
+json DisturbanceToJson(const DisturbanceReport& d) {
+  json candidates = json::array();
+  for (const DisturbanceCandidateScore& c : d.candidates) {
+    json row = {{"name", c.name},
+                {"solved", c.solved},
+                {"negative_log_likelihood", JsonNumber(c.negative_log_likelihood)},
+                {"unknowns", c.unknowns},
+                {"bic", JsonNumber(c.bic)},
+                {"chosen", c.chosen}};
+    if (!c.why.empty()) row["why"] = c.why;
+    candidates.push_back(row);
+  }
+  json predictions = json::array();
+  for (const FilterPrediction& p : d.predictions) {
+    predictions.push_back({{"experiment", p.experiment},
+                           {"output", p.output},
+                           {"steps", p.steps},
+                           {"seconds_ahead", JsonNumber(p.seconds_ahead)},
+                           {"k_step_fit_percent", JsonNumber(p.k_step_fit_percent)},
+                           {"one_step_fit_percent", JsonNumber(p.one_step_fit_percent)},
+                           {"free_run_fit_percent", JsonNumber(p.free_run_fit_percent)}});
+  }
+  return {{"method", d.method},
+          {"model", d.model},
+          {"negative_log_likelihood", JsonNumber(d.negative_log_likelihood)},
+          {"candidates", candidates},
+          {"predictions", predictions}};
+}
+
 json CountsToJson(const UnknownCounts& c) {
   return {{"shared_parameters", c.shared},
           {"per_experiment_parameters", c.per_experiment},
@@ -404,6 +433,7 @@ json StageToJson(const RunConfig& config, const StageResult& stage, JsonSplices*
   if (!stage.rejected.empty()) j["rejected"] = stage.rejected;
   if (stage.integration_step > 0.0) j["integration_step"] = stage.integration_step;
   if (stage.noise_model.active()) j["noise_model"] = NoiseModelToJson(config, stage);
+  if (stage.disturbance.active()) j["disturbance"] = DisturbanceToJson(stage.disturbance);
   if (!stage.velocity_validation.empty()) {
     j["velocity_validation"] = VelocityToJson(stage.velocity_validation);
   }

@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 
+#include "engine/run/disturbance_notes.h"
 #include "engine/run/estimate_specs.h"
 
 namespace vesselid {
@@ -363,6 +364,38 @@ bool ChooseDisturbance(const StageConfig& stage, const StageOptions& options,
   *problem = std::move(p);
   *summary = std::move(chosen);
   return true;
+}
+
+DisturbanceReport ReportDisturbance(const DisturbanceSpec& spec, const OutputErrorProblem& problem,
+                                    const Uncertainty& uncertainty,
+                                    const std::vector<DisturbanceCandidate>& candidates) {
+  DisturbanceReport report;
+  const bool automatic = spec.method == DisturbanceSpec::Method::kAuto;
+  if (!automatic && !problem.filter_error()) return report;
+  report.method = automatic ? "auto" : "filter_error";
+  report.model = problem.filter_error() ? DescribeDisturbance(problem, uncertainty)
+                                        : "none: output error kept";
+  report.negative_log_likelihood = problem.filter_error() ? problem.NegativeLogLikelihood()
+                                                          : OutputErrorNegativeLogLikelihood(problem);
+  size_t best = 0;
+  for (size_t c = 1; c < candidates.size(); ++c) {
+    if (candidates[c].solved && candidates[c].bic < candidates[best].bic) best = c;
+  }
+  for (size_t c = 0; c < candidates.size(); ++c) {
+    const DisturbanceCandidate& d = candidates[c];
+    DisturbanceCandidateScore score;
+    score.name = d.name;
+    score.solved = d.solved;
+    score.why = d.why;
+    if (d.solved) {
+      score.negative_log_likelihood = d.negative_log_likelihood;
+      score.bic = d.bic;
+    }
+    score.unknowns = d.unknowns;
+    score.chosen = d.solved && c == best;
+    report.candidates.push_back(score);
+  }
+  return report;
 }
 
 }  // namespace vesselid

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "engine/model/disturbance.h"
+#include "engine/run/disturbance_report.h"
 #include "engine/run/run_config.h"
 #include "engine/solve/output_error_problem.h"
 #include "engine/solve/residual_analysis.h"
@@ -52,6 +53,13 @@ UncertaintyOptions FilterErrorUncertainty(UncertaintyOptions options);
 // -log L of an output-error problem at its current values under the maximum-likelihood sigma
 // per output (NaN if a simulation diverges).
 double OutputErrorNegativeLogLikelihood(const OutputErrorProblem& problem);
+
+// The stage's disturbance report (disturbance_report.h) for results.json: empty under output
+// error unless `spec` asked for auto; `candidates` as ChooseDisturbance left them (the chosen:
+// the least BIC of the solved, as it chose).
+DisturbanceReport ReportDisturbance(const DisturbanceSpec& spec, const OutputErrorProblem& problem,
+                                    const Uncertainty& uncertainty,
+                                    const std::vector<DisturbanceCandidate>& candidates);
 
 // Chooses for a solved output-error stage: on a filter-error win, *problem and *summary are
 // replaced by the chosen candidate's, solved from output error's estimate. Notes name every

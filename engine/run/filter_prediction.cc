@@ -126,10 +126,19 @@ void PredictHeldOutThroughFilter(const RunConfig& config, const StageConfig& sta
       }
       if (y.empty()) continue;
       const auto found = free_run.find({e.name, info.outputs[j]});
+      FilterPrediction prediction;
+      prediction.experiment = e.name;
+      prediction.output = info.outputs[j];
+      prediction.steps = k;
+      prediction.seconds_ahead = k * dt;
+      if (k + 2 <= e.num_nodes()) prediction.k_step_fit_percent = FitPercent(y, ahead);
+      prediction.one_step_fit_percent = FitPercent(y, one);
+      if (found != free_run.end()) prediction.free_run_fit_percent = found->second;
+      result->disturbance.predictions.push_back(prediction);
       char ahead_text[80];
       if (k + 2 <= e.num_nodes()) {
         std::snprintf(ahead_text, sizeof(ahead_text), "%.1f %% (%.3g s ahead)",
-                      FitPercent(y, ahead), k * dt);
+                      prediction.k_step_fit_percent, k * dt);
       } else {
         std::snprintf(ahead_text, sizeof(ahead_text), "none (the run has %d nodes)",
                       e.num_nodes());

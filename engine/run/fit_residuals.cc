@@ -10,20 +10,6 @@
 namespace vesselid {
 namespace {
 
-// Row of the input cache at each node: the start of the node's first RK4 step (three rows per
-// step), the last row at the last node.
-std::vector<size_t> NodeInputRows(const Experiment& experiment) {
-  std::vector<size_t> rows(experiment.num_nodes(), 0);
-  size_t steps = 0;
-  for (int k = 0; k < experiment.num_nodes(); ++k) {
-    rows[k] = 3 * steps;
-    if (k < static_cast<int>(experiment.node_substeps.size())) {
-      steps += static_cast<size_t>(experiment.node_substeps[k]);
-    }
-  }
-  return rows;
-}
-
 int Column(const Trajectory& trace, const std::string& name) {
   for (size_t c = 0; c < trace.names.size(); ++c) {
     if (trace.names[c] == name) return static_cast<int>(c);
@@ -46,6 +32,18 @@ void FedInputs(const ModelInfo& info, size_t count, std::vector<std::vector<doub
 }
 
 }  // namespace
+
+std::vector<size_t> NodeInputRows(const Experiment& experiment) {
+  std::vector<size_t> rows(experiment.num_nodes(), 0);
+  size_t steps = 0;
+  for (int k = 0; k < experiment.num_nodes(); ++k) {
+    rows[k] = 3 * steps;
+    if (k < static_cast<int>(experiment.node_substeps.size())) {
+      steps += static_cast<size_t>(experiment.node_substeps[k]);
+    }
+  }
+  return rows;
+}
 
 std::vector<ResidualAnalysis> AnalyseFitResiduals(const ModelInfo& info,
                                                   const std::vector<Experiment>& experiments,

@@ -14,6 +14,10 @@
 
 namespace vesselid {
 
+// Row of the input cache at each node: the start of the node's first RK4 step (three rows per
+// step), the last row at the last node.
+std::vector<size_t> NodeInputRows(const Experiment& experiment);
+
 // fits[i] is matched to the experiment of the same name; diverged fits and experiments
 // without a fit are left out.
 std::vector<ResidualAnalysis> AnalyseFitResiduals(const ModelInfo& info,

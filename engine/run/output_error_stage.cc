@@ -19,6 +19,7 @@
 #include "engine/run/disturbance_choice.h"
 #include "engine/run/disturbance_notes.h"
 #include "engine/run/fit_residuals.h"
+#include "engine/run/innovation_structure.h"
 #include "engine/run/input_noise_notes.h"
 #include "engine/run/input_noise_uncertainty.h"
 #include "engine/run/records.h"
@@ -374,8 +375,8 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
       !HandleOutliers(stage, options, &problem, &summary, error)) {
     return false;
   }
+  std::vector<DisturbanceCandidate> candidates;
   if (stage.problem.disturbance.method == DisturbanceSpec::Method::kAuto) {
-    std::vector<DisturbanceCandidate> candidates;
     if (!ChooseDisturbance(stage, options,
                            AnalyseFitResiduals(model.info(), problem->experiments(), summary.fits),
                            &problem, &summary, &candidates, error)) {
@@ -411,6 +412,8 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
           : AnalyseFitResiduals(model.info(), problem->experiments(), summary.fits);
   DisturbanceNotes(summary.name, *problem, summary.uncertainty, residuals, &summary.notes,
                    &summary.findings);
+  AddInnovationStructureFindings(summary.name, TestInnovationStructure(*problem), &summary.notes,
+                                 &summary.findings);
   for (ResidualAnalysis& a : residuals) {
     const auto& share = summary.uncertainty.input_noise_share;
     const auto e = share.find(a.experiment);
@@ -422,6 +425,8 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
   summary.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start).count();
   *result = Collect(*problem, starts, std::move(summary));
+  result->disturbance = ReportDisturbance(stage.problem.disturbance, *problem,
+                                          result->summary.uncertainty, candidates);
   result->integration_step = integration_step;
   result->residuals = std::move(residuals);
   result->noise_model = std::move(noise);

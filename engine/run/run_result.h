@@ -14,6 +14,7 @@
 #include "engine/data/turning_figures.h"
 #include "engine/data/zigzag_figures.h"
 #include "engine/model/model.h"
+#include "engine/run/disturbance_report.h"
 #include "engine/run/selection_result.h"
 #include "engine/solve/noise_weights.h"
 #include "engine/solve/parameter.h"
@@ -112,6 +113,9 @@ struct StageResult {
   // inputs, per experiment and compared output (residual_analysis.h).
   std::vector<ResidualAnalysis> residuals;
   std::vector<ResidualAnalysis> validation_residuals;  // of `validation`, reported only
+  // Filter-error stages: the disturbance model, auto's candidates, the held-out predictions
+  // through the filter (disturbance_report.h).
+  DisturbanceReport disturbance;
   // The cost at the estimate with every channel weighted as configured (weights: fixed for
   // the stage whatever the noise model did), so that end points from other starts, runs
   // and tools rank by it; the minimised cost under `weights: noise` is ~N/2 at any end point.

@@ -7,6 +7,7 @@
 // picks a disturbance model by BIC and names every candidate. Keys: noise, method, angles,
 // measurement (white, ar1: type, sigma, tau, white), process, wave (omega, zeta, sigma), bias
 // (q, initial_sd), prediction_steps, gain.
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -23,7 +24,21 @@ namespace filter_error_run_test {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::string Config(const std::string& noise) {
+// `held_out`: a second, shorter record the stage predicts (its validation).
+std::string Config(const std::string& noise, bool held_out = false) {
+  const std::string check_record = held_out ? R"(
+    - file: check.csv
+      duration: 120
+      excitation: {type: multisine, amplitude_deg: 20, periods: [60, 30, 15, 7.5, 4]}
+      noise: {rudder_deg: 0.1, heading_deg: 0.1}
+      seed: 13)"
+                                            : "";
+  const std::string check_experiment = held_out ? R"(
+  - name: check
+    file: check.csv
+    inputs: {delta: delta}
+    outputs: {psi: psi})"
+                                                : "";
   return R"(description: patrol vessel, multi-sine, noisy rudder
 model: {family: nomoto, type: second_order}
 simulation:
@@ -35,15 +50,15 @@ simulation:
       duration: 600
       excitation: {type: multisine, amplitude_deg: 20, periods: [60, 30, 15, 7.5, 4]}
       noise: {rudder_deg: 0.1, heading_deg: 0.1}
-      seed: 12
+      seed: 12)" + check_record + R"(
 experiments:
   - name: multisine
     file: multisine.csv
     inputs: {delta: delta}
-    outputs: {psi: psi}
+    outputs: {psi: psi})" + check_experiment + R"(
 stages:
   - name: multisine
-    experiments: [multisine]
+    experiments: [multisine])" + (held_out ? "\n    validation: [check]" : "") + R"(
     parameters:
       T1: {start: 2.5, lower: 0.01, upper: 20.0}
       T2: {start: 0.26, lower: 0.01, upper: 20.0}
@@ -63,12 +78,13 @@ std::string ReadText(const fs::path& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-CommandRun SimulateAndRun(const std::string& name, const std::string& noise) {
+CommandRun SimulateAndRun(const std::string& name, const std::string& noise,
+                          bool held_out = false) {
   const fs::path dir = fs::temp_directory_path() / ("vesselid_filter_error_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   const fs::path config = dir / "config.yaml";
-  std::ofstream(config) << Config(noise);
+  std::ofstream(config) << Config(noise, held_out);
   const std::string binary = VESSELID_BINARY;
   const std::string simulate =
       binary + " simulate " + config.string() + " --out " + dir.string() + " > /dev/null";
@@ -95,7 +111,8 @@ const json* EstimateNamed(const json& results, const std::string& name) {
 TEST(FilterErrorRun, ProcessNoiseOnTheRuddersEquationWhitensTheInnovations) {
   const CommandRun run = SimulateAndRun(
       "process", "{method: filter_error, angles: deg, measurement: {psi: {type: white, sigma: 0.1}}, "
-                 "process: {xi2: auto}, prediction_steps: 5, gain: auto}");
+                 "process: {xi2: auto}, prediction_steps: 5, gain: auto}",
+      true);
   ASSERT_EQ(run.status, 0) << run.stderr_text;
   ASSERT_TRUE(run.results.is_object());
   const json* q = EstimateNamed(run.results, "q.process.xi2");
@@ -116,6 +133,19 @@ TEST(FilterErrorRun, ProcessNoiseOnTheRuddersEquationWhitensTheInnovations) {
   EXPECT_TRUE(a["white"].get<bool>()) << a.dump();
   // The ship's parameters near the truth (T1 2.09, K -0.172).
   EXPECT_NEAR((*EstimateNamed(run.results, "K"))["value"].get<double>(), -0.1724, 0.02);
+  // results.json: the disturbance and the held-out run predicted through the filter, where
+  // the k-step prediction lies between the one-step prediction and the free run.
+  const json& d = run.results["stages"][0]["disturbance"];
+  ASSERT_TRUE(d.is_object()) << run.results["stages"][0].dump();
+  EXPECT_EQ(d["method"], "filter_error");
+  EXPECT_NE(d["model"].get<std::string>().find("process noise on xi2"), std::string::npos);
+  ASSERT_EQ(d["predictions"].size(), 1u) << d.dump();
+  const json& p = d["predictions"][0];
+  EXPECT_EQ(p["experiment"], "check");
+  EXPECT_EQ(p["steps"], 5);
+  EXPECT_NEAR(p["seconds_ahead"].get<double>(), 0.5, 1e-9);
+  EXPECT_GE(p["one_step_fit_percent"].get<double>(), p["k_step_fit_percent"].get<double>());
+  EXPECT_GE(p["k_step_fit_percent"].get<double>(), p["free_run_fit_percent"].get<double>());
 }
 
 TEST(FilterErrorRun, AutoNamesEveryCandidateAndKeepsTheBest) {
@@ -128,6 +158,24 @@ TEST(FilterErrorRun, AutoNamesEveryCandidateAndKeepsTheBest) {
   EXPECT_NE(notes.find("chosen"), std::string::npos) << notes;
   EXPECT_NE(notes.find("output error's estimates were"), std::string::npos) << notes;
   EXPECT_NE(EstimateNamed(run.results, "q.process.xi2"), nullptr) << notes;
+  // The same choice in results.json: output error first, one chosen, the least BIC.
+  const json& d = run.results["stages"][0]["disturbance"];
+  ASSERT_TRUE(d.is_object());
+  EXPECT_EQ(d["method"], "auto");
+  ASSERT_GE(d["candidates"].size(), 3u);
+  EXPECT_EQ(d["candidates"][0]["name"], "output_error");
+  int chosen = 0;
+  double least = 1e300, chosen_bic = 0.0;
+  for (const json& c : d["candidates"]) {
+    if (!c["solved"].get<bool>()) continue;
+    least = std::min(least, c["bic"].get<double>());
+    if (c["chosen"].get<bool>()) {
+      ++chosen;
+      chosen_bic = c["bic"].get<double>();
+    }
+  }
+  EXPECT_EQ(chosen, 1) << d.dump();
+  EXPECT_EQ(chosen_bic, least);
 }
 
 TEST(FilterErrorRun, UnknownOutputsStatesAndValuesAreRefusedWithTheKey) {

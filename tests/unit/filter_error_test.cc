@@ -6,6 +6,7 @@
 
 #include "engine/model/filter_error_cost.h"
 #include "engine/run/disturbance_notes.h"
+#include "engine/run/innovation_structure.h"
 #include "engine/solve/output_error_problem.h"
 #include "engine/solve/stage.h"
 #include "gtest/gtest.h"
@@ -246,6 +247,57 @@ TEST(FilterError, TheDescriptionNamesADriftAndAPartAtItsBound) {
   EXPECT_NE(text.find("a drift slower than the record (AR(1) tau 600 s)"), std::string::npos)
       << text;
   EXPECT_NE(text.find("at a bound (q.process.eta2)"), std::string::npos) << text;
+}
+
+TEST(FilterError, InnovationsFollowTheRudderOnlyWhereTheShipModelLacksATerm) {
+  // The same record fitted twice: as logged, and with the logged rudder passed through a 3 deg
+  // dead band the ship never had (a structure the linear model cannot follow). Process noise
+  // on the rudder's equation whitens both in time; only the second's innovations follow the
+  // rudder.
+  auto model = nomoto::MakeSecondOrderRatesHandle();
+  const double band = 3.0 * M_PI / 180.0;
+  for (bool distorted : {false, true}) {
+    Experiment run = Record(*model, 0.003, 0.0, 1.0, 9, 300.0);
+    if (distorted) {
+      for (double& u : run.input_cache) u = u > band ? u - band : u < -band ? u + band : 0.0;
+    }
+    std::string error;
+    OutputErrorOptions options;
+    options.disturbance.method = DisturbanceSpec::Method::kFilterError;
+    DisturbanceSpec::Process w;
+    w.state = "eta2";
+    options.disturbance.process.push_back(w);
+    auto fe = OutputErrorProblem::Create(model.get(), {run}, Specs(1.05), options, &error);
+    ASSERT_NE(fe, nullptr) << error;
+    StageSummary summary;
+    ASSERT_TRUE(RunStage(StageOptions(), fe.get(), &summary)) << summary.message;
+    const std::vector<InnovationStructure> tests = TestInnovationStructure(*fe);
+    ASSERT_EQ(tests.size(), 1u);
+    EXPECT_EQ(tests[0].features, 6);  // the predicted heading rate's and the rudder's
+    std::vector<std::string> notes;
+    std::vector<Finding> findings;
+    AddInnovationStructureFindings("fe", tests, &notes, &findings);
+    EXPECT_EQ(notes.size(), 1u);
+    if (distorted) {
+      EXPECT_LT(tests[0].p_value, 1e-6) << tests[0].statistic;
+      ASSERT_EQ(findings.size(), 1u);
+      EXPECT_EQ(findings[0].kind, FindingKind::kDisturbanceAbsorbsStructure);
+      EXPECT_EQ(findings[0].output, "psi");
+      EXPECT_NE(findings[0].message.find("follow the predicted motion and the inputs"),
+                std::string::npos);
+    } else {
+      EXPECT_GT(tests[0].p_value, 1e-3) << tests[0].statistic;
+      EXPECT_TRUE(findings.empty());
+    }
+  }
+}
+
+TEST(FilterError, ChiSquareTailIsWithinAFewPerCent) {
+  // Tables: P(chi^2(6) > 22.458) = 0.001, P(chi^2(6) > 12.592) = 0.05, P(chi^2(3) > 16.266) =
+  // 0.001.
+  EXPECT_NEAR(ChiSquareTail(22.458, 6), 1e-3, 1e-4);
+  EXPECT_NEAR(ChiSquareTail(12.592, 6), 0.05, 2e-3);
+  EXPECT_NEAR(ChiSquareTail(16.266, 3), 1e-3, 1.5e-4);
 }
 
 TEST(FilterError, Ar1HeadingNoiseIsIdentifiedWithTheShip) {
