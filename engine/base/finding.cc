@@ -145,17 +145,14 @@ const Row kRows[] = {
      "None: read the estimates beside the ship's. A process noise far above what the sea and "
      "sensors can make stands for structure the model lacks."},
     {K::kDisturbanceAbsorbsStructure, "disturbance_absorbs_structure", S::kWarning,
-     "A disturbance model absorbs structure the ship model lacks (a rudder dead band, backlash "
-     "or rate limit, a missing nonlinear term): process noise does what the model cannot and "
-     "the innovations come out white. Either of two signs: (1) the filter's normalised "
-     "innovations follow functions of the predicted motion and the inputs (s, s|s|, s^3 of the "
-     "output's predicted rate and of each input; N R^2 of the regression against chi^2, "
-     "p below 0.001 over the stage's tests), which under a correct model they cannot, whatever "
-     "the noise; (2) under `noise: {method: auto}` the chosen model moved the ship's estimates "
-     "from output error's by more than 10 combined standard errors (sqrt(SE_oe^2 + SE_fe^2); "
-     "the independent corpus's sensor, gust and drift classes: at most 6.4, its structure "
-     "classes 9.5-56; very strong gusts can reach it, as output error's own estimate is then "
-     "far off).",
+     "A disturbance model absorbs structure the ship model lacks (a rudder dead band or rate "
+     "limit, a missing nonlinear term): process noise does what the model cannot and the "
+     "innovations come out white in time. They still follow functions of what was known before "
+     "their sample, which under a correct model they cannot, whatever the noise: the filter's "
+     "normalised innovations are regressed on s, s|s| and s^3 of the output's predicted rate "
+     "and of each input, and N R^2 against chi^2 falls below p = 0.001 over the stage's tests "
+     "(the independent corpus's sensor, wave, gust and drift classes: N R^2 at most 11.4 of 6; "
+     "its dead band, rate limit and cubic damping classes up to 110).",
      "Look for the missing structure (vesselid select over richer families); the estimates "
      "of neither method are to be trusted as they are."},
     {K::kGlobalStartDiverged, "global_start_diverged", S::kInfo,

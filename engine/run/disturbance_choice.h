@@ -24,9 +24,9 @@
 
 namespace vesselid {
 
-// Combined standard errors sqrt(SE_oe^2 + SE_fe^2) beyond which the chosen disturbance model's
-// ship estimates disagree with output error's (disturbance_absorbs_structure): the noise
-// classes of the independent corpus reach 6.4, its structure classes 9.5-56 (docs/models.md).
+// Combined standard errors sqrt(SE_oe^2 + SE_fe^2) beyond which auto's note says the chosen
+// disturbance model's ship estimates disagree with output error's: the noise classes of the
+// independent corpus reach 6.4, its structure classes 9.5-56, strong gusts 16 (docs/models.md).
 inline constexpr double kStructureDisagreement = 10.0;
 
 struct DisturbanceCandidate {

@@ -27,6 +27,8 @@ struct FilterPrediction {
   double seconds_ahead = 0.0;  // k times the run's mean node interval
   double k_step_fit_percent = std::numeric_limits<double>::quiet_NaN();  // NaN: run too short
   double one_step_fit_percent = std::numeric_limits<double>::quiet_NaN();
+  // The stage's validation fit of the same output: its free run from the measured start, or
+  // after the burn-in where the stage estimates the held-out run's states (held_out.h).
   double free_run_fit_percent = std::numeric_limits<double>::quiet_NaN();
 };
 

@@ -146,7 +146,7 @@ void PredictHeldOutThroughFilter(const RunConfig& config, const StageConfig& sta
       char text[320];
       std::snprintf(text, sizeof(text),
                     "held-out through the filter: %s %s: %d-step-ahead fit %s, one-step %.1f %%; "
-                    "free run from the measured start %.1f %%",
+                    "the stage's validation free run %.1f %%",
                     e.name.c_str(), info.outputs[j].c_str(), k, ahead_text, FitPercent(y, one),
                     found != free_run.end() ? found->second : NAN);
       result->summary.notes.push_back(text);
