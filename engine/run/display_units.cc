@@ -24,6 +24,40 @@ DisplayUnit InDegrees(const std::string& unit) { return {"deg" + unit.substr(3),
 
 bool IsRadians(const std::string& unit) { return unit.compare(0, 3, "rad") == 0; }
 
+// "unit^2/s", parenthesised where the unit is compound.
+std::string SquaredPerSecond(const std::string& unit) {
+  if (unit.empty()) return "";
+  return (unit.find_first_of("/^*") == std::string::npos ? unit : "(" + unit + ")") + "^2/s";
+}
+
+// The unit of a disturbance parameter "<kind>.<part>.<output or state>" (disturbance.h): an
+// SD in its output's unit (and an angle of it), a time constant in s, a peak frequency in
+// rad/s, a damping ratio without one, a spectral density in unit^2/s. False for other names.
+bool NoiseUnit(const ModelInfo& info, const std::string& name, std::string* unit,
+               std::string* channel) {
+  const size_t last = name.rfind('.');
+  if (last == std::string::npos) return false;
+  const std::string head = name.substr(0, last), target = name.substr(last + 1);
+  const std::string output_unit = info.OutputUnit(info.OutputIndex(target));
+  if (head == "sigma.white" || head == "sigma.ar1" || head == "sigma.wave") {
+    *unit = output_unit;
+    *channel = target;
+  } else if (head == "tau.ar1") {
+    *unit = "s";
+  } else if (head == "omega.wave") {
+    *unit = "rad/s";
+  } else if (head == "zeta.wave") {
+    *unit = "";
+  } else if (head == "q.bias") {
+    *unit = SquaredPerSecond(output_unit);
+  } else if (head == "q.process") {
+    *unit = SquaredPerSecond(info.StateUnit(info.StateIndex(target)));
+  } else {
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 DisplayUnit OutputDisplayUnit(const RunConfig& config, const std::string& experiment,
@@ -45,6 +79,8 @@ std::string ParameterModelUnit(const ModelInfo& info, const std::string& name,
     base = base.substr(3);
     unit = info.StateUnit(info.StateIndex(base));
     if (info.OutputIndex(base) >= 0) follows = base;
+  } else if (info.ParameterIndex(base) < 0 && NoiseUnit(info, base, &unit, &follows)) {
+    // a filter-error stage's disturbance parameter (DisturbanceLayout::Names)
   } else {
     unit = info.ParameterUnit(info.ParameterIndex(base));
     const auto at = info.parameter_channels.find(base);

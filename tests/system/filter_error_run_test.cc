@@ -119,8 +119,10 @@ TEST(FilterErrorRun, ProcessNoiseOnTheRuddersEquationWhitensTheInnovations) {
   ASSERT_NE(q, nullptr) << run.results["stages"][0]["estimates"].dump();
   EXPECT_EQ((*q)["kind"], "noise");
   EXPECT_GT((*q)["value"].get<double>(), 0.0);
+  EXPECT_EQ((*q)["unit"], "(rad/s)^2/s") << q->dump();  // xi2's unit squared, per second
   const json* sigma = EstimateNamed(run.results, "sigma.white.psi");
   ASSERT_NE(sigma, nullptr);
+  EXPECT_EQ((*sigma)["unit"], "rad");  // the heading's, shown in degrees where it was read so
   EXPECT_NEAR((*sigma)["value"].get<double>(), 0.1 * M_PI / 180.0, 0.03 * M_PI / 180.0);
   const std::vector<json> named =
       testing::JsonFindingsOf(run.results, "disturbance_model", "process noise on xi2");
