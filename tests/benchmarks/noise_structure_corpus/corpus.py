@@ -1,7 +1,9 @@
 """Labelled corpus: usage corpus.py <class> <ship> <seed> [configs=ABC]. Appends to results/runs.jsonl"""
 import json, math, os, subprocess, sys, shutil, time
 import numpy as np
-import ship as S, sim
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "filter_error_coverage"))
+import ship as S  # the two hulls, shared with the coverage harness
+import sim
 
 VES = os.path.abspath(os.environ.get("VESSELID_BINARY", "build/vesselid"))
 ROOT = os.environ.get("VESSELID_CORPUS_DIR", "/tmp/vesselid_noise_corpus")

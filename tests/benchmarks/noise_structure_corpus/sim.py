@@ -1,8 +1,10 @@
 """Extended simulator (an extension of ship.py): fine RK4 (h=0.01) of
 [servo rudder d, v', r', psi] with optional effective-rudder nonlinearity between the LOGGED
 rudder d and the rudder acting on the hull, cubic yaw damping and white yaw-moment noise."""
+import os, sys
 import math, numpy as np
-import ship as S
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "filter_error_coverage"))
+import ship as S  # the two hulls, shared with the coverage harness
 
 def simulate(name, h=0.01, servo_T=1.0, backlash=0.0, deadzone=0.0, ratelim=0.0,
              nrrr=0.0, q_yaw=0.0, seed=0):

@@ -1,7 +1,8 @@
 import os
 import json, sys, collections, numpy as np
 ROOT = os.environ.get("VESSELID_CORPUS_DIR", "/tmp/vesselid_noise_corpus")
-import ship as S
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "filter_error_coverage"))
+import ship as S  # the two hulls, shared with the coverage harness
 PARS = ["a1", "a0", "b", "T3"]
 CLS = {0: "clean (control)", 1: "AR(1) sensor", 2: "wave yaw", 3: "gust process", 4: "gyro drift",
        5: "low log rate", 6: "backlash", 7: "dead band", 8: "rate limit", 9: "cubic damping"}
