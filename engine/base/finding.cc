@@ -151,8 +151,8 @@ const Row kRows[] = {
      "their sample, which under a correct model they cannot, whatever the noise: the filter's "
      "normalised innovations are regressed on s, s|s| and s^3 of the output's predicted rate "
      "and of each input, and N R^2 against chi^2 falls below p = 0.001 over the stage's tests "
-     "(the independent corpus's sensor, wave, gust and drift classes: N R^2 at most 11.4 of 6; "
-     "its dead band, rate limit and cubic damping classes up to 110).",
+     "(the independent corpus's sensor, wave, gust and drift classes: N R^2 at most 11.1 of 6; "
+     "its dead band, rate limit and cubic damping classes up to 119).",
      "Look for the missing structure (vesselid select over richer families); the estimates "
      "of neither method are to be trusted as they are."},
     {K::kGlobalStartDiverged, "global_start_diverged", S::kInfo,

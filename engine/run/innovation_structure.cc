@@ -77,29 +77,36 @@ std::vector<InnovationStructure> TestInnovationStructure(const OutputErrorProble
     const size_t num_inputs = static_cast<size_t>(experiment.num_inputs);
     const size_t cache_rows = num_inputs > 0 ? experiment.input_cache.size() / num_inputs : 0;
     for (size_t o = 0; o < info.outputs.size(); ++o) {
-      // The output's one-step predictions y - nu, their rate of change between its samples
-      // (known before the sample), the inputs at the sample and the normalised innovation.
+      // Per sample: the normalised innovation; the rate of change of the output's one-step
+      // predictions y - nu over the two samples before it; the inputs at the node before it.
+      // All known before the sample, also where an autopilot steers from the measurements (the
+      // rudder at the sample and the prediction over the step to it already answer its gust).
       std::vector<double> e, rate;
       std::vector<std::vector<double>> inputs(num_inputs);
-      double last_prediction = NAN, last_time = NAN;
+      double last_prediction = NAN, last_time = NAN, last_rate = NAN;
       for (int k = 0; k < experiment.num_nodes(); ++k) {
         for (int i = experiment.node_first_sample[k]; i < experiment.node_first_sample[k + 1];
              ++i) {
           if (experiment.samples[i].output != static_cast<int>(o)) continue;
           const double predicted = experiment.samples[i].value - run.innovation[i];
           const double t = experiment.node_time[k];
-          if (std::isfinite(last_prediction) && t > last_time && run.variance[i] > 0.0) {
+          double now = NAN;
+          if (std::isfinite(last_prediction) && t > last_time) {
             double change = predicted - last_prediction;
             if (experiment.Wrapped(static_cast<int>(o))) {
               change -= 2.0 * M_PI * std::round(change / (2.0 * M_PI));
             }
-            rate.push_back(change / (t - last_time));
+            now = change / (t - last_time);
+          }
+          if (std::isfinite(last_rate) && run.variance[i] > 0.0) {
+            rate.push_back(last_rate);
             e.push_back(run.innovation[i] / std::sqrt(run.variance[i]));
-            const size_t row = std::min(rows[k], cache_rows > 0 ? cache_rows - 1 : 0);
+            const size_t row = std::min(rows[k - 1], cache_rows > 0 ? cache_rows - 1 : 0);
             for (size_t u = 0; u < num_inputs && cache_rows > 0; ++u) {
               inputs[u].push_back(experiment.input_cache[row * num_inputs + u]);
             }
           }
+          last_rate = now;
           last_prediction = predicted;
           last_time = t;
         }

@@ -26,12 +26,13 @@ struct InnovationStructure {
 
 // Per experiment and compared output of a filter-error problem at its current values: the
 // normalised innovations regressed on s, s|s| and s^3 of each s in {the output's predicted
-// rate of change, each input at the sample} (each s scaled by its SD). Empty for output error.
+// rate of change over the two samples before, each input at the node before the sample} (each
+// s scaled by its SD). Empty for output error.
 std::vector<InnovationStructure> TestInnovationStructure(const OutputErrorProblem& problem);
 
 // The family-wise level of the test over a stage's experiments and outputs (Bonferroni): on
-// the independent corpus's sensor, wave, gust and drift classes N R^2 reached 11.4 of 6
-// functions (p 0.08); its dead band, rate limit and cubic damping classes 11.5-110.
+// the independent corpus's sensor, wave, gust and drift classes N R^2 reached 11.1 of 6
+// functions (p 0.09); its dead band, rate limit and cubic damping classes 9.6-119.
 inline constexpr double kInnovationStructureLevel = 1e-3;
 
 // A note per test, and the disturbance_absorbs_structure finding naming the experiments
