@@ -199,6 +199,12 @@ std::vector<DisturbanceCandidate> DisturbanceCandidates(
   return candidates;
 }
 
+void NameFilterErrorUncertainty(const UncertaintyOptions& configured, Uncertainty* u) {
+  if (configured.method == UncertaintyMethod::kAuto && u->method_reason == "configured") {
+    u->method_reason = "the filter-error method's default: the likelihood's Fisher information";
+  }
+}
+
 UncertaintyOptions FilterErrorUncertainty(UncertaintyOptions options) {
   if (options.method == UncertaintyMethod::kAuto) options.method = UncertaintyMethod::kHessian;
   options.input_noise = false;
@@ -349,6 +355,7 @@ bool ChooseDisturbance(const StageConfig& stage, const StageOptions& options,
       RefineFromEstimate(*solved[best], solved[best]->experiments(), with.problem, final_options,
                          &chosen, error);
   if (p == nullptr) return false;
+  NameFilterErrorUncertainty(options.uncertainty, &chosen.uncertainty);
   AddDisagreement(oe, summary->uncertainty, *p, chosen.uncertainty, (*candidates)[best].name,
                   &chosen);
   std::string beside = "noise auto: output error's estimates were";

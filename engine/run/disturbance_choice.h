@@ -54,6 +54,11 @@ UncertaintyOptions FilterErrorUncertainty(UncertaintyOptions options);
 // per output (NaN if a simulation diverges).
 double OutputErrorNegativeLogLikelihood(const OutputErrorProblem& problem);
 
+// Under the filter-error method a stage whose uncertainty the config left to `auto` gets the
+// likelihood's Fisher information (FilterErrorUncertainty): says so in `u`'s method_reason,
+// where it would say "configured".
+void NameFilterErrorUncertainty(const UncertaintyOptions& configured, Uncertainty* u);
+
 // The stage's disturbance report (disturbance_report.h) for results.json: empty under output
 // error unless `spec` asked for auto; `candidates` as ChooseDisturbance left them (the chosen:
 // the least BIC of the solved, as it chose).

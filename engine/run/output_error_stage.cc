@@ -364,6 +364,9 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
     *error = summary.message;
     return false;
   }
+  if (problem->filter_error()) {
+    NameFilterErrorUncertainty(stage.options.uncertainty, &summary.uncertainty);
+  }
   if (on_pieces) CarrySearch(std::move(searched), stage.continuation.front(), &summary);
   NoiseModel noise;
   if (noise_weights && !IterateNoiseWeights(options, problem.get(), &summary, &noise)) {
