@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
+#include <random>
+#include <utility>
 
 #include "engine/base/json_number.h"
 #include "engine/base/parallel_for.h"
@@ -30,6 +33,15 @@ int IndexOf(const std::vector<ModelVariable>& list, const std::string& name) {
   return -1;
 }
 
+// The identified process noise flown in one member (process_noise.h): after each RK4 step of
+// length h, state i moves by sqrt(q_i h) N(0, 1), Euler-Maruyama's increment of
+// dx_i = f_i dt + sqrt(q_i) dW_i with the drift f by RK4. Null: the calm the estimate flies in.
+struct Gusts {
+  std::vector<std::pair<int, double>> states;  // (state index, q)
+  std::mt19937_64 random;
+  std::normal_distribution<double> normal;
+};
+
 // The heading (rad) every step h of a manoeuvre with parameters p from a straight course
 // (every state zero) at `speed`: the rudder follows `command(time, heading change)` at the steering
 // gear's rate; `done()` true ends it early. False where the model refuses or the
@@ -37,7 +49,8 @@ int IndexOf(const std::vector<ModelVariable>& list, const std::string& name) {
 template <class Command, class Done>
 bool Steer(const ModelHandle& model, const Layout& layout, double speed,
            const std::vector<double>& p, const ManoeuvreConditions& c, double h, double duration,
-           Command&& command_of, Done&& done, std::vector<double>* t, std::vector<double>* psi) {
+           Command&& command_of, Done&& done, Gusts* gusts, std::vector<double>* t,
+           std::vector<double>* psi) {
   const ModelInfo& info = model.info();
   const size_t nx = info.states.size(), nu = info.inputs.size();
   std::vector<double> x(nx, 0.0), k1(nx), k2(nx), k3(nx), k4(nx), xs(nx), y(info.outputs.size());
@@ -70,6 +83,9 @@ bool Steer(const ModelHandle& model, const Layout& layout, double speed,
     for (size_t i = 0; i < nx; ++i) xs[i] = x[i] + h * k3[i];
     if (!model.Derivative(xs.data(), u1.data(), p.data(), k4.data())) return false;
     for (size_t i = 0; i < nx; ++i) x[i] += h / 6.0 * (k1[i] + 2.0 * (k2[i] + k3[i]) + k4[i]);
+    if (gusts != nullptr) {
+      for (const auto& [i, q] : gusts->states) x[i] += std::sqrt(q * h) * gusts->normal(gusts->random);
+    }
     delta = u1[layout.delta];
     const double now = heading_of(x, u1);
     if (!std::isfinite(now)) return false;
@@ -84,7 +100,7 @@ bool Steer(const ModelHandle& model, const Layout& layout, double speed,
 // (rad) and the time to the first check (s); NaN where the simulation does not reach them.
 ZigzagFigures SimulateZigzag(const ModelHandle& model, const Layout& layout, double speed,
                              const std::vector<double>& p, double rudder, double heading,
-                             const ManoeuvreConditions& c) {
+                             const ManoeuvreConditions& c, Gusts* gusts) {
   // The checks: the first heading change of psi_z in either direction sets the sign s, then
   // the rudder is reversed at s dpsi >= psi_z and s dpsi <= -psi_z in turn.
   double command = rudder, sign = 0.0;
@@ -106,7 +122,7 @@ ZigzagFigures SimulateZigzag(const ModelHandle& model, const Layout& layout, dou
   std::vector<double> t, psi;
   if (!Steer(
           model, layout, speed, p, c, c.step, c.duration, command_of,
-          [&] { return reversals >= 4; }, &t, &psi) ||
+          [&] { return reversals >= 4; }, gusts, &t, &psi) ||
       reversals == 0) {
     return ZigzagFigures();
   }
@@ -126,14 +142,14 @@ ZigzagFigures SimulateZigzag(const ModelHandle& model, const Layout& layout, dou
 // loop). NaN where a simulation fails.
 double PullOutResidualRate(const ModelHandle& model, const Layout& layout, double speed,
                            const std::vector<double>& p, double rudder,
-                           const ManoeuvreConditions& c) {
+                           const ManoeuvreConditions& c, Gusts* gusts) {
   double residual = 0.0;
   for (const double side : {rudder, -rudder}) {
     std::vector<double> t, psi;
     auto command_of = [&](double time, double) { return time < c.pull_out_turn ? side : 0.0; };
     if (!Steer(
             model, layout, speed, p, c, c.pull_out_step, c.pull_out_turn + c.pull_out_settle,
-            command_of, [] { return false; }, &t, &psi)) {
+            command_of, [] { return false; }, gusts, &t, &psi)) {
       return kNotPredicted;
     }
     const size_t last = t.size() - 1, from = last - last / 10;
@@ -143,14 +159,15 @@ double PullOutResidualRate(const ModelHandle& model, const Layout& layout, doubl
   return residual;
 }
 
-// The figures a parameter vector predicts, in the order of `names` below.
+// The figures a parameter vector predicts, in the order of `names` below; in the identified
+// sea where `gusts` is given.
 std::vector<double> FiguresOf(const ModelHandle& model, const Layout& layout, double speed,
                               double length, const std::vector<double>& p,
-                              const ManoeuvreConditions& c) {
-  const ZigzagFigures ten =
-      SimulateZigzag(model, layout, speed, p, 10 * kDegreeInRadians, 10 * kDegreeInRadians, c);
-  const ZigzagFigures twenty =
-      SimulateZigzag(model, layout, speed, p, 20 * kDegreeInRadians, 20 * kDegreeInRadians, c);
+                              const ManoeuvreConditions& c, Gusts* gusts = nullptr) {
+  const ZigzagFigures ten = SimulateZigzag(model, layout, speed, p, 10 * kDegreeInRadians,
+                                           10 * kDegreeInRadians, c, gusts);
+  const ZigzagFigures twenty = SimulateZigzag(model, layout, speed, p, 20 * kDegreeInRadians,
+                                              20 * kDegreeInRadians, c, gusts);
   const double turning = std::isfinite(speed) && std::isfinite(length)
                              ? ten.time_to_first_check * speed / length
                              : ten.time_to_first_check;
@@ -159,7 +176,13 @@ std::vector<double> FiguresOf(const ModelHandle& model, const Layout& layout, do
           twenty.first_overshoot / kDegreeInRadians,
           twenty.second_overshoot / kDegreeInRadians,
           turning,
-          PullOutResidualRate(model, layout, speed, p, 20 * kDegreeInRadians, c)};
+          PullOutResidualRate(model, layout, speed, p, 20 * kDegreeInRadians, c, gusts)};
+}
+
+std::string FormatG3(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3g", value);
+  return text;
 }
 
 double Quantile(std::vector<double> values, double q) {
@@ -256,6 +279,29 @@ bool PredictManoeuvres(const IdentifiedModel& exported, const ModelHandle& model
   ParallelFor(static_cast<int>(members.size()), 0, [&](int k) {
     members[k] = FiguresOf(model, layout, c.speed, c.length, exported.ensemble[k], c);
   });
+  // The same members in the identified sea, each with its own gusts: seeded by the ensemble's
+  // seed and the member's index, so the interval is the same on any number of cores.
+  for (const ProcessNoise& noise : exported.process_noise) {
+    const int i = info.StateIndex(noise.state);
+    if (i >= 0 && noise.spectral_density > 0.0 && std::isfinite(noise.spectral_density)) {
+      out.process_noise.push_back(noise);
+    }
+  }
+  std::vector<std::vector<double>> in_sea;
+  if (!out.process_noise.empty()) {
+    std::vector<std::pair<int, double>> states;
+    for (const ProcessNoise& noise : out.process_noise) {
+      states.emplace_back(info.StateIndex(noise.state), noise.spectral_density);
+    }
+    in_sea.resize(exported.ensemble.size());
+    ParallelFor(static_cast<int>(in_sea.size()), 0, [&](int k) {
+      Gusts gusts{states,
+                  std::mt19937_64(static_cast<std::uint64_t>(exported.ensemble_seed) * 1000003u +
+                                  static_cast<std::uint64_t>(k) + 1u),
+                  std::normal_distribution<double>()};
+      in_sea[k] = FiguresOf(model, layout, c.speed, c.length, exported.ensemble[k], c, &gusts);
+    });
+  }
   // Delta method: J by central differences of one standard error each side.
   const int n = static_cast<int>(exported.covariance_names.size());
   Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(names.size(), n);
@@ -285,6 +331,15 @@ bool PredictManoeuvres(const IdentifiedModel& exported, const ModelHandle& model
     if (!values.empty()) {
       figure.ensemble_low = Quantile(values, 0.025);
       figure.ensemble_high = Quantile(values, 0.975);
+    }
+    std::vector<double> sea;
+    for (const std::vector<double>& m : in_sea) {
+      if (std::isfinite(m[f])) sea.push_back(m[f]);
+    }
+    figure.disturbance_members = static_cast<int>(sea.size());
+    if (!sea.empty()) {
+      figure.disturbance_low = Quantile(sea, 0.025);
+      figure.disturbance_high = Quantile(sea, 0.975);
     }
     const double half = 1.96 * std::sqrt(std::max(variance(f, f), 0.0));
     if (std::isfinite(figure.value) && std::isfinite(half)) {
@@ -327,6 +382,21 @@ bool PredictManoeuvres(const IdentifiedModel& exported, const ModelHandle& model
                       : "the ensemble holds course-stable and course-unstable models");
     out.notes.push_back(text);
   }
+  if (!out.process_noise.empty()) {
+    std::string flown;
+    for (const ProcessNoise& noise : out.process_noise) {
+      char text[160];
+      std::snprintf(text, sizeof(text), "%s%s's equation, q %.3g", flown.empty() ? "" : "; ",
+                    noise.state.c_str(), noise.spectral_density);
+      flown += text;
+    }
+    out.notes.push_back(
+        "with disturbance: every member flown again in its own realisation of the process noise "
+        "identified with the ship (" + flown +
+        ", in the state's unit^2/s): where a trial in that sea would fall; the ensemble "
+        "interval is the model's uncertainty alone, and the IMO criteria are held against it. "
+        "The sensors' noise does not move the ship and is not flown");
+  }
   if (!ship) {
     out.notes.push_back(
         "the ship's length and speed are not known (--length, --speed): the initial turning "
@@ -345,21 +415,28 @@ std::string ManoeuvresText(const ManoeuvrePredictions& p) {
     text += line;
   }
   text += "\n";
-  std::snprintf(line, sizeof(line), "  %-30s %10s %-13s %23s %23s %7s  %s\n", "figure", "value",
-                "unit", "ensemble 2.5-97.5 %", "delta method", "agree", "IMO criterion");
+  const bool sea = !p.process_noise.empty();
+  std::snprintf(line, sizeof(line), "  %-30s %10s %-13s %23s %23s %7s%s  %s\n", "figure", "value",
+                "unit", "ensemble 2.5-97.5 %", "delta method", "agree",
+                sea ? "      with disturbance" : "", "IMO criterion");
   text += line;
   for (const ManoeuvreFigure& f : p.figures) {
-    char ensemble[48], delta[48];
+    char ensemble[48], delta[48], disturbed[48] = "";
     std::snprintf(ensemble, sizeof(ensemble), "[%.3g, %.3g]", f.ensemble_low, f.ensemble_high);
     std::snprintf(delta, sizeof(delta), "[%.3g, %.3g]", f.delta_low, f.delta_high);
+    if (sea) {
+      std::snprintf(disturbed, sizeof(disturbed), " %22s",
+                    ("[" + FormatG3(f.disturbance_low) + ", " + FormatG3(f.disturbance_high) + "]")
+                        .c_str());
+    }
     std::string verdict = f.criterion;
     if (std::isfinite(f.limit)) {
       verdict += f.meets ? (f.interval_meets ? ": met (the whole interval)"
                                              : ": met by the estimate, not by the whole interval")
                          : ": not met";
     }
-    std::snprintf(line, sizeof(line), "  %-30s %10.4g %-13s %23s %23s %7s  %s\n", f.name.c_str(),
-                  f.value, f.unit.c_str(), ensemble, delta, f.agree ? "yes" : "no",
+    std::snprintf(line, sizeof(line), "  %-30s %10.4g %-13s %23s %23s %7s%s  %s\n", f.name.c_str(),
+                  f.value, f.unit.c_str(), ensemble, delta, f.agree ? "yes" : "no", disturbed,
                   verdict.c_str());
     text += line;
   }
@@ -382,10 +459,22 @@ nlohmann::json ManoeuvresToJson(const ManoeuvrePredictions& p) {
          {"limit", JsonNumber(f.limit)},
          {"meets", f.meets},
          {"interval_meets", f.interval_meets}});
+    if (!p.process_noise.empty()) {
+      figures.back()["disturbance_interval"] = {JsonNumber(f.disturbance_low),
+                                                JsonNumber(f.disturbance_high)};
+      figures.back()["disturbance_members"] = f.disturbance_members;
+    }
+  }
+  nlohmann::json process_noise = nlohmann::json::array();
+  for (const ProcessNoise& noise : p.process_noise) {
+    process_noise.push_back({{"state", noise.state},
+                             {"spectral_density", JsonNumber(noise.spectral_density)},
+                             {"std_error", JsonNumber(noise.std_error)}});
   }
   return {{"length", JsonNumber(p.length)},
           {"speed", JsonNumber(p.speed)},
           {"figures", figures},
+          {"process_noise", process_noise},
           {"notes", p.notes}};
 }
 

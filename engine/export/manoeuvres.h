@@ -13,7 +13,9 @@
 // ensemble members (draws from the covariance, output/identified_model.h), and the delta method
 // (value +- 1.96 sqrt(J C J^T), J by central differences), with whether the two agree (their
 // half-widths within a factor 1.5). Where the ship's length L and speed U are known, each
-// figure is held against its IMO criterion for L/U.
+// figure is held against its IMO criterion for L/U. Where the model's stage identified process
+// noise with the ship (a filter-error stage's gusts, process_noise.h), a third interval flies
+// every member again in its own realisation of it: the spread a trial in that sea would show.
 #pragma once
 
 #include <limits>
@@ -22,6 +24,7 @@
 
 #include "engine/export/model_json.h"
 #include "engine/model/model_handle.h"
+#include "engine/output/process_noise.h"
 
 namespace vesselid {
 
@@ -47,6 +50,12 @@ struct ManoeuvreFigure {
          ensemble_high = ManoeuvreConditions::kUnknown;
   int members = 0;  // ensemble members whose figure exists
   double delta_low = ManoeuvreConditions::kUnknown, delta_high = ManoeuvreConditions::kUnknown;
+  // Where the run identified process noise (ManoeuvrePredictions::process_noise): the same
+  // members flown each in its own realisation of it, the 2.5 and 97.5 percentiles: where a
+  // trial in the sea the model was identified in would fall, not only the model's uncertainty.
+  double disturbance_low = ManoeuvreConditions::kUnknown,
+         disturbance_high = ManoeuvreConditions::kUnknown;
+  int disturbance_members = 0;  // members whose figure exists in the sea
   bool agree = false;  // delta-method and ensemble half-widths within a factor 1.5
   // The IMO criterion (NaN: none, or L and U unknown), and whether the value and the whole
   // ensemble interval meet it.
@@ -59,6 +68,7 @@ struct ManoeuvrePredictions {
   std::vector<ManoeuvreFigure> figures;
   double length = ManoeuvreConditions::kUnknown, speed = ManoeuvreConditions::kUnknown;
   std::vector<std::string> notes;  // what could not be predicted, and why
+  std::vector<ProcessNoise> process_noise;  // flown in the disturbance interval; empty: none
 };
 
 // False with a message when the model has no rudder input `delta` or heading output `psi`, or

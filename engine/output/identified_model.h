@@ -15,6 +15,7 @@
 
 #include "Eigen/Core"
 #include "engine/model/model_handle.h"
+#include "engine/output/process_noise.h"
 #include "engine/output/run_document.h"
 #include "engine/run/run_config.h"
 #include "engine/run/run_result.h"
@@ -55,6 +56,9 @@ struct IdentifiedModel {
   // Inputs, outputs and states the run's data gave in degrees (the first experiment's
   // `degrees:`): what a user's tables hold in degrees. Empty for a model read from a file.
   std::vector<std::string> degree_names;
+  // The process noise the final model's stage identified with it (a filter-error stage's
+  // `process:`), on states of this model; `predict` flies it (process_noise.h).
+  std::vector<ProcessNoise> process_noise;
   std::string results;  // where it came from: the results.json, or the run's config
 };
 

@@ -69,6 +69,12 @@ void ReadModelStage(const json& stage, RunDocument* d) {
     }
   }
   for (const json& e : stage.at("estimates")) {
+    ProcessNoise noise;
+    if (Text(e, "kind") == "noise" &&
+        ProcessNoiseNamed(Text(e, "name"), NumberOr(e.value("value", json()), RunDocument::kNaN),
+                          NumberOr(e.value("std_error", json()), RunDocument::kNaN), &noise)) {
+      d->process_noise.push_back(noise);
+    }
     if (Text(e, "kind") != "initial_state" || Text(e, "role") != "free") continue;
     AddFreeState(Text(e, "name"), d);
   }
@@ -139,6 +145,11 @@ void DescribeModelStage(const RunConfig& config, const StageResult& stage, RunDo
     if (e.kind == EstimateKind::kInitialState && e.role == ParameterRole::kFree) {
       AddFreeState(e.name, d);
     }
+  }
+  d->process_noise = ProcessNoiseOf(stage.estimates);
+  for (ProcessNoise& noise : d->process_noise) {
+    noise.spectral_density = Kept(noise.spectral_density);
+    noise.std_error = Kept(noise.std_error);
   }
 }
 

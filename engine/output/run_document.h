@@ -10,6 +10,7 @@
 
 #include "Eigen/Core"
 #include "engine/output/held_out_zigzags.h"
+#include "engine/output/process_noise.h"
 #include "engine/run/run_config.h"
 #include "engine/run/run_result.h"
 
@@ -43,6 +44,7 @@ struct RunDocument {
   };
   std::vector<Metric> fit_metrics;  // its fit, per experiment and output, in the data's units
   std::vector<std::string> free_initial_states;  // the states it estimated a start of
+  std::vector<ProcessNoise> process_noise;       // a filter-error stage's, identified with it
   std::vector<ZigzagEntry> zigzags;              // "zigzags": every zigzag record's figures
 };
 

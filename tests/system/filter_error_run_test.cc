@@ -71,6 +71,7 @@ struct CommandRun {
   int status = -1;
   json results;
   std::string report, stderr_text;
+  json predictions;  // `vesselid predict`'s predictions.json, where asked
 };
 
 std::string ReadText(const fs::path& path) {
@@ -79,7 +80,7 @@ std::string ReadText(const fs::path& path) {
 }
 
 CommandRun SimulateAndRun(const std::string& name, const std::string& noise,
-                          bool held_out = false) {
+                          bool held_out = false, bool predict = false) {
   const fs::path dir = fs::temp_directory_path() / ("vesselid_filter_error_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -97,6 +98,14 @@ CommandRun SimulateAndRun(const std::string& name, const std::string& noise,
   result.results = json::parse(ReadText(dir / "out" / "results.json"), nullptr, false);
   result.report = ReadText(dir / "out" / "report.txt");
   result.stderr_text = ReadText(dir / "stderr.txt");
+  if (predict) {
+    // The patrol vessel: 30 m at 6 m/s.
+    const std::string command = binary + " predict " + (dir / "out").string() +
+                                " --length 30 --speed 6 --members 40 > /dev/null";
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+    result.predictions =
+        json::parse(ReadText(dir / "out" / "predict" / "predictions.json"), nullptr, false);
+  }
   fs::remove_all(dir);
   return result;
 }
@@ -112,7 +121,7 @@ TEST(FilterErrorRun, ProcessNoiseOnTheRuddersEquationWhitensTheInnovations) {
   const CommandRun run = SimulateAndRun(
       "process", "{method: filter_error, angles: deg, measurement: {psi: {type: white, sigma: 0.1}}, "
                  "process: {xi2: auto}, prediction_steps: 5, gain: auto}",
-      true);
+      true, true);
   ASSERT_EQ(run.status, 0) << run.stderr_text;
   ASSERT_TRUE(run.results.is_object());
   const json* q = EstimateNamed(run.results, "q.process.xi2");
@@ -148,6 +157,19 @@ TEST(FilterErrorRun, ProcessNoiseOnTheRuddersEquationWhitensTheInnovations) {
   EXPECT_NEAR(p["seconds_ahead"].get<double>(), 0.5, 1e-9);
   EXPECT_GE(p["one_step_fit_percent"].get<double>(), p["k_step_fit_percent"].get<double>());
   EXPECT_GE(p["k_step_fit_percent"].get<double>(), p["free_run_fit_percent"].get<double>());
+  // `predict` flies the identified process noise: its spectral density as estimated, and a
+  // third interval per figure from members in their own gusts.
+  const json& predicted = run.predictions;
+  ASSERT_TRUE(predicted.is_object());
+  ASSERT_EQ(predicted["process_noise"].size(), 1u) << predicted.dump();
+  EXPECT_EQ(predicted["process_noise"][0]["state"], "xi2");
+  EXPECT_DOUBLE_EQ(predicted["process_noise"][0]["spectral_density"].get<double>(),
+                   (*q)["value"].get<double>());
+  for (const json& f : predicted["figures"]) {
+    EXPECT_EQ(f["disturbance_members"], 40) << f.dump();
+    ASSERT_TRUE(f["disturbance_interval"][0].is_number()) << f.dump();
+    EXPECT_LE(f["disturbance_interval"][0].get<double>(), f["disturbance_interval"][1].get<double>());
+  }
 }
 
 TEST(FilterErrorRun, AutoNamesEveryCandidateAndKeepsTheBest) {

@@ -142,6 +142,53 @@ TEST(ManoeuvrePrediction, PullOutTellsTheUnstableTanker) {
   EXPECT_TRUE(said);
 }
 
+// The identified process noise flown in `predict` (process_noise.h): white noise of spectral
+// density q on the yaw rate's equation, Euler-Maruyama after each RK4 step. The spread it gives
+// a figure grows as sqrt(q) (four times q, twice the width) and does not depend on the
+// simulation's step (the increment is sqrt(q h), not q h); the calm ensemble is untouched.
+TEST(ManoeuvrePrediction, TheIdentifiedGustsWidenTheIntervalAsTheirSpectralDensityAsks) {
+  const ModelRegistry registry = DefaultRegistry();
+  IdentifiedModel cargo;
+  std::string error;
+  const auto model =
+      MakeIdentifiedModel(registry, "nomoto", {{"type", "first_order"}}, &cargo, &error);
+  ASSERT_NE(model, nullptr) << error;
+  // T 8 s, K 0.15 1/s: a small ship; 200 identical members, so the spread is the gusts'.
+  for (size_t i = 0; i < cargo.parameters.size(); ++i) {
+    const std::string& name = cargo.parameters[i].name;
+    cargo.values[i] = name == "T" ? 8.0 : name == "K" ? 0.15 : 0.0;
+  }
+  cargo.ensemble.assign(200, cargo.values);
+  ManoeuvreConditions conditions;
+  conditions.pull_out_turn = conditions.pull_out_settle = 30.0;
+  auto width = [&](double q, double step, double* calm) {
+    cargo.process_noise = {{"r", q, 0.0}};
+    conditions.step = step;
+    ManoeuvrePredictions predictions;
+    EXPECT_TRUE(PredictManoeuvres(cargo, *model, conditions, &predictions, &error)) << error;
+    const ManoeuvreFigure& first = predictions.figures[0];  // 10/10 first overshoot
+    EXPECT_EQ(first.disturbance_members, 200);
+    EXPECT_EQ(predictions.process_noise.size(), 1u);
+    *calm = first.ensemble_high - first.ensemble_low;
+    return first.disturbance_high - first.disturbance_low;
+  };
+  // q 1e-8 (rad/s)^2/s: overshoot spreads of tenths of a degree. Each member draws the same
+  // numbers for 4 q as for q (its seed is the member's), so in this nearly linear regime the
+  // width doubles closely; at half the step the numbers differ, so within the quantiles' spread.
+  double calm = 0.0;
+  const double base = width(1e-8, 0.01, &calm);
+  EXPECT_EQ(calm, 0.0);
+  EXPECT_GT(base, 0.05);
+  EXPECT_NEAR(width(4e-8, 0.01, &calm) / base, 2.0, 0.1);
+  EXPECT_NEAR(width(1e-8, 0.005, &calm) / base, 1.0, 0.2);
+  // No process noise: no third interval.
+  cargo.process_noise.clear();
+  ManoeuvrePredictions calm_predictions;
+  ASSERT_TRUE(PredictManoeuvres(cargo, *model, conditions, &calm_predictions, &error));
+  EXPECT_EQ(calm_predictions.figures[0].disturbance_members, 0);
+  EXPECT_FALSE(ManoeuvresToJson(calm_predictions)["figures"][0].contains("disturbance_interval"));
+}
+
 // Without L and U the turning is a time and only the 20/20 criterion applies; a model that
 // needs the speed as an input asks for it; a model without a rudder is refused.
 TEST(ManoeuvrePrediction, SaysWhatItCannotPredict) {
