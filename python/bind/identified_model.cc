@@ -159,6 +159,21 @@ py::dict Info(const IdentifiedModel& m) {
   return d;
 }
 
+// The process noise identified with the ship, a row per state: spectral_density, std_error.
+py::object ProcessNoiseFrame(const IdentifiedModel& m) {
+  py::list state, density, std_error;
+  for (const ProcessNoise& noise : m.process_noise) {
+    state.append(noise.state);
+    density.append(noise.spectral_density);
+    std_error.append(noise.std_error);
+  }
+  py::dict columns;
+  columns["state"] = state;
+  columns["spectral_density"] = density;
+  columns["std_error"] = std_error;
+  return Frame(columns, {"state", "spectral_density", "std_error"}, "state");
+}
+
 py::dict Units(const IdentifiedModel& m) {
   py::dict units;
   for (const auto* variables : {&m.inputs, &m.outputs, &m.states, &m.parameters}) {
@@ -181,6 +196,9 @@ void BindIdentifiedModel(py::module_& m) {
       "(0: the median sample interval), each input interpolated as named\n"
       "degrees      inputs and outputs the run's data gave in degrees (simulate takes and "
       "gives them in degrees)\n"
+      "process_noise   DataFrame by state: the spectral density (state unit^2/s) and SE of the "
+      "process noise a filter-error stage identified with the ship (empty: none); predict flies "
+      "it\n"
       "simulate(inputs, initial_state=None, parameters=None, max_step=None, interpolation=None)"
       "  open loop under `inputs` (t and a column per input) -> DataFrame of t, the inputs, "
       "the outputs and the states ('x.<state>'), as the run simulated its records")
@@ -201,6 +219,7 @@ void BindIdentifiedModel(py::module_& m) {
       .def_property_readonly("covariance", [](const IdentifiedModel& x) {
         return MatrixFrame(x.covariance, x.covariance_names);
       })
+      .def_property_readonly("process_noise", &ProcessNoiseFrame)
       .def_readonly("max_step", &IdentifiedModel::max_step)
       .def_property_readonly("interpolation",
                              [](const IdentifiedModel& x) {

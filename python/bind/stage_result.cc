@@ -41,9 +41,79 @@ py::object Estimates(const StageResult& stage) {
                "name");
 }
 
+// auto's candidates, output error first: name, solved, why, -log L, unknowns, BIC, chosen.
+py::object Candidates(const DisturbanceReport& d) {
+  py::list name, solved, why, likelihood, unknowns, bic, chosen;
+  for (const DisturbanceCandidateScore& c : d.candidates) {
+    name.append(c.name);
+    solved.append(c.solved);
+    why.append(c.why);
+    likelihood.append(c.negative_log_likelihood);
+    unknowns.append(c.unknowns);
+    bic.append(c.bic);
+    chosen.append(c.chosen);
+  }
+  py::dict columns;
+  columns["name"] = name;
+  columns["solved"] = solved;
+  columns["why"] = why;
+  columns["negative_log_likelihood"] = likelihood;
+  columns["unknowns"] = unknowns;
+  columns["bic"] = bic;
+  columns["chosen"] = chosen;
+  return Frame(columns,
+               {"name", "solved", "why", "negative_log_likelihood", "unknowns", "bic", "chosen"},
+               "name");
+}
+
+// The held-out experiments predicted through the filter: a row per experiment and output.
+py::object Predictions(const DisturbanceReport& d) {
+  py::list experiment, output, steps, seconds, k_step, one_step, free_run;
+  for (const FilterPrediction& p : d.predictions) {
+    experiment.append(p.experiment);
+    output.append(p.output);
+    steps.append(p.steps);
+    seconds.append(p.seconds_ahead);
+    k_step.append(p.k_step_fit_percent);
+    one_step.append(p.one_step_fit_percent);
+    free_run.append(p.free_run_fit_percent);
+  }
+  py::dict columns;
+  columns["experiment"] = experiment;
+  columns["output"] = output;
+  columns["steps"] = steps;
+  columns["seconds_ahead"] = seconds;
+  columns["k_step_fit_percent"] = k_step;
+  columns["one_step_fit_percent"] = one_step;
+  columns["free_run_fit_percent"] = free_run;
+  return Frame(columns,
+               {"experiment", "output", "steps", "seconds_ahead", "k_step_fit_percent",
+                "one_step_fit_percent", "free_run_fit_percent"});
+}
+
 }  // namespace
 
 void BindStageResult(py::module_& m) {
+  py::class_<DisturbanceReport>(
+      m, "Disturbance",
+      "A filter-error stage's disturbance model (docs/models.md, \"Disturbance models\"); its "
+      "parameters are the stage's estimates of kind 'noise'.\n\n"
+      "method       'filter_error' or 'auto'\n"
+      "model        the disturbance in words, as the disturbance_model finding names it\n"
+      "negative_log_likelihood   the innovations' -log L at the estimates\n"
+      "candidates   DataFrame of auto's candidates by name (output error first): solved, why, "
+      "negative_log_likelihood, unknowns, bic, chosen; empty for filter_error\n"
+      "predictions  DataFrame, a row per held-out experiment and output: the k-step and "
+      "one-step predictions through the filter and the free run from the measured start (fit %)")
+      .def_readonly("method", &DisturbanceReport::method)
+      .def_readonly("model", &DisturbanceReport::model)
+      .def_readonly("negative_log_likelihood", &DisturbanceReport::negative_log_likelihood)
+      .def_property_readonly("candidates", &Candidates)
+      .def_property_readonly("predictions", &Predictions)
+      .def("__repr__", [](const DisturbanceReport& d) {
+        return "<vesselid.Disturbance " + d.method + ": " + d.model + ">";
+      });
+
   py::class_<StageResult>(m, "StageResult",
                           "One stage of a run: its estimates (model units), correlation, cost, "
                           "findings and verdict.")
@@ -61,6 +131,12 @@ void BindStageResult(py::module_& m) {
                              [](const StageResult& s) { return s.summary.uncertainty.method; })
       .def_readonly("findings", &StageResult::findings)
       .def_property_readonly("estimates", &Estimates)
+      .def_property_readonly(
+          "disturbance",
+          [](const StageResult& s) -> const DisturbanceReport* {
+            return s.disturbance.active() ? &s.disturbance : nullptr;  // None: output error
+          },
+          py::return_value_policy::reference_internal)
       .def_property_readonly("correlation",
                              [](const StageResult& s) {  // NaN where undetermined
                                return MatrixFrame(s.correlation, s.correlation_names);

@@ -14,11 +14,11 @@ The results are the engine's own types (RunResult, StageResult, Finding, Identif
 bound read-only.
 """
 from ._errors import ConfigError, DataError, RunError, VesselidError
-from ._core import Finding, IdentifiedModel, RunResult, StageResult, __version__
+from ._core import Disturbance, Finding, IdentifiedModel, RunResult, StageResult, __version__
 from ._run import load_config, run, select, simulate, study
 from ._design import design
 from ._export import export, predict
 
 __all__ = ["run", "select", "simulate", "study", "load_config", "export", "predict", "design",
-           "RunResult", "StageResult", "Finding", "IdentifiedModel", "VesselidError",
+           "RunResult", "StageResult", "Disturbance", "Finding", "IdentifiedModel", "VesselidError",
            "ConfigError", "DataError", "RunError", "__version__"]
