@@ -14,7 +14,12 @@ const char kSelectionDefinitions[] =
     "choice: the simplest candidate (fewest shared parameters) whose score is within one SE of "
     "the best. AIC = n ln(RSS/n) + 2k and BIC = n ln(RSS/n) + k ln n of the scored outputs' "
     "residuals in the fit on every run, k = shared parameters + per-run values + initial "
-    "states.";
+    "states. BIC_L = 2 (-log L) + k' ln N of the same fit's likelihood over its compared "
+    "outputs (a filter-error stage's innovations'; output error's Gaussian residuals with "
+    "their variances estimated), k' = k + the disturbance's parameters (output error: a "
+    "variance per output): candidates with and without a disturbance model scored the same "
+    "way. Filter-error candidates: their held-out runs also predicted through the filter, "
+    "k samples and one step ahead (fit %, mean over folds).";
 
 nlohmann::json SelectionToJson(const SelectionResult& s) {
   nlohmann::json candidates = nlohmann::json::array();
@@ -44,6 +49,14 @@ nlohmann::json SelectionToJson(const SelectionResult& s) {
                           {"rss", JsonNumber(c.rss)},
                           {"aic", JsonNumber(c.aic)},
                           {"bic", JsonNumber(c.bic)},
+                          {"disturbance", c.disturbance},
+                          {"negative_log_likelihood", JsonNumber(c.negative_log_likelihood)},
+                          {"likelihood_unknowns", c.likelihood_unknowns},
+                          {"likelihood_samples", c.likelihood_samples},
+                          {"likelihood_bic", JsonNumber(c.likelihood_bic)},
+                          {"prediction_steps", c.prediction_steps},
+                          {"k_step_fit_percent", JsonNumber(c.k_step_fit_percent)},
+                          {"one_step_fit_percent", JsonNumber(c.one_step_fit_percent)},
                           {"within_one_se", c.within_one_se}});
   }
   auto name = [&](int i) {
@@ -52,7 +65,8 @@ nlohmann::json SelectionToJson(const SelectionResult& s) {
   return {{"method", s.method},   {"folds", s.folds},
           {"outputs", s.outputs}, {"candidates", candidates},
           {"best", name(s.best)}, {"chosen", name(s.chosen)},
-          {"reason", s.reason},   {"time_seconds", s.time_seconds}};
+          {"reason", s.reason},   {"likelihoods_comparable", s.likelihoods_comparable},
+          {"time_seconds", s.time_seconds}};
 }
 
 std::string SelectionText(const SelectionResult& s) {
@@ -62,10 +76,12 @@ std::string SelectionText(const SelectionResult& s) {
                     (s.outputs.empty() ? std::string("-") : s.outputs.front());
   for (size_t i = 1; i < s.outputs.size(); ++i) out += ", " + s.outputs[i];
   out += " (" + std::string(kSelectionDefinitions) + ")\n";
-  char line[512];
-  std::snprintf(line, sizeof(line), "  %-22s %-28s %7s %7s %7s %7s %16s %12s %12s  %s\n",
+  char line[1024];
+  bool filtered = false;  // a candidate predicted through its filter
+  for (const SelectionCandidate& c : s.candidates) filtered = filtered || c.prediction_steps > 0;
+  std::snprintf(line, sizeof(line), "  %-22s %-28s %7s %7s %7s %7s %16s %12s %12s %12s%s  %s\n",
                 "candidate", "model", "shared", "per-run", "states", "fit %", "+- SE", "AIC", "BIC",
-                "per output: fit % (SD) RMSE");
+                "BIC_L", filtered ? "  k-step %  1-step %" : "", "per output: fit % (SD) RMSE");
   out += line;
   for (size_t i = 0; i < s.candidates.size(); ++i) {
     const SelectionCandidate& c = s.candidates[i];
@@ -75,15 +91,25 @@ std::string SelectionText(const SelectionResult& s) {
                     FormatFinite("%.2f", o.fit_sd) + ") " + FormatFinite("%.3g", o.rmse) +
                     (o.unit.empty() ? "" : " " + o.unit) + "  ";
     }
+    if (!c.disturbance.empty()) per_output += "noise: " + c.disturbance + "  ";
     if (!c.usable) per_output = "not scored: " + c.message;
+    std::string through_filter;
+    if (filtered) {
+      char cells[64];
+      std::snprintf(cells, sizeof(cells), "  %8s  %8s",
+                    FormatFinite("%.2f", c.k_step_fit_percent).c_str(),
+                    FormatFinite("%.2f", c.one_step_fit_percent).c_str());
+      through_filter = cells;
+    }
     const std::string mark = static_cast<int>(i) == s.chosen ? "  <- chosen"
                              : c.within_one_se               ? "  (within 1 SE)"
                                                              : "";
-    std::snprintf(line, sizeof(line), "  %-22s %-28s %7d %7d %7d %7s %16s %12s %12s  %s%s\n",
+    std::snprintf(line, sizeof(line), "  %-22s %-28s %7d %7d %7d %7s %16s %12s %12s %12s%s  %s%s\n",
                   c.name.c_str(), c.model.c_str(), c.shared_parameters, c.per_run_values,
                   c.initial_states, FormatFinite("%.2f", c.score).c_str(),
                   ("+- " + FormatFinite("%.2f", c.score_se)).c_str(),
                   FormatFinite("%.1f", c.aic).c_str(), FormatFinite("%.1f", c.bic).c_str(),
+                  FormatFinite("%.1f", c.likelihood_bic).c_str(), through_filter.c_str(),
                   per_output.c_str(), mark.c_str());
     out += line;
   }
@@ -97,6 +123,10 @@ std::string SelectionText(const SelectionResult& s) {
   for (const SelectionCandidate& c : s.candidates) {
     out += "\n    " + c.name + ":";
     for (double f : c.fold_scores) out += " " + FormatFinite("%.2f", f);
+  }
+  if (!s.likelihoods_comparable) {
+    out += "\n  note: the candidates' likelihoods cover different outputs or samples: BIC_L does "
+           "not compare them";
   }
   out += "\n  chosen: " + s.reason + "\n";
   return out;

@@ -11,7 +11,8 @@ std::string SelectionHtml(const SelectionResult& s) {
                      Th("per-run values") + Th("initial states") + Th("CV fit [%]") + Th("SE [%]");
   for (const std::string& o : s.outputs)
     head += Th(o + " fit [%]") + Th(o + " SD") + Th(o + " RMSE");
-  head += Th("AIC") + Th("BIC") + Th("choice") + "</tr>\n";
+  head += Th("AIC") + Th("BIC") + Th("BIC_L") + Th("k-step fit [%]") + Th("1-step fit [%]") +
+          Th("disturbance") + Th("choice") + "</tr>\n";
   std::string rows;
   for (size_t i = 0; i < s.candidates.size(); ++i) {
     const SelectionCandidate& c = s.candidates[i];
@@ -32,7 +33,10 @@ std::string SelectionHtml(const SelectionResult& s) {
                                : c.usable                      ? ""
                                                                : "not scored: " + c.message;
     rows +=
-        Num(HtmlNumber(c.aic, "%.1f")) + Num(HtmlNumber(c.bic, "%.1f")) + Td(choice) + "</tr>\n";
+        Num(HtmlNumber(c.aic, "%.1f")) + Num(HtmlNumber(c.bic, "%.1f")) +
+        Num(HtmlNumber(c.likelihood_bic, "%.1f")) + Num(HtmlNumber(c.k_step_fit_percent, "%.2f")) +
+        Num(HtmlNumber(c.one_step_fit_percent, "%.2f")) + Td(c.disturbance) + Td(choice) +
+        "</tr>\n";
   }
   return "<section id=\"selection\">\n<h2>Structure selection</h2>\n<p>" +
          HtmlEscape(s.method + " over " + std::to_string(s.folds.size()) +

@@ -40,6 +40,22 @@ struct SelectionCandidate {
   double aic = std::numeric_limits<double>::quiet_NaN();
   double bic = std::numeric_limits<double>::quiet_NaN();
   bool within_one_se = false;  // score >= best score - best's score_se
+  // The likelihood of the fit on every run, so that candidates with and without a disturbance
+  // model (`noise:`) are scored the same way: a filter-error stage's innovations' -log L, an
+  // output-error stage's Gaussian one, sum over its compared outputs o of
+  // n_o/2 (ln(2 pi RSS_o/n_o) + 1) (the residual variances estimated, one unknown each);
+  // BIC_L = 2 (-log L) + k ln N, k = every estimated number, the disturbance's included,
+  // N = likelihood_samples. Comparable where the candidates compare the same samples.
+  std::string disturbance;  // the last stage's disturbance in words; "" for output error
+  double negative_log_likelihood = std::numeric_limits<double>::quiet_NaN();
+  int likelihood_unknowns = 0, likelihood_samples = 0;
+  double likelihood_bic = std::numeric_limits<double>::quiet_NaN();
+  // A filter-error candidate's held-out runs predicted through its filter (filter_prediction.h),
+  // the mean over folds of each fold's mean over its runs and the scored outputs: k samples
+  // ahead of the filtered state and one step ahead. NaN for output error.
+  int prediction_steps = 0;
+  double k_step_fit_percent = std::numeric_limits<double>::quiet_NaN();
+  double one_step_fit_percent = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct SelectionResult {
@@ -50,6 +66,8 @@ struct SelectionResult {
   int best = -1, chosen = -1;  // indexes into candidates
   std::string reason;          // the choice, stated
   double time_seconds = 0.0;
+  // Whether the usable candidates' likelihoods cover the same samples (comparable BIC_L).
+  bool likelihoods_comparable = false;
   bool empty() const { return candidates.empty(); }
 };
 

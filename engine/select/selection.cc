@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <set>
 
+#include "engine/base/json_number.h"
 #include "engine/base/statistics.h"
+#include "engine/output/identified_model.h"
+#include "engine/run/filter_prediction.h"
 #include "engine/run/display_units.h"
 #include "engine/run/pipeline.h"
 #include "engine/select/selection_choice.h"
@@ -69,6 +73,69 @@ bool FoldConfig(const RunConfig& base, const std::vector<std::string>& held_out,
   return true;
 }
 
+// A filter-error candidate's held-out runs predicted through its filter with the final values
+// (filter_prediction.h): per run and scored output, the one-step and k-step fits.
+json FilterPredictions(const RunConfig& config, const RunResult& result,
+                       const std::vector<std::string>& held_out,
+                       const std::vector<std::string>& outputs, TrajectoryCache* records) {
+  json rows = json::array();
+  const StageResult& last = result.stages.back();
+  if (!DisturbanceFromEstimates(last.estimates).active()) return rows;
+  IdentifiedModel model;
+  std::string error;
+  if (!IdentifiedModelOf(config, result, 0, 0, &model, &error)) return rows;
+  StageConfig stage = config.stages.back();
+  stage.validation = held_out;
+  StageResult scored = last;
+  scored.validation = result.final_validation;  // the free runs beside
+  scored.disturbance.predictions.clear();
+  PredictHeldOutThroughFilter(config, stage, *model.handle, model.values, records, &scored);
+  for (const FilterPrediction& p : scored.disturbance.predictions) {
+    if (!Contains(outputs, p.output)) continue;
+    rows.push_back({{"run", p.experiment},
+                    {"output", p.output},
+                    {"steps", p.steps},
+                    {"k_step_fit_percent", JsonNumber(p.k_step_fit_percent)},
+                    {"one_step_fit_percent", JsonNumber(p.one_step_fit_percent)}});
+  }
+  return rows;
+}
+
+// The likelihood of the last stage's fit on every run (selection_result.h): the filter's, or
+// the Gaussian one of output error's residuals with their variances estimated.
+void AddLikelihood(const StageResult& last, json* j) {
+  int noise = 0, samples = 0;
+  double nll = 0.0;
+  for (const Estimate& e : last.estimates) {
+    if (e.kind == EstimateKind::kNoise && e.role != ParameterRole::kFixed) ++noise;
+  }
+  for (const ExperimentFit& fit : last.summary.fits) {
+    for (const ChannelMetrics& m : fit.channels) samples += m.samples;
+  }
+  if (noise > 0 && std::isfinite(last.disturbance.negative_log_likelihood)) {
+    nll = last.disturbance.negative_log_likelihood;
+    (*j)["disturbance"] = last.disturbance.model;
+  } else {
+    // Pooled per output over the runs: n_o/2 (ln(2 pi RSS_o/n_o) + 1).
+    std::map<std::string, std::pair<double, int>> per_output;
+    for (const ExperimentFit& fit : last.summary.fits) {
+      for (const ChannelMetrics& m : fit.channels) {
+        per_output[m.output].first += m.rmse * m.rmse * m.samples;
+        per_output[m.output].second += m.samples;
+      }
+    }
+    for (const auto& [output, sums] : per_output) {
+      const auto [rss, n] = sums;
+      if (n == 0 || !(rss > 0.0)) return;
+      nll += 0.5 * n * (std::log(2.0 * M_PI * rss / n) + 1.0);
+    }
+    noise = static_cast<int>(per_output.size());
+  }
+  (*j)["negative_log_likelihood"] = nll;
+  (*j)["noise_unknowns"] = noise;
+  (*j)["likelihood_samples"] = samples;
+}
+
 json RunCase(const NamedCandidate& candidate, const std::vector<std::string>& held_out,
              const std::vector<std::string>& outputs) {
   RunConfig config;
@@ -77,7 +144,9 @@ json RunCase(const NamedCandidate& candidate, const std::vector<std::string>& he
     return {{"usable", false}, {"message", error}};
   }
   RunResult result;
-  if (!RunIdentification(config, &result, &error) || !result.stopped_stage.empty()) {
+  TrajectoryCache records;
+  if (!RunIdentification(config, &result, &error, {}, {}, &records) ||
+      !result.stopped_stage.empty()) {
     return {{"usable", false}, {"message", error.empty() ? result.stop_message : error}};
   }
   json j = {{"usable", true}, {"model", config.model->info().name}};
@@ -105,6 +174,7 @@ json RunCase(const NamedCandidate& candidate, const std::vector<std::string>& he
   };
   if (!held_out.empty()) {
     j["runs"] = channels(result.final_validation, false);
+    j["filter"] = FilterPredictions(config, result, held_out, outputs, &records);
     return j;
   }
   // The fit on every run: the last output-error stage's fits; what was estimated.
@@ -123,6 +193,7 @@ json RunCase(const NamedCandidate& candidate, const std::vector<std::string>& he
   j["per_run_values"] = per_run;
   j["initial_states"] = static_cast<int>(last_config.problem.free_initial_states.size() *
                                          last_config.experiments.size());
+  AddLikelihood(last, &j);
   return j;
 }
 
@@ -210,8 +281,19 @@ bool RunSelection(const std::vector<NamedCandidate>& candidates, const Selection
     s.model = candidates[c].config.model->info().name;
     s.usable = true;
     std::vector<std::vector<double>> fit(outputs.size()), rmse(outputs.size());
+    std::vector<double> k_step, one_step;  // per fold, through the filter
     for (int f = 0; f < folds; ++f) {
       const json& r = cases[c * per_candidate + f];
+      if (r.contains("filter") && !r["filter"].empty()) {
+        double k_sum = 0.0, one_sum = 0.0;
+        for (const json& p : r["filter"]) {
+          k_sum += NumberOr(p["k_step_fit_percent"], NAN);
+          one_sum += NumberOr(p["one_step_fit_percent"], NAN);
+          s.prediction_steps = p["steps"].get<int>();
+        }
+        k_step.push_back(k_sum / r["filter"].size());
+        one_step.push_back(one_sum / r["filter"].size());
+      }
       if (!r.value("usable", false)) {
         s.usable = false;
         s.message = "fold " + std::to_string(f + 1) + ": " + r.value("message", std::string());
@@ -278,8 +360,30 @@ bool RunSelection(const std::vector<NamedCandidate>& candidates, const Selection
         s.aic = n * std::log(rss / n) + 2 * k;
         s.bic = n * std::log(rss / n) + k * std::log(n);
       }
+      if (all.contains("negative_log_likelihood")) {
+        s.disturbance = all.value("disturbance", std::string());
+        s.negative_log_likelihood = all["negative_log_likelihood"].get<double>();
+        s.likelihood_samples = all["likelihood_samples"].get<int>();
+        s.likelihood_unknowns = static_cast<int>(k) + all["noise_unknowns"].get<int>();
+        if (s.likelihood_samples > 0) {
+          s.likelihood_bic = 2.0 * s.negative_log_likelihood +
+                             s.likelihood_unknowns * std::log(s.likelihood_samples);
+        }
+      }
+      // Through the filter: where every fold has its predictions.
+      if (static_cast<int>(k_step.size()) == folds) {
+        s.k_step_fit_percent = Summarise(k_step).mean;
+        s.one_step_fit_percent = Summarise(one_step).mean;
+      }
     }
     out.candidates.push_back(std::move(s));
+  }
+  out.likelihoods_comparable = true;
+  int samples = -1;
+  for (const SelectionCandidate& s : out.candidates) {
+    if (!s.usable) continue;
+    if (samples >= 0 && s.likelihood_samples != samples) out.likelihoods_comparable = false;
+    samples = s.likelihood_samples;
   }
   ChooseByOneStandardError(&out);
   out.time_seconds =

@@ -232,5 +232,80 @@ TEST(FilterErrorRun, UnknownOutputsStatesAndValuesAreRefusedWithTheKey) {
   }
 }
 
+namespace {
+
+// Two candidates of one ship on the patrol vessel's two records: output error, and the same
+// stage with process noise on the rudder's equation.
+std::string SelectionConfig() {
+  std::string config = Config("{method: output_error}", true);
+  // Both records in the stage: select holds each out in turn.
+  const std::string from = "    experiments: [multisine]\n    validation: [check]";
+  config.replace(config.find(from), from.size(), "    experiments: [multisine, check]");
+  const std::string stage = config.substr(config.find("stages:\n"));
+  std::string gusts = stage;
+  const std::string noise = "noise: {method: output_error}";
+  gusts.replace(gusts.find(noise), noise.size(),
+                "noise: {method: filter_error, process: {xi2: auto}, prediction_steps: 5}");
+  // The candidate's stages indented under its name.
+  std::string indented;
+  for (size_t at = 0; at < gusts.size();) {
+    const size_t end = gusts.find('\n', at);
+    indented += "      " + gusts.substr(at, end - at) + "\n";
+    at = end == std::string::npos ? gusts.size() : end + 1;
+  }
+  return config + "select:\n  experiments: [multisine, check]\n  candidates:\n"
+                  "    - name: output_error\n    - name: gusts\n" + indented;
+}
+
+}  // namespace
+
+// `select` scores candidates with and without a disturbance model the same way: the
+// likelihood of the fit on every run (the filter's, or output error's Gaussian one with the
+// residual variances estimated: BIC_L), and a filter-error candidate's held-out runs are also
+// predicted through its filter. On a record whose output-error residuals are coloured by the
+// rudder's noise, the process-noise candidate has the lower BIC_L.
+TEST(FilterErrorRun, SelectScoresCandidatesWithAndWithoutADisturbanceTheSameWay) {
+  const fs::path dir = fs::temp_directory_path() / "vesselid_filter_error_select";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "config.yaml") << SelectionConfig();
+  const std::string binary = VESSELID_BINARY;
+  ASSERT_EQ(std::system((binary + " simulate " + (dir / "config.yaml").string() + " --out " +
+                         dir.string() + " > /dev/null")
+                            .c_str()),
+            0);
+  const std::string select = binary + " select " + (dir / "config.yaml").string() + " --data " +
+                             dir.string() + " --out " + (dir / "out").string() +
+                             " --quiet > /dev/null 2> " + (dir / "stderr.txt").string();
+  const int status = std::system(select.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) != 1 && WEXITSTATUS(status) != 2)
+      << ReadText(dir / "stderr.txt");
+  const json results = json::parse(ReadText(dir / "out" / "results.json"), nullptr, false);
+  ASSERT_TRUE(results.is_object()) << ReadText(dir / "stderr.txt");
+  const json& s = results["selection"];
+  ASSERT_EQ(s["candidates"].size(), 2u) << s.dump();
+  const json& oe = s["candidates"][0];
+  const json& gusts = s["candidates"][1];
+  EXPECT_TRUE(s["likelihoods_comparable"].get<bool>());
+  EXPECT_EQ(oe["disturbance"], "");
+  EXPECT_NE(gusts["disturbance"].get<std::string>().find("process noise on xi2"),
+            std::string::npos)
+      << gusts.dump();
+  // k: 4 ship parameters, and a heading variance or the disturbance's two.
+  EXPECT_EQ(oe["likelihood_unknowns"], 5);
+  EXPECT_EQ(gusts["likelihood_unknowns"], 6);
+  EXPECT_EQ(oe["likelihood_samples"], gusts["likelihood_samples"]);
+  EXPECT_LT(gusts["likelihood_bic"].get<double>(), oe["likelihood_bic"].get<double>()) << s.dump();
+  // Through the filter: the gusts candidate's held-out runs, not output error's.
+  EXPECT_TRUE(oe["k_step_fit_percent"].is_null());
+  EXPECT_EQ(gusts["prediction_steps"], 5);
+  EXPECT_GE(gusts["one_step_fit_percent"].get<double>(), gusts["k_step_fit_percent"].get<double>());
+  EXPECT_GE(gusts["k_step_fit_percent"].get<double>(), gusts["score"].get<double>());
+  const std::string report = ReadText(dir / "out" / "report.txt");
+  EXPECT_NE(report.find("BIC_L"), std::string::npos);
+  EXPECT_NE(report.find("k-step %"), std::string::npos);
+  fs::remove_all(dir);
+}
+
 }  // namespace filter_error_run_test
 }  // namespace vesselid
