@@ -362,8 +362,11 @@ bool ChooseDisturbance(const StageConfig& stage, const StageOptions& options,
   for (size_t i = 0; i < oe.variables().size(); ++i) {
     const Variable& v = oe.variables()[i];
     if (v.kind != Variable::Kind::kParameter || !v.free || v.experiment >= 0) continue;
-    char text[96];
-    std::snprintf(text, sizeof(text), " %s %.6g (SE %.2g)", v.name.c_str(), v.value(),
+    // In the model's units, as the stage's estimates table gives them.
+    const std::string unit = oe.model().info().ParameterUnit(v.index);
+    char text[160];
+    std::snprintf(text, sizeof(text), " %s %.6g%s%s (SE %.2g)", v.name.c_str(), v.value(),
+                  unit.empty() ? "" : " ", unit.c_str(),
                   summary->uncertainty.StdError(static_cast<int>(i)));
     beside += text;
   }
