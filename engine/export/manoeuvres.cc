@@ -137,14 +137,16 @@ ZigzagFigures SimulateZigzag(const ModelHandle& model, const Layout& layout, dou
 
 // The pull-out test (MSC/Circ.1053): a steady turn on `rudder` for c.pull_out_turn s, the
 // rudder back to midships at the gear's rate, and the yaw rate left after c.pull_out_settle s
-// (deg/s, the heading's mean rate over the last tenth; its larger magnitude of the turns to
-// either side). Zero: the ship is course-stable; a residual rate: unstable (the spiral's
-// loop). NaN where a simulation fails.
+// (deg/s, the heading's mean rate over the last tenth), after a turn to either side: half
+// their difference, |r_starboard - r_port| / 2, the spiral's loop. Zero: the ship is
+// course-stable (a rudder bias turns it the same way after both, which is no instability); a
+// residual rate: unstable, each turn kept on its own side. NaN where a simulation fails.
 double PullOutResidualRate(const ModelHandle& model, const Layout& layout, double speed,
                            const std::vector<double>& p, double rudder,
                            const ManoeuvreConditions& c, Gusts* gusts) {
-  double residual = 0.0;
-  for (const double side : {rudder, -rudder}) {
+  double rates[2] = {0.0, 0.0};
+  for (int k = 0; k < 2; ++k) {
+    const double side = k == 0 ? rudder : -rudder;
     std::vector<double> t, psi;
     auto command_of = [&](double time, double) { return time < c.pull_out_turn ? side : 0.0; };
     if (!Steer(
@@ -153,10 +155,9 @@ double PullOutResidualRate(const ModelHandle& model, const Layout& layout, doubl
       return kNotPredicted;
     }
     const size_t last = t.size() - 1, from = last - last / 10;
-    const double rate = (psi[last] - psi[from]) / (t[last] - t[from]) / kDegreeInRadians;
-    residual = std::max(residual, std::abs(rate));
+    rates[k] = (psi[last] - psi[from]) / (t[last] - t[from]) / kDegreeInRadians;
   }
-  return residual;
+  return 0.5 * std::abs(rates[0] - rates[1]);
 }
 
 // The figures a parameter vector predicts, in the order of `names` below; in the identified
@@ -177,6 +178,12 @@ std::vector<double> FiguresOf(const ModelHandle& model, const Layout& layout, do
           twenty.second_overshoot / kDegreeInRadians,
           turning,
           PullOutResidualRate(model, layout, speed, p, 20 * kDegreeInRadians, c, gusts)};
+}
+
+std::string JoinList(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& n : names) text += (text.empty() ? "" : ", ") + n;
+  return text;
 }
 
 std::string FormatG3(double value) {
@@ -282,8 +289,19 @@ bool PredictManoeuvres(const IdentifiedModel& exported, const ModelHandle& model
   // The same members in the identified sea, each with its own gusts: seeded by the ensemble's
   // seed and the member's index, so the interval is the same on any number of cores.
   for (const ProcessNoise& noise : exported.process_noise) {
-    const int i = info.StateIndex(noise.state);
-    if (i >= 0 && noise.spectral_density > 0.0 && std::isfinite(noise.spectral_density)) {
+    char value[40];
+    std::snprintf(value, sizeof(value), "%.6g", noise.spectral_density);
+    const std::string named = "process noise q.process." + noise.state + " = " + value;
+    if (info.StateIndex(noise.state) < 0) {
+      out.notes.push_back(named + " not flown: model " + exported.model + " has no state '" +
+                          noise.state + "' (" + JoinList(info.states) + ")");
+    } else if (!(noise.spectral_density > 0.0) || !std::isfinite(noise.spectral_density)) {
+      out.notes.push_back(named + " not flown: a spectral density is positive and finite");
+    } else if (std::any_of(out.process_noise.begin(), out.process_noise.end(),
+                           [&](const ProcessNoise& n) { return n.state == noise.state; })) {
+      out.notes.push_back(named + " not flown: the state's process noise is listed twice (the "
+                          "first is flown)");
+    } else {
       out.process_noise.push_back(noise);
     }
   }
@@ -341,13 +359,22 @@ bool PredictManoeuvres(const IdentifiedModel& exported, const ModelHandle& model
       figure.disturbance_low = Quantile(sea, 0.025);
       figure.disturbance_high = Quantile(sea, 0.975);
     }
+    if (!in_sea.empty() && sea.size() < in_sea.size() && std::isfinite(figure.value)) {
+      out.notes.push_back(figure.name + " with disturbance: " +
+                          std::to_string(in_sea.size() - sea.size()) + " of " +
+                          std::to_string(in_sea.size()) +
+                          " members did not reach it in their gusts (the heading did not turn "
+                          "back, or the simulation diverged): the interval is of the others");
+    }
     const double half = 1.96 * std::sqrt(std::max(variance(f, f), 0.0));
     if (std::isfinite(figure.value) && std::isfinite(half)) {
       figure.delta_low = figure.value - half;
       figure.delta_high = figure.value + half;
       const double ensemble_half = 0.5 * (figure.ensemble_high - figure.ensemble_low);
-      figure.agree = ensemble_half > 0.0 && half > 0.0 && half / ensemble_half <= 1.5 &&
-                     ensemble_half / half <= 1.5;
+      // Both of no width (a figure no parameter moves, a stable ship's pull-out) agree too.
+      figure.agree = (ensemble_half == 0.0 && half == 0.0) ||
+                     (ensemble_half > 0.0 && half > 0.0 && half / ensemble_half <= 1.5 &&
+                      ensemble_half / half <= 1.5);
     }
     // The L/U criteria need L and U; the 20/20 zigzag's does not.
     if (ship || f == 2) figure.limit = Criterion(static_cast<int>(f), l_over_u, &figure.criterion);
@@ -396,6 +423,13 @@ bool PredictManoeuvres(const IdentifiedModel& exported, const ModelHandle& model
         ", in the state's unit^2/s): where a trial in that sea would fall; the ensemble "
         "interval is the model's uncertainty alone, and the IMO criteria are held against it. "
         "The sensors' noise does not move the ship and is not flown");
+  }
+  if (!exported.ensemble.empty() && exported.ensemble.size() < 40) {
+    out.notes.push_back(
+        "the 95 % intervals are the 2.5 and 97.5 percentiles of " +
+        std::to_string(exported.ensemble.size()) +
+        " members: fewer than 40 place them between the extreme members, roughly (--members, "
+        "100 by default)");
   }
   if (!ship) {
     out.notes.push_back(

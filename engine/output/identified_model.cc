@@ -199,13 +199,8 @@ bool IdentifiedModelOf(const RunDocument& d, std::shared_ptr<const ModelHandle> 
       const auto method = d.interpolation.find(m.inputs[i].name);
       if (method != d.interpolation.end()) m.interpolation[i] = method->second;
     }
-    // A spectral density that is known and positive, on a state of this model.
-    for (const ProcessNoise& noise : d.process_noise) {
-      if (info.StateIndex(noise.state) >= 0 && noise.spectral_density > 0.0 &&
-          std::isfinite(noise.spectral_density)) {
-        m.process_noise.push_back(noise);
-      }
-    }
+    // As the run listed it: predict flies what is usable and says what it is not.
+    m.process_noise = d.process_noise;
   }
   m.ensemble_seed = seed;
   if (!d.replicate_values.empty()) {

@@ -1,11 +1,26 @@
 #include "engine/output/selection_report.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include "engine/base/format_numbers.h"
 #include "engine/base/json_number.h"
 
 namespace vesselid {
+namespace {
+
+// A fit % as the table shows it: two decimals, or three digits where a diverged prediction
+// made it astronomically negative (it would otherwise print as a 60-digit number).
+std::string Percent(double value) {
+  return FormatFinite(std::abs(value) < 1e5 ? "%.2f" : "%.3g", value);
+}
+
+// A count where it was counted, else null (an unusable candidate's, a horizon not predicted).
+nlohmann::json Counted(bool counted, int value) {
+  return counted ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+}  // namespace
 
 const char kSelectionDefinitions[] =
     "each candidate fitted without a fold's runs and those runs predicted free-running (each "
@@ -51,10 +66,10 @@ nlohmann::json SelectionToJson(const SelectionResult& s) {
                           {"bic", JsonNumber(c.bic)},
                           {"disturbance", c.disturbance},
                           {"negative_log_likelihood", JsonNumber(c.negative_log_likelihood)},
-                          {"likelihood_unknowns", c.likelihood_unknowns},
-                          {"likelihood_samples", c.likelihood_samples},
+                          {"likelihood_unknowns", Counted(c.usable, c.likelihood_unknowns)},
+                          {"likelihood_samples", Counted(c.usable, c.likelihood_samples)},
                           {"likelihood_bic", JsonNumber(c.likelihood_bic)},
-                          {"prediction_steps", c.prediction_steps},
+                          {"prediction_steps", Counted(c.prediction_steps > 0, c.prediction_steps)},
                           {"k_step_fit_percent", JsonNumber(c.k_step_fit_percent)},
                           {"one_step_fit_percent", JsonNumber(c.one_step_fit_percent)},
                           {"within_one_se", c.within_one_se}});
@@ -66,6 +81,7 @@ nlohmann::json SelectionToJson(const SelectionResult& s) {
           {"outputs", s.outputs}, {"candidates", candidates},
           {"best", name(s.best)}, {"chosen", name(s.chosen)},
           {"reason", s.reason},   {"likelihoods_comparable", s.likelihoods_comparable},
+          {"likelihood_note", s.likelihood_note},
           {"time_seconds", s.time_seconds}};
 }
 
@@ -81,24 +97,28 @@ std::string SelectionText(const SelectionResult& s) {
   for (const SelectionCandidate& c : s.candidates) filtered = filtered || c.prediction_steps > 0;
   std::snprintf(line, sizeof(line), "  %-22s %-28s %7s %7s %7s %7s %16s %12s %12s %12s%s  %s\n",
                 "candidate", "model", "shared", "per-run", "states", "fit %", "+- SE", "AIC", "BIC",
-                "BIC_L", filtered ? "  k-step %  1-step %" : "", "per output: fit % (SD) RMSE");
+                "BIC_L", filtered ? "        k-step %  1-step %" : "", "per output: fit % (SD) RMSE");
   out += line;
   for (size_t i = 0; i < s.candidates.size(); ++i) {
     const SelectionCandidate& c = s.candidates[i];
     std::string per_output;
     for (const SelectionOutputScore& o : c.outputs) {
-      per_output += o.output + " " + FormatFinite("%.2f", o.fit_percent) + " (" +
-                    FormatFinite("%.2f", o.fit_sd) + ") " + FormatFinite("%.3g", o.rmse) +
+      per_output += o.output + " " + Percent(o.fit_percent) + " (" +
+                    Percent(o.fit_sd) + ") " + FormatFinite("%.3g", o.rmse) +
                     (o.unit.empty() ? "" : " " + o.unit) + "  ";
     }
     if (!c.disturbance.empty()) per_output += "noise: " + c.disturbance + "  ";
     if (!c.usable) per_output = "not scored: " + c.message;
     std::string through_filter;
     if (filtered) {
-      char cells[64];
-      std::snprintf(cells, sizeof(cells), "  %8s  %8s",
-                    FormatFinite("%.2f", c.k_step_fit_percent).c_str(),
-                    FormatFinite("%.2f", c.one_step_fit_percent).c_str());
+      // k beside its fit: candidates may predict different horizons.
+      char cells[96];
+      const std::string k_step =
+          c.prediction_steps > 0
+              ? Percent(c.k_step_fit_percent) + " (k " + std::to_string(c.prediction_steps) + ")"
+              : "-";
+      std::snprintf(cells, sizeof(cells), "  %14s  %8s", k_step.c_str(),
+                    Percent(c.one_step_fit_percent).c_str());
       through_filter = cells;
     }
     const std::string mark = static_cast<int>(i) == s.chosen ? "  <- chosen"
@@ -106,8 +126,8 @@ std::string SelectionText(const SelectionResult& s) {
                                                              : "";
     std::snprintf(line, sizeof(line), "  %-22s %-28s %7d %7d %7d %7s %16s %12s %12s %12s%s  %s%s\n",
                   c.name.c_str(), c.model.c_str(), c.shared_parameters, c.per_run_values,
-                  c.initial_states, FormatFinite("%.2f", c.score).c_str(),
-                  ("+- " + FormatFinite("%.2f", c.score_se)).c_str(),
+                  c.initial_states, Percent(c.score).c_str(),
+                  ("+- " + Percent(c.score_se)).c_str(),
                   FormatFinite("%.1f", c.aic).c_str(), FormatFinite("%.1f", c.bic).c_str(),
                   FormatFinite("%.1f", c.likelihood_bic).c_str(), through_filter.c_str(),
                   per_output.c_str(), mark.c_str());
@@ -122,8 +142,9 @@ std::string SelectionText(const SelectionResult& s) {
   out += "\n  fold scores:";
   for (const SelectionCandidate& c : s.candidates) {
     out += "\n    " + c.name + ":";
-    for (double f : c.fold_scores) out += " " + FormatFinite("%.2f", f);
+    for (double f : c.fold_scores) out += " " + Percent(f);
   }
+  if (!s.likelihood_note.empty()) out += "\n  note: " + s.likelihood_note;
   if (!s.likelihoods_comparable) {
     out += "\n  note: the candidates' likelihoods cover different outputs or samples: BIC_L does "
            "not compare them";

@@ -11,7 +11,7 @@ std::string SelectionHtml(const SelectionResult& s) {
                      Th("per-run values") + Th("initial states") + Th("CV fit [%]") + Th("SE [%]");
   for (const std::string& o : s.outputs)
     head += Th(o + " fit [%]") + Th(o + " SD") + Th(o + " RMSE");
-  head += Th("AIC") + Th("BIC") + Th("BIC_L") + Th("k-step fit [%]") + Th("1-step fit [%]") +
+  head += Th("AIC") + Th("BIC") + Th("BIC_L") + Th("k-step fit [%] (k samples ahead)") + Th("1-step fit [%]") +
           Th("disturbance") + Th("choice") + "</tr>\n";
   std::string rows;
   for (size_t i = 0; i < s.candidates.size(); ++i) {
@@ -34,7 +34,9 @@ std::string SelectionHtml(const SelectionResult& s) {
                                                                : "not scored: " + c.message;
     rows +=
         Num(HtmlNumber(c.aic, "%.1f")) + Num(HtmlNumber(c.bic, "%.1f")) +
-        Num(HtmlNumber(c.likelihood_bic, "%.1f")) + Num(HtmlNumber(c.k_step_fit_percent, "%.2f")) +
+        Num(HtmlNumber(c.likelihood_bic, "%.1f")) + Num(c.prediction_steps > 0 ? HtmlNumber(c.k_step_fit_percent, "%.2f") + " (k " +
+                                            std::to_string(c.prediction_steps) + ")"
+                                      : std::string("-")) +
         Num(HtmlNumber(c.one_step_fit_percent, "%.2f")) + Td(c.disturbance) + Td(choice) +
         "</tr>\n";
   }

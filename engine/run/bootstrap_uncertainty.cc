@@ -141,6 +141,17 @@ void BootstrapStageUncertainty(const StageOptions& options, const OutputErrorOpt
   const std::string keeping = std::string("; the ") + kept.method + " covariance is reported";
   const std::vector<Experiment>& original = solved->experiments();
   const int count = static_cast<int>(original.size());
+  if (blocks && solved->filter_error()) {
+    // Its pseudo-records are the simulation plus resampled output-error residuals; the
+    // filter's innovations would have to be fed back through the filter to make records.
+    summary->findings.push_back(MakeFinding(
+        FindingKind::kBootstrap,
+        std::string(method) + " in stage '" + options.name +
+            "' resamples output error's residuals onto its simulation; under the filter-error "
+            "method (noise:) it is not run: experiment_bootstrap resamples whole runs or "
+            "segments and refits them" + keeping));
+    return;
+  }
   if (!blocks && count < kMinBootstrapExperiments) {
     summary->findings.push_back(MakeFinding(
         FindingKind::kBootstrap, ExperimentBootstrapRefusal(options.name, count) + keeping));

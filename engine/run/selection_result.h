@@ -68,6 +68,10 @@ struct SelectionResult {
   double time_seconds = 0.0;
   // Whether the usable candidates' likelihoods cover the same samples (comparable BIC_L).
   bool likelihoods_comparable = false;
+  // Where an output-error candidate holds its runs' starts at their first samples beside a
+  // filter-error candidate (which takes them as measured, with their noise): what BIC_L then
+  // also weighs. Empty otherwise.
+  std::string likelihood_note;
   bool empty() const { return candidates.empty(); }
 };
 

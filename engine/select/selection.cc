@@ -380,10 +380,21 @@ bool RunSelection(const std::vector<NamedCandidate>& candidates, const Selection
   }
   out.likelihoods_comparable = true;
   int samples = -1;
+  bool held_starts = false, filtered = false;
   for (const SelectionCandidate& s : out.candidates) {
     if (!s.usable) continue;
     if (samples >= 0 && s.likelihood_samples != samples) out.likelihoods_comparable = false;
     samples = s.likelihood_samples;
+    held_starts = held_starts || (s.disturbance.empty() && s.initial_states == 0);
+    filtered = filtered || !s.disturbance.empty();
+  }
+  if (held_starts && filtered) {
+    out.likelihood_note =
+        "an output-error candidate holds each run's start at its first samples, a filter-error "
+        "candidate takes it as measured with the sensor's noise: the first sample's error then "
+        "counts against output error's likelihood for the whole run, and even a tiny process "
+        "noise that lets the filter correct it scores better; free the starts "
+        "(free_initial_states) to compare the disturbance models alone";
   }
   ChooseByOneStandardError(&out);
   out.time_seconds =

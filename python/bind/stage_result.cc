@@ -102,7 +102,8 @@ void BindStageResult(py::module_& m) {
       "model        the disturbance in words, as the disturbance_model finding names it\n"
       "negative_log_likelihood   the innovations' -log L at the estimates\n"
       "candidates   DataFrame of auto's candidates by name (output error first): solved, why, "
-      "negative_log_likelihood, unknowns, bic, chosen; empty for filter_error\n"
+      "negative_log_likelihood, unknowns, bic, chosen; empty for filter_error and where auto "
+      "found output error's residuals white (nothing compared)\n"
       "predictions  DataFrame, a row per held-out experiment and output: the k-step and "
       "one-step predictions through the filter and the free run from the measured start (fit %)")
       .def_readonly("method", &DisturbanceReport::method)

@@ -7,6 +7,23 @@ from . import _core
 from ._run import _out_argument
 
 
+def _seed(seed) -> int:
+    """A seed of the draws, as the CLI's --seed takes it: a whole number from 0."""
+    if isinstance(seed, bool) or int(seed) != seed or seed < 0:
+        raise ValueError(f"seed {seed!r}: a whole number >= 0 (--seed)")
+    return int(seed)
+
+
+def _known(value, name) -> float:
+    """A ship's length or speed where given: a finite number (None: not known)."""
+    if value is None:
+        return math.nan
+    number = float(value)
+    if not math.isfinite(number):
+        raise ValueError(f"{name} {value!r}: not a number (give None where it is not known)")
+    return number
+
+
 def export(run: "_core.RunResult | os.PathLike | str", format: str = "fmu",
            out: "os.PathLike | str | None" = None, members: int = 100, seed: int = 1) -> str:
     """The model of a run (a RunResult, or the folder of `vesselid run --out`) as an FMI 2.0
@@ -21,9 +38,9 @@ def export(run: "_core.RunResult | os.PathLike | str", format: str = "fmu",
         if out is None:
             raise TypeError("export of a RunResult needs `out`, the folder to write into")
         return _core.export_result(run, str(format), _out_argument(out), int(members),
-                                   int(seed), runtime)
+                                   _seed(seed), runtime)
     return _core.export_model(os.fspath(run), str(format), _out_argument(out),
-                              int(members), int(seed), runtime)
+                              int(members), _seed(seed), runtime)
 
 
 def predict(run: "_core.RunResult | os.PathLike | str", length: "float | None" = None,
@@ -34,8 +51,7 @@ def predict(run: "_core.RunResult | os.PathLike | str", length: "float | None" =
     method, held against the IMO criteria where the ship's `length` (m) and `speed` (m/s) are
     known: predictions.json as a dict, its text table under "text". `run`: a RunResult or a
     run's folder. `out` also writes predictions.txt and predictions.json there."""
-    conditions = (math.nan if length is None else float(length),
-                  math.nan if speed is None else float(speed), int(members), int(seed),
+    conditions = (_known(length, "length"), _known(speed, "speed"), int(members), _seed(seed),
                   out is not None, _out_argument(out))
     if isinstance(run, _core.RunResult):
         text, payload = _core.predict_result(run, *conditions)

@@ -172,6 +172,24 @@ TEST(FilterErrorRun, ProcessNoiseOnTheRuddersEquationWhitensTheInnovations) {
   }
 }
 
+// A block bootstrap resamples output error's residuals onto its simulation; under the
+// filter-error method it is refused with a finding naming experiment_bootstrap, and the run
+// goes on with the Fisher information (it overran its buffers: each sample has two rows).
+TEST(FilterErrorRun, BlockBootstrapIsRefusedUnderTheFilterNotOverrun) {
+  const CommandRun run = SimulateAndRun(
+      "block_bootstrap",
+      "{method: filter_error, process: {xi2: auto}}\n"
+      "    uncertainty: {method: block_bootstrap, runs: 10}");
+  ASSERT_TRUE(run.results.is_object()) << run.stderr_text;
+  const std::vector<json> refused = testing::JsonFindingsOf(run.results, "bootstrap", "");
+  ASSERT_FALSE(refused.empty()) << testing::JsonFindingsText(run.results);
+  EXPECT_NE(refused[0]["message"].get<std::string>().find("experiment_bootstrap"),
+            std::string::npos)
+      << refused[0]["message"];
+  EXPECT_NE(EstimateNamed(run.results, "q.process.xi2"), nullptr);
+  EXPECT_GT((*EstimateNamed(run.results, "K"))["std_error"].get<double>(), 0.0);
+}
+
 TEST(FilterErrorRun, AutoNamesEveryCandidateAndKeepsTheBest) {
   const CommandRun run = SimulateAndRun("auto", "{method: auto}");
   ASSERT_EQ(run.status, 0) << run.stderr_text;

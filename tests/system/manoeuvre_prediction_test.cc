@@ -181,12 +181,51 @@ TEST(ManoeuvrePrediction, TheIdentifiedGustsWidenTheIntervalAsTheirSpectralDensi
   EXPECT_GT(base, 0.05);
   EXPECT_NEAR(width(4e-8, 0.01, &calm) / base, 2.0, 0.1);
   EXPECT_NEAR(width(1e-8, 0.005, &calm) / base, 1.0, 0.2);
+  // What cannot be flown is said, not dropped: an unknown state, a spectral density that is
+  // not positive, a state listed twice.
+  cargo.process_noise = {{"zz", 1e-8, 0.0}, {"r", -1.0, 0.0}, {"r", 1e-8, 0.0}, {"r", 2e-8, 0.0}};
+  ManoeuvrePredictions edited;
+  ASSERT_TRUE(PredictManoeuvres(cargo, *model, conditions, &edited, &error)) << error;
+  ASSERT_EQ(edited.process_noise.size(), 1u);
+  EXPECT_EQ(edited.process_noise[0].spectral_density, 1e-8);
+  std::string notes;
+  for (const std::string& note : edited.notes) notes += note + "\n";
+  EXPECT_NE(notes.find("has no state 'zz'"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("positive and finite"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("listed twice"), std::string::npos) << notes;
   // No process noise: no third interval.
   cargo.process_noise.clear();
   ManoeuvrePredictions calm_predictions;
   ASSERT_TRUE(PredictManoeuvres(cargo, *model, conditions, &calm_predictions, &error));
   EXPECT_EQ(calm_predictions.figures[0].disturbance_members, 0);
   EXPECT_FALSE(ManoeuvresToJson(calm_predictions)["figures"][0].contains("disturbance_interval"));
+}
+
+// A rudder bias (a run's per-run delta_0 averaged into the final values) turns a course-stable
+// ship the same way after a turn to either side: the pull-out's figure, half the difference of
+// the two rates left, is zero and the note says course-stable, where the larger rate alone
+// called it unstable.
+TEST(ManoeuvrePrediction, ARudderBiasIsNoCourseInstability) {
+  const ModelRegistry registry = DefaultRegistry();
+  IdentifiedModel ship;
+  std::string error;
+  const auto model =
+      MakeIdentifiedModel(registry, "nomoto", {{"type", "first_order"}}, &ship, &error);
+  ASSERT_NE(model, nullptr) << error;
+  for (size_t i = 0; i < ship.parameters.size(); ++i) {
+    const std::string& name = ship.parameters[i].name;
+    ship.values[i] = name == "T" ? 8.0 : name == "K" ? 0.15 : name == "delta_0" ? 0.01 : 0.0;
+  }
+  ManoeuvreConditions conditions;
+  conditions.pull_out_turn = conditions.pull_out_settle = 120.0;
+  ManoeuvrePredictions predictions;
+  ASSERT_TRUE(PredictManoeuvres(ship, *model, conditions, &predictions, &error)) << error;
+  EXPECT_LT(std::abs(predictions.figures.back().value), 1e-3);  // deg/s; the bias turns it 0.086
+  bool stable = false;
+  for (const std::string& note : predictions.notes) {
+    stable = stable || note.find("course-stable") != std::string::npos;
+  }
+  EXPECT_TRUE(stable);
 }
 
 // Without L and U the turning is a time and only the 20/20 criterion applies; a model that
