@@ -93,3 +93,11 @@ def test_output_error_has_no_disturbance(records):
     assert result.stages[0].disturbance is None
     assert result.model.process_noise.empty
     assert "disturbance_interval" not in vesselid.predict(result, members=5)["figures"][0]
+
+
+def test_predict_refuses_what_the_cli_refuses(records):
+    result = vesselid.run(config_without_simulation(None), data=records)
+    with pytest.raises(ValueError, match="speed nan: not a number"):
+        vesselid.predict(result, speed=float("nan"), members=5)
+    with pytest.raises(ValueError, match="seed -1: a whole number >= 0"):
+        vesselid.predict(result, seed=-1, members=5)
