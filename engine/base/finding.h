@@ -48,6 +48,7 @@ enum class FindingKind {
   kNoiseModel,
   kDisturbanceModel,
   kDisturbanceAbsorbsStructure,
+  kFreeRunDrift,
   kGlobalStartDiverged,
   kNarrowIntervals,
   kBootstrap,

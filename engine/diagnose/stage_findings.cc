@@ -216,7 +216,32 @@ void AddBoundFindings(const ModelInfo& info, const std::vector<Estimate>& estima
 }
 
 void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& stage,
-                    std::vector<Finding>* findings, const DisplayUnitOf& unit_of) {
+                    std::vector<Finding>* findings, const DisplayUnitOf& unit_of,
+                    const std::vector<FreeRunDrift>& drift) {
+  // The drift the identified disturbance explains, by (experiment, output); none where the
+  // filter's innovations say structure is missing (disturbance_absorbs_structure, already
+  // among `findings`): then the gusts stand in for the model and the free run's miss is its.
+  auto structure = [&](const ChannelMetrics& m) {
+    for (const Finding& f : *findings) {
+      if (f.kind == FindingKind::kDisturbanceAbsorbsStructure && f.output == m.output &&
+          (f.experiment.empty() || f.experiment == m.experiment)) {
+        return true;
+      }
+    }
+    return false;
+  };
+  auto explained = [&](const ChannelMetrics& m) -> const FreeRunDrift* {
+    for (const FreeRunDrift& d : drift) {
+      if (d.experiment == m.experiment && d.output == m.output && d.explained() &&
+          !structure(m)) {
+        return &d;
+      }
+    }
+    return nullptr;
+  };
+  std::map<std::string, std::vector<std::pair<const ChannelMetrics*, const FreeRunDrift*>>>
+      drifting;
+  std::vector<std::string> drift_order;
   struct Rule {
     FindingKind kind;
     bool (*fires)(const ChannelMetrics&);
@@ -233,7 +258,13 @@ void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& s
     for (const ExperimentFit& fit : fits) {
       for (const ChannelMetrics& m : fit.channels) {
         if (compared[m.output]++ == 0) order.push_back(m.output);
-        if (rule.fires(m)) fired[m.output].push_back(&m);
+        if (!rule.fires(m)) continue;
+        if (const FreeRunDrift* d = explained(m)) {
+          if (drifting[m.output].empty()) drift_order.push_back(m.output);
+          drifting[m.output].push_back({&m, d});
+          continue;
+        }
+        fired[m.output].push_back(&m);
       }
     }
     for (const std::string& output : order) {
@@ -267,6 +298,44 @@ void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& s
       f.count = static_cast<int>(list.size());
       findings->push_back(std::move(f));
     }
+  }
+  for (const std::string& output : drift_order) {
+    const auto& list = drifting[output];
+    std::string runs;
+    double worst = 0.0;
+    for (size_t i = 0; i < list.size(); ++i) {
+      const auto& [m, d] = list[i];
+      const DisplayUnit unit = unit_of ? unit_of(m->experiment, output) : DisplayUnit{"", 1.0};
+      const std::string label = unit.unit.empty() ? "" : " " + unit.unit;
+      if (i < 8) {
+        char text[240];
+        std::snprintf(text, sizeof(text),
+                      "%s%s (fit %.3g %%, RMS %.3g%s found, %.3g%s expected; ratio of sums of "
+                      "squares %.2f)",
+                      i > 0 ? ", " : "", m->experiment.c_str(), m->fit_percent,
+                      unit.scale * std::sqrt(d->observed_sse / d->samples), label.c_str(),
+                      unit.scale * std::sqrt(d->expected_sse / d->samples), label.c_str(),
+                      d->ratio());
+        runs += text;
+      }
+      worst = std::max(worst, d->ratio());
+    }
+    if (list.size() > 8) runs += ", ...";
+    Finding f = MakeFinding(
+        FindingKind::kFreeRunDrift,
+        "the free run of " + output + " drifts from its record in " +
+            std::to_string(list.size()) + " experiment(s) as far as the process noise "
+            "identified with the ship lets it: " + runs +
+            "; the expected sum of squares is that of free runs in the identified gusts and "
+            "sensors' noise, a correct model's free run drifts so (not a failed fit; the "
+            "one-step and k-step predictions through the filter are what this model predicts)");
+    f.stage = stage;
+    f.output = output;
+    f.experiment = list.size() == 1 ? list[0].first->experiment : "";
+    f.value = worst;
+    f.threshold = kDriftExplained;
+    f.count = static_cast<int>(list.size());
+    findings->push_back(std::move(f));
   }
 }
 
@@ -303,7 +372,7 @@ void DiagnoseStage(const ModelInfo& info, bool output_error, StageResult* stage,
   }
   AddBoundFindings(info, stage->held_out_parameters.estimates, stage->name, &findings,
                    parameter_unit_of);
-  AddFitFindings(stage->summary.fits, stage->name, &findings, unit_of);
+  AddFitFindings(stage->summary.fits, stage->name, &findings, unit_of, stage->free_run_drift);
   AddResidualFindings(*stage, &findings);
   AddCompensationFindings(info, *stage, &findings);
   AddBootstrapFindings(*stage, &findings);

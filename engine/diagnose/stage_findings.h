@@ -38,9 +38,13 @@ void AddBoundFindings(const ModelInfo& info, const std::vector<Estimate>& estima
                       const ParameterUnitOf& unit_of = {});
 
 // failed_fit and poor_fit findings of `fits`, one per kind and output with the count of
-// experiments; the worst run's MAE in `unit_of`'s unit (may be empty: the model's).
+// experiments; the worst run's MAE in `unit_of`'s unit (may be empty: the model's). A free run
+// whose drift the identified process noise explains (`drift`, free_run_drift.h) is not
+// counted, unless `findings` already holds disturbance_absorbs_structure for its output: a
+// free_run_drift note names it instead.
 void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& stage,
-                    std::vector<Finding>* findings, const DisplayUnitOf& unit_of = {});
+                    std::vector<Finding>* findings, const DisplayUnitOf& unit_of = {},
+                    const std::vector<FreeRunDrift>& drift = {});
 
 // held_out_free_run_failed findings of velocity-validation `metrics` (free-run R2 < 0), one per
 // held-out record set and state, with `severity` (warning for a stage, failure for the final

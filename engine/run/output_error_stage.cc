@@ -17,6 +17,7 @@
 #include "engine/run/continuation.h"
 #include "engine/run/estimate_specs.h"
 #include "engine/run/disturbance_choice.h"
+#include "engine/run/free_run_drift.h"
 #include "engine/run/disturbance_notes.h"
 #include "engine/run/fit_residuals.h"
 #include "engine/run/innovation_structure.h"
@@ -425,9 +426,11 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
     if (o != e->second.end()) a.input_noise_share = o->second;
   }
   // The stage's time includes the analysis of its residuals, as it does its uncertainty.
+  std::vector<FreeRunDrift> drift = MeasureFreeRunDrift(*problem);
   summary.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start).count();
   *result = Collect(*problem, starts, std::move(summary));
+  result->free_run_drift = std::move(drift);
   result->disturbance = ReportDisturbance(stage.problem.disturbance, *problem,
                                           result->summary.uncertainty, candidates);
   result->integration_step = integration_step;

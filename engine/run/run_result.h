@@ -31,6 +31,19 @@ enum class EstimateKind { kParameter, kInitialState, kNoise };
 const char* EstimateKindToString(EstimateKind kind);  // "parameter", "initial_state", "noise"
 bool StringToEstimateKind(const std::string& text, EstimateKind* kind);
 
+// A free run's drift from its record against what the identified disturbance lets it
+// (free_run_drift.h): sums of squares over the experiment's samples of the output, model units.
+// Observed / expected SSE up to which a free run's drift is the identified disturbance's (a
+// random walk's 2 int_0^1 W^2 dt, mean 1, exceeds 8 with probability about 1 %).
+inline constexpr double kDriftExplained = 8.0;
+struct FreeRunDrift {
+  std::string experiment, output;
+  int samples = 0;
+  double observed_sse = 0.0, expected_sse = 0.0;
+  double ratio() const { return observed_sse / expected_sse; }
+  bool explained() const { return ratio() <= kDriftExplained; }
+};
+
 // One estimated or fixed quantity of a stage as reported.
 struct Estimate {
   std::string name;
@@ -116,6 +129,9 @@ struct StageResult {
   // Filter-error stages: the disturbance model, auto's candidates, the held-out predictions
   // through the filter (disturbance_report.h).
   DisturbanceReport disturbance;
+  // Filter-error stages with process noise: how far each free run drifted against how far
+  // the identified disturbance lets it (free_run_drift.h).
+  std::vector<FreeRunDrift> free_run_drift;
   // The cost at the estimate with every channel weighted as configured (weights: fixed for
   // the stage whatever the noise model did), so that end points from other starts, runs
   // and tools rank by it; the minimised cost under `weights: noise` is ~N/2 at any end point.
