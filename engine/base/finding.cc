@@ -144,17 +144,6 @@ const Row kRows[] = {
      "innovations) say structure remains.",
      "None: read the estimates beside the ship's. A process noise far above what the sea and "
      "sensors can make stands for structure the model lacks."},
-    {K::kFreeRunDrift, "free_run_drift", S::kInfo,
-     "A filter-error stage's free run (the model flown alone from the record's start with the "
-     "logged inputs) misses its record, but by no more than the process noise identified with "
-     "the ship lets a correct model drift: its residuals' sum of squares is at most 8 times "
-     "the expected one, the spread of 64 free runs each in its own realisation of the "
-     "identified gusts plus the sensors' variance (a random walk's ratio exceeds 8 with "
-     "probability about 1 %), and the filter's innovations show no structure "
-     "(disturbance_absorbs_structure). Stands in place of failed_fit or poor_fit, which a "
-     "correct model in strong gusts would raise.",
-     "None: the filter's one-step and k-step predictions are what the model predicts in this "
-     "sea. A drift far beyond the expected one stays failed_fit."},
     {K::kDisturbanceAbsorbsStructure, "disturbance_absorbs_structure", S::kWarning,
      "A disturbance model absorbs structure the ship model lacks (a rudder dead band or rate "
      "limit, a missing nonlinear term): process noise does what the model cannot and the "
@@ -166,6 +155,17 @@ const Row kRows[] = {
      "its dead band, rate limit and cubic damping classes up to 119).",
      "Look for the missing structure (vesselid select over richer families); the estimates "
      "of neither method are to be trusted as they are."},
+    {K::kFreeRunDrift, "free_run_drift", S::kInfo,
+     "A filter-error stage's free run (the model flown alone from the record's start with the "
+     "logged inputs) misses its record, but by no more than the process noise identified with "
+     "the ship lets a correct model drift: its residuals' sum of squares is at most 8 times "
+     "the expected one, the spread of 64 free runs each in its own realisation of the "
+     "identified gusts plus the sensors' variance (a random walk's ratio exceeds 8 with "
+     "probability about 1 %), and the filter's innovations show no structure "
+     "(disturbance_absorbs_structure). Stands in place of failed_fit or poor_fit, which a "
+     "correct model in strong gusts would raise.",
+     "None: the filter's one-step and k-step predictions are what the model predicts in this "
+     "sea. A drift far beyond the expected one stays failed_fit."},
     {K::kGlobalStartDiverged, "global_start_diverged", S::kInfo,
      "Points of the global search whose simulation diverged were left out.",
      "None unless most diverged: then narrow the bounds."},

@@ -11,7 +11,7 @@ namespace {
 
 // A fit % as the table shows it: two decimals, or three digits where a diverged prediction
 // made it astronomically negative (it would otherwise print as a 60-digit number).
-std::string Percent(double value) {
+std::string FitPercentText(double value) {
   return FormatFinite(std::abs(value) < 1e5 ? "%.2f" : "%.3g", value);
 }
 
@@ -103,8 +103,8 @@ std::string SelectionText(const SelectionResult& s) {
     const SelectionCandidate& c = s.candidates[i];
     std::string per_output;
     for (const SelectionOutputScore& o : c.outputs) {
-      per_output += o.output + " " + Percent(o.fit_percent) + " (" +
-                    Percent(o.fit_sd) + ") " + FormatFinite("%.3g", o.rmse) +
+      per_output += o.output + " " + FitPercentText(o.fit_percent) + " (" +
+                    FitPercentText(o.fit_sd) + ") " + FormatFinite("%.3g", o.rmse) +
                     (o.unit.empty() ? "" : " " + o.unit) + "  ";
     }
     if (!c.disturbance.empty()) per_output += "noise: " + c.disturbance + "  ";
@@ -115,10 +115,10 @@ std::string SelectionText(const SelectionResult& s) {
       char cells[96];
       const std::string k_step =
           c.prediction_steps > 0
-              ? Percent(c.k_step_fit_percent) + " (k " + std::to_string(c.prediction_steps) + ")"
+              ? FitPercentText(c.k_step_fit_percent) + " (k " + std::to_string(c.prediction_steps) + ")"
               : "-";
       std::snprintf(cells, sizeof(cells), "  %14s  %8s", k_step.c_str(),
-                    Percent(c.one_step_fit_percent).c_str());
+                    FitPercentText(c.one_step_fit_percent).c_str());
       through_filter = cells;
     }
     const std::string mark = static_cast<int>(i) == s.chosen ? "  <- chosen"
@@ -126,8 +126,8 @@ std::string SelectionText(const SelectionResult& s) {
                                                              : "";
     std::snprintf(line, sizeof(line), "  %-22s %-28s %7d %7d %7d %7s %16s %12s %12s %12s%s  %s%s\n",
                   c.name.c_str(), c.model.c_str(), c.shared_parameters, c.per_run_values,
-                  c.initial_states, Percent(c.score).c_str(),
-                  ("+- " + Percent(c.score_se)).c_str(),
+                  c.initial_states, FitPercentText(c.score).c_str(),
+                  ("+- " + FitPercentText(c.score_se)).c_str(),
                   FormatFinite("%.1f", c.aic).c_str(), FormatFinite("%.1f", c.bic).c_str(),
                   FormatFinite("%.1f", c.likelihood_bic).c_str(), through_filter.c_str(),
                   per_output.c_str(), mark.c_str());
@@ -142,7 +142,7 @@ std::string SelectionText(const SelectionResult& s) {
   out += "\n  fold scores:";
   for (const SelectionCandidate& c : s.candidates) {
     out += "\n    " + c.name + ":";
-    for (double f : c.fold_scores) out += " " + Percent(f);
+    for (double f : c.fold_scores) out += " " + FitPercentText(f);
   }
   if (!s.likelihood_note.empty()) out += "\n  note: " + s.likelihood_note;
   if (!s.likelihoods_comparable) {
