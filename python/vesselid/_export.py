@@ -49,8 +49,10 @@ def predict(run: "_core.RunResult | os.PathLike | str", length: "float | None" =
     """The standard manoeuvres (IMO 10/10 and 20/20 zigzag overshoots, initial turning ability)
     the run's model predicts, with 95 % intervals from `members` parameter draws and the delta
     method, held against the IMO criteria where the ship's `length` (m) and `speed` (m/s) are
-    known: predictions.json as a dict, its text table under "text". `run`: a RunResult or a
-    run's folder. `out` also writes predictions.txt and predictions.json there."""
+    known: predictions.json as a dict, its text table under "text". Where the run identified
+    process noise with the ship (a filter-error stage's gusts), each figure also has a
+    "disturbance_interval": the members flown each in its own realisation of it. `run`: a
+    RunResult or a run's folder. `out` also writes predictions.txt and predictions.json there."""
     conditions = (_known(length, "length"), _known(speed, "speed"), int(members), _seed(seed),
                   out is not None, _out_argument(out))
     if isinstance(run, _core.RunResult):
