@@ -156,16 +156,16 @@ const Row kRows[] = {
      "Look for the missing structure (vesselid select over richer families); the estimates "
      "of neither method are to be trusted as they are."},
     {K::kFreeRunDrift, "free_run_drift", S::kInfo,
-     "A filter-error stage's free run (the model flown alone from the record's start with the "
-     "logged inputs) misses its record, but by no more than the process noise identified with "
-     "the ship lets a correct model drift: its residuals' sum of squares is at most 8 times "
-     "the expected one, the spread of 64 free runs each in its own realisation of the "
-     "identified gusts plus the sensors' variance (a random walk's ratio exceeds 8 with "
-     "probability about 1 %), and the filter's innovations show no structure "
-     "(disturbance_absorbs_structure). Stands in place of failed_fit or poor_fit, which a "
-     "correct model in strong gusts would raise.",
-     "None: the filter's one-step and k-step predictions are what the model predicts in this "
-     "sea. A drift far beyond the expected one stays failed_fit."},
+     "Beside a filter-error stage's failed_fit or poor_fit: the free run (the model flown "
+     "alone from the record's start with the logged inputs) misses its record by no more than "
+     "the process noise identified with the ship lets a correct model drift (its residuals' "
+     "sum of squares at most 8 times the expected one, the spread of 64 free runs each in its "
+     "own realisation of the identified gusts plus the sensors' variance), and the filter's "
+     "innovations show no structure. The fit's finding stands: a model lacking structure "
+     "inflates its process noise to stand in for it and drifts within the allowance too (a "
+     "user's dead bands, rate limits, backlash and second-order ships: 19 of 25).",
+     "Judge the model by its one-step and k-step predictions through the filter, and by "
+     "records with milder gusts, where a correct model's free run holds."},
     {K::kGlobalStartDiverged, "global_start_diverged", S::kInfo,
      "Points of the global search whose simulation diverged were left out.",
      "None unless most diverged: then narrow the bounds."},

@@ -218,9 +218,9 @@ void AddBoundFindings(const ModelInfo& info, const std::vector<Estimate>& estima
 void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& stage,
                     std::vector<Finding>* findings, const DisplayUnitOf& unit_of,
                     const std::vector<FreeRunDrift>& drift) {
-  // The drift the identified disturbance explains, by (experiment, output); none where the
-  // filter's innovations say structure is missing (disturbance_absorbs_structure, already
-  // among `findings`): then the gusts stand in for the model and the free run's miss is its.
+  // The drift the identified disturbance would let a correct model make, by (experiment,
+  // output); none where the filter's innovations say structure is missing
+  // (disturbance_absorbs_structure, already among `findings`).
   auto structure = [&](const ChannelMetrics& m) {
     for (const Finding& f : *findings) {
       if (f.kind == FindingKind::kDisturbanceAbsorbsStructure && f.output == m.output &&
@@ -259,10 +259,12 @@ void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& s
       for (const ChannelMetrics& m : fit.channels) {
         if (compared[m.output]++ == 0) order.push_back(m.output);
         if (!rule.fires(m)) continue;
+        // The failed or poor fit stands (a process noise inflated by missing structure lets a
+        // wrong model drift as far: helpers' dead bands, rate limits, backlash, a second-order
+        // ship, within the allowance 19 times in 25); the note says what gusts alone allow.
         if (const FreeRunDrift* d = explained(m)) {
           if (drifting[m.output].empty()) drift_order.push_back(m.output);
           drifting[m.output].push_back({&m, d});
-          continue;
         }
         fired[m.output].push_back(&m);
       }
@@ -323,12 +325,14 @@ void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& s
     if (list.size() > 8) runs += ", ...";
     Finding f = MakeFinding(
         FindingKind::kFreeRunDrift,
-        "the free run of " + output + " drifts from its record in " +
-            std::to_string(list.size()) + " experiment(s) as far as the process noise "
-            "identified with the ship lets it: " + runs +
+        "the free run of " + output + " misses its record in " +
+            std::to_string(list.size()) + " experiment(s) by no more than the process noise "
+            "identified with the ship lets a correct model drift: " + runs +
             "; the expected sum of squares is that of free runs in the identified gusts and "
-            "sensors' noise, a correct model's free run drifts so (not a failed fit; the "
-            "one-step and k-step predictions through the filter are what this model predicts)");
+            "sensors' noise. A correct model in strong gusts drifts so; a model lacking "
+            "structure does too, its process noise inflated to stand in for it, so the failed "
+            "or poor fit stands: judge by the one-step and k-step predictions through the "
+            "filter and by records with milder gusts");
     f.stage = stage;
     f.output = output;
     f.experiment = list.size() == 1 ? list[0].first->experiment : "";

@@ -38,10 +38,10 @@ void AddBoundFindings(const ModelInfo& info, const std::vector<Estimate>& estima
                       const ParameterUnitOf& unit_of = {});
 
 // failed_fit and poor_fit findings of `fits`, one per kind and output with the count of
-// experiments; the worst run's MAE in `unit_of`'s unit (may be empty: the model's). A free run
-// whose drift the identified process noise explains (`drift`, free_run_drift.h) is not
-// counted, unless `findings` already holds disturbance_absorbs_structure for its output: a
-// free_run_drift note names it instead.
+// experiments; the worst run's MAE in `unit_of`'s unit (may be empty: the model's). Where a
+// failed or poor free run drifts no further than the identified process noise lets a correct
+// model (`drift`, free_run_drift.h) and `findings` holds no disturbance_absorbs_structure for
+// its output, a free_run_drift note says so beside it (the fit's finding stands).
 void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& stage,
                     std::vector<Finding>* findings, const DisplayUnitOf& unit_of = {},
                     const std::vector<FreeRunDrift>& drift = {});
