@@ -38,4 +38,26 @@ py::object MatrixFrame(const Eigen::MatrixXd& matrix, const std::vector<std::str
 py::object Frame(const py::dict& columns, const std::vector<std::string>& order,
                  const std::string& index = "");
 
+// A DataFrame of `rows`: one column per (name, the row's value of it), in that order, indexed
+// by the column named `index` ("" none). The engine's records of a run (estimates, auto's
+// candidates, predictions through the filter, process noise) as tables.
+template <class Row>
+struct Column {
+  std::string name;
+  py::object (*value)(const Row&);
+};
+template <class Row>
+py::object RowsFrame(const std::vector<Row>& rows, const std::vector<Column<Row>>& columns,
+                     const std::string& index = "") {
+  py::dict table;
+  std::vector<std::string> order;
+  for (const Column<Row>& c : columns) {
+    py::list values;
+    for (const Row& row : rows) values.append(c.value(row));
+    table[py::str(c.name)] = values;
+    order.push_back(c.name);
+  }
+  return Frame(table, order, index);
+}
+
 }  // namespace vesselid::python

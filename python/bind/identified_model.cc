@@ -161,17 +161,13 @@ py::dict Info(const IdentifiedModel& m) {
 
 // The process noise identified with the ship, a row per state: spectral_density, std_error.
 py::object ProcessNoiseFrame(const IdentifiedModel& m) {
-  py::list state, density, std_error;
-  for (const ProcessNoise& noise : m.process_noise) {
-    state.append(noise.state);
-    density.append(noise.spectral_density);
-    std_error.append(noise.std_error);
-  }
-  py::dict columns;
-  columns["state"] = state;
-  columns["spectral_density"] = density;
-  columns["std_error"] = std_error;
-  return Frame(columns, {"state", "spectral_density", "std_error"}, "state");
+  using N = ProcessNoise;
+  return RowsFrame<N>(
+      m.process_noise,
+      {{"state", [](const N& n) -> py::object { return py::str(n.state); }},
+       {"spectral_density", [](const N& n) -> py::object { return py::float_(n.spectral_density); }},
+       {"std_error", [](const N& n) -> py::object { return py::float_(n.std_error); }}},
+      "state");
 }
 
 py::dict Units(const IdentifiedModel& m) {

@@ -11,84 +11,53 @@ namespace {
 
 // The estimates as a DataFrame indexed by name (model units).
 py::object Estimates(const StageResult& stage) {
-  py::list name, kind, role, experiment, value, start, std_error, lower, upper, undetermined;
-  for (const Estimate& e : stage.estimates) {
-    name.append(e.name);
-    kind.append(EstimateKindToString(e.kind));
-    role.append(ParameterRoleToString(e.role));
-    experiment.append(e.experiment);
-    value.append(e.value);
-    start.append(e.start);
-    std_error.append(e.std_error);
-    lower.append(e.lower);
-    upper.append(e.upper);
-    undetermined.append(e.undetermined);
-  }
-  py::dict columns;
-  columns["name"] = name;
-  columns["kind"] = kind;
-  columns["role"] = role;
-  columns["experiment"] = experiment;
-  columns["value"] = value;
-  columns["start"] = start;
-  columns["std_error"] = std_error;
-  columns["lower"] = lower;
-  columns["upper"] = upper;
-  columns["undetermined"] = undetermined;
-  return Frame(columns,
-               {"name", "kind", "role", "experiment", "value", "start", "std_error", "lower",
-                "upper", "undetermined"},
-               "name");
+  using E = Estimate;
+  return RowsFrame<E>(
+      stage.estimates,
+      {{"name", [](const E& e) -> py::object { return py::str(e.name); }},
+       {"kind", [](const E& e) -> py::object { return py::str(EstimateKindToString(e.kind)); }},
+       {"role", [](const E& e) -> py::object { return py::str(ParameterRoleToString(e.role)); }},
+       {"experiment", [](const E& e) -> py::object { return py::str(e.experiment); }},
+       {"value", [](const E& e) -> py::object { return py::float_(e.value); }},
+       {"start", [](const E& e) -> py::object { return py::float_(e.start); }},
+       {"std_error", [](const E& e) -> py::object { return py::float_(e.std_error); }},
+       {"lower", [](const E& e) -> py::object { return py::float_(e.lower); }},
+       {"upper", [](const E& e) -> py::object { return py::float_(e.upper); }},
+       {"undetermined", [](const E& e) -> py::object { return py::bool_(e.undetermined); }}},
+      "name");
 }
 
 // auto's candidates, output error first: name, solved, why, -log L, unknowns, BIC, chosen.
 py::object Candidates(const DisturbanceReport& d) {
-  py::list name, solved, why, likelihood, unknowns, bic, chosen;
-  for (const DisturbanceCandidateScore& c : d.candidates) {
-    name.append(c.name);
-    solved.append(c.solved);
-    why.append(c.why);
-    likelihood.append(c.negative_log_likelihood);
-    unknowns.append(c.unknowns);
-    bic.append(c.bic);
-    chosen.append(c.chosen);
-  }
-  py::dict columns;
-  columns["name"] = name;
-  columns["solved"] = solved;
-  columns["why"] = why;
-  columns["negative_log_likelihood"] = likelihood;
-  columns["unknowns"] = unknowns;
-  columns["bic"] = bic;
-  columns["chosen"] = chosen;
-  return Frame(columns,
-               {"name", "solved", "why", "negative_log_likelihood", "unknowns", "bic", "chosen"},
-               "name");
+  using C = DisturbanceCandidateScore;
+  return RowsFrame<C>(
+      d.candidates,
+      {{"name", [](const C& c) -> py::object { return py::str(c.name); }},
+       {"solved", [](const C& c) -> py::object { return py::bool_(c.solved); }},
+       {"why", [](const C& c) -> py::object { return py::str(c.why); }},
+       {"negative_log_likelihood",
+        [](const C& c) -> py::object { return py::float_(c.negative_log_likelihood); }},
+       {"unknowns", [](const C& c) -> py::object { return py::int_(c.unknowns); }},
+       {"bic", [](const C& c) -> py::object { return py::float_(c.bic); }},
+       {"chosen", [](const C& c) -> py::object { return py::bool_(c.chosen); }}},
+      "name");
 }
 
 // The held-out experiments predicted through the filter: a row per experiment and output.
 py::object Predictions(const DisturbanceReport& d) {
-  py::list experiment, output, steps, seconds, k_step, one_step, free_run;
-  for (const FilterPrediction& p : d.predictions) {
-    experiment.append(p.experiment);
-    output.append(p.output);
-    steps.append(p.steps);
-    seconds.append(p.seconds_ahead);
-    k_step.append(p.k_step_fit_percent);
-    one_step.append(p.one_step_fit_percent);
-    free_run.append(p.free_run_fit_percent);
-  }
-  py::dict columns;
-  columns["experiment"] = experiment;
-  columns["output"] = output;
-  columns["steps"] = steps;
-  columns["seconds_ahead"] = seconds;
-  columns["k_step_fit_percent"] = k_step;
-  columns["one_step_fit_percent"] = one_step;
-  columns["free_run_fit_percent"] = free_run;
-  return Frame(columns,
-               {"experiment", "output", "steps", "seconds_ahead", "k_step_fit_percent",
-                "one_step_fit_percent", "free_run_fit_percent"});
+  using P = FilterPrediction;
+  return RowsFrame<P>(
+      d.predictions,
+      {{"experiment", [](const P& p) -> py::object { return py::str(p.experiment); }},
+       {"output", [](const P& p) -> py::object { return py::str(p.output); }},
+       {"steps", [](const P& p) -> py::object { return py::int_(p.steps); }},
+       {"seconds_ahead", [](const P& p) -> py::object { return py::float_(p.seconds_ahead); }},
+       {"k_step_fit_percent",
+        [](const P& p) -> py::object { return py::float_(p.k_step_fit_percent); }},
+       {"one_step_fit_percent",
+        [](const P& p) -> py::object { return py::float_(p.one_step_fit_percent); }},
+       {"free_run_fit_percent",
+        [](const P& p) -> py::object { return py::float_(p.free_run_fit_percent); }}});
 }
 
 }  // namespace
