@@ -421,8 +421,9 @@ bool PredictManoeuvres(const IdentifiedModel& exported, const ModelHandle& model
         "with disturbance: every member flown again in its own realisation of the process noise "
         "identified with the ship (" + flown +
         ", in the state's unit^2/s): where a trial in that sea would fall; the ensemble "
-        "interval is the model's uncertainty alone, and the IMO criteria are held against it. "
-        "The sensors' noise does not move the ship and is not flown");
+        "interval is the model's uncertainty alone, and the IMO criteria and the course "
+        "stability are held against it (in gusts the pull-out's rate left is the gusts' turn "
+        "as much as the ship's). The sensors' noise does not move the ship and is not flown");
   }
   if (!exported.ensemble.empty() && exported.ensemble.size() < 40) {
     out.notes.push_back(
