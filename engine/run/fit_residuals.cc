@@ -33,16 +33,26 @@ void FedInputs(const ModelInfo& info, size_t count, std::vector<std::vector<doub
 
 }  // namespace
 
-std::vector<size_t> NodeInputRows(const Experiment& experiment) {
-  std::vector<size_t> rows(experiment.num_nodes(), 0);
+NodeInputs::NodeInputs(const Experiment& experiment)
+    : experiment_(experiment),
+      num_inputs_(static_cast<size_t>(experiment.num_inputs)),
+      cache_rows_(num_inputs_ > 0 ? experiment.input_cache.size() / num_inputs_ : 0),
+      rows_(experiment.num_nodes(), 0) {
   size_t steps = 0;
   for (int k = 0; k < experiment.num_nodes(); ++k) {
-    rows[k] = 3 * steps;
+    rows_[k] = 3 * steps;
     if (k < static_cast<int>(experiment.node_substeps.size())) {
       steps += static_cast<size_t>(experiment.node_substeps[k]);
     }
   }
-  return rows;
+}
+
+void NodeInputs::Append(size_t k, std::vector<std::vector<double>>* inputs) const {
+  if (cache_rows_ == 0) return;
+  const size_t row = k < rows_.size() ? std::min(rows_[k], cache_rows_ - 1) : cache_rows_ - 1;
+  for (size_t u = 0; u < num_inputs_; ++u) {
+    (*inputs)[u].push_back(experiment_.input_cache[row * num_inputs_ + u]);
+  }
 }
 
 std::vector<ResidualAnalysis> AnalyseFitResiduals(const ModelInfo& info,
@@ -56,9 +66,7 @@ std::vector<ResidualAnalysis> AnalyseFitResiduals(const ModelInfo& info,
     auto found = by_name.find(fit.experiment);
     if (fit.diverged || found == by_name.end()) continue;
     const Experiment& experiment = *found->second;
-    const std::vector<size_t> rows = NodeInputRows(experiment);
-    const size_t num_inputs = static_cast<size_t>(experiment.num_inputs);
-    const size_t cache_rows = num_inputs > 0 ? experiment.input_cache.size() / num_inputs : 0;
+    const NodeInputs fed_inputs(experiment);
     for (size_t o = 0; o < info.outputs.size(); ++o) {
       const int measured = Column(fit.trace, info.outputs[o] + "_measured");
       const int simulated = Column(fit.trace, info.outputs[o] + "_simulated");
@@ -66,7 +74,7 @@ std::vector<ResidualAnalysis> AnalyseFitResiduals(const ModelInfo& info,
       const bool wrapped = experiment.Wrapped(static_cast<int>(o));
       t.clear();
       e.clear();
-      std::vector<std::vector<double>> inputs(num_inputs);
+      std::vector<std::vector<double>> inputs(fed_inputs.count());
       const std::vector<double>& y = fit.trace.columns[measured];
       const std::vector<double>& y_sim = fit.trace.columns[simulated];
       // A held-out run's burn-in is not scored, and not analysed.
@@ -79,10 +87,7 @@ std::vector<ResidualAnalysis> AnalyseFitResiduals(const ModelInfo& info,
         const double residual = y_sim[k] - y[k];
         t.push_back(fit.trace.t[k]);
         e.push_back(wrapped ? WrapAngle(residual) : residual);
-        const size_t row = k < rows.size() ? std::min(rows[k], cache_rows - 1) : cache_rows - 1;
-        for (size_t i = 0; i < num_inputs && cache_rows > 0; ++i) {
-          inputs[i].push_back(experiment.input_cache[row * num_inputs + i]);
-        }
+        fed_inputs.Append(k, &inputs);
       }
       if (e.empty()) continue;
       std::vector<std::string> names;
@@ -106,21 +111,16 @@ std::vector<ResidualAnalysis> AnalyseInnovations(const OutputErrorProblem& probl
     const Experiment& experiment = problem.experiments()[x];
     FilterRun run;
     if (!problem.RunFilter(static_cast<int>(x), 0, &run)) continue;
-    const std::vector<size_t> rows = NodeInputRows(experiment);
-    const size_t num_inputs = static_cast<size_t>(experiment.num_inputs);
-    const size_t cache_rows = num_inputs > 0 ? experiment.input_cache.size() / num_inputs : 0;
+    const NodeInputs fed_inputs(experiment);
     for (size_t o = 0; o < info.outputs.size(); ++o) {
       std::vector<double> t, e;
-      std::vector<std::vector<double>> inputs(num_inputs);
+      std::vector<std::vector<double>> inputs(fed_inputs.count());
       for (int k = 0; k < experiment.num_nodes(); ++k) {
         for (int i = experiment.node_first_sample[k]; i < experiment.node_first_sample[k + 1]; ++i) {
           if (experiment.samples[i].output != static_cast<int>(o)) continue;
           t.push_back(experiment.node_time[k]);
           e.push_back(run.innovation[i] / std::sqrt(run.variance[i]));
-          const size_t row = std::min(rows[k], cache_rows > 0 ? cache_rows - 1 : 0);
-          for (size_t u = 0; u < num_inputs && cache_rows > 0; ++u) {
-            inputs[u].push_back(experiment.input_cache[row * num_inputs + u]);
-          }
+          fed_inputs.Append(k, &inputs);
         }
       }
       if (e.empty()) continue;

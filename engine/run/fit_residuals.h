@@ -14,9 +14,21 @@
 
 namespace vesselid {
 
-// Row of the input cache at each node: the start of the node's first RK4 step (three rows per
-// step), the last row at the last node.
-std::vector<size_t> NodeInputRows(const Experiment& experiment);
+// The inputs an experiment feeds its simulation at each node: the input cache's row at the
+// start of the node's first RK4 step (three rows per step), the last row at the last node and
+// past it.
+class NodeInputs {
+ public:
+  explicit NodeInputs(const Experiment& experiment);
+  size_t count() const { return num_inputs_; }
+  // Appends each input's value at node k to (*inputs)[u] (inputs sized count()).
+  void Append(size_t k, std::vector<std::vector<double>>* inputs) const;
+
+ private:
+  const Experiment& experiment_;
+  size_t num_inputs_ = 0, cache_rows_ = 0;
+  std::vector<size_t> rows_;  // per node
+};
 
 // fits[i] is matched to the experiment of the same name; diverged fits and experiments
 // without a fit are left out.

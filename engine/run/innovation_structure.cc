@@ -73,9 +73,8 @@ std::vector<InnovationStructure> TestInnovationStructure(const OutputErrorProble
     const Experiment& experiment = problem.experiments()[x];
     FilterRun run;
     if (!problem.RunFilter(static_cast<int>(x), 0, &run)) continue;
-    const std::vector<size_t> rows = NodeInputRows(experiment);
-    const size_t num_inputs = static_cast<size_t>(experiment.num_inputs);
-    const size_t cache_rows = num_inputs > 0 ? experiment.input_cache.size() / num_inputs : 0;
+    const NodeInputs fed_inputs(experiment);
+    const size_t num_inputs = fed_inputs.count();
     for (size_t o = 0; o < info.outputs.size(); ++o) {
       // Per sample: the normalised innovation; the rate of change of the output's one-step
       // predictions y - nu over the two samples before it; the inputs at the node before it.
@@ -101,10 +100,7 @@ std::vector<InnovationStructure> TestInnovationStructure(const OutputErrorProble
           if (std::isfinite(last_rate) && run.variance[i] > 0.0) {
             rate.push_back(last_rate);
             e.push_back(run.innovation[i] / std::sqrt(run.variance[i]));
-            const size_t row = std::min(rows[k - 1], cache_rows > 0 ? cache_rows - 1 : 0);
-            for (size_t u = 0; u < num_inputs && cache_rows > 0; ++u) {
-              inputs[u].push_back(experiment.input_cache[row * num_inputs + u]);
-            }
+            fed_inputs.Append(static_cast<size_t>(k - 1), &inputs);
           }
           last_rate = now;
           last_prediction = predicted;
