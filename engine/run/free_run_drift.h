@@ -14,7 +14,8 @@
 // to the expected SSE is near 1 for a correct model (a random walk's 2 int W^2 has mean 1 and
 // exceeds 8 with probability about 1 %: kDriftExplained, run_result.h), and far beyond where
 // structure is missing. Only a
-// filter-error stage with process noise is checked; the rest drift as output error says.
+// filter-error stage with process noise is checked, and only where a free run is called failed
+// or poor (output_error_stage.cc): the note stands beside those.
 #pragma once
 
 #include <string>

@@ -426,7 +426,13 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
     if (o != e->second.end()) a.input_noise_share = o->second;
   }
   // The stage's time includes the analysis of its residuals, as it does its uncertainty.
-  std::vector<FreeRunDrift> drift = MeasureFreeRunDrift(*problem);
+  // Only where a free run is called failed or poor: the drift note stands beside those.
+  bool missed = false;
+  for (const ExperimentFit& fit : summary.fits) {
+    for (const ChannelMetrics& m : fit.channels) missed = missed || FitFailed(m) || FitPoor(m);
+  }
+  std::vector<FreeRunDrift> drift;
+  if (missed) drift = MeasureFreeRunDrift(*problem);
   summary.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start).count();
   *result = Collect(*problem, starts, std::move(summary));
