@@ -152,20 +152,25 @@ const Row kRows[] = {
      "normalised innovations are regressed on s, s|s| and s^3 of the output's predicted rate "
      "and of each input, and N R^2 against chi^2 falls below p = 0.001 over the stage's tests "
      "(the independent corpus's sensor, wave, gust and drift classes: N R^2 at most 11.1 of 6; "
-     "its dead band, rate limit and cubic damping classes up to 119).",
+     "its dead band, rate limit and cubic damping classes up to 119). Or, where process noise "
+     "acts on a state, the likelihood's score test through the filter of terms added to that "
+     "state's equation (a constant, sign(z), z, z|z|, z^3 of each velocity and input) falls "
+     "below the same level: the likelihood asks for a term the model lacks.",
      "Look for the missing structure (vesselid select over richer families); the estimates "
      "of neither method are to be trusted as they are."},
     {K::kFreeRunDrift, "free_run_drift", S::kInfo,
-     "Beside a filter-error stage's failed_fit or poor_fit: the free run (the model flown "
+     "In place of a filter-error stage's failed_fit or poor_fit: the free run (the model flown "
      "alone from the record's start with the logged inputs) misses its record by no more than "
      "the process noise identified with the ship lets a correct model drift (its residuals' "
      "sum of squares at most 8 times the expected one, the spread of 64 free runs each in its "
-     "own realisation of the identified gusts plus the sensors' variance), and the filter's "
-     "innovations show no structure. The fit's finding stands: a model lacking structure "
-     "inflates its process noise to stand in for it and drifts within the allowance too (a "
-     "user's dead bands, rate limits, backlash and second-order ships: 19 of 25).",
-     "Judge the model by its one-step and k-step predictions through the filter, and by "
-     "records with milder gusts, where a correct model's free run holds."},
+     "own realisation of the identified gusts plus the sensors' variance), and neither the "
+     "filter's innovations nor the score test of terms the model may lack "
+     "(disturbance_absorbs_structure) show structure. A correct model in strong gusts drifts "
+     "so; where structure is missing but the data cannot show it, so does a wrong one (the "
+     "gust corpus, docs/models.md).",
+     "Judge the model by its one-step and k-step predictions through the filter, the "
+     "intervals with disturbance of vesselid predict, and records with milder gusts, where a "
+     "correct model's free run holds."},
     {K::kGlobalStartDiverged, "global_start_diverged", S::kInfo,
      "Points of the global search whose simulation diverged were left out.",
      "None unless most diverged: then narrow the bounds."},

@@ -223,7 +223,8 @@ void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& s
   // (disturbance_absorbs_structure, already among `findings`).
   auto structure = [&](const ChannelMetrics& m) {
     for (const Finding& f : *findings) {
-      if (f.kind == FindingKind::kDisturbanceAbsorbsStructure && f.output == m.output &&
+      if (f.kind == FindingKind::kDisturbanceAbsorbsStructure &&
+          (f.output.empty() || f.output == m.output) &&
           (f.experiment.empty() || f.experiment == m.experiment)) {
         return true;
       }
@@ -259,12 +260,16 @@ void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& s
       for (const ChannelMetrics& m : fit.channels) {
         if (compared[m.output]++ == 0) order.push_back(m.output);
         if (!rule.fires(m)) continue;
-        // The failed or poor fit stands (a process noise inflated by missing structure lets a
-        // wrong model drift as far: helpers' dead bands, rate limits, backlash, a second-order
-        // ship, within the allowance 19 times in 25); the note says what gusts alone allow.
+        // A free run that drifts no further than the identified gusts let a correct model,
+        // where neither the innovations nor the score of omitted terms show structure, is the
+        // gusts' doing: the note replaces the failed or poor fit. (Judged by the parameters
+        // against the truth, the rule the corpus is labelled by: in the gust corpus the fit
+        // findings called 27 of 30 good fits doubtful and caught 7 of 10 bad ones; set aside
+        // so, 2 of 30 and 4 of 10, docs/models.md.)
         if (const FreeRunDrift* d = explained(m)) {
           if (drifting[m.output].empty()) drift_order.push_back(m.output);
           drifting[m.output].push_back({&m, d});
+          continue;
         }
         fired[m.output].push_back(&m);
       }
@@ -329,10 +334,11 @@ void AddFitFindings(const std::vector<ExperimentFit>& fits, const std::string& s
             std::to_string(list.size()) + " experiment(s) by no more than the process noise "
             "identified with the ship lets a correct model drift: " + runs +
             "; the expected sum of squares is that of free runs in the identified gusts and "
-            "sensors' noise. A correct model in strong gusts drifts so; a model lacking "
-            "structure does too, its process noise inflated to stand in for it, so the failed "
-            "or poor fit stands: judge by the one-step and k-step predictions through the "
-            "filter and by records with milder gusts");
+            "sensors' noise, and neither the filter's innovations nor the score of terms the "
+            "model may lack show structure, so the free run is not held against the model. "
+            "Judge it by the one-step and k-step predictions through the filter, the "
+            "intervals \"with disturbance\" of vesselid predict, and records with milder "
+            "gusts");
     f.stage = stage;
     f.output = output;
     f.experiment = list.size() == 1 ? list[0].first->experiment : "";

@@ -21,6 +21,7 @@
 #include "engine/model/filter_innovations.h"
 #include "engine/model/expression.h"
 #include "engine/model/model.h"
+#include "engine/model/omitted_terms.h"
 #include "engine/model/regression_form.h"
 
 namespace vesselid {
@@ -52,6 +53,14 @@ class ModelHandle {
                                  const double* p0, const DisturbanceLayout& layout,
                                  const double* theta, int prediction_steps,
                                  FilterRun* run) const = 0;
+
+  // The likelihood's score and information for candidate terms the model may lack, at c = 0
+  // (omitted_terms.h; `directions` index [p, x0, theta, c]). False if the filter diverges.
+  virtual bool ScoreOmittedTerms(const Experiment& experiment, const double* p, const double* x0,
+                                 const double* p0, const DisturbanceLayout& layout,
+                                 const double* theta, const std::vector<OmittedTerm>& terms,
+                                 const std::vector<int>& directions,
+                                 OmittedTermScore* score) const = 0;
 
   // Simulates in double from x0 with parameters p; `outputs` gets every model output at every
   // node (row-major, nodes x outputs). False if the simulation diverges; the nodes it did not
@@ -194,6 +203,15 @@ class ModelAdapter final : public ModelHandle {
                          int prediction_steps, FilterRun* run) const override {
     return RunFilterInnovations(model_, experiment, p, x0, p0, layout, theta, prediction_steps,
                                 run);
+  }
+
+  bool ScoreOmittedTerms(const Experiment& experiment, const double* p, const double* x0,
+                         const double* p0, const DisturbanceLayout& layout, const double* theta,
+                         const std::vector<OmittedTerm>& terms, const std::vector<int>& directions,
+                         OmittedTermScore* score) const override {
+    return vesselid::ScoreOmittedTerms(model_, experiment, p,
+                                       static_cast<int>(info_.parameters.size()), x0, p0, layout,
+                                       theta, terms, directions, score);
   }
 
   bool SimulateOutputs(const Experiment& e, const double* p, const double* x0,

@@ -18,6 +18,7 @@
 #include "engine/run/estimate_specs.h"
 #include "engine/run/disturbance_choice.h"
 #include "engine/run/free_run_drift.h"
+#include "engine/run/omitted_term_test.h"
 #include "engine/run/disturbance_notes.h"
 #include "engine/run/fit_residuals.h"
 #include "engine/run/innovation_structure.h"
@@ -418,6 +419,8 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
                    &summary.findings);
   AddInnovationStructureFindings(summary.name, TestInnovationStructure(*problem), &summary.notes,
                                  &summary.findings);
+  AddOmittedTermFindings(summary.name, TestOmittedTerms(*problem), &summary.notes,
+                         &summary.findings);
   for (ResidualAnalysis& a : residuals) {
     const auto& share = summary.uncertainty.input_noise_share;
     const auto e = share.find(a.experiment);

@@ -444,6 +444,34 @@ bool OutputErrorProblem::RunFilter(int e, int steps, FilterRun* run) const {
                                    initial_variance_[e].data(), layout_, theta.data(), steps, run);
 }
 
+bool OutputErrorProblem::ScoreOmittedTerms(int e, const std::vector<OmittedTerm>& terms,
+                                           OmittedTermScore* score,
+                                           std::vector<std::string>* free) const {
+  if (!filter_error_) return false;
+  const int np = static_cast<int>(model_->info().parameters.size());
+  const int nx = static_cast<int>(model_->info().states.size());
+  std::vector<int> directions;
+  free->clear();
+  for (int j = 0; j < np + nx; ++j) {
+    const Variable& v = variables_[block_of_[e][j]];
+    if (!v.free) continue;
+    directions.push_back(j);
+    free->push_back(v.name);
+  }
+  for (const Variable& v : variables_) {
+    if (v.kind != Variable::Kind::kNoise || !v.free) continue;
+    directions.push_back(np + nx + v.index);
+    free->push_back(v.name);
+  }
+  for (size_t j = 0; j < terms.size(); ++j) {
+    directions.push_back(np + nx + layout_.size() + static_cast<int>(j));
+  }
+  const std::vector<double> p = ParametersOf(e), x0 = InitialStateOf(e), theta = NoiseValues();
+  return model_->ScoreOmittedTerms(experiments_[e], p.data(), x0.data(),
+                                   initial_variance_[e].data(), layout_, theta.data(), terms,
+                                   directions, score);
+}
+
 double OutputErrorProblem::NegativeLogLikelihood() const {
   if (!filter_error_) return std::numeric_limits<double>::quiet_NaN();
   double total = 0.0;

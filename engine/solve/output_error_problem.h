@@ -110,6 +110,12 @@ class OutputErrorProblem {
   // The filter run of experiment e at the current values (filter_innovations.h); false if it
   // diverges. `steps`: the k of the k-step-ahead predictions (0: none).
   bool RunFilter(int e, int steps, FilterRun* run) const;
+  // The likelihood's score and Fisher information of experiment e at the current values
+  // (omitted_terms.h) over the unknowns free for it (its free model parameters and initial
+  // states, the free noise parameters: `free` gets their names) and then the candidate terms,
+  // all at c = 0. False if the filter diverges or this is not a filter-error problem.
+  bool ScoreOmittedTerms(int e, const std::vector<OmittedTerm>& terms, OmittedTermScore* score,
+                         std::vector<std::string>* free) const;
   // -log L of the innovations summed over the experiments at the current values (NaN when a
   // filter diverges or this is not a filter-error problem).
   double NegativeLogLikelihood() const;
