@@ -13,7 +13,7 @@ namespace {
 
 // Eigenvalues below this share of the largest (of a matrix scaled to unit diagonal) count as
 // zero: a candidate the model already has, or two free unknowns the data cannot tell apart.
-constexpr double kRankTolerance = 1e-7;
+constexpr double kScoreRankTolerance = 1e-7;
 
 bool Velocity(const ModelInfo& info, int state) {
   const std::string unit = info.StateUnit(state);
@@ -99,7 +99,7 @@ std::string Label(const ModelInfo& info, const OmittedTerm& t) {
 }
 
 // The pseudo-inverse of a symmetric positive semi-definite matrix scaled to unit diagonal,
-// eigenvalues below kRankTolerance times the largest dropped; `rank` gets the kept count.
+// eigenvalues below kScoreRankTolerance times the largest dropped; `rank` gets the kept count.
 Eigen::MatrixXd PseudoInverse(const Eigen::MatrixXd& m, int* rank) {
   *rank = 0;
   if (m.rows() == 0) return m;
@@ -108,7 +108,7 @@ Eigen::MatrixXd PseudoInverse(const Eigen::MatrixXd& m, int* rank) {
   const double largest = values.maxCoeff();
   Eigen::VectorXd inverse = Eigen::VectorXd::Zero(values.size());
   for (int i = 0; i < values.size(); ++i) {
-    if (largest > 0.0 && values[i] > kRankTolerance * largest) {
+    if (largest > 0.0 && values[i] > kScoreRankTolerance * largest) {
       inverse[i] = 1.0 / values[i];
       ++*rank;
     }
@@ -150,7 +150,7 @@ std::vector<OmittedTermTest> TestOmittedTerms(const OutputErrorProblem& problem)
     test.statistic = efficient.dot(c_inverse * efficient);
     test.p_value = ChiSquareTail(test.statistic, test.rank);
     for (int j = 0; j < na; ++j) {
-      if (!(c(j, j) > kRankTolerance)) continue;
+      if (!(c(j, j) > kScoreRankTolerance)) continue;
       const double alone = efficient[j] * efficient[j] / c(j, j);
       if (!(alone <= test.strongest_statistic)) {
         test.strongest_statistic = alone;
