@@ -105,10 +105,15 @@ struct OmittedTermScore {
 // in several passes).
 inline constexpr int kOmittedTermJetSize = 16;
 
+// Bytes the per-sample derivatives of a several-pass score may take; beyond, no score (the
+// test is left out and says so).
+inline constexpr double kOmittedTermMemory = 256.0 * 1024 * 1024;
+
 // The score of experiment e at the model's parameters p (num_parameters), initial state x0,
 // disturbance theta, all candidates at c = 0, over `directions`: indices into the unknowns
 // [p (num_parameters), x0 (kNumStates), theta (layout.size()), c (terms.size())]. False if the
-// filter diverges or a figure is not finite.
+// filter diverges, a figure is not finite, or the derivatives would take more than
+// kOmittedTermMemory.
 template <class Model>
 bool ScoreOmittedTerms(const Model& model, const Experiment& e, const double* p,
                        int num_parameters, const double* x0, const double* p0,
@@ -120,12 +125,19 @@ bool ScoreOmittedTerms(const Model& model, const Experiment& e, const double* p,
   const int np = num_parameters, nt = layout.size(), m = static_cast<int>(terms.size());
   const int d = static_cast<int>(directions.size());
   const int samples = e.num_samples();
+  const int passes = std::max(1, (d + kOmittedTermJetSize - 1) / kOmittedTermJetSize);
+  // Several passes keep each sample's derivatives until the last (2 x samples x d doubles);
+  // one pass sums them as they come.
+  if (passes > 1 && 16.0 * samples * d > kOmittedTermMemory) return false;
   const ProbedModel<Model> probed(model, &terms, np);
   Eigen::VectorXd a(samples);
-  Eigen::MatrixXd da(samples, d), dlog(samples, d);
+  Eigen::MatrixXd da(passes > 1 ? samples : 0, d), dlog(passes > 1 ? samples : 0, d);
+  out->gradient = Eigen::VectorXd::Zero(d);
+  out->information = Eigen::MatrixXd::Zero(d, d);
+  Eigen::VectorXd row_a(d), row_log(d);
   std::vector<J> pj(np + m), thetaj(nt);
   std::array<J, n> xj;
-  for (int first = 0; first < std::max(d, 1); first += kOmittedTermJetSize) {
+  for (int first = 0; first < d || first == 0; first += kOmittedTermJetSize) {
     for (int i = 0; i < np; ++i) pj[i] = J(p[i]);
     for (int j = 0; j < m; ++j) pj[np + j] = J(0.0);
     for (int i = 0; i < n; ++i) xj[i] = J(x0[i]);
@@ -146,11 +158,21 @@ bool ScoreOmittedTerms(const Model& model, const Experiment& e, const double* p,
       const J ai = nu / sqrt(S);
       const J li = log(S);
       a[i] = ai.a;
-      for (int k = 0; k < width; ++k) {
-        da(i, first + k) = ai.v[k];
-        dlog(i, first + k) = li.v[k];
-      }
       finite = finite && std::isfinite(ai.a);
+      if (passes > 1) {
+        for (int k = 0; k < width; ++k) {
+          da(i, first + k) = ai.v[k];
+          dlog(i, first + k) = li.v[k];
+        }
+        return;
+      }
+      for (int k = 0; k < width; ++k) {
+        row_a[k] = ai.v[k];
+        row_log[k] = li.v[k];
+      }
+      out->gradient += ai.a * row_a + 0.5 * row_log;
+      out->information.selfadjointView<Eigen::Lower>().rankUpdate(row_a);
+      out->information.selfadjointView<Eigen::Lower>().rankUpdate(row_log, 0.25);
     };
     auto node = [](int, const J*, const double*) {};
     if (!RunKalmanFilter(probed, e, layout, pj.data(), xj.data(), p0, thetaj.data(), visit,
@@ -158,10 +180,15 @@ bool ScoreOmittedTerms(const Model& model, const Experiment& e, const double* p,
         !finite) {
       return false;
     }
+    if (d == 0) break;
   }
   out->samples = samples;
-  out->gradient = da.transpose() * a + 0.5 * dlog.colwise().sum().transpose();
-  out->information = da.transpose() * da + 0.25 * dlog.transpose() * dlog;
+  if (passes > 1) {
+    out->gradient = da.transpose() * a + 0.5 * dlog.colwise().sum().transpose();
+    out->information = da.transpose() * da + 0.25 * dlog.transpose() * dlog;
+  } else {
+    out->information = out->information.selfadjointView<Eigen::Lower>();
+  }
   return out->gradient.allFinite() && out->information.allFinite();
 }
 

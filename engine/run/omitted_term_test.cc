@@ -128,7 +128,13 @@ std::vector<OmittedTermTest> TestOmittedTerms(const OutputErrorProblem& problem)
   for (size_t e = 0; e < problem.experiments().size(); ++e) {
     OmittedTermScore score;
     std::vector<std::string> free;
-    if (!problem.ScoreOmittedTerms(static_cast<int>(e), terms, &score, &free)) continue;
+    if (!problem.ScoreOmittedTerms(static_cast<int>(e), terms, &score, &free)) {
+      OmittedTermTest skipped;  // rank 0: not scored
+      skipped.experiment = problem.experiments()[e].name;
+      skipped.samples = problem.experiments()[e].num_samples();
+      tests.push_back(skipped);
+      continue;
+    }
     const int nb = static_cast<int>(free.size());
     // Scaled to unit diagonal: the unknowns' units (a spectral density of 1e-7 beside a time
     // constant of 30 s) must not decide what counts as rank.
@@ -146,7 +152,7 @@ std::vector<OmittedTermTest> TestOmittedTerms(const OutputErrorProblem& problem)
     test.experiment = problem.experiments()[e].name;
     test.samples = score.samples;
     const Eigen::MatrixXd c_inverse = PseudoInverse(c, &test.rank);
-    if (test.rank == 0) continue;
+    if (test.rank == 0) continue;  // every candidate is one the model has
     test.statistic = efficient.dot(c_inverse * efficient);
     test.p_value = ChiSquareTail(test.statistic, test.rank);
     for (int j = 0; j < na; ++j) {
@@ -165,9 +171,18 @@ std::vector<OmittedTermTest> TestOmittedTerms(const OutputErrorProblem& problem)
 void AddOmittedTermFindings(const std::string& stage, const std::vector<OmittedTermTest>& tests,
                             std::vector<std::string>* notes, std::vector<Finding>* findings) {
   if (tests.empty()) return;
-  const double level = kInnovationStructureLevel / tests.size();
+  int scored = 0;
+  for (const OmittedTermTest& t : tests) scored += t.rank > 0;
+  const double level = kInnovationStructureLevel / std::max(scored, 1);
   std::vector<const OmittedTermTest*> failed;
   for (const OmittedTermTest& t : tests) {
+    if (t.rank == 0) {
+      notes->push_back("omitted terms: " + t.experiment +
+                       ": not scored (its filter diverged at the candidates, or their "
+                       "derivatives over " + std::to_string(t.samples) +
+                       " samples exceed the test's memory)");
+      continue;
+    }
     char text[400];
     std::snprintf(text, sizeof(text),
                   "omitted terms: %s: score statistic %.1f on %d candidate terms through the "
@@ -191,7 +206,7 @@ void AddOmittedTermFindings(const std::string& stage, const std::vector<OmittedT
   Finding f = MakeFinding(
       FindingKind::kDisturbanceAbsorbsStructure,
       "the filter-error likelihood asks for terms the ship model lacks in " +
-          std::to_string(failed.size()) + " of " + std::to_string(tests.size()) +
+          std::to_string(failed.size()) + " of " + std::to_string(scored) +
           " experiment(s): " + which +
           "; the process noise stands in for them (a rudder dead band or rate limit, a missing "
           "damping term), and a free run that drifts is not the gusts' doing alone");

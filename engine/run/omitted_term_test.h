@@ -30,7 +30,7 @@ namespace vesselid {
 struct OmittedTermTest {
   std::string experiment;
   int samples = 0;
-  int rank = 0;                                                 // of C: the test's dof
+  int rank = 0;  // of C: the test's dof; 0: not scored (the filter diverged, or memory)
   double statistic = std::numeric_limits<double>::quiet_NaN();  // LM
   double p_value = std::numeric_limits<double>::quiet_NaN();
   // The candidate alone with the largest statistic (g_j*^2 / C_jj), e.g. "r|r| in r'".
