@@ -52,7 +52,10 @@ void AddInputNoiseFindings(const RunConfig& config, const RunResult& run, Trajec
     for (const StageResult& stage : run.stages) {
       bool fitted = false;
       for (const ExperimentFit& fit : stage.summary.fits) fitted |= of_spec(fit.experiment);
-      if (!fitted) continue;
+      // A filter-error stage's free run is coloured by the identified gusts whatever the
+      // inputs' noise, and its innovations are judged elsewhere (disturbance_notes.h); input
+      // corrections are not available to it either (a noisy input is process noise there).
+      if (!fitted || stage.disturbance.filter_error) continue;
       included.clear();
       for (const std::string& key : stage.summary.uncertainty.input_noise_inputs) {
         const size_t colon = key.rfind(':');

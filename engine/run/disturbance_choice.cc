@@ -384,6 +384,7 @@ DisturbanceReport ReportDisturbance(const DisturbanceSpec& spec, const OutputErr
   const bool automatic = spec.method == DisturbanceSpec::Method::kAuto;
   if (!automatic && !problem.filter_error()) return report;
   report.method = automatic ? "auto" : "filter_error";
+  report.filter_error = problem.filter_error();
   report.model = problem.filter_error() ? DescribeDisturbance(problem, uncertainty)
                                         : "none: output error kept";
   report.negative_log_likelihood = problem.filter_error() ? problem.NegativeLogLikelihood()

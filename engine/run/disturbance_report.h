@@ -35,6 +35,7 @@ struct FilterPrediction {
 struct DisturbanceReport {
   std::string method;  // "" (output error), "filter_error" or "auto"
   std::string model;   // in words, as the disturbance_model finding gives it
+  bool filter_error = false;  // the stage's fit is the filter's (auto may keep output error)
   double negative_log_likelihood = std::numeric_limits<double>::quiet_NaN();
   std::vector<DisturbanceCandidateScore> candidates;  // `auto` only, output error first
   std::vector<FilterPrediction> predictions;          // the stage's held-out experiments

@@ -20,6 +20,13 @@ bool Velocity(const ModelInfo& info, int state) {
   return unit.size() > 2 && unit.compare(unit.size() - 2, 2, "/s") == 0;
 }
 
+// A state whose equation is kinematic (a heading or position: psi' = r): a term added there
+// would blame the ship for a disturbance placed on the wrong state.
+bool Kinematic(const ModelInfo& info, int state) {
+  const std::string unit = info.StateUnit(state);
+  return unit == "rad" || unit == "deg" || unit == "m";
+}
+
 // The candidates: per state the process noise acts on, a constant and sign(z), z, z|z|, z^3 of each
 // velocity state and each input, z scaled by the signal's root mean square over the records
 // (the states' from the model flown at the current values; a signal that never moves is left
@@ -31,7 +38,7 @@ std::vector<OmittedTerm> Candidates(const OutputErrorProblem& problem) {
   std::vector<OmittedTerm> terms;
   std::vector<int> targets;
   for (int i = 0; i < nx && i < static_cast<int>(problem.disturbance().process.size()); ++i) {
-    if (problem.disturbance().process[i] >= 0) targets.push_back(i);
+    if (problem.disturbance().process[i] >= 0 && !Kinematic(info, i)) targets.push_back(i);
   }
   if (targets.empty()) return terms;
   std::vector<double> state_scale(nx, 0.0), input_power(nu, 0.0);
@@ -132,6 +139,9 @@ std::vector<OmittedTermTest> TestOmittedTerms(const OutputErrorProblem& problem)
       OmittedTermTest skipped;  // rank 0: not scored
       skipped.experiment = problem.experiments()[e].name;
       skipped.samples = problem.experiments()[e].num_samples();
+      const double directions = static_cast<double>(problem.num_free() + na);
+      skipped.memory = directions > kOmittedTermJetSize &&
+                       16.0 * skipped.samples * directions > kOmittedTermMemory;
       tests.push_back(skipped);
       continue;
     }
@@ -177,10 +187,11 @@ void AddOmittedTermFindings(const std::string& stage, const std::vector<OmittedT
   std::vector<const OmittedTermTest*> failed;
   for (const OmittedTermTest& t : tests) {
     if (t.rank == 0) {
-      notes->push_back("omitted terms: " + t.experiment +
-                       ": not scored (its filter diverged at the candidates, or their "
-                       "derivatives over " + std::to_string(t.samples) +
-                       " samples exceed the test's memory)");
+      notes->push_back("omitted terms: " + t.experiment + ": not scored (" +
+                       (t.memory ? "the derivatives over " + std::to_string(t.samples) +
+                                       " samples would exceed the test's memory"
+                                 : std::string("the filter diverged with the candidates")) +
+                       "): a free run that drifts is not excused");
       continue;
     }
     char text[400];

@@ -31,6 +31,7 @@ struct OmittedTermTest {
   std::string experiment;
   int samples = 0;
   int rank = 0;  // of C: the test's dof; 0: not scored (the filter diverged, or memory)
+  bool memory = false;  // not scored: the derivatives would exceed kOmittedTermMemory
   double statistic = std::numeric_limits<double>::quiet_NaN();  // LM
   double p_value = std::numeric_limits<double>::quiet_NaN();
   // The candidate alone with the largest statistic (g_j*^2 / C_jj), e.g. "r|r| in r'".
@@ -38,13 +39,21 @@ struct OmittedTermTest {
   double strongest_statistic = std::numeric_limits<double>::quiet_NaN();
 };
 
-// Per experiment of a filter-error problem with process noise at its current values; empty
-// otherwise.
+// Per experiment of a filter-error problem with process noise on a state that is not
+// kinematic (not a heading or position) at its current values; empty otherwise.
 std::vector<OmittedTermTest> TestOmittedTerms(const OutputErrorProblem& problem);
 
 // A note per test, and disturbance_absorbs_structure (per output the process noise reaches)
 // naming the experiments whose p lies below the family-wise level.
 void AddOmittedTermFindings(const std::string& stage, const std::vector<OmittedTermTest>& tests,
                             std::vector<std::string>* notes, std::vector<Finding>* findings);
+
+// Whether every test was scored: where one was not, a drifting free run is not excused.
+inline bool AllScored(const std::vector<OmittedTermTest>& tests) {
+  for (const OmittedTermTest& t : tests) {
+    if (t.rank == 0) return false;
+  }
+  return true;
+}
 
 }  // namespace vesselid

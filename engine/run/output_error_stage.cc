@@ -419,8 +419,8 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
                    &summary.findings);
   AddInnovationStructureFindings(summary.name, TestInnovationStructure(*problem), &summary.notes,
                                  &summary.findings);
-  AddOmittedTermFindings(summary.name, TestOmittedTerms(*problem), &summary.notes,
-                         &summary.findings);
+  const std::vector<OmittedTermTest> omitted = TestOmittedTerms(*problem);
+  AddOmittedTermFindings(summary.name, omitted, &summary.notes, &summary.findings);
   for (ResidualAnalysis& a : residuals) {
     const auto& share = summary.uncertainty.input_noise_share;
     const auto e = share.find(a.experiment);
@@ -435,7 +435,7 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
     for (const ChannelMetrics& m : fit.channels) missed = missed || FitFailed(m) || FitPoor(m);
   }
   std::vector<FreeRunDrift> drift;
-  if (missed) drift = MeasureFreeRunDrift(*problem);
+  if (missed && AllScored(omitted)) drift = MeasureFreeRunDrift(*problem);
   summary.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start).count();
   *result = Collect(*problem, starts, std::move(summary));

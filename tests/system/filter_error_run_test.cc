@@ -140,6 +140,10 @@ TEST(FilterErrorRun, ProcessNoiseOnTheRuddersEquationWhitensTheInnovations) {
       << named[0]["message"];
   EXPECT_TRUE(testing::JsonFindingsOf(run.results, "coloured_residuals", "").empty())
       << testing::JsonFindingsText(run.results);
+  // The rudder's 0.1 deg noise is the process noise here: no input_noise warning (whose
+  // advice, input corrections, the filter-error method does not take).
+  EXPECT_TRUE(testing::JsonFindingsOf(run.results, "input_noise", "").empty())
+      << testing::JsonFindingsText(run.results);
   const json& a = run.results["stages"][0]["residual_analysis"][0];
   EXPECT_TRUE(a["white"].get<bool>()) << a.dump();
   // The ship's parameters near the truth (T1 2.09, K -0.172).
