@@ -351,6 +351,24 @@ std::vector<ParameterSpec> FirstOrderStarts() {
   return specs;
 }
 
+// GustRecord fitted as first_order with process noise on r from T 15 s, K 0.05 (null, with a
+// failure recorded, where it cannot be).
+std::unique_ptr<OutputErrorProblem> FitInGusts(const ModelHandle& model, double q, double missing,
+                                               unsigned seed, StageSummary* summary) {
+  std::string error;
+  auto fe = OutputErrorProblem::Create(&model, {GustRecord(model, q, missing, seed)},
+                                       FirstOrderStarts(), GustsOnR(), &error);
+  if (fe == nullptr) {
+    ADD_FAILURE() << error;
+    return nullptr;
+  }
+  if (!RunStage(StageOptions(), fe.get(), summary)) {
+    ADD_FAILURE() << summary->message;
+    return nullptr;
+  }
+  return fe;
+}
+
 TEST(FilterError, AFreeRunInStrongGustsDriftsAsTheIdentifiedNoiseLetsIt) {
   // The correct model in strong gusts: its free run misses the record (a random walk of the
   // heading of tens of degrees) by about what the identified process noise predicts (observed
@@ -361,13 +379,9 @@ TEST(FilterError, AFreeRunInStrongGustsDriftsAsTheIdentifiedNoiseLetsIt) {
   for (const double missing : {0.0, 10000.0}) {
     int noted_runs = 0, structure = 0;
     for (unsigned seed : {1u, 2u, 3u}) {
-      Experiment run = GustRecord(*model, 1e-6, missing, seed);
-      std::string error;
-      auto fe = OutputErrorProblem::Create(model.get(), {run}, FirstOrderStarts(), GustsOnR(),
-                                           &error);
-      ASSERT_NE(fe, nullptr) << error;
       StageSummary summary;
-      ASSERT_TRUE(RunStage(StageOptions(), fe.get(), &summary)) << summary.message;
+      auto fe = FitInGusts(*model, 1e-6, missing, seed, &summary);
+      ASSERT_NE(fe, nullptr);
       const std::vector<FreeRunDrift> drift = MeasureFreeRunDrift(*fe);
       ASSERT_EQ(drift.size(), 1u);
       EXPECT_EQ(drift[0].output, "psi");
@@ -464,13 +478,9 @@ TEST(FilterError, TheScoreTestFindsTheTermAShipInGustsLacks) {
   auto model = nomoto::MakeFirstOrderHandle();
   for (const double missing : {0.0, 3000.0}) {
     for (unsigned seed : {21u, 22u, 23u}) {
-      Experiment run = GustRecord(*model, 1e-7, missing, seed);
-      std::string error;
-      auto fe = OutputErrorProblem::Create(model.get(), {run}, FirstOrderStarts(), GustsOnR(),
-                                           &error);
-      ASSERT_NE(fe, nullptr) << error;
       StageSummary summary;
-      ASSERT_TRUE(RunStage(StageOptions(), fe.get(), &summary)) << summary.message;
+      auto fe = FitInGusts(*model, 1e-7, missing, seed, &summary);
+      ASSERT_NE(fe, nullptr);
       const std::vector<OmittedTermTest> tests = TestOmittedTerms(*fe);
       ASSERT_EQ(tests.size(), 1u);
       EXPECT_EQ(tests[0].rank, 7);
