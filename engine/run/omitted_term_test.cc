@@ -28,10 +28,11 @@ bool Kinematic(const ModelInfo& info, int state) {
 }
 
 // The candidates: per state the process noise acts on, a constant and sign(z), z, z|z|, z^3 of each
-// velocity state and each input, z scaled by the signal's root mean square over the records
-// (the states' from the model flown at the current values; a signal that never moves is left
-// out).
-std::vector<OmittedTerm> Candidates(const OutputErrorProblem& problem) {
+// velocity state and each input, z scaled by the signal's size in the records (a state's
+// largest |x| over the operating range, an input's root mean square; a signal that never
+// moves is left out).
+std::vector<OmittedTerm> Candidates(const OutputErrorProblem& problem,
+                                    const std::vector<double>& operating_range) {
   const ModelHandle& model = problem.model();
   const ModelInfo& info = model.info();
   const int nx = static_cast<int>(info.states.size()), nu = static_cast<int>(info.inputs.size());
@@ -41,16 +42,10 @@ std::vector<OmittedTerm> Candidates(const OutputErrorProblem& problem) {
     if (problem.disturbance().process[i] >= 0 && !Kinematic(info, i)) targets.push_back(i);
   }
   if (targets.empty()) return terms;
-  std::vector<double> state_scale(nx, 0.0), input_power(nu, 0.0);
+  const std::vector<double> state_scale(operating_range.begin(), operating_range.begin() + nx);
+  std::vector<double> input_power(nu, 0.0);
   std::vector<long> input_count(nu, 0);
-  for (size_t e = 0; e < problem.experiments().size(); ++e) {
-    const Experiment& x = problem.experiments()[e];
-    const int index = static_cast<int>(e);
-    std::vector<double> limits(nx, 0.0);
-    if (model.StateLimits(x, problem.ParametersOf(index).data(),
-                          problem.InitialStateOf(index).data(), limits.data())) {
-      for (int i = 0; i < nx; ++i) state_scale[i] = std::max(state_scale[i], limits[i]);
-    }
+  for (const Experiment& x : problem.experiments()) {
     for (size_t r = 0; r + x.num_inputs <= x.input_cache.size(); r += x.num_inputs) {
       for (int u = 0; u < nu && u < x.num_inputs; ++u) {
         const double v = x.input_cache[r + u];
@@ -125,10 +120,11 @@ Eigen::MatrixXd PseudoInverse(const Eigen::MatrixXd& m, int* rank) {
 
 }  // namespace
 
-std::vector<OmittedTermTest> TestOmittedTerms(const OutputErrorProblem& problem) {
+std::vector<OmittedTermTest> TestOmittedTerms(const OutputErrorProblem& problem,
+                                              const std::vector<double>& operating_range) {
   std::vector<OmittedTermTest> tests;
   if (!problem.filter_error()) return tests;
-  const std::vector<OmittedTerm> terms = Candidates(problem);
+  const std::vector<OmittedTerm> terms = Candidates(problem, operating_range);
   if (terms.empty()) return tests;
   const ModelInfo& info = problem.model().info();
   const int na = static_cast<int>(terms.size());

@@ -41,7 +41,10 @@ struct OmittedTermTest {
 
 // Per experiment of a filter-error problem with process noise on a state that is not
 // kinematic (not a heading or position) at its current values; empty otherwise.
-std::vector<OmittedTermTest> TestOmittedTerms(const OutputErrorProblem& problem);
+// `operating_range`: problem.OperatingRange() at the same values (the states' sizes scale
+// their candidates).
+std::vector<OmittedTermTest> TestOmittedTerms(const OutputErrorProblem& problem,
+                                              const std::vector<double>& operating_range);
 
 // A note per test, and disturbance_absorbs_structure (per output the process noise reaches)
 // naming the experiments whose p lies below the family-wise level.

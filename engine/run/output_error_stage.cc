@@ -12,7 +12,6 @@
 #include "engine/base/nan.h"
 #include "engine/base/statistics.h"
 #include "engine/model/channel_weights.h"
-#include "engine/model/operating_range.h"
 #include "engine/run/bootstrap_uncertainty.h"
 #include "engine/run/continuation.h"
 #include "engine/run/estimate_specs.h"
@@ -419,7 +418,8 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
                    &summary.findings);
   AddInnovationStructureFindings(summary.name, TestInnovationStructure(*problem), &summary.notes,
                                  &summary.findings);
-  const std::vector<OmittedTermTest> omitted = TestOmittedTerms(*problem);
+  std::vector<double> operating_range = problem->OperatingRange();
+  const std::vector<OmittedTermTest> omitted = TestOmittedTerms(*problem, operating_range);
   AddOmittedTermFindings(summary.name, omitted, &summary.notes, &summary.findings);
   for (ResidualAnalysis& a : residuals) {
     const auto& share = summary.uncertainty.input_noise_share;
@@ -446,15 +446,7 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
   result->residuals = std::move(residuals);
   result->noise_model = std::move(noise);
   result->comparable_cost = comparable_cost;
-  const int nx = static_cast<int>(model.info().states.size());
-  result->state_limits =
-      EmptyOperatingRange(nx, static_cast<int>(model.info().inputs.size()));
-  for (size_t e = 0; e < problem->experiments().size(); ++e) {
-    const int index = static_cast<int>(e);
-    model.StateLimits(problem->experiments()[e], problem->ParametersOf(index).data(),
-                      problem->InitialStateOf(index).data(), result->state_limits.data());
-    AddInputRange(problem->experiments()[e], nx, &result->state_limits);
-  }
+  result->state_limits = std::move(operating_range);
   return true;
 }
 

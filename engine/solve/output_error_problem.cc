@@ -7,6 +7,7 @@
 #include "engine/base/check.h"
 #include "engine/base/statistics.h"
 #include "engine/model/channel_weights.h"
+#include "engine/model/operating_range.h"
 
 namespace vesselid {
 namespace {
@@ -442,6 +443,19 @@ bool OutputErrorProblem::RunFilter(int e, int steps, FilterRun* run) const {
   const std::vector<double> p = ParametersOf(e), x0 = InitialStateOf(e), theta = NoiseValues();
   return model_->FilterInnovations(experiments_[e], p.data(), x0.data(),
                                    initial_variance_[e].data(), layout_, theta.data(), steps, run);
+}
+
+std::vector<double> OutputErrorProblem::OperatingRange() const {
+  const int nx = static_cast<int>(model_->info().states.size());
+  std::vector<double> range =
+      EmptyOperatingRange(nx, static_cast<int>(model_->info().inputs.size()));
+  for (size_t e = 0; e < experiments_.size(); ++e) {
+    const int index = static_cast<int>(e);
+    model_->StateLimits(experiments_[e], ParametersOf(index).data(),
+                        InitialStateOf(index).data(), range.data());
+    AddInputRange(experiments_[e], nx, &range);
+  }
+  return range;
 }
 
 bool OutputErrorProblem::ScoreOmittedTerms(int e, const std::vector<OmittedTerm>& terms,

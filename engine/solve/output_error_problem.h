@@ -110,6 +110,9 @@ class OutputErrorProblem {
   // The filter run of experiment e at the current values (filter_innovations.h); false if it
   // diverges. `steps`: the k of the k-step-ahead predictions (0: none).
   bool RunFilter(int e, int steps, FilterRun* run) const;
+  // The records' operating range at the current values (operating_range.h): per state the
+  // largest |x| of the experiments' simulations, then per input its smallest and largest value.
+  std::vector<double> OperatingRange() const;
   // The likelihood's score and Fisher information of experiment e at the current values
   // (omitted_terms.h) over the unknowns free for it (its free model parameters and initial
   // states, the free noise parameters: `free` gets their names) and then the candidate terms,

@@ -388,7 +388,7 @@ TEST(FilterError, AFreeRunInStrongGustsDriftsAsTheIdentifiedNoiseLetsIt) {
       std::vector<std::string> notes;
       std::vector<Finding> findings;
       AddInnovationStructureFindings("fe", TestInnovationStructure(*fe), &notes, &findings);
-      AddOmittedTermFindings("fe", TestOmittedTerms(*fe), &notes, &findings);
+      AddOmittedTermFindings("fe", TestOmittedTerms(*fe, fe->OperatingRange()), &notes, &findings);
       const bool absorbs = !findings.empty();
       AddFitFindings(summary.fits, "fe", &findings, {}, drift);
       bool fit_finding = false, noted = false;
@@ -481,7 +481,7 @@ TEST(FilterError, TheScoreTestFindsTheTermAShipInGustsLacks) {
       StageSummary summary;
       auto fe = FitInGusts(*model, 1e-7, missing, seed, &summary);
       ASSERT_NE(fe, nullptr);
-      const std::vector<OmittedTermTest> tests = TestOmittedTerms(*fe);
+      const std::vector<OmittedTermTest> tests = TestOmittedTerms(*fe, fe->OperatingRange());
       ASSERT_EQ(tests.size(), 1u);
       EXPECT_EQ(tests[0].rank, 7);
       std::vector<std::string> notes;
