@@ -17,6 +17,13 @@ double PositiveOrAuto(const YamlReader& reader, const YAML::Node& node, const st
 
 void ReadDisturbance(const YamlReader& reader, const YAML::Node& node, const std::string& path,
                      const ModelInfo& info, DisturbanceSpec* spec) {
+  if (node.IsScalar()) {  // noise: output_error | filter_error | auto
+    const std::string text = reader.String(node, path);
+    if (!StringToDisturbanceMethod(text, &spec->method)) {
+      reader.Fail(node, path, "unknown method '" + text + "' (output_error, filter_error, auto)");
+    }
+    return;
+  }
   reader.CheckMap(node, path,
                   {"method", "angles", "measurement", "process", "wave", "bias",
                    "prediction_steps", "gain"});

@@ -1,5 +1,6 @@
 // The stage key `noise` (model/disturbance.h; docs/models.md "Disturbance models"):
 //
+//   noise: output_error | filter_error | auto     (the method alone)
 //   noise:
 //     method: output_error | filter_error | auto
 //     angles: rad | deg                      the unit of the angle outputs' sigmas (rad)

@@ -224,6 +224,11 @@ void AddResidualFindings(const StageResult& stage, std::vector<Finding>* finding
                        "either way the standard errors are too narrow (about 1.8x on the "
                        "independent corpus's compass-noise class)";
         }
+        // The filter-error method tells the two apart (docs/models.md, noise: auto): on the
+        // noise-structure corpus every correct record of sensor noise, waves, gusts and drift
+        // so called was judged good under it.
+        f.message += "; `noise: auto` on the stage identifies slow sensor noise, waves and "
+                     "gusts with the ship and tells them from missing structure";
         f.severity = FindingSeverity::kWarning;
         f.value = strong[output];
         f.threshold = kStrongNoiseRatio;

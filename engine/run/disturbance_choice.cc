@@ -250,11 +250,15 @@ bool ChooseDisturbance(const StageConfig& stage, const StageOptions& options,
                        std::vector<DisturbanceCandidate>* candidates, std::string* error) {
   OutputErrorProblem& oe = **problem;
   candidates->clear();
-  const bool coloured = std::any_of(residuals.begin(), residuals.end(),
-                                    [](const ResidualAnalysis& a) { return a.coloured(); });
+  // Noise-free data's residuals are the integrator's error, smooth and so coloured: no
+  // disturbance to model (residual_analysis.h).
+  const bool coloured =
+      std::any_of(residuals.begin(), residuals.end(),
+                  [](const ResidualAnalysis& a) { return a.coloured() && !a.noise_free; });
   if (!coloured) {
     summary->notes.push_back(
-        "noise auto: output error kept, its residuals are white (no disturbance model needed)");
+        "noise auto: output error kept, its residuals are white or noise-free data's "
+        "integration error (no disturbance model needed)");
     return true;
   }
   *candidates = DisturbanceCandidates(oe.model(), oe, residuals);

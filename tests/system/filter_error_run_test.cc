@@ -79,13 +79,14 @@ std::string ReadText(const fs::path& path) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-CommandRun SimulateAndRun(const std::string& name, const std::string& noise,
-                          bool held_out = false, bool predict = false) {
+// Simulates the records of `config_text` and runs it (then predicts, if asked).
+CommandRun SimulateAndRunConfig(const std::string& name, const std::string& config_text,
+                                bool predict = false) {
   const fs::path dir = fs::temp_directory_path() / ("vesselid_filter_error_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   const fs::path config = dir / "config.yaml";
-  std::ofstream(config) << Config(noise, held_out);
+  std::ofstream(config) << config_text;
   const std::string binary = VESSELID_BINARY;
   const std::string simulate =
       binary + " simulate " + config.string() + " --out " + dir.string() + " > /dev/null";
@@ -108,6 +109,11 @@ CommandRun SimulateAndRun(const std::string& name, const std::string& noise,
   }
   fs::remove_all(dir);
   return result;
+}
+
+CommandRun SimulateAndRun(const std::string& name, const std::string& noise,
+                          bool held_out = false, bool predict = false) {
+  return SimulateAndRunConfig(name, Config(noise, held_out), predict);
 }
 
 const json* EstimateNamed(const json& results, const std::string& name) {
@@ -195,7 +201,7 @@ TEST(FilterErrorRun, BlockBootstrapIsRefusedUnderTheFilterNotOverrun) {
 }
 
 TEST(FilterErrorRun, AutoNamesEveryCandidateAndKeepsTheBest) {
-  const CommandRun run = SimulateAndRun("auto", "{method: auto}");
+  const CommandRun run = SimulateAndRun("auto", "auto");  // the method alone: noise: auto
   ASSERT_EQ(run.status, 0) << run.stderr_text;
   const std::string notes = run.results["stages"][0]["notes"].dump();
   EXPECT_NE(notes.find("noise auto: BIC"), std::string::npos) << notes;
@@ -224,6 +230,23 @@ TEST(FilterErrorRun, AutoNamesEveryCandidateAndKeepsTheBest) {
   EXPECT_EQ(chosen_bic, least);
 }
 
+// Noise-free records (the shipped cargo example: 0.02 s, the rudder read with cubic
+// interpolation) leave output error's residuals coloured by the integrator's error alone: auto
+// keeps output error and solves no candidate (there is no disturbance to identify).
+TEST(FilterErrorRun, AutoKeepsOutputErrorOnNoiseFreeRecords) {
+  const std::string config =
+      ReadText(fs::path(VESSELID_SOURCE_DIR) / "configs" / "nomoto_cargo.yaml") +
+      "    noise: auto\n";
+  const CommandRun run = SimulateAndRunConfig("auto_noise_free", config);
+  ASSERT_EQ(run.status, 0) << run.stderr_text;
+  const std::string notes = run.results["stages"][0]["notes"].dump();
+  EXPECT_NE(notes.find("noise auto: output error kept"), std::string::npos) << notes;
+  EXPECT_EQ(notes.find("noise auto: BIC"), std::string::npos) << notes;
+  EXPECT_EQ(run.results["stages"][0]["disturbance"]["candidates"].size(), 0u)
+      << run.results["stages"][0]["disturbance"].dump();
+  EXPECT_EQ(EstimateNamed(run.results, "q.process.xi2"), nullptr);
+}
+
 TEST(FilterErrorRun, UnknownOutputsStatesAndValuesAreRefusedWithTheKey) {
   for (const auto& [noise, says] : std::vector<std::pair<std::string, std::string>>{
            {"{measurement: {r2: white}}", "r2"},
@@ -232,6 +255,7 @@ TEST(FilterErrorRun, UnknownOutputsStatesAndValuesAreRefusedWithTheKey) {
            {"{wave: {psi: {zeta: 1.5}}}", "must be in (0, 1)"},
            {"{bias: {psi: {q: -1, initial_sd: 1}}}", "must be > 0"},
            {"{method: sometimes}", "unknown method 'sometimes'"},
+           {"sometimes", "unknown method 'sometimes'"},
            {"{prediction_steps: 0}", "must be >= 1"},
            {"{gain: sometimes}", "expected auto or time_varying"},
            {"{measurement: {psi: {type: ar1, sigma: 0, tau: 1, white: true}}}", "must be > 0"},

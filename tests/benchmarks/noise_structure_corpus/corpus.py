@@ -10,7 +10,8 @@ ROOT = os.environ.get("VESSELID_CORPUS_DIR", "/tmp/vesselid_noise_corpus")
 PARS = ["a1", "a0", "b", "T3"]
 D2R = math.pi / 180
 Q_YAW = {"patrol": 4.5e-8, "supply": 7e-7}   # -> ~0.5 deg RMS heading deviation (cal.py)
-CFG_NOISE = {"A": None, "B": "{method: auto}",
+# A: output error alone; B: auto asked for; C: the full model given; E: no noise key (the default)
+CFG_NOISE = {"A": "output_error", "B": "{method: auto}", "E": None,
              "C": "{method: filter_error, measurement: {psi: {type: ar1, white: true}}, process: {eta2: auto}}"}
 
 _fine = {}

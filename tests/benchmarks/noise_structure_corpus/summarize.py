@@ -13,7 +13,7 @@ if os.path.exists(os.path.join(ROOT, "results", "runs_D.jsonl")):
     for r in recs:
         k = (r["cls"], r["ship"], r["seed"])
         if k in dd: r["D"] = dd[k]
-keys = [k for k in "ABCD" if any(k in r for r in recs)]
+keys = [k for k in "ABCDE" if any(k in r for r in recs)]
 def pct(a, b): return f"{a}/{b} ({100*a/b:.0f}%)" if b else "-"
 print("## Verdict vs label per class and config (FA = good-labelled runs called doubtful/failed; miss = bad-labelled called good)")
 print("| class | cfg | n | labels good/bad | verdicts g/d/f | false alarms | misses |")
