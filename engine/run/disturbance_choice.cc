@@ -289,15 +289,24 @@ bool ChooseDisturbance(const StageConfig& stage, const StageOptions& options,
       with.problem.loss = "none";
       StageOptions quiet = options;
       quiet.compute_uncertainty = false;  // only the chosen one's intervals, computed below
-      // From output error's estimate, and a richer candidate also from each simpler one's
-      // solution (its noise parameters carried by name): the richer likelihood is then never
-      // below a simpler one's (nested models), which a start from output error alone did not
-      // guarantee (AR(1) + process noise stuck at the AR(1) optimum with q at its floor).
-      std::vector<const OutputErrorProblem*> starts = {&oe};
-      for (size_t earlier = 1; earlier < c; ++earlier) {
-        if (solved[earlier] != nullptr) starts.push_back(solved[earlier].get());
+      // From output error's estimate; the combined candidate (AR(1) and process noise) from the
+      // solutions of the two it nests instead, AR(1) alone and process noise alone (their noise
+      // parameters carried by name): its likelihood is then never below theirs, which a start
+      // from output error did not guarantee (AR(1) + process noise stuck at the AR(1) optimum
+      // with q at its floor), and each start lies in the basin of one of its two parts. Not
+      // also from output error and the white candidate: the combined candidate's solves, on
+      // the widest Jets, were most of auto's time, and those two starts changed no choice on
+      // the noise-or-structure corpus (docs/models.md).
+      std::vector<const OutputErrorProblem*> starts;
+      if (!candidate.spec.process.empty() && !candidate.spec.measurement.empty()) {
+        for (size_t earlier = 1; earlier < c; ++earlier) {
+          const DisturbanceSpec& nested = (*candidates)[earlier].spec;
+          const bool part = nested.wave.empty() &&
+                            (!nested.process.empty() || !nested.measurement.empty());
+          if (solved[earlier] != nullptr && part) starts.push_back(solved[earlier].get());
+        }
       }
-      if (candidate.spec.process.empty() || candidate.spec.measurement.empty()) starts.resize(1);
+      if (starts.empty()) starts.push_back(&oe);
       std::unique_ptr<OutputErrorProblem> p;
       StageSummary trial;
       double best_nll = std::numeric_limits<double>::infinity();
