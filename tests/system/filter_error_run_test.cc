@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 
 #include "gtest/gtest.h"
@@ -228,6 +229,23 @@ TEST(FilterErrorRun, AutoNamesEveryCandidateAndKeepsTheBest) {
   }
   EXPECT_EQ(chosen, 1) << d.dump();
   EXPECT_EQ(chosen_bic, least);
+  // The combined candidate, started from the solutions of the two it nests, is at least as
+  // likely as either.
+  std::map<std::string, double> nll;
+  for (const json& c : d["candidates"]) {
+    if (c["solved"].get<bool>()) nll[c["name"]] = c["negative_log_likelihood"].get<double>();
+  }
+  int combined = 0;
+  for (const auto& [name, value] : nll) {
+    const size_t plus = name.find(" + ");
+    if (plus == std::string::npos) continue;
+    ++combined;
+    for (const std::string part : {name.substr(0, plus), name.substr(plus + 3)}) {
+      ASSERT_TRUE(nll.count(part)) << part << "\n" << d.dump();
+      EXPECT_LE(value, nll[part] + 1e-6 * std::abs(nll[part])) << name << " vs " << part;
+    }
+  }
+  EXPECT_EQ(combined, 1) << d.dump();
 }
 
 // Noise-free records (the shipped cargo example: 0.02 s, the rudder read with cubic
