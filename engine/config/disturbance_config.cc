@@ -24,6 +24,7 @@ void ReadDisturbance(const YamlReader& reader, const YAML::Node& node, const std
     }
     return;
   }
+  if (!node.IsMap()) reader.Fail(node, path, "expected output_error, filter_error, auto or a map");
   reader.CheckMap(node, path,
                   {"method", "angles", "measurement", "process", "wave", "bias",
                    "prediction_steps", "gain"});

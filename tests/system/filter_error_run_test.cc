@@ -274,6 +274,7 @@ TEST(FilterErrorRun, UnknownOutputsStatesAndValuesAreRefusedWithTheKey) {
            {"{bias: {psi: {q: -1, initial_sd: 1}}}", "must be > 0"},
            {"{method: sometimes}", "unknown method 'sometimes'"},
            {"sometimes", "unknown method 'sometimes'"},
+           {"[auto]", "expected output_error, filter_error, auto or a map"},
            {"{prediction_steps: 0}", "must be >= 1"},
            {"{gain: sometimes}", "expected auto or time_varying"},
            {"{measurement: {psi: {type: ar1, sigma: 0, tau: 1, white: true}}}", "must be > 0"},
