@@ -228,8 +228,9 @@ const Row kRows[] = {
      "A note: for the intervals use sandwich_hac. A warning: the model leaves out what drives "
      "the residual; try a richer structure (vesselid select), free what is held, or model the "
      "disturbance (`noise: auto`, the filter-error method: sensor noise, waves and gusts "
-     "identified with the ship, told from missing structure by its innovations). If the residuals are not correlated with the inputs, log the sensor at rest: "
-     "noise that wanders there is the sensor's, and the intervals are too narrow."},
+     "identified with the ship, told from missing structure by its innovations). If the "
+     "residuals are not correlated with the inputs, log the sensor at rest: noise that wanders "
+     "there is the sensor's, and the intervals are too narrow."},
     {K::kInputCorrelatedResiduals, "input_correlated_residuals", S::kInfo,
      "Residuals correlate with past inputs: dynamics the model leaves out, or noise on a "
      "measured input.",

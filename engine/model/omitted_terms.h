@@ -109,6 +109,14 @@ inline constexpr int kOmittedTermJetSize = 16;
 // test is left out and says so).
 inline constexpr double kOmittedTermMemory = 256.0 * 1024 * 1024;
 
+// Whether a score over `directions` unknowns on `samples` samples would exceed that memory:
+// several passes keep each sample's derivatives until the last (2 x samples x d doubles); one
+// pass sums them as they come.
+inline bool OmittedTermScoreExceedsMemory(int samples, int directions) {
+  return directions > kOmittedTermJetSize &&
+         16.0 * samples * directions > kOmittedTermMemory;
+}
+
 // The score of experiment e at the model's parameters p (num_parameters), initial state x0,
 // disturbance theta, all candidates at c = 0, over `directions`: indices into the unknowns
 // [p (num_parameters), x0 (kNumStates), theta (layout.size()), c (terms.size())]. False if the
@@ -126,9 +134,7 @@ bool ScoreOmittedTerms(const Model& model, const Experiment& e, const double* p,
   const int d = static_cast<int>(directions.size());
   const int samples = e.num_samples();
   const int passes = std::max(1, (d + kOmittedTermJetSize - 1) / kOmittedTermJetSize);
-  // Several passes keep each sample's derivatives until the last (2 x samples x d doubles);
-  // one pass sums them as they come.
-  if (passes > 1 && 16.0 * samples * d > kOmittedTermMemory) return false;
+  if (OmittedTermScoreExceedsMemory(samples, d)) return false;
   const ProbedModel<Model> probed(model, &terms, np);
   Eigen::VectorXd a(samples);
   Eigen::MatrixXd da(passes > 1 ? samples : 0, d), dlog(passes > 1 ? samples : 0, d);

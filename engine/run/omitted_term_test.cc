@@ -135,9 +135,7 @@ std::vector<OmittedTermTest> TestOmittedTerms(const OutputErrorProblem& problem,
       OmittedTermTest skipped;  // rank 0: not scored
       skipped.experiment = problem.experiments()[e].name;
       skipped.samples = problem.experiments()[e].num_samples();
-      const double directions = static_cast<double>(problem.num_free() + na);
-      skipped.memory = directions > kOmittedTermJetSize &&
-                       16.0 * skipped.samples * directions > kOmittedTermMemory;
+      skipped.memory = OmittedTermScoreExceedsMemory(skipped.samples, problem.num_free() + na);
       tests.push_back(skipped);
       continue;
     }
