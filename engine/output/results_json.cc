@@ -363,7 +363,7 @@ json StageToJson(const RunConfig& config, const StageResult& stage, JsonSplices*
                  {"kind", EstimateKindToString(e.kind)},
                  {"role", ParameterRoleToString(e.role)},
                  {"value", e.value},
-                 {"start", e.start},
+                 {"start", JsonNumber(e.start)},
                  {"std_error", JsonNumber(e.std_error)},
                  {"lower", JsonNumber(e.lower)},
                  {"upper", JsonNumber(e.upper)},

@@ -325,6 +325,7 @@ bool ChooseDisturbance(const StageConfig& stage, const StageOptions& options,
         std::unique_ptr<OutputErrorProblem> q =
             RefineFromEstimate(*from, oe.experiments(), with.problem, quiet, &attempt, &why);
         if (q == nullptr) continue;
+        for (const LocalSolveSummary& r : attempt.refinements) candidate.iterations += r.iterations;
         const double nll = q->NegativeLogLikelihood();
         if (nll < best_nll) {
           best_nll = nll;
@@ -354,8 +355,14 @@ bool ChooseDisturbance(const StageConfig& stage, const StageOptions& options,
     const DisturbanceCandidate& d = (*candidates)[c];
     char text[160];
     if (d.solved) {
-      std::snprintf(text, sizeof(text), "%s %s %.1f (k %d)%s", c == 0 ? ":" : ";", d.name.c_str(),
-                    d.bic, d.unknowns, c == best ? " chosen" : "");
+      if (c == 0) {
+        std::snprintf(text, sizeof(text), ": %s %.1f (k %d)%s", d.name.c_str(), d.bic,
+                      d.unknowns, c == best ? " chosen" : "");
+      } else {
+        std::snprintf(text, sizeof(text), "; %s %.1f (k %d, %d iterations)%s",
+                      d.name.c_str(), d.bic, d.unknowns, d.iterations,
+                      c == best ? " chosen" : "");
+      }
     } else {
       std::snprintf(text, sizeof(text), "%s %s not solved (%s)", c == 0 ? ":" : ";",
                     d.name.c_str(), d.why.c_str());
@@ -377,6 +384,8 @@ bool ChooseDisturbance(const StageConfig& stage, const StageOptions& options,
       RefineFromEstimate(*solved[best], solved[best]->experiments(), with.problem, final_options,
                          &chosen, error);
   if (p == nullptr) return false;
+  // The output-error solve's global start found the estimate every candidate started from.
+  chosen.global = summary->global;
   NameFilterErrorUncertainty(options.uncertainty, &chosen.uncertainty);
   AddDisagreement(oe, summary->uncertainty, *p, chosen.uncertainty, (*candidates)[best].name,
                   &chosen);

@@ -37,6 +37,7 @@ struct DisturbanceCandidate {
   double negative_log_likelihood = 0.0;
   int unknowns = 0;
   double bic = 0.0;
+  int iterations = 0;  // the solver's, over every start and pass of its solve
 };
 
 // The candidates for `model` whose output-error residuals are `residuals` (coloured outputs get

@@ -31,8 +31,10 @@
 namespace vesselid {
 namespace {
 
-// The stage's result from its solved problem; `starts` are the reported start values.
-StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>& starts,
+// The stage's result from its solved problem; `starts` are the reported start values by
+// variable name (a variable without one, e.g. the noise parameters of the disturbance model
+// `noise: auto` chose, reports none: its solve started from the candidates' own starts).
+StageResult Collect(const OutputErrorProblem& problem, const std::map<std::string, double>& starts,
                     StageSummary summary) {
   StageResult result;
   result.name = summary.name;
@@ -50,7 +52,8 @@ StageResult Collect(const OutputErrorProblem& problem, const std::vector<double>
     e.role = v.role;
     e.experiment = v.experiment >= 0 ? problem.experiments()[v.experiment].name : "";
     e.value = v.value();
-    e.start = starts[i];
+    const auto start = starts.find(v.name);
+    e.start = start != starts.end() ? start->second : kUnknown;
     e.std_error = v.free ? u.StdError(static_cast<int>(i)) : kUnknown;
     e.lower = v.lower;
     e.upper = v.upper;
@@ -341,6 +344,8 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
       starts[i] = configured[v.index].start;
     }
   }
+  std::map<std::string, double> start_by_name;
+  for (size_t i = 0; i < starts.size(); ++i) start_by_name[problem->variables()[i].name] = starts[i];
   if (!states.empty()) {
     extra_starts.push_back(problem->Values());
     SetCarriedStates(states, problem.get());
@@ -438,7 +443,7 @@ bool RunOutputErrorStage(const RunConfig& config, const StageConfig& configured_
   if (missed && AllScored(omitted)) drift = MeasureFreeRunDrift(*problem);
   summary.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start).count();
-  *result = Collect(*problem, starts, std::move(summary));
+  *result = Collect(*problem, start_by_name, std::move(summary));
   result->free_run_drift = std::move(drift);
   result->disturbance = ReportDisturbance(stage.problem.disturbance, *problem,
                                           result->summary.uncertainty, candidates);

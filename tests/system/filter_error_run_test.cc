@@ -202,9 +202,27 @@ TEST(FilterErrorRun, BlockBootstrapIsRefusedUnderTheFilterNotOverrun) {
 }
 
 TEST(FilterErrorRun, AutoNamesEveryCandidateAndKeepsTheBest) {
-  const CommandRun run = SimulateAndRun("auto", "auto");  // the method alone: noise: auto
+  // The method alone (noise: auto), after a global start of output error's.
+  const CommandRun run = SimulateAndRun("auto", "auto\n    global: {points: 8}");
   ASSERT_EQ(run.status, 0) << run.stderr_text;
   const std::string notes = run.results["stages"][0]["notes"].dump();
+  // The global start that found the estimate every candidate started from is reported.
+  EXPECT_TRUE(run.results["stages"][0].contains("global_start")) << notes;
+  // Each ship parameter's start as configured; the chosen disturbance's noise parameters have
+  // none (their solve started from the candidates' own), not values read past the end of
+  // output error's starts (which differed with the thread count).
+  const std::map<std::string, double> configured = {
+      {"T1", 2.5}, {"T2", 0.26}, {"T3", 0.22}, {"K", -0.2}};
+  int noise = 0;
+  for (const json& e : run.results["stages"][0]["estimates"]) {
+    const auto found = configured.find(e["name"].get<std::string>());
+    if (found != configured.end()) EXPECT_EQ(e["start"], found->second) << e.dump();
+    if (e["kind"] == "noise") {
+      ++noise;
+      EXPECT_TRUE(e["start"].is_null()) << e.dump();
+    }
+  }
+  EXPECT_GE(noise, 1);
   EXPECT_NE(notes.find("noise auto: BIC"), std::string::npos) << notes;
   EXPECT_NE(notes.find("output_error"), std::string::npos) << notes;
   EXPECT_NE(notes.find("process(xi2)"), std::string::npos) << notes;
