@@ -153,6 +153,21 @@ void ReadDisturbance(const YamlReader& reader, const YAML::Node& node, const std
       spec->bias.push_back(bias);
     }
   }
+  // The parts are the filter's: auto chooses its own candidates (disturbance_choice.h), and
+  // output error has none; neither would use them.
+  if (spec->method != DisturbanceSpec::Method::kFilterError) {
+    for (const char* part : {"measurement", "process", "wave", "bias"}) {
+      if (const YAML::Node n = node[part]) {
+        reader.Fail(n, Child(path, part),
+                    std::string("not used under method ") +
+                        DisturbanceMethodToString(spec->method) +
+                        (spec->method == DisturbanceSpec::Method::kAuto
+                             ? ", which chooses the disturbance model itself; give the parts "
+                               "with method filter_error"
+                             : "; give the parts with method filter_error"));
+      }
+    }
+  }
   if (const YAML::Node g = node["gain"]) {
     const std::string text = reader.String(g, Child(path, "gain"));
     if (text == "auto")

@@ -186,12 +186,22 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BootstrapSummary, runs, failed, groups, resam
                                    names, std_error, lower, upper, coefficient_names, zero_share,
                                    message, time_seconds)
 
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(DisturbanceCandidateScore, name, solved, why,
+                                   negative_log_likelihood, unknowns, bic, chosen)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FilterPrediction, experiment, output, steps, seconds_ahead,
+                                   k_step_fit_percent, one_step_fit_percent, free_run_fit_percent)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(DisturbanceReport, method, model, filter_error,
+                                   negative_log_likelihood, candidates, predictions)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FreeRunDrift, experiment, output, samples, observed_sse,
+                                   expected_sse)
+
 namespace {
 // 3: Uncertainty method, hessian_std_errors, method_reason, hac_bandwidth; 4: bootstrap runs,
 // failed, block length; 6: traces' samples as byte strings; 7: typed solver findings,
 // comparable cost, state limits; 9: bootstrap replicates; 10: input noise refits, the held-out
-// check's baseline
-constexpr int kArchiveVersion = 10;
+// check's baseline; 11: the disturbance model's report and the free run's drift (a resumed
+// stage lost them: its verdict then read output error's residuals)
+constexpr int kArchiveVersion = 11;
 }  // namespace
 
 nlohmann::json StageResultToArchive(const StageResult& stage) {
@@ -214,7 +224,9 @@ nlohmann::json StageResultToArchive(const StageResult& stage) {
                       {"noise_model", stage.noise_model},
                       {"velocity_validation", stage.velocity_validation},
                       {"residuals", stage.residuals},
-                      {"validation_residuals", stage.validation_residuals}};
+                      {"validation_residuals", stage.validation_residuals},
+                      {"disturbance", stage.disturbance},
+                      {"free_run_drift", stage.free_run_drift}};
   if (stage.step_regression) j["step_regression"] = *stage.step_regression;
   if (stage.bootstrap.done() || !stage.bootstrap.message.empty()) j["bootstrap"] = stage.bootstrap;
   return j;
@@ -257,6 +269,8 @@ bool StageResultFromArchive(const nlohmann::json& j, StageResult* stage, std::st
           std::make_shared<const StepRegressionReport>(j.at("step_regression").get<StepRegressionReport>());
     }
     if (j.contains("bootstrap")) j.at("bootstrap").get_to(s.bootstrap);
+    j.at("disturbance").get_to(s.disturbance);
+    j.at("free_run_drift").get_to(s.free_run_drift);
     *stage = std::move(s);
     return true;
   } catch (const nlohmann::json::exception& e) {

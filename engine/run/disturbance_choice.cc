@@ -12,6 +12,10 @@
 namespace vesselid {
 namespace {
 
+// Put before the outlier screen's findings when a filter is chosen.
+constexpr char kOutputErrorsFit[] =
+    "in output error's fit, before the disturbance model was chosen: ";
+
 // The lag-1 autocorrelation above which residuals judged noise-free are the integrator's
 // smooth error (the cargo example: 0.96).
 constexpr double kIntegrationErrorLag1 = 0.9;
@@ -386,6 +390,13 @@ bool ChooseDisturbance(const StageConfig& stage, const StageOptions& options,
   if (p == nullptr) return false;
   // The output-error solve's global start found the estimate every candidate started from.
   chosen.global = summary->global;
+  // The outlier screen (output_error_stage.cc) judged output error's fit: its values are not
+  // the chosen model's, and its finding says whose they are.
+  for (Finding& f : chosen.findings) {
+    if (f.kind == FindingKind::kOutliers && f.message.rfind(kOutputErrorsFit, 0) != 0) {
+      f.message = kOutputErrorsFit + f.message;
+    }
+  }
   NameFilterErrorUncertainty(options.uncertainty, &chosen.uncertainty);
   AddDisagreement(oe, summary->uncertainty, *p, chosen.uncertainty, (*candidates)[best].name,
                   &chosen);

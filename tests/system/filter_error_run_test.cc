@@ -73,6 +73,9 @@ struct CommandRun {
   json results;
   std::string report, stderr_text;
   json predictions;  // `vesselid predict`'s predictions.json, where asked
+  // results.json of the same run again with --resume (every stage from its checkpoint),
+  // where asked.
+  json resumed;
 };
 
 std::string ReadText(const fs::path& path) {
@@ -82,7 +85,7 @@ std::string ReadText(const fs::path& path) {
 
 // Simulates the records of `config_text` and runs it (then predicts, if asked).
 CommandRun SimulateAndRunConfig(const std::string& name, const std::string& config_text,
-                                bool predict = false) {
+                                bool predict = false, bool resume = false) {
   const fs::path dir = fs::temp_directory_path() / ("vesselid_filter_error_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -100,6 +103,11 @@ CommandRun SimulateAndRunConfig(const std::string& name, const std::string& conf
   result.results = json::parse(ReadText(dir / "out" / "results.json"), nullptr, false);
   result.report = ReadText(dir / "out" / "report.txt");
   result.stderr_text = ReadText(dir / "stderr.txt");
+  if (resume) {
+    const std::string again = run + " --resume";
+    EXPECT_EQ(std::system(again.c_str()), 0) << again;
+    result.resumed = json::parse(ReadText(dir / "out" / "results.json"), nullptr, false);
+  }
   if (predict) {
     // The patrol vessel: 30 m at 6 m/s.
     const std::string command = binary + " predict " + (dir / "out").string() +
@@ -202,9 +210,16 @@ TEST(FilterErrorRun, BlockBootstrapIsRefusedUnderTheFilterNotOverrun) {
 }
 
 TEST(FilterErrorRun, AutoNamesEveryCandidateAndKeepsTheBest) {
-  // The method alone (noise: auto), after a global start of output error's.
-  const CommandRun run = SimulateAndRun("auto", "auto\n    global: {points: 8}");
+  // The method alone (noise: auto), after a global start of output error's; then resumed.
+  const CommandRun run = SimulateAndRunConfig(
+      "auto", Config("auto\n    global: {points: 8}", false), false, /*resume=*/true);
   ASSERT_EQ(run.status, 0) << run.stderr_text;
+  // The stage restored from its checkpoint keeps its disturbance report, and so its verdict
+  // (which, without it, read output error's coloured residuals: input noise, doubtful).
+  ASSERT_TRUE(run.resumed.is_object());
+  EXPECT_EQ(run.resumed["stages"][0]["disturbance"], run.results["stages"][0]["disturbance"]);
+  EXPECT_EQ(run.resumed["verdict"], run.results["verdict"]);
+  EXPECT_EQ(run.resumed["stages"][0]["findings"], run.results["stages"][0]["findings"]);
   const std::string notes = run.results["stages"][0]["notes"].dump();
   // The global start that found the estimate every candidate started from is reported.
   EXPECT_TRUE(run.results["stages"][0].contains("global_start")) << notes;
@@ -296,7 +311,12 @@ TEST(FilterErrorRun, UnknownOutputsStatesAndValuesAreRefusedWithTheKey) {
            {"{prediction_steps: 0}", "must be >= 1"},
            {"{gain: sometimes}", "expected auto or time_varying"},
            {"{measurement: {psi: {type: ar1, sigma: 0, tau: 1, white: true}}}", "must be > 0"},
-           {"{wave: {psi: {omega: -1, sigma: 1}}}", "must be > 0"}}) {
+           {"{wave: {psi: {omega: -1, sigma: 1}}}", "must be > 0"},
+           // The parts are the filter's: silently unused under auto or output error before.
+           {"{method: auto, measurement: {psi: {type: ar1}}}",
+            "noise.measurement: not used under method auto, which chooses"},
+           {"{method: output_error, process: {xi2: auto}}",
+            "noise.process: not used under method output_error"}}) {
     const fs::path dir = fs::temp_directory_path() / "vesselid_filter_error_refused";
     fs::remove_all(dir);
     fs::create_directories(dir);
