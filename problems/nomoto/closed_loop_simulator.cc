@@ -153,9 +153,12 @@ bool SimulateClosedLoop(const ModelHandle& model, const std::vector<double>& par
     const double t = k * options.sample_time;
     const double psi = heading(z, t);
     if (zigzag) {
-      if (sign_k * psi >= e.zigzag_heading && sign_k * zigzag_command > 0)
+      // sign_k * command > 0 turns the heading up (r' ~ K delta): reversed when the heading
+      // reaches +psi_z; the other way at -psi_z. (The heading itself is not scaled by the sign
+      // of K: a ship with K < 0 never reversed its first rudder before.)
+      if (psi >= e.zigzag_heading && sign_k * zigzag_command > 0)
         zigzag_command = -zigzag_command;
-      if (sign_k * psi <= -e.zigzag_heading && sign_k * zigzag_command < 0)
+      if (psi <= -e.zigzag_heading && sign_k * zigzag_command < 0)
         zigzag_command = -zigzag_command;
     }
     out.t.push_back(t);

@@ -67,13 +67,16 @@ Rk4Case Rk4(const ModelHandle& model) {
 
 // Zigzags 10/10 and 30/5 (at 4 and 6 m/s where the model takes a speed), 150 s each (the
 // linear unstable craft's zigzag grows without bound after some 200 s), 0.1 deg heading
-// noise, from +-30 %; T held at the truth where the model has one.
+// noise, from +-30 %; T held at the truth where the model has one. The rudder is read linearly:
+// the gear's lag has a kink at each reversal, on a sample, which a cubic spline spreads into
+// the neighbouring intervals (delta_0 then 8.6e-7 rad off, 7 SE, once these K < 0 craft's
+// zigzags reversed at all: the simulator's checks had the sign of K on the heading).
 RecoveryCase Recovery(const ModelHandle& model, const std::vector<double>& truth) {
   RecoveryCase c;
   c.experiments.push_back(MakeExperiment(
-      model, truth, Zigzag(model, 150.0, 10.0, 10.0, 4.0, 0.1, 11), Interpolation::kCubic, "zz10"));
+      model, truth, Zigzag(model, 150.0, 10.0, 10.0, 4.0, 0.1, 11), Interpolation::kLinear, "zz10"));
   c.experiments.push_back(MakeExperiment(
-      model, truth, Zigzag(model, 150.0, 30.0, 5.0, 6.0, 0.1, 12), Interpolation::kCubic, "zz30"));
+      model, truth, Zigzag(model, 150.0, 30.0, 5.0, 6.0, 0.1, 12), Interpolation::kLinear, "zz30"));
   const ModelInfo& info = model.info();
   c.free_parameters = 0;
   for (size_t i = 0; i < truth.size(); ++i) {

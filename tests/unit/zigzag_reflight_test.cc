@@ -1,0 +1,148 @@
+// A recorded zigzag re-flown in closed loop (engine/run/zigzag_reflight.h), on the patrol
+// vessel's 20/20 zigzag simulated by the seed 003 closed-loop simulator (problems/nomoto), its
+// steering gear rate-limited: the true model re-flown from the record's start reproduces the
+// record's overshoots; a model whose gain is 30 % high reaches each check sooner, reverses the
+// rudder there (not where the logged rudder reversed), and its overshoots are its own.
+#include "engine/run/zigzag_reflight.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "engine/model/experiment.h"
+#include "gtest/gtest.h"
+#include "problems/nomoto/closed_loop_simulator.h"
+#include "problems/nomoto/handles.h"
+
+namespace vesselid {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+struct Record {
+  std::vector<double> t, delta, psi;
+  Experiment experiment;
+};
+
+// The patrol vessel (seed 003: T1 2.0875, T2 0.3179, T3 0.1830, K -0.1724) flying a
+// `rudder`/`heading` zigzag from a straight course, its gear at 4 deg/s; noise-free unless
+// `noise` (deg, on the logged rudder and heading).
+Record Zigzag(const ModelHandle& model, double rudder, double heading, double noise = 0.0) {
+  nomoto::ClosedLoopOptions loop;
+  loop.steering_time_constant = 0.05;
+  loop.rudder_rate = 4.0 * kDeg;
+  loop.sample_time = 0.05;
+  loop.duration = 120.0;
+  loop.excitation.type = nomoto::Excitation::Type::kZigzag;
+  loop.excitation.zigzag_rudder = rudder * kDeg;
+  loop.excitation.zigzag_heading = heading * kDeg;
+  loop.rudder_noise = noise * kDeg;
+  loop.heading_noise = noise * kDeg;
+  Trajectory trajectory;
+  std::string error;
+  EXPECT_TRUE(nomoto::SimulateClosedLoop(model, {2.0875, 0.3179, 0.1830, -0.1724, 0.0}, loop,
+                                         &trajectory, &error))
+      << error;
+  trajectory.source = "zigzag";
+  Record record;
+  record.t = trajectory.t;
+  for (size_t c = 0; c < trajectory.names.size(); ++c) {
+    if (trajectory.names[c] == "delta") record.delta = trajectory.columns[c];
+    if (trajectory.names[c] == "psi") record.psi = trajectory.columns[c];
+  }
+  ExperimentSpec spec;
+  spec.name = "zigzag";
+  spec.inputs = {{"delta", "delta"}};
+  spec.outputs = {{"psi", "psi"}};
+  spec.default_interpolation = Interpolation::kLinear;
+  EXPECT_TRUE(BuildExperiment(spec, trajectory, model.info(), ExperimentOptions(),
+                              &record.experiment, &error))
+      << error;
+  return record;
+}
+
+TEST(ZigzagReflight, TheTrueModelReproducesTheRecordsOvershoots) {
+  const auto model = nomoto::MakeSecondOrderHandle();
+  const Record record = Zigzag(*model, 20.0, 20.0);
+  ZigzagTest test;
+  std::string why;
+  ASSERT_TRUE(DetectZigzag(record.t, record.delta, record.psi, &test, &why)) << why;
+  const ZigzagFigures measured = MeasureZigzag(record.t, record.psi, test);
+  ZigzagCommands commands;
+  ASSERT_TRUE(FindZigzagCommands(record.t, record.delta, record.psi, test, &commands, &why)) << why;
+  EXPECT_NEAR(commands.amplitude, 20.0 * kDeg, 0.01 * kDeg);
+  EXPECT_NEAR(commands.neutral, 0.0, 0.01 * kDeg);
+  // The simulator reverses at the first 0.05 s sample past 20 deg (at 2 deg/s of yaw, up to
+  // 0.1 deg past it).
+  EXPECT_NEAR(commands.check, 20.05 * kDeg, 0.06 * kDeg);
+  const std::vector<double> p = {2.0875, 0.3179, 0.1830, -0.1724, 0.0};
+  const std::vector<double> x0(model->info().states.size(), 0.0);
+  ZigzagReflight flown;
+  ASSERT_TRUE(ReflyZigzag(*model, record.experiment, p.data(), x0.data(), test, commands,
+                          4.0 * kDeg, &flown, &why))
+      << why;
+  ASSERT_GE(flown.reversals, 3);
+  ASSERT_TRUE(std::isfinite(measured.first_overshoot) && std::isfinite(measured.second_overshoot));
+  // The simulator's checks fall on its 0.05 s samples, the re-flight's on its RK4 steps.
+  EXPECT_NEAR(flown.figures.first_overshoot, measured.first_overshoot, 0.05 * kDeg);
+  EXPECT_NEAR(flown.figures.second_overshoot, measured.second_overshoot, 0.05 * kDeg);
+  EXPECT_NEAR(flown.figures.time_to_first_check, measured.time_to_first_check, 0.1);
+}
+
+TEST(ZigzagReflight, AModelReversesTheRudderAtItsOwnChecks) {
+  const auto model = nomoto::MakeSecondOrderHandle();
+  const Record record = Zigzag(*model, 20.0, 20.0);
+  ZigzagTest test;
+  std::string why;
+  ASSERT_TRUE(DetectZigzag(record.t, record.delta, record.psi, &test, &why)) << why;
+  const ZigzagFigures measured = MeasureZigzag(record.t, record.psi, test);
+  ZigzagCommands commands;
+  ASSERT_TRUE(FindZigzagCommands(record.t, record.delta, record.psi, test, &commands, &why)) << why;
+  const std::vector<double> p = {2.0875, 0.3179, 0.1830, 1.3 * -0.1724, 0.0};  // K 30 % high
+  const std::vector<double> x0(model->info().states.size(), 0.0);
+  ZigzagReflight flown;
+  ASSERT_TRUE(ReflyZigzag(*model, record.experiment, p.data(), x0.data(), test, commands,
+                          4.0 * kDeg, &flown, &why))
+      << why;
+  ASSERT_GE(flown.reversals, 2);
+  // The stronger ship reaches the first check sooner, and its rudder leaves the plateau
+  // there: where the heading change first reaches the check, not where the logged rudder
+  // (reversed at the true ship's check) left it.
+  EXPECT_LT(flown.figures.time_to_first_check, measured.time_to_first_check - 0.5);
+  size_t reached = 0, left = 0;
+  while (reached < flown.t.size() && std::abs(flown.psi[reached] - flown.psi[0]) < commands.check)
+    ++reached;
+  while (left < flown.t.size() &&
+         !(flown.t[left] > test.first_execute + 1.0 && flown.delta[left] > flown.delta[left - 1]))
+    ++left;  // the rudder first moves back (the first command is -20 deg: K < 0)
+  ASSERT_LT(reached, flown.t.size());
+  EXPECT_NEAR(flown.t[left], flown.t[reached], 0.1);
+  EXPECT_GT(std::abs(flown.figures.first_overshoot - measured.first_overshoot), 0.3 * kDeg);
+}
+
+TEST(ZigzagReflight, CommandsAreTheLoggedPlateausAroundABiasedNeutral) {
+  std::vector<double> t, delta, psi;
+  for (int i = 0; i < 600; ++i) {  // a 10/10 zigzag logged with a 2 deg offset, first to port
+    t.push_back(0.1 * i);
+    psi.push_back(0.001 * i);  // a heading that only moves on: the checks are its changes
+    const int half = i < 50 ? -1 : (i / 150) % 2;
+    delta.push_back((2.0 + (half < 0 ? 0.0 : (half == 0 ? -10.0 : 10.0))) * kDeg);
+  }
+  ZigzagTest test;
+  test.first_execute = 5.0;
+  ZigzagCommands commands;
+  std::string why;
+  ASSERT_TRUE(FindZigzagCommands(t, delta, psi, test, &commands, &why)) << why;
+  EXPECT_NEAR(commands.neutral, 2.0 * kDeg, 1e-9);
+  EXPECT_NEAR(commands.amplitude, 10.0 * kDeg, 1e-9);
+  EXPECT_EQ(commands.first_sign, -1.0);
+  // Left at samples 149, 299 and 449, from the heading at t_0 (sample 50): the median 0.249.
+  EXPECT_NEAR(commands.check, 0.249, 1e-9);
+  // A rudder that never leaves its neutral has no plateaus.
+  EXPECT_FALSE(
+      FindZigzagCommands(t, std::vector<double>(t.size(), 0.0), psi, test, &commands, &why));
+  EXPECT_NE(why.find("no plateau"), std::string::npos) << why;
+}
+
+}  // namespace
+}  // namespace vesselid
