@@ -2,9 +2,11 @@
 (docs/design.md; tests/benchmarks/design/closed_loop.py prints the figures over 20 seeds):
 
 * patrol vessel, second-order Nomoto from a short noisy 10/10 zigzag, robust D-optimal plan
-  (over 20 ensemble members): shrinks the widest interval at least twice as much as a 20/20
-  zigzag of the same duration, predicted and achieved over 8 noise seeds, the achieved
-  standard errors within 0.7-1.4x of the estimates' scatter (the rudder noise included);
+  (over 20 ensemble members): shrinks the widest interval at least 1.5 times as much as a
+  20/20 zigzag of the same duration, predicted and achieved over 8 noise seeds (20 seeds:
+  1.95 and 1.65; the 2x this asked before was measured when the simulator's zigzags of a
+  K < 0 ship never reversed, its 20/20 "zigzag" a turn), the achieved standard errors within
+  0.7-1.4x of the estimates' scatter (the rudder noise included);
 * catamaran after a campaign without astern thrust: the astern coefficients undetermined;
   the plan asks for astern thrust, and flown by the catamaran simulator it determines them.
 """
@@ -20,7 +22,7 @@ sys.path.insert(0, os.path.join(SOURCE, "tests", "benchmarks", "design"))
 import closed_loop  # noqa: E402
 
 
-def test_patrol_plan_shrinks_the_widest_interval_twice_the_20_20_zigzag(tmp_path):
+def test_patrol_plan_shrinks_the_widest_interval_more_than_the_20_20_zigzag(tmp_path):
     cfg, design_json = closed_loop.plan(os.path.join(SOURCE, "configs", "design_patrol.yaml"),
                                         str(tmp_path), {"robust": {"members": 20}})
     seeds = range(1, 9)
@@ -28,8 +30,8 @@ def test_patrol_plan_shrinks_the_widest_interval_twice_the_20_20_zigzag(tmp_path
         design_json,
         closed_loop.nomoto_closed_loop(cfg, str(tmp_path), design_json, "planned", seeds),
         closed_loop.nomoto_closed_loop(cfg, str(tmp_path), design_json, "zigzag_20_20", seeds))
-    assert ratios["predicted"] >= 2.0, ratios
-    assert ratios["achieved"] >= 2.0, ratios
+    assert ratios["predicted"] >= 1.5, ratios
+    assert ratios["achieved"] >= 1.5, ratios
     # The flown plan's rudder noise is in the reported standard errors (input_noise_uncertainty.h),
     # which describe the estimates' scatter over the seeds; the prediction describes the output
     # noise alone and is optimistic by the rudder noise's part (docs/design.md).
