@@ -89,6 +89,31 @@ TEST(ZigzagReflight, TheTrueModelReproducesTheRecordsOvershoots) {
   EXPECT_NEAR(flown.figures.time_to_first_check, measured.time_to_first_check, 0.1);
 }
 
+// A 10/10 zigzag logged with 0.1 deg of noise on the rudder and the heading: the commands and
+// the check are read through the noise, and the true model's overshoots land within the noise.
+TEST(ZigzagReflight, ANoisyLogGivesTheTestAsFlown) {
+  const auto model = nomoto::MakeSecondOrderHandle();
+  const Record record = Zigzag(*model, 10.0, 10.0, 0.1);
+  ZigzagTest test;
+  std::string why;
+  ASSERT_TRUE(DetectZigzag(record.t, record.delta, record.psi, &test, &why)) << why;
+  const ZigzagFigures measured = MeasureZigzag(record.t, record.psi, test);
+  ZigzagCommands commands;
+  ASSERT_TRUE(FindZigzagCommands(record.t, record.delta, record.psi, test, &commands, &why))
+      << why;
+  EXPECT_NEAR(commands.amplitude, 10.0 * kDeg, 0.05 * kDeg);
+  EXPECT_NEAR(commands.check, 10.0 * kDeg, 0.25 * kDeg);
+  const std::vector<double> p = {2.0875, 0.3179, 0.1830, -0.1724, 0.0};
+  const std::vector<double> x0(model->info().states.size(), 0.0);
+  ZigzagReflight flown;
+  ASSERT_TRUE(ReflyZigzag(*model, record.experiment, p.data(), x0.data(), test, commands,
+                          4.0 * kDeg, &flown, &why))
+      << why;
+  ASSERT_GE(flown.reversals, 3);
+  EXPECT_NEAR(flown.figures.first_overshoot, measured.first_overshoot, 0.4 * kDeg);
+  EXPECT_NEAR(flown.figures.second_overshoot, measured.second_overshoot, 0.4 * kDeg);
+}
+
 TEST(ZigzagReflight, AModelReversesTheRudderAtItsOwnChecks) {
   const auto model = nomoto::MakeSecondOrderHandle();
   const Record record = Zigzag(*model, 20.0, 20.0);
