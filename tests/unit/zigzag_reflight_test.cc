@@ -61,88 +61,86 @@ Record Zigzag(const ModelHandle& model, double rudder, double heading, double no
   return record;
 }
 
+// A zigzag record read as the re-flight reads it, and flown again with parameters p.
+struct Flight {
+  Record record;
+  ZigzagTest test;
+  ZigzagFigures measured;  // on the record
+  ZigzagCommands commands;
+  ZigzagReflight flown;
+};
+
+void Fly(const ModelHandle& model, double rudder, double heading, double noise,
+         const std::vector<double>& p, Flight* f) {
+  f->record = Zigzag(model, rudder, heading, noise);
+  const Record& r = f->record;
+  std::string why;
+  ASSERT_TRUE(DetectZigzag(r.t, r.delta, r.psi, &f->test, &why)) << why;
+  f->measured = MeasureZigzag(r.t, r.psi, f->test);
+  ASSERT_TRUE(FindZigzagCommands(r.t, r.delta, r.psi, f->test, &f->commands, &why)) << why;
+  const std::vector<double> x0(model.info().states.size(), 0.0);
+  ASSERT_TRUE(ReflyZigzag(model, r.experiment, p.data(), x0.data(), f->test, f->commands,
+                          4.0 * kDeg, &f->flown, &why))
+      << why;
+}
+
+const std::vector<double> kTruth = {2.0875, 0.3179, 0.1830, -0.1724, 0.0};
+
 TEST(ZigzagReflight, TheTrueModelReproducesTheRecordsOvershoots) {
   const auto model = nomoto::MakeSecondOrderHandle();
-  const Record record = Zigzag(*model, 20.0, 20.0);
-  ZigzagTest test;
-  std::string why;
-  ASSERT_TRUE(DetectZigzag(record.t, record.delta, record.psi, &test, &why)) << why;
-  const ZigzagFigures measured = MeasureZigzag(record.t, record.psi, test);
-  ZigzagCommands commands;
-  ASSERT_TRUE(FindZigzagCommands(record.t, record.delta, record.psi, test, &commands, &why)) << why;
-  EXPECT_NEAR(commands.amplitude, 20.0 * kDeg, 0.01 * kDeg);
-  EXPECT_NEAR(commands.neutral, 0.0, 0.01 * kDeg);
+  Flight f;
+  ASSERT_NO_FATAL_FAILURE(Fly(*model, 20.0, 20.0, 0.0, kTruth, &f));
+  EXPECT_NEAR(f.commands.amplitude, 20.0 * kDeg, 0.01 * kDeg);
+  EXPECT_NEAR(f.commands.neutral, 0.0, 0.01 * kDeg);
   // The simulator reverses at the first 0.05 s sample past 20 deg (at 2 deg/s of yaw, up to
   // 0.1 deg past it).
-  EXPECT_NEAR(commands.check, 20.05 * kDeg, 0.06 * kDeg);
-  const std::vector<double> p = {2.0875, 0.3179, 0.1830, -0.1724, 0.0};
-  const std::vector<double> x0(model->info().states.size(), 0.0);
-  ZigzagReflight flown;
-  ASSERT_TRUE(ReflyZigzag(*model, record.experiment, p.data(), x0.data(), test, commands,
-                          4.0 * kDeg, &flown, &why))
-      << why;
-  ASSERT_GE(flown.reversals, 3);
-  ASSERT_TRUE(std::isfinite(measured.first_overshoot) && std::isfinite(measured.second_overshoot));
+  EXPECT_NEAR(f.commands.check, 20.05 * kDeg, 0.06 * kDeg);
+  ASSERT_GE(f.flown.reversals, 3);
+  ASSERT_TRUE(std::isfinite(f.measured.first_overshoot) &&
+              std::isfinite(f.measured.second_overshoot));
   // The simulator's checks fall on its 0.05 s samples, the re-flight's on its RK4 steps.
-  EXPECT_NEAR(flown.figures.first_overshoot, measured.first_overshoot, 0.05 * kDeg);
-  EXPECT_NEAR(flown.figures.second_overshoot, measured.second_overshoot, 0.05 * kDeg);
-  EXPECT_NEAR(flown.figures.time_to_first_check, measured.time_to_first_check, 0.1);
+  EXPECT_NEAR(f.flown.figures.first_overshoot, f.measured.first_overshoot, 0.05 * kDeg);
+  EXPECT_NEAR(f.flown.figures.second_overshoot, f.measured.second_overshoot, 0.05 * kDeg);
+  EXPECT_NEAR(f.flown.figures.time_to_first_check, f.measured.time_to_first_check, 0.1);
 }
 
 // A 10/10 zigzag logged with 0.1 deg of noise on the rudder and the heading: the commands and
 // the check are read through the noise, and the true model's overshoots land within the noise.
 TEST(ZigzagReflight, ANoisyLogGivesTheTestAsFlown) {
   const auto model = nomoto::MakeSecondOrderHandle();
-  const Record record = Zigzag(*model, 10.0, 10.0, 0.1);
-  ZigzagTest test;
-  std::string why;
-  ASSERT_TRUE(DetectZigzag(record.t, record.delta, record.psi, &test, &why)) << why;
-  const ZigzagFigures measured = MeasureZigzag(record.t, record.psi, test);
-  ZigzagCommands commands;
-  ASSERT_TRUE(FindZigzagCommands(record.t, record.delta, record.psi, test, &commands, &why))
-      << why;
-  EXPECT_NEAR(commands.amplitude, 10.0 * kDeg, 0.05 * kDeg);
-  EXPECT_NEAR(commands.check, 10.0 * kDeg, 0.25 * kDeg);
-  const std::vector<double> p = {2.0875, 0.3179, 0.1830, -0.1724, 0.0};
-  const std::vector<double> x0(model->info().states.size(), 0.0);
-  ZigzagReflight flown;
-  ASSERT_TRUE(ReflyZigzag(*model, record.experiment, p.data(), x0.data(), test, commands,
-                          4.0 * kDeg, &flown, &why))
-      << why;
-  ASSERT_GE(flown.reversals, 3);
-  EXPECT_NEAR(flown.figures.first_overshoot, measured.first_overshoot, 0.4 * kDeg);
-  EXPECT_NEAR(flown.figures.second_overshoot, measured.second_overshoot, 0.4 * kDeg);
+  Flight f;
+  ASSERT_NO_FATAL_FAILURE(Fly(*model, 10.0, 10.0, 0.1, kTruth, &f));
+  EXPECT_NEAR(f.commands.amplitude, 10.0 * kDeg, 0.05 * kDeg);
+  EXPECT_NEAR(f.commands.check, 10.0 * kDeg, 0.25 * kDeg);
+  ASSERT_GE(f.flown.reversals, 3);
+  EXPECT_NEAR(f.flown.figures.first_overshoot, f.measured.first_overshoot, 0.4 * kDeg);
+  EXPECT_NEAR(f.flown.figures.second_overshoot, f.measured.second_overshoot, 0.4 * kDeg);
 }
 
 TEST(ZigzagReflight, AModelReversesTheRudderAtItsOwnChecks) {
   const auto model = nomoto::MakeSecondOrderHandle();
-  const Record record = Zigzag(*model, 20.0, 20.0);
-  ZigzagTest test;
-  std::string why;
-  ASSERT_TRUE(DetectZigzag(record.t, record.delta, record.psi, &test, &why)) << why;
-  const ZigzagFigures measured = MeasureZigzag(record.t, record.psi, test);
-  ZigzagCommands commands;
-  ASSERT_TRUE(FindZigzagCommands(record.t, record.delta, record.psi, test, &commands, &why)) << why;
-  const std::vector<double> p = {2.0875, 0.3179, 0.1830, 1.3 * -0.1724, 0.0};  // K 30 % high
-  const std::vector<double> x0(model->info().states.size(), 0.0);
-  ZigzagReflight flown;
-  ASSERT_TRUE(ReflyZigzag(*model, record.experiment, p.data(), x0.data(), test, commands,
-                          4.0 * kDeg, &flown, &why))
-      << why;
+  std::vector<double> p = kTruth;
+  p[3] *= 1.3;  // K 30 % high
+  Flight f;
+  ASSERT_NO_FATAL_FAILURE(Fly(*model, 20.0, 20.0, 0.0, p, &f));
+  const ZigzagReflight& flown = f.flown;
   ASSERT_GE(flown.reversals, 2);
   // The stronger ship reaches the first check sooner, and its rudder leaves the plateau
   // there: where the heading change first reaches the check, not where the logged rudder
   // (reversed at the true ship's check) left it.
-  EXPECT_LT(flown.figures.time_to_first_check, measured.time_to_first_check - 0.5);
+  EXPECT_LT(flown.figures.time_to_first_check, f.measured.time_to_first_check - 0.5);
   size_t reached = 0, left = 0;
-  while (reached < flown.t.size() && std::abs(flown.psi[reached] - flown.psi[0]) < commands.check)
+  while (reached < flown.t.size() &&
+         std::abs(flown.psi[reached] - flown.psi[0]) < f.commands.check) {
     ++reached;
-  while (left < flown.t.size() &&
-         !(flown.t[left] > test.first_execute + 1.0 && flown.delta[left] > flown.delta[left - 1]))
+  }
+  while (left < flown.t.size() && !(flown.t[left] > f.test.first_execute + 1.0 &&
+                                    flown.delta[left] > flown.delta[left - 1])) {
     ++left;  // the rudder first moves back (the first command is -20 deg: K < 0)
+  }
   ASSERT_LT(reached, flown.t.size());
   EXPECT_NEAR(flown.t[left], flown.t[reached], 0.1);
-  EXPECT_GT(std::abs(flown.figures.first_overshoot - measured.first_overshoot), 0.3 * kDeg);
+  EXPECT_GT(std::abs(flown.figures.first_overshoot - f.measured.first_overshoot), 0.3 * kDeg);
 }
 
 TEST(ZigzagReflight, CommandsAreTheLoggedPlateausAroundABiasedNeutral) {
