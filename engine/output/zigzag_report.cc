@@ -41,13 +41,16 @@ std::string ZigzagTestLabel(const ZigzagRun& run) {
 nlohmann::json ZigzagRunsToJson(const std::vector<ZigzagRun>& runs) {
   nlohmann::json j = nlohmann::json::array();
   for (const ZigzagRun& run : runs) {
-    j.push_back({{"stage", run.stage},
-                 {"experiment", run.experiment},
-                 {"held_out", run.held_out},
-                 {"rudder_deg", run.test.rudder * kToDegrees},
-                 {"heading_deg", run.test.heading * kToDegrees},
-                 {"measured", FiguresToJson(run.measured)},
-                 {"simulated", FiguresToJson(run.simulated)}});
+    nlohmann::json item = {{"stage", run.stage},
+                           {"experiment", run.experiment},
+                           {"held_out", run.held_out},
+                           {"rudder_deg", run.test.rudder * kToDegrees},
+                           {"heading_deg", run.test.heading * kToDegrees},
+                           {"measured", FiguresToJson(run.measured)},
+                           {"simulated", FiguresToJson(run.simulated)}};
+    if (run.reflown_done) item["reflown"] = FiguresToJson(run.reflown);
+    if (!run.reflown_why.empty()) item["reflown_why"] = run.reflown_why;
+    j.push_back(std::move(item));
   }
   return j;
 }
@@ -78,7 +81,9 @@ std::vector<ZigzagEntry> ZigzagEntries(const std::vector<ZigzagRun>& runs) {
 std::string ZigzagRunsText(const std::vector<ZigzagRun>& runs) {
   if (runs.empty()) return "";
   std::string out =
-      "\nzigzag figures, measured / simulated (" + std::string(kZigzagDefinitions) + ")\n";
+      "\nzigzag figures, measured / simulated (" + std::string(kZigzagDefinitions) +
+      "; held-out runs also re-flown in closed loop from their measured start, the rudder "
+      "reversed at the model's own checks)\n";
   char line[320];
   std::snprintf(line, sizeof(line), "  %-12s %-20s %-9s %-11s %17s %17s %17s %17s\n", "stage",
                 "experiment", "data", "test [deg]", "1st overshoot deg", "2nd overshoot deg",
@@ -101,6 +106,22 @@ std::string ZigzagRunsText(const std::vector<ZigzagRun>& runs) {
             .c_str(),
         pair(run.measured.period, run.simulated.period, 1.0, "%.1f").c_str());
     out += line;
+    // Re-flown in closed loop (run/zigzag_reflight.h): measured / re-flown.
+    if (run.reflown_done) {
+      std::snprintf(
+          line, sizeof(line), "  %-12s %-20s %-9s %-11s %17s %17s %17s %17s\n", "",
+          "  re-flown", "", "",
+          pair(run.measured.first_overshoot, run.reflown.first_overshoot, kToDegrees, "%.2f")
+              .c_str(),
+          pair(run.measured.second_overshoot, run.reflown.second_overshoot, kToDegrees, "%.2f")
+              .c_str(),
+          pair(run.measured.time_to_first_check, run.reflown.time_to_first_check, 1.0, "%.1f")
+              .c_str(),
+          pair(run.measured.period, run.reflown.period, 1.0, "%.1f").c_str());
+      out += line;
+    } else if (!run.reflown_why.empty()) {
+      out += "  " + std::string(34, ' ') + "  not re-flown: " + run.reflown_why + "\n";
+    }
   }
   // The held-out runs against their prediction intervals (held_out_zigzags.h).
   const HeldOutZigzagCheck check = CheckHeldOutZigzags(ZigzagEntries(runs));

@@ -3,7 +3,9 @@
 #include <map>
 
 #include "engine/data/interpolation.h"
+#include "engine/model/experiment.h"
 #include "engine/model/record_channels.h"
+#include "engine/run/zigzag_reflight.h"
 
 namespace vesselid {
 namespace {
@@ -24,11 +26,47 @@ std::string RudderColumn(const ExperimentSpec& spec) {
   return "";
 }
 
+// IMO's steering gear, 35 deg to 30 deg the other side in 28 s: where the log shows no ramp.
+constexpr double kImoRudderRate = 65.0 / 28.0 * M_PI / 180.0;
+
 struct Examiner {
   const RunConfig& config;
   TrajectoryCache* cache;
   RunResult* run;
   std::map<const Trajectory*, RecordChannels> channels;
+
+  // A held-out zigzag flown from its measured start, re-flown in closed loop from the same
+  // start with the same values (zigzag_reflight.h), the gear at the rate its log shows.
+  void Refly(const ExperimentFit& fit, const ExperimentSpec& spec, const Trajectory& data,
+             const std::vector<double>& delta, const std::vector<double>& psi,
+             ZigzagRun* zigzag) {
+    const ModelHandle& model = *config.model;
+    const ModelInfo& info = model.info();
+    if (fit.start.initial_state.size() != info.states.size() ||
+        fit.start.values.size() != info.parameters.size()) {
+      zigzag->reflown_why = "not flown from its measured start with the run's model";
+      return;
+    }
+    if (RecordName(fit.experiment) != fit.experiment) {
+      zigzag->reflown_why = "a piece of its record";
+      return;
+    }
+    Experiment experiment;
+    ZigzagCommands commands;
+    ZigzagReflight flown;
+    std::string why;
+    if (!BuildExperiment(spec, data, info, ExperimentOptions(), &experiment, &why) ||
+        !FindZigzagCommands(fit.trace.t, delta, psi, zigzag->test, &commands, &why) ||
+        !ReflyZigzag(model, experiment, fit.start.values.data(), fit.start.initial_state.data(),
+                     zigzag->test, commands,
+                     std::isfinite(commands.rate) ? commands.rate : kImoRudderRate, &flown,
+                     &why)) {
+      zigzag->reflown_why = why;
+      return;
+    }
+    zigzag->reflown_done = true;
+    zigzag->reflown = flown.figures;
+  }
 
   void Examine(const std::string& stage, bool held_out, const std::vector<ExperimentFit>& fits) {
     const ModelInfo& info = config.model->info();
@@ -55,6 +93,7 @@ struct Examiner {
         zigzag.held_out = held_out;
         zigzag.measured = MeasureZigzag(trace.t, trace.columns[measured], zigzag.test);
         zigzag.simulated = MeasureZigzag(trace.t, trace.columns[simulated], zigzag.test);
+        if (held_out) Refly(fit, *spec, *data, delta, trace.columns[measured], &zigzag);
         run->zigzags.push_back(std::move(zigzag));
         continue;
       }

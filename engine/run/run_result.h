@@ -189,6 +189,12 @@ struct ZigzagRun {
   bool held_out = false;
   ZigzagTest test;
   ZigzagFigures measured, simulated;
+  // A held-out run flown from its measured start, re-flown in closed loop as the test was
+  // flown (run/zigzag_reflight.h: the rudder reversed at the model's own checks); where it
+  // could not be, `reflown_why` says why.
+  bool reflown_done = false;
+  ZigzagFigures reflown;
+  std::string reflown_why;
 };
 
 // A turning circle among the run's simulated records (manoeuvre_runs.h): the test as the record

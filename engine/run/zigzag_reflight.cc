@@ -69,7 +69,7 @@ bool FindZigzagCommands(const std::vector<double>& t, const std::vector<double>&
   };
   double psi0 = NAN;
   int on = 0;  // +1: on the upper plateau, -1: the lower, 0: neither
-  std::vector<double> checks;
+  std::vector<double> checks, slopes;
   for (size_t i = 0; i < n; ++i) {
     if (!usable(i)) continue;
     if (!std::isfinite(psi0)) psi0 = psi[i];
@@ -81,6 +81,7 @@ bool FindZigzagCommands(const std::vector<double>& t, const std::vector<double>&
       size_t j = i;
       while (j + 1 < n && usable(j + 1) && std::abs(delta[j] - level) < 3.0 * tolerance) ++j;
       const double slope = j > i ? (delta[j] - delta[i]) / (t[j] - t[i]) : 0.0;
+      if (slope != 0.0) slopes.push_back(std::abs(slope));
       const double left = slope != 0.0 ? t[i] - (delta[i] - level) / slope : t[i - 1];
       checks.push_back(std::abs(heading_at(std::clamp(left, test.first_execute, t[i])) - psi0));
     }
@@ -91,6 +92,7 @@ bool FindZigzagCommands(const std::vector<double>& t, const std::vector<double>&
     return false;
   }
   commands->check = PlateauMedian(checks);
+  commands->rate = PlateauMedian(slopes);  // NaN without a ramp
   return true;
 }
 

@@ -18,6 +18,7 @@
 // from the experiment's input cache, the rudder column replaced from t_0 on.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,7 @@ struct ZigzagCommands {
   double amplitude = 0.0;
   double first_sign = 1.0;  // +1: the first command is c + delta_z
   double check = 0.0;       // rad, the heading change that reverses the rudder
+  double rate = NAN;        // rad/s, the gear's: the median slope of the reversals' ramps
 };
 
 // The commands of the logged rudder `delta` and heading `psi` at times `t` for `test`

@@ -231,7 +231,9 @@ TEST(FilterErrorRun, AutoNamesEveryCandidateAndKeepsTheBest) {
   int noise = 0;
   for (const json& e : run.results["stages"][0]["estimates"]) {
     const auto found = configured.find(e["name"].get<std::string>());
-    if (found != configured.end()) EXPECT_EQ(e["start"], found->second) << e.dump();
+    if (found != configured.end()) {
+      EXPECT_EQ(e["start"], found->second) << e.dump();
+    }
     if (e["kind"] == "noise") {
       ++noise;
       EXPECT_TRUE(e["start"].is_null()) << e.dump();
@@ -273,7 +275,7 @@ TEST(FilterErrorRun, AutoNamesEveryCandidateAndKeepsTheBest) {
     const size_t plus = name.find(" + ");
     if (plus == std::string::npos) continue;
     ++combined;
-    for (const std::string part : {name.substr(0, plus), name.substr(plus + 3)}) {
+    for (const std::string& part : {name.substr(0, plus), name.substr(plus + 3)}) {
       ASSERT_TRUE(nll.count(part)) << part << "\n" << d.dump();
       EXPECT_LE(value, nll[part] + 1e-6 * std::abs(nll[part])) << name << " vs " << part;
     }

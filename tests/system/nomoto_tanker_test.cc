@@ -253,5 +253,29 @@ TEST_F(NomotoTanker, HeldOutFirstOvershootIntervalCoversTheMeasurement) {
             std::string::npos);
 }
 
+// The held-out zigzags re-flown in closed loop from their measured starts
+// (run/zigzag_reflight.h: the rudder reversed where the model's own heading reaches the check,
+// the gear at the rate the log shows): results.json gives each one's re-flown figures beside
+// the open-loop ones, report.txt a line; training runs are not re-flown.
+TEST_F(NomotoTanker, HeldOutZigzagsAreReflownInClosedLoop) {
+  int reflown = 0;
+  for (const json& z : (*results_)["zigzags"]) {
+    if (!z["held_out"].get<bool>()) {
+      EXPECT_FALSE(z.contains("reflown")) << z.dump();
+      continue;
+    }
+    ASSERT_TRUE(z.contains("reflown")) << z.dump();
+    EXPECT_TRUE(z["reflown"]["first_overshoot_deg"].is_number()) << z.dump();
+    std::printf("%s %s: first overshoot measured %s, open loop %s, re-flown %s deg\n",
+                z["stage"].get<std::string>().c_str(), z["experiment"].get<std::string>().c_str(),
+                z["measured"]["first_overshoot_deg"].dump().c_str(),
+                z["simulated"]["first_overshoot_deg"].dump().c_str(),
+                z["reflown"]["first_overshoot_deg"].dump().c_str());
+    ++reflown;
+  }
+  EXPECT_GE(reflown, static_cast<int>(held_out_->size()));
+  EXPECT_NE(reports_->find("re-flown"), std::string::npos);
+}
+
 }  // namespace nomoto_tanker_test
 }  // namespace vesselid
