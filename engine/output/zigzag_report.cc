@@ -89,36 +89,28 @@ std::string ZigzagRunsText(const std::vector<ZigzagRun>& runs) {
                 "experiment", "data", "test [deg]", "1st overshoot deg", "2nd overshoot deg",
                 "to 1st check s", "period s");
   out += line;
-  for (const ZigzagRun& run : runs) {
-    auto pair = [](double measured, double simulated, double scale, const char* format) {
-      return FormatFinite(format, measured * scale) + " / " +
-             FormatFinite(format, simulated * scale);
-    };
+  auto pair = [](double measured, double simulated, double scale, const char* format) {
+    return FormatFinite(format, measured * scale) + " / " + FormatFinite(format, simulated * scale);
+  };
+  // One row: the measured figures against `other`'s.
+  auto row = [&](const std::string& stage, const std::string& experiment, const char* data,
+                 const std::string& test, const ZigzagFigures& measured,
+                 const ZigzagFigures& other) {
     std::snprintf(
-        line, sizeof(line), "  %-12s %-20s %-9s %-11s %17s %17s %17s %17s\n", run.stage.c_str(),
-        run.experiment.c_str(), run.held_out ? "held out" : "training",
-        ZigzagTestLabel(run).c_str(),
-        pair(run.measured.first_overshoot, run.simulated.first_overshoot, kToDegrees, "%.2f")
-            .c_str(),
-        pair(run.measured.second_overshoot, run.simulated.second_overshoot, kToDegrees, "%.2f")
-            .c_str(),
-        pair(run.measured.time_to_first_check, run.simulated.time_to_first_check, 1.0, "%.1f")
-            .c_str(),
-        pair(run.measured.period, run.simulated.period, 1.0, "%.1f").c_str());
+        line, sizeof(line), "  %-12s %-20s %-9s %-11s %17s %17s %17s %17s\n", stage.c_str(),
+        experiment.c_str(), data, test.c_str(),
+        pair(measured.first_overshoot, other.first_overshoot, kToDegrees, "%.2f").c_str(),
+        pair(measured.second_overshoot, other.second_overshoot, kToDegrees, "%.2f").c_str(),
+        pair(measured.time_to_first_check, other.time_to_first_check, 1.0, "%.1f").c_str(),
+        pair(measured.period, other.period, 1.0, "%.1f").c_str());
     out += line;
+  };
+  for (const ZigzagRun& run : runs) {
+    row(run.stage, run.experiment, run.held_out ? "held out" : "training", ZigzagTestLabel(run),
+        run.measured, run.simulated);
     // Re-flown in closed loop (run/zigzag_reflight.h): measured / re-flown.
     if (run.reflown_done) {
-      std::snprintf(
-          line, sizeof(line), "  %-12s %-20s %-9s %-11s %17s %17s %17s %17s\n", "",
-          "  re-flown", "", "",
-          pair(run.measured.first_overshoot, run.reflown.first_overshoot, kToDegrees, "%.2f")
-              .c_str(),
-          pair(run.measured.second_overshoot, run.reflown.second_overshoot, kToDegrees, "%.2f")
-              .c_str(),
-          pair(run.measured.time_to_first_check, run.reflown.time_to_first_check, 1.0, "%.1f")
-              .c_str(),
-          pair(run.measured.period, run.reflown.period, 1.0, "%.1f").c_str());
-      out += line;
+      row("", "  re-flown", "", "", run.measured, run.reflown);
     } else if (!run.reflown_why.empty()) {
       out += "  " + std::string(34, ' ') + "  not re-flown: " + run.reflown_why + "\n";
     }
