@@ -82,7 +82,7 @@ std::string ZigzagRunsText(const std::vector<ZigzagRun>& runs) {
   if (runs.empty()) return "";
   std::string out =
       "\nzigzag figures, measured / simulated (" + std::string(kZigzagDefinitions) +
-      "; held-out runs also re-flown in closed loop from their measured start, the rudder "
+      " Held-out runs are also re-flown in closed loop from their measured start, the rudder "
       "reversed at the model's own checks)\n";
   char line[320];
   std::snprintf(line, sizeof(line), "  %-12s %-20s %-9s %-11s %17s %17s %17s %17s\n", "stage",

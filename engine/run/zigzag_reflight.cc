@@ -6,6 +6,10 @@
 namespace vesselid {
 namespace {
 
+// s: the longest step between two checks of the re-flown heading (the run's RK4 step can be
+// a log interval of 1 s, and a check late by a step puts the rudder a second late).
+constexpr double kCheckStep = 0.05;
+
 double PlateauMedian(std::vector<double> values) {
   if (values.empty()) return NAN;
   const size_t mid = values.size() / 2;
@@ -67,6 +71,20 @@ bool FindZigzagCommands(const std::vector<double>& t, const std::vector<double>&
     const double w = std::clamp((when - t[i - 1]) / (t[i] - t[i - 1]), 0.0, 1.0);
     return psi[i - 1] + w * (psi[i] - psi[i - 1]);
   };
+  // A record cut inside the zigzag (a window after the first execute) has no start to fly
+  // from: its rudder stands on a plateau at its first sample.
+  for (size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(delta[i])) continue;
+    if (t[i] >= test.first_execute &&
+        std::min(std::abs(delta[i] - up), std::abs(delta[i] - down)) <= tolerance) {
+      if (why != nullptr) {
+        *why = "the record starts inside the zigzag (its rudder already on a plateau): no "
+               "start before the first execute to fly from";
+      }
+      return false;
+    }
+    break;
+  }
   double psi0 = NAN;
   int on = 0;  // +1: on the upper plateau, -1: the lower, 0: neither
   std::vector<double> checks, slopes;
@@ -80,9 +98,13 @@ bool FindZigzagCommands(const std::vector<double>& t, const std::vector<double>&
       const double level = on > 0 ? up : down;
       size_t j = i;
       while (j + 1 < n && usable(j + 1) && std::abs(delta[j] - level) < 3.0 * tolerance) ++j;
-      const double slope = j > i ? (delta[j] - delta[i]) / (t[j] - t[i]) : 0.0;
+      // No sample on the ramp (a gear faster than the log): it left at the last sample on the
+      // plateau and took at most one interval, half of one taken as the guess.
+      const bool ramp = j > i && delta[j] != delta[i];
+      const double slope = ramp ? (delta[j] - delta[i]) / (t[j] - t[i])
+                                : (delta[i] - level) / (0.5 * (t[i] - t[i - 1]));
       if (slope != 0.0) slopes.push_back(std::abs(slope));
-      const double left = slope != 0.0 ? t[i] - (delta[i] - level) / slope : t[i - 1];
+      const double left = ramp ? t[i] - (delta[i] - level) / slope : t[i - 1];
       checks.push_back(std::abs(heading_at(std::clamp(left, test.first_execute, t[i])) - psi0));
     }
     on = now;
@@ -129,14 +151,31 @@ bool ReflyZigzag(const ModelHandle& model, const Experiment& experiment, const d
   auto moved = [&](double tau) {
     return delta + std::clamp(command - delta, -rudder_rate * tau, rudder_rate * tau);
   };
+  // The run's RK4 step can be a whole log interval (1 s); the checks are timed on steps of at
+  // most kCheckStep, the inputs between the step's start, midpoint and end rows linear.
+  std::vector<double> a(nu), b(nu), c(nu);
+  auto between = [&](double f, std::vector<double>* u) {  // f in [0, 1] of the run's step
+    for (size_t i = 0; i < nu; ++i) {
+      (*u)[i] = f <= 0.5 ? a[i] + 2.0 * f * (b[i] - a[i]) : b[i] + (2.0 * f - 1.0) * (c[i] - b[i]);
+    }
+  };
   size_t step = 0;
   for (int k = 0; k + 1 < experiment.num_nodes(); ++k) {
-    const double h = experiment.node_step[k];
-    for (int j = 0; j < experiment.node_substeps[k]; ++j, ++step) {
-      const double start = experiment.node_time[k] + j * h;
-      row(3 * step, &u0);
-      row(3 * step + 1, &u_mid);
-      row(3 * step + 2, &u1);
+    const double run_step = experiment.node_step[k];
+    const int pieces = std::max(1, static_cast<int>(std::ceil(run_step / kCheckStep - 1e-9)));
+    const double h = run_step / pieces;
+    for (int jj = 0; jj < experiment.node_substeps[k] * pieces; ++jj) {
+      const int j = jj / pieces, piece = jj % pieces;
+      if (piece == 0) {
+        row(3 * step, &a);
+        row(3 * step + 1, &b);
+        row(3 * step + 2, &c);
+        ++step;
+      }
+      const double start = experiment.node_time[k] + j * run_step + piece * h;
+      between(static_cast<double>(piece) / pieces, &u0);
+      between((piece + 0.5) / pieces, &u_mid);
+      between(static_cast<double>(piece + 1) / pieces, &u1);
       if (!closed && start >= test.first_execute) {
         closed = true;
         delta = u0[rudder];
