@@ -3,19 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/base/statistics.h"
+
 namespace vesselid {
 namespace {
 
 // s: the longest step between two checks of the re-flown heading (the run's RK4 step can be
 // a log interval of 1 s, and a check late by a step puts the rudder a second late).
 constexpr double kCheckStep = 0.05;
-
-double PlateauMedian(std::vector<double> values) {
-  if (values.empty()) return NAN;
-  const size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + mid, values.end());
-  return values[mid];
-}
 
 }  // namespace
 
@@ -41,7 +36,7 @@ bool FindZigzagCommands(const std::vector<double>& t, const std::vector<double>&
     if (why != nullptr) *why = "the logged rudder has no plateau either side of its neutral";
     return false;
   }
-  const double up = PlateauMedian(upper), down = PlateauMedian(lower);
+  const double up = UpperMedian(upper), down = UpperMedian(lower);
   commands->neutral = 0.5 * (up + down);
   commands->amplitude = 0.5 * (up - down);
   // The first command: where the rudder stands, relative to the neutral, over the samples of
@@ -113,8 +108,8 @@ bool FindZigzagCommands(const std::vector<double>& t, const std::vector<double>&
     if (why != nullptr) *why = "the logged rudder never leaves a plateau after the first execute";
     return false;
   }
-  commands->check = PlateauMedian(checks);
-  commands->rate = PlateauMedian(slopes);  // NaN without a ramp
+  commands->check = UpperMedian(checks);
+  commands->rate = UpperMedian(slopes);  // NaN without a ramp
   return true;
 }
 
