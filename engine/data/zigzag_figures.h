@@ -27,6 +27,9 @@
 
 namespace vesselid {
 
+// rad/s: IMO's steering gear, 35 deg to 30 deg the other side in 28 s (MSC.137(76)).
+inline constexpr double kImoRudderRate = 65.0 / 28.0 * 3.14159265358979323846 / 180.0;
+
 // What DetectZigzag finds in a record (angles in radians).
 struct ZigzagTest {
   double rudder = 0.0;         // delta_z

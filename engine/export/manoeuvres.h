@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/data/zigzag_figures.h"
 #include "engine/export/model_json.h"
 #include "engine/model/model_handle.h"
 #include "engine/output/process_noise.h"
@@ -32,8 +33,7 @@ struct ManoeuvreConditions {
   static constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
   double length = kUnknown;  // m, L
   double speed = kUnknown;   // m/s, the approach speed U (the model's input U where it has one)
-  // rad/s: the steering gear's rate, IMO's 35 deg to 30 deg the other side in 28 s.
-  double rudder_rate = 65.0 / 28.0 * 3.14159265358979323846 / 180.0;
+  double rudder_rate = kImoRudderRate;  // rad/s, the steering gear's (data/zigzag_figures.h)
   double step = 0.01;        // s, RK4 step of the closed-loop simulation (and the checks' timing)
   double duration = 3600.0;  // s, the longest a zigzag is simulated
   // s: the pull-out test's steady turn on 20 deg of rudder, and the time it is then watched

@@ -26,9 +26,6 @@ std::string RudderColumn(const ExperimentSpec& spec) {
   return "";
 }
 
-// IMO's steering gear, 35 deg to 30 deg the other side in 28 s: where the log shows no ramp.
-constexpr double kImoRudderRate = 65.0 / 28.0 * M_PI / 180.0;
-
 struct Examiner {
   const RunConfig& config;
   TrajectoryCache* cache;
@@ -36,7 +33,8 @@ struct Examiner {
   std::map<const Trajectory*, RecordChannels> channels;
 
   // A held-out zigzag flown from its measured start, re-flown in closed loop from the same
-  // start with the same values (zigzag_reflight.h), the gear at the rate its log shows.
+  // start with the same values (zigzag_reflight.h), the gear at the rate its log shows (IMO's
+  // where it shows no ramp).
   void Refly(const ExperimentFit& fit, const ExperimentSpec& spec, const Trajectory& data,
              const std::vector<double>& delta, const std::vector<double>& psi,
              ZigzagRun* zigzag) {
